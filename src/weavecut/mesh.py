@@ -1,0 +1,344 @@
+"""The planar mesh: vertices plus ragged counter-clockwise faces, with topology derived once.
+
+Face ``f`` is ``face_indices[face_offsets[f]:face_offsets[f + 1]]``. Corner ``h`` of the mesh
+(an index into ``face_indices``) is also half-edge ``h``: it runs from ``face_indices[h]`` to
+the next corner of the same face. Letters: V vertices, E edges, F faces, H corners (half-edges).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .errors import MeshError, NonManifoldError
+
+
+@dataclass(frozen=True, eq=False)
+class Mesh:
+    """Planar mesh with faces of any degree.
+
+    Parameters
+    ----------
+    vertices : (V, 2) float64
+    face_offsets : (F + 1,) int64, starting at 0 and ending at H
+    face_indices : (H,) int32, vertex of every corner
+    """
+
+    vertices: NDArray[np.float64]
+    face_offsets: NDArray[np.int64]
+    face_indices: NDArray[np.int32]
+
+    def __post_init__(self) -> None:
+        for name, dtype in (
+            ("vertices", np.float64),
+            ("face_offsets", np.int64),
+            ("face_indices", np.int32),
+        ):
+            arr = np.array(getattr(self, name), dtype=dtype)  # a private copy
+            arr.flags.writeable = False
+            object.__setattr__(self, name, arr)
+        _check_structure(self)
+
+    @classmethod
+    def from_faces(cls, vertices, faces) -> Mesh:
+        """Build a mesh from a vertex list and a list of faces (lists of vertex indices).
+
+        Examples
+        --------
+        >>> Mesh.from_faces([(0, 0), (1, 0), (1, 1), (0, 1)], [[0, 1, 2, 3]]).n_faces
+        1
+        """
+        faces = [list(f) for f in faces]
+        sizes = np.array([len(f) for f in faces], dtype=np.int64)
+        offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
+        flat = [i for f in faces for i in f]
+        for i in flat:
+            if not isinstance(i, (int, np.integer)) or abs(int(i)) >= 2**31:
+                raise MeshError(f"vertex index {i!r} is not an integer in range")
+        vertices = np.asarray(vertices, dtype=np.float64).reshape(-1, 2)
+        return cls(vertices, offsets, np.asarray(flat, dtype=np.int64))
+
+    @classmethod
+    def trusted(cls, vertices, face_offsets, face_indices, topology: Topology | None = None) -> Mesh:
+        """Wrap arrays that a subdivision step built correct by construction (no copy, no checks)."""
+        mesh = object.__new__(cls)
+        for name, arr in (
+            ("vertices", vertices),
+            ("face_offsets", face_offsets),
+            ("face_indices", face_indices),
+        ):
+            arr.flags.writeable = False
+            object.__setattr__(mesh, name, arr)
+        if topology is not None:
+            mesh.__dict__["topology"] = topology
+        return mesh
+
+    # -- sizes ------------------------------------------------------------------------------
+    @property
+    def n_vertices(self) -> int:
+        return len(self.vertices)
+
+    @property
+    def n_faces(self) -> int:
+        return len(self.face_offsets) - 1
+
+    @property
+    def n_corners(self) -> int:
+        return len(self.face_indices)
+
+    @cached_property
+    def face_sizes(self) -> NDArray[np.int64]:
+        """(F,) number of corners of every face."""
+        return np.diff(self.face_offsets)
+
+    @cached_property
+    def face_degree(self) -> int | None:
+        """The common degree k of all faces, or None when degrees differ."""
+        if self.n_faces == 0:
+            return None
+        lo, hi = self.face_sizes.min(), self.face_sizes.max()
+        return int(lo) if lo == hi else None
+
+    def dense_faces(self) -> NDArray[np.int32] | None:
+        """(F, k) view of the faces when all have degree k, else None."""
+        k = self.face_degree
+        return None if k is None else self.face_indices.reshape(-1, k)
+
+    def faces(self) -> list[list[int]]:
+        """Faces as Python lists (for small meshes, I/O and tests)."""
+        return [
+            self.face_indices[a:b].tolist()
+            for a, b in zip(self.face_offsets[:-1].tolist(), self.face_offsets[1:].tolist())
+        ]
+
+    # -- corners ----------------------------------------------------------------------------
+    @cached_property
+    def half_edge_face(self) -> NDArray[np.int32]:
+        """(H,) face of every corner."""
+        return np.repeat(np.arange(self.n_faces, dtype=np.int32), self.face_sizes)
+
+    @cached_property
+    def next_half_edge(self) -> NDArray[np.int32]:
+        """(H,) next corner of the same face (counter-clockwise)."""
+        nxt = np.arange(1, self.n_corners + 1, dtype=np.int32)
+        if self.n_faces:
+            nxt[self.face_offsets[1:] - 1] = self.face_offsets[:-1]
+        return nxt
+
+    @cached_property
+    def prev_half_edge(self) -> NDArray[np.int32]:
+        """(H,) previous corner of the same face."""
+        prev = np.empty(self.n_corners, dtype=np.int32)
+        prev[self.next_half_edge] = np.arange(self.n_corners, dtype=np.int32)
+        return prev
+
+    @cached_property
+    def topology(self) -> Topology:
+        """Edges, twins and boundary, built on first use."""
+        return Topology.build(self)
+
+    def moved(self, vertices: NDArray[np.float64]) -> Mesh:
+        """The same faces with new vertex positions; the topology is shared."""
+        vertices = np.asarray(vertices, dtype=np.float64)
+        if vertices.shape != self.vertices.shape:
+            raise MeshError(f"moved() needs {self.vertices.shape} vertices, got {vertices.shape}")
+        mesh = Mesh.trusted(vertices.copy(), self.face_offsets, self.face_indices)
+        for name in ("topology", "face_sizes", "half_edge_face", "next_half_edge"):
+            if name in self.__dict__:
+                mesh.__dict__[name] = self.__dict__[name]
+        return mesh
+
+    def reversed(self) -> Mesh:
+        """Every face with its corner order reversed (orientation flipped)."""
+        first = np.repeat(self.face_offsets[:-1], self.face_sizes)
+        last = np.repeat(self.face_offsets[1:] - 1, self.face_sizes)
+        order = first + last - np.arange(self.n_corners)
+        return Mesh(self.vertices, self.face_offsets, self.face_indices[order])
+
+
+def _check_structure(mesh: Mesh) -> None:
+    v, off, idx = mesh.vertices, mesh.face_offsets, mesh.face_indices
+    if v.ndim != 2 or v.shape[1] != 2:
+        raise MeshError(f"vertices must have shape (V, 2), got {v.shape}")
+    if len(v) >= 2**31:
+        raise MeshError(f"{len(v)} vertices is more than weave-cut indexes ({2**31 - 1})")
+    bad = np.flatnonzero(~np.isfinite(v).all(axis=1))
+    if len(bad):
+        raise MeshError(f"vertex {bad[0]} has a non-finite coordinate {tuple(v[bad[0]])}")
+    if off.ndim != 1 or len(off) < 1 or off[0] != 0 or off[-1] != len(idx):
+        raise MeshError("face offsets must start at 0 and end at the number of corners")
+    sizes = np.diff(off)
+    if (sizes < 3).any():
+        f = int(np.flatnonzero(sizes < 3)[0])
+        raise MeshError(f"face {f} has {sizes[f]} corner(s); a face needs at least 3")
+    if len(idx) and (idx.min() < 0 or idx.max() >= len(v)):
+        h = int(np.flatnonzero((idx < 0) | (idx >= len(v)))[0])
+        f = int(np.searchsorted(off, h, side="right") - 1)
+        raise MeshError(f"face {f} uses vertex {idx[h]}, out of range 0..{len(v) - 1}")
+    # a vertex repeated within a face: sort (face, vertex) pairs, look for equal neighbours
+    face = np.repeat(np.arange(len(sizes), dtype=np.int64), sizes)
+    key = np.sort(face * max(len(v), 1) + idx)
+    dup = np.flatnonzero(key[1:] == key[:-1])
+    if len(dup):
+        f, vtx = divmod(int(key[dup[0]]), max(len(v), 1))
+        raise MeshError(f"face {f} visits vertex {vtx} more than once")
+
+
+@dataclass(frozen=True, eq=False)
+class Topology:
+    """Undirected edges and their half-edges.
+
+    Parameters
+    ----------
+    edges : (E, 2) int32, ``u < w``
+    half_edge_edge : (H,) int32, edge of every half-edge
+    half_edge_side : (H,) int8, 0 when the half-edge runs u -> w (its face is left of u -> w)
+    """
+
+    edges: NDArray[np.int32]
+    half_edge_edge: NDArray[np.int32]
+    half_edge_side: NDArray[np.int8]
+
+    @classmethod
+    def build(cls, mesh: Mesh) -> Topology:
+        """Derive the topology with one sort; raise NonManifoldError on a bad edge."""
+        u = mesh.face_indices.astype(np.int64)
+        w = u[mesh.next_half_edge]
+        n_v = max(mesh.n_vertices, 1)
+        key = np.minimum(u, w) * n_v + np.maximum(u, w)
+        edge_key, he_edge = np.unique(key, return_inverse=True)
+        he_edge = he_edge.reshape(-1).astype(np.int32)
+        edges = np.column_stack(np.divmod(edge_key, n_v)).astype(np.int32)
+        side = (u > w).astype(np.int8)
+        uses = np.bincount(he_edge, minlength=len(edges))
+        if (uses > 2).any():
+            e = int(np.flatnonzero(uses > 2)[0])
+            raise NonManifoldError(
+                f"edge ({edges[e, 0]}, {edges[e, 1]}) is in {uses[e]} faces; at most 2 allowed"
+            )
+        taken = np.bincount(2 * he_edge.astype(np.int64) + side, minlength=2 * len(edges))
+        if (taken > 1).any():
+            e = int(np.flatnonzero(taken > 1)[0] // 2)
+            faces = mesh.half_edge_face[he_edge == e].tolist()
+            raise NonManifoldError(
+                f"edge ({edges[e, 0]}, {edges[e, 1]}) runs the same way in faces "
+                f"{faces[0]} and {faces[1]}"
+            )
+        topo = cls(edges, he_edge, side)
+        _check_vertex_fans(mesh, topo)
+        return topo
+
+    @property
+    def n_edges(self) -> int:
+        return len(self.edges)
+
+    @cached_property
+    def edge_half_edges(self) -> NDArray[np.int32]:
+        """(E, 2) the half-edge running u -> w (column 0) and w -> u (column 1); -1 if none."""
+        out = np.full((len(self.edges), 2), -1, dtype=np.int32)
+        out[self.half_edge_edge, self.half_edge_side] = np.arange(
+            len(self.half_edge_edge), dtype=np.int32
+        )
+        return out
+
+    @cached_property
+    def twin(self) -> NDArray[np.int32]:
+        """(H,) the opposite half-edge, -1 on the boundary."""
+        return self.edge_half_edges[self.half_edge_edge, 1 - self.half_edge_side]
+
+    @cached_property
+    def boundary_edges(self) -> NDArray[np.bool_]:
+        """(E,) True for outer edges (one face)."""
+        return (self.edge_half_edges < 0).any(axis=1)
+
+
+def _check_vertex_fans(mesh: Mesh, topo: Topology) -> None:
+    """A vertex where two boundary fans meet (a bow-tie) is not 2-manifold."""
+    he = topo.edge_half_edges
+    lone = he[(he < 0).any(axis=1)].max(axis=1)
+    starts = np.bincount(mesh.face_indices[lone], minlength=mesh.n_vertices)
+    if (starts > 1).any():
+        v = int(np.flatnonzero(starts > 1)[0])
+        raise NonManifoldError(f"vertex {v} joins {starts[v]} separate fans of faces (a bow-tie)")
+
+
+def edge_faces(mesh: Mesh) -> NDArray[np.int32]:
+    """(E, 2) face left of u -> w (column 0) and right of it (column 1); -1 if none."""
+    he = mesh.topology.edge_half_edges
+    return np.where(he >= 0, mesh.half_edge_face[np.maximum(he, 0)], -1).astype(np.int32)
+
+
+def outer_vertices(mesh: Mesh) -> NDArray[np.bool_]:
+    """(V,) True for vertices on an outer edge."""
+    topo = mesh.topology
+    mask = np.zeros(mesh.n_vertices, dtype=bool)
+    mask[topo.edges[topo.boundary_edges].ravel()] = True
+    return mask
+
+
+def vertex_degrees(mesh: Mesh) -> NDArray[np.int64]:
+    """(V,) number of edges at every vertex."""
+    return np.bincount(mesh.topology.edges.ravel(), minlength=mesh.n_vertices)
+
+
+def face_centroids(mesh: Mesh) -> NDArray[np.float64]:
+    """(F, 2) vertex mean of every face (the paper's "barycentre")."""
+    dense = mesh.dense_faces()
+    if dense is not None:
+        return np.take(mesh.vertices, dense, axis=0).mean(axis=1)
+    sums = np.add.reduceat(np.take(mesh.vertices, mesh.face_indices, axis=0),
+                           mesh.face_offsets[:-1], axis=0)
+    return sums / mesh.face_sizes[:, None]
+
+
+def signed_areas(mesh: Mesh) -> NDArray[np.float64]:
+    """(F,) shoelace area of every face, positive when counter-clockwise."""
+    p = np.take(mesh.vertices, mesh.face_indices, axis=0)
+    q = p[mesh.next_half_edge]
+    cross = p[:, 0] * q[:, 1] - p[:, 1] * q[:, 0]
+    return 0.5 * np.add.reduceat(cross, mesh.face_offsets[:-1]) if mesh.n_faces else cross[:0]
+
+
+def area_centroids(mesh: Mesh) -> NDArray[np.float64]:
+    """(F, 2) area centroid of every face."""
+    p = np.take(mesh.vertices, mesh.face_indices, axis=0)
+    q = p[mesh.next_half_edge]
+    cross = p[:, 0] * q[:, 1] - p[:, 1] * q[:, 0]
+    starts = mesh.face_offsets[:-1]
+    a = 0.5 * np.add.reduceat(cross, starts)
+    cx = np.add.reduceat((p[:, 0] + q[:, 0]) * cross, starts)
+    cy = np.add.reduceat((p[:, 1] + q[:, 1]) * cross, starts)
+    return np.column_stack([cx, cy]) / (6.0 * a[:, None])
+
+
+def corner_turns(mesh: Mesh) -> NDArray[np.float64]:
+    """(H,) cross product of the two edges at every corner; negative at a reflex corner."""
+    p = mesh.vertices[mesh.face_indices]
+    a = p - p[mesh.prev_half_edge]
+    b = p[mesh.next_half_edge] - p
+    return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
+
+
+def corner_angles(mesh: Mesh) -> NDArray[np.float64]:
+    """(H,) interior angle at every corner in radians (in (0, 2*pi) for CCW faces)."""
+    p = mesh.vertices[mesh.face_indices]
+    a = p[mesh.prev_half_edge] - p
+    b = p[mesh.next_half_edge] - p
+    cross = b[:, 0] * a[:, 1] - b[:, 1] * a[:, 0]
+    dot = (a * b).sum(axis=1)
+    return np.mod(np.arctan2(cross, dot), 2 * np.pi)
+
+
+def edge_lengths(mesh: Mesh) -> NDArray[np.float64]:
+    """(E,) length of every edge."""
+    e = mesh.topology.edges
+    return np.hypot(*(mesh.vertices[e[:, 1]] - mesh.vertices[e[:, 0]]).T)
+
+
+def mirrored(mesh: Mesh) -> Mesh:
+    """Reflect in the y axis (x -> -x), keeping faces counter-clockwise."""
+    flipped = mesh.reversed()
+    return Mesh(mesh.vertices * np.array([-1.0, 1.0]), flipped.face_offsets, flipped.face_indices)

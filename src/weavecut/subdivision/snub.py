@@ -1,0 +1,161 @@
+"""The pentagon snub subdivision step (the paper's operations 1-4).
+
+For a counter-clockwise face f and its half-edge h = (a -> b) on edge e = (u, w), u < w, the
+Z-triplet is u - z0 - z1 - w with three edges of length |e|/sqrt(7) and 120 degrees between
+consecutive edges; z0 lies near u, z1 near w, point-symmetric about the edge midpoint:
+
+    z0 = u + d (5 + i sqrt3 s) / 14,   z1 = u + d (9 - i sqrt3 s) / 14,   d = w - u,
+
+with s = +1 for left chirality (the first Z edge turns by alpha = atan(sqrt3/5) towards the face
+on its left) and s = -1 for right. The Z vertex on f's side of e is x_h, the other y_h. The
+centre c_f joins every x_h and f splits into one pentagon per corner, with local edge 1 always
+the Z middle edge and local vertex 4 the tip opposite it:
+
+    left:  P_h = (c_f, x_h, y_h, b, x_next(h))       right: P_h = (a, y_h, x_h, c_f, x_prev(h))
+
+Numbering (child of a mesh with V, E, F, H): vertices ``[old V | z0, z1 of every edge | centres]``,
+faces: one per parent half-edge (face h comes from half-edge h), edges: ``3e + part`` for the Z
+parts (FIRST = (u, z0), MIDDLE = (z0, z1), LAST = (w, z1)) and ``3E + h`` for the spoke (x_h, c_f).
+Counts (paper eq. 2): V' = V + 2E + F, E' = 3E + H, F' = H.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..mesh import Mesh, Topology, area_centroids, face_centroids, outer_vertices
+from .hierarchy import Level
+
+FIRST, MIDDLE, LAST, SPOKE = 0, 1, 2, 3
+EDGE_PARTS = {"first": FIRST, "middle": MIDDLE, "last": LAST, "spoke": SPOKE}
+ALPHA = float(np.arctan(np.sqrt(3.0) / 5.0))  # 19.1066 degrees
+CENTRES = ("vertex", "area")
+CHIRALITIES = ("left", "right")
+
+
+def counts(n_vertices: int, n_edges: int, n_faces: int, n_corners: int) -> tuple[int, ...]:
+    """(V', E', F', H') after one step, from the paper's eq. (2); every child face is a pentagon.
+
+    Examples
+    --------
+    >>> counts(5, 5, 1, 5)  # a pentagon -> 5 pentagons
+    (16, 20, 5, 25)
+    """
+    return (n_vertices + 2 * n_edges + n_faces, 3 * n_edges + n_corners, n_corners, 5 * n_corners)
+
+
+def step(mesh: Mesh, *, smooth: bool = True, centre: str = "vertex",
+         chirality: str = "left") -> Level:
+    """One pentagon snub step: Z-triplets, centres, joins and (optionally) smoothing.
+
+    Parameters
+    ----------
+    mesh : Mesh with counter-clockwise faces
+    smooth : apply operation 4 (move inner vertices to the mean centre of their faces)
+    centre : "vertex" (vertex mean, the paper's figures) or "area" (area centroid)
+    chirality : "left" or "right"
+
+    Returns
+    -------
+    Level with provenance (see the module docstring for the numbering).
+    """
+    if centre not in CENTRES:
+        raise ValueError(f"centre must be one of {CENTRES}, got {centre!r}")
+    if chirality not in CHIRALITIES:
+        raise ValueError(f"chirality must be one of {CHIRALITIES}, got {chirality!r}")
+    right = chirality == "right"
+    topo = mesh.topology
+    n_v, n_e, n_f, n_h = mesh.n_vertices, topo.n_edges, mesh.n_faces, mesh.n_corners
+    centre_of = area_centroids if centre == "area" else face_centroids
+
+    # operations 1 and 2: Z vertices and face centres
+    vertices = np.empty((n_v + 2 * n_e + n_f, 2))
+    vertices[:n_v] = mesh.vertices
+    u = np.take(mesh.vertices, topo.edges[:, 0], axis=0)
+    d = np.take(mesh.vertices, topo.edges[:, 1], axis=0) - u
+    s = (-1.0 if right else 1.0) * np.sqrt(3.0)
+    z = vertices[n_v:n_v + 2 * n_e].reshape(n_e, 2, 2)
+    z[:, 0, 0] = u[:, 0] + (5 * d[:, 0] - s * d[:, 1]) / 14
+    z[:, 0, 1] = u[:, 1] + (5 * d[:, 1] + s * d[:, 0]) / 14
+    z[:, 1, 0] = u[:, 0] + (9 * d[:, 0] + s * d[:, 1]) / 14
+    z[:, 1, 1] = u[:, 1] + (9 * d[:, 1] - s * d[:, 0]) / 14
+    vertices[n_v + 2 * n_e:] = centre_of(mesh)
+
+    # operation 3: one pentagon per half-edge, with its topology read off the parent's
+    he_edge = topo.half_edge_edge.astype(np.int32)
+    side = topo.half_edge_side
+    face_side = side if not right else 1 - side  # which of z0, z1 is x_h
+    x = n_v + 2 * he_edge + face_side
+    y = n_v + 2 * he_edge + (1 - face_side)
+    c = n_v + 2 * n_e + mesh.half_edge_face
+    a = mesh.face_indices
+    nb = mesh.prev_half_edge if right else mesh.next_half_edge
+    spoke = 3 * n_e + np.arange(n_h, dtype=np.int32)
+    middle = 3 * he_edge + MIDDLE
+    near_end = 3 * he_edge + 2 * (1 - side)       # the Z part at b, the end of h
+    near_start = 3 * he_edge + 2 * side           # the Z part at a, the start of h
+    sidecol = side.astype(np.int8)
+    if right:
+        corners = (a, y, x, c, x[nb])
+        parts = (near_start, middle, spoke, spoke[nb], near_end[nb])
+        sides = (0, sidecol, 0, 1, 1)
+    else:
+        corners = (c, x, y, a[mesh.next_half_edge], x[nb])
+        parts = (spoke, middle, near_end, near_start[nb], spoke[nb])
+        sides = (1, sidecol, 1, 0, 0)
+    faces = _stack(corners, np.int32, n_h)
+    child_he_edge = _stack(parts, np.int32, n_h)
+    child_side = _stack(sides, np.int8, n_h)
+
+    edges = np.empty((3 * n_e + n_h, 2), dtype=np.int32)
+    zids = n_v + 2 * np.arange(n_e, dtype=np.int32)
+    ez = edges[:3 * n_e].reshape(n_e, 3, 2)
+    ez[:, FIRST, 0], ez[:, FIRST, 1] = topo.edges[:, 0], zids
+    ez[:, MIDDLE, 0], ez[:, MIDDLE, 1] = zids, zids + 1
+    ez[:, LAST, 0], ez[:, LAST, 1] = topo.edges[:, 1], zids + 1
+    edges[3 * n_e:, 0], edges[3 * n_e:, 1] = x, c
+
+    child_topo = Topology(edges, child_he_edge, child_side)
+    boundary = np.zeros(len(edges), dtype=bool)
+    boundary[:3 * n_e] = np.repeat(topo.boundary_edges, 3)
+    child_topo.__dict__["boundary_edges"] = boundary
+    offsets = np.arange(0, 5 * n_h + 1, 5, dtype=np.int64)
+    child = Mesh.trusted(vertices, offsets, faces, child_topo)
+    if smooth:
+        fixed = np.zeros(len(vertices), dtype=bool)
+        fixed[:n_v] = outer_vertices(mesh)
+        fixed[n_v:n_v + 2 * n_e] = np.repeat(topo.boundary_edges, 2)
+        child = Mesh.trusted(_smoothed(child, fixed, centre_of), offsets, faces, child_topo)
+
+    parent_edge = np.empty(len(edges), dtype=np.int32)
+    parent_edge[:3 * n_e] = np.repeat(np.arange(n_e, dtype=np.int32), 3)
+    parent_edge[3 * n_e:] = mesh.half_edge_face
+    edge_part = np.full(len(edges), SPOKE, dtype=np.int8)
+    edge_part[:3 * n_e] = np.tile(np.array([FIRST, MIDDLE, LAST], dtype=np.int8), n_e)
+    corner = np.arange(n_h, dtype=np.int32) - mesh.face_offsets[:-1].astype(np.int32)[
+        mesh.half_edge_face]
+    return Level(child, mesh.half_edge_face, corner, parent_edge, edge_part)
+
+
+def _stack(columns, dtype, n: int) -> NDArray:
+    """(n * 5,) row-major interleave of five columns (arrays or scalars)."""
+    out = np.empty((n, len(columns)), dtype=dtype)
+    for k, col in enumerate(columns):
+        out[:, k] = col
+    return out.reshape(-1)
+
+
+def _smoothed(mesh: Mesh, fixed: NDArray[np.bool_], centre_of) -> NDArray[np.float64]:
+    """Operation 4: every free vertex moves, all at once, to the mean centre of its faces."""
+    centres = centre_of(mesh)
+    idx = mesh.face_indices
+    k = mesh.face_degree or 0
+    per_corner = np.repeat(centres, k, axis=0) if k else centres[mesh.half_edge_face]
+    n = mesh.n_vertices
+    count = np.bincount(idx, minlength=n)
+    out = np.empty_like(mesh.vertices)
+    for axis in (0, 1):
+        out[:, axis] = np.bincount(idx, weights=per_corner[:, axis], minlength=n)
+    out /= np.maximum(count, 1)[:, None]
+    return np.where(fixed[:, None], mesh.vertices, out)
