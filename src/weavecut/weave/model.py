@@ -1,0 +1,83 @@
+"""The Weave: tiles, strands that visit them over or under, and strand lineage.
+
+Every weave (snub octagons, quad crossings, glued triangles, face-split quads) is this one
+structure, so colouring, checks and layouts work for all of them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..mesh import Mesh
+
+
+@dataclass(frozen=True, eq=False)
+class Weave:
+    """Tiles made of mesh faces, and strands as ordered tile visits.
+
+    Parameters
+    ----------
+    mesh : Mesh the tiles are made of
+    tile_offsets : (T + 1,) int64; tile t is faces ``tile_faces[tile_offsets[t]:tile_offsets[t+1]]``
+    tile_faces : (sum,) int32
+    strand_offsets : (S + 1,) int64; strand s visits ``strand_visits[strand_offsets[s]:...]``
+    strand_visits : (sum,) int32, tile ids in walking order
+    visit_over : (sum,) bool, True where the strand is on top at that visit
+    strand_closed : (S,) bool, True for closed loops (the last visit connects to the first)
+    parent_strand : (S,) int32 strand of the previous level each strand follows (-1: none),
+        or None when no lineage was computed
+    """
+
+    mesh: Mesh
+    tile_offsets: NDArray[np.int64]
+    tile_faces: NDArray[np.int32]
+    strand_offsets: NDArray[np.int64]
+    strand_visits: NDArray[np.int32]
+    visit_over: NDArray[np.bool_]
+    strand_closed: NDArray[np.bool_]
+    parent_strand: NDArray[np.int32] | None = None
+
+    @property
+    def n_tiles(self) -> int:
+        return len(self.tile_offsets) - 1
+
+    @property
+    def n_strands(self) -> int:
+        return len(self.strand_offsets) - 1
+
+    @cached_property
+    def visit_strand(self) -> NDArray[np.int32]:
+        """(sum,) strand of every visit."""
+        return np.repeat(np.arange(self.n_strands, dtype=np.int32), np.diff(self.strand_offsets))
+
+    @cached_property
+    def tile_over(self) -> NDArray[np.int32]:
+        """(T,) strand on top at every tile (-1: none)."""
+        out = np.full(self.n_tiles, -1, dtype=np.int32)
+        out[self.strand_visits[self.visit_over]] = self.visit_strand[self.visit_over]
+        return out
+
+    @cached_property
+    def tile_under(self) -> NDArray[np.int32]:
+        """(T,) strand passing below at every tile (-1: none)."""
+        out = np.full(self.n_tiles, -1, dtype=np.int32)
+        under = ~self.visit_over
+        out[self.strand_visits[under]] = self.visit_strand[under]
+        return out
+
+    @cached_property
+    def face_tile(self) -> NDArray[np.int32]:
+        """(F,) tile of every mesh face (-1: in no tile)."""
+        out = np.full(self.mesh.n_faces, -1, dtype=np.int32)
+        out[self.tile_faces] = np.repeat(np.arange(self.n_tiles, dtype=np.int32),
+                                         np.diff(self.tile_offsets))
+        return out
+
+    def strand(self, s: int) -> tuple[NDArray[np.int32], NDArray[np.bool_]]:
+        """Tiles visited by strand ``s`` and whether it is on top at each."""
+        a, b = self.strand_offsets[s], self.strand_offsets[s + 1]
+        return self.strand_visits[a:b], self.visit_over[a:b]
