@@ -42,7 +42,9 @@ def render(drawing: Drawing) -> bytes:
                 name = layer.name if len(drawing.sheets) == 1 else f"{layer.name}-{n + 1}"
                 name = _layer_name(name)
                 if name not in doc.layers:
-                    doc.layers.add(name, color=ROLE_COLOURS.get(layer.role, 7))
+                    entry = doc.layers.add(name, color=ROLE_COLOURS.get(layer.role, 7))
+                    if not layer.visible:
+                        entry.off()
                 for shape in layer.shapes:
                     _add(msp, shape, name, dx)
             dx += sheet.width + 10.0
@@ -61,13 +63,18 @@ def _add(msp, shape, layer: str, dx: float) -> None:
                     shape.anchor]])
         return
     if shape.style.stroke and shape.style.stroke != "#000000":
-        attribs["true_color"] = colors.rgb2int(colors.hex2rgb(shape.style.stroke))
+        attribs["true_color"] = colors.rgb2int(_rgb(shape.style.stroke))
     if isinstance(shape, Polygons):
         for ring in shape.rings():
             msp.add_lwpolyline((ring + (dx, 0.0)).tolist(), close=True, dxfattribs=attribs)
     elif isinstance(shape, Polylines):
         for line in shape.lines():
             msp.add_lwpolyline((line + (dx, 0.0)).tolist(), close=False, dxfattribs=attribs)
+
+
+def _rgb(hex_colour: str) -> tuple[int, int, int]:
+    h = hex_colour.lstrip("#")
+    return (int(h[0:2], 16), int(h[2:4], 16), int(h[4:6], 16))
 
 
 def _layer_name(name: str) -> str:

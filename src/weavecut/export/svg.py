@@ -29,10 +29,8 @@ def _document(drawing: Drawing, page: Sheet, placed) -> bytes:
     dwg = svgwrite.Drawing(size=(f"{_n(page.width)}mm", f"{_n(page.height)}mm"),
                            viewBox=f"0 0 {_n(page.width)} {_n(page.height)}", debug=False)
     dwg.attribs["xmlns:inkscape"] = "http://www.inkscape.org/namespaces/inkscape"
-    dwg.add(dwg.title(drawing.title))
     meta = "; ".join(f"{k}: {v}" for k, v in drawing.metadata)
-    if meta:
-        dwg.add(dwg.desc(meta))
+    dwg.set_desc(title=drawing.title, desc=meta or None)
     for n, (sheet, dx) in enumerate(placed):
         parent = dwg
         if len(placed) > 1:
@@ -43,6 +41,8 @@ def _document(drawing: Drawing, page: Sheet, placed) -> bytes:
             dwg.add(parent)
         for layer in sheet.layers:
             g = _group(dwg, f"{layer.role}-{layer.name}".replace(" ", "-"), layer.name)
+            if not layer.visible:
+                g.attribs["style"] = "display:none"
             for shape in layer.shapes:
                 for element in _elements(dwg, shape, sheet.height):
                     g.add(element)

@@ -104,9 +104,12 @@ Shape = Polygons | Polylines | Text
 
 @dataclass(frozen=True)
 class Layer:
+    """Named shapes with a role; a hidden layer is kept in the file but not shown."""
+
     name: str
     role: str
     shapes: tuple[Shape, ...] = ()
+    visible: bool = True
 
     def __post_init__(self) -> None:
         if self.role not in ROLES:

@@ -34,3 +34,53 @@ class Level:
 
 
 Hierarchy = tuple[Level, ...]
+
+
+BYTES_PER_CORNER = 120  # measured peak of one snub step per child corner (benchmarks/bench_snub.py)
+
+
+def available_memory() -> int:
+    """Bytes of memory available now (MemAvailable), or 8 GiB when it cannot be read."""
+    try:
+        with open("/proc/meminfo") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except OSError:
+        pass
+    return 8 << 30
+
+
+def sizes(mesh: Mesh, levels: int, counts) -> list[tuple[int, int, int, int]]:
+    """(V, E, F, H) of levels 0..levels from a scheme's ``counts`` recursion."""
+    out = [(mesh.n_vertices, mesh.topology.n_edges, mesh.n_faces, mesh.n_corners)]
+    for _ in range(levels):
+        out.append(tuple(int(x) for x in counts(*out[-1])))
+    return out
+
+
+def check_fits(mesh: Mesh, levels: int, counts, available: int | None = None) -> None:
+    """Refuse, with the numbers, a subdivision whose levels would not fit in memory."""
+    from ..errors import TooLargeError
+
+    table = sizes(mesh, levels, counts)
+    need = sum(BYTES_PER_CORNER * h for *_, h in table)
+    have = available_memory() if available is None else available
+    if need > have:
+        last = table[-1]
+        raise TooLargeError(
+            f"level {levels} has {last[2]:,} faces and needs about {_gib(need)} of memory; "
+            f"{_gib(have)} is available (level {_deepest(table, have)} would fit)")
+
+
+def _deepest(table, have: int) -> int:
+    total = 0
+    for t, (*_, h) in enumerate(table):
+        total += BYTES_PER_CORNER * h
+        if total > have:
+            return max(t - 1, 0)
+    return len(table) - 1
+
+
+def _gib(n: float) -> str:
+    return f"{n / 2**30:,.1f} GiB" if n >= 2**30 else f"{n / 2**20:,.0f} MiB"

@@ -1,0 +1,1 @@
+"""Measurements of meshes and weaves: counts, angles, fractal dimension, level images."""

@@ -1,0 +1,49 @@
+"""The ``weave-cut`` command: a click group whose commands are thin shells over the library.
+
+Errors: a WeaveCutError is one line on stderr and exit status 1; a bad option is click's
+usage error and exit status 2. Nothing prints a traceback.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import click
+
+from .. import __version__
+from .common import CONTEXT
+from .mesh_commands import inputs_command, stats_command, subdivide_command
+
+
+@click.group(context_settings=CONTEXT)
+@click.version_option(__version__, prog_name="weave-cut")
+def cli() -> None:
+    """Pentagon snub subdivision, its weaving patterns, paper strand models and laser-cut
+    jigsaw puzzles (Lipschuetz, Reitebuch, Skrodzki, Polthier).
+
+    \b
+    Examples:
+      weave-cut inputs
+      weave-cut subdivide pentagon --levels 4 -o pentagon.svg
+      weave-cut stats pentagon --levels 6 --json
+    """
+
+
+for command in (inputs_command, subdivide_command, stats_command):
+    cli.add_command(command)
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Console entry point: run ``cli`` and turn anything unexpected into one line."""
+    try:
+        cli.main(args=argv, prog_name="weave-cut", standalone_mode=True)
+    except MemoryError:
+        click.echo("weave-cut: error: out of memory; try fewer levels", err=True)
+        sys.exit(1)
+    except Exception as exc:  # a bug: still one line, unless asked for the traceback
+        if os.environ.get("WEAVECUT_DEBUG"):
+            raise
+        click.echo(f"weave-cut: internal error: {type(exc).__name__}: {exc} "
+                   "(set WEAVECUT_DEBUG=1 for a traceback)", err=True)
+        sys.exit(1)

@@ -1,0 +1,151 @@
+"""``weave-cut inputs``, ``subdivide`` and ``stats``."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import click
+
+from .. import export, inputs
+from ..analysis.stats import level_stats
+from ..layout.mesh_figure import mesh_drawing
+from ..mesh_io import write_mesh
+from ..subdivision import SCHEMES, snub, subdivide
+from .common import (
+    CONTEXT,
+    Length,
+    allow_nonconvex_option,
+    input_argument,
+    load_mesh,
+    provenance,
+    reports_errors,
+)
+
+MESH_SUFFIXES = (".obj", ".json")
+
+
+def scheme_options(f):
+    """--levels, --scheme and the snub options shared by subdivide, stats and weave."""
+    options = [
+        click.option("--levels", "-n", type=click.IntRange(0, 40), default=1, show_default=True,
+                     help="Number of refinement steps."),
+        click.option("--scheme", type=click.Choice(sorted(SCHEMES)), default="snub",
+                     show_default=True, help="Subdivision scheme."),
+        click.option("--no-smooth", is_flag=True, help="Skip operation 4 (smoothing)."),
+        click.option("--chirality", type=click.Choice(snub.CHIRALITIES), default="left",
+                     show_default=True, help="Side the first Z edge turns to."),
+        click.option("--centre", type=click.Choice(snub.CENTRES), default="vertex",
+                     show_default=True, help="Face centre: vertex mean or area centroid."),
+        allow_nonconvex_option,
+    ]
+    for option in reversed(options):
+        f = option(f)
+    return f
+
+
+def run_scheme(input_mesh: str, levels: int, scheme: str, no_smooth: bool, chirality: str,
+               centre: str, allow_nonconvex: bool):
+    """Load INPUT and subdivide it; the snub options apply to the snub scheme only."""
+    mesh = load_mesh(input_mesh, allow_nonconvex)
+    options = {}
+    if scheme == "snub":
+        options = {"smooth": not no_smooth, "chirality": chirality, "centre": centre}
+    elif no_smooth or chirality != "left" or centre != "vertex":
+        raise click.UsageError("--no-smooth, --chirality and --centre apply to --scheme snub")
+    return subdivide(mesh, levels, scheme, **options)
+
+
+@click.command("inputs", context_settings=CONTEXT)
+@click.option("--json", "as_json", is_flag=True, help="Print a JSON list.")
+@reports_errors
+def inputs_command(as_json: bool) -> None:
+    """List the built-in input meshes with their vertex, edge and face counts.
+
+    \b
+    Example:
+      weave-cut inputs
+    """
+    rows = []
+    for name, entry in inputs.INPUTS.items():
+        mesh = entry.build(None)
+        spec = f"{name}[:{entry.parameter}]" if entry.parameter else name
+        rows.append({"name": spec, "vertices": mesh.n_vertices, "edges": mesh.topology.n_edges,
+                     "faces": mesh.n_faces, "description": entry.description})
+    if as_json:
+        click.echo(json.dumps(rows, indent=2))
+        return
+    click.echo(f"{'name':24} {'V':>5} {'E':>5} {'F':>5}  description")
+    for r in rows:
+        click.echo(f"{r['name']:24} {r['vertices']:5} {r['edges']:5} {r['faces']:5}  "
+                   f"{r['description']}")
+
+
+@click.command("subdivide", context_settings=CONTEXT)
+@input_argument
+@scheme_options
+@click.option("--size", type=Length(), default="200mm", show_default=True,
+              help="Longer side of the drawing (SVG/DXF), without margins.")
+@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+              help="Output file: .svg, .dxf (drawings) or .obj, .json (the mesh).")
+@reports_errors
+def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
+                      allow_nonconvex, size, output) -> None:
+    """Subdivide INPUT (a built-in name or an .obj/.json file) and write the result.
+
+    \b
+    Examples:
+      weave-cut subdivide pentagon --levels 4 -o pentagon.svg
+      weave-cut subdivide tiling-8-4 --levels 3 -o tiling.dxf
+      weave-cut subdivide my-mesh.obj --levels 2 --no-smooth -o refined.obj
+    """
+    suffix = Path(output).suffix.lower()
+    if suffix not in MESH_SUFFIXES and suffix.lstrip(".") not in export.formats():
+        raise click.BadParameter(
+            f"unknown format {suffix!r}; use {', '.join(MESH_SUFFIXES)} or "
+            f"{', '.join('.' + f for f in export.formats())}", param_hint="'-o'")
+    hierarchy = run_scheme(input_mesh, levels, scheme, no_smooth, chirality, centre,
+                           allow_nonconvex)
+    if suffix in MESH_SUFFIXES:
+        write_mesh(hierarchy[-1].mesh, output)
+        return
+    title = f"{input_mesh}, {scheme} level {levels}"
+    drawing = mesh_drawing([lv.mesh for lv in hierarchy], size, title=title)
+    export.write(drawing.with_metadata(**provenance()), output)
+
+
+@click.command("stats", context_settings=CONTEXT)
+@input_argument
+@scheme_options
+@click.option("--json", "as_json", is_flag=True, help="Print JSON (a stable shape for scripts).")
+@reports_errors
+def stats_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allow_nonconvex,
+                  as_json) -> None:
+    """Counts, degree histograms, angles and boundary of every level.
+
+    \b
+    Examples:
+      weave-cut stats pentagon --levels 6
+      weave-cut stats square-grid:3x3 --levels 3 --json
+    """
+    hierarchy = run_scheme(input_mesh, levels, scheme, no_smooth, chirality, centre,
+                           allow_nonconvex)
+    rows = [level_stats(lv.mesh, t) for t, lv in enumerate(hierarchy)]
+    if as_json:
+        click.echo(json.dumps({"input": input_mesh, "levels": rows}, indent=2))
+        return
+    click.echo(f"{input_mesh} ({scheme})")
+    click.echo(f"{'level':>5} {'V':>10} {'E':>10} {'F':>10} {'non-convex':>10} "
+               f"{'angles (deg)':>16} {'boundary':>9} {'length':>10}")
+    for r in rows:
+        click.echo(f"{r['level']:5} {r['vertices']:10,} {r['edges']:10,} {r['faces']:10,} "
+                   f"{r['nonconvex_faces']:10} {r['min_angle_deg']:7.2f}-{r['max_angle_deg']:<7.2f} "
+                   f"{r['boundary_edges']:10,} {r['boundary_length']:10.4f}")
+    for r in rows:
+        click.echo(f"level {r['level']}: inner degrees {_fmt(r['inner_vertex_degrees'])}; "
+                   f"outer degrees {_fmt(r['outer_vertex_degrees'])}; "
+                   f"faces {_fmt(r['face_degrees'])}")
+
+
+def _fmt(hist: dict[str, int]) -> str:
+    return " ".join(f"{k}:{v}" for k, v in hist.items() if v) or "none"
