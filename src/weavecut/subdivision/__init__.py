@@ -1,33 +1,21 @@
-"""Subdivision schemes: each a pure ``step(mesh, **options) -> Level``; ``subdivide`` runs one."""
+"""Subdivision schemes: each a pure ``step(mesh, **options) -> Level``."""
 
 from __future__ import annotations
 
-import sys
+from . import akleman, butterfly, catmull_clark, doo_sabin, dual, loop, midedge, snub, sqrt3
+from .hierarchy import Hierarchy, Level
 
-from ..mesh import Mesh
-from . import snub
-from .hierarchy import Hierarchy, Level, check_fits
+SCHEMES = {
+    "snub": snub.step,
+    "loop": loop.step,
+    "butterfly": butterfly.step,
+    "sqrt3": sqrt3.step,
+    "catmull-clark": catmull_clark.step,
+    "midedge": midedge.step,
+    "doo-sabin": doo_sabin.step,
+    "dual": dual.step,
+    "akleman": akleman.step,
+}
 
-SCHEMES = {"snub": snub.step}
-
-
-def _counts(scheme: str):
-    """The scheme's ``counts(V, E, F, H)`` recursion, or a 4x growth guess."""
-    module = sys.modules[SCHEMES[scheme].__module__]
-    return getattr(module, "counts", lambda v, e, f, h: (4 * v, 4 * e, 4 * f, 4 * h))
-
-
-def subdivide(mesh: Mesh, levels: int, scheme: str = "snub", **options) -> Hierarchy:
-    """Levels 0..``levels`` of ``scheme`` applied to ``mesh`` (checked to fit in memory first)."""
-    if scheme not in SCHEMES:
-        raise ValueError(f"unknown scheme {scheme!r}; choose one of {', '.join(SCHEMES)}")
-    if levels < 0:
-        raise ValueError(f"levels must be >= 0, got {levels}")
-    check_fits(mesh, levels, _counts(scheme))
-    out = [Level(mesh)]
-    for _ in range(levels):
-        out.append(SCHEMES[scheme](out[-1].mesh, **options))
-    return tuple(out)
-
-
-__all__ = ["SCHEMES", "Hierarchy", "Level", "snub", "subdivide"]
+__all__ = ["SCHEMES", "Hierarchy", "Level", "akleman", "butterfly", "catmull_clark",
+           "doo_sabin", "dual", "loop", "midedge", "snub", "sqrt3"]

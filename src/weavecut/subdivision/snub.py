@@ -123,10 +123,8 @@ def step(mesh: Mesh, *, smooth: bool = True, centre: str = "vertex",
     offsets = np.arange(0, 5 * n_h + 1, 5, dtype=np.int64)
     child = Mesh.trusted(vertices, offsets, faces, child_topo)
     if smooth:
-        fixed = np.zeros(len(vertices), dtype=bool)
-        fixed[:n_v] = outer_vertices(mesh)
-        fixed[n_v:n_v + 2 * n_e] = np.repeat(topo.boundary_edges, 2)
-        child = Mesh.trusted(_smoothed(child, fixed, centre_of), offsets, faces, child_topo)
+        child = Mesh.trusted(_smoothed(mesh, child, x, nb, right, centre_of), offsets, faces,
+                             child_topo)
 
     parent_edge = np.empty(len(edges), dtype=np.int32)
     parent_edge[:3 * n_e] = np.repeat(np.arange(n_e, dtype=np.int32), 3)
@@ -146,16 +144,37 @@ def _stack(columns, dtype, n: int) -> NDArray:
     return out.reshape(-1)
 
 
-def _smoothed(mesh: Mesh, fixed: NDArray[np.bool_], centre_of) -> NDArray[np.float64]:
-    """Operation 4: every free vertex moves, all at once, to the mean centre of its faces."""
-    centres = centre_of(mesh)
-    idx = mesh.face_indices
-    k = mesh.face_degree or 0
-    per_corner = np.repeat(centres, k, axis=0) if k else centres[mesh.half_edge_face]
-    n = mesh.n_vertices
-    count = np.bincount(idx, minlength=n)
-    out = np.empty_like(mesh.vertices)
-    for axis in (0, 1):
-        out[:, axis] = np.bincount(idx, weights=per_corner[:, axis], minlength=n)
-    out /= np.maximum(count, 1)[:, None]
-    return np.where(fixed[:, None], mesh.vertices, out)
+def _smoothed(parent: Mesh, child: Mesh, x, nb, right: bool, centre_of) -> NDArray[np.float64]:
+    """Operation 4: every inner vertex moves, all at once, to the mean centre of its faces.
+
+    The faces around each kind of child vertex are known from the parent, so the sums run
+    over parent corners (H) instead of child corners (5H):
+    a Z vertex x_h lies in P_h, P_nb(h) and (inner edges) P_twin(h); a centre in the faces of
+    its parent face; an old vertex in one face per parent corner at it.
+    """
+    topo = parent.topology
+    n_v, n_e = parent.n_vertices, topo.n_edges
+    centres = centre_of(child).view(np.complex128).ravel()  # (H,) one per child face
+    out = child.vertices.copy()
+    flat = out.view(np.complex128).ravel()
+    twin = topo.twin
+    inner = twin >= 0
+    z_sum = centres + centres[nb] + np.where(inner, centres[np.maximum(twin, 0)], 0)
+    z_new = z_sum / np.where(inner, 3.0, 2.0)
+    free = np.repeat(~topo.boundary_edges, 2)
+    z_ids = x[inner]  # the x of an inner half-edge is an inner Z vertex
+    flat[z_ids] = z_new[inner]
+    del free
+    k = parent.face_degree
+    if k:
+        face_sum = centres.reshape(-1, k).sum(axis=1)
+    else:
+        face_sum = np.add.reduceat(centres, parent.face_offsets[:-1])
+    flat[n_v + 2 * n_e:] = face_sum / parent.face_sizes
+    corner_vertex = parent.face_indices if right else parent.face_indices[parent.next_half_edge]
+    count = np.bincount(corner_vertex, minlength=n_v)
+    mean = (np.bincount(corner_vertex, weights=centres.real, minlength=n_v)
+            + 1j * np.bincount(corner_vertex, weights=centres.imag, minlength=n_v))
+    old_inner = ~outer_vertices(parent)
+    flat[:n_v][old_inner] = mean[old_inner] / count[old_inner]
+    return out

@@ -1,0 +1,155 @@
+"""Array helpers shared by the classic schemes (no Python loop over mesh elements)."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import MeshError
+from ..mesh import Mesh, Topology
+
+
+def require_degree(mesh: Mesh, k: int, scheme: str) -> NDArray[np.int32]:
+    """(F, k) dense faces, or MeshError naming the first face of another degree."""
+    dense = mesh.dense_faces()
+    if mesh.n_faces and (dense is None or dense.shape[1] != k):
+        f = int(np.flatnonzero(mesh.face_sizes != k)[0])
+        raise MeshError(f"{scheme} needs faces with {k} corners; face {f} has "
+                        f"{mesh.face_sizes[f]}")
+    return mesh.face_indices.reshape(-1, k)
+
+
+def corner_index(mesh: Mesh) -> NDArray[np.int32]:
+    """(H,) position of every corner within its face (0 .. n_f - 1)."""
+    start = np.repeat(mesh.face_offsets[:-1], mesh.face_sizes)
+    return (np.arange(mesh.n_corners, dtype=np.int64) - start).astype(np.int32)
+
+
+def child_topology(face_indices: NDArray[np.int32], next_half_edge: NDArray[np.int32],
+                   half_edge_edge: NDArray[np.int32], n_edges: int) -> Topology:
+    """Topology of a child mesh whose half-edge -> edge map the step knows already.
+
+    Sorting the endpoints per half-edge gives ``edges`` (u < w) and the sides without the
+    ``np.unique`` of ``Topology.build``.
+    """
+    a = face_indices
+    b = face_indices[next_half_edge]
+    side = a > b
+    edges = np.empty((n_edges, 2), dtype=np.int32)
+    edges[half_edge_edge, 0] = np.minimum(a, b)
+    edges[half_edge_edge, 1] = np.maximum(a, b)
+    return Topology(edges, half_edge_edge.astype(np.int32, copy=False), side.view(np.int8))
+
+
+def dense_mesh(vertices: NDArray[np.float64], faces: NDArray[np.int32], half_edge_edge,
+               n_edges: int, boundary: NDArray[np.bool_] | None = None) -> Mesh:
+    """A trusted mesh of (F, k) faces with its topology attached."""
+    n_f, k = faces.shape
+    offsets = np.arange(0, k * n_f + 1, k, dtype=np.int64)
+    flat = faces.reshape(-1)
+    nxt = np.arange(1, k * n_f + 1, dtype=np.int32).reshape(n_f, k)
+    nxt[:, -1] -= k
+    topo = child_topology(flat, nxt.reshape(-1), np.asarray(half_edge_edge).reshape(-1), n_edges)
+    if boundary is not None:
+        topo.__dict__["boundary_edges"] = boundary
+    return Mesh.trusted(vertices, offsets, flat, topo)
+
+
+def trusted_dense(vertices: NDArray[np.float64], faces: NDArray[np.int32], topology: Topology,
+                  boundary: NDArray[np.bool_] | None = None) -> Mesh:
+    """A trusted mesh of (F, k) faces with a topology the step built itself."""
+    n_f, k = faces.shape
+    if boundary is not None:
+        topology.__dict__["boundary_edges"] = boundary
+    offsets = np.arange(0, k * n_f + 1, k, dtype=np.int64)
+    return Mesh.trusted(vertices, offsets, faces.reshape(-1), topology)
+
+
+def ragged_mesh(vertices: NDArray[np.float64], offsets: NDArray[np.int64],
+                face_indices: NDArray[np.int32], half_edge_edge: NDArray[np.int32],
+                n_edges: int) -> Mesh:
+    """A trusted mesh of ragged faces with its topology attached."""
+    mesh = Mesh.trusted(vertices, offsets.astype(np.int64), face_indices.astype(np.int32))
+    mesh.__dict__["topology"] = child_topology(mesh.face_indices, mesh.next_half_edge,
+                                               half_edge_edge.astype(np.int32), n_edges)
+    return mesh
+
+
+def is_outer(mesh: Mesh) -> NDArray[np.bool_]:
+    """(V,) True for vertices on an outer edge, and for vertices no face uses."""
+    topo = mesh.topology
+    mask = np.bincount(mesh.face_indices, minlength=mesh.n_vertices) == 0
+    mask[topo.edges[topo.boundary_edges].ravel()] = True
+    return mask
+
+
+def rotate_ccw(mesh: Mesh) -> NDArray[np.int32]:
+    """(H,) the next outgoing half-edge counter-clockwise around its start vertex (-1: none)."""
+    return mesh.topology.twin[mesh.prev_half_edge]
+
+
+def vertex_rings(mesh: Mesh, vertices: NDArray[np.int64]) -> tuple[NDArray, NDArray]:
+    """Outgoing half-edges (corners) of the given vertices, counter-clockwise.
+
+    Returns ``(offsets, half_edges)`` in CSR form, ring ``i`` belonging to ``vertices[i]``.
+    The ring of an outer vertex starts at its outgoing outer half-edge, so it is the fan of
+    its faces in order. The walk is one array step per ring position (a loop over the largest
+    valence only).
+    """
+    first = np.full(mesh.n_vertices, -1, dtype=np.int64)
+    first[mesh.face_indices[::-1]] = np.arange(mesh.n_corners - 1, -1, -1)
+    twin = mesh.topology.twin
+    lone = np.flatnonzero(twin < 0)
+    first[mesh.face_indices[lone]] = lone
+    valence = np.bincount(mesh.face_indices, minlength=mesh.n_vertices)[vertices]
+    offsets = np.zeros(len(vertices) + 1, dtype=np.int64)
+    np.cumsum(valence, out=offsets[1:])
+    ring = np.empty(offsets[-1], dtype=np.int32)
+    rot = rotate_ccw(mesh)
+    active = np.arange(len(vertices))
+    current = first[vertices]
+    j = 0
+    while len(active):
+        ring[offsets[active] + j] = current
+        j += 1
+        keep = valence[active] > j
+        active, current = active[keep], rot[current[keep]]
+    return offsets, ring
+
+
+def boundary_successor(mesh: Mesh) -> NDArray[np.int64]:
+    """(V,) for an outer vertex the next outer vertex along the boundary (face on the left)."""
+    topo = mesh.topology
+    out = np.full(mesh.n_vertices, -1, dtype=np.int64)
+    lone = topo.edge_half_edges[topo.boundary_edges].max(axis=1)
+    out[mesh.face_indices[lone]] = mesh.face_indices[mesh.next_half_edge[lone]]
+    return out
+
+
+def boundary_predecessor(mesh: Mesh) -> NDArray[np.int64]:
+    """(V,) for an outer vertex the previous outer vertex along the boundary."""
+    succ = boundary_successor(mesh)
+    out = np.full(mesh.n_vertices, -1, dtype=np.int64)
+    has = np.flatnonzero(succ >= 0)
+    out[succ[has]] = has
+    return out
+
+
+def vertex_sums(n: int, index: NDArray, values: NDArray[np.float64]) -> NDArray[np.float64]:
+    """(n, 2) sums of (m, 2) ``values`` grouped by ``index`` (bincount per coordinate)."""
+    out = np.empty((n, 2))
+    out[:, 0] = np.bincount(index, weights=values[:, 0], minlength=n)
+    out[:, 1] = np.bincount(index, weights=values[:, 1], minlength=n)
+    return out
+
+
+def neighbour_sums(mesh: Mesh, edge_mask: NDArray[np.bool_] | None = None):
+    """(V, 2) sum of neighbour positions and (V,) neighbour counts over (selected) edges."""
+    e = mesh.topology.edges
+    if edge_mask is not None:
+        e = e[edge_mask]
+    n = mesh.n_vertices
+    ends = np.concatenate([e[:, 0], e[:, 1]])
+    other = np.concatenate([e[:, 1], e[:, 0]])
+    sums = vertex_sums(n, ends, np.take(mesh.vertices, other, axis=0))
+    return sums, np.bincount(ends, minlength=n)
