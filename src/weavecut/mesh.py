@@ -287,8 +287,12 @@ def vertex_degrees(mesh: Mesh) -> NDArray[np.int64]:
 def face_centroids(mesh: Mesh) -> NDArray[np.float64]:
     """(F, 2) vertex mean of every face (the paper's "barycentre")."""
     dense = mesh.dense_faces()
-    if dense is not None:
-        return np.take(mesh.vertices, dense, axis=0).mean(axis=1)
+    if dense is not None:  # sum columns of complex points: far faster than mean(axis=1)
+        points = np.take(mesh.vertices.view(np.complex128).ravel(), dense)
+        total = points[:, 0].copy()
+        for k in range(1, dense.shape[1]):
+            total += points[:, k]
+        return (total / dense.shape[1]).view(np.float64).reshape(-1, 2)
     sums = np.add.reduceat(np.take(mesh.vertices, mesh.face_indices, axis=0),
                            mesh.face_offsets[:-1], axis=0)
     return sums / mesh.face_sizes[:, None]

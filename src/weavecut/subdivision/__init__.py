@@ -1,9 +1,12 @@
-"""Subdivision schemes: each a pure ``step(mesh, **options) -> Level``."""
+"""Subdivision schemes: each a pure ``step(mesh, **options) -> Level``; ``subdivide`` runs one."""
 
 from __future__ import annotations
 
+import sys
+
+from ..mesh import Mesh
 from . import akleman, butterfly, catmull_clark, doo_sabin, dual, loop, midedge, snub, sqrt3
-from .hierarchy import Hierarchy, Level
+from .hierarchy import Hierarchy, Level, check_fits
 
 SCHEMES = {
     "snub": snub.step,
@@ -17,5 +20,25 @@ SCHEMES = {
     "akleman": akleman.step,
 }
 
+
+def _counts(scheme: str):
+    """The scheme's ``counts(V, E, F, H)`` recursion, or a 4x growth guess."""
+    module = sys.modules[SCHEMES[scheme].__module__]
+    return getattr(module, "counts", lambda v, e, f, h: (4 * v, 4 * e, 4 * f, 4 * h))
+
+
+def subdivide(mesh: Mesh, levels: int, scheme: str = "snub", **options) -> Hierarchy:
+    """Levels 0..``levels`` of ``scheme`` applied to ``mesh`` (checked to fit in memory first)."""
+    if scheme not in SCHEMES:
+        raise ValueError(f"unknown scheme {scheme!r}; choose one of {', '.join(SCHEMES)}")
+    if levels < 0:
+        raise ValueError(f"levels must be >= 0, got {levels}")
+    check_fits(mesh, levels, _counts(scheme))
+    out = [Level(mesh)]
+    for _ in range(levels):
+        out.append(SCHEMES[scheme](out[-1].mesh, **options))
+    return tuple(out)
+
+
 __all__ = ["SCHEMES", "Hierarchy", "Level", "akleman", "butterfly", "catmull_clark",
-           "doo_sabin", "dual", "loop", "midedge", "snub", "sqrt3"]
+           "doo_sabin", "dual", "loop", "midedge", "snub", "sqrt3", "subdivide"]

@@ -123,8 +123,9 @@ def step(mesh: Mesh, *, smooth: bool = True, centre: str = "vertex",
     offsets = np.arange(0, 5 * n_h + 1, 5, dtype=np.int64)
     child = Mesh.trusted(vertices, offsets, faces, child_topo)
     if smooth:
-        child = Mesh.trusted(_smoothed(mesh, child, x, nb, right, centre_of), offsets, faces,
-                             child_topo)
+        around = mesh.next_half_edge if right else mesh.prev_half_edge  # P_h's neighbour at x_h
+        child = Mesh.trusted(_smoothed(mesh, child, x, around, right, centre_of), offsets,
+                             faces, child_topo)
 
     parent_edge = np.empty(len(edges), dtype=np.int32)
     parent_edge[:3 * n_e] = np.repeat(np.arange(n_e, dtype=np.int32), 3)
@@ -144,12 +145,13 @@ def _stack(columns, dtype, n: int) -> NDArray:
     return out.reshape(-1)
 
 
-def _smoothed(parent: Mesh, child: Mesh, x, nb, right: bool, centre_of) -> NDArray[np.float64]:
+def _smoothed(parent: Mesh, child: Mesh, x, around, right: bool,
+              centre_of) -> NDArray[np.float64]:
     """Operation 4: every inner vertex moves, all at once, to the mean centre of its faces.
 
     The faces around each kind of child vertex are known from the parent, so the sums run
     over parent corners (H) instead of child corners (5H):
-    a Z vertex x_h lies in P_h, P_nb(h) and (inner edges) P_twin(h); a centre in the faces of
+    a Z vertex x_h lies in P_h, P_around(h) and (inner edges) P_twin(h); a centre in the faces of
     its parent face; an old vertex in one face per parent corner at it.
     """
     topo = parent.topology
@@ -159,12 +161,10 @@ def _smoothed(parent: Mesh, child: Mesh, x, nb, right: bool, centre_of) -> NDArr
     flat = out.view(np.complex128).ravel()
     twin = topo.twin
     inner = twin >= 0
-    z_sum = centres + centres[nb] + np.where(inner, centres[np.maximum(twin, 0)], 0)
+    z_sum = centres + centres[around] + np.where(inner, centres[np.maximum(twin, 0)], 0)
     z_new = z_sum / np.where(inner, 3.0, 2.0)
-    free = np.repeat(~topo.boundary_edges, 2)
     z_ids = x[inner]  # the x of an inner half-edge is an inner Z vertex
     flat[z_ids] = z_new[inner]
-    del free
     k = parent.face_degree
     if k:
         face_sum = centres.reshape(-1, k).sum(axis=1)

@@ -1,0 +1,5 @@
+"""``python -m weavecut`` runs the CLI."""
+
+from weavecut.cli import main
+
+main()

@@ -1,0 +1,150 @@
+"""The CLI: every command runs, errors are one line with the right exit status, outputs are
+deterministic and atomic."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from xml.etree import ElementTree
+
+import ezdxf
+import pytest
+from click.testing import CliRunner
+
+from weavecut.cli import cli
+from weavecut.mesh_io import read_mesh
+from weavecut.subdivision import subdivide
+from weavecut import inputs
+
+
+def run(*args):
+    return CliRunner().invoke(cli, [str(a) for a in args])
+
+
+def test_version_and_help():
+    assert "0.1.0" in run("--version").output
+    for command in ("inputs", "subdivide", "stats"):
+        result = run(command, "--help")
+        assert result.exit_code == 0 and "Example" in result.output
+
+
+def test_inputs_lists_every_builtin():
+    result = run("inputs", "--json")
+    rows = json.loads(result.output)
+    assert [r["name"].split("[")[0] for r in rows] == list(inputs.INPUTS)
+    pentagon = rows[0]
+    assert (pentagon["vertices"], pentagon["edges"], pentagon["faces"]) == (5, 5, 1)
+
+
+def test_stats_json_matches_equation_2():
+    result = run("stats", "pentagon", "--levels", "6", "--json")
+    assert result.exit_code == 0, result.output
+    doc = json.loads(result.output)
+    assert doc["input"] == "pentagon"
+    v, e, f = 5, 5, 1
+    for row in doc["levels"]:
+        assert (row["vertices"], row["edges"], row["faces"]) == (v, e, f)
+        v, e, f = v + 2 * e + f, 3 * e + 5 * f, 5 * f
+    first = doc["levels"][0]
+    assert set(first) == {"level", "vertices", "edges", "faces", "inner_vertex_degrees",
+                          "outer_vertex_degrees", "face_degrees", "nonconvex_faces",
+                          "min_angle_deg", "max_angle_deg", "boundary_edges", "boundary_length"}
+    assert first["face_degrees"] == {"5": 1} and first["outer_vertex_degrees"] == {"2": 5}
+    assert first["min_angle_deg"] == pytest.approx(108.0)
+    lengths = [row["boundary_length"] for row in doc["levels"]]
+    assert lengths[1] / lengths[0] == pytest.approx(3 / 7 ** 0.5, rel=1e-5)
+
+
+@pytest.mark.parametrize("suffix", ["obj", "json"])
+def test_subdivide_writes_a_mesh_that_reads_back(tmp_path, suffix):
+    out = tmp_path / f"m.{suffix}"
+    assert run("subdivide", "square-grid:2x2", "--levels", "2", "-o", out).exit_code == 0
+    back = read_mesh(out)
+    expect = subdivide(inputs.get("square-grid:2x2"), 2)[-1].mesh
+    assert back.vertices.tobytes() == expect.vertices.tobytes()
+    assert back.faces() == expect.faces()
+    again = tmp_path / f"again.{suffix}"
+    assert run("subdivide", out, "--levels", "1", "-o", again).exit_code == 0
+    assert read_mesh(again).n_faces == 5 * back.n_faces
+
+
+def test_subdivide_dxf_has_units_layers_and_closed_polylines(tmp_path):
+    out = tmp_path / "p.dxf"
+    assert run("subdivide", "pentagon", "--levels", "3", "-o", out).exit_code == 0
+    doc = ezdxf.readfile(out)
+    auditor = doc.audit()
+    assert not auditor.has_errors
+    assert doc.header["$INSUNITS"] == 4 and doc.dxfversion == "AC1015"
+    layers = {layer.dxf.name for layer in doc.layers}
+    assert {"level-0", "level-1", "level-2", "level-3"} <= layers
+    polys = doc.modelspace().query("LWPOLYLINE")
+    assert all(p.closed for p in polys)
+    per_layer = {name: len(polys.query(f'*[layer=="{name}"]')) for name in layers}
+    assert per_layer["level-3"] == 125 and per_layer["level-0"] == 1
+
+
+def test_subdivide_svg_size_is_in_mm(tmp_path):
+    out = tmp_path / "p.svg"
+    assert run("subdivide", "pentagon", "--levels", "2", "--size", "10cm", "-o", out).exit_code == 0
+    root = ElementTree.parse(out).getroot()
+    width, height = (float(root.get(k).removesuffix("mm")) for k in ("width", "height"))
+    assert max(width, height) == pytest.approx(120.0)  # 100 mm plus two 10 mm margins
+    assert root.get("viewBox") == f"0 0 {width:g} {height:g}"
+
+
+@pytest.mark.parametrize("suffix", ["svg", "dxf", "obj", "json"])
+def test_same_bytes_across_runs_and_hash_seeds(tmp_path, suffix):
+    outs = []
+    for seed in ("1", "2"):  # the same command line (it is in the metadata) in two folders
+        folder = tmp_path / seed
+        folder.mkdir()
+        env = dict(os.environ, PYTHONHASHSEED=seed)
+        subprocess.run([sys.executable, "-m", "weavecut", "subdivide", "tiling-8-4:2x2",
+                        "--levels", "2", "-o", f"out.{suffix}"], check=True, env=env, cwd=folder)
+        outs.append((folder / f"out.{suffix}").read_bytes())
+    assert outs[0] == outs[1]
+
+
+@pytest.mark.parametrize("args, status, message", [
+    (["subdivide", "nope", "-o", "{d}/x.svg"], 1, "unknown input 'nope'"),
+    (["subdivide", "pentagon", "--levels", "14", "-o", "{d}/x.svg"], 1, "needs about"),
+    (["subdivide", "pentagon", "-o", "{d}/x.xyz"], 2, "unknown format '.xyz'"),
+    (["subdivide", "pentagon", "--levels", "-1", "-o", "{d}/x.svg"], 2, "--levels"),
+    (["subdivide", "pentagon", "--size", "-5mm", "-o", "{d}/x.svg"], 2, "must be > 0"),
+    (["subdivide", "pentagon", "--size", "big", "-o", "{d}/x.svg"], 2, "is not a length"),
+    (["subdivide", "pentagon", "-o", "{d}/missing/x.svg"], 1, "does not exist"),
+    (["subdivide", "pentagon", "-o", "{d}"], 2, "directory"),
+    (["subdivide", "{d}/missing.obj", "-o", "{d}/x.svg"], 1, "cannot read"),
+    (["stats", "ngon:2"], 1, "ngon takes a number from 3"),
+    (["stats", "square-grid:axb"], 1, "WxH"),
+])
+def test_errors_are_one_line(tmp_path, args, status, message):
+    result = run(*[a.format(d=tmp_path) for a in args])
+    assert result.exit_code == status, result.output
+    assert message in result.output
+    assert "Traceback" not in result.output
+    assert not list(tmp_path.glob("*.svg")) and not list(tmp_path.glob(".*part"))
+
+
+def test_console_script_prints_no_traceback(tmp_path):
+    bad = tmp_path / "bad.obj"
+    bad.write_text("v 0 0\nv 1 0\nv 0 1\nf 1 2 9\n")
+    proc = subprocess.run([sys.executable, "-m", "weavecut", "subdivide", str(bad), "-o",
+                           str(tmp_path / "x.svg")], capture_output=True, text=True)
+    assert proc.returncode == 1
+    assert proc.stderr.strip().count("\n") == 0 and "face index 9" in proc.stderr
+
+
+def test_unwritable_output_leaves_nothing(tmp_path):
+    folder = tmp_path / "ro"
+    folder.mkdir()
+    folder.chmod(0o500)
+    try:
+        result = run("subdivide", "pentagon", "-o", folder / "x.svg")
+        if os.geteuid() != 0:  # root writes anywhere
+            assert result.exit_code == 1 and "cannot write" in result.output
+        assert not list(folder.glob(".*part"))
+    finally:
+        folder.chmod(0o700)

@@ -1,0 +1,83 @@
+"""Mesh core: structure checks, topology, immutability."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given
+
+from tests import meshes
+from tests.strategies import jittered_grids
+from weavecut.errors import MeshError, NonManifoldError
+from weavecut.mesh import Mesh, Topology, edge_faces, face_centroids, signed_areas
+
+
+def test_arrays_are_private_and_read_only():
+    v = np.array([(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)])
+    mesh = Mesh(v, [0, 3], [0, 1, 2])
+    v[0] = (5, 5)
+    assert mesh.vertices[0].tolist() == [0.0, 0.0]
+    with pytest.raises(ValueError):
+        mesh.vertices[0, 0] = 1.0
+
+
+@pytest.mark.parametrize("vertices, faces, message", [
+    ([(0, 0), (1, 0), (0, 1)], [[0, 1, 3]], "vertex 3, out of range"),
+    ([(0, 0), (1, 0), (0, 1)], [[0, 1]], "face 0 has 2 corner"),
+    ([(0, 0), (1, 0), (0, 1), (1, 1)], [[0, 1, 1, 2]], "face 0 visits vertex 1 more than once"),
+    ([(0, 0), (1, float("nan")), (0, 1)], [[0, 1, 2]], "vertex 1 has a non-finite"),
+    ([(0, 0), (1, float("inf")), (0, 1)], [[0, 1, 2]], "non-finite"),
+    ([(0, 0), (1, 0), (0, 1)], [[0, 1, -1]], "out of range"),
+])
+def test_structure_errors_name_the_element(vertices, faces, message):
+    with pytest.raises(MeshError, match=message):
+        Mesh.from_faces(vertices, faces)
+
+
+def test_edge_in_three_faces_is_non_manifold():
+    v = [(0, 0), (1, 0), (0.5, 1), (0.5, -1), (1.5, 0.5)]
+    with pytest.raises(NonManifoldError, match=r"edge \(0, 1\) is in 3 faces"):
+        Mesh.from_faces(v, [[0, 1, 2], [1, 0, 3], [0, 1, 4]]).topology
+
+
+def test_edge_twice_in_the_same_direction_is_an_error():
+    v = [(0, 0), (1, 0), (0.5, 1), (0.5, -1)]
+    with pytest.raises(NonManifoldError, match="runs the same way in faces 0 and 1"):
+        Mesh.from_faces(v, [[0, 1, 2], [0, 1, 3]]).topology
+
+
+def test_bow_tie_vertex_is_non_manifold():
+    v = [(0, 0), (1, -1), (1, 1), (-1, 1), (-1, -1)]
+    with pytest.raises(NonManifoldError, match="vertex 0 joins 2 separate fans"):
+        Mesh.from_faces(v, [[0, 1, 2], [0, 3, 4]]).topology
+
+
+@given(jittered_grids())
+def test_topology_of_a_disc(mesh):
+    topo = mesh.topology
+    assert mesh.n_vertices - topo.n_edges + mesh.n_faces == 1
+    inner = topo.twin >= 0
+    assert (topo.twin[topo.twin[inner]] == np.flatnonzero(inner)).all()
+    ef = edge_faces(mesh)
+    assert ((ef >= 0).sum(axis=1) == np.where(topo.boundary_edges, 1, 2)).all()
+    # each half-edge's face lies on the side its direction says
+    assert (ef[topo.half_edge_edge, topo.half_edge_side] == mesh.half_edge_face).all()
+
+
+def test_moved_shares_topology_and_reversed_flips_areas():
+    mesh = meshes.mixed()
+    topo = mesh.topology
+    moved = mesh.moved(mesh.vertices * 2)
+    assert moved.topology is topo
+    np.testing.assert_allclose(signed_areas(moved), 4 * signed_areas(mesh))
+    np.testing.assert_allclose(signed_areas(mesh.reversed()), -signed_areas(mesh))
+    np.testing.assert_allclose(face_centroids(mesh)[0], [0.5, 0.5])
+
+
+def test_topology_edges_are_sorted_and_deterministic():
+    mesh = meshes.mixed()
+    a, b = Topology.build(mesh), Topology.build(Mesh(mesh.vertices, mesh.face_offsets,
+                                                     mesh.face_indices))
+    np.testing.assert_array_equal(a.edges, b.edges)
+    keys = a.edges[:, 0].astype(np.int64) * mesh.n_vertices + a.edges[:, 1]
+    assert (np.diff(keys) > 0).all()
