@@ -12,6 +12,7 @@ import sys
 import click
 
 from .. import __version__
+from ..memory import keep_freed_memory
 from .common import CONTEXT
 from .mesh_commands import inputs_command, stats_command, subdivide_command
 
@@ -36,6 +37,7 @@ for command in (inputs_command, subdivide_command, stats_command):
 
 def main(argv: list[str] | None = None) -> None:
     """Console entry point: run ``cli`` and turn anything unexpected into one line."""
+    keep_freed_memory()
     try:
         cli.main(args=argv, prog_name="weave-cut", standalone_mode=True)
     except MemoryError:
