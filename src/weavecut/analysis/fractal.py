@@ -1,0 +1,428 @@
+"""The fractal side of the snub scheme (paper section 4): L-system, dimensions, inner curves.
+
+Every edge of level t is replaced by a Z-triplet in each later step, so it becomes a curve of
+3^(t'-t) edges at level t'. On the boundary nothing is smoothed and the curve is exactly the
+Lindenmayer system ``F -> vF-F+F^`` (v: turn by +alpha, ^: by -alpha, +/-: by +-60 degrees),
+with edges 1/sqrt(7) as long each step, so the limit has dimension log 3 / log sqrt 7. Inside,
+smoothing moves the vertices; :func:`inner_curves` measures what that does to the lengths (the
+paper's open question).
+
+Curves are followed through the snub numbering (``subdivision.snub``): the Z vertices of parent
+edge e are ``V + 2e`` (near u) and ``V + 2e + 1`` (near w), its Z edges ``3e + part``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..mesh import Mesh, outer_vertices
+from ..subdivision import Level
+from ..subdivision.snub import FIRST, LAST, MIDDLE, SPOKE
+
+ALPHA = math.atan(math.sqrt(3.0) / 5.0)
+"""Angle between an edge and the first edge of its Z-triplet: atan(sqrt 3 / 5), 19.1066 deg."""
+SCALE = 1.0 / math.sqrt(7.0)
+"""Length of a Z edge relative to the edge it replaces."""
+DIMENSION = math.log(3.0) / math.log(math.sqrt(7.0))
+"""Similarity dimension of the boundary curve, log 3 / log sqrt 7 = 1.12915..."""
+
+AXIOM, RULE = "F", "vF-F+F^"
+TURNS = {"v": ALPHA, "^": -ALPHA, "+": math.pi / 3, "-": -math.pi / 3}
+
+
+def alpha_from_z_triplet() -> float:
+    """Alpha derived from the Z-triplet: three equal edges, 120 degrees between consecutive ones.
+
+    The Z u-x-y-w with |ux| = |xy| = |yw| = s and point symmetry about the midpoint has
+    x = (a, b), y = (1 - a, -b) for the unit edge, with |x| = s and the angle u-x-y 120
+    degrees: solving gives x = (5 + i sqrt 3) / 14, so alpha = atan2(sqrt 3, 5).
+
+    Examples
+    --------
+    >>> round(math.degrees(alpha_from_z_triplet()), 4)
+    19.1066
+    """
+    x = complex(5.0, math.sqrt(3.0)) / 14.0
+    y = 1.0 - x
+    s = abs(x)
+    inner = (x - 0) / (x - y)  # direction x->u against x->y
+    angle = abs(math.atan2(inner.imag, inner.real))
+    assert abs(abs(y - x) - s) < 1e-15 and abs(angle - 2 * math.pi / 3) < 1e-12
+    return math.atan2(x.imag, x.real)
+
+
+def lsystem_string(levels: int) -> str:
+    """The L-system word after ``levels`` rewritings of the axiom F.
+
+    Examples
+    --------
+    >>> lsystem_string(1)
+    'vF-F+F^'
+    """
+    word = AXIOM
+    for _ in range(levels):
+        word = word.replace("F", RULE)
+    return word
+
+
+def lsystem_curve(levels: int, start=(0.0, 0.0), end=(1.0, 0.0),
+                  chirality: str = "left") -> NDArray[np.float64]:
+    """(3**levels + 1, 2) points of the L-system curve from ``start`` to ``end``.
+
+    The turtle is vectorised: turns become a cumulative heading, F steps a cumulative sum.
+    ``chirality="right"`` mirrors every turn (the snub step's other chirality).
+    """
+    word = np.frombuffer(lsystem_string(levels).encode("ascii"), dtype=np.uint8)
+    sign = -1.0 if chirality == "right" else 1.0
+    turn = np.zeros(len(word))
+    for symbol, angle in TURNS.items():
+        turn[word == ord(symbol)] = sign * angle
+    heading = np.cumsum(turn)[word == ord("F")]
+    start = complex(*start)
+    chord = complex(*end) - start
+    steps = np.exp(1j * heading) * (chord * SCALE**levels)
+    points = np.concatenate([[start], start + np.cumsum(steps)])
+    return np.column_stack([points.real, points.imag])
+
+
+# -- following curves through the levels ---------------------------------------------------
+
+def _check_snub(level: Level, parent: Mesh) -> None:
+    if level.parent_edge is None or level.edge_part is None:
+        raise ValueError("curves need levels with edge provenance (a subdivided hierarchy)")
+    n_e = parent.topology.n_edges
+    parts = level.edge_part[:3 * n_e]
+    if len(level.edge_part) < 3 * n_e or (parts[1::3] != MIDDLE).any():
+        raise ValueError("curves follow the snub numbering (edge 3e + part); "
+                         "this hierarchy is not a snub subdivision")
+
+
+def follow_curves(hierarchy, level: int, start_vertices, edge_ids, to_level: int | None = None):
+    """Vertex and edge ids of the curves grown from edges of ``level``, at every later level.
+
+    Parameters
+    ----------
+    hierarchy : sequence of Level (a snub subdivision)
+    level : the level t the curves start at
+    start_vertices : (n,) int, the end each curve starts from (an endpoint of its edge)
+    edge_ids : (n,) int, the level-t edges
+    to_level : last level (default: the last of ``hierarchy``)
+
+    Returns
+    -------
+    list over levels t..to_level of (vertices (n, m + 1), edges (n, m)), m = 3**(t' - t),
+    both in order along each curve.
+    """
+    to_level = len(hierarchy) - 1 if to_level is None else to_level
+    edge_ids = np.asarray(edge_ids, dtype=np.int64).reshape(-1, 1)
+    starts = np.asarray(start_vertices, dtype=np.int64).reshape(-1, 1)
+    edges = hierarchy[level].mesh.topology.edges
+    ends_of = edges[edge_ids[:, 0]]
+    if not ((ends_of[:, 0] == starts[:, 0]) | (ends_of[:, 1] == starts[:, 0])).all():
+        raise ValueError("every start vertex must be an end of its edge")
+    ends = np.where(edges[edge_ids[:, 0], 0] == starts[:, 0], edges[edge_ids[:, 0], 1],
+                    edges[edge_ids[:, 0], 0])
+    verts = np.column_stack([starts[:, 0], ends])
+    out = [(verts, edge_ids)]
+    for t in range(level, to_level):
+        parent = hierarchy[t].mesh
+        _check_snub(hierarchy[t + 1], parent)
+        n_v = parent.n_vertices
+        e = out[-1][1]
+        a = out[-1][0][:, :-1]
+        forward = parent.topology.edges[e, 0] == a      # walking u -> w
+        z_near_a = n_v + 2 * e + np.where(forward, 0, 1)
+        z_near_b = n_v + 2 * e + np.where(forward, 1, 0)
+        n, m = e.shape
+        new_v = np.empty((n, 3 * m + 1), dtype=np.int64)
+        new_v[:, 0::3] = out[-1][0]
+        new_v[:, 1::3] = z_near_a
+        new_v[:, 2::3] = z_near_b
+        new_e = np.empty((n, 3 * m), dtype=np.int64)
+        new_e[:, 0::3] = 3 * e + np.where(forward, FIRST, LAST)
+        new_e[:, 1::3] = 3 * e + MIDDLE
+        new_e[:, 2::3] = 3 * e + np.where(forward, LAST, FIRST)
+        out.append((new_v, new_e))
+    return out
+
+
+def curve_points(mesh: Mesh, vertices: NDArray[np.int64]) -> NDArray[np.float64]:
+    """(n, m + 1, 2) coordinates of curves given as (n, m + 1) vertex ids."""
+    return np.take(mesh.vertices, vertices, axis=0)
+
+
+def boundary_lsystem_error(hierarchy, chirality: str = "left") -> list[float]:
+    """Largest distance, per level, between the boundary curves and the L-system curves.
+
+    Every boundary edge of level 0 is followed to each level t and compared point by point
+    with the L-system of level t drawn between the edge's ends (in its face's direction).
+    Zero up to rounding means the level-t boundary *is* the L-system curve.
+    """
+    mesh0 = hierarchy[0].mesh
+    topo = mesh0.topology
+    lone = topo.edge_half_edges[topo.boundary_edges].max(axis=1)  # the half-edge with a face
+    a = mesh0.face_indices[lone]
+    e = topo.half_edge_edge[lone]
+    curves = follow_curves(hierarchy, 0, a, e)
+    errors = []
+    for t, (verts, _) in enumerate(curves):
+        pts = curve_points(hierarchy[t].mesh, verts)
+        ref = lsystem_curve(t, (0.0, 0.0), (1.0, 0.0), chirality)
+        p0, p1 = pts[:, :1, :], pts[:, -1:, :]
+        chord = (p1 - p0)[..., 0] + 1j * (p1 - p0)[..., 1]                  # (n, 1)
+        expected = p0[..., 0] + 1j * p0[..., 1] + chord * (ref[:, 0] + 1j * ref[:, 1])
+        got = pts[..., 0] + 1j * pts[..., 1]
+        errors.append(float(np.abs(got - expected).max()) if got.size else 0.0)
+    return errors
+
+
+# -- box counting ------------------------------------------------------------------------
+
+def _split_long(a, b, eps):
+    """Cut segments into pieces shorter than ``eps`` (vectorised with repeat)."""
+    length = np.hypot(*(b - a).T)
+    pieces = np.maximum(1, np.ceil(length / (0.999 * eps)).astype(np.int64))
+    if (pieces == 1).all():
+        return a, b
+    seg = np.repeat(np.arange(len(a)), pieces)
+    k = np.arange(len(seg)) - np.repeat(np.cumsum(pieces) - pieces, pieces)
+    t0 = (k / pieces[seg])[:, None]
+    t1 = ((k + 1) / pieces[seg])[:, None]
+    d = (b - a)[seg]
+    return a[seg] + t0 * d, a[seg] + t1 * d
+
+
+def box_count(segments: NDArray[np.float64], eps: float, origin=(0.0, 0.0)) -> int:
+    """Number of grid boxes of side ``eps`` that the segments (n, 2, 2) meet.
+
+    Exact for the union of segments: a segment shorter than a box meets the boxes of its
+    ends and, when it changes both row and column, the one box it passes between them.
+    """
+    a, b = _split_long(segments[:, 0] - origin, segments[:, 1] - origin, eps)
+    ia = np.floor(a / eps).astype(np.int64)
+    ib = np.floor(b / eps).astype(np.int64)
+    cells = [ia, ib]
+    both = (ia[:, 0] != ib[:, 0]) & (ia[:, 1] != ib[:, 1])
+    if both.any():
+        pa, pb, ca, cb = a[both], b[both], ia[both], ib[both]
+        gx = np.maximum(ca[:, 0], cb[:, 0]) * eps
+        gy = np.maximum(ca[:, 1], cb[:, 1]) * eps
+        tx = (gx - pa[:, 0]) / (pb[:, 0] - pa[:, 0])
+        ty = (gy - pa[:, 1]) / (pb[:, 1] - pa[:, 1])
+        x_first = (tx < ty)[:, None]
+        cells.append(np.where(x_first, np.column_stack([cb[:, 0], ca[:, 1]]),
+                              np.column_stack([ca[:, 0], cb[:, 1]])))
+    c = np.concatenate(cells)
+    c -= c.min(axis=0)
+    return int(len(np.unique(c[:, 0] * (int(c[:, 1].max()) + 1) + c[:, 1])))
+
+
+def box_sizes(segments: NDArray[np.float64], coarsest: float = 1 / 32,
+              finest: float = 2.0, per_octave: int = 4) -> NDArray[np.float64]:
+    """Box sizes from ``coarsest`` x the curve's extent down to ``finest`` x its mean segment.
+
+    The default range (extent/32 .. 2 mean segments, four sizes per halving) keeps the fit
+    inside the scales where the curve is resolved, and away from the coarse end where a
+    curve a few boxes wide looks like a line (which pulls the slope towards 1).
+    """
+    pts = segments.reshape(-1, 2)
+    extent = float(np.max(pts.max(axis=0) - pts.min(axis=0)))
+    mean = float(np.hypot(*(segments[:, 1] - segments[:, 0]).T).mean())
+    hi, lo = coarsest * extent, finest * mean
+    if lo >= hi:
+        raise ValueError("the curve has too few segments for box counting; use more levels")
+    k = np.arange(0, int(np.floor(per_octave * np.log2(hi / lo))) + 1)
+    return hi * 2.0 ** (-k / per_octave)
+
+
+GRID_SHIFT = np.array([0.7548776662466927, 0.5698402909980532])  # Kronecker sequence step
+
+
+def box_counting(segments: NDArray[np.float64], sizes=None, n_grids: int = 8) -> dict:
+    """Box-counting dimension: slope of log N(eps) against log(1/eps), least squares.
+
+    N(eps) is the mean count over ``n_grids`` grids shifted by a low-discrepancy sequence
+    of fractions of a box (one grid's count jumps with its alignment).
+
+    Parameters
+    ----------
+    segments : (n, 2, 2) float64, the curve as segments
+    sizes : box sizes (default :func:`box_sizes`)
+    n_grids : number of shifted grids averaged per size
+
+    Returns
+    -------
+    dict with ``sizes``, ``counts`` (mean over grids), ``dimension`` (the slope),
+    ``intercept``, ``r2`` and ``grids``.
+    """
+    segments = np.asarray(segments, dtype=np.float64).reshape(-1, 2, 2)
+    sizes = box_sizes(segments) if sizes is None else np.asarray(sizes, dtype=float)
+    lower = segments.reshape(-1, 2).min(axis=0)
+    shifts = (np.arange(1, n_grids + 1)[:, None] * GRID_SHIFT) % 1.0
+    counts = []
+    for eps in sizes:  # loops over box sizes and grids, not over mesh elements
+        counts.append(np.mean([box_count(segments, float(eps), lower - eps * s)
+                               for s in shifts]))
+    x = np.log(1.0 / sizes)
+    y = np.log(np.asarray(counts, dtype=float))
+    slope, intercept = np.polyfit(x, y, 1)
+    fit = slope * x + intercept
+    ss = float(((y - y.mean()) ** 2).sum())
+    r2 = 1.0 - float(((y - fit) ** 2).sum()) / ss if ss > 0 else 1.0
+    return {"sizes": [float(s) for s in sizes], "counts": [float(c) for c in counts],
+            "dimension": float(slope), "intercept": float(intercept), "r2": r2,
+            "grids": n_grids}
+
+
+def mesh_segments(mesh: Mesh, edges: NDArray | None = None) -> NDArray[np.float64]:
+    """(n, 2, 2) segments of the mesh's edges (all, or the ids / mask given)."""
+    e = mesh.topology.edges if edges is None else mesh.topology.edges[edges]
+    return np.stack([mesh.vertices[e[:, 0]], mesh.vertices[e[:, 1]]], axis=1)
+
+
+def boundary_segments(mesh: Mesh) -> NDArray[np.float64]:
+    return mesh_segments(mesh, mesh.topology.boundary_edges)
+
+
+def curve_segments(points: NDArray[np.float64]) -> NDArray[np.float64]:
+    """(n * m, 2, 2) segments of (n, m + 1, 2) curves (or one (m + 1, 2) curve)."""
+    points = np.asarray(points, dtype=float)
+    if points.ndim == 2:
+        points = points[None]
+    return np.stack([points[:, :-1], points[:, 1:]], axis=2).reshape(-1, 2, 2)
+
+
+# -- inner curves ------------------------------------------------------------------------
+
+CURVE_KINDS = ("boundary", "outer-outer", "outer-inner", "inner-inner")
+
+
+def ancestors(hierarchy, level: int) -> list[NDArray[np.int64]]:
+    """For every later level, the level-``level`` edge each edge descends from (-1: born later)."""
+    n_e = hierarchy[level].mesh.topology.n_edges
+    out = [np.arange(n_e, dtype=np.int64)]
+    for t in range(level + 1, len(hierarchy)):
+        lv = hierarchy[t]
+        _check_snub(lv, hierarchy[t - 1].mesh)
+        parent = lv.parent_edge.astype(np.int64)
+        inherited = lv.edge_part != SPOKE
+        out.append(np.where(inherited, out[-1][np.where(inherited, parent, 0)], -1))
+    return out
+
+
+def edge_kinds(mesh: Mesh) -> NDArray[np.int8]:
+    """(E,) index into CURVE_KINDS: boundary edge, or inner edge by its ends' outerness."""
+    outer = outer_vertices(mesh)
+    e = mesh.topology.edges
+    n_outer = outer[e[:, 0]].astype(np.int8) + outer[e[:, 1]]
+    kind = np.select([n_outer == 2, n_outer == 1], [1, 2], 3).astype(np.int8)
+    kind[mesh.topology.boundary_edges] = 0
+    return kind
+
+
+def curve_lengths(hierarchy, level: int) -> NDArray[np.float64]:
+    """(E_t, T - t + 1) length of the curve grown from every level-t edge, at levels t..T."""
+    anc = ancestors(hierarchy, level)
+    n_e = len(anc[0])
+    cols = []
+    for t, a in zip(range(level, len(hierarchy)), anc):
+        mesh = hierarchy[t].mesh
+        e = mesh.topology.edges
+        length = np.hypot(*(mesh.vertices[e[:, 1]] - mesh.vertices[e[:, 0]]).T)
+        keep = a >= 0
+        cols.append(np.bincount(a[keep], weights=length[keep], minlength=n_e))
+    return np.column_stack(cols)
+
+
+def chord_lengths(hierarchy, level: int) -> NDArray[np.float64]:
+    """(E_t, T - t + 1) distance between the two ends of every curve, at levels t..T."""
+    e = hierarchy[level].mesh.topology.edges
+    cols = [np.hypot(*(hierarchy[t].mesh.vertices[e[:, 1]]
+                       - hierarchy[t].mesh.vertices[e[:, 0]]).T)
+            for t in range(level, len(hierarchy))]
+    return np.column_stack(cols)
+
+
+def inner_curves(hierarchy, level: int = 1) -> list[dict]:
+    """Lengths of the curves born as one edge at ``level``, by kind, at every later level.
+
+    One row per (kind, level t'): the number of curves, their edges each (3^(t'-t)), total
+    and mean length, mean chord (end-to-end distance), and growth factors L(t')/L(t'-1):
+    of the total and the min / median / max over curves. The boundary grows by exactly
+    3/sqrt(7) = 1.1339 per level; the paper asks what the inner curves do.
+    """
+    if not 0 <= level < len(hierarchy):
+        raise ValueError(f"level must be 0..{len(hierarchy) - 1}, got {level}")
+    lengths = curve_lengths(hierarchy, level)
+    chords = chord_lengths(hierarchy, level)
+    kinds = edge_kinds(hierarchy[level].mesh)
+    rows = []
+    for k, name in enumerate(CURVE_KINDS):
+        sel = kinds == k
+        if not sel.any():
+            continue
+        lk, ck = lengths[sel], chords[sel]
+        for j in range(lk.shape[1]):
+            row = {"kind": name, "born": level, "level": level + j, "curves": int(sel.sum()),
+                   "edges_each": 3 ** j, "total_length": float(lk[:, j].sum()),
+                   "mean_length": float(lk[:, j].mean()), "mean_chord": float(ck[:, j].mean())}
+            if j:
+                g = lk[:, j] / lk[:, j - 1]
+                row.update(growth=float(lk[:, j].sum() / lk[:, j - 1].sum()),
+                           growth_min=float(g.min()), growth_median=float(np.median(g)),
+                           growth_max=float(g.max()))
+            rows.append(row)
+    return rows
+
+
+def default_inner_curve(hierarchy, level: int = 1) -> int:
+    """A representative inner curve: the longest inner edge of ``level`` with an outer end
+    (for a single pentagon, a centre-to-boundary curve)."""
+    mesh = hierarchy[level].mesh
+    kinds = edge_kinds(mesh)
+    e = mesh.topology.edges
+    length = np.hypot(*(mesh.vertices[e[:, 1]] - mesh.vertices[e[:, 0]]).T)
+    for k in (2, 3, 1):
+        if (kinds == k).any():
+            return int(np.flatnonzero(kinds == k)[np.argmax(length[kinds == k])])
+    raise ValueError(f"level {level} has no inner edge to follow")
+
+
+def curve_box_counting(hierarchy, level: int, edge: int) -> dict:
+    """Box-counting dimension of the curve grown from edge ``edge`` of ``level``."""
+    n_e = hierarchy[level].mesh.topology.n_edges
+    if not 0 <= edge < n_e:
+        raise ValueError(f"level {level} has edges 0..{n_e - 1}, got {edge}")
+    anc = ancestors(hierarchy, level)[-1]
+    return box_counting(mesh_segments(hierarchy[-1].mesh, np.flatnonzero(anc == edge)))
+
+
+def fractal_report(hierarchy, chirality: str = "left", curve: tuple[int, int] | None = None,
+                   born: int = 1) -> dict:
+    """Everything ``weave-cut fractal`` prints: alpha, L-system check, dimensions, curves."""
+    last = len(hierarchy) - 1
+    report = {
+        "alpha_rad": ALPHA, "alpha_deg": math.degrees(ALPHA),
+        "alpha_from_z_triplet_deg": math.degrees(alpha_from_z_triplet()),
+        "lsystem": {"axiom": AXIOM, "rule": f"F -> {RULE}",
+                    "symbols": {"v": "rot(+alpha)", "^": "rot(-alpha)",
+                                "+": "rot(+pi/3)", "-": "rot(-pi/3)"},
+                    "scale": SCALE},
+        "analytic_dimension": DIMENSION,
+        "levels": last,
+        "boundary_lsystem_max_error": boundary_lsystem_error(hierarchy, chirality),
+    }
+    mesh = hierarchy[-1].mesh
+    if last >= 3:
+        report["boundary_box_counting"] = box_counting(boundary_segments(mesh))
+    if last >= born + 3 and born >= 0:
+        if curve is None:
+            curve = (born, default_inner_curve(hierarchy, born))
+        report["inner_curve"] = {"level": curve[0], "edge": curve[1],
+                                 **curve_box_counting(hierarchy, *curve)}
+    if 0 <= born < last:
+        report["inner_curves"] = inner_curves(hierarchy, born)
+    return report

@@ -1,0 +1,128 @@
+"""The boundary L-system, alpha, box counting and inner curves (paper section 4)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from weavecut import inputs
+from weavecut.analysis import fractal
+from weavecut.subdivision import subdivide
+
+
+def test_alpha_is_atan_sqrt3_over_5():
+    assert fractal.ALPHA == pytest.approx(math.atan(math.sqrt(3) / 5), abs=1e-15)
+    assert fractal.alpha_from_z_triplet() == pytest.approx(fractal.ALPHA, abs=1e-15)
+    assert math.degrees(fractal.ALPHA) == pytest.approx(19.1066, abs=1e-4)
+
+
+def test_lsystem_generator_is_the_z_triplet():
+    pts = fractal.lsystem_curve(1)
+    edges = np.diff(pts, axis=0)
+    assert np.hypot(*edges.T) == pytest.approx([1 / math.sqrt(7)] * 3, abs=1e-15)
+    assert pts[1] == pytest.approx([5 / 14, math.sqrt(3) / 14], abs=1e-15)
+    assert pts[-1] == pytest.approx([1.0, 0.0], abs=1e-15)
+    # 120 degrees between consecutive Z edges
+    for a, b in zip(edges[:-1], edges[1:]):
+        cos = -(a @ b) / (np.linalg.norm(a) * np.linalg.norm(b))
+        assert math.degrees(math.acos(cos)) == pytest.approx(120.0, abs=1e-9)
+
+
+@pytest.mark.parametrize("levels", [0, 1, 2, 5])
+def test_lsystem_length_grows_by_3_over_sqrt7(levels):
+    pts = fractal.lsystem_curve(levels)
+    assert len(pts) == 3**levels + 1
+    assert np.hypot(*np.diff(pts, axis=0).T).sum() == pytest.approx((3 / math.sqrt(7))**levels)
+    assert pts[-1] == pytest.approx([1.0, 0.0], abs=1e-12)
+
+
+@pytest.mark.parametrize("spec,chirality", [("pentagon", "left"), ("pentagon", "right"),
+                                            ("square-grid:2x2", "left"), ("ngon:7", "left")])
+def test_boundary_is_the_lsystem_curve_exactly(spec, chirality):
+    h = subdivide(inputs.get(spec), 5, chirality=chirality)
+    errors = fractal.boundary_lsystem_error(h, chirality)
+    assert len(errors) == 6
+    assert max(errors) < 1e-13
+    # and the wrong chirality is far off, so the check can fail
+    other = "left" if chirality == "right" else "right"
+    assert max(fractal.boundary_lsystem_error(h, other)[1:]) > 1e-2
+
+
+def test_boundary_curve_count_and_length():
+    h = subdivide(inputs.get("pentagon"), 4)
+    mesh = h[-1].mesh
+    seg = fractal.boundary_segments(mesh)
+    assert len(seg) == 5 * 3**4
+    side = np.hypot(*(h[0].mesh.vertices[1] - h[0].mesh.vertices[0]))
+    assert np.hypot(*(seg[:, 1] - seg[:, 0]).T).sum() == pytest.approx(
+        5 * side * (3 / math.sqrt(7))**4)
+
+
+def test_box_counting_of_lsystem_level8_is_near_log3_over_log_sqrt7():
+    """Level 8 on a unit edge: boxes from 1/32 of the curve's extent (0.0313) down to two
+    segments (2 * 7**-4 = 0.00083), four sizes per halving, counts averaged over 8 grids."""
+    seg = fractal.curve_segments(fractal.lsystem_curve(8))
+    result = fractal.box_counting(seg)
+    assert result["sizes"][0] == pytest.approx(0.0313, abs=1e-3)
+    assert result["sizes"][-1] >= 2 * 7**-4
+    assert abs(result["dimension"] - fractal.DIMENSION) < 0.02
+    assert fractal.DIMENSION == pytest.approx(1.12915, abs=1e-5)
+
+
+def test_box_counting_of_a_straight_line_is_one():
+    seg = fractal.curve_segments(np.column_stack([np.linspace(0, 1, 2001), np.zeros(2001)]))
+    assert fractal.box_counting(seg)["dimension"] == pytest.approx(1.0, abs=0.01)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.floats(0.01, 0.3), st.floats(0, 1), st.floats(0, 1), st.floats(-3, 3),
+       st.floats(0.05, 2.0))
+def test_box_count_of_one_segment_matches_dense_sampling(eps, ox, oy, angle, length):
+    a = np.array([0.1, 0.2])
+    b = a + length * np.array([math.cos(angle), math.sin(angle)])
+    seg = np.array([[a, b]])
+    origin = np.array([ox, oy]) * eps
+    t = np.linspace(0, 1, 200001)[:, None]
+    pts = a + t * (b - a) - origin
+    dense = len(np.unique(np.floor(pts / eps).astype(np.int64), axis=0))
+    got = fractal.box_count(seg, eps, origin)
+    assert dense <= got <= dense + 1  # sampling can only miss a clipped corner box
+
+
+def test_curves_follow_the_z_numbering():
+    h = subdivide(inputs.get("pentagon"), 4)
+    e = np.arange(h[1].mesh.topology.n_edges)
+    starts = h[1].mesh.topology.edges[e, 1]
+    curves = fractal.follow_curves(h, 1, starts, e)
+    for t, (verts, edges) in zip(range(1, 5), curves):
+        assert verts.shape == (len(e), 3**(t - 1) + 1)
+        topo = h[t].mesh.topology
+        ends = np.sort(np.stack([verts[:, :-1], verts[:, 1:]], axis=-1), axis=-1)
+        assert (topo.edges[edges] == ends).all()  # consecutive vertices are the listed edges
+        assert (verts[:, 0] == starts).all()
+
+
+def test_inner_curve_lengths_match_followed_curves():
+    h = subdivide(inputs.get("pentagon"), 5)
+    lengths = fractal.curve_lengths(h, 1)
+    e = np.arange(h[1].mesh.topology.n_edges)
+    verts, _ = fractal.follow_curves(h, 1, h[1].mesh.topology.edges[:, 0], e)[-1]
+    pts = fractal.curve_points(h[-1].mesh, verts)
+    direct = np.hypot(*np.diff(pts, axis=1).transpose(2, 0, 1)).sum(axis=1)
+    assert lengths[:, -1] == pytest.approx(direct)
+
+
+def test_inner_curves_table():
+    h = subdivide(inputs.get("pentagon"), 5)
+    rows = fractal.inner_curves(h, 1)
+    boundary = [r for r in rows if r["kind"] == "boundary" and r["level"] > 1]
+    assert all(r["growth"] == pytest.approx(3 / math.sqrt(7)) for r in boundary)
+    spokes = [r for r in rows if r["kind"] == "outer-inner"]
+    assert spokes[0]["curves"] == 5                      # the five centre-to-boundary curves
+    # they never get shorter than the distance from the centre to their boundary end
+    assert all(r["mean_length"] >= spokes[0]["mean_chord"] - 1e-12 for r in spokes)
+    assert [r["edges_each"] for r in spokes] == [1, 3, 9, 27, 81]
