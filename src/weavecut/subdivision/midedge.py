@@ -6,16 +6,18 @@ joined. A face of degree n keeps a face of degree n (the midpoint polygon), an i
 valence k becomes a face of degree k, and two steps match one Doo-Sabin step combinatorially
 (child vertex h of the second step, the midpoint of corner edge h, is Doo-Sabin's corner h).
 
-Boundary (our rule; Peters and Reif treat closed meshes): an outer vertex v stays a vertex and
-gives the face (v, m_first, ..., m_last) with the midpoints of its edges in counter-clockwise
-order, so the boundary polygon's vertices are interpolated and the mesh stays manifold.
+Boundary (our rule; Peters and Reif treat closed meshes): an outer vertex v in two or more
+faces stays a vertex and gives the face (v, m_first, ..., m_last) with the midpoints of its
+edges in counter-clockwise order, so the mesh stays manifold; an outer vertex in a single face
+is cut off (its face would be a sliver, flat on a straight boundary).
 
-Numbering (child of a mesh with V, E, F, H, with V_out outer vertices): vertices ``[one per
-edge (edge e -> e, its midpoint) | the outer vertices in increasing id]``; faces ``[F face
-polygons | V vertex polygons in increasing vertex id]`` (the polygon of vertex v is face
-``F + v``; vertices no face uses are skipped); edges ``h`` = (m_e(prev h), m_e(h)) inside the
+Numbering (child of a mesh with V, E, F, H): vertices ``[one per
+edge (edge e -> e, its midpoint) | the kept outer vertices in increasing id]``; faces ``[F face
+polygons | vertex polygons in increasing vertex id]`` (inner vertices and kept outer
+vertices, see ``polygon_vertices``); edges ``h`` = (m_e(prev h), m_e(h)) inside the
 face of corner h, then ``H + 2i`` = (v, m_first) and ``H + 2i + 1`` = (m_last, v) for the i-th
-outer vertex. Counts: V' = E + V_out, E' = H + 2 V_out, F' = F + V.
+kept outer vertex. With V_in inner and V_out kept outer vertices:
+V' = E + V_out, E' = H + 2 V_out, F' = F + V_in + V_out.
 Vertex polygons have parent_face = parent_corner = -1.
 """
 
@@ -37,23 +39,25 @@ def inner_vertices(mesh: Mesh) -> NDArray[np.int64]:
     return np.flatnonzero(~is_outer(mesh))
 
 
-def counts(n_edges: int, n_faces: int, n_corners: int, n_vertices: int, n_outer: int):
-    """(V', E', F') after one step.
+def counts(n_edges: int, n_faces: int, n_corners: int, n_inner: int, n_outer: int):
+    """(V', E', F') after one step; ``n_outer`` counts outer vertices in two or more faces.
 
     Examples
     --------
-    >>> counts(12, 4, 16, 9, 8)  # a 2 x 2 quad grid
-    (20, 32, 13)
+    >>> counts(12, 4, 16, 1, 4)  # a 2 x 2 quad grid: 4 corners cut off
+    (16, 24, 9)
     """
-    return n_edges + n_outer, n_corners + 2 * n_outer, n_faces + n_vertices
+    return n_edges + n_outer, n_corners + 2 * n_outer, n_faces + n_inner + n_outer
 
 
 def step(mesh: Mesh) -> Level:
     """One mid-edge step (see the module docstring for the numbering)."""
     topo = mesh.topology
     n_e, n_f, n_h = topo.n_edges, mesh.n_faces, mesh.n_corners
-    used = np.flatnonzero(np.bincount(mesh.face_indices, minlength=mesh.n_vertices) > 0)
-    outer = is_outer(mesh)[used]
+    n_faces_at = np.bincount(mesh.face_indices, minlength=mesh.n_vertices)
+    outer_all = is_outer(mesh)
+    used = np.flatnonzero((n_faces_at > 0) & ~(outer_all & (n_faces_at < 2)))
+    outer = outer_all[used]
     ring_offsets, ring = vertex_rings(mesh, used)
     he_edge = topo.half_edge_edge
     n_out = int(outer.sum())

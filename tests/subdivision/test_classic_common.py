@@ -1,0 +1,51 @@
+"""Every classic scheme: consistent child topology, CCW faces, provenance of the right size."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from .classic_meshes import any_meshes, assert_consistent, jittered_tri_grids
+from hypothesis import given, settings
+
+from weavecut.errors import MeshError
+from weavecut.subdivision import SCHEMES, loop
+
+GENERAL = ["sqrt3", "catmull-clark", "midedge", "doo-sabin", "dual", "akleman"]
+
+
+@pytest.mark.parametrize("name", GENERAL)
+@settings(max_examples=30, deadline=None)
+@given(mesh=any_meshes())
+def test_general_schemes_build_valid_levels(name, mesh):
+    level = SCHEMES[name](mesh)
+    child = level.mesh
+    assert_consistent(child)
+    assert len(level.parent_face) == len(level.parent_corner) == child.n_faces
+    assert len(level.parent_edge) == len(level.edge_part) == child.topology.n_edges
+    if child.n_faces:
+        assert_consistent(SCHEMES[name](child).mesh)
+
+
+@pytest.mark.parametrize("name", ["loop", "butterfly"])
+@settings(max_examples=30, deadline=None)
+@given(mesh=jittered_tri_grids())
+def test_triangle_schemes_build_valid_levels(name, mesh):
+    level = SCHEMES[name](mesh)
+    assert_consistent(level.mesh)
+    assert_consistent(SCHEMES[name](level.mesh).mesh)
+    # every child face lies in its parent face: its parent's corners are among its own
+    # vertices or edge points of the parent face's edges
+    assert (np.bincount(level.parent_face) == 4).all()
+
+
+@pytest.mark.parametrize("name", ["loop", "butterfly"])
+def test_triangle_schemes_refuse_quads(name):
+    from .classic_meshes import quad_grid
+    with pytest.raises(MeshError, match="3 corners"):
+        SCHEMES[name](quad_grid(1, 1))
+
+
+def test_registry_names_the_classic_schemes():
+    assert {"snub", "loop", "butterfly", "sqrt3", "catmull-clark", "midedge", "doo-sabin",
+            "dual", "akleman"} <= set(SCHEMES)
+    assert SCHEMES["loop"] is loop.step
