@@ -15,7 +15,7 @@ import numpy as np
 
 from ..mesh import Mesh, face_centroids
 from .model import Weave
-from .quad import quad_weave
+from .quad import quad_weave, twins_by_key
 
 
 def face_split_mesh(mesh: Mesh) -> Mesh:
@@ -35,4 +35,4 @@ def face_split_weave(mesh: Mesh) -> Weave:
     """The face-split weave; its mesh is ``face_split_mesh(mesh)``, one tile per quad."""
     quads = face_split_mesh(mesh)
     c1 = np.arange(quads.n_vertices) < mesh.n_vertices
-    return quad_weave(quads, c1)
+    return quad_weave(quads, c1, twins_by_key(quads))

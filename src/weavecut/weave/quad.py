@@ -21,20 +21,30 @@ from .model import Weave
 from .two_colouring import check_two_colouring
 
 
-def quad_weave(mesh: Mesh, c1: NDArray[np.bool_]) -> Weave:
-    """The weave of a quad mesh with a vertex two-colouring; tile t is quad t."""
+def quad_weave(mesh: Mesh, c1: NDArray[np.bool_], twin: NDArray[np.int64] | None = None) -> Weave:
+    """The weave of a quad mesh with a vertex two-colouring; tile t is quad t.
+
+    ``twin`` (H,) may give the opposite half-edges when the caller knows them (glued quads may
+    touch at a vertex, which ``Mesh.topology`` refuses as a bow-tie).
+    """
     if mesh.n_faces and mesh.face_degree != 4:
         raise MeshError("the quad weave needs a mesh of quads only")
     c1 = np.asarray(c1, dtype=bool)
-    check_two_colouring(mesh, c1)
+    if twin is None:
+        check_two_colouring(mesh, c1)
+        twin = mesh.topology.twin
+    else:
+        fi = mesh.face_indices
+        if (c1[fi] == c1[fi[mesh.next_half_edge]]).any():
+            raise MeshError("not two-colourable: a quad has two neighbouring corners of one colour")
     n_f = mesh.n_faces
-    offsets, visits, closed = strand_order(mesh)
+    offsets, visits, closed = strand_order(mesh, twin)
     over = c1[mesh.face_indices[visits]]
     return Weave(mesh, np.arange(n_f + 1, dtype=np.int64), np.arange(n_f, dtype=np.int32),
                  offsets, mesh.half_edge_face[visits], over, closed)
 
 
-def strand_order(mesh: Mesh) -> tuple[NDArray[np.int64], NDArray[np.int32], NDArray[np.bool_]]:
+def strand_order(mesh: Mesh, twin: NDArray) -> tuple[NDArray[np.int64], NDArray[np.int32], NDArray[np.bool_]]:
     """Strands of a quad mesh as (offsets, entry half-edge of every visit, closed flags).
 
     Each strand is listed once, in the direction whose first entry half-edge id is smaller.
@@ -42,7 +52,7 @@ def strand_order(mesh: Mesh) -> tuple[NDArray[np.int64], NDArray[np.int32], NDAr
     n = mesh.n_corners
     h = np.arange(n, dtype=np.int64)
     opposite = mesh.next_half_edge[mesh.next_half_edge].astype(np.int64)
-    twin = mesh.topology.twin.astype(np.int64)
+    twin = np.asarray(twin, dtype=np.int64)
     succ = np.where(twin[opposite] >= 0, twin[opposite], -1)
     pred = np.full(n, -1, dtype=np.int64)
     has = succ >= 0
@@ -83,3 +93,18 @@ def _select(mesh, h, opposite, root, rank, on_cycle):
     first = np.flatnonzero(np.r_[True, starts[1:] != starts[:-1]])
     offsets = np.r_[first, len(states)].astype(np.int64)
     return offsets, states.astype(np.int32), on_cycle[states[first]]
+
+
+def twins_by_key(mesh: Mesh) -> NDArray[np.int64]:
+    """(H,) opposite half-edges found by sorting edge keys, with no manifold check (-1: none).
+
+    For quads that may touch at single vertices (bow-ties), which ``Mesh.topology`` refuses.
+    """
+    u = mesh.face_indices.astype(np.int64)
+    w = u[mesh.next_half_edge]
+    key = np.minimum(u, w) * max(mesh.n_vertices, 1) + np.maximum(u, w)
+    order = np.argsort(key, kind="stable")
+    same = np.flatnonzero(key[order][1:] == key[order][:-1])
+    twin = np.full(len(u), -1, dtype=np.int64)
+    twin[order[same]], twin[order[same + 1]] = order[same + 1], order[same]
+    return twin

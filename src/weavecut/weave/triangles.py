@@ -37,7 +37,13 @@ def glued_weave(mesh: Mesh, glue: NDArray[np.bool_], c1: NDArray[np.bool_]) -> W
     quads = np.column_stack([fi[prv[h]], fi[h], fi[prv[t]], fi[t]]).astype(np.int32)
     quad_mesh = Mesh.trusted(mesh.vertices, np.arange(0, 4 * len(h) + 1, 4, dtype=np.int64),
                              quads.reshape(-1))
-    w = quad_weave(quad_mesh, c1)
+    # quad half-edges are triangle half-edges: (p->a, a->q, q->b, b->p)
+    tri_he = np.column_stack([prv[h], nxt[t], prv[t], nxt[h]]).reshape(-1)
+    quad_he = np.full(mesh.n_corners, -1, dtype=np.int64)
+    quad_he[tri_he] = np.arange(len(tri_he))
+    across = twin[tri_he]
+    quad_twin = np.where(across >= 0, quad_he[np.maximum(across, 0)], -1)
+    w = quad_weave(quad_mesh, c1, quad_twin)
     pairs = np.column_stack([mesh.half_edge_face[h], mesh.half_edge_face[t]]).astype(np.int32)
     return Weave(mesh, np.arange(0, 2 * len(h) + 1, 2, dtype=np.int64), pairs.reshape(-1),
                  w.strand_offsets, w.strand_visits, w.visit_over, w.strand_closed)
