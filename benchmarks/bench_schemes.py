@@ -1,0 +1,149 @@
+"""Throughput of weave-cut's classic schemes against peer libraries, in one process.
+
+Run: ``.venv/bin/python benchmarks/bench_schemes.py`` (peers from ``pip install -e .[bench]``;
+missing peers are skipped). Inputs: a flat triangle grid of 125k triangles (Loop, butterfly:
+two steps to 2M faces; sqrt(3): two steps to 1.125M faces) and a 125k-quad grid
+(Catmull-Clark: two steps to 2M faces). Every library starts from plain (V, 3) / (F, k)
+arrays, so weave-cut's time includes building its Mesh and topology. Best of ``REPEATS`` runs.
+Prints a table; asserts nothing.
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+
+import numpy as np
+
+from weavecut.mesh import Mesh
+from weavecut.subdivision import butterfly, catmull_clark, loop, sqrt3
+
+REPEATS = 3
+
+
+def grid(n: int, m: int, quads: bool):
+    x, y = np.meshgrid(np.arange(n + 1, dtype=float), np.arange(m + 1, dtype=float))
+    v = np.column_stack([x.ravel(), y.ravel()])
+    idx = np.arange((n + 1) * (m + 1), dtype=np.int32).reshape(m + 1, n + 1)
+    a, b, c, d = (idx[:-1, :-1].ravel(), idx[:-1, 1:].ravel(), idx[1:, 1:].ravel(),
+                  idx[1:, :-1].ravel())
+    if quads:
+        return v, np.column_stack([a, b, c, d])
+    return v, np.stack([np.column_stack([a, b, c]), np.column_stack([a, c, d])], 1).reshape(-1, 3)
+
+
+def ours(step, levels):
+    def run(v, f):
+        k = f.shape[1]
+        mesh = Mesh(v, np.arange(0, f.size + 1, k), f.reshape(-1))
+        for _ in range(levels):
+            mesh = step(mesh).mesh
+        return mesh.n_faces
+    return run
+
+
+def xyz(v):
+    return np.column_stack([v, np.zeros(len(v))])
+
+
+def peers():
+    out = {}
+    try:
+        from compas_cgal import subdivision as cg
+        out["compas_cgal"] = {
+            "loop": lambda v, f: len(cg.mesh_subdivide_loop((xyz(v), f), k=2)[1]),
+            "sqrt3": lambda v, f: len(cg.mesh_subdivide_sqrt3((xyz(v), f), k=2)[1]),
+            "catmull-clark": lambda v, f: len(cg.mesh_subdivide_catmull_clark((xyz(v), f), k=2)[1]),
+        }
+    except ImportError:
+        pass
+    try:
+        import igl
+        out["libigl"] = {"loop": lambda v, f: len(igl.loop(xyz(v), f.astype(np.int64), 2)[1])}
+    except ImportError:
+        pass
+    try:
+        import vtk
+        from vtk.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+
+        def vtk_run(cls):
+            def run(v, f):
+                pts = vtk.vtkPoints()
+                pts.SetData(numpy_to_vtk(xyz(v), deep=True))
+                cells = vtk.vtkCellArray()
+                conn = numpy_to_vtkIdTypeArray(f.astype(np.int64).ravel(), deep=True)
+                offs = numpy_to_vtkIdTypeArray(np.arange(0, f.size + 1, 3, dtype=np.int64),
+                                               deep=True)
+                cells.SetData(offs, conn)
+                poly = vtk.vtkPolyData()
+                poly.SetPoints(pts)
+                poly.SetPolys(cells)
+                flt = cls()
+                flt.SetInputData(poly)
+                flt.SetNumberOfSubdivisions(2)
+                flt.Update()
+                return flt.GetOutput().GetNumberOfCells()
+            return run
+        out["vtk"] = {"loop": vtk_run(vtk.vtkLoopSubdivisionFilter),
+                      "butterfly": vtk_run(vtk.vtkButterflySubdivisionFilter)}
+    except ImportError:
+        pass
+    try:
+        import pymeshlab
+
+        def ml_run(filt, **kw):
+            def run(v, f):
+                ms = pymeshlab.MeshSet()
+                ms.add_mesh(pymeshlab.Mesh(xyz(v), f.astype(np.int32)))
+                getattr(ms, filt)(iterations=2, threshold=pymeshlab.PercentageValue(0), **kw)
+                return ms.current_mesh().face_number()
+            return run
+        out["pymeshlab"] = {"loop": ml_run("meshing_surface_subdivision_loop"),
+                            "butterfly": ml_run("meshing_surface_subdivision_butterfly")}
+    except ImportError:
+        pass
+    try:
+        import trimesh
+        out["trimesh"] = {"loop": lambda v, f: len(
+            trimesh.remesh.subdivide_loop(xyz(v), f.astype(np.int64), iterations=2)[1])}
+    except ImportError:
+        pass
+    return out
+
+
+def best(fn, v, f):
+    times, n = [], None
+    for _ in range(REPEATS):
+        t = time.perf_counter()
+        n = fn(v, f)
+        times.append(time.perf_counter() - t)
+    return min(times), n
+
+
+def main() -> int:
+    tri = grid(250, 250, quads=False)      # 125,000 triangles
+    quad = grid(500, 250, quads=True)      # 125,000 quads
+    cases = [("loop", tri, ours(loop.step, 2)), ("butterfly", tri, ours(butterfly.step, 2)),
+             ("sqrt3", tri, ours(sqrt3.step, 2)),
+             ("catmull-clark", quad, ours(catmull_clark.step, 2))]
+    others = peers()
+    print(f"{'scheme':14s} {'library':12s} {'faces':>9s} {'seconds':>8s} {'Mfaces/s':>9s} "
+          f"{'weave-cut x':>11s}")
+    for name, (v, f), fn in cases:
+        t_ours, n_ours = best(fn, v, f)
+        print(f"{name:14s} {'weave-cut':12s} {n_ours:9d} {t_ours:8.3f} {n_ours / t_ours / 1e6:9.2f}")
+        for lib, schemes in others.items():
+            if name not in schemes:
+                continue
+            try:
+                t, n = best(schemes[name], v, f)
+            except Exception as exc:  # a peer's API drift must not stop the table
+                print(f"{'':14s} {lib:12s} failed: {exc}")
+                continue
+            print(f"{'':14s} {lib:12s} {n:9d} {t:8.3f} {n / t / 1e6:9.2f} {t / t_ours:10.2f}x")
+        sys.stdout.flush()
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
