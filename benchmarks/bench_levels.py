@@ -1,0 +1,67 @@
+"""Level-image throughput (prints a table; not a test).
+
+    .venv/bin/python benchmarks/bench_levels.py [--quick]
+
+Cases: the pentagon at level 9 over 2048 x 2048 pixels (target <= 10 s) and a level-12 zoom
+window of about 1/100 of the pentagon's area (target <= 30 s and <= 4 GiB peak). Each case runs
+in a fresh subprocess so that its peak resident memory (ru_maxrss) is its own.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+import time
+
+CASES = {
+    "pentagon level 9, 2048 px": dict(levels=9, size=2048, window=None),
+    "pentagon level 12 zoom, 2048 px": dict(levels=12, size=2048,
+                                            window=(0.05, 0.25, 0.2042, 0.4042)),
+}
+QUICK = {
+    "pentagon level 7, 512 px": dict(levels=7, size=512, window=None),
+    "pentagon level 9 zoom, 512 px": dict(levels=9, size=512, window=(0.05, 0.25, 0.2042, 0.4042)),
+}
+
+
+def run_case(levels: int, size: int, window) -> dict:
+    import resource
+
+    from weavecut import inputs
+    from weavecut.analysis import levels as lv
+    from weavecut.mesh import signed_areas
+
+    mesh = inputs.get("pentagon")
+    start = time.perf_counter()
+    image, grid = lv.level_image(mesh, levels, size, window)
+    png = lv.png_bytes(lv.colour(image))
+    seconds = time.perf_counter() - start
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+    area = None
+    if window is not None:
+        x0, y0, x1, y1 = window
+        area = (x1 - x0) * (y1 - y0) / float(signed_areas(mesh).sum())
+    return {"seconds": seconds, "peak_bytes": peak, "pixels": int(image.size),
+            "set": int((image != lv.UNSET).sum()), "deepest": int(image[image != lv.UNSET].max()),
+            "png_bytes": len(png), "area_fraction": area}
+
+
+def main() -> None:
+    if len(sys.argv) > 1 and sys.argv[1] == "--case":
+        print(json.dumps(run_case(**json.loads(sys.argv[2]))))
+        return
+    cases = QUICK if "--quick" in sys.argv else CASES
+    print(f"{'case':36} {'seconds':>8} {'peak RSS':>10} {'pixels set':>12} {'deepest':>8} "
+          f"{'area':>7}")
+    for name, case in cases.items():
+        out = subprocess.run([sys.executable, __file__, "--case", json.dumps(case)],
+                             capture_output=True, text=True, check=True)
+        r = json.loads(out.stdout)
+        area = f"{r['area_fraction']:.4f}" if r["area_fraction"] else "all"
+        print(f"{name:36} {r['seconds']:8.2f} {r['peak_bytes'] / 2**30:8.2f} GiB "
+              f"{r['set']:12,} {r['deepest']:8} {area:>7}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,271 @@
+"""The level image (paper Figure colorLevels): every pixel coloured by the first refinement step
+in which it contains a vertex, and the windowed refinement that makes deep zooms affordable.
+
+Windowed refinement refines only the faces that can influence the window, and is *exact*
+there: every vertex of level t inside the window has the same coordinates, bit for bit, as in
+the full refinement. Why that holds, and how it is checked:
+
+- The children of a face f before smoothing depend only on f's vertices. Smoothing moves a
+  child vertex to the mean centre of its child faces, and those lie in the parent faces around
+  the parent element it came from (an old vertex's faces, the two faces of an edge, or f).
+  So a child vertex is exact when its whole star was refined from exact vertices.
+- Every vertex carries three flags: ``exact`` (its position equals the full one), ``complete``
+  (all faces around it in the full mesh are present) and ``outer`` (1 yes, 0 no, -1 unknown:
+  smoothing keeps outer vertices still). The flags are propagated through each step with array
+  operations, conservatively: anything that cannot be decided is marked inexact.
+- After each step, child faces farther than a halo from the window are dropped. The halo is
+  ``HALO`` times the largest face of the level: smoothing moves a vertex by less than one face
+  per step, and faces shrink by about 1/sqrt(5) per step, so what a dropped face could still
+  influence stays within a few of its own diameters; each level also loses one ring of exact
+  faces at the cut, which the halo covers as well.
+- The submesh keeps the full mesh's relative order of vertices, faces and corners, and the snub
+  step's sums depend only on that order and on the local structure, so the step on the patch
+  adds the same numbers in the same order: the results are equal, not just close. (The step
+  sees the patch's cut as boundary and keeps vertices on it still; they are the vertices whose
+  star is incomplete, already marked inexact.) :func:`refine_window` raises if any kept vertex inside the window is not
+  exact, or any vertex inside it is missing part of its star.
+"""
+
+from __future__ import annotations
+
+import io
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import WeaveCutError
+from ..fileio import write_atomic
+from ..mesh import Mesh, Topology, outer_vertices
+from ..subdivision import snub
+
+UNSET = 255
+HALO = 3.0
+# levels 0-9 darken-to-bright (the "inferno" ramp), 10-12 turning green, later levels darker green
+LEVEL_COLOURS = np.array([
+    (0, 0, 4), (22, 11, 57), (66, 10, 104), (106, 23, 110), (147, 38, 103),
+    (188, 55, 84), (221, 81, 58), (243, 120, 25), (252, 165, 10), (252, 255, 164),
+    (200, 240, 120), (120, 210, 80), (40, 170, 60),
+], dtype=np.uint8)
+DEEPER = (20, 120, 40)
+BACKGROUND = (255, 255, 255)
+
+
+@dataclass(frozen=True)
+class Grid:
+    """A pixel grid over ``window`` (x0, y0, x1, y1): square pixels, row 0 at the top."""
+
+    window: tuple[float, float, float, float]
+    width: int
+    height: int
+    pixel: float
+
+    @classmethod
+    def fit(cls, window, size: int) -> Grid:
+        """``size`` pixels along the window's longer side."""
+        x0, y0, x1, y1 = (float(v) for v in window)
+        if not (x1 > x0 and y1 > y0):
+            raise ValueError(f"window needs x0 < x1 and y0 < y1, got {window}")
+        if size < 1:
+            raise ValueError(f"size must be at least 1 pixel, got {size}")
+        pixel = max(x1 - x0, y1 - y0) / size
+        width = max(1, int(round((x1 - x0) / pixel)))
+        height = max(1, int(round((y1 - y0) / pixel)))
+        return cls((x0, y0, x1, y1), width, height, pixel)
+
+    def inside(self, points: NDArray[np.float64]) -> NDArray[np.bool_]:
+        """(n,) True for points in the closed window."""
+        x0, y0, x1, y1 = self.window
+        return ((points[:, 0] >= x0) & (points[:, 0] <= x1)
+                & (points[:, 1] >= y0) & (points[:, 1] <= y1))
+
+    def pixels(self, points: NDArray[np.float64]) -> NDArray[np.int64]:
+        """Flat pixel index of every point (points must be inside the window)."""
+        x0, _, _, y1 = self.window
+        ix = np.clip(np.floor((points[:, 0] - x0) / self.pixel), 0, self.width - 1)
+        iy = np.clip(np.floor((y1 - points[:, 1]) / self.pixel), 0, self.height - 1)
+        return iy.astype(np.int64) * self.width + ix.astype(np.int64)
+
+
+def default_window(mesh: Mesh) -> tuple[float, float, float, float]:
+    """The input's bounds, grown by the most the boundary fractal can bulge out of an edge."""
+    v = mesh.vertices
+    e = mesh.topology.edges
+    longest = float(np.hypot(*(v[e[:, 1]] - v[e[:, 0]]).T).max())
+    pad = 0.2 * longest  # the L-system curve stays within 0.17 of its chord
+    return (float(v[:, 0].min() - pad), float(v[:, 1].min() - pad),
+            float(v[:, 0].max() + pad), float(v[:, 1].max() + pad))
+
+
+# -- windowed refinement ------------------------------------------------------------------
+
+def _topology(mesh: Mesh) -> Topology:
+    """Topology.build without the manifold checks: a cut-out patch may pinch at a vertex."""
+    u = mesh.face_indices.astype(np.int64)
+    w = u[mesh.next_half_edge]
+    n_v = max(mesh.n_vertices, 1)
+    key = np.minimum(u, w) * n_v + np.maximum(u, w)
+    edge_key, he_edge = np.unique(key, return_inverse=True)
+    edges = np.column_stack(np.divmod(edge_key, n_v)).astype(np.int32)
+    return Topology(edges, he_edge.reshape(-1).astype(np.int32), (u > w).astype(np.int8))
+
+
+@dataclass(frozen=True, eq=False)
+class Patch:
+    """A refined patch: a submesh and the per-vertex flags described in the module docstring."""
+
+    mesh: Mesh
+    exact: NDArray[np.bool_]
+    complete: NDArray[np.bool_]
+    outer: NDArray[np.int8]
+
+
+def _face_boxes(mesh: Mesh) -> NDArray[np.float64]:
+    """(F, 4) x0, y0, x1, y1 of every (pentagon) face."""
+    p = np.take(mesh.vertices, mesh.dense_faces(), axis=0)
+    return np.concatenate([p.min(axis=1), p.max(axis=1)], axis=1)
+
+
+def _step(patch: Patch, window, halo: float, smooth: bool, centre: str,
+          chirality: str) -> Patch:
+    """One snub step of a patch, then the faces outside the window plus halo dropped."""
+    mesh = patch.mesh
+    topo = mesh.topology
+    n_v, n_e = mesh.n_vertices, topo.n_edges
+    # The step on the patch treats the patch's cut as boundary and does not move vertices on
+    # it; those vertices lack part of their star, so they are marked inexact below.
+    child = snub.step(mesh, smooth=smooth, centre=centre, chirality=chirality).mesh
+    faces = child.dense_faces()
+    n_c = child.n_vertices
+
+    # flags of the child's vertices: old | z0 z1 per edge | centres
+    ends = topo.edges
+    uses = np.bincount(topo.half_edge_edge, minlength=n_e)
+    at_complete = patch.complete[ends[:, 0]] | patch.complete[ends[:, 1]]
+    known_boundary = (uses == 1) & at_complete
+    edge_known = (uses == 2) | known_boundary
+    ux = np.empty(n_c, dtype=bool)
+    sc = np.empty(n_c, dtype=bool)
+    co = np.empty(n_c, dtype=np.int8)
+    ux[:n_v], sc[:n_v], co[:n_v] = patch.exact, patch.complete, patch.outer
+    z = slice(n_v, n_v + 2 * n_e)
+    ux[z] = np.repeat(patch.exact[ends[:, 0]] & patch.exact[ends[:, 1]], 2)
+    sc[z] = np.repeat(edge_known, 2)
+    co[z] = np.repeat(np.where(edge_known, known_boundary.astype(np.int8), -1), 2)
+    exact_corners = patch.exact[mesh.face_indices]
+    ux[n_v + 2 * n_e:] = np.bincount(mesh.half_edge_face, weights=~exact_corners,
+                                     minlength=mesh.n_faces) == 0
+    sc[n_v + 2 * n_e:] = True
+    co[n_v + 2 * n_e:] = 0
+
+    vertices = child.vertices
+    if smooth:  # a moved vertex is exact when all its faces were built from exact vertices
+        face_ok = ux[faces].all(axis=1)
+        star_ok = np.bincount(faces[~face_ok].ravel(), minlength=n_c) == 0
+        exact = np.where(co == 1, ux, (co == 0) & sc & star_ok)
+    else:
+        exact = ux
+
+    # drop the child faces that cannot influence the window
+    boxes = np.concatenate([vertices[faces].min(axis=1), vertices[faces].max(axis=1)], axis=1)
+    size = float((boxes[:, 2:] - boxes[:, :2]).max()) if len(boxes) else 0.0
+    margin = halo * size
+    x0, y0, x1, y1 = window
+    keep = ((boxes[:, 0] <= x1 + margin) & (boxes[:, 2] >= x0 - margin)
+            & (boxes[:, 1] <= y1 + margin) & (boxes[:, 3] >= y0 - margin))
+    complete = sc & (np.bincount(faces[~keep].ravel(), minlength=n_c) == 0)
+    kept = faces[keep]
+    used = np.zeros(n_c, dtype=bool)
+    used[kept.ravel()] = True
+    new_id = np.cumsum(used) - 1          # order-preserving renumbering
+    flat = new_id[kept.ravel()].astype(np.int32)
+    offsets = np.arange(0, len(flat) + 1, 5, dtype=np.int64)
+    sub = Mesh.trusted(np.ascontiguousarray(vertices[used]), offsets, flat)
+    sub.__dict__["topology"] = _topology(sub)
+    return Patch(sub, exact[used], complete[used], co[used])
+
+
+def refine_window(mesh: Mesh, levels: int, window, *, smooth: bool = True,
+                  centre: str = "vertex", chirality: str = "left", halo: float = HALO):
+    """Yield, for levels 0..``levels``, the (n, 2) vertices of the refinement inside ``window``.
+
+    Only faces near the window are refined; the vertices yielded are exactly (bit for bit)
+    those of the full refinement that lie in the closed window. Raises WeaveCutError if the
+    exactness check fails (a halo too small for the input).
+    """
+    window = tuple(float(v) for v in window)
+    grid = Grid.fit(window, 1)
+    if mesh.face_degree is None:  # a ragged input cannot be cut without changing its sums
+        keep_all_first = True
+    else:
+        keep_all_first = False
+    outer = outer_vertices(mesh).astype(np.int8)
+    patch = Patch(mesh, np.ones(mesh.n_vertices, bool), np.ones(mesh.n_vertices, bool), outer)
+    yield mesh.vertices[grid.inside(mesh.vertices)]
+    for t in range(1, levels + 1):
+        patch = _step(patch, window, np.inf if (t == 1 and keep_all_first) else halo, smooth,
+                      centre, chirality)
+        inside = grid.inside(patch.mesh.vertices)
+        if not (patch.exact[inside].all() and patch.complete[inside].all()):
+            bad = int((~(patch.exact & patch.complete) & inside).sum())
+            raise WeaveCutError(f"windowed refinement is not exact at level {t} "
+                                f"({bad} vertices in the window); use a larger halo")
+        yield patch.mesh.vertices[inside]
+
+
+def refine_full(mesh: Mesh, levels: int, *, smooth: bool = True, centre: str = "vertex",
+                chirality: str = "left"):
+    """Yield the (V, 2) vertices of levels 0..``levels`` of the full refinement."""
+    yield mesh.vertices
+    for _ in range(levels):
+        mesh = snub.step(mesh, smooth=smooth, centre=centre, chirality=chirality).mesh
+        yield mesh.vertices
+
+
+# -- the image ----------------------------------------------------------------------------
+
+def level_image(mesh: Mesh, levels: int, size: int, window=None, *, smooth: bool = True,
+                centre: str = "vertex", chirality: str = "left") -> tuple[NDArray, Grid]:
+    """(H, W) uint8: the first level whose vertices fall in each pixel (UNSET = 255: none).
+
+    Without ``window`` the whole mesh is refined over :func:`default_window`; with one, only
+    the faces near it (:func:`refine_window`).
+    """
+    if not 0 <= levels < UNSET:
+        raise ValueError(f"levels must be 0..{UNSET - 1}, got {levels}")
+    options = {"smooth": smooth, "centre": centre, "chirality": chirality}
+    if window is None:
+        grid = Grid.fit(default_window(mesh), size)
+        stream = refine_full(mesh, levels, **options)
+    else:
+        grid = Grid.fit(window, size)
+        stream = refine_window(mesh, levels, grid.window, **options)
+    image = np.full(grid.width * grid.height, UNSET, dtype=np.uint8)
+    for t, points in enumerate(stream):
+        points = points[grid.inside(points)]
+        pix = grid.pixels(points)
+        pix = pix[image[pix] == UNSET]
+        image[pix] = t
+    return image.reshape(grid.height, grid.width), grid
+
+
+def colour(image: NDArray[np.uint8]) -> NDArray[np.uint8]:
+    """(H, W, 3) RGB of a level image: levels 0-9 brighter, 10-12 green, unset white."""
+    table = np.empty((256, 3), dtype=np.uint8)
+    table[:] = DEEPER
+    table[:len(LEVEL_COLOURS)] = LEVEL_COLOURS
+    table[UNSET] = BACKGROUND
+    return table[image]
+
+
+def png_bytes(rgb: NDArray[np.uint8]) -> bytes:
+    """PNG of an (H, W, 3) uint8 image (no timestamps: same pixels, same bytes)."""
+    from PIL import Image
+
+    buf = io.BytesIO()
+    Image.fromarray(np.ascontiguousarray(rgb), "RGB").save(buf, format="PNG")
+    return buf.getvalue()
+
+
+def write_png(path, rgb: NDArray[np.uint8]) -> None:
+    write_atomic(path, png_bytes(rgb))
