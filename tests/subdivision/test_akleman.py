@@ -15,7 +15,7 @@ from .classic_meshes import any_meshes, polygon
 @given(mesh=any_meshes())
 def test_counts_and_convex_children(mesh):
     c = akleman.step(mesh).mesh
-    assert (c.n_vertices, c.topology.n_edges, c.n_faces) == akleman.counts(
+    assert (c.n_vertices, c.topology.n_edges, c.n_faces, c.n_corners) == akleman.counts(
         mesh.n_vertices, mesh.topology.n_edges, mesh.n_faces, mesh.n_corners)
     if (corner_turns(mesh) > 0).all():
         assert (corner_turns(c) > -1e-12).all()

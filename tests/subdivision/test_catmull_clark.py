@@ -15,7 +15,7 @@ from .classic_meshes import any_meshes, edge_id, mixed, quad_grid
 @given(mesh=any_meshes())
 def test_counts_and_all_quads(mesh):
     c = cc.step(mesh).mesh
-    assert (c.n_vertices, c.topology.n_edges, c.n_faces) == cc.counts(
+    assert (c.n_vertices, c.topology.n_edges, c.n_faces, c.n_corners) == cc.counts(
         mesh.n_vertices, mesh.topology.n_edges, mesh.n_faces, mesh.n_corners)
     assert c.face_degree == 4
 

@@ -45,6 +45,18 @@ def test_triangle_schemes_refuse_quads(name):
         SCHEMES[name](quad_grid(1, 1))
 
 
+@pytest.mark.parametrize("name", GENERAL + ["loop", "butterfly"])
+def test_counts_bound_the_next_level(name):
+    import sys
+    from .classic_meshes import tri_grid
+    m = tri_grid(3, 2, jitter=0.1)
+    c = SCHEMES[name](m).mesh
+    bound = sys.modules[SCHEMES[name].__module__].counts(
+        m.n_vertices, m.topology.n_edges, m.n_faces, m.n_corners)
+    assert all(a <= b for a, b in zip((c.n_vertices, c.topology.n_edges, c.n_faces,
+                                        c.n_corners), bound))
+
+
 def test_registry_names_the_classic_schemes():
     assert {"snub", "loop", "butterfly", "sqrt3", "catmull-clark", "midedge", "doo-sabin",
             "dual", "akleman"} <= set(SCHEMES)

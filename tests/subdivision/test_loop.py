@@ -16,8 +16,9 @@ def test_counts_per_step(mesh):
     m = mesh
     for _ in range(2):
         child = loop.step(m).mesh
-        assert (child.n_vertices, child.topology.n_edges, child.n_faces) == loop.counts(
-            m.n_vertices, m.topology.n_edges, m.n_faces)
+        assert (child.n_vertices, child.topology.n_edges, child.n_faces,
+                child.n_corners) == loop.counts(m.n_vertices, m.topology.n_edges, m.n_faces,
+                                                m.n_corners)
         m = child
 
 

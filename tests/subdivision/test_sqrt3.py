@@ -16,7 +16,7 @@ from .classic_meshes import fan, jittered_tri_grids
 def test_counts_and_nine_triangles_after_two_steps(mesh):
     level = sqrt3.step(mesh)
     c = level.mesh
-    assert (c.n_vertices, c.topology.n_edges, c.n_faces) == sqrt3.counts(
+    assert (c.n_vertices, c.topology.n_edges, c.n_faces, c.n_corners) == sqrt3.counts(
         mesh.n_vertices, mesh.topology.n_edges, mesh.n_faces, mesh.n_corners)
     assert sqrt3.step(c).mesh.n_faces == 9 * mesh.n_faces
     np.testing.assert_allclose(c.vertices[mesh.n_vertices:], face_centroids(mesh))

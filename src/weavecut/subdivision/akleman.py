@@ -29,14 +29,15 @@ EDGE_PARTS = {"first half": FIRST_HALF, "second half": SECOND_HALF, "spoke": SPO
 
 
 def counts(n_vertices: int, n_edges: int, n_faces: int, n_corners: int):
-    """(V', E', F') after one step.
+    """(V', E', F', H') after one step.
 
     Examples
     --------
     >>> counts(5, 5, 1, 5)  # a pentagon -> a pentagon and five pentagons around it
-    (15, 20, 6)
+    (15, 20, 6, 30)
     """
-    return n_vertices + n_edges + n_corners, 2 * n_edges + 2 * n_corners, n_faces + n_corners
+    return (n_vertices + n_edges + n_corners, 2 * n_edges + 2 * n_corners, n_faces + n_corners,
+            6 * n_corners)
 
 
 def step(mesh: Mesh, *, t: float = 0.5) -> Level:

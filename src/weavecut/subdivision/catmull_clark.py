@@ -34,15 +34,15 @@ OLD, EDGE, FACE = 0, 1, 2
 VERTEX_KINDS = {"old": OLD, "edge": EDGE, "face": FACE}
 
 
-def counts(n_vertices: int, n_edges: int, n_faces: int, n_corners: int) -> tuple[int, int, int]:
-    """(V', E', F') after one step.
+def counts(n_vertices: int, n_edges: int, n_faces: int, n_corners: int) -> tuple[int, ...]:
+    """(V', E', F', H') after one step.
 
     Examples
     --------
     >>> counts(4, 4, 1, 4)  # one quad -> four
-    (9, 12, 4)
+    (9, 12, 4, 16)
     """
-    return n_vertices + n_edges + n_faces, 2 * n_edges + n_corners, n_corners
+    return n_vertices + n_edges + n_faces, 2 * n_edges + n_corners, n_corners, 4 * n_corners
 
 
 def vertex_kinds(n_vertices: int, n_edges: int, n_faces: int) -> NDArray[np.int8]:

@@ -30,12 +30,18 @@ IN_FACE, ACROSS_EDGE = 0, 1
 EDGE_PARTS = {"in face": IN_FACE, "across edge": ACROSS_EDGE}
 
 
-def counts(n_faces: int, n_corners: int, n_inner_edges: int, n_inner_vertices: int):
+def counts(n_vertices: int, n_edges: int, n_faces: int, n_corners: int) -> tuple[int, ...]:
+    """Upper bounds of (V', E', F', H') from V, E, F, H alone (for memory checks)."""
+    e = n_corners + 2 * n_edges
+    return n_corners, e, n_faces + n_edges + n_vertices, 2 * e
+
+
+def exact_counts(n_faces: int, n_corners: int, n_inner_edges: int, n_inner_vertices: int):
     """(V', E', F') after one step.
 
     Examples
     --------
-    >>> counts(4, 16, 4, 1)  # a 2 x 2 quad grid
+    >>> exact_counts(4, 16, 4, 1)  # a 2 x 2 quad grid
     (16, 24, 9)
     """
     return n_corners, n_corners + 2 * n_inner_edges, n_faces + n_inner_edges + n_inner_vertices

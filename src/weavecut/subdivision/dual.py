@@ -25,6 +25,11 @@ CROSSING = 0
 EDGE_PARTS = {"crossing": CROSSING}
 
 
+def counts(n_vertices: int, n_edges: int, n_faces: int, n_corners: int) -> tuple[int, ...]:
+    """Upper bounds of (V', E', F', H') from V, E, F, H alone (for memory checks)."""
+    return n_faces, n_edges, n_vertices, 2 * n_edges
+
+
 def step(mesh: Mesh) -> Level:
     """The dual mesh as a Level (see the module docstring for the numbering)."""
     topo = mesh.topology

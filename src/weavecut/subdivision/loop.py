@@ -32,15 +32,15 @@ FIRST_HALF, SECOND_HALF, INNER = 0, 1, 2
 EDGE_PARTS = {"first half": FIRST_HALF, "second half": SECOND_HALF, "inner": INNER}
 
 
-def counts(n_vertices: int, n_edges: int, n_faces: int) -> tuple[int, int, int]:
-    """(V', E', F') after one 1-to-4 split of a triangle mesh.
+def counts(n_vertices: int, n_edges: int, n_faces: int, n_corners: int) -> tuple[int, ...]:
+    """(V', E', F', H') after one 1-to-4 split of a triangle mesh.
 
     Examples
     --------
-    >>> counts(3, 3, 1)
-    (6, 9, 4)
+    >>> counts(3, 3, 1, 3)
+    (6, 9, 4, 12)
     """
-    return n_vertices + n_edges, 2 * n_edges + 3 * n_faces, 4 * n_faces
+    return n_vertices + n_edges, 2 * n_edges + n_corners, 4 * n_faces, 4 * n_corners
 
 
 def step(mesh: Mesh) -> Level:

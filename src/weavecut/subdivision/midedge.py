@@ -39,12 +39,18 @@ def inner_vertices(mesh: Mesh) -> NDArray[np.int64]:
     return np.flatnonzero(~is_outer(mesh))
 
 
-def counts(n_edges: int, n_faces: int, n_corners: int, n_inner: int, n_outer: int):
+def counts(n_vertices: int, n_edges: int, n_faces: int, n_corners: int) -> tuple[int, ...]:
+    """Upper bounds of (V', E', F', H') from V, E, F, H alone (for memory checks)."""
+    e = n_corners + 2 * n_vertices
+    return n_edges + n_vertices, e, n_faces + n_vertices, 2 * e
+
+
+def exact_counts(n_edges: int, n_faces: int, n_corners: int, n_inner: int, n_outer: int):
     """(V', E', F') after one step; ``n_outer`` counts outer vertices in two or more faces.
 
     Examples
     --------
-    >>> counts(12, 4, 16, 1, 4)  # a 2 x 2 quad grid: 4 corners cut off
+    >>> exact_counts(12, 4, 16, 1, 4)  # a 2 x 2 quad grid: 4 corners cut off
     (16, 24, 9)
     """
     return n_edges + n_outer, n_corners + 2 * n_outer, n_faces + n_inner + n_outer

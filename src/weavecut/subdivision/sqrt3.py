@@ -30,15 +30,15 @@ FLIPPED, KEPT, SPOKE = 0, 1, 2
 EDGE_PARTS = {"flipped": FLIPPED, "kept": KEPT, "spoke": SPOKE}
 
 
-def counts(n_vertices: int, n_edges: int, n_faces: int, n_corners: int) -> tuple[int, int, int]:
-    """(V', E', F') after one step.
+def counts(n_vertices: int, n_edges: int, n_faces: int, n_corners: int) -> tuple[int, ...]:
+    """(V', E', F', H') after one step.
 
     Examples
     --------
     >>> counts(4, 5, 2, 6)  # two triangles sharing an edge
-    (6, 11, 6)
+    (6, 11, 6, 18)
     """
-    return n_vertices + n_faces, n_edges + n_corners, n_corners
+    return n_vertices + n_faces, n_edges + n_corners, n_corners, 3 * n_corners
 
 
 def vertex_points(mesh: Mesh) -> NDArray[np.float64]:
