@@ -1,0 +1,123 @@
+"""Where non-convex faces occur (paper section 3.2 and its open question on smoothing).
+
+For every level: how many faces are non-convex, whether they are inner faces or touch the
+boundary, and at which kind of vertex the reflex corner sits: an input vertex, a face centre
+or a Z vertex (the snub numbering tells them apart), outer or inner, and of which degree.
+The counts use :func:`analysis.stats.nonconvex_faces`, so they agree with ``weave-cut stats``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..layout.drawing import (
+    Drawing,
+    Fit,
+    Layer,
+    Sheet,
+    Style,
+    Text,
+    mesh_bounds,
+    mesh_polygons,
+    polygons_from_rings,
+)
+from ..mesh import Mesh, corner_angles, outer_vertices, vertex_degrees
+from .stats import REFLEX_EPS, nonconvex_faces
+
+ORIGINS = ("input", "z", "centre")
+HIGHLIGHT = "#e0302a"
+
+
+def vertex_origins(hierarchy) -> list[NDArray[np.int8]]:
+    """Per level, (V,) index into ORIGINS: how each vertex was born (snub numbering)."""
+    out = [np.zeros(hierarchy[0].mesh.n_vertices, dtype=np.int8)]
+    for t in range(1, len(hierarchy)):
+        parent = hierarchy[t - 1].mesh
+        n_v, n_e = parent.n_vertices, parent.topology.n_edges
+        origin = np.empty(hierarchy[t].mesh.n_vertices, dtype=np.int8)
+        if len(origin) != n_v + 2 * n_e + parent.n_faces:
+            raise ValueError("vertex origins follow the snub numbering; this is another scheme")
+        origin[:n_v] = out[-1]
+        origin[n_v:n_v + 2 * n_e] = 1
+        origin[n_v + 2 * n_e:] = 2
+        out.append(origin)
+    return out
+
+
+def boundary_faces(mesh: Mesh) -> NDArray[np.bool_]:
+    """(F,) True for faces with an edge on the boundary."""
+    topo = mesh.topology
+    on_boundary = topo.boundary_edges[topo.half_edge_edge]
+    return np.bincount(mesh.half_edge_face[on_boundary], minlength=mesh.n_faces) > 0
+
+
+def reflex_corners(mesh: Mesh) -> NDArray[np.bool_]:
+    """(H,) True at corners with an interior angle above 180 degrees (the stats threshold)."""
+    return corner_angles(mesh) > np.pi + REFLEX_EPS
+
+
+def level_convexity(mesh: Mesh, level: int, origin: NDArray[np.int8]) -> dict:
+    """The convexity findings of one level (see the module docstring)."""
+    bad = nonconvex_faces(mesh)
+    at_boundary = boundary_faces(mesh)
+    reflex = reflex_corners(mesh)
+    verts = mesh.face_indices[reflex]
+    outer = outer_vertices(mesh)[verts]
+    degrees = vertex_degrees(mesh)[verts]
+    kinds = origin[verts]
+    by_kind = {}
+    for k, name in enumerate(ORIGINS):
+        for where, mask in (("inner", ~outer), ("outer", outer)):
+            n = int(((kinds == k) & mask).sum())
+            if n:
+                by_kind[f"{name} {where}"] = n
+    angles = corner_angles(mesh)
+    return {
+        "level": level,
+        "faces": mesh.n_faces,
+        "nonconvex_faces": int(bad.sum()),
+        "nonconvex_inner_faces": int((bad & ~at_boundary).sum()),
+        "nonconvex_boundary_faces": int((bad & at_boundary).sum()),
+        "reflex_corners": int(reflex.sum()),
+        "reflex_at": by_kind,
+        "reflex_vertex_degrees": {str(d): int(c) for d, c in
+                                  zip(*np.unique(degrees, return_counts=True))},
+        "max_angle_deg": round(math.degrees(float(angles.max())), 6) if len(angles) else 0.0,
+    }
+
+
+def convexity_report(hierarchy) -> list[dict]:
+    """:func:`level_convexity` for every level of a snub hierarchy."""
+    origins = vertex_origins(hierarchy)
+    return [level_convexity(lv.mesh, t, o) for t, (lv, o) in enumerate(zip(hierarchy, origins))]
+
+
+def convexity_drawing(mesh: Mesh, size: float = 200.0, margin: float = 10.0,
+                      title: str = "non-convex faces") -> Drawing:
+    """The mesh in grey with its non-convex faces filled red and reflex corners marked."""
+    x0, y0, x1, y1 = mesh_bounds(mesh)
+    scale = size / max(x1 - x0, y1 - y0)
+    width, height = (x1 - x0) * scale + 2 * margin, (y1 - y0) * scale + 2 * margin + 8
+    fit = Fit.into((x0, y0, x1, y1), width, height - 8, margin)
+    from ..layout.mesh_figure import line_width
+
+    lw = line_width(mesh, fit)
+    bad = np.flatnonzero(nonconvex_faces(mesh))
+    layers = [Layer("mesh", "guide", (mesh_polygons(mesh, fit, Style("#777777", lw)),))]
+    if len(bad):
+        layers.append(Layer("nonconvex", "paint", (mesh_polygons(
+            mesh, fit, Style("#000000", lw, fill=HIGHLIGHT, opacity=0.85), faces=bad),)))
+        pts = fit(mesh.vertices[mesh.face_indices[reflex_corners(mesh)]])
+        r = max(3 * lw, 0.4)
+        ring = np.column_stack([np.cos(np.linspace(0, 2 * np.pi, 12, endpoint=False)),
+                                np.sin(np.linspace(0, 2 * np.pi, 12, endpoint=False))]) * r
+        dots = polygons_from_rings([p + ring for p in pts],  # one small disc per reflex corner
+                                   Style(None, 0, fill="#1030c0"))
+        layers.append(Layer("reflex corners", "paint", (dots,)))
+    label = (f"{len(bad)} non-convex face(s) of {mesh.n_faces:,}" if len(bad)
+             else f"all {mesh.n_faces:,} faces convex")
+    layers.append(Layer("label", "label", (Text(margin, height - 7, label, size=3.5),)))
+    return Drawing((Sheet(width, height, tuple(layers)),), title)

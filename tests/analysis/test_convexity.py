@@ -1,0 +1,76 @@
+"""Where non-convex faces occur; the counts agree with `weave-cut stats`."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from weavecut import inputs
+from weavecut.analysis import convexity as cv
+from weavecut.analysis.stats import level_stats
+from weavecut.cli import cli
+from weavecut.mesh import Mesh, corner_turns
+from weavecut.subdivision import subdivide
+
+CASES = [("pentagon", 5, True, "vertex"), ("pentagon", 5, False, "vertex"),
+         ("square-grid:3x3", 4, False, "area"), ("ngon:24", 3, True, "area"),
+         ("triangulated-ngon:24", 3, False, "vertex")]
+
+
+@pytest.mark.parametrize("spec,levels,smooth,centre", CASES)
+def test_counts_agree_with_stats(spec, levels, smooth, centre):
+    h = subdivide(inputs.get(spec), levels, smooth=smooth, centre=centre)
+    report = cv.convexity_report(h)
+    for t, (row, lv) in enumerate(zip(report, h)):
+        stats = level_stats(lv.mesh, t)
+        assert row["nonconvex_faces"] == stats["nonconvex_faces"]
+        assert row["faces"] == stats["faces"]
+        assert row["nonconvex_inner_faces"] + row["nonconvex_boundary_faces"] == \
+            row["nonconvex_faces"]
+        assert sum(row["reflex_at"].values()) == row["reflex_corners"]
+        assert sum(row["reflex_vertex_degrees"].values()) == row["reflex_corners"]
+        # independent of angles: a CCW face is non-convex where its boundary turns right
+        turns = corner_turns(lv.mesh) < -1e-12 * np.abs(corner_turns(lv.mesh)).max()
+        assert row["reflex_corners"] == int(turns.sum())
+
+
+def test_cli_convexity_matches_cli_stats():
+    runner = CliRunner()
+    args = ["pentagon", "--levels", "5", "--no-smooth"]
+    conv = json.loads(runner.invoke(cli, ["convexity", *args, "--json"]).output)
+    stats = json.loads(runner.invoke(cli, ["stats", *args, "--json"]).output)
+    assert [r["nonconvex_faces"] for r in conv["levels"]] == \
+        [r["nonconvex_faces"] for r in stats["levels"]]
+    assert conv["levels"][-1]["nonconvex_faces"] > 0
+
+
+def test_known_nonconvex_input_is_located():
+    # an arrow-head quad (reflex at vertex 2) glued to a quad that fills its notch: one
+    # non-convex face (with boundary edges), its reflex corner at an inner input vertex of
+    # degree 2
+    mesh = Mesh.from_faces([(0, 0), (2, 0), (1, 0.5), (1, 2), (3, 1)],
+                           [[0, 1, 2, 3], [1, 4, 3, 2]])
+    row = cv.convexity_report(subdivide(mesh, 0))[0]
+    assert row["nonconvex_faces"] == 1
+    assert row["nonconvex_boundary_faces"] == 1
+    assert row["reflex_at"] == {"input inner": 1}
+    assert row["reflex_vertex_degrees"] == {"2": 1}
+
+
+def test_vertex_origins_follow_the_numbering():
+    h = subdivide(inputs.get("pentagon"), 2)
+    origins = cv.vertex_origins(h)
+    assert np.bincount(origins[1]).tolist() == [5, 10, 1]
+    assert np.bincount(origins[2]).tolist() == [5, 10 + 2 * 20, 1 + 5]
+
+
+def test_drawing_highlights_nonconvex_faces():
+    h = subdivide(inputs.get("pentagon"), 5, smooth=False)
+    drawing = cv.convexity_drawing(h[-1].mesh)
+    layers = {layer.name: layer for layer in drawing.sheets[0].layers}
+    n_bad = cv.convexity_report(h)[-1]["nonconvex_faces"]
+    assert layers["nonconvex"].shapes[0].n_polygons == n_bad
+    assert "non-convex" in layers["label"].shapes[0].text
