@@ -69,8 +69,12 @@ def test_vertex_origins_follow_the_numbering():
 
 def test_drawing_highlights_nonconvex_faces():
     h = subdivide(inputs.get("pentagon"), 5, smooth=False)
-    drawing = cv.convexity_drawing(h[-1].mesh)
+    from weavecut.layout.figures import convexity_drawing
+
+    drawing = convexity_drawing(h[-1].mesh)
     layers = {layer.name: layer for layer in drawing.sheets[0].layers}
     n_bad = cv.convexity_report(h)[-1]["nonconvex_faces"]
     assert layers["nonconvex"].shapes[0].n_polygons == n_bad
-    assert "non-convex" in layers["label"].shapes[0].text
+    assert layers["reflex-corners"].shapes[0].n_polygons == \
+        cv.convexity_report(h)[-1]["reflex_corners"]
+    assert "non-convex" in layers["caption"].shapes[0].text

@@ -13,22 +13,10 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from ..layout.drawing import (
-    Drawing,
-    Fit,
-    Layer,
-    Sheet,
-    Style,
-    Text,
-    mesh_bounds,
-    mesh_polygons,
-    polygons_from_rings,
-)
 from ..mesh import Mesh, corner_angles, outer_vertices, vertex_degrees
 from .stats import REFLEX_EPS, nonconvex_faces
 
 ORIGINS = ("input", "z", "centre")
-HIGHLIGHT = "#e0302a"
 
 
 def vertex_origins(hierarchy) -> list[NDArray[np.int8]]:
@@ -93,31 +81,3 @@ def convexity_report(hierarchy) -> list[dict]:
     """:func:`level_convexity` for every level of a snub hierarchy."""
     origins = vertex_origins(hierarchy)
     return [level_convexity(lv.mesh, t, o) for t, (lv, o) in enumerate(zip(hierarchy, origins))]
-
-
-def convexity_drawing(mesh: Mesh, size: float = 200.0, margin: float = 10.0,
-                      title: str = "non-convex faces") -> Drawing:
-    """The mesh in grey with its non-convex faces filled red and reflex corners marked."""
-    x0, y0, x1, y1 = mesh_bounds(mesh)
-    scale = size / max(x1 - x0, y1 - y0)
-    width, height = (x1 - x0) * scale + 2 * margin, (y1 - y0) * scale + 2 * margin + 8
-    fit = Fit.into((x0, y0, x1, y1), width, height - 8, margin)
-    from ..layout.mesh_figure import line_width
-
-    lw = line_width(mesh, fit)
-    bad = np.flatnonzero(nonconvex_faces(mesh))
-    layers = [Layer("mesh", "guide", (mesh_polygons(mesh, fit, Style("#777777", lw)),))]
-    if len(bad):
-        layers.append(Layer("nonconvex", "paint", (mesh_polygons(
-            mesh, fit, Style("#000000", lw, fill=HIGHLIGHT, opacity=0.85), faces=bad),)))
-        pts = fit(mesh.vertices[mesh.face_indices[reflex_corners(mesh)]])
-        r = max(3 * lw, 0.4)
-        ring = np.column_stack([np.cos(np.linspace(0, 2 * np.pi, 12, endpoint=False)),
-                                np.sin(np.linspace(0, 2 * np.pi, 12, endpoint=False))]) * r
-        dots = polygons_from_rings([p + ring for p in pts],  # one small disc per reflex corner
-                                   Style(None, 0, fill="#1030c0"))
-        layers.append(Layer("reflex corners", "paint", (dots,)))
-    label = (f"{len(bad)} non-convex face(s) of {mesh.n_faces:,}" if len(bad)
-             else f"all {mesh.n_faces:,} faces convex")
-    layers.append(Layer("label", "label", (Text(margin, height - 7, label, size=3.5),)))
-    return Drawing((Sheet(width, height, tuple(layers)),), title)

@@ -353,6 +353,8 @@ def inner_curves(hierarchy, level: int = 1) -> list[dict]:
     and mean length, mean chord (end-to-end distance), and growth factors L(t')/L(t'-1):
     of the total and the min / median / max over curves. The boundary grows by exactly
     3/sqrt(7) = 1.1339 per level; the paper asks what the inner curves do.
+    ``implied_dimension`` = log 3 / log(3 / growth) is the dimension that growth would give
+    if it held at every scale.
     """
     if not 0 <= level < len(hierarchy):
         raise ValueError(f"level must be 0..{len(hierarchy) - 1}, got {level}")
@@ -371,11 +373,18 @@ def inner_curves(hierarchy, level: int = 1) -> list[dict]:
                    "mean_length": float(lk[:, j].mean()), "mean_chord": float(ck[:, j].mean())}
             if j:
                 g = lk[:, j] / lk[:, j - 1]
-                row.update(growth=float(lk[:, j].sum() / lk[:, j - 1].sum()),
+                growth = float(lk[:, j].sum() / lk[:, j - 1].sum())
+                row.update(growth=growth, implied_dimension=_implied_dimension(growth),
                            growth_min=float(g.min()), growth_median=float(np.median(g)),
                            growth_max=float(g.max()))
             rows.append(row)
     return rows
+
+
+def _implied_dimension(growth: float) -> float | None:
+    """log 3 / log(3 / g): the dimension of a curve whose 3x more edges make it g x longer
+    each step (for the boundary, g = 3/sqrt 7 gives log 3 / log sqrt 7)."""
+    return math.log(3.0) / math.log(3.0 / growth) if 0 < growth < 3 else None
 
 
 def default_inner_curve(hierarchy, level: int = 1) -> int:
@@ -401,8 +410,13 @@ def curve_box_counting(hierarchy, level: int, edge: int) -> dict:
 
 
 def fractal_report(hierarchy, chirality: str = "left", curve: tuple[int, int] | None = None,
-                   born: int = 1) -> dict:
-    """Everything ``weave-cut fractal`` prints: alpha, L-system check, dimensions, curves."""
+                   born=(1, 2)) -> dict:
+    """Everything ``weave-cut fractal`` prints: alpha, L-system check, dimensions, curves.
+
+    ``born`` lists the levels whose edges start inner-curve rows (the boundary rows come from
+    the first only: they are the same curves cut finer).
+    """
+    born = (born,) if isinstance(born, int) else tuple(born)
     last = len(hierarchy) - 1
     report = {
         "alpha_rad": ALPHA, "alpha_deg": math.degrees(ALPHA),
@@ -418,11 +432,16 @@ def fractal_report(hierarchy, chirality: str = "left", curve: tuple[int, int] | 
     mesh = hierarchy[-1].mesh
     if last >= 3:
         report["boundary_box_counting"] = box_counting(boundary_segments(mesh))
-    if last >= born + 3 and born >= 0:
-        if curve is None:
-            curve = (born, default_inner_curve(hierarchy, born))
+    first = born[0] if born else 1
+    if curve is None and 0 <= first and last >= first + 3:
+        curve = (first, default_inner_curve(hierarchy, first))
+    if curve is not None:
         report["inner_curve"] = {"level": curve[0], "edge": curve[1],
                                  **curve_box_counting(hierarchy, *curve)}
-    if 0 <= born < last:
-        report["inner_curves"] = inner_curves(hierarchy, born)
+    rows = []
+    for k, b in enumerate(sorted(set(born))):
+        if 0 <= b < last:
+            rows += [r for r in inner_curves(hierarchy, b) if k == 0 or r["kind"] != "boundary"]
+    if rows:
+        report["inner_curves"] = rows
     return report

@@ -14,6 +14,7 @@ import click
 from .. import __version__
 from ..memory import keep_freed_memory
 from .common import CONTEXT
+from .analysis_commands import COMMANDS as ANALYSIS_COMMANDS
 from .mesh_commands import inputs_command, stats_command, subdivide_command
 
 
@@ -31,7 +32,7 @@ def cli() -> None:
     """
 
 
-for command in (inputs_command, subdivide_command, stats_command):
+for command in (inputs_command, subdivide_command, stats_command, *ANALYSIS_COMMANDS):
     cli.add_command(command)
 
 

@@ -1,0 +1,602 @@
+"""The paper's figures, by name: ``FIGURES = {name: (description, builder)}``.
+
+A builder takes no arguments and returns a Drawing (vector figures) or PNG bytes (raster
+figures). ``weave-cut figure NAME -o OUT`` writes one; ``weave-cut figure --list`` lists them.
+Multi-panel figures are laid out on one sheet with a caption under every panel.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from numpy.typing import NDArray
+
+from .. import inputs
+from ..analysis import convexity as cv
+from ..analysis import fractal as fr
+from ..analysis import levels as lv
+from ..mesh import Mesh, edge_lengths
+from ..subdivision import snub, subdivide
+from .drawing import (
+    Drawing,
+    Fit,
+    Layer,
+    Polygons,
+    Polylines,
+    Sheet,
+    Style,
+    Text,
+    mesh_bounds,
+    mesh_polygons,
+    polygons_from_rings,
+)
+from .mesh_figure import line_width
+
+BLUE = "#3b6fb6"
+LIGHT_BLUE = "#cfe0f5"
+GREY = "#9a9a9a"
+RED = "#e0302a"
+WHITE = "#ffffff"
+CURVE_COLOURS = ("#e0302a", "#2a8f3f", "#3b6fb6", "#c77d14", "#8e3bb6")
+
+
+# -- building blocks ------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class Panel:
+    """One panel: model-space ``bounds`` and a function from a Fit to the panel's layers."""
+
+    bounds: tuple[float, float, float, float]
+    draw: Callable[[Fit], list[Layer]]
+    caption: str = ""
+
+
+def compose(panels: list[Panel], columns: int, cell: float = 70.0, gap: float = 6.0,
+            title: str = "weave-cut figure", caption_size: float = 2.6) -> Drawing:
+    """Panels on a grid of ``columns``, each scaled into a ``cell`` mm high box (the width
+    follows the panel's aspect), captions underneath."""
+    aspects = [(b[2] - b[0]) / (b[3] - b[1]) for b in (p.bounds for p in panels)]
+    rows = math.ceil(len(panels) / columns)
+    widths = [max(aspects[i] for i in range(c, len(panels), columns)) * cell
+              for c in range(min(columns, len(panels)))]
+    text_h = 3 * caption_size if any(p.caption for p in panels) else 0.0
+    width = sum(widths) + gap * (len(widths) + 1)
+    height = rows * (cell + text_h) + gap * (rows + 1)
+    layers = []
+    for i, panel in enumerate(panels):
+        r, c = divmod(i, columns)
+        x = gap + sum(widths[:c]) + gap * c
+        y = height - gap - (r + 1) * (cell + text_h) - gap * r + text_h
+        fit = Fit.into(panel.bounds, widths[c], cell, 0.0)
+        fit = Fit(fit.scale, (fit.offset[0] + x, fit.offset[1] + y))
+        prefix = f"{chr(ord('a') + i)}-" if len(panels) > 1 else ""
+        for layer in panel.draw(fit):
+            layers.append(Layer(prefix + layer.name, layer.role, layer.shapes, layer.visible))
+        if panel.caption:
+            label = f"({chr(ord('a') + i)}) {panel.caption}" if len(panels) > 1 else panel.caption
+            layers.append(Layer(prefix + "caption", "label", (
+                Text(x + widths[c] / 2, y - 1.6 * caption_size, label, size=caption_size,
+                     anchor="middle"),)))
+    return Drawing((Sheet(width, height, tuple(layers)),), title)
+
+
+def discs(points: NDArray[np.float64], radius: float, style: Style) -> Polygons:
+    """A small 16-gon around every point (vertex markers)."""
+    t = np.linspace(0, 2 * np.pi, 16, endpoint=False)
+    ring = np.column_stack([np.cos(t), np.sin(t)]) * radius
+    pts = np.asarray(points, dtype=float).reshape(-1, 2)
+    coords = (pts[:, None, :] + ring[None]).reshape(-1, 2)
+    return Polygons(coords, np.arange(0, len(coords) + 1, 16, dtype=np.int64), style)
+
+
+def segments(coords: NDArray[np.float64], style: Style) -> Polylines:
+    """Polylines of (n, 2, 2) segments."""
+    coords = np.asarray(coords, dtype=float).reshape(-1, 2)
+    return Polylines(coords, np.arange(0, len(coords) + 1, 2, dtype=np.int64), style)
+
+
+def edge_coords(mesh: Mesh, edges=None) -> NDArray[np.float64]:
+    """(n, 2, 2) endpoints of the mesh's edges (all, or the ids / mask given)."""
+    return fr.mesh_segments(mesh, edges)
+
+
+def clip_segments(segs: NDArray[np.float64], box) -> NDArray[np.float64]:
+    """The parts of (n, 2, 2) segments inside ``box`` (x0, y0, x1, y1), as segments."""
+    lines = shapely.linestrings(segs.reshape(-1, 2), indices=np.repeat(np.arange(len(segs)), 2))
+    inter = shapely.intersection(lines, shapely.box(*box))
+    parts = shapely.get_parts(inter[~shapely.is_empty(inter)])
+    parts = parts[shapely.get_type_id(parts) == 1]
+    if not len(parts):
+        return np.zeros((0, 2, 2))
+    coords, index = shapely.get_coordinates(parts, return_index=True)
+    first = np.r_[True, index[1:] != index[:-1]]
+    last = np.r_[index[1:] != index[:-1], True]
+    return np.stack([coords[first], coords[last]], axis=1)
+
+
+def clip_faces(mesh: Mesh, box) -> list[NDArray[np.float64]]:
+    """The faces of ``mesh`` cut to ``box``, as rings (for panels showing part of a mesh)."""
+    polys = shapely.polygons(shapely.linearrings(mesh.vertices[mesh.face_indices],
+                                                 indices=mesh.half_edge_face))
+    inter = shapely.intersection(polys, shapely.box(*box))
+    inter = inter[~shapely.is_empty(inter)]
+    return [np.asarray(g.exterior.coords)[:-1] for g in shapely.get_parts(inter)
+            if g.geom_type == "Polygon"]
+
+
+def curve_polylines(hierarchy, style: Style, fit: Fit) -> Polylines:
+    """Every edge of the last level, chained into the curves they grew from (level-0 edges and
+    the spokes of every level), so the SVG repeats each point about once, not twice."""
+    last = len(hierarchy) - 1
+    lines = []
+    for s in range(last + 1):
+        mesh = hierarchy[s].mesh
+        n_e = mesh.topology.n_edges
+        if s == 0:
+            ids = np.arange(n_e)
+        else:
+            ids = np.arange(3 * hierarchy[s - 1].mesh.topology.n_edges, n_e)
+        if not len(ids):
+            continue
+        verts, _ = fr.follow_curves(hierarchy, s, mesh.topology.edges[ids, 0], ids)[-1]
+        lines.append(verts)
+    mesh = hierarchy[-1].mesh
+    counts = np.concatenate([np.full(len(v), v.shape[1]) for v in lines])
+    ids = np.concatenate([v.ravel() for v in lines])
+    offsets = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+    return Polylines(fit(np.take(mesh.vertices, ids, axis=0)), offsets, style)
+
+
+def _grow(bounds, by: float) -> tuple[float, float, float, float]:
+    x0, y0, x1, y1 = bounds
+    pad = by * max(x1 - x0, y1 - y0)
+    return (x0 - pad, y0 - pad, x1 + pad, y1 + pad)
+
+
+def mesh_panel(mesh: Mesh, caption: str, underlay: Mesh | None = None,
+               fills: dict[str, NDArray] | None = None, bounds=None,
+               stroke: str = "#000000") -> Panel:
+    """A mesh drawn in black over an optional light-blue underlay, faces optionally filled."""
+    if bounds is None:
+        boxes = np.array([mesh_bounds(m) for m in (mesh, underlay) if m is not None])
+        bounds = _grow((*boxes[:, :2].min(axis=0), *boxes[:, 2:].max(axis=0)), 0.02)
+
+    def draw(fit: Fit) -> list[Layer]:
+        lw = line_width(mesh, fit)
+        layers = []
+        if underlay is not None:
+            layers.append(Layer("input", "guide", (mesh_polygons(
+                underlay, fit, Style(BLUE, 2 * lw, fill=LIGHT_BLUE)),)))
+        for colour, faces in (fills or {}).items():
+            if len(faces):
+                layers.append(Layer(f"fill-{colour.lstrip('#')}", "paint", (mesh_polygons(
+                    mesh, fit, Style(None, 0, fill=colour), faces=faces),)))
+        layers.append(Layer("mesh", "cut", (mesh_polygons(mesh, fit, Style(stroke, lw)),)))
+        return layers
+
+    return Panel(bounds, draw, caption)
+
+
+# -- Figure Z-triplet and operations 1-3 ------------------------------------------------
+
+def _arc(centre, radius, a0, a1, n=24) -> NDArray[np.float64]:
+    t = np.linspace(a0, a1, n)
+    return np.asarray(centre) + radius * np.column_stack([np.cos(t), np.sin(t)])
+
+
+def z_triplet_panel() -> Panel:
+    pts = fr.lsystem_curve(1)
+    a = fr.ALPHA
+
+    def draw(fit: Fit) -> list[Layer]:
+        s = fit.scale
+        lw = 0.012 * s
+        # a dashed look: the original edge as short pieces
+        t = np.linspace(0, 1, 41)
+        dash = np.column_stack([t, np.zeros_like(t)])
+        dashes = np.stack([dash[0:-1:2], dash[1::2]], axis=1)
+        z = Polylines(fit(pts), np.array([0, 4]), Style("#000000", lw))
+        arc_a = Polylines(fit(_arc((0, 0), 0.22, 0, a)), np.array([0, 24]), Style("#000000", 0.5 * lw))
+        e1 = pts[1] - pts[0]
+        back = math.atan2(-e1[1], -e1[0])          # from z0 back to u: -160.9 degrees
+        # the 120-degree angles: at z0 below the Z, at z1 above it
+        arc_b = Polylines(fit(_arc(pts[1], 0.09, back, back + 2 * np.pi / 3)),
+                          np.array([0, 24]), Style("#000000", 0.5 * lw))
+        arc_c = Polylines(fit(_arc(pts[2], 0.09, a, a + 2 * np.pi / 3)),
+                          np.array([0, 24]), Style("#000000", 0.5 * lw))
+        r = 0.025 * s
+        ends = discs(fit(pts[[0, 3]]), r, Style("#000000", 0.4 * lw, fill=WHITE))
+        mids = discs(fit(pts[[1, 2]]), r, Style("#000000", 0.4 * lw, fill=BLUE))
+        size = 0.06 * s
+        lab = [Text(*fit(np.array([0.24, 0.012])), "\u03b1", size=0.8 * size),
+               Text(*fit(pts[1] + np.array([0.02, -0.2])), "2\u03c0/3", size=0.8 * size,
+                    anchor="middle"),
+               Text(*fit(pts[2] + np.array([-0.02, 0.15])), "2\u03c0/3", size=0.8 * size,
+                    anchor="middle")]
+        return [Layer("edge", "guide", (segments(fit(dashes), Style(GREY, 0.6 * lw)),)),
+                Layer("z-triplet", "cut", (z, arc_a, arc_b, arc_c)),
+                Layer("vertices", "paint", (ends, mids)),
+                Layer("labels", "label", tuple(lab))]
+
+    return Panel((-0.08, -0.3, 1.08, 0.3), draw, "Z-triplet: |e|/\u221a7 each, \u03b1 = atan(\u221a3/5)")
+
+
+def paper_input() -> Mesh:
+    """A small input like the paper's Figure InputMesh: convex faces around two inner vertices,
+    with a boundary to the right (the view box :data:`PAPER_VIEW` cuts off the rest)."""
+    v = [(0.0, 0.55), (0.1, -0.5), (1.0, 1.1), (1.25, 0.05), (1.0, -1.05),
+         (-1.2, 1.5), (-1.5, 0.0), (-1.2, -1.5), (0.1, 2.0), (0.2, -2.0)]
+    i1, i2, o1, o2, o3, l1, l2, l3, top, bottom = range(10)
+    faces = [[i2, o2, o1, i1], [i1, o1, top], [i1, top, l1, l2], [i1, l2, i2],
+             [i2, l2, l3, bottom], [i2, bottom, o3, o2]]
+    return Mesh.from_faces(v, faces)
+
+
+PAPER_VIEW = (-0.95, -1.3, 1.45, 1.35)
+
+
+def _clipped_mesh_layers(mesh: Mesh, fit: Fit, box, lw: float, fill: str | None,
+                         edges=None, stroke: str = "#000000") -> list[Layer]:
+    layers = []
+    if fill:
+        layers.append(Layer("faces", "paint", (polygons_from_rings(
+            [fit(r) for r in clip_faces(mesh, box)], Style(None, 0, fill=fill)),)))
+    segs = clip_segments(edge_coords(mesh, edges), box)
+    layers.append(Layer("edges", "cut", (segments(fit(segs), Style(stroke, lw)),)))
+    return layers
+
+
+def _inside(points, box) -> NDArray[np.bool_]:
+    x0, y0, x1, y1 = box
+    return ((points[:, 0] >= x0) & (points[:, 0] <= x1) & (points[:, 1] >= y0)
+            & (points[:, 1] <= y1))
+
+
+def operations_panels() -> list[Panel]:
+    mesh = paper_input()
+    level = snub.step(mesh, smooth=False)
+    child = level.mesh
+    box = PAPER_VIEW
+    n_v, n_e = mesh.n_vertices, mesh.topology.n_edges
+
+    def vertex_layer(fit, lw, ids_colours):
+        shapes = []
+        for pts, colour in ids_colours:
+            pts = pts[_inside(pts, box)]
+            shapes.append(discs(fit(pts), 0.03 * fit.scale, Style("#000000", 0.4 * lw,
+                                                                   fill=colour)))
+        return Layer("vertices", "paint", tuple(shapes))
+
+    def input_draw(fit):
+        lw = 0.012 * fit.scale
+        return _clipped_mesh_layers(mesh, fit, box, lw, LIGHT_BLUE) + [
+            vertex_layer(fit, lw, [(mesh.vertices, WHITE)])]
+
+    def ops12_draw(fit):
+        lw = 0.012 * fit.scale
+        zig = level.edge_part != snub.SPOKE
+        old = _clipped_mesh_layers(mesh, fit, box, 0.6 * lw, LIGHT_BLUE, stroke=GREY)
+        new = _clipped_mesh_layers(child, fit, box, lw, None, edges=zig)
+        return old + [Layer("z-triplets", "cut", new[0].shapes)] + [vertex_layer(
+            fit, lw, [(child.vertices[:n_v], WHITE), (child.vertices[n_v:n_v + 2 * n_e], BLUE),
+                      (child.vertices[n_v + 2 * n_e:], RED)])]
+
+    def op3_draw(fit):
+        lw = 0.012 * fit.scale
+        faces = _clipped_mesh_layers(mesh, fit, box, 0.6 * lw, LIGHT_BLUE, stroke=GREY)[:1]
+        new = _clipped_mesh_layers(child, fit, box, lw, None)
+        return faces + [Layer("pentagons", "cut", new[0].shapes)] + [vertex_layer(
+            fit, lw, [(child.vertices[:n_v], WHITE), (child.vertices[n_v:n_v + 2 * n_e], BLUE),
+                      (child.vertices[n_v + 2 * n_e:], RED)])]
+
+    return [Panel(box, input_draw, "input M0 (faces blue)"),
+            Panel(box, ops12_draw, "operations 1 and 2"),
+            Panel(box, op3_draw, "operation 3")]
+
+
+def fig_z_triplet() -> Drawing:
+    return compose([z_triplet_panel()], 1, cell=40, title="Z-triplet")
+
+
+def fig_operations() -> Drawing:
+    return compose([z_triplet_panel(), *operations_panels()], 4, cell=55,
+                   title="Operations 1-3 of the pentagon snub step")
+
+
+# -- Figure smoothingOp -----------------------------------------------------------------
+
+def _edge_ratio(mesh: Mesh) -> NDArray[np.float64]:
+    """(F,) longest over shortest edge of every face."""
+    length = edge_lengths(mesh)[mesh.topology.half_edge_edge].reshape(-1, 5)
+    return length.max(axis=1) / length.min(axis=1)
+
+
+def fig_smoothing() -> Drawing:
+    rough = subdivide(inputs.get("pentagon"), 4, smooth=False)[-1].mesh
+    ratio = _edge_ratio(rough)
+    long_faces = np.flatnonzero(ratio > np.quantile(ratio, 0.9))
+    bad = np.flatnonzero(cv.nonconvex_faces(rough))
+    # detail: around the first non-convex face
+    c = rough.vertices[rough.dense_faces()[bad[0]]].mean(axis=0)
+    half = 0.12
+    detail = (c[0] - half, c[1] - half, c[0] + half, c[1] + half)
+
+    def detail_draw(fit):
+        lw = 0.35
+        rings = clip_faces(Mesh(rough.vertices, np.arange(0, 5 * len(bad) + 1, 5),
+                                rough.dense_faces()[bad].ravel()), detail)
+        return [Layer("nonconvex", "paint", (polygons_from_rings(
+            [fit(r) for r in rings], Style(None, 0, fill=BLUE)),)),
+            Layer("edges", "cut", (segments(fit(clip_segments(edge_coords(rough), detail)),
+                                            Style("#000000", lw)),))]
+
+    coarse = subdivide(inputs.get("pentagon"), 1, smooth=False)[-1].mesh
+    moved = snub.step(inputs.get("pentagon"), smooth=True).mesh
+    level2_rough = snub.step(coarse, smooth=False).mesh
+    level2 = snub.step(coarse, smooth=True).mesh
+    shift = np.flatnonzero(np.hypot(*(level2.vertices - level2_rough.vertices).T) > 1e-12)
+
+    def smooth_draw(fit):
+        lw = 0.006 * fit.scale
+        r = 0.02 * fit.scale
+        arrows = np.stack([level2_rough.vertices[shift], level2.vertices[shift]], axis=1)
+        return [Layer("before", "guide", (mesh_polygons(level2_rough, fit, Style(GREY, lw)),)),
+                Layer("after", "cut", (mesh_polygons(level2, fit, Style("#000000", lw)),)),
+                Layer("moves", "guide", (segments(fit(arrows), Style(RED, lw)),)),
+                Layer("vertices", "paint", (
+                    discs(fit(level2_rough.vertices[shift]), r, Style("#000000", 0.5 * lw,
+                                                                     fill=WHITE)),
+                    discs(fit(level2.vertices[shift]), r, Style("#000000", 0.5 * lw,
+                                                                fill=BLUE))))]
+
+    del moved
+    bounds = _grow(mesh_bounds(rough), 0.02)
+    return compose([
+        mesh_panel(rough, "no smoothing, level 4",
+                   fills={LIGHT_BLUE: long_faces, BLUE: bad}),
+        Panel(detail, detail_draw, "detail: a non-convex face"),
+        Panel(bounds, smooth_draw, "smoothing: white to blue"),
+    ], 3, cell=70, caption_size=2.4, title="Non-smoothed against smoothed refinement")
+
+
+# -- Figures FirstSnubRefinementSteps and snubRefinementNonPentagonal --------------------
+
+def fig_first_steps() -> Drawing:
+    h = subdivide(inputs.get("pentagon"), 4)
+    return compose([mesh_panel(h[t].mesh, f"level {t}", underlay=h[0].mesh)
+                    for t in range(1, 5)], 4, cell=55,
+                   title="First pentagon snub refinement steps")
+
+
+def fig_non_pentagonal() -> Drawing:
+    cases = [("tiling-8-4", 4, "8-4 mesh, level 4"), ("ngon:24", 3, "24-gon, level 3"),
+             ("ngon:24", 4, "24-gon, level 4"),
+             ("triangulated-ngon:24", 3, "triangulated 24-gon, level 3")]
+    panels = []
+    for spec, levels, caption in cases:
+        h = subdivide(inputs.get(spec), levels)
+        panels.append(mesh_panel(h[-1].mesh, caption, underlay=h[0].mesh))
+    return compose(panels, 4, cell=60, title="Snub refinement of non-pentagonal inputs")
+
+
+# -- Figure SubdivisionEdges --------------------------------------------------------------
+
+ZOOM_CENTRE = (-0.33, 0.40)
+ZOOM_HALF = 0.09
+
+
+def edge_render_panel(hierarchy, caption: str, zoom_centre=ZOOM_CENTRE,
+                      zoom_half: float = ZOOM_HALF) -> Panel:
+    """All edges of the last level, width scaled to the edge length; a zoom-in box magnified
+    into an inset to the right of the mesh."""
+    mesh = hierarchy[-1].mesh
+    x0, y0, x1, y1 = _grow(mesh_bounds(mesh), 0.01)
+    inset_side = y1 - y0
+    gap = 0.08 * inset_side
+    ix0 = x1 + gap
+    bounds = (x0, y0, ix0 + 0.6 * inset_side, y1)
+    zx, zy = zoom_centre
+    zoom = (zx - zoom_half, zy - zoom_half, zx + zoom_half, zy + zoom_half)
+    side = 0.6 * inset_side
+    inset = (ix0, y1 - side, ix0 + side, y1)
+    magnify = side / (2 * zoom_half)
+
+    def draw(fit: Fit) -> list[Layer]:
+        median = float(np.median(edge_lengths(mesh))) * fit.scale
+        lw = float(np.clip(0.12 * median, 0.004, 0.3))
+        curves = curve_polylines(hierarchy, Style("#000000", lw), fit)
+        segs = clip_segments(edge_coords(mesh), zoom)
+        to_inset = (segs - np.array(zoom[:2])) * magnify + np.array(inset[:2])
+        lw_in = float(np.clip(0.12 * median * magnify, 0.004, 0.3))
+        box = np.array([[zoom[0], zoom[1]], [zoom[2], zoom[1]], [zoom[2], zoom[3]],
+                        [zoom[0], zoom[3]]])
+        frame = np.array([[inset[0], inset[1]], [inset[2], inset[1]], [inset[2], inset[3]],
+                          [inset[0], inset[3]]])
+        links = np.array([[box[1], frame[0]], [box[2], frame[3]]])
+        return [Layer("edges", "cut", (curves,)),
+                Layer("zoom", "cut", (segments(fit(to_inset), Style("#000000", lw_in)),)),
+                Layer("zoom-boxes", "guide", (
+                    Polygons(fit(np.vstack([box, frame])), np.array([0, 4, 8]),
+                             Style(RED, 0.25)),
+                    segments(fit(links), Style(RED, 0.15))))]
+
+    return Panel(bounds, draw, caption)
+
+
+def fig_edge_renders() -> Drawing:
+    h = subdivide(inputs.get("pentagon"), 8)
+    panels = [edge_render_panel(h[:t + 1], f"level {t}") for t in range(5, 9)]
+    return compose(panels, 2, cell=80, title="Edges of refinement levels 5-8")
+
+
+# -- Figure FractalCurvesAndLindenmayer -----------------------------------------------------
+
+def fractal_curves_panel(hierarchy, born: int = 1, caption: str | None = None) -> Panel:
+    """The last level's edges in grey, the boundary in black and the curves grown from the
+    inner edges of level ``born`` in colour."""
+    mesh = hierarchy[-1].mesh
+    last = len(hierarchy) - 1
+    born = min(born, last)
+    start = hierarchy[born].mesh
+    kinds = fr.edge_kinds(start)
+    inner = np.flatnonzero(kinds > 0)
+    if born > 0:  # the curves born at this level (spokes), not older ones
+        inner = inner[inner >= 3 * hierarchy[born - 1].mesh.topology.n_edges]
+
+    def draw(fit: Fit) -> list[Layer]:
+        lw = line_width(mesh, fit)
+        layers = [Layer("edges", "guide", (segments(fit(edge_coords(mesh)),
+                                                    Style("#c8c8c8", 0.7 * lw)),)),
+                  Layer("boundary", "cut", (segments(fit(fr.boundary_segments(mesh)),
+                                                     Style("#000000", 2 * lw)),))]
+        if len(inner):
+            verts, _ = fr.follow_curves(hierarchy, born, start.topology.edges[inner, 0],
+                                        inner)[-1]
+            pts = fr.curve_points(mesh, verts)
+            shapes = []
+            for k in range(len(CURVE_COLOURS)):  # a loop over colours
+                sel = pts[k::len(CURVE_COLOURS)]
+                if len(sel):
+                    offsets = np.arange(0, sel.shape[0] * sel.shape[1] + 1, sel.shape[1])
+                    shapes.append(Polylines(fit(sel.reshape(-1, 2)), offsets,
+                                            Style(CURVE_COLOURS[k], 2 * lw)))
+            layers.append(Layer(f"curves-from-level-{born}", "paint", tuple(shapes)))
+        return layers
+
+    return Panel(_grow(mesh_bounds(mesh), 0.02), draw,
+                 caption or f"level {last}: boundary and curves born at level {born}")
+
+
+def lsystem_panel() -> Panel:
+    pts = fr.lsystem_curve(1)
+
+    def draw(fit: Fit) -> list[Layer]:
+        lw = 0.01 * fit.scale
+        size = 0.045 * fit.scale
+        lines = [("\u25bd: rot(\u03b1)    \u25b3: rot(-\u03b1)", 0),
+                 ("+: rot(\u03c0/3)    -: rot(-\u03c0/3)", 1),
+                 ("F \u2192 \u25bd F - F + F \u25b3", 2),
+                 (f"\u03b1 = atan(\u221a3/5) = {math.degrees(fr.ALPHA):.4f}\u00b0", 3),
+                 (f"D = log 3 / log \u221a7 = {fr.DIMENSION:.5f}", 4)]
+        texts = tuple(Text(*fit(np.array([0.5, -0.32 - 0.13 * i])), s, size=size,
+                           anchor="middle") for s, i in lines)
+        return [Layer("generator", "cut", (
+            Polylines(fit(pts), np.array([0, 4]), Style("#000000", lw)),
+            segments(fit(np.array([[[0, 0], [1, 0]]])), Style(GREY, 0.5 * lw)),
+            Polylines(fit(_arc((0, 0), 0.2, 0, fr.ALPHA)), np.array([0, 24]),
+                      Style("#000000", 0.5 * lw)),
+            discs(fit(pts[[0, 3]]), 0.02 * fit.scale, Style("#000000", 0.4 * lw, fill=WHITE)),
+            discs(fit(pts[[1, 2]]), 0.02 * fit.scale, Style("#000000", 0.4 * lw, fill=BLUE)))),
+            Layer("rules", "label", texts)]
+
+    return Panel((-0.1, -0.95, 1.1, 0.25), draw, "the boundary's Lindenmayer system")
+
+
+def fractal_drawing(hierarchy, born: int = 1) -> Drawing:
+    """``weave-cut fractal -o``: the curves of the last level next to the L-system."""
+    return compose([fractal_curves_panel(hierarchy, born), lsystem_panel()], 2, cell=90,
+                   title="Fractal curves and the Lindenmayer system")
+
+
+def fig_fractal_curves() -> Drawing:
+    return fractal_drawing(subdivide(inputs.get("pentagon"), 5))
+
+
+# -- convexity -----------------------------------------------------------------------------
+
+def convexity_drawing(mesh: Mesh, size: float = 200.0, title: str = "non-convex faces"
+                      ) -> Drawing:
+    """The mesh in grey, non-convex faces filled red, reflex corners marked by blue dots."""
+    bad = np.flatnonzero(cv.nonconvex_faces(mesh))
+
+    def draw(fit: Fit) -> list[Layer]:
+        lw = line_width(mesh, fit)
+        layers = [Layer("mesh", "guide", (mesh_polygons(mesh, fit, Style("#777777", lw)),))]
+        if len(bad):
+            layers.append(Layer("nonconvex", "paint", (mesh_polygons(
+                mesh, fit, Style("#000000", lw, fill=RED, opacity=0.85), faces=bad),)))
+            pts = mesh.vertices[mesh.face_indices[cv.reflex_corners(mesh)]]
+            layers.append(Layer("reflex-corners", "paint", (
+                discs(fit(pts), max(3 * lw, 0.4), Style(None, 0, fill="#1030c0")),)))
+        return layers
+
+    label = (f"{len(bad)} non-convex face(s) of {mesh.n_faces:,} (red), reflex corners blue"
+             if len(bad) else f"all {mesh.n_faces:,} faces convex")
+    panel = Panel(_grow(mesh_bounds(mesh), 0.02), draw, label)
+    return compose([panel], 1, cell=size, title=title, caption_size=3.5)
+
+
+# -- Figure colorLevels (raster) ---------------------------------------------------------------
+
+LEVEL_ZOOM = (0.30, 0.10, 0.3768, 0.1768)
+
+
+def _frame(rgb: NDArray[np.uint8], box, colour=(224, 48, 42), width: int = 2) -> None:
+    r0, c0, r1, c1 = box
+    rgb[r0:r0 + width, c0:c1] = colour
+    rgb[r1 - width:r1, c0:c1] = colour
+    rgb[r0:r1, c0:c0 + width] = colour
+    rgb[r0:r1, c1 - width:c1] = colour
+
+
+def level_image_png(size: int = 1200, zoom_size: int = 560, levels: int = 9,
+                    zoom_levels: int = 12, zoom=LEVEL_ZOOM) -> bytes:
+    """Figure colorLevels: the pentagon to level 9 (left), the zoom box at level 9 and at
+    level 12 (right, top and bottom), the box framed in red."""
+    mesh = inputs.get("pentagon")
+    big, grid = lv.level_image(mesh, levels, size)
+    near, _ = lv.level_image(mesh, levels, zoom_size, zoom)
+    deep, _ = lv.level_image(mesh, zoom_levels, zoom_size, zoom)
+    left = lv.colour(big)
+    x0, _, _, y1 = grid.window
+    c0 = int((zoom[0] - x0) / grid.pixel)
+    c1 = int(math.ceil((zoom[2] - x0) / grid.pixel))
+    r0 = int((y1 - zoom[3]) / grid.pixel)
+    r1 = int(math.ceil((y1 - zoom[1]) / grid.pixel))
+    _frame(left, (r0 - 2, c0 - 2, r1 + 2, c1 + 2))
+    gap = 16
+    height = max(left.shape[0], 2 * zoom_size + gap)
+    canvas = np.full((height, left.shape[1] + gap + zoom_size, 3), 255, dtype=np.uint8)
+    canvas[:left.shape[0], :left.shape[1]] = left
+    for k, img in enumerate((near, deep)):
+        rgb = lv.colour(img)
+        _frame(rgb, (0, 0, rgb.shape[0], rgb.shape[1]))
+        top = k * (zoom_size + gap)
+        canvas[top:top + rgb.shape[0], left.shape[1] + gap:left.shape[1] + gap + rgb.shape[1]] \
+            = rgb
+    legend = _legend(max(zoom_levels, levels) + 1, width=left.shape[1])
+    return lv.png_bytes(np.concatenate([canvas, legend], axis=0))
+
+
+def _legend(n: int, width: int, height: int = 28) -> NDArray[np.uint8]:
+    """A strip of the level colours 0..n-1 (no text: the README explains the scale)."""
+    out = np.full((height, width, 3), 255, dtype=np.uint8)
+    cell = min(40, width // max(n, 1))
+    colours = lv.colour(np.arange(n, dtype=np.uint8)[None, :])[0]
+    for k in range(n):  # a loop over levels
+        out[6:height - 6, k * cell + 2:(k + 1) * cell - 2] = colours[k]
+    return out
+
+
+# -- registry --------------------------------------------------------------------------------
+
+FIGURES: dict[str, tuple[str, Callable[[], Drawing | bytes]]] = {
+    "z-triplet": ("an edge replaced by a Z-triplet, with alpha and the 2pi/3 angles",
+                  fig_z_triplet),
+    "operations": ("Z-triplet and operations 1-3 on a small input with a boundary to the right",
+                   fig_operations),
+    "smoothing": ("non-smoothed refinement (long-edged and non-convex faces) against smoothing",
+                  fig_smoothing),
+    "first-steps": ("the first four snub refinement steps of a pentagon", fig_first_steps),
+    "non-pentagonal": ("8-4 mesh level 4, 24-gon levels 3 and 4, triangulated 24-gon level 3",
+                       fig_non_pentagonal),
+    "fractal-curves": ("level-5 curves and the boundary's Lindenmayer system",
+                       fig_fractal_curves),
+    "edge-renders": ("edges of levels 5-8 of a pentagon with zoom-in boxes", fig_edge_renders),
+    "level-image": ("pixels coloured by the first level with a vertex in them: level 9, and a "
+                    "zoom to level 12 (PNG)", level_image_png),
+}
