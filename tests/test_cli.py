@@ -148,3 +148,55 @@ def test_unwritable_output_leaves_nothing(tmp_path):
         assert not list(folder.glob(".*part"))
     finally:
         folder.chmod(0o700)
+
+
+def test_weave_json_counts_and_lineage():
+    result = run("weave", "square-grid:3x3", "--levels", "3", "--json")
+    assert result.exit_code == 0, result.output
+    levels = json.loads(result.output)["levels"]
+    assert [lv["level"] for lv in levels] == [1, 2, 3]
+    for lv in levels:
+        assert lv["octagons"] + lv["boundary_pentagons"] == lv["tiles"]
+        assert sum(lv["strand_length_histogram"].values()) == lv["strands"]
+    assert "lineage" not in levels[0] and levels[2]["lineage"]["orphans"] == 0
+    # the square grid's level-t tiles are the edges of level t-1: E' = 3E + 4F
+    e, f = 24, 9
+    assert levels[0]["tiles"] == e and levels[1]["tiles"] == 3 * e + 4 * f
+
+
+@pytest.mark.parametrize("suffix", ["svg", "pdf", "png", "dxf"])
+def test_weave_pictures_in_every_format(tmp_path, suffix):
+    out = tmp_path / f"w.{suffix}"
+    result = run("weave", "pentagon", "--levels", "3", "--outline-level", "2", "--crossings",
+                 "--middle-edges", "-o", out)
+    assert result.exit_code == 0, result.output
+    head = out.read_bytes()[:8]
+    assert head.startswith({"svg": b"<svg", "pdf": b"%PDF", "png": b"\x89PNG",
+                            "dxf": b"  0"}[suffix])
+
+
+@pytest.mark.parametrize("scheme, mesh", [("loop", "triangle-grid:2x2"),
+                                          ("catmull-clark", "square-grid:2x2"),
+                                          ("sqrt3", "triangle-grid:2x2"),
+                                          ("doo-sabin", "hex-grid:2x2")])
+def test_weave_other_schemes_as_ribbons(tmp_path, scheme, mesh):
+    out = tmp_path / "r.svg"
+    result = run("weave", mesh, "--scheme", scheme, "--levels", "2", "--style", "ribbons",
+                 "-o", out)
+    assert result.exit_code == 0, result.output
+    assert "ribbons" in out.read_text()
+
+
+@pytest.mark.parametrize("args, status, message", [
+    (["weave", "pentagon", "--levels", "2"], 2, "give -o OUTPUT"),
+    (["weave", "pentagon", "--levels", "2", "--outline-level", "2", "--json"], 2, "below"),
+    (["weave", "pentagon", "--levels", "2", "--palette", "nope", "--json"], 1, "unknown palette"),
+    (["weave", "pentagon", "--levels", "0", "--json"], 2, "--levels 1 or more"),
+    (["weave", "ngon:7", "--scheme", "loop", "--levels", "1", "--json"], 1, "3 corners"),
+    (["weave", "triangulated-ngon:5", "--scheme", "loop", "--levels", "1", "--json"], 1,
+     "odd degree"),
+])
+def test_weave_errors(args, status, message):
+    result = run(*args)
+    assert result.exit_code == status, result.output
+    assert message in result.output

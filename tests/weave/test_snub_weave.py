@@ -13,7 +13,7 @@ from weavecut.errors import MeshError
 from weavecut.mesh import outer_vertices
 from weavecut.subdivision import snub, subdivide
 from weavecut.validation import validate
-from weavecut.weave.colour import crossing_pairs, palette, strand_colours
+from weavecut.weave.colour import crossing_pairs, palette, strand_colours, strand_families
 from weavecut.weave.snub_weave import snub_weave, snub_weaves
 
 NAMES = ["square-grid:3x3", "pentagon", "pentagon-flower", "tiling-8-4:2x2", "hex-grid:2x2",
@@ -177,17 +177,21 @@ def test_crossing_strands_get_different_colours(name, levels):
     assert len(pairs) and all(colours[a] != colours[b] for a, b in pairs.tolist())
 
 
-def test_children_take_shades_of_their_parents_family():
+def test_lineages_keep_one_hue_and_siblings_differ():
     weaves = snub_weaves(subdivide(inputs.get("square-grid:3x3"), 3))
     pal = palette("maritime-12")
     colours = strand_colours(weaves, pal)
-    family_of = {c: i for i, f in enumerate(pal.families) for c in f}
+    families = strand_families(weaves, pal)
+    assert len(colours) == weaves[-1].n_strands
     ps = weaves[-1].parent_strand
-    by_parent: dict[int, set] = {}
-    for s, p in enumerate(ps.tolist()):
-        if p >= 0:
-            by_parent.setdefault(p, set()).add(family_of[colours[s]])
-    assert all(len(f) == 1 for f in by_parent.values())
+    for p in np.unique(ps[ps >= 0]).tolist():
+        kids = np.flatnonzero(ps == p)
+        assert len(set(families[kids].tolist())) == 1
+        assert len({colours[k] for k in kids}) == len(kids)
+    # the first split uses the family's own two shades
+    two = strand_colours(weaves[:2], pal)
+    fam2 = strand_families(weaves[:2], pal)
+    assert all(c in pal.families[f] for c, f in zip(two, fam2.tolist()))
     assert strand_colours(weaves, pal) == colours  # deterministic
 
 

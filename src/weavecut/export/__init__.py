@@ -8,9 +8,9 @@ from pathlib import Path
 from ..errors import ExportError
 from ..fileio import write_atomic
 from ..layout.drawing import Drawing
-from . import dxf, svg
+from . import dxf, pdf, png, svg
 
-RENDERERS: dict[str, Callable[[Drawing], bytes]] = {m.SUFFIX: m.render for m in (svg, dxf)}
+RENDERERS: dict[str, Callable[[Drawing], bytes]] = {m.SUFFIX: m.render for m in (svg, dxf, pdf, png)}
 
 
 def formats() -> list[str]:

@@ -76,24 +76,71 @@ def greedy_classes(n: int, pairs: np.ndarray, k: int) -> np.ndarray:
     return out
 
 
+def sibling_rank(parent_strand: np.ndarray) -> np.ndarray:
+    """(S,) rank of every strand among the children of its parent (orphans: 0)."""
+    n = len(parent_strand)
+    key = np.where(parent_strand >= 0, parent_strand, -1 - np.arange(n))
+    order = np.lexsort((np.arange(n), key))
+    k = key[order]
+    first = np.r_[True, k[1:] != k[:-1]]
+    start = np.maximum.accumulate(np.where(first, np.arange(n), 0))
+    rank = np.empty(n, dtype=np.int64)
+    rank[order] = np.arange(n) - start
+    return rank
+
+
+def shade(colour: str, rank: int) -> str:
+    """The rank-th shade of a colour: darker, lighter, then further darker and lighter."""
+    target = 0.0 if rank % 2 == 0 else 1.0
+    amount = min(0.2 + 0.15 * (rank // 2), 0.85)
+    r, g, b = (int(colour[i:i + 2], 16) for i in (1, 3, 5))
+    return "#{:02x}{:02x}{:02x}".format(*(round(c + (255 * target - c) * amount)
+                                          for c in (r, g, b)))
+
+
 def strand_colours(weaves: list[Weave], pal: Palette) -> list[str]:
-    """A colour for every strand of the last weave in ``weaves``."""
-    last = weaves[-1]
-    if pal.shaded and len(weaves) >= 2 and last.parent_strand is not None:
-        parent = weaves[-2]
-        family = greedy_classes(parent.n_strands, crossing_pairs(parent), len(pal.families))
-        ps = last.parent_strand
-        # shade index: rank among the siblings of one parent (orphans use their own id)
-        key = np.where(ps >= 0, ps, parent.n_strands + np.arange(last.n_strands))
-        order = np.lexsort((np.arange(last.n_strands), key))
-        sorted_key = key[order]
-        first = np.r_[True, sorted_key[1:] != sorted_key[:-1]]
-        group_start = np.maximum.accumulate(np.where(first, np.arange(len(order)), 0))
-        rank = np.empty(last.n_strands, dtype=np.int64)
-        rank[order] = np.arange(len(order)) - group_start
-        fam = np.where(ps >= 0, family[np.maximum(ps, 0)], np.arange(last.n_strands))
-        return [pal.families[f % len(pal.families)][r % len(pal.families[f % len(pal.families)])]
-                for f, r in zip(fam.tolist(), rank.tolist())]
-    flat = pal.flat
-    classes = greedy_classes(last.n_strands, crossing_pairs(last), len(flat))
-    return [flat[c] for c in classes.tolist()]
+    """A colour for every strand of the last weave in ``weaves``.
+
+    The first weave's strands get the palette's families (crossing strands different ones
+    where the palette allows); every later level follows ``parent_strand``: a child takes a
+    shade of its parent's colour (at the first split the family's own shades), so a strand's
+    whole lineage stays in one hue. Levels above a weave without lineage are not used.
+    """
+    weaves = _lineage_chain(weaves)
+    first = weaves[0]
+    family = greedy_classes(first.n_strands, crossing_pairs(first), len(pal.families))
+    colours = [pal.families[f][0] for f in family.tolist()]
+    for depth, weave in enumerate(weaves[1:], start=1):
+        ps = weave.parent_strand
+        rank = sibling_rank(ps).tolist()
+        new_family, new_colours = [], []
+        for s, p in enumerate(ps.tolist()):  # strands, not mesh elements
+            f = int(family[p]) if p >= 0 else s % len(pal.families)
+            shades = pal.families[f]
+            if depth == 1 and len(shades) > 1:
+                colour = shades[rank[s] % len(shades)]
+            else:
+                colour = shade(colours[p] if p >= 0 else shades[0], rank[s])
+            new_family.append(f)
+            new_colours.append(colour)
+        family, colours = np.array(new_family, dtype=np.int64), new_colours
+    return colours
+
+
+def strand_families(weaves: list[Weave], pal: Palette) -> np.ndarray:
+    """(S,) the palette family of every strand of the last weave (its level-one ancestor's)."""
+    weaves = _lineage_chain(weaves)
+    family = greedy_classes(weaves[0].n_strands, crossing_pairs(weaves[0]), len(pal.families))
+    for weave in weaves[1:]:
+        ps = weave.parent_strand
+        family = np.where(ps >= 0, family[np.maximum(ps, 0)], np.arange(len(ps)) % len(
+            pal.families))
+    return family
+
+
+def _lineage_chain(weaves: list[Weave]) -> list[Weave]:
+    """The last weaves linked by ``parent_strand`` (at least the last one)."""
+    start = len(weaves) - 1
+    while start > 0 and weaves[start].parent_strand is not None:
+        start -= 1
+    return weaves[start:]

@@ -67,3 +67,39 @@ def triangle_colouring_step(parent: Mesh, c1: NDArray[np.bool_]) -> NDArray[np.b
     """
     e = parent.topology.edges
     return np.concatenate([c1, ~c1[e[:, 0]] & ~c1[e[:, 1]]])
+
+
+def triangle_three_colouring(mesh: Mesh) -> NDArray[np.bool_]:
+    """(V,) a c1 set with exactly one c1 corner per triangle, from a proper 3-colouring of the
+    vertices grown triangle by triangle (breadth-first over the faces, one depth at a time).
+
+    Raises MeshError when the mesh is not made of triangles or has no such colouring (an inner
+    vertex of odd degree)."""
+    if mesh.face_degree != 3:
+        raise MeshError("a triangle weave needs a mesh of triangles only")
+    faces = mesh.dense_faces().astype(np.int64)
+    topo = mesh.topology
+    twin = topo.twin
+    has = twin >= 0
+    n_f = mesh.n_faces
+    adj = sp.coo_matrix((np.ones(int(has.sum())), (mesh.half_edge_face[has],
+                                                   mesh.half_edge_face[twin[has]])),
+                        shape=(n_f, n_f)).tocsr()
+    _, label = connected_components(adj, directed=False)
+    roots = np.unique(label, return_index=True)[1]
+    depth = dijkstra(adj, directed=False, unweighted=True, indices=roots, min_only=True)
+    depth = np.nan_to_num(depth, posinf=0).astype(np.int64)
+    colour = np.full(mesh.n_vertices, -1, dtype=np.int64)
+    colour[faces[roots]] = np.arange(3)
+    for d in range(1, int(depth.max(initial=0)) + 1):  # one BFS layer of faces at a time
+        layer = faces[depth == d]
+        known = colour[layer]
+        missing = known < 0
+        fill = 3 - np.where(missing, 0, known).sum(axis=1)
+        rows = np.flatnonzero(missing.sum(axis=1) == 1)
+        colour[layer[rows, missing[rows].argmax(axis=1)]] = fill[rows]
+    c = colour[faces]
+    if (c < 0).any() or (np.sort(c, axis=1) != [0, 1, 2]).any():
+        raise MeshError("the triangles have no colouring with one c1 corner each "
+                        "(an inner vertex of odd degree)")
+    return colour == 0

@@ -1,0 +1,94 @@
+"""PDF writer (reportlab): one page per sheet at its exact size, drawn in millimetres.
+
+``invariant=1`` drops reportlab's timestamps and random document id, so the same drawing gives
+the same bytes. Hidden layers are left out.
+"""
+
+from __future__ import annotations
+
+import io
+
+from reportlab.lib.colors import HexColor
+from reportlab.lib.units import mm
+from reportlab.pdfgen import canvas
+
+from ..layout.drawing import Drawing, Polygons, Polylines, Style, Text
+
+SUFFIX = "pdf"
+FONT = "Helvetica"
+
+
+def render(drawing: Drawing) -> bytes:
+    buf = io.BytesIO()
+    first = drawing.sheets[0]
+    c = canvas.Canvas(buf, pagesize=(first.width * mm, first.height * mm), invariant=1,
+                      pageCompression=1)
+    meta = dict(drawing.metadata)
+    c.setTitle(drawing.title)
+    c.setCreator(meta.get("generator", "weave-cut"))
+    c.setProducer(meta.get("generator", "weave-cut"))
+    c.setSubject(meta.get("command", ""))
+    for sheet in drawing.sheets:
+        c.setPageSize((sheet.width * mm, sheet.height * mm))
+        c.saveState()
+        c.scale(mm, mm)
+        for layer in sheet.layers:
+            if layer.visible:
+                for shape in layer.shapes:
+                    _draw(c, shape)
+        c.restoreState()
+        c.showPage()
+    c.save()
+    return buf.getvalue()
+
+
+def _draw(c, shape) -> None:
+    if isinstance(shape, Text):
+        c.saveState()
+        c.setFillColor(HexColor(shape.fill))
+        c.setFont(FONT, shape.size / 0.72)
+        c.translate(shape.x, shape.y)
+        c.rotate(shape.angle)
+        {"start": c.drawString, "middle": c.drawCentredString,
+         "end": c.drawRightString}[shape.anchor](0, 0, shape.text)
+        c.restoreState()
+        return
+    if isinstance(shape, Polylines):
+        _stroke(c, shape.style)
+        path = c.beginPath()
+        for line in shape.lines():
+            path.moveTo(*line[0])
+            for x, y in line[1:].tolist():
+                path.lineTo(x, y)
+        c.drawPath(path, stroke=1, fill=0)
+        return
+    if isinstance(shape, Polygons):
+        groups: dict[str | None, list[int]] = {}
+        fills = shape.fills or (shape.style.fill,) * shape.n_polygons
+        for i, fill in enumerate(fills):
+            groups.setdefault(fill, []).append(i)
+        po = shape.polygon_rings().tolist()
+        rings = shape.rings()
+        for fill in sorted(groups, key=lambda f: f or ""):
+            style = Style(shape.style.stroke, shape.style.stroke_width, fill, shape.style.opacity)
+            _stroke(c, style)
+            path = c.beginPath()
+            for i in groups[fill]:
+                for ring in rings[po[i]:po[i + 1]]:
+                    path.moveTo(*ring[0])
+                    for x, y in ring[1:].tolist():
+                        path.lineTo(x, y)
+                    path.close()
+            c.drawPath(path, stroke=1 if style.stroke else 0, fill=1 if fill else 0,
+                       fillMode=1)  # even-odd: holes stay open
+
+
+def _stroke(c, style: Style) -> None:
+    if style.stroke:
+        c.setStrokeColor(HexColor(style.stroke))
+        c.setLineWidth(style.stroke_width)
+    if style.fill:
+        c.setFillColor(HexColor(style.fill))
+    c.setLineJoin(1)
+    c.setStrokeAlpha(style.opacity)
+    c.setFillAlpha(style.opacity)
