@@ -11,7 +11,8 @@ OUT    := build
 
 DEFAULT_OUTPUTS := \
 	$(OUT)/pentagon-level4.svg $(OUT)/pentagon-level4.dxf \
-	$(OUT)/square-grid-level3.svg $(OUT)/square-grid-level3.dxf
+	$(OUT)/square-grid-level3.svg $(OUT)/square-grid-level3.dxf \
+	$(OUT)/square-grid-weave-level2.svg $(OUT)/pentagon-weave-level4.png
 
 .PHONY: run test bench clean help
 .DELETE_ON_ERROR:
@@ -36,6 +37,12 @@ $(OUT)/pentagon-level4.%: $(STAMP) $(SRC) | $(OUT)
 
 $(OUT)/square-grid-level3.%: $(STAMP) $(SRC) | $(OUT)
 	$(WC) subdivide square-grid --levels 3 -o $@
+
+$(OUT)/square-grid-weave-level2.svg: $(STAMP) $(SRC) | $(OUT)
+	$(WC) weave square-grid --levels 2 --outline-level 1 -o $@
+
+$(OUT)/pentagon-weave-level4.png: $(STAMP) $(SRC) | $(OUT)
+	$(WC) weave pentagon --levels 4 --outline-level 3 --palette puzzle -o $@
 
 test: $(STAMP)  ## run the whole test suite
 	$(PY) -m pytest

@@ -18,6 +18,7 @@ from numpy.typing import NDArray
 from ..errors import MeshError
 from ..mesh import Mesh
 from .model import Weave
+from .paths import rank_paths
 from .two_colouring import check_two_colouring
 
 
@@ -54,31 +55,7 @@ def strand_order(mesh: Mesh, twin: NDArray) -> tuple[NDArray[np.int64], NDArray[
     opposite = mesh.next_half_edge[mesh.next_half_edge].astype(np.int64)
     twin = np.asarray(twin, dtype=np.int64)
     succ = np.where(twin[opposite] >= 0, twin[opposite], -1)
-    pred = np.full(n, -1, dtype=np.int64)
-    has = succ >= 0
-    pred[succ[has]] = h[has]
-
-    rounds = max(1, int(np.ceil(np.log2(max(n, 2)))) + 1)
-    # which states lie on an open path: jump along pred to a fixed point
-    p = np.where(pred >= 0, pred, h)
-    for _ in range(rounds):
-        p = p[p]
-    on_cycle = pred[p] >= 0
-    # break every cycle at its smallest state
-    low = h.copy()
-    s = np.where(on_cycle, succ, h)
-    for _ in range(rounds):
-        low = np.minimum(low, low[s])
-        s = s[s]
-    cut = on_cycle & (low == h)
-    pred = np.where(cut, -1, pred)
-    # list ranking: distance to the start and the start itself
-    p = np.where(pred >= 0, pred, h)
-    rank = (pred >= 0).astype(np.int64)
-    for _ in range(rounds):
-        rank = rank + rank[p]
-        p = p[p]
-    root = p
+    root, rank, on_cycle = rank_paths(succ)
     return _select(mesh, h, opposite, root, rank, on_cycle)
 
 
