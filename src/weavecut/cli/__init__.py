@@ -16,6 +16,7 @@ from ..memory import keep_freed_memory
 from .common import CONTEXT
 from .analysis_commands import COMMANDS as ANALYSIS_COMMANDS
 from .mesh_commands import inputs_command, stats_command, subdivide_command
+from .puzzle_command import puzzle_command
 from .weave_command import weave_command
 
 
@@ -34,7 +35,7 @@ def cli() -> None:
 
 
 for command in (inputs_command, subdivide_command, stats_command, weave_command,
-                *ANALYSIS_COMMANDS):
+                puzzle_command, *ANALYSIS_COMMANDS):
     cli.add_command(command)
 
 

@@ -1,0 +1,183 @@
+"""Cut paths: shared edges cut once, joined into long trails, ordered to shorten head travel.
+
+``shared_edges`` turns polygon outlines into a graph (one vertex per distinct corner, one edge
+per distinct segment, with how many outlines use it). ``trails`` covers that graph with as few
+walks as a greedy pass finds: walks start at odd-degree vertices (each then ends at another),
+and at every junction continue along the straightest unused edge, so a walk follows the long
+zig-zag lines of the tiling instead of stopping at every corner. ``order_paths`` puts paths in
+a nearest-neighbour order, entering each at whichever end (or, for a closed loop, whichever
+corner) is nearer, then improves the order with 2-opt moves (reversing a run of paths).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+
+@dataclass(frozen=True)
+class EdgeGraph:
+    """Distinct corners and segments of a set of outlines.
+
+    points : (V, 2) mm;  edges : (E, 2) int64 with u < w;  uses : (E,) outlines per segment
+    """
+
+    points: NDArray[np.float64]
+    edges: NDArray[np.int64]
+    uses: NDArray[np.int64]
+
+
+def shared_edges(coords: NDArray[np.float64], ring_offsets: NDArray[np.int64],
+                 decimals: int = 6) -> EdgeGraph:
+    """The segments of closed rings, each once (corners equal to ``decimals`` mm merge)."""
+    key = np.round(coords, decimals) + 0.0
+    points, vid = np.unique(key, axis=0, return_inverse=True)
+    vid = vid.reshape(-1)
+    nxt = np.arange(1, len(coords) + 1)
+    nxt[ring_offsets[1:] - 1] = ring_offsets[:-1]
+    u, w = vid, vid[nxt]
+    ok = u != w
+    pair = np.column_stack([np.minimum(u, w), np.maximum(u, w)])[ok].astype(np.int64)
+    edges, uses = np.unique(pair, axis=0, return_counts=True)
+    return EdgeGraph(points, edges, uses)
+
+
+def trails(graph: EdgeGraph, select: NDArray[np.bool_] | None = None) -> list[NDArray]:
+    """Walks covering every selected edge exactly once, as (n, 2) point arrays."""
+    edges = graph.edges if select is None else graph.edges[select]
+    pts = graph.points
+    n_v = len(pts)
+    if not len(edges):
+        return []
+    # adjacency in CSR form: for vertex v, half-edges adj[start[v]:start[v+1]]
+    ends = np.concatenate([edges[:, 0], edges[:, 1]])
+    other = np.concatenate([edges[:, 1], edges[:, 0]])
+    eid = np.concatenate([np.arange(len(edges))] * 2)
+    order = np.lexsort((other, ends))
+    start = np.searchsorted(ends[order], np.arange(n_v + 1))
+    adj_other, adj_edge = other[order].tolist(), eid[order].tolist()
+    start = start.tolist()
+    degree = np.diff(np.asarray(start))
+    used = [False] * len(edges)
+    remaining = degree.copy().tolist()
+    px, py = pts[:, 0].tolist(), pts[:, 1].tolist()
+    # odd vertices first, in a stable order (left to right, bottom to top), then the rest
+    seeds = np.lexsort((pts[:, 1], pts[:, 0], degree % 2 == 0)).tolist()
+    out: list[NDArray] = []
+    for seed in seeds:  # a graph walk: no array form
+        while remaining[seed]:
+            walk = [seed]
+            v, dx, dy = seed, 0.0, 0.0
+            while remaining[v]:
+                best, best_cos = -1, -3.0
+                for k in range(start[v], start[v + 1]):
+                    e = adj_edge[k]
+                    if used[e]:
+                        continue
+                    w = adj_other[k]
+                    ex, ey = px[w] - px[v], py[w] - py[v]
+                    norm = (ex * ex + ey * ey) ** 0.5 or 1.0
+                    c = (ex * dx + ey * dy) / norm
+                    if c > best_cos:
+                        best, best_cos = k, c
+                e, w = adj_edge[best], adj_other[best]
+                used[e] = True
+                remaining[v] -= 1
+                remaining[w] -= 1
+                ex, ey = px[w] - px[v], py[w] - py[v]
+                norm = (ex * ex + ey * ey) ** 0.5 or 1.0
+                dx, dy = ex / norm, ey / norm
+                walk.append(w)
+                v = w
+            out.append(pts[walk])
+    return out
+
+
+def path_length(paths: list[NDArray]) -> float:
+    """Total length of polylines (mm)."""
+    return float(sum(np.linalg.norm(np.diff(p, axis=0), axis=1).sum() for p in paths))
+
+
+def is_closed(path: NDArray) -> bool:
+    return len(path) > 2 and bool(np.allclose(path[0], path[-1]))
+
+
+def order_paths(paths: list[NDArray], start=(0.0, 0.0), passes: int = 30
+                ) -> tuple[list[NDArray], tuple[float, float]]:
+    """Paths reordered (and reversed or rotated) to shorten the travel between them.
+
+    Returns the ordered paths and the point where the last one ends."""
+    if not paths:
+        return [], tuple(start)
+    here = np.asarray(start, dtype=float)
+    todo = list(range(len(paths)))
+    heads = np.array([p[0] for p in paths])
+    tails = np.array([p[-1] for p in paths])
+    closed = np.array([is_closed(p) for p in paths])
+    chosen: list[NDArray] = []
+    alive = np.ones(len(paths), dtype=bool)
+    for _ in todo:  # greedy nearest neighbour, one path per step
+        d_head = np.where(alive, np.hypot(*(heads - here).T), np.inf)
+        d_tail = np.where(alive & ~closed, np.hypot(*(tails - here).T), np.inf)
+        i_h, i_t = int(np.argmin(d_head)), int(np.argmin(d_tail))
+        if d_tail[i_t] < d_head[i_h]:
+            i, path = i_t, paths[i_t][::-1]
+        else:
+            i, path = i_h, paths[i_h]
+        if closed[i]:  # enter a loop at its nearest corner
+            j = int(np.argmin(np.hypot(*(path[:-1] - here).T)))
+            path = np.concatenate([path[j:-1], path[:j + 1]])
+        alive[i] = False
+        chosen.append(path)
+        here = path[-1]
+    chosen = _two_opt(chosen, np.asarray(start, dtype=float), passes)
+    return chosen, tuple(float(c) for c in chosen[-1][-1])
+
+
+def _two_opt(paths: list[NDArray], start: NDArray, passes: int) -> list[NDArray]:
+    """Reverse runs of paths (each path reversed too) while that shortens the travel."""
+    n = len(paths)
+    if n < 3:
+        return paths
+    heads = np.array([p[0] for p in paths])
+    tails = np.array([p[-1] for p in paths])
+    order = np.arange(n)
+    flipped = np.zeros(n, dtype=bool)
+    for _ in range(passes):
+        improved = False
+        for i in range(n - 1):  # segment [i, j]; previous end is tail[i-1] (or start)
+            s, e = _ends(heads, tails, order, flipped)
+            prev = start if i == 0 else e[i - 1]
+            j = np.arange(i + 1, n)
+            nxt_start = np.vstack([s[i + 1:], [np.nan, np.nan]])[1:]  # s[j + 1]
+            old = np.hypot(*(prev - s[i])) + np.where(
+                j < n - 1, np.hypot(*(e[j] - nxt_start).T), 0.0)
+            new = np.hypot(*(prev - e[j]).T) + np.where(
+                j < n - 1, np.hypot(*(s[i] - nxt_start).T), 0.0)
+            gain = old - new
+            k = int(np.argmax(gain))
+            if gain[k] > 1e-9:
+                jj = int(j[k])
+                order[i:jj + 1] = order[i:jj + 1][::-1].copy()
+                flipped[i:jj + 1] = ~flipped[i:jj + 1][::-1]
+                improved = True
+        if not improved:
+            break
+    return [paths[o][::-1] if f else paths[o] for o, f in zip(order.tolist(), flipped.tolist())]
+
+
+def _ends(heads, tails, order, flipped):
+    s = np.where(flipped[:, None], tails[order], heads[order])
+    e = np.where(flipped[:, None], heads[order], tails[order])
+    return s, e
+
+
+def travel_length(paths: list[NDArray], start=(0.0, 0.0)) -> float:
+    """Head travel (mm) from ``start`` through the paths in order, not cutting."""
+    if not paths:
+        return 0.0
+    s = np.array([p[0] for p in paths])
+    e = np.vstack([[start], [p[-1] for p in paths[:-1]]])
+    return float(np.hypot(*(s - e).T).sum())

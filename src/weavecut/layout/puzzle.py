@@ -1,0 +1,358 @@
+"""The laser-cut jigsaw puzzle of the paper's section 6: pieces, hexagon ring, frame, colours.
+
+Pieces are the tiles of the level-t snub weave: octagons (two pentagons glued along a Z middle
+edge) and, for every boundary pentagon (its middle edge on the boundary), an *enneagon*: the
+pentagon glued to the regular hexagon built outward on that middle edge. The boundary of a snub
+level turns by +-60 degrees between equal edges along each input edge, so the hexagons on its
+outer side are cells of one honeycomb per input edge: an almost complete ring.
+
+Decisions (documented here and in the README):
+
+- **Unclaimed ring hexagons are part of the frame.** Only hexagons across a boundary middle edge
+  become (parts of) pieces; every other ring cell stays in the frame board, whose inner outline
+  therefore follows the hexagons of the enneagons, so each enneagon sits in a hexagonal notch
+  that fixes its orientation. The unclaimed cells' free edges are offered as a *score* layer so
+  the hexagon pattern (the paper's nod to the Koch curve) shows on the frame without cutting it.
+- **The corners of the input polygon, where the two honeycombs of neighbouring sides do not
+  meet, are part of the frame** (the wedge between the last cell of one side and the first of
+  the next). Cells that would overlap the mesh or an earlier cell are dropped (claimed cells
+  first); on the pentagon none overlap.
+- **The frame** is the input outline offset outward (mitred) to ``frame_width`` beyond the ring's
+  outermost point, minus the union of the pieces (the hole). ``size`` is the largest distance
+  between two input vertices: the diagonal for the pentagon, 50 cm in the paper.
+
+Colours: the front shows the level-(t-1) weave on level-t pieces (every level-t pentagon takes
+the colour of the strand on top of its parent's tile), the back the level-t weave (one colour
+per piece, the tile's top strand); a level-t strand takes its parent strand's front colour, its
+sibling a lighter or darker tint of it, so a strand pair on the back matches the front colour
+of the pieces it runs over. Ring hexagons and the frame stay unpainted (natural wood).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+import shapely
+from numpy.typing import NDArray
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
+
+from ..errors import WeaveCutError
+from ..mesh import Mesh
+from ..subdivision import subdivide
+from ..subdivision.hierarchy import Level
+from ..weave.colour import Palette, strand_colours
+from ..weave.model import Weave
+from ..weave.snub_weave import snub_weaves
+from .weave_figure import tile_rings
+
+OCTAGON, ENNEAGON = 0, 1
+KIND_NAMES = ("octagon", "enneagon")
+UNPAINTED = "#ffffff"
+_SIN60, _COS60 = np.sqrt(3.0) / 2.0, 0.5
+
+
+@dataclass(frozen=True, eq=False)
+class Puzzle:
+    """All geometry in millimetres, centred on the input's vertex mean.
+
+    Parameters
+    ----------
+    pieces : (P,) shapely Polygons, counter-clockwise; octagons first, then enneagons
+    kinds : (P,) int8, OCTAGON or ENNEAGON
+    piece_tiles : (P,) int32, the level-t weave tile of every piece
+    hexagons : (P,) shapely Polygons, the ring hexagon of an enneagon (None for octagons)
+    ring : (K,) shapely Polygons, unclaimed ring hexagons (part of the frame)
+    outer : shapely Polygon, the frame's outer outline
+    hierarchy, weaves : levels 0..t and the weaves of levels 1..t (with lineage)
+    scale : mm per model unit
+    """
+
+    pieces: NDArray[np.object_]
+    kinds: NDArray[np.int8]
+    piece_tiles: NDArray[np.int32]
+    hexagons: NDArray[np.object_]
+    ring: NDArray[np.object_]
+    outer: shapely.Polygon
+    hierarchy: tuple[Level, ...]
+    weaves: list[Weave]
+    scale: float
+    centre: tuple[float, float]
+
+    @property
+    def levels(self) -> int:
+        return len(self.hierarchy) - 1
+
+    @property
+    def n_pieces(self) -> int:
+        return len(self.pieces)
+
+    @cached_property
+    def hole(self) -> shapely.Polygon:
+        """The frame's hole: the union of all pieces."""
+        return shapely.union_all(self.pieces, grid_size=None)
+
+    @cached_property
+    def frame(self) -> shapely.Polygon:
+        """The frame board: the outer outline minus the hole."""
+        return shapely.Polygon(self.outer.exterior, [self.hole.exterior])
+
+    def counts(self) -> dict[str, int]:
+        """Pieces by type, plus the unclaimed ring hexagons."""
+        out = {name: int((self.kinds == k).sum()) for k, name in enumerate(KIND_NAMES)}
+        out["ring hexagons in the frame"] = len(self.ring)
+        return out
+
+    def to_mm(self, xy: NDArray[np.float64]) -> NDArray[np.float64]:
+        return (np.asarray(xy, dtype=float) - self.centre) * self.scale
+
+
+def build_puzzle(mesh: Mesh, levels: int = 4, size: float = 500.0,
+                 frame_width: float = 20.0, **snub_options) -> Puzzle:
+    """Subdivide ``mesh`` ``levels`` times and cut the result into puzzle pieces.
+
+    Parameters
+    ----------
+    mesh : level-0 input (the paper: a regular pentagon)
+    levels : t >= 2 (the front shows level t-1, whose colours need the level t-2 strands)
+    size : mm, the largest distance between two input vertices (the pentagon's diagonal)
+    frame_width : mm of frame beyond the ring's outermost point
+    """
+    if levels < 2:
+        raise WeaveCutError(f"a puzzle needs --levels >= 2 (front shows level t-1), got {levels}")
+    if size <= 0 or frame_width <= 0:
+        raise WeaveCutError("size and frame width must be positive")
+    hierarchy = subdivide(mesh, levels, **snub_options)
+    weaves = snub_weaves(hierarchy)
+    v0 = mesh.vertices
+    diagonal = float(np.max(np.linalg.norm(v0[:, None] - v0[None], axis=2)))
+    scale = size / diagonal
+    centre = tuple(float(c) for c in v0.mean(axis=0))
+    weave = weaves[-1]
+    level_mesh = weave.mesh
+
+    def to_mm(xy):
+        return (np.asarray(xy, dtype=float) - centre) * scale
+
+    coords, offsets = tile_rings(weave)
+    lone = np.diff(weave.tile_offsets) == 1
+    ring_id = np.repeat(np.arange(len(offsets) - 1), np.diff(offsets))
+    octagon_xy = to_mm(coords[~lone[ring_id]])
+    octagon_sizes = np.diff(offsets)[~lone]
+    octagon_tiles = np.flatnonzero(~lone).astype(np.int32)
+
+    # the ring: a hexagon outward on every boundary half-edge (interior on its left)
+    bhe = np.flatnonzero(level_mesh.topology.twin < 0)
+    a = to_mm(level_mesh.vertices[level_mesh.face_indices[bhe]])
+    b = to_mm(level_mesh.vertices[level_mesh.face_indices[level_mesh.next_half_edge[bhe]]])
+    face = level_mesh.half_edge_face[bhe]
+    claimed = (bhe - level_mesh.face_offsets[face]) == 1  # local edge 1: the Z middle edge
+    cells = _outer_hexagons(a, b)  # (B, 6, 2): b, a, then four new corners
+    keep = _non_overlapping(cells, claimed, level_mesh, to_mm)
+    lone_tiles = weave.face_tile[face[claimed & keep]]
+    mesh_faces = level_mesh.dense_faces()
+    pent = to_mm(level_mesh.vertices[mesh_faces[face[claimed & keep]]])  # (N, 5, 2)
+    hexes = cells[claimed & keep]
+    # enneagon, counter-clockwise: p1, four hexagon corners, p2, p3, p4, p0
+    ennea = np.concatenate([hexes[:, 1:], pent[:, 2:], pent[:, :1]], axis=1)
+    # boundary pentagons whose hexagon was dropped stay plain pentagons (never on the pentagon)
+    dropped = np.setdiff1d(np.flatnonzero(lone), lone_tiles)
+    plain = to_mm(level_mesh.vertices[mesh_faces[weave.tile_faces[weave.tile_offsets[dropped]]]])
+    ring_cells = _unique_cells(cells[~claimed & keep], hexes)
+
+    # one coordinate per corner: computed hexagon corners snap onto mesh vertices and each other
+    parts = [octagon_xy, ennea.reshape(-1, 2), plain.reshape(-1, 2), hexes.reshape(-1, 2),
+             ring_cells.reshape(-1, 2)]
+    snapped = _snap(np.concatenate(parts), tol=1e-6 * size)
+    bounds = np.cumsum([0] + [len(p) for p in parts])
+    octagon_xy, ennea, plain, hexes, ring_cells = (
+        snapped[bounds[k]:bounds[k + 1]].reshape(parts[k].shape if k == 0 else (-1,) + shape)
+        for k, shape in enumerate([None, (9, 2), (5, 2), (6, 2), (6, 2)]))
+    octagons = _polygons(octagon_xy, np.r_[0, np.cumsum(octagon_sizes)])
+    pieces = np.concatenate([octagons, shapely.polygons(ennea), shapely.polygons(plain)])
+    kinds = np.repeat(np.array([OCTAGON, ENNEAGON, ENNEAGON], dtype=np.int8),
+                      [len(octagons), len(ennea), len(plain)])
+    tiles = np.concatenate([octagon_tiles, lone_tiles, dropped]).astype(np.int32)
+    hex_polys = np.concatenate([np.full(len(octagons), None, dtype=object),
+                                shapely.polygons(hexes), np.full(len(plain), None, object)])
+    ring = shapely.polygons(ring_cells) if len(ring_cells) else np.empty(0, dtype=object)
+    outer = _outer_outline(mesh, to_mm, np.concatenate([shapely.get_coordinates(pieces),
+                                                        ring_cells.reshape(-1, 2)]),
+                           frame_width)
+    return Puzzle(pieces, kinds, tiles, hex_polys, ring, outer, hierarchy, weaves, scale,
+                  centre)
+
+
+def _polygons(coords: NDArray[np.float64], offsets: NDArray[np.int64]) -> NDArray[np.object_]:
+    ring_id = np.repeat(np.arange(len(offsets) - 1), np.diff(offsets))
+    return shapely.polygons(shapely.linearrings(coords, indices=ring_id))
+
+
+def _outer_hexagons(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
+    """(B, 6, 2) regular hexagons on the right of every a -> b, counter-clockwise from b.
+
+    Walking b -> a keeps the hexagon on the left; each next side turns 60 degrees left."""
+    out = np.empty((len(a), 6, 2))
+    out[:, 0], out[:, 1] = b, a
+    step = a - b
+    for k in range(2, 6):  # four corners, each one column of the batch
+        step = np.column_stack([_COS60 * step[:, 0] - _SIN60 * step[:, 1],
+                                _SIN60 * step[:, 0] + _COS60 * step[:, 1]])
+        out[:, k] = out[:, k - 1] + step
+    return out
+
+
+def _non_overlapping(cells, claimed, level_mesh: Mesh, to_mm) -> NDArray[np.bool_]:
+    """(B,) True for ring cells kept: no overlap with the mesh or an earlier kept cell.
+
+    A cell on several boundary edges appears once per edge; copies are not conflicts. Claimed
+    cells win over unclaimed ones, then the earlier edge."""
+    polys = shapely.polygons(cells)
+    scale = np.linalg.norm(cells[:, 0] - cells[:, 1], axis=1)
+    centres = cells.mean(axis=1)
+    inner = shapely.union_all(shapely.polygons(to_mm(level_mesh.vertices[
+        level_mesh.dense_faces()])))
+    tol = 1e-6 * float(scale.mean()) ** 2
+    keep = shapely.area(shapely.intersection(polys, inner)) <= tol
+    tree = shapely.STRtree(polys)
+    i, j = tree.query(polys, predicate="intersects")
+    pair = i < j
+    i, j = i[pair], j[pair]
+    same = np.linalg.norm(centres[i] - centres[j], axis=1) < 1e-3 * scale[i]
+    keep[j[same & claimed[i] & claimed[j]]] = False  # one hexagon, two middle edges: first wins
+    i, j = i[~same], j[~same]
+    if len(i):
+        area = shapely.area(shapely.intersection(polys[i], polys[j]))
+        i, j = i[area > tol], j[area > tol]
+    if len(i):  # rare (not on the pentagon): resolve conflicts greedily, claimed first
+        order = np.lexsort((np.arange(len(cells)), ~claimed))
+        rank = np.empty(len(cells), dtype=np.int64)
+        rank[order] = np.arange(len(cells))
+        first, second = np.where(rank[i] < rank[j], i, j), np.where(rank[i] < rank[j], j, i)
+        for k in np.argsort(rank[first], kind="stable").tolist():  # conflicts only
+            if keep[first[k]]:
+                keep[second[k]] = False
+    return keep  # copies of an unclaimed cell that is claimed elsewhere: see _unique_cells
+
+
+def _snap(points: NDArray[np.float64], tol: float) -> NDArray[np.float64]:
+    """Points closer than ``tol`` merged onto the first of their cluster."""
+    pairs = cKDTree(points).query_pairs(tol, output_type="ndarray")
+    if not len(pairs):
+        return points
+    n = len(points)
+    graph = coo_matrix((np.ones(len(pairs), dtype=np.int8), (pairs[:, 0], pairs[:, 1])),
+                       shape=(n, n))
+    label = connected_components(graph, directed=False)[1]
+    first = np.full(label.max() + 1, n, dtype=np.int64)
+    np.minimum.at(first, label, np.arange(n))
+    return points[first[label]]
+
+
+def _unique_cells(cells: NDArray[np.float64], claimed_cells: NDArray[np.float64]):
+    """Unclaimed cells (K, 6, 2), each once, without those also claimed by another edge."""
+    if not len(cells):
+        return cells
+    side = float(np.linalg.norm(cells[0, 0] - cells[0, 1]))
+    key = np.round(cells.mean(axis=1) / (side * 1e-3)).astype(np.int64)
+    taken = np.round(claimed_cells.mean(axis=1) / (side * 1e-3)).astype(np.int64)
+    _, first = np.unique(key, axis=0, return_index=True)
+    first = np.sort(first)
+    if len(taken):
+        both = np.concatenate([key[first], taken])
+        _, inverse, counts = np.unique(both, axis=0, return_inverse=True, return_counts=True)
+        first = first[counts[inverse.reshape(-1)[:len(first)]] == 1]
+    return cells[first]
+
+
+def _outer_outline(mesh: Mesh, to_mm, points: NDArray[np.float64],
+                   frame_width: float) -> shapely.Polygon:
+    """The input outline offset (mitred) to ``frame_width`` beyond the farthest point."""
+    outline = shapely.union_all(shapely.polygons(shapely.linearrings(
+        to_mm(mesh.vertices[mesh.face_indices]), indices=mesh.half_edge_face)))
+    outline = shapely.Polygon(outline.exterior)
+    depth = float(np.max(shapely.distance(shapely.points(points), outline)))
+    return shapely.buffer(outline, depth + frame_width, join_style="mitre", mitre_limit=10.0)
+
+
+# --- colours ----------------------------------------------------------------------------------
+
+def _tint(colour: str, towards: float, amount: float) -> str:
+    rgb = np.array([int(colour[i:i + 2], 16) for i in (1, 3, 5)], dtype=float)
+    rgb = rgb + (towards - rgb) * amount
+    return "#{:02x}{:02x}{:02x}".format(*np.clip(np.round(rgb), 0, 255).astype(int))
+
+
+def _luma(colour: str) -> float:
+    r, g, b = (int(colour[i:i + 2], 16) for i in (1, 3, 5))
+    return 0.299 * r + 0.587 * g + 0.114 * b
+
+
+@dataclass(frozen=True)
+class Colouring:
+    """Front: (P, 2) colours of every piece's two halves (same colour twice for one-colour
+    pieces; hexagon parts unpainted). Back: (P,) one colour per piece. Plus the level t-1
+    strand colours (front) and level t strand colours (back)."""
+
+    front: NDArray[np.object_]
+    back: NDArray[np.object_]
+    front_strands: tuple[str, ...]
+    back_strands: tuple[str, ...]
+    face_colours: NDArray[np.object_]  # (F_t,) front colour of every level-t pentagon
+
+
+def colour_puzzle(puzzle: Puzzle, pal: Palette) -> Colouring:
+    """Front and back colours of every piece (see the module docstring)."""
+    weaves = puzzle.weaves
+    # level t-1 strands: families by their level t-2 parents, the two siblings the shades
+    front_strands = strand_colours(weaves[max(0, len(weaves) - 3):-1], pal)
+    parent, child = weaves[-2], weaves[-1]
+    parent_face = puzzle.hierarchy[-1].parent_face
+    over = parent.tile_over[parent.face_tile[parent_face]]
+    under = parent.tile_under[parent.face_tile[parent_face]]
+    strand = np.where(over >= 0, over, under)  # lone boundary tiles may have no top strand
+    fs = np.array(list(front_strands) + [UNPAINTED], dtype=object)
+    face_colours = fs[strand]  # strand -1 -> UNPAINTED
+
+    # back: children of one parent strand share its front colour; the second a tint of it
+    ps = child.parent_strand
+    n = child.n_strands
+    key = np.where(ps >= 0, ps, parent.n_strands + np.arange(n))
+    order = np.lexsort((np.arange(n), key))
+    first = np.r_[True, key[order][1:] != key[order][:-1]]
+    start = np.maximum.accumulate(np.where(first, np.arange(n), 0))
+    rank = np.empty(n, dtype=np.int64)
+    rank[order] = np.arange(n) - start
+    back_strands = []
+    for p, r in zip(ps.tolist(), rank.tolist()):  # strands, not mesh elements
+        base = front_strands[p] if p >= 0 else "#9e9e9e"
+        if r % 2 == 1:
+            base = _tint(base, 255.0, 0.5) if _luma(base) < 128 else _tint(base, 0.0, 0.4)
+        back_strands.append(base)
+    bs = np.array(back_strands + [UNPAINTED], dtype=object)
+
+    tiles = puzzle.piece_tiles
+    t_over = child.tile_over[tiles]
+    t_strand = np.where(t_over >= 0, t_over, child.tile_under[tiles])
+    back = bs[t_strand]
+    first_face = child.tile_faces[child.tile_offsets[tiles]]
+    last_face = child.tile_faces[child.tile_offsets[tiles + 1] - 1]
+    front = np.column_stack([face_colours[first_face], face_colours[last_face]])
+    return Colouring(front, back, tuple(front_strands), tuple(back_strands), face_colours)
+
+
+def piece_halves(puzzle: Puzzle) -> NDArray[np.object_]:
+    """(P, 2) the two painted halves of every piece: the pentagons of an octagon (split along
+    the middle edge), or the boundary pentagon twice for an enneagon."""
+    weave = puzzle.weaves[-1]
+    mesh = weave.mesh
+    faces = mesh.dense_faces()
+    tiles = puzzle.piece_tiles
+    f0 = weave.tile_faces[weave.tile_offsets[tiles]]
+    f1 = weave.tile_faces[weave.tile_offsets[tiles + 1] - 1]
+    p0 = shapely.polygons(puzzle.to_mm(mesh.vertices[faces[f0]]))
+    p1 = shapely.polygons(puzzle.to_mm(mesh.vertices[faces[f1]]))
+    return np.column_stack([p0, p1])

@@ -1,0 +1,107 @@
+"""Tile a large 1:1 Drawing onto printer pages (A4, Letter) with overlap and assembly marks.
+
+Every page shows a window of the big sheet: the printable area (page minus ``margin``) steps by
+its size minus ``overlap``, so neighbouring pages repeat an ``overlap`` mm strip. Dashed lines
+mark where the neighbour's window starts (cut or fold there and glue the strip under), corner
+ticks mark the window, a label names the page (row, column) and a 100 mm bar checks the scale.
+Shapes are clipped to the window with shapely, fills kept.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import shapely
+
+from .drawing import Drawing, Layer, Polygons, Polylines, Sheet, Style, Text, polygons_from_shapely
+
+MARK = Style("#808080", 0.2)
+
+
+def tile(drawing: Drawing, page: tuple[float, float] = (210.0, 297.0), overlap: float = 10.0,
+         margin: float = 10.0) -> Drawing:
+    """One page per window over the first sheet of ``drawing`` (rows from the top)."""
+    big = drawing.sheets[0]
+    pw, ph = page[0] - 2 * margin, page[1] - 2 * margin
+    step_x, step_y = pw - overlap, ph - overlap
+    cols = max(1, math.ceil((big.width - overlap) / step_x))
+    rows = max(1, math.ceil((big.height - overlap) / step_y))
+    pages = []
+    for r in range(rows):  # pages, a handful
+        for c in range(cols):
+            x0 = c * step_x
+            y0 = big.height - ph - r * step_y  # row 1 at the top
+            window = shapely.box(x0, y0, x0 + pw, y0 + ph)
+            shift = np.array([margin - x0, margin - y0])
+            layers = [_clip_layer(layer, window, shift) for layer in big.layers]
+            layers.append(_marks(page, margin, overlap, r, c, rows, cols, drawing.title))
+            pages.append(Sheet(page[0], page[1], tuple(layers), f"page r{r + 1} c{c + 1}"))
+    return replace(drawing, sheets=tuple(pages))
+
+
+def _clip_layer(layer: Layer, window, shift) -> Layer:
+    shapes = []
+    for shape in layer.shapes:
+        if isinstance(shape, Polygons):
+            polys = shape.to_shapely()
+            clipped = shapely.intersection(polys, window)
+            keep = ~shapely.is_empty(clipped) & (shapely.area(clipped) > 0)
+            if not keep.any():
+                continue
+            parts, fills = [], []
+            base = shape.fills or (None,) * len(polys)
+            for geom, fill in zip(clipped[keep], np.asarray(base, dtype=object)[keep]):
+                for g in shapely.get_parts(geom):
+                    if g.geom_type == "Polygon" and g.area > 0:
+                        parts.append(g)
+                        fills.append(fill)
+            moved = shapely.transform(np.array(parts, dtype=object), lambda xy: xy + shift)
+            shapes.append(polygons_from_shapely(moved, shape.style,
+                                                fills if shape.fills else None))
+        elif isinstance(shape, Polylines):
+            lines = shapely.linestrings(shape.coords, indices=np.repeat(
+                np.arange(len(shape.offsets) - 1), np.diff(shape.offsets)))
+            clipped = shapely.get_parts(shapely.intersection(lines, window))
+            clipped = clipped[(shapely.get_type_id(clipped) == 1) & ~shapely.is_empty(clipped)]
+            if len(clipped):
+                coords, idx = shapely.get_coordinates(clipped, return_index=True)
+                offsets = np.r_[0, np.cumsum(np.bincount(idx))].astype(np.int64)
+                shapes.append(Polylines(coords + shift, offsets, shape.style))
+        elif isinstance(shape, Text):
+            if window.contains(shapely.Point(shape.x, shape.y)):
+                shapes.append(replace(shape, x=shape.x + shift[0], y=shape.y + shift[1]))
+    return replace(layer, shapes=tuple(shapes))
+
+
+def _marks(page, margin, overlap, r, c, rows, cols, title) -> Layer:
+    w, h = page
+    x1, y1 = w - margin, h - margin
+    segs = []
+    if c + 1 < cols:  # the next column's window starts overlap mm before this one ends
+        segs += _dashes((x1 - overlap, margin), (x1 - overlap, y1))
+    if r + 1 < rows:
+        segs += _dashes((margin, margin + overlap), (x1, margin + overlap))
+    t = 4.0
+    for x, y, sx, sy in ((margin, margin, 1, 1), (x1, margin, -1, 1), (margin, y1, 1, -1),
+                         (x1, y1, -1, -1)):
+        segs += [((x - sx * t, y), (x + sx * t, y)), ((x, y - sy * t), (x, y + sy * t))]
+    bar_y = margin / 2
+    segs += [((margin, bar_y), (margin + 100.0, bar_y)), ((margin, bar_y - 1.5), (margin, bar_y + 1.5)),
+             ((margin + 100, bar_y - 1.5), (margin + 100, bar_y + 1.5))]
+    coords = np.array(segs, dtype=float).reshape(-1, 2)
+    lines = Polylines(coords, np.arange(0, len(coords) + 1, 2, dtype=np.int64), MARK)
+    label = Text(margin, h - margin / 2 - 1.5, f"{title} - page row {r + 1}/{rows}, "
+                 f"column {c + 1}/{cols}; overlap {overlap:g} mm", 2.5, fill="#606060")
+    scale = Text(margin + 103.0, bar_y - 1.2, "100 mm", 2.5, fill="#606060")
+    return Layer("page-marks", "guide", (lines, label, scale))
+
+
+def _dashes(a, b, dash: float = 3.0, gap: float = 2.0) -> list:
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    length = float(np.hypot(*(b - a)))
+    starts = np.arange(0.0, length, dash + gap)
+    ends = np.minimum(starts + dash, length)
+    d = (b - a) / length
+    return [(tuple(a + s * d), tuple(a + e * d)) for s, e in zip(starts, ends)]
