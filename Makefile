@@ -1,5 +1,5 @@
-# weave-cut: `make run` builds the default outputs into build/, `make test` runs the tests.
-# Both create .venv and install the project first when needed.
+# weave-cut: `make run` builds every recipe in templates/recipes into build/<recipe>/,
+# `make test` runs the tests. Both create .venv and install the project first when needed.
 
 PYTHON ?= python3
 VENV   := .venv
@@ -9,12 +9,10 @@ STAMP  := $(VENV)/.installed
 SRC    := $(shell find src -name '*.py' 2>/dev/null) pyproject.toml
 OUT    := build
 
-DEFAULT_OUTPUTS := \
-	$(OUT)/pentagon-level4.svg $(OUT)/pentagon-level4.dxf \
-	$(OUT)/square-grid-level3.svg $(OUT)/square-grid-level3.dxf \
-	$(OUT)/square-grid-weave-level2.svg $(OUT)/pentagon-weave-level4.png
+RECIPES := $(wildcard templates/recipes/*.toml)
+BUILT   := $(patsubst templates/recipes/%.toml,$(OUT)/%/.built,$(RECIPES))
 
-.PHONY: run test bench clean help
+.PHONY: run figures test bench clean help
 .DELETE_ON_ERROR:
 
 help:  ## list the targets
@@ -26,23 +24,20 @@ $(STAMP): pyproject.toml
 	$(PY) -m pip install --quiet -e '.[test]'
 	touch $(STAMP)
 
-run: $(DEFAULT_OUTPUTS)  ## build the default outputs into build/
-	@echo "built: $(DEFAULT_OUTPUTS)"
+run: $(BUILT)  ## build every recipe (templates/recipes/*.toml) into build/ (incremental)
+	@echo "built into $(OUT)/: $(notdir $(basename $(RECIPES)))"
 
-$(OUT):
-	mkdir -p $(OUT)
+# a recipe is rebuilt when it or the package changed; each recipe has its own folder
+$(OUT)/%/.built: templates/recipes/%.toml $(STAMP) $(SRC)
+	$(WC) -q build $< -o $(OUT)/$*
+	touch $@
 
-$(OUT)/pentagon-level4.%: $(STAMP) $(SRC) | $(OUT)
-	$(WC) subdivide pentagon --levels 4 -o $@
-
-$(OUT)/square-grid-level3.%: $(STAMP) $(SRC) | $(OUT)
-	$(WC) subdivide square-grid --levels 3 -o $@
-
-$(OUT)/square-grid-weave-level2.svg: $(STAMP) $(SRC) | $(OUT)
-	$(WC) weave square-grid --levels 2 --outline-level 1 -o $@
-
-$(OUT)/pentagon-weave-level4.png: $(STAMP) $(SRC) | $(OUT)
-	$(WC) weave pentagon --levels 4 --outline-level 3 --palette puzzle -o $@
+figures: $(STAMP)  ## every paper figure weave-cut reproduces, into build/figures/
+	mkdir -p $(OUT)/figures
+	@for name in $$($(WC) figure --list | cut -d' ' -f1); do \
+		case $$name in level-image) ext=png;; *) ext=svg;; esac; \
+		echo "figure $$name"; $(WC) -q figure $$name -o $(OUT)/figures/$$name.$$ext || exit 1; \
+	done
 
 test: $(STAMP)  ## run the whole test suite
 	$(PY) -m pytest
@@ -50,6 +45,11 @@ test: $(STAMP)  ## run the whole test suite
 bench: $(STAMP)  ## run the benchmarks (throughput, ratios against peers)
 	$(PY) -m pip install --quiet -e '.[bench]' || echo "some peers did not install"
 	$(PY) benchmarks/bench_snub.py
+	$(PY) benchmarks/bench_weave.py
+	$(PY) benchmarks/bench_schemes.py
+	$(PY) benchmarks/bench_levels.py
+	@for b in benchmarks/bench_puzzle.py benchmarks/bench_strands.py; do \
+		[ -f $$b ] && $(PY) $$b || true; done
 
 clean:  ## remove build outputs (keeps .venv)
 	rm -rf $(OUT) .pytest_cache .hypothesis

@@ -13,6 +13,7 @@ import click
 
 from .. import __version__
 from ..memory import keep_freed_memory
+from .build_command import build_command
 from .common import CONTEXT
 from .analysis_commands import COMMANDS as ANALYSIS_COMMANDS
 from .mesh_commands import inputs_command, stats_command, subdivide_command
@@ -22,7 +23,9 @@ from .weave_command import weave_command
 
 @click.group(context_settings=CONTEXT)
 @click.version_option(__version__, prog_name="weave-cut")
-def cli() -> None:
+@click.option("-q", "--quiet", is_flag=True, help="No progress output.")
+@click.pass_context
+def cli(ctx: click.Context, quiet: bool) -> None:
     """Pentagon snub subdivision, its weaving patterns, paper strand models and laser-cut
     jigsaw puzzles (Lipschuetz, Reitebuch, Skrodzki, Polthier).
 
@@ -31,11 +34,14 @@ def cli() -> None:
       weave-cut inputs
       weave-cut subdivide pentagon --levels 4 -o pentagon.svg
       weave-cut stats pentagon --levels 6 --json
+
+    Shell completion (bash): eval "$(_WEAVE_CUT_COMPLETE=bash_source weave-cut)"
     """
+    ctx.meta["weavecut.quiet"] = quiet or ctx.meta.get("weavecut.quiet", False)
 
 
 for command in (inputs_command, subdivide_command, stats_command, weave_command,
-                puzzle_command, *ANALYSIS_COMMANDS):
+                puzzle_command, *ANALYSIS_COMMANDS, build_command):
     cli.add_command(command)
 
 

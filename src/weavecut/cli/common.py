@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import shlex
 import sys
@@ -90,3 +91,19 @@ input_argument = click.argument("input_mesh", metavar="INPUT")
 allow_nonconvex_option = click.option(
     "--allow-nonconvex", is_flag=True, help="Accept non-convex input faces (the paper assumes "
     "convex ones).")
+
+
+def progress(items, label: str):
+    """A progress bar on stderr over ``items``; silent with -q or when stderr is no terminal."""
+    ctx = click.get_current_context(silent=True)
+    quiet = ctx is not None and ctx.find_root().meta.get("weavecut.quiet", False)
+    if quiet or not sys.stderr.isatty():
+        return contextlib.nullcontext(items)
+    return click.progressbar(items, label=label, file=sys.stderr)
+
+
+def say(message: str) -> None:
+    """A line of progress on stderr, unless -q."""
+    ctx = click.get_current_context(silent=True)
+    if not (ctx is not None and ctx.find_root().meta.get("weavecut.quiet", False)):
+        click.echo(message, err=True)

@@ -18,6 +18,7 @@ from .common import (
     allow_nonconvex_option,
     input_argument,
     load_mesh,
+    progress,
     provenance,
     reports_errors,
 )
@@ -53,7 +54,8 @@ def run_scheme(input_mesh: str, levels: int, scheme: str, no_smooth: bool, chira
         options = {"smooth": not no_smooth, "chirality": chirality, "centre": centre}
     elif no_smooth or chirality != "left" or centre != "vertex":
         raise click.UsageError("--no-smooth, --chirality and --centre apply to --scheme snub")
-    return subdivide(mesh, levels, scheme, **options)
+    with progress(range(levels), f"{scheme} levels") as steps:
+        return subdivide(mesh, levels, scheme, steps=steps, **options)
 
 
 @click.command("inputs", context_settings=CONTEXT)

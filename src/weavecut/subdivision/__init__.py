@@ -27,15 +27,19 @@ def _counts(scheme: str):
     return getattr(module, "counts", lambda v, e, f, h: (4 * v, 4 * e, 4 * f, 4 * h))
 
 
-def subdivide(mesh: Mesh, levels: int, scheme: str = "snub", **options) -> Hierarchy:
-    """Levels 0..``levels`` of ``scheme`` applied to ``mesh`` (checked to fit in memory first)."""
+def subdivide(mesh: Mesh, levels: int, scheme: str = "snub", *, steps=None,
+              **options) -> Hierarchy:
+    """Levels 0..``levels`` of ``scheme`` applied to ``mesh`` (checked to fit in memory first).
+
+    ``steps`` may wrap ``range(levels)`` (a progress bar, say); it is iterated once per step.
+    """
     if scheme not in SCHEMES:
         raise ValueError(f"unknown scheme {scheme!r}; choose one of {', '.join(SCHEMES)}")
     if levels < 0:
         raise ValueError(f"levels must be >= 0, got {levels}")
     check_fits(mesh, levels, _counts(scheme))
     out = [Level(mesh)]
-    for _ in range(levels):
+    for _ in range(levels) if steps is None else steps:
         out.append(SCHEMES[scheme](out[-1].mesh, **options))
     return tuple(out)
 

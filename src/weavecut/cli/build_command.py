@@ -1,0 +1,131 @@
+"""``weave-cut build RECIPE.toml``: run the jobs of a recipe, as if typed on the command line.
+
+A recipe is TOML with one ``[[job]]`` table per output::
+
+    [[job]]
+    command = "weave"                 # any weave-cut command
+    input = "square-grid"             # its INPUT argument, if it has one
+    output = "square-weave.svg"       # -o, relative to the build folder
+    levels = 2                        # every other key is an option of that command
+    outline-level = 1                 # (dashes or underscores; true for a flag)
+
+``--set KEY=VALUE`` overrides a key in every job whose command has that option. An unknown key
+is an error that names the key, the job and the file.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+
+import click
+
+from ..errors import WeaveCutError
+from .common import CONTEXT, reports_errors, say
+
+RESERVED = {"command", "input", "output", "name"}
+
+
+class RecipeError(WeaveCutError, ValueError):
+    """A recipe file is missing, malformed, or names an unknown command or option."""
+
+
+def load_recipe(path: Path) -> list[dict]:
+    try:
+        with open(path, "rb") as f:
+            doc = tomllib.load(f)
+    except OSError as exc:
+        raise RecipeError(f"cannot read {path}: {exc.strerror}") from exc
+    except tomllib.TOMLDecodeError as exc:
+        raise RecipeError(f"{path}: {exc}") from exc
+    unknown = set(doc) - {"job", "recipe"}
+    if unknown:
+        raise RecipeError(f"{path}: unknown key {sorted(unknown)[0]!r} (a recipe has [recipe] "
+                          "and [[job]] tables)")
+    jobs = doc.get("job")
+    if not isinstance(jobs, list) or not jobs:
+        raise RecipeError(f"{path}: no [[job]] tables")
+    return jobs
+
+
+def job_arguments(group: click.Group, job: dict, where: str, out_dir: Path,
+                  overrides: dict[str, str]) -> list[str]:
+    """The command line of one job: ``[command, INPUT, options..., -o OUT]``."""
+    name = job.get("command")
+    command = group.commands.get(name) if isinstance(name, str) else None
+    if command is None or name == "build":
+        raise RecipeError(f"{where}: unknown command {name!r}; choose one of "
+                          f"{', '.join(sorted(set(group.commands) - {'build'}))}")
+    options = {}
+    for p in command.params:
+        if isinstance(p, click.Option):
+            for opt in p.opts:
+                if opt.startswith("--"):
+                    options[opt[2:].replace("-", "_")] = p
+    has_input = any(isinstance(p, click.Argument) for p in command.params)
+    args = [name]
+    if has_input:
+        if "input" not in job:
+            raise RecipeError(f"{where}: command {name!r} needs an 'input'")
+        args.append(str(job["input"]))
+    values = {k.replace("-", "_"): v for k, v in job.items() if k not in RESERVED}
+    for key, value in overrides.items():
+        if key in options:
+            values[key] = value
+    for key, value in values.items():
+        option = options.get(key)
+        if option is None or key == "output":
+            raise RecipeError(f"{where}: unknown key {key.replace('_', '-')!r} for command "
+                              f"{name!r}")
+        flag = max(option.opts, key=len)
+        if option.is_flag:
+            if value is True or str(value).lower() in ("true", "1", "yes"):
+                args.append(flag)
+        elif isinstance(value, list):
+            for item in value:
+                args += [flag, str(item)]
+        else:
+            args += [flag, str(value)]
+    if "output" in job:
+        args += ["-o", str(out_dir / str(job["output"]))]
+    return args
+
+
+@click.command("build", context_settings=CONTEXT)
+@click.argument("recipe", type=click.Path(dir_okay=False, path_type=Path))
+@click.option("-o", "--output-dir", type=click.Path(file_okay=False, path_type=Path),
+              default=Path("build"), show_default=True, help="Folder for the outputs.")
+@click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
+              help="Override an option in every job that has it (repeatable).")
+@click.option("--dry-run", is_flag=True, help="Print the commands instead of running them.")
+@click.pass_context
+@reports_errors
+def build_command(ctx: click.Context, recipe: Path, output_dir: Path, overrides: tuple[str, ...],
+                  dry_run: bool) -> None:
+    """Run every job of RECIPE (a .toml file, see templates/recipes) into a folder.
+
+    \b
+    Examples:
+      weave-cut build templates/recipes/square-grid-paper-model.toml
+      weave-cut build templates/recipes/jigsaw-50cm-poplar.toml -o out --set kerf=0.2mm
+    """
+    parsed = {}
+    for item in overrides:
+        key, sep, value = item.partition("=")
+        if not sep or not key:
+            raise click.BadParameter(f"{item!r} is not KEY=VALUE", param_hint="'--set'")
+        parsed[key.strip().replace("-", "_")] = value.strip()
+    group = ctx.parent.command
+    jobs = load_recipe(recipe)
+    commands = [job_arguments(group, job, f"{recipe} job {n + 1}", output_dir, parsed)
+                for n, job in enumerate(jobs)]
+    if dry_run:
+        for args in commands:
+            click.echo("weave-cut " + " ".join(args))
+        return
+    output_dir.mkdir(parents=True, exist_ok=True)
+    for n, args in enumerate(commands, start=1):
+        say(f"[{n}/{len(commands)}] weave-cut {' '.join(args)}")
+        sub = group.make_context("weave-cut", list(args), parent=ctx.parent)
+        with sub:
+            group.invoke(sub)
