@@ -52,14 +52,16 @@ class Mesh:
         1
         """
         faces = [list(f) for f in faces]
-        sizes = np.array([len(f) for f in faces], dtype=np.int64)
+        sizes = np.fromiter(map(len, faces), dtype=np.int64, count=len(faces))
         offsets = np.concatenate([[0], np.cumsum(sizes)]).astype(np.int64)
-        flat = [i for f in faces for i in f]
-        for i in flat:
-            if not isinstance(i, (int, np.integer)) or abs(int(i)) >= 2**31:
-                raise MeshError(f"vertex index {i!r} is not an integer in range")
+        try:
+            flat = np.array([i for f in faces for i in f], dtype=np.int64)
+        except (OverflowError, TypeError, ValueError):
+            raise MeshError("face vertex indices must be integers in range") from None
+        if len(flat) and np.abs(flat).max() >= 2**31:
+            raise MeshError(f"vertex index {flat[np.abs(flat).argmax()]} is out of range")
         vertices = np.asarray(vertices, dtype=np.float64).reshape(-1, 2)
-        return cls(vertices, offsets, np.asarray(flat, dtype=np.int64))
+        return cls(vertices, offsets, flat)
 
     @classmethod
     def trusted(cls, vertices, face_offsets, face_indices, topology: Topology | None = None) -> Mesh:

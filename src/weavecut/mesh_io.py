@@ -74,22 +74,43 @@ def json_text(mesh: Mesh) -> str:
 def _parse_obj(text: str) -> Mesh:
     vertices: list[tuple[float, float]] = []
     faces: list[list[int]] = []
+    face_lines: list[int] = []
+    face_seen: list[int] = []  # vertices defined before each face (for negative indices)
     for n, line in enumerate(text.splitlines(), start=1):
-        parts = line.split("#", 1)[0].split()
+        parts = line.split("#", 1)[0].split() if "#" in line else line.split()
         if not parts:
             continue
         tag = parts[0]
         if tag == "v":
             vertices.append(_obj_vertex(parts[1:], n))
         elif tag == "f":
-            faces.append([_obj_index(p, len(vertices), n) for p in parts[1:]])
+            try:
+                faces.append([int(p.split("/", 1)[0]) for p in parts[1:]])
+            except ValueError:
+                raise MeshFileError(f"line {n}: face indices must be whole numbers") from None
+            face_lines.append(n)
+            face_seen.append(len(vertices))
         elif tag in ("vt", "vn", "vp", "o", "g", "s", "usemtl", "mtllib", "l"):
             continue
         else:
-            raise MeshFileError(f"line {n}: unknown OBJ statement {tag!r}")
+            raise MeshFileError(f"line {n}: unknown OBJ statement {tag!r}"[:200])
     if not faces:
         raise MeshFileError("no faces ('f' lines) found")
-    return Mesh.from_faces(np.array(vertices, dtype=float).reshape(-1, 2), faces)
+    sizes = np.fromiter(map(len, faces), dtype=np.int64, count=len(faces))
+    try:
+        flat = np.fromiter((i for f in faces for i in f), dtype=np.int64, count=int(sizes.sum()))
+    except OverflowError:
+        raise MeshFileError("a face index is too large") from None
+    seen = np.repeat(np.array(face_seen, dtype=np.int64), sizes)
+    bad = (flat == 0) | (np.abs(flat) > seen)
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        f = int(np.searchsorted(np.cumsum(sizes), k, side="right"))
+        raise MeshFileError(f"line {face_lines[f]}: face index {flat[k]} refers to no vertex "
+                            f"({seen[k]} defined so far)")
+    flat = np.where(flat > 0, flat - 1, seen + flat)
+    offsets = np.concatenate([[0], np.cumsum(sizes)])
+    return Mesh(np.array(vertices, dtype=float).reshape(-1, 2), offsets, flat)
 
 
 def _obj_vertex(fields: list[str], n: int) -> tuple[float, float]:
@@ -105,17 +126,6 @@ def _obj_vertex(fields: list[str], n: int) -> tuple[float, float]:
         raise MeshFileError(f"line {n}: vertex has z = {rest[0]!r}; weave-cut meshes are planar "
                             "(z must be 0)")
     return (x, y)
-
-
-def _obj_index(field: str, n_vertices: int, n: int) -> int:
-    try:
-        i = int(field.split("/", 1)[0])
-    except ValueError:
-        raise MeshFileError(f"line {n}: face index {field!r} is not a whole number") from None
-    if i == 0 or abs(i) > n_vertices:
-        raise MeshFileError(f"line {n}: face index {i} refers to no vertex "
-                            f"({n_vertices} defined so far)")
-    return i - 1 if i > 0 else n_vertices + i
 
 
 def _parse_json(text: str) -> Mesh:
@@ -135,8 +145,7 @@ def _parse_json(text: str) -> Mesh:
                 or not all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in v)):
             raise MeshFileError(f"vertex {i} must be [x, y] numbers, got {v!r}"[:120])
     for i, f in enumerate(faces):
-        if not isinstance(f, list) or not all(isinstance(j, int) and not isinstance(j, bool)
-                                               for j in f):
+        if not isinstance(f, list) or not all(type(j) is int for j in f):
             raise MeshFileError(f"face {i} must be a list of vertex indices, got {f!r}"[:120])
     if not faces:
         raise MeshFileError("the mesh has no faces")

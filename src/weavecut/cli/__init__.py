@@ -7,6 +7,7 @@ usage error and exit status 2. Nothing prints a traceback.
 from __future__ import annotations
 
 import os
+import signal
 import sys
 
 import click
@@ -45,11 +46,19 @@ for command in (inputs_command, subdivide_command, stats_command, weave_command,
     cli.add_command(command)
 
 
+def _terminate(signum, frame) -> None:
+    raise KeyboardInterrupt
+
+
 def main(argv: list[str] | None = None) -> None:
     """Console entry point: run ``cli`` and turn anything unexpected into one line."""
     keep_freed_memory()
+    signal.signal(signal.SIGTERM, _terminate)  # clean up temporary files like Ctrl-C does
     try:
         cli.main(args=argv, prog_name="weave-cut", standalone_mode=True)
+    except KeyboardInterrupt:
+        click.echo("weave-cut: interrupted; no output was left half-written", err=True)
+        sys.exit(130)
     except MemoryError:
         click.echo("weave-cut: error: out of memory; try fewer levels", err=True)
         sys.exit(1)
