@@ -19,7 +19,7 @@ from .. import inputs
 from ..analysis import convexity as cv
 from ..analysis import fractal as fr
 from ..analysis import levels as lv
-from ..mesh import Mesh, edge_lengths
+from ..mesh import Mesh, edge_lengths, signed_areas
 from ..subdivision import snub, subdivide
 from .drawing import (
     Drawing,
@@ -71,8 +71,10 @@ def compose(panels: list[Panel], columns: int, cell: float = 70.0, gap: float = 
         r, c = divmod(i, columns)
         x = gap + sum(widths[:c]) + gap * c
         y = height - gap - (r + 1) * (cell + text_h) - gap * r + text_h
-        fit = Fit.into(panel.bounds, widths[c], cell, 0.0)
-        fit = Fit(fit.scale, (fit.offset[0] + x, fit.offset[1] + y))
+        b = panel.bounds
+        scale = min(widths[c] / (b[2] - b[0]), cell / (b[3] - b[1]))
+        fit = Fit(scale, (x + (widths[c] - (b[2] - b[0]) * scale) / 2 - b[0] * scale,
+                          y + (cell - (b[3] - b[1]) * scale) / 2 - b[1] * scale))
         prefix = f"{chr(ord('a') + i)}-" if len(panels) > 1 else ""
         for layer in panel.draw(fit):
             layers.append(Layer(prefix + layer.name, layer.role, layer.shapes, layer.visible))
@@ -128,9 +130,13 @@ def clip_faces(mesh: Mesh, box) -> list[NDArray[np.float64]]:
             if g.geom_type == "Polygon"]
 
 
-def curve_polylines(hierarchy, style: Style, fit: Fit) -> Polylines:
+CHUNK = 4000  # points per Polylines: rsvg (libxml) rejects SVGs with many very long paths
+
+
+def curve_polylines(hierarchy, style: Style, fit: Fit) -> tuple[Polylines, ...]:
     """Every edge of the last level, chained into the curves they grew from (level-0 edges and
-    the spokes of every level), so the SVG repeats each point about once, not twice."""
+    the spokes of every level), so the SVG repeats each point about once, not twice; split
+    into batches of about CHUNK points."""
     last = len(hierarchy) - 1
     lines = []
     for s in range(last + 1):
@@ -148,7 +154,11 @@ def curve_polylines(hierarchy, style: Style, fit: Fit) -> Polylines:
     counts = np.concatenate([np.full(len(v), v.shape[1]) for v in lines])
     ids = np.concatenate([v.ravel() for v in lines])
     offsets = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
-    return Polylines(fit(np.take(mesh.vertices, ids, axis=0)), offsets, style)
+    coords = fit(np.take(mesh.vertices, ids, axis=0))
+    cuts = np.unique(np.searchsorted(offsets, np.arange(0, offsets[-1], CHUNK)))
+    cuts = np.r_[cuts, len(offsets) - 1]
+    return tuple(Polylines(coords[offsets[a]:offsets[b]], offsets[a:b + 1] - offsets[a], style)
+                 for a, b in zip(cuts[:-1], cuts[1:]) if b > a)
 
 
 def _grow(bounds, by: float) -> tuple[float, float, float, float]:
@@ -385,6 +395,7 @@ def fig_non_pentagonal() -> Drawing:
 
 # -- Figure SubdivisionEdges --------------------------------------------------------------
 
+COVERAGE = 0.3
 ZOOM_CENTRE = (-0.33, 0.40)
 ZOOM_HALF = 0.09
 
@@ -405,19 +416,23 @@ def edge_render_panel(hierarchy, caption: str, zoom_centre=ZOOM_CENTRE,
     inset = (ix0, y1 - side, ix0 + side, y1)
     magnify = side / (2 * zoom_half)
 
+    area = float(np.abs(signed_areas(mesh)).sum())
+    total = float(edge_lengths(mesh).sum())
+
     def draw(fit: Fit) -> list[Layer]:
-        median = float(np.median(edge_lengths(mesh))) * fit.scale
-        lw = float(np.clip(0.12 * median, 0.004, 0.3))
+        # ink covers about COVERAGE of the mesh however many edges there are: level 8 turns
+        # grey, not black (the paper's level 9 would be black at its line width)
+        lw = float(np.clip(COVERAGE * area / total * fit.scale, 0.01, 0.3))
         curves = curve_polylines(hierarchy, Style("#000000", lw), fit)
         segs = clip_segments(edge_coords(mesh), zoom)
         to_inset = (segs - np.array(zoom[:2])) * magnify + np.array(inset[:2])
-        lw_in = float(np.clip(0.12 * median * magnify, 0.004, 0.3))
+        lw_in = float(np.clip(lw * magnify, 0.01, 0.3))
         box = np.array([[zoom[0], zoom[1]], [zoom[2], zoom[1]], [zoom[2], zoom[3]],
                         [zoom[0], zoom[3]]])
         frame = np.array([[inset[0], inset[1]], [inset[2], inset[1]], [inset[2], inset[3]],
                           [inset[0], inset[3]]])
         links = np.array([[box[1], frame[0]], [box[2], frame[3]]])
-        return [Layer("edges", "cut", (curves,)),
+        return [Layer("edges", "cut", curves),
                 Layer("zoom", "cut", (segments(fit(to_inset), Style("#000000", lw_in)),)),
                 Layer("zoom-boxes", "guide", (
                     Polygons(fit(np.vstack([box, frame])), np.array([0, 4, 8]),
@@ -532,7 +547,7 @@ def convexity_drawing(mesh: Mesh, size: float = 200.0, title: str = "non-convex 
 
 # -- Figure colorLevels (raster) ---------------------------------------------------------------
 
-LEVEL_ZOOM = (0.30, 0.10, 0.3768, 0.1768)
+LEVEL_ZOOM = (0.29, 0.09, 0.39, 0.19)
 
 
 def _frame(rgb: NDArray[np.uint8], box, colour=(224, 48, 42), width: int = 2) -> None:
@@ -545,30 +560,33 @@ def _frame(rgb: NDArray[np.uint8], box, colour=(224, 48, 42), width: int = 2) ->
 
 def level_image_png(size: int = 1200, zoom_size: int = 560, levels: int = 9,
                     zoom_levels: int = 12, zoom=LEVEL_ZOOM) -> bytes:
-    """Figure colorLevels: the pentagon to level 9 (left), the zoom box at level 9 and at
-    level 12 (right, top and bottom), the box framed in red."""
+    """Figure colorLevels: the pentagon to level 9 (left, the zoom box framed in red); right,
+    the box as the left image has it (enlarged pixels), and recomputed to level 12."""
     mesh = inputs.get("pentagon")
     big, grid = lv.level_image(mesh, levels, size)
-    near, _ = lv.level_image(mesh, levels, zoom_size, zoom)
     deep, _ = lv.level_image(mesh, zoom_levels, zoom_size, zoom)
     left = lv.colour(big)
     x0, _, _, y1 = grid.window
-    c0 = int((zoom[0] - x0) / grid.pixel)
-    c1 = int(math.ceil((zoom[2] - x0) / grid.pixel))
-    r0 = int((y1 - zoom[3]) / grid.pixel)
-    r1 = int(math.ceil((y1 - zoom[1]) / grid.pixel))
+    c0 = int(round((zoom[0] - x0) / grid.pixel))
+    c1 = int(round((zoom[2] - x0) / grid.pixel))
+    r0 = int(round((y1 - zoom[3]) / grid.pixel))
+    r1 = int(round((y1 - zoom[1]) / grid.pixel))
+    crop = left[r0:r1, c0:c1]
+    rows = np.minimum(np.arange(zoom_size) * crop.shape[0] // zoom_size, crop.shape[0] - 1)
+    cols = np.minimum(np.arange(zoom_size) * crop.shape[1] // zoom_size, crop.shape[1] - 1)
+    near = crop[rows][:, cols]
     _frame(left, (r0 - 2, c0 - 2, r1 + 2, c1 + 2))
     gap = 16
     height = max(left.shape[0], 2 * zoom_size + gap)
     canvas = np.full((height, left.shape[1] + gap + zoom_size, 3), 255, dtype=np.uint8)
     canvas[:left.shape[0], :left.shape[1]] = left
-    for k, img in enumerate((near, deep)):
-        rgb = lv.colour(img)
+    for k, rgb in enumerate((near, lv.colour(deep))):
+        rgb = rgb.copy()
         _frame(rgb, (0, 0, rgb.shape[0], rgb.shape[1]))
         top = k * (zoom_size + gap)
         canvas[top:top + rgb.shape[0], left.shape[1] + gap:left.shape[1] + gap + rgb.shape[1]] \
             = rgb
-    legend = _legend(max(zoom_levels, levels) + 1, width=left.shape[1])
+    legend = _legend(max(zoom_levels, levels) + 1, width=canvas.shape[1])
     return lv.png_bytes(np.concatenate([canvas, legend], axis=0))
 
 
