@@ -430,14 +430,25 @@ def fractal_report(hierarchy, chirality: str = "left", curve: tuple[int, int] | 
         "boundary_lsystem_max_error": boundary_lsystem_error(hierarchy, chirality),
     }
     mesh = hierarchy[-1].mesh
-    if last >= 3:
+    try:
         report["boundary_box_counting"] = box_counting(boundary_segments(mesh))
-    first = born[0] if born else 1
-    if curve is None and 0 <= first and last >= first + 3:
-        curve = (first, default_inner_curve(hierarchy, first))
+    except ValueError as exc:
+        report["boundary_box_counting"] = {"skipped": str(exc)}
+    first = min(born) if born else 1
+    chosen = curve is not None
+    if not chosen and 0 <= first < last:
+        try:
+            curve = (first, default_inner_curve(hierarchy, first))
+        except ValueError:
+            curve = None
     if curve is not None:
-        report["inner_curve"] = {"level": curve[0], "edge": curve[1],
-                                 **curve_box_counting(hierarchy, *curve)}
+        try:
+            counted = curve_box_counting(hierarchy, *curve)
+        except ValueError as exc:
+            if chosen:
+                raise
+            counted = {"skipped": str(exc)}
+        report["inner_curve"] = {"level": curve[0], "edge": curve[1], **counted}
     rows = []
     for k, b in enumerate(sorted(set(born))):
         if 0 <= b < last:

@@ -140,6 +140,9 @@ def fractal_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonc
 
 
 def _print_box(title: str, box: dict) -> None:
+    if "skipped" in box:
+        click.echo(f"{title}: not measured ({box['skipped']})")
+        return
     s = box["sizes"]
     click.echo(f"{title}: D = {box['dimension']:.4f} (least squares, r2 = {box['r2']:.5f}, "
                f"{len(s)} box sizes {s[0]:.4g} .. {s[-1]:.4g}, counts averaged over "
