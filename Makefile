@@ -9,8 +9,8 @@ STAMP  := $(VENV)/.installed
 SRC    := $(shell find src -name '*.py' 2>/dev/null) pyproject.toml
 OUT    := build
 
-RECIPES := $(wildcard templates/recipes/*.toml)
-BUILT   := $(patsubst templates/recipes/%.toml,$(OUT)/%/.built,$(RECIPES))
+RECIPES := $(wildcard templates/recipes/*.toml) $(wildcard examples/*.toml)
+BUILT   := $(patsubst %.toml,$(OUT)/%/.built,$(notdir $(RECIPES)))
 
 .PHONY: run figures test bench clean help
 .DELETE_ON_ERROR:
@@ -24,12 +24,16 @@ $(STAMP): pyproject.toml
 	$(PY) -m pip install --quiet -e '.[test]'
 	touch $(STAMP)
 
-run: $(BUILT)  ## build every recipe (templates/recipes/*.toml) into build/ (incremental)
+run: $(BUILT)  ## build every recipe (templates/recipes, examples) into build/ (incremental)
 	@echo "built into $(OUT)/: $(notdir $(basename $(RECIPES)))"
 
 # a recipe is rebuilt when it or the package changed; each recipe has its own folder
 $(OUT)/%/.built: templates/recipes/%.toml $(STAMP) $(SRC)
-	$(WC) -q build $< -o $(OUT)/$*
+	$(WC) -q build $< -o $(OUT)/$* > /dev/null
+	touch $@
+
+$(OUT)/%/.built: examples/%.toml $(STAMP) $(SRC) examples/*.obj examples/*.json
+	$(WC) -q build $< -o $(OUT)/$* > /dev/null
 	touch $@
 
 figures: $(STAMP)  ## every paper figure weave-cut reproduces, into build/figures/

@@ -4,7 +4,7 @@ A recipe is TOML with one ``[[job]]`` table per output::
 
     [[job]]
     command = "weave"                 # any weave-cut command
-    input = "square-grid"             # its INPUT argument, if it has one
+    input = "square-grid"             # its INPUT (a mesh file is read beside the recipe)
     output = "square-weave.svg"       # -o, relative to the build folder
     levels = 2                        # every other key is an option of that command
     outline-level = 1                 # (dashes or underscores; true for a flag)
@@ -15,12 +15,15 @@ is an error that names the key, the job and the file.
 
 from __future__ import annotations
 
+import contextlib
+import io
 import tomllib
 from pathlib import Path
 
 import click
 
 from ..errors import WeaveCutError
+from ..fileio import write_atomic
 from .common import CONTEXT, reports_errors, say
 
 RESERVED = {"command", "input", "output", "name"}
@@ -49,7 +52,7 @@ def load_recipe(path: Path) -> list[dict]:
 
 
 def job_arguments(group: click.Group, job: dict, where: str, out_dir: Path,
-                  overrides: dict[str, str]) -> list[str]:
+                  overrides: dict[str, str], base: Path = Path(".")) -> list[str]:
     """The command line of one job: ``[command, INPUT, options..., -o OUT]``."""
     name = job.get("command")
     command = group.commands.get(name) if isinstance(name, str) else None
@@ -67,7 +70,9 @@ def job_arguments(group: click.Group, job: dict, where: str, out_dir: Path,
     if has_input:
         if "input" not in job:
             raise RecipeError(f"{where}: command {name!r} needs an 'input'")
-        args.append(str(job["input"]))
+        given = str(job["input"])
+        beside = base / given
+        args.append(str(beside) if Path(given).suffix and beside.exists() else given)
     values = {k.replace("-", "_"): v for k, v in job.items() if k not in RESERVED}
     for key, value in overrides.items():
         if key in options:
@@ -86,7 +91,7 @@ def job_arguments(group: click.Group, job: dict, where: str, out_dir: Path,
                 args += [flag, str(item)]
         else:
             args += [flag, str(value)]
-    if "output" in job:
+    if "output" in job and "o" in {o.lstrip("-") for p in command.params for o in p.opts}:
         args += ["-o", str(out_dir / str(job["output"]))]
     return args
 
@@ -117,15 +122,21 @@ def build_command(ctx: click.Context, recipe: Path, output_dir: Path, overrides:
         parsed[key.strip().replace("-", "_")] = value.strip()
     group = ctx.parent.command
     jobs = load_recipe(recipe)
-    commands = [job_arguments(group, job, f"{recipe} job {n + 1}", output_dir, parsed)
-                for n, job in enumerate(jobs)]
+    commands = [job_arguments(group, job, f"{recipe} job {n + 1}", output_dir, parsed,
+                              recipe.parent) for n, job in enumerate(jobs)]
     if dry_run:
         for args in commands:
             click.echo("weave-cut " + " ".join(args))
         return
     output_dir.mkdir(parents=True, exist_ok=True)
-    for n, args in enumerate(commands, start=1):
+    for n, (job, args) in enumerate(zip(jobs, commands), start=1):
         say(f"[{n}/{len(commands)}] weave-cut {' '.join(args)}")
         sub = group.make_context("weave-cut", list(args), parent=ctx.parent)
-        with sub:
+        if "-o" in args or "output" not in job:
+            with sub:
+                group.invoke(sub)
+            continue
+        printed = io.StringIO()  # a command that prints (stats --json): its output is the file
+        with sub, contextlib.redirect_stdout(printed):
             group.invoke(sub)
+        write_atomic(output_dir / str(job["output"]), printed.getvalue().encode("utf-8"))

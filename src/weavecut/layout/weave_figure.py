@@ -124,9 +124,9 @@ def weave_drawing(weaves: list[Weave], colours: list[str], size: float, margin: 
     colour_of = np.array(colours + ["#ffffff"], dtype=object)
     layers = []
     if ribbons:
-        band = 0.35 * float(np.median(np.hypot(*np.diff(
+        band = 0.3 * float(np.median(np.hypot(*np.diff(
             centres[weave.strand_visits], axis=0).T))) * fit.scale
-        lc, lo, ls = crossing_lines(weave, centres, unders, gap=0.35)
+        lc, lo, ls = crossing_lines(weave, centres, unders, gap=0.2)
         layers.append(Layer("faces", "guide", (mesh_polygons(mesh, fit, Style("#dddddd", lw)),)))
         layers.append(Layer("ribbons", "paint", _by_colour(fit(lc), ls, colour_of, band, lw)))
     else:
