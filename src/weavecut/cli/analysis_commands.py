@@ -13,7 +13,7 @@ from ..analysis import convexity as cv
 from ..analysis import fractal as fr
 from ..analysis import levels as lv
 from ..fileio import write_atomic
-from ..layout import figures
+from ..layout import figures, gallery
 from ..subdivision import snub, subdivide
 from ..subdivision.hierarchy import check_fits
 from .common import (
@@ -281,16 +281,16 @@ def figure_command(name, list_all, output) -> None:
     if list_all or name is None:
         if name is None and not list_all:
             raise click.UsageError("give a figure NAME, or --list")
-        width = max(len(n) for n in figures.FIGURES)
-        for key, (description, _) in figures.FIGURES.items():
+        width = max(len(n) for n in gallery.FIGURES)
+        for key, (description, _) in gallery.FIGURES.items():
             click.echo(f"{key:{width}}  {description}")
         return
-    if name not in figures.FIGURES:
+    if name not in gallery.FIGURES:
         raise click.BadParameter(f"unknown figure {name!r}; see weave-cut figure --list",
                                  param_hint="'NAME'")
     if output is None:
         raise click.UsageError("give an output file with -o")
-    result = figures.FIGURES[name][1]()
+    result = gallery.FIGURES[name][1]()
     if isinstance(result, bytes):
         _suffix_check(output, ("png",))
         write_atomic(output, result)

@@ -191,8 +191,8 @@ class Fit:
     def into(cls, bounds, width: float, height: float, margin: float) -> Fit:
         """Fit ``bounds`` (x0, y0, x1, y1) centred into a width x height sheet with a margin."""
         x0, y0, x1, y1 = bounds
-        span = max(x1 - x0, y1 - y0, 1e-12)
-        scale = min(width - 2 * margin, height - 2 * margin) / span
+        scale = min((width - 2 * margin) / max(x1 - x0, 1e-12),
+                    (height - 2 * margin) / max(y1 - y0, 1e-12))
         ox = (width - (x1 - x0) * scale) / 2 - x0 * scale
         oy = (height - (y1 - y0) * scale) / 2 - y0 * scale
         return cls(float(scale), (float(ox), float(oy)))

@@ -102,26 +102,30 @@ def crossing_lines(weave: Weave, over_points: NDArray, under_points: NDArray,
 
 
 def weave_drawing(weaves: list[Weave], colours: list[str], size: float, margin: float = 10.0,
-                  outline: Weave | None = None, middle_edges: bool = False,
-                  crossings: bool = False, ribbons: bool = False,
-                  under_points: NDArray | None = None,
-                  title: str = "weave-cut weave") -> Drawing:
-    """One sheet with the last weave's tiles coloured by the strand on top (``colours`` per
-    strand); ``ribbons`` draws the strands as ribbons with gaps where they pass under instead;
-    ``crossings`` draws thin centre-lines over the tiles; ``outline`` a coarser weave's tiles;
-    ``middle_edges`` the Z middle edges (snub weaves)."""
-    weave = weaves[-1]
-    mesh = weave.mesh
-    v = mesh.vertices
+                  title: str = "weave-cut weave", **options) -> Drawing:
+    """One sheet, ``size`` mm on its longer side plus margins, with ``weave_layers``."""
+    v = weaves[-1].mesh.vertices
     x0, y0 = v.min(axis=0)
     x1, y1 = v.max(axis=0)
     scale = size / max(x1 - x0, y1 - y0)
     width, height = (x1 - x0) * scale + 2 * margin, (y1 - y0) * scale + 2 * margin
     fit = Fit.into((x0, y0, x1, y1), width, height, margin)
+    layers = weave_layers(weaves[-1], colours, fit, **options)
+    return Drawing((Sheet(width, height, tuple(layers)),), title)
+
+
+def weave_layers(weave: Weave, colours: list[str], fit: Fit, outline: Weave | None = None,
+                 middle_edges: bool = False, crossings: bool = False, ribbons: bool = False,
+                 under_points: NDArray | None = None) -> list[Layer]:
+    """The weave's tiles coloured by the strand on top (``colours`` per strand, "" for white);
+    ``ribbons`` draws the strands as ribbons with gaps where they pass under instead;
+    ``crossings`` thin centre-lines over the tiles; ``outline`` a coarser weave's tiles;
+    ``middle_edges`` the Z middle edges (snub weaves)."""
+    mesh = weave.mesh
     lw = line_width(mesh, fit)
     centres = tile_centres(weave)
     unders = centres if under_points is None else under_points
-    colour_of = np.array(colours + ["#ffffff"], dtype=object)
+    colour_of = np.array([c or "#ffffff" for c in colours] + ["#ffffff"], dtype=object)
     layers = []
     if ribbons:
         band = 0.3 * float(np.median(np.hypot(*np.diff(
@@ -147,7 +151,7 @@ def weave_drawing(weaves: list[Weave], colours: list[str], size: float, margin: 
         lc, lo, ls = crossing_lines(weave, centres, unders)
         layers.append(Layer("crossings", "guide", _by_colour(fit(lc), ls, colour_of,
                                                              1.5 * lw, lw, darken=True)))
-    return Drawing((Sheet(width, height, tuple(layers)),), title)
+    return layers
 
 
 def _by_colour(coords, strand, colour_of, width: float, casing: float, darken: bool = False):

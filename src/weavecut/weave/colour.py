@@ -76,11 +76,12 @@ def greedy_classes(n: int, pairs: np.ndarray, k: int) -> np.ndarray:
     return out
 
 
-def sibling_rank(parent_strand: np.ndarray) -> np.ndarray:
-    """(S,) rank of every strand among the children of its parent (orphans: 0)."""
+def sibling_rank(parent_strand: np.ndarray, lengths: np.ndarray) -> np.ndarray:
+    """(S,) rank of every strand among the children of its parent, longest first (orphans: 0),
+    so that the two long children of a strand get its family's first two shades."""
     n = len(parent_strand)
     key = np.where(parent_strand >= 0, parent_strand, -1 - np.arange(n))
-    order = np.lexsort((np.arange(n), key))
+    order = np.lexsort((np.arange(n), -np.asarray(lengths), key))
     k = key[order]
     first = np.r_[True, k[1:] != k[:-1]]
     start = np.maximum.accumulate(np.where(first, np.arange(n), 0))
@@ -112,7 +113,8 @@ def strand_colours(weaves: list[Weave], pal: Palette) -> list[str]:
     colours = [pal.families[f][0] for f in family.tolist()]
     for depth, weave in enumerate(weaves[1:], start=1):
         ps = weave.parent_strand
-        rank = sibling_rank(ps).tolist()
+        lengths = np.bincount(weave.visit_strand[weave.visit_over], minlength=weave.n_strands)
+        rank = sibling_rank(ps, lengths).tolist()
         new_family, new_colours = [], []
         for s, p in enumerate(ps.tolist()):  # strands, not mesh elements
             f = int(family[p]) if p >= 0 else s % len(pal.families)
