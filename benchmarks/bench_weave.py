@@ -14,7 +14,6 @@ from dataclasses import replace
 from pathlib import Path
 
 from weavecut import inputs
-from weavecut.memory import keep_freed_memory
 from weavecut.subdivision import subdivide
 from weavecut.weave.snub_weave import lineage, snub_weave
 
@@ -35,7 +34,6 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--levels", type=int, default=8)
     args = parser.parse_args()
-    keep_freed_memory()
     from tests.weave.test_snub_weave import zigzag_strands  # the loop-based peer
 
     hierarchy = subdivide(inputs.get("pentagon"), args.levels)

@@ -13,7 +13,6 @@ import sys
 import click
 
 from .. import __version__
-from ..memory import keep_freed_memory
 from .build_command import build_command
 from .common import CONTEXT
 from .analysis_commands import COMMANDS as ANALYSIS_COMMANDS
@@ -52,7 +51,6 @@ def _terminate(signum, frame) -> None:
 
 def main(argv: list[str] | None = None) -> None:
     """Console entry point: run ``cli`` and turn anything unexpected into one line."""
-    keep_freed_memory()
     signal.signal(signal.SIGTERM, _terminate)  # clean up temporary files like Ctrl-C does
     try:
         cli.main(args=argv, prog_name="weave-cut", standalone_mode=True)
