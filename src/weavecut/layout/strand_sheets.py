@@ -15,7 +15,7 @@ import shapely
 
 from ..weave.colour import Palette
 from ..weave.model import Weave
-from .drawing import Drawing, Fit, Layer, Polygons, Sheet, Style, Text, polygons_from_shapely
+from .drawing import Drawing, Fit, Layer, Sheet, Style, Text, polygons_from_shapely
 from .pages import (
     GAP,
     PageArea,
@@ -214,4 +214,16 @@ def assembly_sheet(weave: Weave, book: StrandBook, tile_size: float, turn: float
     return Sheet(area.width, area.height, tuple(layers), "page 1: assembly")
 
 
-__all__ = ["Polygons", "StrandBook", "assembly_sheet", "strand_book"]
+
+# The paper's two models (section 5.2): levels, how the assembly sheet is turned (radians),
+# palette. Other inputs get DEFAULT.
+PRESETS = {
+    "square-grid": {"levels": 2, "turn": np.pi / 4, "palette": "maritime-12"},
+    "pentagon-flower": {"levels": 3, "turn": 0.0, "palette": "maritime-12"},
+}
+DEFAULT = {"levels": 2, "turn": 0.0, "palette": "maritime-12"}
+
+
+def preset_for(input_name: str) -> dict:
+    """Defaults for an input spec (``name`` or ``name:param``)."""
+    return dict(PRESETS.get(input_name.partition(":")[0], DEFAULT))

@@ -1,0 +1,184 @@
+"""Paper strands: modules from symmetry, strips, pages (issue 4)."""
+
+from __future__ import annotations
+
+import re
+from functools import lru_cache
+
+import numpy as np
+import pytest
+import shapely
+from click.testing import CliRunner
+
+from weavecut import export, inputs
+from weavecut.layout.drawing import Polylines
+from weavecut.layout.pages import GAP, occupied
+from weavecut.layout.strand_sheets import strand_book
+from weavecut.layout.strands import build_strips, copy_colours, plan_modules
+from weavecut.layout.symmetry import rotate, rotation_group, strand_orbits, tile_centres
+from weavecut.mesh import Mesh
+from weavecut.subdivision import subdivide
+from weavecut.weave.colour import palette
+from weavecut.weave.snub_weave import snub_weaves
+
+PRESETS = {"square-grid": (2, 4), "pentagon-flower": (3, 5)}
+
+
+@lru_cache(maxsize=None)
+def weaves(spec: str, levels: int):
+    return tuple(snub_weaves(subdivide(inputs.get(spec), levels)))
+
+
+@lru_cache(maxsize=None)
+def small_book(page: str = "a4"):
+    from weavecut.units import page_size
+    return strand_book(list(weaves("square-grid:2x2", 2)), palette("maritime-12"),
+                       page_size(page), tile_size=20.0)
+
+
+@pytest.mark.parametrize("spec", PRESETS)
+def test_rotation_group_of_the_presets(spec):
+    levels, k = PRESETS[spec]
+    sym = rotation_group(weaves(spec, levels)[-1])
+    assert sym.order == k
+    orbit, size = strand_orbits(sym)
+    assert (size == k).all()  # no strand is fixed by a rotation
+
+
+def test_asymmetric_mesh_has_trivial_group():
+    mesh = inputs.get("square-grid:2x2")
+    v = mesh.vertices.copy()
+    v[np.argmin(np.hypot(*v.T))] += (0.12, 0.05)  # move the centre vertex off centre
+    w = snub_weaves(subdivide(Mesh(v, mesh.face_offsets, mesh.face_indices), 2))[-1]
+    sym = rotation_group(w)
+    assert sym.order == 1
+    plan = plan_modules(w)
+    assert plan.k == 1 and plan.copies.shape[1] == w.n_strands and len(plan.extras) == 0
+
+
+def test_strands_fixed_by_a_rotation_are_extras():
+    w = weaves("square-grid:3x2", 2)[-1]
+    plan = plan_modules(w)
+    assert plan.k == 2 and len(plan.extras) > 0
+    perm = plan.symmetry.strand_perm
+    assert (perm[plan.extras] == plan.extras).all()
+
+
+@pytest.mark.parametrize("spec", [*PRESETS, "square-grid:3x2"])
+def test_module_copies_cover_every_strand_once_and_are_rotations(spec):
+    w = weaves(spec, PRESETS.get(spec, (2,))[0])[-1]
+    plan = plan_modules(w)
+    every = np.concatenate([plan.copies.ravel(), plan.extras])
+    assert np.array_equal(np.sort(every), np.arange(w.n_strands))
+    # copy j is copy 0 turned by j * 2 pi / k: compare the strands' own tiles geometrically
+    centres = tile_centres(w)
+    sym = plan.symmetry
+    for j in range(plan.k):
+        for a, b in zip(plan.copies[0].tolist(), plan.copies[j].tolist()):
+            ta, oa = w.strand(a)
+            tb, ob = w.strand(b)
+            pa = rotate(centres[ta[oa]], j * sym.angle, sym.centre)
+            pb = centres[tb[ob]]
+            assert len(pa) == len(pb)
+            d = np.hypot(*(pa[:, None] - pb[None]).transpose(2, 0, 1)).min(axis=1)
+            assert d.max() < 1e-6
+
+
+def test_module_strands_head_the_same_way():
+    w = weaves("square-grid", 2)[-1]
+    heading = -np.pi / 2 - np.pi / 4
+    plan = plan_modules(w, heading)
+    centres = tile_centres(w)
+    for s in plan.copies[0].tolist():
+        t, _ = w.strand(s)
+        t = t[::-1] if plan.reversed[s] else t
+        d = centres[t[-1]] - centres[t[0]]
+        assert np.cos(np.arctan2(d[1], d[0]) - heading) > np.cos(np.pi / 4)
+
+
+@pytest.mark.parametrize("spec", PRESETS)
+def test_strip_is_one_polygon_holding_all_its_tiles(spec):
+    w = weaves(spec, PRESETS[spec][0])[-1]
+    plan = plan_modules(w)
+    strips = build_strips(w, plan, copy_colours(plan, palette("maritime-4")), 40.0,
+                          np.arange(w.n_strands))
+    for strip in strips:
+        assert strip.outline.geom_type == "Polygon" and not strip.outline.interiors
+        assert len(strip.tiles) == np.diff(w.strand_offsets)[strip.strand]
+        outside = shapely.area(shapely.difference(strip.tiles, shapely.buffer(strip.outline, 1e-6)))
+        assert outside.max() < 1e-6
+        # long axis along x, starting at 0
+        x0, y0, x1, y1 = strip.outline.bounds
+        assert abs(x0) < 1e-9 and abs(y0) < 1e-9 and x1 - x0 >= y1 - y0 - 1e-9
+
+
+@pytest.mark.parametrize("page, size_mm", [("a4", (210.0, 297.0)), ("letter", (215.9, 279.4))])
+def test_pdf_page_sizes(tmp_path, page, size_mm):
+    out = tmp_path / "s.pdf"
+    export.write(small_book(page).drawing, out)
+    boxes = re.findall(rb"/MediaBox\s*\[\s*([\d.]+)\s+([\d.]+)\s+([\d.]+)\s+([\d.]+)\s*\]",
+                       out.read_bytes())
+    assert len(boxes) == len(small_book(page).drawing.sheets) >= 2
+    for box in boxes:
+        x0, y0, x1, y1 = (float(b) * 25.4 / 72 for b in box)
+        assert (x0, y0) == (0.0, 0.0)
+        assert abs(x1 - size_mm[0]) < 1e-3 and abs(y1 - size_mm[1]) < 1e-3
+
+
+@pytest.mark.parametrize("book", ["a4", "letter", "split"])
+def test_strips_do_not_overlap_and_stay_in_the_printable_area(book):
+    if book == "split":  # a small page: long strips are split with a glue overlap
+        b = strand_book(list(weaves("square-grid:2x2", 2)), palette("maritime-12"),
+                        (120.0, 150.0), tile_size=30.0, margin=8.0)
+        labels = [t.text for s in b.drawing.sheets for layer in s.layers
+                  if layer.name == "labels" for t in layer.shapes]
+        assert any(re.fullmatch(r"[A-Z]\d+ 2/\d", t) for t in labels)
+    else:
+        b = small_book(book)
+    x0, y0, x1, y1 = b.area.box
+    inside = shapely.box(x0 - 1e-6, y0 - 1e-6, x1 + 1e-6, y1 + 1e-6)
+    for sheet in b.drawing.sheets[1:]:
+        outlines = occupied(sheet.layers)
+        assert outlines
+        assert all(inside.contains(o) for o in outlines)
+        for i in range(len(outlines)):
+            for j in range(i + 1, len(outlines)):
+                assert outlines[i].distance(outlines[j]) > GAP - 0.5
+
+
+def test_scale_bar_is_100_mm_on_every_page(tmp_path):
+    book = small_book()
+    for sheet in book.drawing.sheets:
+        page = next(layer for layer in sheet.layers if layer.name == "page")
+        bar = next(s for s in page.shapes if isinstance(s, Polylines) and len(s.coords) == 2)
+        assert np.ptp(bar.coords[:, 0]) == pytest.approx(100.0, abs=1e-9)
+        assert np.ptp(bar.coords[:, 1]) == 0
+    out = tmp_path / "s.svg"
+    export.write(book.drawing, out)
+    text = out.read_text()
+    assert 'width="' in text and "mm" in text
+    bars = re.findall(r'<path d="M([\d.]+),([\d.]+) ([\d.]+),([\d.]+)" fill="none" stroke="#000000" '
+                      r'stroke-linejoin="round" stroke-width="0.3"', text)
+    assert len(bars) == len(book.drawing.sheets)
+    for xa, ya, xb, yb in bars:
+        assert float(xb) - float(xa) == pytest.approx(100.0, abs=1e-3) and ya == yb
+
+
+def test_every_strip_is_on_a_page_and_on_the_assembly_sheet():
+    book = small_book()
+    plan = book.plan
+    assert set(book.strip_pages) == set(plan.labels)
+    ids = {t.text for layer in book.drawing.sheets[0].layers if layer.name == "ids"
+           for t in layer.shapes}
+    assert set(plan.labels) <= ids
+
+
+def test_cli_writes_a_pdf(tmp_path):
+    from weavecut.cli import cli
+    out = tmp_path / "m.pdf"
+    result = CliRunner().invoke(cli, ["strands", "square-grid:2x2", "--levels", "2",
+                                      "--page", "letter", "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    assert out.read_bytes().startswith(b"%PDF")
+    bad = CliRunner().invoke(cli, ["strands", "square-grid:2x2", "-o", str(tmp_path / "m.dxf")])
+    assert bad.exit_code == 2
