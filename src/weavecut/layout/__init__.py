@@ -1,0 +1,1 @@
+"""Layouts: everything that turns meshes and weaves into Drawings (figures, paper strands, puzzle)."""
