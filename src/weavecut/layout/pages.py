@@ -118,7 +118,7 @@ def _moved(strip: Strip, dx: float, dy: float) -> Strip:
 
 
 def pack(outlines, long: float, short: float, gap: float = GAP, step: float = 1.0
-         ) -> list[list[tuple[int, float, float]]]:
+         ) -> list[list[tuple[int, bool, float, float]]]:
     """Bottom-left packing of strip outlines (frame: x along the strip) into long x short bins.
 
     Pieces go longest first. Each takes, on the first bin with room, the lowest v (then the
@@ -126,7 +126,10 @@ def pack(outlines, long: float, short: float, gap: float = GAP, step: float = 1.
     and just past the end of every placed piece, v in ``step`` mm steps. So curved strips nest
     into each other's bays instead of each taking its bounding box.
 
-    Returns per bin a list of (piece index, u, v): the offset added to the piece's frame.
+    Pieces may be turned by 180 degrees (never mirrored) where that nests better.
+
+    Returns per bin a list of (piece index, turned, u, v): the piece's bounding box, turned
+    about its centre if ``turned``, goes with its lower-left corner to (u, v).
     """
     outlines = list(outlines)
     bounds = shapely.bounds(np.asarray(outlines, dtype=object)).reshape(-1, 4)
@@ -137,11 +140,12 @@ def pack(outlines, long: float, short: float, gap: float = GAP, step: float = 1.
         raise ValueError(f"strip piece {i} ({sizes[i, 0]:.1f} x {sizes[i, 1]:.1f} mm) does not "
                          f"fit a {long:.1f} x {short:.1f} mm printable area")
     order = np.lexsort((np.arange(len(sizes)), -sizes[:, 1], -sizes[:, 0]))
-    bins: list[list[tuple[int, float, float]]] = []
+    bins: list[list[tuple[int, bool, float, float]]] = []
     placed: list[list] = []  # per bin, placed outlines (bin frame)
     free: list[float] = []
     for i in order.tolist():  # strips, not mesh elements
         shape = shapely.transform(outlines[i], lambda xy: xy - bounds[i, :2])
+        turned = shapely.transform(shape, lambda xy: sizes[i] - xy)  # the same, turned 180
         area = shape.area
         for b in range(len(bins) + 1):
             if b == len(bins):
@@ -150,11 +154,13 @@ def pack(outlines, long: float, short: float, gap: float = GAP, step: float = 1.
                 free.append(long * short)
             if free[b] < area:
                 continue
-            spot = _lowest_spot(shape, sizes[i], placed[b], long, short, gap, step)
-            if spot is not None:
-                u, v = spot
-                bins[b].append((i, u - bounds[i, 0], v - bounds[i, 1]))
-                placed[b].append(shapely.transform(shape, lambda xy: xy + (u, v)))
+            spots = [(_lowest_spot(g, sizes[i], placed[b], long, short, gap, step), flip, g)
+                     for flip, g in enumerate((shape, turned))]
+            spots = [sp for sp in spots if sp[0] is not None]
+            if spots:
+                (u, v), flip, g = min(spots, key=lambda sp: (sp[0][1], sp[0][0], sp[1]))
+                bins[b].append((i, bool(flip), u, v))
+                placed[b].append(shapely.transform(g, lambda xy: xy + (u, v)))
                 free[b] -= area
                 break
         else:  # pragma: no cover - a fresh bin always has room (checked above)
@@ -194,20 +200,30 @@ def _lowest_spot(shape, size, placed, long: float, short: float, gap: float, ste
     return best
 
 
-def placement(area: PageArea, du: float, dv: float):
-    """(transform, angle) taking a piece's frame, offset by (du, dv) in the packing frame,
-    onto the page: turned by +90 degrees on a portrait area (columns from the right)."""
+def placement(area: PageArea, bounds, turned: bool, u: float, v: float):
+    """(transform, angle) taking a piece (frame ``bounds``), turned by 180 degrees about its
+    box centre if ``turned``, to packing position (u, v) and onto the page: turned by a
+    further +90 degrees on a portrait area (columns from the right)."""
     x0, y0, x1, y1 = area.box
+    bx0, by0, bx1, by1 = bounds
+
+    def frame(xy):
+        xy = np.asarray(xy, dtype=float).reshape(-1, 2)
+        if turned:
+            return np.column_stack([bx1 - xy[:, 0] + u, by1 - xy[:, 1] + v])
+        return np.column_stack([xy[:, 0] - bx0 + u, xy[:, 1] - by0 + v])
+
+    spin = 180.0 if turned else 0.0
     if area.portrait:
         def f(xy):
-            xy = np.asarray(xy, dtype=float).reshape(-1, 2)
-            return np.column_stack([x1 - (xy[:, 1] + dv), y0 + xy[:, 0] + du])
-        return f, 90.0
+            p = frame(xy)
+            return np.column_stack([x1 - p[:, 1], y0 + p[:, 0]])
+        return f, 90.0 + spin
 
     def g(xy):
-        xy = np.asarray(xy, dtype=float).reshape(-1, 2)
-        return np.column_stack([x0 + xy[:, 0] + du, y0 + xy[:, 1] + dv])
-    return g, 0.0
+        p = frame(xy)
+        return np.column_stack([x0 + p[:, 0], y0 + p[:, 1]])
+    return g, spin
 
 
 def placed_strip(strip: Strip, f, angle: float) -> Strip:
@@ -281,9 +297,10 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
                 sample: str = "#3e9fb0", glue: bool = False) -> list[Layer]:
     """Title, page number, a 100 mm scale bar and a legend for one page."""
     w, h, m = area.width, area.height, area.margin
-    texts = [Text(m, h - m - 4.5, title, 4.0),
+    texts = [Text(m, h - m - 4.5, title, min(4.0, (w - 2 * m - 28) / (0.7 * max(len(title), 1)))),
              Text(w - m, h - m - 4.5, f"page {number} / {total}", 3.2, "end"),
-             Text(m, h - m - 10.5, subtitle, 2.4)]
+             *(Text(m, h - m - 9.8 - 3.4 * i, line, 2.2)
+               for i, line in enumerate(_wrap(subtitle, (w - 2 * m) / 1.55, 2)))]
     bar, marks, caption = scale_bar(m, m + 1.5)
     shapes: list = [bar, marks, caption]
     # legend: to the right of the bar on wide pages, above it otherwise
@@ -306,6 +323,21 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
     if strokes:
         shapes.append(polygons_from_shapely(strokes, CUT))
     return [Layer("page", "label", tuple(shapes) + tuple(texts))]
+
+
+def _wrap(text: str, chars: float, lines: int) -> list[str]:
+    """``text`` broken at spaces into at most ``lines`` lines of about ``chars`` characters."""
+    out, line = [], ""
+    for word in text.split(" "):
+        if line and len(line) + 1 + len(word) > chars:
+            out.append(line)
+            line = word
+        else:
+            line = f"{line} {word}" if line else word
+    out.append(line)
+    if len(out) > lines:
+        out = out[:lines - 1] + [" ".join(out[lines - 1:])]
+    return out
 
 
 def occupied(layers: list[Layer]) -> list[shapely.Geometry]:

@@ -112,22 +112,22 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
 
     sheets, copy_pages, extra_pages = [], [[] for _ in range(k)], []
     strip_pages: dict[str, list[int]] = {}
-    sample = colours[int(plan.copies[0, 0])] if plan.copies.size else pal.flat[0]
     for n, (kind, j, strips, b) in enumerate(jobs, start=2):
         placed = []
-        for i, u, v in b:
+        for i, turned, u, v in b:
             p = strips[i]
-            f, angle = placement(area, u, v)
+            f, angle = placement(area, p.outline.bounds, turned, u, v)
             placed.append(placed_strip(p, f, angle))
             strip_pages.setdefault(p.label.split(" ")[0], []).append(n)
-        names = sorted({p.label.split(" ")[0] for p in placed}, key=_label_key)
+        names = _runs(sorted({p.label.split(" ")[0] for p in placed}, key=_label_key))
         if kind == "copy":
             copy_pages[j].append(n)
             sub = (f"Copy {copy_letter(j)} of {k}: the module turned by {j * 360 / k:g} deg "
-                   f"(all copies share this layout). Strips: {', '.join(names)}")
+                   f"(all copies share this layout). Strips: {names}")
         else:
             extra_pages.append(n)
-            sub = f"Printed once (fixed by a rotation). Strips: {', '.join(names)}"
+            sub = f"Printed once (fixed by a rotation). Strips: {names}"
+        sample = colours[placed[0].strand]
         layers = strip_layers(placed) + page_layers(
             area, title, sub, n, total, sample, glue=any(p.glue is not None for p in placed))
         sheets.append(Sheet(area.width, area.height, tuple(layers),
@@ -144,6 +144,21 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
 def _label_key(label: str):
     head = label.rstrip("0123456789")
     return (head, int(label[len(head):] or 0))
+
+
+def _runs(labels: list[str]) -> str:
+    """"A1-A4, A6, X1" from sorted labels."""
+    out, start, prev = [], None, None
+    for lab in labels + [None]:
+        key = None if lab is None else _label_key(lab)
+        if prev is not None and key is not None and key[0] == prev[0] and key[1] == prev[1] + 1:
+            prev = key
+            continue
+        if start is not None:
+            out.append(f"{start[0]}{start[1]}" if start == prev
+                       else f"{start[0]}{start[1]}-{prev[0]}{prev[1]}")
+        start = prev = key
+    return ", ".join(out)
 
 
 def _ranges(pages) -> str:
