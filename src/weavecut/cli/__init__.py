@@ -18,6 +18,7 @@ from .common import CONTEXT
 from .analysis_commands import COMMANDS as ANALYSIS_COMMANDS
 from .mesh_commands import inputs_command, stats_command, subdivide_command
 from .puzzle_command import puzzle_command
+from .strands_command import strands_command
 from .weave_command import weave_command
 
 
@@ -41,7 +42,7 @@ def cli(ctx: click.Context, quiet: bool) -> None:
 
 
 for command in (inputs_command, subdivide_command, stats_command, weave_command,
-                puzzle_command, *ANALYSIS_COMMANDS, build_command):
+                puzzle_command, strands_command, *ANALYSIS_COMMANDS, build_command):
     cli.add_command(command)
 
 
