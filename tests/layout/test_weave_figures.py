@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import numpy as np
 import pytest
 
 from weavecut import export
 from weavecut.layout import gallery, weave_figures
-from weavecut.layout.drawing import Drawing, Polygons
+from weavecut.layout.drawing import Drawing
 
 
 @pytest.mark.parametrize("name", sorted(weave_figures.FIGURES))

@@ -44,16 +44,21 @@ def test_over_under_alternates_on_a_grid():
 
 
 def test_entering_with_c1_on_the_left_is_on_top():
-    m = quad_grid(1, 1)                      # corners 0, 1, 3, 2 counter-clockwise
-    c1 = np.array([True, False, False, True])
+    """Two unit quads side by side, c1 = (0,0), (2,0), (1,1). Walking right, the horizontal
+    strand enters quad 0 with (0,1) (c2) on its left: below; quad 1 with (1,1) (c1): on top."""
+    m = quad_grid(2, 1)  # vertex (i, j) has id 3 j + i; quad 0 is the left one
+    c1 = np.array([True, False, True, False, True, False])
     w = quad_weave(m, c1)
-    # the strand through edges 0-1 and 3-2 enters with vertex 0 (c1) on its left
-    for s in range(2):
-        tiles, over = w.strand(s)
-        a, b = w.strand_offsets[s], w.strand_offsets[s + 1]
-        assert len(tiles) == 1
-    vertical = [s for s in range(2) if w.visit_over[w.strand_offsets[s]]]
-    assert len(vertical) == 1
+    long = [s for s in range(w.n_strands) if len(w.strand(s)[0]) == 2]
+    assert len(long) == 1
+    tiles, over = w.strand(long[0])
+    by_tile = dict(zip(tiles.tolist(), over.tolist()))
+    assert by_tile == {0: False, 1: True}
+    # each vertical strand is on top exactly where the horizontal one is below
+    for s in range(w.n_strands):
+        if s != long[0]:
+            t, o = w.strand(s)
+            assert len(t) == 1 and o[0] == (not by_tile[int(t[0])])
 
 
 def test_odd_cycles_are_refused():

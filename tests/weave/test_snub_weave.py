@@ -11,7 +11,7 @@ from tests.strategies import any_mesh
 from weavecut import inputs
 from weavecut.errors import MeshError
 from weavecut.mesh import outer_vertices
-from weavecut.subdivision import snub, subdivide
+from weavecut.subdivision import subdivide
 from weavecut.validation import validate
 from weavecut.weave.colour import crossing_pairs, palette, strand_colours, strand_families
 from weavecut.weave.snub_weave import snub_weave, snub_weaves

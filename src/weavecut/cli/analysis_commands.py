@@ -14,39 +14,17 @@ from ..analysis import fractal as fr
 from ..analysis import levels as lv
 from ..fileio import write_atomic
 from ..layout import figures, gallery
-from ..subdivision import snub, subdivide
+from ..subdivision import snub
 from ..subdivision.hierarchy import check_fits
-from .common import (
-    CONTEXT,
-    allow_nonconvex_option,
-    input_argument,
-    load_mesh,
-    provenance,
-    reports_errors,
-)
+from .common import CONTEXT, input_argument, load_mesh, provenance, reports_errors
+from .mesh_commands import level_options, run_scheme
 
 
-def snub_options(f):
-    """--levels and the snub step's options."""
-    options = [
-        click.option("--levels", "-n", type=click.IntRange(0, 40), default=6, show_default=True,
-                     help="Number of refinement steps."),
-        click.option("--no-smooth", is_flag=True, help="Skip operation 4 (smoothing)."),
-        click.option("--chirality", type=click.Choice(snub.CHIRALITIES), default="left",
-                     show_default=True, help="Side the first Z edge turns to."),
-        click.option("--centre", type=click.Choice(snub.CENTRES), default="vertex",
-                     show_default=True, help="Face centre: vertex mean or area centroid."),
-        allow_nonconvex_option,
-    ]
-    for option in reversed(options):
-        f = option(f)
-    return f
+snub_options = level_options(6, with_scheme=False)
 
 
 def _hierarchy(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex):
-    mesh = load_mesh(input_mesh, allow_nonconvex)
-    return subdivide(mesh, levels, "snub", smooth=not no_smooth, chirality=chirality,
-                     centre=centre)
+    return run_scheme(input_mesh, levels, "snub", no_smooth, chirality, centre, allow_nonconvex)
 
 
 def _suffix_check(output: str | None, allowed: tuple[str, ...]) -> None:

@@ -26,13 +26,11 @@ from .common import (
 MESH_SUFFIXES = (".obj", ".json")
 
 
-def scheme_options(f):
-    """--levels, --scheme and the snub options shared by subdivide, stats and weave."""
+def level_options(default_levels: int = 1, with_scheme: bool = True):
+    """Decorator adding --levels, --scheme (optional) and the snub step's options."""
     options = [
-        click.option("--levels", "-n", type=click.IntRange(0, 40), default=1, show_default=True,
-                     help="Number of refinement steps."),
-        click.option("--scheme", type=click.Choice(sorted(SCHEMES)), default="snub",
-                     show_default=True, help="Subdivision scheme."),
+        click.option("--levels", "-n", type=click.IntRange(0, 40), default=default_levels,
+                     show_default=True, help="Number of refinement steps."),
         click.option("--no-smooth", is_flag=True, help="Skip operation 4 (smoothing)."),
         click.option("--chirality", type=click.Choice(snub.CHIRALITIES), default="left",
                      show_default=True, help="Side the first Z edge turns to."),
@@ -40,9 +38,20 @@ def scheme_options(f):
                      show_default=True, help="Face centre: vertex mean or area centroid."),
         allow_nonconvex_option,
     ]
-    for option in reversed(options):
-        f = option(f)
-    return f
+    if with_scheme:
+        options.insert(1, click.option("--scheme", type=click.Choice(sorted(SCHEMES)),
+                                       default="snub", show_default=True,
+                                       help="Subdivision scheme."))
+
+    def decorate(f):
+        for option in reversed(options):
+            f = option(f)
+        return f
+
+    return decorate
+
+
+scheme_options = level_options()
 
 
 def run_scheme(input_mesh: str, levels: int, scheme: str, no_smooth: bool, chirality: str,

@@ -10,7 +10,7 @@ import numpy as np
 from PIL import Image, ImageDraw, ImageFont, PngImagePlugin
 
 from ..errors import ExportError
-from ..layout.drawing import Drawing, Polygons, Polylines, Text
+from ..layout.drawing import Drawing, Polylines, Text
 
 SUFFIX = "png"
 DPI = 150
