@@ -45,28 +45,30 @@ def read_mesh(path: str | Path) -> Mesh:
         raise type(exc)(f"{path}: {exc}") from None
 
 
-def write_mesh(mesh: Mesh, path: str | Path) -> None:
-    """Write ``mesh`` as OBJ or JSON (by suffix), atomically."""
+def write_mesh(mesh: Mesh, path: str | Path, metadata: dict[str, str] | None = None) -> None:
+    """Write ``mesh`` as OBJ or JSON (by suffix), atomically; ``metadata`` (generator,
+    command) goes into OBJ comments or JSON keys that readers ignore."""
     path = Path(path)
     suffix = path.suffix.lower()
     if suffix == ".obj":
-        data = obj_text(mesh)
+        data = obj_text(mesh, metadata)
     elif suffix == ".json":
-        data = json_text(mesh)
+        data = json_text(mesh, metadata)
     else:
         raise MeshFileError(f"{path}: unknown mesh format {path.suffix!r}; use .obj or .json")
     write_atomic(path, data.encode("utf-8"))
 
 
-def obj_text(mesh: Mesh) -> str:
+def obj_text(mesh: Mesh, metadata: dict[str, str] | None = None) -> str:
     lines = ["# weave-cut mesh", f"# {mesh.n_vertices} vertices, {mesh.n_faces} faces"]
+    lines += [f"# {k}: {v}".replace("\n", " ") for k, v in (metadata or {}).items()]
     lines += [f"v {x!r} {y!r} 0" for x, y in mesh.vertices.tolist()]
     lines += ["f " + " ".join(str(i + 1) for i in face) for face in mesh.faces()]
     return "\n".join(lines) + "\n"
 
 
-def json_text(mesh: Mesh) -> str:
-    doc = {"format": JSON_FORMAT, "version": 1,
+def json_text(mesh: Mesh, metadata: dict[str, str] | None = None) -> str:
+    doc = {"format": JSON_FORMAT, "version": 1, **(metadata or {}),
            "vertices": mesh.vertices.tolist(), "faces": mesh.faces()}
     return json.dumps(doc, separators=(",", ":")) + "\n"
 

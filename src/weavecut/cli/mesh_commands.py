@@ -118,7 +118,7 @@ def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
     hierarchy = run_scheme(input_mesh, levels, scheme, no_smooth, chirality, centre,
                            allow_nonconvex)
     if suffix in MESH_SUFFIXES:
-        write_mesh(hierarchy[-1].mesh, output)
+        write_mesh(hierarchy[-1].mesh, output, provenance())
         return
     title = f"{input_mesh}, {scheme} level {levels}"
     drawing = mesh_drawing([lv.mesh for lv in hierarchy], size, title=title)
