@@ -38,12 +38,27 @@ def page_size(value: str) -> tuple[float, float]:
     key = value.strip().lower()
     if key in PAPER_SIZES:
         return PAPER_SIZES[key]
+    if "x" not in key:
+        return _page_preset(key)
     parts = key.split("x")
     if len(parts) != 2:
-        raise ValueError(f"{value!r} is not a page size: use a4, a3, letter or WxH like 200x300mm")
+        raise ValueError(f"{value!r} is not a page size: use a4, a3, letter, a preset or WxH "
+                         "like 200x300mm")
     unit = re.sub(r"^[-+0-9.e]*", "", parts[1])
     w = to_mm(parts[0] if re.search(r"[a-z]$", parts[0]) else parts[0] + unit)
     h = to_mm(parts[1])
     if w <= 0 or h <= 0:
         raise ValueError(f"page size {value!r} must be positive")
     return (w, h)
+
+
+def _page_preset(name: str) -> tuple[float, float]:
+    """A page size preset from templates/pages/NAME.toml."""
+    from . import presets
+
+    try:
+        doc = presets.load("pages", name)
+        return (to_mm(doc["width"]), to_mm(doc["height"]))
+    except (presets.PresetError, KeyError, TypeError) as exc:
+        raise ValueError(f"{name!r} is not a page size: use a4, a3, letter, a preset "
+                         f"({', '.join(presets.names('pages'))}) or WxH like 200x300mm") from exc

@@ -7,6 +7,7 @@ import math
 from pathlib import Path
 
 import click
+import numpy as np
 
 from .. import export
 from ..analysis import convexity as cv
@@ -167,9 +168,10 @@ def _print_fractal(r: dict) -> None:
               help="Zoom window X0,Y0,X1,Y1 in mesh units; only faces near it are refined.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
               help="Output .png file.")
+@click.option("--json", "as_json", is_flag=True, help="Print pixels reached per level as JSON.")
 @reports_errors
 def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex, size,
-                   window, output) -> None:
+                   window, output, as_json) -> None:
     """Colour every pixel by the first refinement step with a vertex in it (Figure colorLevels).
 
     Levels 0-9 get brighter (black, purple, orange, pale yellow), 10-12 turn green; pixels no
@@ -191,6 +193,13 @@ def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonco
                                  centre=centre, chirality=chirality)
     lv.write_png(output, lv.colour(image))
     hit = image != lv.UNSET
+    if as_json:
+        per_level = np.bincount(image[hit].ravel().astype(np.int64), minlength=levels + 1)
+        click.echo(json.dumps({"input": input_mesh, "levels": levels, "output": output,
+                               "width": grid.width, "height": grid.height,
+                               "window": list(grid.window), "pixels_reached": int(hit.sum()),
+                               "pixels_per_level": per_level.tolist()}, indent=2))
+        return
     click.echo(f"{output}: {grid.width} x {grid.height} px over "
                f"{', '.join(f'{v:g}' for v in grid.window)}; {int(hit.sum()):,} pixels reached, "
                f"the last at level {int(image[hit].max()) if hit.any() else '-'}")

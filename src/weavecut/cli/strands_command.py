@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
@@ -37,10 +38,11 @@ FORMATS = ("pdf", "svg")
               show_default=True, help="Side the first Z edge turns to.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
               help="Output: .pdf (one page per sheet) or .svg (a layer per page).")
+@click.option("--json", "as_json", is_flag=True, help="Print the plan (pages, copies) as JSON.")
 @click.pass_context
 @reports_errors
 def strands_command(ctx, input_mesh, levels, page, tile_size, margin, palette_name, turn,
-                    chirality, output) -> None:
+                    chirality, output, as_json) -> None:
     """Printable paper strips for weaving INPUT by hand: an assembly sheet, then one strip
     per strand, grouped into modules by the pattern's rotational symmetry.
 
@@ -66,8 +68,14 @@ def strands_command(ctx, input_mesh, levels, page, tile_size, margin, palette_na
     except ValueError as exc:
         raise click.ClickException(str(exc)) from exc
     export.write(book.drawing.with_metadata(**provenance()), output)
-    if not ctx.meta.get("weavecut.quiet"):
-        plan = book.plan
+    plan = book.plan
+    if as_json:
+        click.echo(json.dumps({"input": input_mesh, "levels": levels, "output": output,
+                               "pages": len(book.drawing.sheets), "rotation_order": plan.k,
+                               "copies": plan.k, "module_strips": int(plan.copies.shape[1]),
+                               "extra_strips": len(plan.extras),
+                               "strands": int(weaves[-1].n_strands)}, indent=2))
+    elif not ctx.find_root().meta.get("weavecut.quiet"):
         click.echo(f"{output}: {len(book.drawing.sheets)} pages; C{plan.k}, {plan.k} copies of "
                    f"a {plan.copies.shape[1]}-strip module"
                    + (f" + {len(plan.extras)} extras" if len(plan.extras) else ""), err=True)
