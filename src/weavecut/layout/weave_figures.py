@@ -16,7 +16,7 @@ from ..weave.colour import palette, strand_colours
 from ..weave.schemes import scheme_weaves
 from ..weave.snub_weave import snub_weaves
 from .drawing import Drawing, Layer, Polylines, Style, mesh_bounds, mesh_polygons
-from .figures import Panel, compose, mesh_panel
+from .panels import Panel, compose, mesh_panel
 from .mesh_figure import line_width
 from .weave_figure import middle_edge_lines, snub_under_points, tile_outline_lines, weave_layers
 
