@@ -345,8 +345,12 @@ def colour_puzzle(puzzle: Puzzle, pal: Palette) -> Colouring:
 
 
 def piece_halves(puzzle: Puzzle) -> NDArray[np.object_]:
-    """(P, 2) the two painted halves of every piece: the pentagons of an octagon (split along
-    the middle edge), or the boundary pentagon twice for an enneagon."""
+    """(P, 2) the two painted halves of every piece, in the order of its tile's faces.
+
+    An octagon is split along the straight line between its two corners that are level-(t-1)
+    vertices: the parent edge its Z-triplet replaced, so the paint shows the coarser weave
+    ("split diagonally, which shows the replaced edge", paper section 6). An enneagon is one
+    half: its pentagon, twice (its hexagon is unpainted)."""
     weave = puzzle.weaves[-1]
     mesh = weave.mesh
     faces = mesh.dense_faces()
@@ -355,4 +359,24 @@ def piece_halves(puzzle: Puzzle) -> NDArray[np.object_]:
     f1 = weave.tile_faces[weave.tile_offsets[tiles + 1] - 1]
     p0 = shapely.polygons(puzzle.to_mm(mesh.vertices[faces[f0]]))
     p1 = shapely.polygons(puzzle.to_mm(mesh.vertices[faces[f1]]))
-    return np.column_stack([p0, p1])
+    octagon = f0 != f1
+    # the two corners of a tile's pentagons that are parent vertices: u (in f0) and w (in f1)
+    n_parent = puzzle.hierarchy[-2].mesh.n_vertices
+    old0 = faces[f0][np.arange(len(f0)), np.argmin(np.where(faces[f0] < n_parent, 0, 1),
+                                                    axis=1)]
+    old1 = faces[f1][np.arange(len(f1)), np.argmin(np.where(faces[f1] < n_parent, 0, 1),
+                                                    axis=1)]
+    u, w = puzzle.to_mm(mesh.vertices[old0]), puzzle.to_mm(mesh.vertices[old1])
+    # a long quad on f0's side of the line u-w, and the piece cut by it
+    d = w - u
+    n = np.column_stack([-d[:, 1], d[:, 0]])
+    c0 = shapely.get_coordinates(shapely.centroid(p0))
+    n *= np.sign(((c0 - u) * n).sum(axis=1))[:, None]
+    far = 10.0 * np.hypot(*d.T)[:, None] / np.maximum(np.hypot(*n.T)[:, None], 1e-12)
+    ext = d * 10.0
+    quad = np.stack([u - ext, w + ext, w + ext + n * far, u - ext + n * far], axis=1)
+    side0 = shapely.polygons(quad)
+    whole = shapely.union(p0, p1)
+    half0 = np.where(octagon, shapely.intersection(whole, side0), p0)
+    half1 = np.where(octagon, shapely.difference(whole, side0), p1)
+    return np.column_stack([half0, half1])
