@@ -13,6 +13,7 @@ from ..layout.puzzle import build_puzzle, colour_puzzle
 from ..layout.tiling import tile
 from ..units import PAPER_SIZES
 from ..weave.colour import palette
+from ..fileio import write_atomic
 from .common import CONTEXT, Length, PageSize, load_mesh, provenance, reports_errors
 
 
@@ -91,5 +92,5 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     info.update(material=mat["name"], kerf_mm=kerf, sheet_mm=list(sheet), laser=las.name,
                 files=sorted(written + ["puzzle-summary.json"]))
     text = json.dumps(info, indent=2)
-    (folder / "puzzle-summary.json").write_text(text + "\n")
+    write_atomic(folder / "puzzle-summary.json", (text + "\n").encode("utf-8"))
     click.echo(text if as_json else pf.summary_text(info))

@@ -1,0 +1,161 @@
+"""The jigsaw puzzle: pieces tile the frame's hole, counts match the weave, cuts are single and
+continuous, kerf grows pieces by perimeter x kerf/2, colours follow the lineage, files load."""
+
+from __future__ import annotations
+
+import json
+from xml.etree import ElementTree
+
+import ezdxf
+import numpy as np
+import pytest
+import shapely
+from click.testing import CliRunner
+
+from weavecut import inputs
+from weavecut.cli import cli
+from weavecut.layout import puzzle_files as pf
+from weavecut.layout.puzzle import ENNEAGON, OCTAGON, build_puzzle, colour_puzzle, piece_halves
+from weavecut.weave.colour import palette
+
+
+@pytest.fixture(scope="module")
+def puzzle():
+    return build_puzzle(inputs.get("pentagon"), levels=3, size=300.0)
+
+
+def test_pieces_tile_the_hole_without_overlaps(puzzle):
+    pieces = puzzle.pieces
+    assert all(p.is_valid and len(p.interiors) == 0 for p in pieces)  # simple polygons
+    total = shapely.area(pieces).sum()
+    assert total == pytest.approx(puzzle.hole.area, rel=1e-9)
+    tree = shapely.STRtree(pieces)
+    a, b = tree.query(pieces, predicate="intersects")
+    keep = a < b
+    overlap = shapely.area(shapely.intersection(pieces[a[keep]], pieces[b[keep]]))
+    assert overlap.max() < 1e-6
+    # the hole holds the whole level-t mesh, and the frame is outer minus hole
+    level = puzzle.hierarchy[-1].mesh
+    faces = shapely.polygons(puzzle.to_mm(level.vertices[level.dense_faces()]))
+    assert shapely.area(shapely.difference(shapely.union_all(faces), puzzle.hole)) < 1e-6
+    assert puzzle.frame.area + puzzle.hole.area == pytest.approx(puzzle.outer.area, rel=1e-9)
+
+
+def test_piece_counts_match_the_weave(puzzle):
+    parent = puzzle.hierarchy[-2].mesh.topology
+    n_inner = int((~parent.boundary_edges).sum())
+    assert int((puzzle.kinds == OCTAGON).sum()) == n_inner
+    assert int((puzzle.kinds == ENNEAGON).sum()) == int(parent.boundary_edges.sum())
+    assert sorted(puzzle.piece_tiles.tolist()) == list(range(puzzle.weaves[-1].n_tiles))
+    enneagons = puzzle.pieces[puzzle.kinds == ENNEAGON]
+    assert set(shapely.get_num_coordinates(enneagons) - 1) == {9}
+
+
+def _segments(paths):
+    segs = []
+    for p in paths:
+        p = np.round(np.asarray(p), 6)
+        for a, b in zip(p[:-1], p[1:]):
+            segs.append(tuple(sorted([tuple(a), tuple(b)])))
+    return segs
+
+
+def test_shared_cut_cuts_every_edge_once_and_totals_the_union(puzzle):
+    result = pf.shared_cut(puzzle, pf.laser())
+    sheet = result.drawing.sheets[0]
+    lines = [ln for layer in sheet.layers if layer.role == "cut" for shape in layer.shapes
+             for ln in shape.lines()]
+    segs = _segments(lines)
+    assert len(segs) == len(set(segs))  # no segment cut twice
+    width, height, shift = pf.placement(puzzle)
+    outlines = shapely.union_all(np.concatenate([
+        shapely.boundary(shapely.transform(puzzle.pieces, lambda xy: xy + shift)),
+        [shapely.transform(puzzle.outer.exterior, lambda xy: xy + shift)]]))
+    assert result.cut_length == pytest.approx(outlines.length, rel=1e-6)
+    # joined into long paths: far fewer paths than piece edges
+    assert result.n_paths < len(segs) / 5
+    # inner cuts come before the frame's outer outline
+    names = [layer.name for layer in sheet.layers if layer.role == "cut"]
+    assert names == sorted(names) and names[-1].endswith("outer")
+
+
+@pytest.mark.parametrize("kerf", [0.1, 0.3])
+def test_separate_pieces_grow_by_perimeter_times_half_kerf(puzzle, kerf):
+    grown = shapely.buffer(puzzle.pieces, kerf / 2, join_style="mitre")
+    from weavecut.layout.nesting import offset
+    ours = offset(puzzle.pieces, kerf)
+    gain = shapely.area(ours) - shapely.area(puzzle.pieces)
+    first_order = shapely.length(puzzle.pieces) * kerf / 2
+    np.testing.assert_allclose(gain, first_order, rtol=0.05)
+    np.testing.assert_allclose(shapely.area(ours), shapely.area(grown), rtol=1e-9)
+
+
+def test_separate_sheets_do_not_overlap(puzzle):
+    kerf = 0.2
+    result = pf.separate_cut(puzzle, pf.laser(), kerf, (600.0, 450.0))
+    assert result.n_sheets >= 1
+    for parts in pf.nested_parts(result):
+        outlines = np.array([shapely.Polygon(p.exterior) for p in parts], dtype=object)
+        tree = shapely.STRtree(outlines)
+        a, b = tree.query(outlines, predicate="dwithin", distance=kerf * 0.99)
+        pairs = [(i, j) for i, j in zip(a, b) if i < j]
+        # only the frame's hole may contain pieces; no two outlines come closer than a kerf
+        for i, j in pairs:
+            inside = outlines[i].contains(outlines[j]) or outlines[j].contains(outlines[i])
+            assert inside
+        bounds = shapely.total_bounds(outlines)
+        assert bounds[0] >= 0 and bounds[1] >= 0 and bounds[2] <= 600 and bounds[3] <= 450
+
+
+def test_front_halves_split_along_the_parent_edge(puzzle):
+    halves = piece_halves(puzzle)
+    octagons = puzzle.kinds == OCTAGON
+    merged = shapely.union(halves[octagons, 0], halves[octagons, 1])
+    np.testing.assert_allclose(shapely.area(merged), shapely.area(puzzle.pieces[octagons]),
+                               rtol=1e-9)
+    # the shared border of the two halves is one straight segment between parent vertices
+    border = shapely.intersection(shapely.boundary(halves[octagons, 0]),
+                                  shapely.boundary(halves[octagons, 1]))
+    # (the parent's vertices keep their ids; the pieces use their level-t positions)
+    n_parent = puzzle.hierarchy[-2].mesh.n_vertices
+    parent_vertices = puzzle.to_mm(puzzle.hierarchy[-1].mesh.vertices[:n_parent])
+    ends = shapely.get_coordinates(shapely.line_merge(border))
+    tree = shapely.STRtree(shapely.points(parent_vertices))
+    d = tree.query_nearest(shapely.points(ends), return_distance=True)[1]
+    assert d.max() < 1e-6
+
+
+def test_front_and_back_colours_follow_the_lineage(puzzle):
+    colouring = colour_puzzle(puzzle, palette("puzzle"))
+    child, parent = puzzle.weaves[-1], puzzle.weaves[-2]
+    ps = child.parent_strand
+    for s, p in enumerate(ps.tolist()):
+        if p >= 0:  # a back strand takes its parent's front colour or a tint of it
+            same = colouring.back_strands[s] == colouring.front_strands[p]
+            siblings = [c for c in np.flatnonzero(ps == p) if c != s]
+            assert same or any(colouring.back_strands[c] == colouring.front_strands[p]
+                               for c in siblings)
+    # front halves: the colour of the parent tile's top strand
+    assert len(set(colouring.front.ravel())) >= len(set(colouring.front_strands)) // 2
+    assert len(colouring.front_strands) == parent.n_strands
+
+
+def test_cli_writes_a_complete_set_that_loads(tmp_path):
+    out = tmp_path / "puzzle"
+    result = CliRunner().invoke(cli, ["puzzle", "-o", str(out), "--levels", "3", "--size",
+                                      "30cm", "--numbers", "--json", "--sheet", "600x450mm"])
+    assert result.exit_code == 0, result.output
+    info = json.loads(result.output)
+    assert info["pieces"] == sum(info["pieces_by_type"].values())
+    for name in info["files"]:
+        assert (out / name).stat().st_size > 0
+    doc = ezdxf.readfile(out / "puzzle-shared-cut.dxf")
+    assert not doc.audit().has_errors
+    assert doc.header["$INSUNITS"] == 4
+    layers = {layer.dxf.name for layer in doc.layers}
+    assert {"cut-1-inner", "cut-2-hole", "cut-3-outer"} <= layers
+    assert len(doc.modelspace().query("LWPOLYLINE")) > 0
+    root = ElementTree.parse(out / "puzzle-shared-cut.svg").getroot()
+    width = float(root.get("width").removesuffix("mm"))
+    assert width == pytest.approx(info["frame_mm"][0] + 20.0, abs=0.5)
+    assert not list(out.glob(".*part"))
