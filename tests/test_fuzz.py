@@ -124,6 +124,15 @@ def test_random_obj_statements_never_crash(tmp_path_factory, lines):
     ["weave", "pentagon", "--palette", "nope", "-o", "{d}/x.svg"],
     ["weave", "pentagon", "--size", "0mm", "-o", "{d}/x.svg"],
     ["stats", "unknown-input"],
+    ["puzzle", "-o", "{d}/p", "--levels", "2", "--kerf", "50mm"],
+    ["puzzle", "-o", "{d}/p", "--levels", "2", "--size", "1mm"],
+    ["puzzle", "-o", "{d}/p", "--levels", "2", "--kerf", "-1mm"],
+    ["puzzle", "-o", "{d}/p", "--levels", "2", "--sheet", "10x10mm", "--mode", "separate"],
+    ["puzzle", "-o", "{d}/p", "--levels", "2", "--material", "nope"],
+    ["strands", "square-grid", "--tile-size", "0", "-o", "{d}/s.pdf"],
+    ["strands", "square-grid", "--page", "5x5mm", "-o", "{d}/s.pdf"],
+    ["strands", "square-grid", "-o", "{d}/s.dxf"],
+    ["build", "{d}/missing.toml"],
     ["nope"],
 ])
 def test_bad_options(tmp_path, args):

@@ -64,30 +64,28 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     speed = mat["cut_speed"] if speed is None else speed
     las = pf.laser(laser_name)
     puzzle = build_puzzle(load_mesh(input_mesh), levels, size, frame_width)
+    pf.check_kerf(puzzle, kerf)
     colouring = colour_puzzle(puzzle, palette(palette_name))
-    folder = Path(out_dir)
-    folder.mkdir(parents=True, exist_ok=True)
-    meta = tuple(provenance().items())
-    results, written = {}, []
-
-    def write(drawing, name):
-        export.write(drawing.with_metadata(**dict(meta)), folder / name)
-        written.append(name)
-
+    results, files = {}, {}  # everything is laid out before the first file is written
     if mode in ("shared", "both"):
         results["shared"] = pf.shared_cut(puzzle, las, numbers)
         for fmt in ("svg", "dxf"):
-            write(results["shared"].drawing, f"puzzle-shared-cut.{fmt}")
+            files[f"puzzle-shared-cut.{fmt}"] = results["shared"].drawing
     if mode in ("separate", "both"):
         results["separate"] = pf.separate_cut(puzzle, las, kerf, sheet, numbers=numbers)
         for n, one in enumerate(pf.split_sheets(results["separate"].drawing), start=1):
             for fmt in ("svg", "dxf"):
-                write(one, f"puzzle-separate-sheet-{n}.{fmt}")
+                files[f"puzzle-separate-sheet-{n}.{fmt}"] = one
     for side in ("front", "back"):
         g = pf.guide(puzzle, colouring, side, numbers)
-        write(g, f"puzzle-{side}-guide.svg")
-        if "pdf" in export.RENDERERS:
-            write(tile(g, PAPER_SIZES[page]), f"puzzle-{side}-guide-{page}.pdf")
+        files[f"puzzle-{side}-guide.svg"] = g
+        files[f"puzzle-{side}-guide-{page}.pdf"] = tile(g, PAPER_SIZES[page])
+    folder = Path(out_dir)
+    folder.mkdir(parents=True, exist_ok=True)
+    meta = provenance()
+    for name, drawing in files.items():
+        export.write(drawing.with_metadata(**meta), folder / name)
+    written = list(files)
     info = pf.summary(puzzle, results, speed, colouring)
     info.update(material=mat["name"], kerf_mm=kerf, sheet_mm=list(sheet), laser=las.name,
                 files=sorted(written + ["puzzle-summary.json"]))

@@ -19,6 +19,7 @@ from .. import presets
 from . import cutpaths, nesting
 from .drawing import (Drawing, Layer, Polygons, Polylines, Sheet, Style, Text,
                       polygons_from_shapely)
+from ..errors import WeaveCutError
 from .puzzle import KIND_NAMES, UNPAINTED, Colouring, Puzzle, piece_halves
 
 DEFAULT_LASER = "lightburn"
@@ -137,6 +138,16 @@ def _extras(puzzle: Puzzle, las: Laser, shift, numbers: bool, score_ring: bool,
         texts = _number_texts(at, np.zeros(len(at)), number_size, las.style("engrave"))
         layers.append(Layer("engrave-numbers", "engrave", tuple(texts)))
     return layers
+
+
+def check_kerf(puzzle: Puzzle, kerf: float) -> None:
+    """Refuse a kerf that would eat the smallest piece: it must stay below the piece's inner
+    radius (2 area / perimeter, exact for polygons with an incircle)."""
+    inner = 2 * shapely.area(puzzle.pieces) / shapely.length(puzzle.pieces)
+    k = int(np.argmin(inner))
+    if kerf >= inner[k]:
+        raise WeaveCutError(f"a kerf of {kerf:g} mm is wider than piece {k} ({inner[k]:.3g} mm "
+                            "inner radius); use a smaller --kerf or a larger --size")
 
 
 def separate_cut(puzzle: Puzzle, las: Laser, kerf: float, sheet: tuple[float, float],
