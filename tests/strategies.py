@@ -63,3 +63,16 @@ def voronoi_patches(draw) -> Mesh:
 
 
 any_mesh = st.one_of(jittered_grids(), convex_fans(), voronoi_patches())
+
+
+def _validated(mesh: Mesh) -> Mesh | None:
+    from weavecut.errors import MeshError
+    from weavecut.validation import validate
+
+    try:
+        return validate(mesh)
+    except MeshError:
+        return None
+
+
+valid_meshes = any_mesh.map(_validated).filter(lambda m: m is not None)

@@ -5,14 +5,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import assume, given
+from hypothesis import given
 
-from tests.strategies import any_mesh
+from tests.strategies import valid_meshes
 from weavecut import inputs
 from weavecut.errors import MeshError
 from weavecut.mesh import outer_vertices
 from weavecut.subdivision import subdivide
-from weavecut.validation import validate
 from weavecut.weave.colour import crossing_pairs, palette, strand_colours, strand_families
 from weavecut.weave.snub_weave import snub_weave, snub_weaves
 
@@ -112,12 +111,8 @@ def test_weave_facts_and_zigzag_agree(name):
         assert weave_strands(weave) == zigzag_strands(parent.mesh)
 
 
-@given(any_mesh)
+@given(valid_meshes)
 def test_weave_facts_on_random_meshes(mesh):
-    try:
-        mesh = validate(mesh)
-    except MeshError:
-        assume(False)
     hierarchy = subdivide(mesh, 2)
     for parent, level in zip(hierarchy, hierarchy[1:]):
         weave = snub_weave(level.mesh)
