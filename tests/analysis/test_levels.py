@@ -50,6 +50,10 @@ def test_windowed_refinement_random_windows(x0, y0, side):
     _assert_window_exact(inputs.get("pentagon"), 6, (x0, y0, x0 + side, y0 + side))
 
 
+def test_window_clear_of_the_mesh_yields_nothing():
+    _assert_window_exact(inputs.get("pentagon"), 6, (0.75, 0.75, 1.0, 1.0))
+
+
 def test_too_small_halo_is_refused_not_silently_wrong():
     with pytest.raises(WeaveCutError, match="not exact"):
         list(lv.refine_window(inputs.get("pentagon"), 6, (0.2, 0.1, 0.4, 0.3), halo=0.0))

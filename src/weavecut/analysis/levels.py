@@ -203,6 +203,9 @@ def refine_window(mesh: Mesh, levels: int, window, *, smooth: bool = True,
     patch = Patch(mesh, np.ones(mesh.n_vertices, bool), np.ones(mesh.n_vertices, bool), outer)
     yield mesh.vertices[grid.inside(mesh.vertices)]
     for t in range(1, levels + 1):
+        if patch.mesh.n_faces == 0:  # the window is clear of the mesh: nothing more to refine
+            yield np.zeros((0, 2))
+            continue
         patch = _step(patch, window, np.inf if (t == 1 and keep_all_first) else halo, smooth,
                       centre, chirality)
         inside = grid.inside(patch.mesh.vertices)
