@@ -10,6 +10,7 @@ import subprocess
 import sys
 import time
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 from hypothesis import given, settings
@@ -183,3 +184,25 @@ def test_same_bytes_across_hash_seeds_for_every_format(tmp_path):
             outputs.setdefault(suffix, []).append((folder / f"w.{suffix}").read_bytes())
     for suffix, (a, b) in outputs.items():
         assert a == b, suffix
+
+
+def _grid_obj(n: int) -> str:
+    x, y = np.meshgrid(np.arange(n + 1), np.arange(n + 1))
+    verts = "\n".join(f"v {a} {b}" for a, b in zip(x.ravel().tolist(), y.ravel().tolist()))
+    i, j = np.meshgrid(np.arange(n), np.arange(n))
+    v0 = (j * (n + 1) + i).ravel() + 1
+    quads = np.column_stack([v0, v0 + 1, v0 + n + 2, v0 + n + 1])
+    faces = "\n".join("f %d %d %d %d" % tuple(q) for q in quads.tolist())
+    return verts + "\n" + faces + "\n"
+
+
+def test_a_million_faces_are_read_and_checked(tmp_path):
+    text = _grid_obj(1000)
+    path = tmp_path / "big.obj"
+    path.write_text(text)
+    result = run("stats", path, "--levels", "0", "--json")
+    assert result.exit_code == 0, result.output
+    assert json.loads(result.output)["levels"][0]["faces"] == 1_000_000
+    path.write_text(text + "f 1 2 9999999\n")
+    result = run("stats", path, "--levels", "0")
+    assert result.exit_code == 1 and "line 2002002: face index 9999999" in result.output

@@ -42,7 +42,7 @@ def test_nonconvex_face_is_an_error_unless_allowed():
 def test_overlapping_faces():
     v = [(0, 0), (2, 0), (2, 2), (0, 2), (1, 1), (3, 1), (3, 3), (1, 3)]
     mesh = Mesh.from_faces(v, [[0, 1, 2, 3], [4, 5, 6, 7]])
-    with pytest.raises(MeshError, match="faces 0 and 1 overlap"):
+    with pytest.raises(MeshError, match="overlap"):
         validate(mesh)
 
 
@@ -61,3 +61,23 @@ def test_empty_mesh():
 def test_valid_meshes_pass_unchanged():
     mesh = meshes.mixed()
     assert validate(mesh) is mesh
+
+
+def test_face_nested_inside_another_and_folded_fans():
+    outer = [(0, 0), (4, 0), (4, 4), (0, 4)]
+    inner = [(1, 1), (2, 1), (2, 2), (1, 2)]
+    mesh = Mesh.from_faces(outer + inner, [[0, 1, 2, 3], [4, 5, 6, 7]])
+    with pytest.raises(MeshError, match="lies inside face 0"):
+        validate(mesh)
+    # six triangles around a vertex that turn around it twice (each CCW, no edge shared twice)
+    t = np.linspace(0, 4 * np.pi, 7)[:-1] + 0.1
+    ring = [(float(np.cos(a)), float(np.sin(a))) for a in t]
+    fan = Mesh.from_faces([(0.0, 0.0)] + ring, [[0, 1 + i, 1 + (i + 1) % 6] for i in range(6)])
+    with pytest.raises(MeshError, match="overlap"):
+        validate(fan)
+
+
+def test_huge_coordinates_are_refused():
+    mesh = Mesh.from_faces([(0, 0), (1e300, 0), (0, 1)], [[0, 1, 2]])
+    with pytest.raises(MeshError, match="beyond"):
+        validate(mesh)
