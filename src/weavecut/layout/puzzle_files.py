@@ -233,15 +233,19 @@ def guide(puzzle: Puzzle, colouring: Colouring, side: str, numbers: bool = False
     layers = []
     if side == "front":
         halves = piece_halves(puzzle)
-        fills = colouring.front
+        # an enneagon's 'halves' are its one pentagon twice: draw it once (even-odd fills)
+        one = shapely.equals(halves[:, 0], halves[:, 1])
+        pick = np.column_stack([np.ones(len(one), dtype=bool), ~one]).ravel()
         layers.append(Layer("paint", "paint", (polygons_from_shapely(
-            place(halves.ravel()), Style(None, 0.0), fills.ravel().tolist()),)))
-        hexes = puzzle.hexagons[puzzle.hexagons != None]  # noqa: E711
-        layers.append(Layer("ring-unpainted", "paint", (polygons_from_shapely(
-            place(hexes), Style(None, 0.0, UNPAINTED)),)))
+            place(halves.ravel()[pick]), Style(None, 0.0),
+            colouring.front.ravel()[pick].tolist()),)))
     else:
         layers.append(Layer("paint", "paint", (polygons_from_shapely(
             place(puzzle.pieces), Style(None, 0.0), colouring.back.tolist()),)))
+    hexes = puzzle.hexagons[puzzle.hexagons != None]  # noqa: E711
+    if len(hexes):  # the ring stays natural wood on both sides
+        layers.append(Layer("ring-unpainted", "paint", (polygons_from_shapely(
+            place(hexes), Style(None, 0.0, UNPAINTED)),)))
     frame = place(np.array([puzzle.frame], dtype=object))
     outlines = [polygons_from_shapely(frame, Style("#000000", 0.4))]
     if len(puzzle.ring):
