@@ -1,0 +1,78 @@
+"""Time the default puzzle (level 4 pentagon, 50 cm, poplar-3mm): geometry, colours, both cut
+modes, SVG + DXF + guides (+ tiled PDF when the writer is there), stage by stage. Target for the
+whole set: <= 3 s. Prints; asserts nothing about time.
+
+    python benchmarks/bench_puzzle.py [--levels 4] [--repeat 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import tempfile
+import time
+from pathlib import Path
+
+from weavecut import export, inputs
+from weavecut.layout import puzzle_files as pf
+from weavecut.layout.puzzle import build_puzzle, colour_puzzle
+from weavecut.layout.tiling import tile
+from weavecut.weave.colour import palette
+
+
+def run(levels: int, folder: Path) -> dict[str, float]:
+    times: dict[str, float] = {}
+
+    def stage(name, fn):
+        t0 = time.perf_counter()
+        out = fn()
+        times[name] = time.perf_counter() - t0
+        return out
+
+    mat = pf.material()
+    puzzle = stage("geometry", lambda: build_puzzle(inputs.get("pentagon"), levels, 500.0))
+    colouring = stage("colours", lambda: colour_puzzle(puzzle, palette("puzzle")))
+    las = pf.laser()
+    shared = stage("shared cut", lambda: pf.shared_cut(puzzle, las, numbers=True))
+    separate = stage("separate cut", lambda: pf.separate_cut(puzzle, las, mat["kerf"],
+                                                             mat["sheet"], numbers=True))
+    guides = stage("guides", lambda: [pf.guide(puzzle, colouring, s) for s in ("front", "back")])
+
+    def write_all():
+        for fmt in ("svg", "dxf"):
+            export.write(shared.drawing, folder / f"shared.{fmt}")
+            for n, one in enumerate(pf.split_sheets(separate.drawing)):
+                export.write(one, folder / f"sheet-{n}.{fmt}")
+        for side, g in zip(("front", "back"), guides):
+            export.write(g, folder / f"{side}.svg")
+            if "pdf" in export.RENDERERS:
+                export.write(tile(g), folder / f"{side}.pdf")
+
+    stage("write files", write_all)
+    times["total"] = sum(times.values())
+    times["_pieces"] = puzzle.n_pieces
+    times["_cut_m"] = (shared.cut_length / 1000, separate.cut_length / 1000)
+    return times
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--levels", type=int, default=4)
+    parser.add_argument("--repeat", type=int, default=3)
+    args = parser.parse_args()
+    best: dict[str, float] = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for _ in range(args.repeat):
+            times = run(args.levels, Path(tmp))
+            for k, v in times.items():
+                best[k] = v if k.startswith("_") else min(best.get(k, float("inf")), v)
+    shared_m, separate_m = best["_cut_m"]
+    print(f"puzzle level {args.levels}: {best['_pieces']} pieces, cut {shared_m:.2f} m shared, "
+          f"{separate_m:.2f} m separate (best of {args.repeat})")
+    for k, v in best.items():
+        if not k.startswith("_"):
+            print(f"  {k:14} {v:6.3f} s")
+    print(f"  target <= 3 s: {'met' if best['total'] <= 3.0 else 'MISSED'}")
+
+
+if __name__ == "__main__":
+    main()
