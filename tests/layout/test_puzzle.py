@@ -9,6 +9,8 @@ from xml.etree import ElementTree
 import ezdxf
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 import shapely
 from click.testing import CliRunner
 
@@ -159,3 +161,80 @@ def test_cli_writes_a_complete_set_that_loads(tmp_path):
     width = float(root.get("width").removesuffix("mm"))
     assert width == pytest.approx(info["frame_mm"][0] + 20.0, abs=0.5)
     assert not list(out.glob(".*part"))
+
+
+def test_front_guide_paints_every_piece_once(puzzle):
+    """Each painted half appears once: the same ring twice in one even-odd path cancels out
+    (which once left every border piece blank)."""
+    colouring = colour_puzzle(puzzle, palette("puzzle"))
+    drawing = pf.guide(puzzle, colouring, "front")
+    paint = next(layer for layer in drawing.sheets[0].layers if layer.name == "paint")
+    polys = paint.shapes[0].to_shapely()
+    keys = {tuple(np.round(shapely.normalize(p).exterior.coords, 6).ravel()) for p in polys}
+    assert len(keys) == len(polys)
+    # painted area = the level-t mesh (pieces without their hexagons)
+    hexes = puzzle.hexagons[puzzle.hexagons != None]  # noqa: E711
+    expected = shapely.area(puzzle.pieces).sum() - shapely.area(hexes).sum()
+    assert shapely.area(polys).sum() == pytest.approx(expected, rel=1e-9)
+    assert all(f != "#ffffff" for f in paint.shapes[0].fills)
+
+
+def test_separate_sheet_dxf_has_one_closed_polyline_per_outline(tmp_path, puzzle):
+    from weavecut import export
+    result = pf.separate_cut(puzzle, pf.laser("ponoko"), 0.15, (700.0, 700.0), numbers=True)
+    n_outlines = 0
+    for n, one in enumerate(pf.split_sheets(result.drawing)):
+        path = tmp_path / f"sheet-{n}.dxf"
+        export.write(one, path)
+        doc = ezdxf.readfile(path)
+        assert not doc.audit().has_errors
+        assert doc.header["$INSUNITS"] == 4
+        polys = doc.modelspace().query("LWPOLYLINE")
+        assert all(p.closed for p in polys)
+        assert {p.dxf.layer for p in polys} <= {"cut-1-inner", "cut-2-outer"}
+        n_outlines += len(polys)
+        texts = doc.modelspace().query("TEXT")
+        assert all(t.dxf.layer == "engrave-numbers" for t in texts)
+    assert n_outlines == puzzle.n_pieces + 2  # pieces, the frame's hole and its outline
+    # ponoko cuts in blue
+    cut = result.drawing.sheets[0].layers[0].shapes[0].style
+    assert cut.stroke == "#0000ff"
+
+
+def test_guides_are_registered_to_the_cut_sheet(puzzle):
+    colouring = colour_puzzle(puzzle, palette("puzzle"))
+    cut = pf.shared_cut(puzzle, pf.laser()).drawing.sheets[0]
+    front = pf.guide(puzzle, colouring, "front").sheets[0]
+    back = pf.guide(puzzle, colouring, "back").sheets[0]
+    assert (front.width, front.height) == (cut.width, cut.height) == (back.width, back.height)
+    outer_cut = cut.layers[2].shapes[0].coords
+    frame_front = next(layer for layer in front.layers if layer.name == "frame").shapes[0]
+    frame_back = next(layer for layer in back.layers if layer.name == "frame").shapes[0]
+    assert shapely.Polygon(frame_front.rings()[0]).equals_exact(
+        shapely.Polygon(outer_cut[:-1]), 1e-6) or shapely.Polygon(
+        frame_front.rings()[0]).normalize().equals_exact(
+        shapely.Polygon(outer_cut[:-1]).normalize(), 1e-6)
+    mirrored = frame_back.coords * [-1, 1] + [back.width, 0]
+    np.testing.assert_allclose(np.sort(mirrored, axis=0), np.sort(frame_front.coords, axis=0),
+                               atol=1e-9)
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.lists(st.tuples(st.floats(5, 80), st.floats(5, 80), st.floats(0, 180)),
+                min_size=1, max_size=40), st.floats(0.1, 2.0))
+def test_nesting_keeps_parts_apart_and_on_the_sheet(boxes, spacing):
+    from shapely import affinity
+    from weavecut.layout.nesting import nest
+    parts = np.array([affinity.rotate(shapely.box(0, 0, w, h), a) for w, h, a in boxes],
+                     dtype=object)
+    placement = nest(parts, (200.0, 150.0), spacing, margin=5.0)
+    placed = placement.apply(parts)
+    np.testing.assert_allclose(shapely.area(placed), shapely.area(parts), rtol=1e-9)
+    for s in range(placement.n_sheets):
+        on = placed[placement.sheet == s]
+        assert len(on) > 0
+        lo, hi = shapely.total_bounds(on)[:2], shapely.total_bounds(on)[2:]
+        assert lo.min() >= 5.0 - 1e-6 and hi[0] <= 195.0 + 1e-6 and hi[1] <= 145.0 + 1e-6
+        tree = shapely.STRtree(on)
+        a, b = tree.query(on, predicate="dwithin", distance=spacing * 0.999)
+        assert not (a < b).any()
