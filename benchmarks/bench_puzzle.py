@@ -13,8 +13,8 @@ import time
 from pathlib import Path
 
 from weavecut import export, inputs
-from weavecut.layout import puzzle_files as pf
-from weavecut.layout.puzzle import build_puzzle, colour_puzzle
+from weavecut.puzzle import files as pf
+from weavecut.puzzle.pieces import build_puzzle, colour_puzzle
 from weavecut.layout.tiling import tile
 from weavecut.weave.colour import palette
 

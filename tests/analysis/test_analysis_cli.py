@@ -8,7 +8,7 @@ import pytest
 from click.testing import CliRunner
 
 from weavecut.cli import cli
-from weavecut.layout import figures
+from weavecut.figures import subdivision as figures
 
 
 def run(*args):

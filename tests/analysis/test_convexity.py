@@ -69,7 +69,7 @@ def test_vertex_origins_follow_the_numbering():
 
 def test_drawing_highlights_nonconvex_faces():
     h = subdivide(inputs.get("pentagon"), 5, smooth=False)
-    from weavecut.layout.figures import convexity_drawing
+    from weavecut.figures.subdivision import convexity_drawing
 
     drawing = convexity_drawing(h[-1].mesh)
     layers = {layer.name: layer for layer in drawing.sheets[0].layers}

@@ -14,7 +14,8 @@ from ..analysis import convexity as cv
 from ..analysis import fractal as fr
 from ..analysis import levels as lv
 from ..fileio import write_atomic
-from ..layout import figures, gallery
+from ..figures import gallery
+from ..figures import subdivision as figures
 from ..subdivision import snub
 from ..subdivision.hierarchy import check_fits
 from .common import CONTEXT, input_argument, load_mesh, provenance, reports_errors

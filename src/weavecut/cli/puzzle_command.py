@@ -8,8 +8,8 @@ from pathlib import Path
 import click
 
 from .. import export
-from ..layout import puzzle_files as pf
-from ..layout.puzzle import build_puzzle, colour_puzzle
+from ..puzzle import files as pf
+from ..puzzle.pieces import build_puzzle, colour_puzzle
 from ..layout.tiling import tile
 from ..units import PAPER_SIZES
 from ..weave.colour import palette

@@ -9,7 +9,7 @@ from pathlib import Path
 import click
 
 from .. import export
-from ..layout.strand_sheets import preset_for, strand_book
+from ..papermodel.book import preset_for, strand_book
 from ..subdivision import snub, subdivide
 from ..weave.colour import palette
 from ..weave.snub_weave import snub_weaves

@@ -1,1 +1,2 @@
-"""Layouts: everything that turns meshes and weaves into Drawings (figures, paper strands, puzzle)."""
+"""The drawing layer every product uses: the Drawing model, meshes and weaves as Drawings, page
+tiling, nesting and cut paths."""

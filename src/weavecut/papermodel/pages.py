@@ -15,8 +15,8 @@ import numpy as np
 import shapely
 from numpy.typing import NDArray
 
-from .drawing import Layer, Polygons, Polylines, Style, Text, polygons_from_shapely
-from .strands import Strip, tint
+from ..layout.drawing import Layer, Polygons, Polylines, Style, Text, polygons_from_shapely
+from .strips import Strip, tint
 
 HEADER = 13.0  # mm above the printable area for the title lines
 FOOTER = 15.0  # mm below it for the scale bar and the legend

@@ -12,10 +12,10 @@ from click.testing import CliRunner
 
 from weavecut import export, inputs
 from weavecut.layout.drawing import Polylines
-from weavecut.layout.pages import GAP, occupied
-from weavecut.layout.strand_sheets import strand_book
-from weavecut.layout.strands import build_strips, copy_colours, plan_modules
-from weavecut.layout.symmetry import rotate, rotation_group, strand_orbits, tile_centres
+from weavecut.papermodel.pages import GAP, occupied
+from weavecut.papermodel.book import strand_book
+from weavecut.papermodel.strips import build_strips, copy_colours, plan_modules
+from weavecut.papermodel.symmetry import rotate, rotation_group, strand_orbits, tile_centres
 from weavecut.mesh import Mesh
 from weavecut.subdivision import subdivide
 from weavecut.weave.colour import palette

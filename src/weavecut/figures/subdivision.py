@@ -19,7 +19,7 @@ from ..analysis import fractal as fr
 from ..analysis import levels as lv
 from ..mesh import Mesh, edge_lengths, signed_areas
 from ..subdivision import snub, subdivide
-from .drawing import (
+from ..layout.drawing import (
     Drawing,
     Fit,
     Layer,
@@ -31,7 +31,7 @@ from .drawing import (
     mesh_polygons,
     polygons_from_rings,
 )
-from .mesh_figure import line_width
+from ..layout.mesh_figure import line_width
 from .panels import (
     BLUE,
     CURVE_COLOURS,

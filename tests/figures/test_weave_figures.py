@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from weavecut import export
-from weavecut.layout import gallery, weave_figures
+from weavecut.figures import gallery, weaving as weave_figures
 from weavecut.layout.drawing import Drawing
 
 

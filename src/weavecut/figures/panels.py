@@ -13,7 +13,7 @@ from numpy.typing import NDArray
 
 from ..analysis import fractal as fr
 from ..mesh import Mesh
-from .drawing import (
+from ..layout.drawing import (
     Drawing,
     Fit,
     Layer,
@@ -25,7 +25,7 @@ from .drawing import (
     mesh_bounds,
     mesh_polygons,
 )
-from .mesh_figure import line_width
+from ..layout.mesh_figure import line_width
 
 BLUE = "#3b6fb6"
 LIGHT_BLUE = "#cfe0f5"

@@ -15,7 +15,7 @@ import shapely
 
 from ..weave.colour import Palette
 from ..weave.model import Weave
-from .drawing import Drawing, Fit, Layer, Sheet, Style, Text, polygons_from_shapely
+from ..layout.drawing import Drawing, Fit, Layer, Sheet, Style, Text, polygons_from_shapely
 from .pages import (
     GAP,
     PageArea,
@@ -26,7 +26,7 @@ from .pages import (
     split_strip,
     strip_layers,
 )
-from .strands import (
+from .strips import (
     ModulePlan,
     arrow_polygon,
     build_strips,

@@ -1,6 +1,6 @@
 """The paper's weaving figures (section 5) and its scheme figures (sections 2 and 5.3).
 
-``FIGURES`` has the same shape as ``layout.figures.FIGURES``; ``layout.gallery`` joins them.
+``FIGURES`` has the same shape as ``figures.subdivision.FIGURES``; ``figures.gallery`` joins them.
 """
 
 from __future__ import annotations
@@ -15,10 +15,10 @@ from ..subdivision import subdivide
 from ..weave.colour import palette, strand_colours
 from ..weave.schemes import scheme_weaves
 from ..weave.snub_weave import snub_weaves
-from .drawing import Drawing, Layer, Polylines, Style, mesh_bounds, mesh_polygons
+from ..layout.drawing import Drawing, Layer, Polylines, Style, mesh_bounds, mesh_polygons
 from .panels import Panel, compose, mesh_panel
-from .mesh_figure import line_width
-from .weave_figure import middle_edge_lines, snub_under_points, tile_outline_lines, weave_layers
+from ..layout.mesh_figure import line_width
+from ..layout.weave_figure import middle_edge_lines, snub_under_points, tile_outline_lines, weave_layers
 
 HIGHLIGHT = "#0f7173"
 

@@ -16,8 +16,8 @@ from click.testing import CliRunner
 
 from weavecut import inputs
 from weavecut.cli import cli
-from weavecut.layout import puzzle_files as pf
-from weavecut.layout.puzzle import ENNEAGON, OCTAGON, build_puzzle, colour_puzzle, piece_halves
+from weavecut.puzzle import files as pf
+from weavecut.puzzle.pieces import ENNEAGON, OCTAGON, build_puzzle, colour_puzzle, piece_halves
 from weavecut.weave.colour import palette
 
 

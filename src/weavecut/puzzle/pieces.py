@@ -47,7 +47,7 @@ from ..subdivision.hierarchy import Level
 from ..weave.colour import Palette, strand_colours
 from ..weave.model import Weave
 from ..weave.snub_weave import snub_weaves
-from .weave_figure import tile_rings
+from ..layout.weave_figure import tile_rings
 
 OCTAGON, ENNEAGON = 0, 1
 KIND_NAMES = ("octagon", "enneagon")

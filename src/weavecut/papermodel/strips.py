@@ -21,9 +21,9 @@ from numpy.typing import NDArray
 
 from ..weave.colour import Palette, crossing_pairs, greedy_classes
 from ..weave.model import Weave
-from .drawing import Text
+from ..layout.drawing import Text
 from .symmetry import Symmetry, rotate, rotation_group, strand_orbits, tile_centres
-from .weave_figure import tile_rings
+from ..layout.weave_figure import tile_rings
 
 LIGHT = 0.22  # share of the over strand's colour in an under-crossing tile (rest white)
 

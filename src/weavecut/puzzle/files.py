@@ -16,11 +16,11 @@ from numpy.typing import NDArray
 from shapely import affinity
 
 from .. import presets
-from . import cutpaths, nesting
-from .drawing import (Drawing, Layer, Polygons, Polylines, Sheet, Style, Text,
+from ..layout import cutpaths, nesting
+from ..layout.drawing import (Drawing, Layer, Polygons, Polylines, Sheet, Style, Text,
                       polygons_from_shapely)
 from ..errors import WeaveCutError
-from .puzzle import KIND_NAMES, UNPAINTED, Colouring, Puzzle, piece_halves
+from .pieces import KIND_NAMES, UNPAINTED, Colouring, Puzzle, piece_halves
 
 DEFAULT_LASER = "lightburn"
 TRAVEL_SPEED = 300.0  # mm/s head moves between cuts, for the time estimate
