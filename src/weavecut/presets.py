@@ -1,13 +1,15 @@
-"""Named presets (TOML) from ``templates/``: palettes, materials, laser colours, recipes.
+"""Named presets (TOML) from ``templates/``: palettes, materials, laser colours, pages, recipes.
 
-A preset is found by name in ``templates/<kind>/<name>.toml`` (the folder beside ``src/`` in a
-checkout, or ``$WEAVECUT_TEMPLATES``), or given as a path to a ``.toml`` file.
+A preset is found by name in ``<kind>/<name>.toml`` of the package ``weavecut.templates`` (the
+``templates/`` folder of the checkout, installed as package data; ``$WEAVECUT_TEMPLATES`` names
+another folder), or given as a path to a ``.toml`` file.
 """
 
 from __future__ import annotations
 
 import os
 import tomllib
+from importlib import resources
 from pathlib import Path
 
 from .errors import WeaveCutError
@@ -18,10 +20,9 @@ class PresetError(WeaveCutError, ValueError):
 
 
 def templates_dir() -> Path:
+    """The presets folder: ``$WEAVECUT_TEMPLATES``, or the installed ``weavecut.templates``."""
     env = os.environ.get("WEAVECUT_TEMPLATES")
-    if env:
-        return Path(env)
-    return Path(__file__).resolve().parents[2] / "templates"
+    return Path(env) if env else Path(resources.files("weavecut.templates"))
 
 
 def names(kind: str) -> list[str]:
@@ -30,14 +31,20 @@ def names(kind: str) -> list[str]:
     return sorted(p.stem for p in folder.glob("*.toml")) if folder.is_dir() else []
 
 
-def load(kind: str, name: str) -> dict:
-    """The preset ``name`` (or a path to a .toml file) of ``kind`` as a dict."""
+def find(kind: str, name: str) -> Path:
+    """The file of preset ``name`` of ``kind``; a name ending in .toml is a path already."""
     path = Path(name)
     if path.suffix != ".toml":
         path = templates_dir() / kind / f"{name}.toml"
         if not path.is_file():
             raise PresetError(f"unknown {kind[:-1] if kind.endswith('s') else kind} {name!r}; "
                               f"choose one of {', '.join(names(kind)) or '(none found)'}")
+    return path
+
+
+def load(kind: str, name: str) -> dict:
+    """The preset ``name`` (or a path to a .toml file) of ``kind`` as a dict."""
+    path = find(kind, name)
     try:
         with open(path, "rb") as f:
             return tomllib.load(f)

@@ -22,6 +22,7 @@ from pathlib import Path
 
 import click
 
+from .. import presets
 from ..errors import WeaveCutError
 from ..fileio import write_atomic
 from .common import CONTEXT, reports_errors, say
@@ -107,11 +108,11 @@ def job_arguments(group: click.Group, job: dict, where: str, out_dir: Path,
 @reports_errors
 def build_command(ctx: click.Context, recipe: Path, output_dir: Path, overrides: tuple[str, ...],
                   dry_run: bool) -> None:
-    """Run every job of RECIPE (a .toml file, see templates/recipes) into a folder.
+    """Run every job of RECIPE (a .toml file, or a recipe's name: see templates/recipes).
 
     \b
     Examples:
-      weave-cut build templates/recipes/square-grid-paper-model.toml
+      weave-cut build square-grid-paper-model
       weave-cut build templates/recipes/jigsaw-50cm-poplar.toml -o out --set kerf=0.2mm
     """
     parsed = {}
@@ -121,6 +122,7 @@ def build_command(ctx: click.Context, recipe: Path, output_dir: Path, overrides:
             raise click.BadParameter(f"{item!r} is not KEY=VALUE", param_hint="'--set'")
         parsed[key.strip().replace("-", "_")] = value.strip()
     group = ctx.parent.command
+    recipe = recipe if recipe.suffix else presets.find("recipes", str(recipe))  # by name
     jobs = load_recipe(recipe)
     commands = [job_arguments(group, job, f"{recipe} job {n + 1}", output_dir, parsed,
                               recipe.parent) for n, job in enumerate(jobs)]
