@@ -13,12 +13,19 @@ from .. import export
 from ..analysis import convexity as cv
 from ..analysis import fractal as fr
 from ..analysis import levels as lv
-from ..fileio import write_atomic
 from ..figures import gallery
 from ..figures import subdivision as figures
 from ..subdivision import snub
 from ..subdivision.hierarchy import check_fits
-from .common import CONTEXT, input_argument, load_mesh, provenance, reports_errors
+from .common import (
+    CONTEXT,
+    input_argument,
+    load_mesh,
+    page_option,
+    reports_errors,
+    write_drawing,
+    write_png,
+)
 from .mesh_commands import level_options, run_scheme
 
 
@@ -86,10 +93,11 @@ def _output_option(suffixes: str):
               show_default=True, help="Levels whose edges start the inner-curve table "
               "(repeat the option for several).")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON (all numbers, all boxes).")
-@_output_option(".svg or .dxf")
+@_output_option(".svg, .dxf, .pdf or .png")
+@page_option
 @reports_errors
 def fractal_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex, curve,
-                    born, as_json, output) -> None:
+                    born, as_json, output, page) -> None:
     """The boundary L-system, dimensions and inner-curve growth of INPUT refined --levels times.
 
     \b
@@ -112,7 +120,7 @@ def fractal_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonc
               "chirality": chirality, **report}
     if output:
         drawing = figures.fractal_drawing(h, min(min(born, default=1), levels))
-        export.write(drawing.with_metadata(**provenance()), output)
+        write_drawing(drawing, output, page)
     if as_json:
         click.echo(json.dumps(report, indent=2))
         return
@@ -192,7 +200,8 @@ def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonco
         raise click.BadParameter(f"at most {lv.UNSET - 1}", param_hint="'--levels'")
     image, grid = lv.level_image(mesh, levels, size, window, smooth=not no_smooth,
                                  centre=centre, chirality=chirality)
-    lv.write_png(output, lv.colour(image))
+    title = f"{input_mesh}: first level per pixel, to level {levels}"
+    write_png(lv.png_bytes(lv.colour(image)), output, title)
     hit = image != lv.UNSET
     if as_json:
         per_level = np.bincount(image[hit].ravel().astype(np.int64), minlength=levels + 1)
@@ -210,10 +219,11 @@ def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonco
 @input_argument
 @snub_options
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
-@_output_option(".svg or .dxf: the last level, non-convex faces red")
+@_output_option(".svg, .dxf, .pdf or .png: the last level, non-convex faces red")
+@page_option
 @reports_errors
 def convexity_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex,
-                      as_json, output) -> None:
+                      as_json, output, page) -> None:
     """Where non-convex faces occur at every level: inner or boundary faces, and at which kind
     of vertex (input vertex, Z vertex or face centre; inner or outer; its degree).
 
@@ -230,7 +240,7 @@ def convexity_command(input_mesh, levels, no_smooth, chirality, centre, allow_no
     if output:
         title = f"{input_mesh}, level {levels}: non-convex faces"
         drawing = figures.convexity_drawing(h[-1].mesh, title=title)
-        export.write(drawing.with_metadata(**provenance()), output)
+        write_drawing(drawing, output, page)
     if as_json:
         click.echo(json.dumps({"input": input_mesh, "smooth": not no_smooth, "centre": centre,
                                "chirality": chirality, "levels": rows}, indent=2))
@@ -255,9 +265,10 @@ def convexity_command(input_mesh, levels, no_smooth, chirality, centre, allow_no
 @click.argument("name", required=False)
 @click.option("--list", "list_all", is_flag=True, help="List the figures.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False),
-              help="Output file (.svg, .dxf, ...; .png for raster figures).")
+              help="Output file (.svg, .dxf, .pdf, .png; .png for raster figures).")
+@page_option
 @reports_errors
-def figure_command(name, list_all, output) -> None:
+def figure_command(name, list_all, output, page) -> None:
     """Reproduce one of the paper's figures.
 
     \b
@@ -281,9 +292,9 @@ def figure_command(name, list_all, output) -> None:
     result = gallery.FIGURES[name][1]()
     if isinstance(result, bytes):
         _suffix_check(output, ("png",))
-        write_atomic(output, result)
+        write_png(result, output, gallery.FIGURES[name][0])
     else:
-        export.write(result.with_metadata(**provenance()), output)
+        write_drawing(result, output, page)
 
 
 COMMANDS = (fractal_command, levels_command, convexity_command, figure_command)

@@ -54,6 +54,31 @@ class PageSize(click.ParamType):
             self.fail(str(exc), param, ctx)
 
 
+page_option = click.option(
+    "--page", type=PageSize(), default="a4", show_default=True,
+    help="PDF page: a4, letter, a3, a preset or WxH like 300x200mm. The drawing is printed "
+         "1:1, centred, or tiled over pages with overlap marks when larger.")
+
+
+def write_drawing(drawing, output: str, page: tuple[float, float]) -> None:
+    """Write ``drawing`` with its provenance to ``output``; a PDF goes onto ``page``s."""
+    from .. import export
+    from ..layout.tiling import on_pages
+
+    drawing = drawing.with_metadata(**provenance())
+    if Path(output).suffix.lower() == ".pdf":
+        drawing = on_pages(drawing, page)
+    export.write(drawing, output)
+
+
+def write_png(data: bytes, output: str, title: str) -> None:
+    """Write a raster picture's PNG ``data`` with its title and provenance as text chunks."""
+    from ..export.png import with_text
+    from ..fileio import write_atomic
+
+    write_atomic(output, with_text(data, [("Title", title), *provenance().items()]))
+
+
 def reports_errors(f):
     """Turn a WeaveCutError (or a ValueError from option checks) into a one-line exit 1."""
 

@@ -18,9 +18,11 @@ from .common import (
     allow_nonconvex_option,
     input_argument,
     load_mesh,
+    page_option,
     progress,
     provenance,
     reports_errors,
+    write_drawing,
 )
 
 MESH_SUFFIXES = (".obj", ".json")
@@ -96,18 +98,26 @@ def inputs_command(as_json: bool) -> None:
 @input_argument
 @scheme_options
 @click.option("--size", type=Length(), default="200mm", show_default=True,
-              help="Longer side of the drawing (SVG/DXF), without margins.")
+              help="Longer side of the drawing, without margins.")
+@click.option("--earlier-levels", is_flag=True,
+              help="Also draw the input and every level before the last, one layer each "
+                   "(level-0, level-1, ...), under the cut lines.")
+@page_option
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
-              help="Output file: .svg, .dxf (drawings) or .obj, .json (the mesh).")
+              help="Output file: .svg, .dxf, .pdf, .png (drawings) or .obj, .json (the mesh).")
 @reports_errors
 def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
-                      allow_nonconvex, size, output) -> None:
+                      allow_nonconvex, size, earlier_levels, page, output) -> None:
     """Subdivide INPUT (a built-in name or an .obj/.json file) and write the result.
+
+    A drawing is cut-ready: the last level's edges each once, joined into trails, inner cuts
+    before the outline.
 
     \b
     Examples:
       weave-cut subdivide pentagon --levels 4 -o pentagon.svg
       weave-cut subdivide tiling-8-4 --levels 3 -o tiling.dxf
+      weave-cut subdivide pentagon --levels 3 --earlier-levels -o levels.svg
       weave-cut subdivide my-mesh.obj --levels 2 --no-smooth -o refined.obj
     """
     suffix = Path(output).suffix.lower()
@@ -121,8 +131,9 @@ def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
         write_mesh(hierarchy[-1].mesh, output, provenance())
         return
     title = f"{input_mesh}, {scheme} level {levels}"
-    drawing = mesh_drawing([lv.mesh for lv in hierarchy], size, title=title)
-    export.write(drawing.with_metadata(**provenance()), output)
+    drawing = mesh_drawing([lv.mesh for lv in hierarchy], size, title=title,
+                           earlier=earlier_levels)
+    write_drawing(drawing, output, page)
 
 
 @click.command("stats", context_settings=CONTEXT)

@@ -7,12 +7,11 @@ from pathlib import Path
 
 import click
 
-from .. import export
 from ..weave.colour import palette, strand_colours
 from ..weave.report import weave_summary
 from ..weave.schemes import scheme_weaves
 from ..layout.weave_figure import snub_under_points, weave_drawing
-from .common import CONTEXT, Length, input_argument, provenance, reports_errors
+from .common import CONTEXT, Length, input_argument, page_option, reports_errors, write_drawing
 from .mesh_commands import run_scheme, scheme_options
 
 DRAWINGS = ("svg", "pdf", "png", "dxf")
@@ -33,19 +32,21 @@ DRAWINGS = ("svg", "pdf", "png", "dxf")
               help="Use the general face-split weave instead of the scheme's own.")
 @click.option("--size", type=Length(), default="200mm", show_default=True,
               help="Longer side of the picture, without margins.")
+@page_option
 @click.option("--json", "as_json", is_flag=True, help="Print the counts per level as JSON.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), default=None,
               help="Picture: .svg, .pdf, .png or .dxf.")
 @reports_errors
 def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allow_nonconvex,
                   palette_name, outline_level, middle_edges, crossings, style, face_split, size,
-                  as_json, output) -> None:
+                  page, as_json, output) -> None:
     """Weave INPUT after N subdivision steps: strands, over/under crossings and lineage.
 
     \b
     Examples:
       weave-cut weave square-grid --levels 2 --outline-level 1 -o square-weave.svg
       weave-cut weave pentagon --levels 4 --outline-level 3 --palette puzzle -o pentagon.png
+      weave-cut weave square-grid --levels 2 --page letter -o square-weave.pdf
       weave-cut weave square-grid:3x3 --levels 2 --json
       weave-cut weave triangle-grid --scheme loop --levels 2 --style ribbons -o loop.svg
     """
@@ -76,4 +77,4 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
             middle_edges=middle_edges and snub, crossings=crossings, ribbons=style == "ribbons",
             under_points=snub_under_points(weaves[-1]) if snub else None,
             title=f"{input_mesh}, {scheme} weave, level {levels}")
-        export.write(drawing.with_metadata(**provenance()), output)
+        write_drawing(drawing, output, page)
