@@ -1,5 +1,6 @@
-# weave-cut: `make run` builds every recipe in templates/recipes into build/<recipe>/,
-# `make test` runs the tests. Both create .venv and install the project first when needed.
+# weave-cut: `make run` builds every recipe in templates/recipes into build/<recipe>/ (the
+# figures recipe is also `make figures`), `make test` runs the tests, `make docs` redraws the
+# README's images. All create .venv and install the project first when needed.
 
 PYTHON ?= python3
 VENV   := .venv
@@ -36,12 +37,7 @@ $(OUT)/%/.built: examples/%.toml $(STAMP) $(SRC) examples/*.obj examples/*.json
 	$(WC) -q build $< -o $(OUT)/$* > /dev/null
 	touch $@
 
-figures: $(STAMP)  ## every paper figure weave-cut reproduces, into build/figures/
-	mkdir -p $(OUT)/figures
-	@for name in $$($(WC) figure --list | cut -d' ' -f1); do \
-		case $$name in level-image) ext=png;; *) ext=svg;; esac; \
-		echo "figure $$name"; $(WC) -q figure $$name -o $(OUT)/figures/$$name.$$ext || exit 1; \
-	done
+figures: $(OUT)/figures/.built  ## every paper figure weave-cut reproduces, into build/figures/
 
 test: $(STAMP)  ## run the whole test suite
 	$(PY) -m pytest

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import click
 import numpy as np
+from click.shell_completion import CompletionItem
 
 from .. import export
 from ..analysis import convexity as cv
@@ -23,6 +24,7 @@ from .common import (
     load_mesh,
     page_option,
     reports_errors,
+    summary,
     write_drawing,
     write_png,
 )
@@ -210,9 +212,9 @@ def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonco
                                "window": list(grid.window), "pixels_reached": int(hit.sum()),
                                "pixels_per_level": per_level.tolist()}, indent=2))
         return
-    click.echo(f"{output}: {grid.width} x {grid.height} px over "
-               f"{', '.join(f'{v:g}' for v in grid.window)}; {int(hit.sum()):,} pixels reached, "
-               f"the last at level {int(image[hit].max()) if hit.any() else '-'}")
+    summary(f"{output}: {grid.width} x {grid.height} px over "
+            f"{', '.join(f'{v:g}' for v in grid.window)}; {int(hit.sum()):,} pixels reached, "
+            f"the last at level {int(image[hit].max()) if hit.any() else '-'}")
 
 
 @click.command("convexity", context_settings=CONTEXT)
@@ -261,8 +263,12 @@ def convexity_command(input_mesh, levels, no_smooth, chirality, centre, allow_no
                f"{next(r['level'] for r in rows if r['nonconvex_faces'])}")
 
 
+def _complete_figures(ctx, param, incomplete: str) -> list[CompletionItem]:
+    return [CompletionItem(n) for n in gallery.FIGURES if n.startswith(incomplete)]
+
+
 @click.command("figure", context_settings=CONTEXT)
-@click.argument("name", required=False)
+@click.argument("name", required=False, shell_complete=_complete_figures)
 @click.option("--list", "list_all", is_flag=True, help="List the figures.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False),
               help="Output file (.svg, .dxf, .pdf, .png; .png for raster figures).")

@@ -25,7 +25,7 @@ import click
 from .. import presets
 from ..errors import WeaveCutError
 from ..fileio import write_atomic
-from .common import CONTEXT, reports_errors, say
+from .common import CONTEXT, complete_preset, reports_errors, say
 
 RESERVED = {"command", "input", "output", "name"}
 
@@ -98,7 +98,8 @@ def job_arguments(group: click.Group, job: dict, where: str, out_dir: Path,
 
 
 @click.command("build", context_settings=CONTEXT)
-@click.argument("recipe", type=click.Path(dir_okay=False, path_type=Path))
+@click.argument("recipe", type=click.Path(dir_okay=False, path_type=Path),
+                shell_complete=complete_preset("recipes"))
 @click.option("-o", "--output-dir", type=click.Path(file_okay=False, path_type=Path),
               default=Path("build"), show_default=True, help="Folder for the outputs.")
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",

@@ -9,6 +9,7 @@ import sys
 from pathlib import Path
 
 import click
+from click.shell_completion import CompletionItem
 
 from .. import __version__, inputs, units
 from ..errors import WeaveCutError
@@ -112,23 +113,54 @@ def provenance() -> dict[str, str]:
     return {"generator": f"weave-cut {__version__}", "command": command_line()}
 
 
-input_argument = click.argument("input_mesh", metavar="INPUT")
+def _names_or_files(names, incomplete: str) -> list[CompletionItem]:
+    """Shell completion: the names that start with ``incomplete``, and the shell's files."""
+    return ([CompletionItem(n) for n in names if n.startswith(incomplete)]
+            + [CompletionItem(incomplete, type="file")])
+
+
+def complete_inputs(ctx, param, incomplete: str) -> list[CompletionItem]:
+    """Built-in input names, then mesh files."""
+    return _names_or_files(inputs.INPUTS, incomplete)
+
+
+def complete_preset(kind: str):
+    """Shell completion for a preset of ``kind`` (palettes, materials, ...): names, then files."""
+
+    def complete(ctx, param, incomplete: str) -> list[CompletionItem]:
+        from .. import presets
+
+        return _names_or_files(presets.names(kind), incomplete)
+
+    return complete
+
+
+input_argument = click.argument("input_mesh", metavar="INPUT", shell_complete=complete_inputs)
 allow_nonconvex_option = click.option(
     "--allow-nonconvex", is_flag=True, help="Accept non-convex input faces (the paper assumes "
     "convex ones).")
 
 
+def quiet() -> bool:
+    """Whether -q was given: then stdout carries only what was asked for (such as --json)."""
+    ctx = click.get_current_context(silent=True)
+    return ctx is not None and ctx.find_root().meta.get("weavecut.quiet", False)
+
+
 def progress(items, label: str):
     """A progress bar on stderr over ``items``; silent with -q or when stderr is no terminal."""
-    ctx = click.get_current_context(silent=True)
-    quiet = ctx is not None and ctx.find_root().meta.get("weavecut.quiet", False)
-    if quiet or not sys.stderr.isatty():
+    if quiet() or not sys.stderr.isatty():
         return contextlib.nullcontext(items)
     return click.progressbar(items, label=label, file=sys.stderr)
 
 
 def say(message: str) -> None:
     """A line of progress on stderr, unless -q."""
-    ctx = click.get_current_context(silent=True)
-    if not (ctx is not None and ctx.find_root().meta.get("weavecut.quiet", False)):
+    if not quiet():
         click.echo(message, err=True)
+
+
+def summary(text: str) -> None:
+    """What a command made, for people to read, on stdout, unless -q."""
+    if not quiet():
+        click.echo(text)

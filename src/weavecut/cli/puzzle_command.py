@@ -14,11 +14,22 @@ from ..layout.tiling import tile
 from ..units import PAPER_SIZES
 from ..weave.colour import palette
 from ..fileio import write_atomic
-from .common import CONTEXT, Length, PageSize, load_mesh, provenance, reports_errors
+from .common import (
+    CONTEXT,
+    Length,
+    PageSize,
+    complete_inputs,
+    complete_preset,
+    load_mesh,
+    provenance,
+    reports_errors,
+    summary,
+)
 
 
 @click.command("puzzle", context_settings=CONTEXT)
-@click.argument("input_mesh", metavar="[INPUT]", default="pentagon")
+@click.argument("input_mesh", metavar="[INPUT]", default="pentagon",
+                shell_complete=complete_inputs)
 @click.option("-o", "--output", "out_dir", required=True,
               type=click.Path(file_okay=False), help="Folder for the files (created).")
 @click.option("--levels", "-n", type=click.IntRange(2, 7), default=4, show_default=True,
@@ -29,13 +40,13 @@ from .common import CONTEXT, Length, PageSize, load_mesh, provenance, reports_er
               show_default=True, help="shared: one sheet, shared edges cut once (no kerf "
               "compensation possible); separate: kerf-offset pieces nested on sheets.")
 @click.option("--material", default=pf.DEFAULT_MATERIAL, show_default=True,
-              help="Material preset (templates/materials): kerf, sheet, speed.")
+              shell_complete=complete_preset("materials"), help="Material preset (templates/materials): kerf, sheet, speed.")
 @click.option("--kerf", type=Length(inclusive=True), default=None,
               help="Beam width (default: the material's); 0 leaves it to the laser software.")
 @click.option("--sheet", type=PageSize(), default=None, help="Sheet WxH, e.g. 1000x700mm "
               "(default: the material's).")
 @click.option("--laser", "laser_name", default=pf.DEFAULT_LASER, show_default=True,
-              help="Colour conventions (templates/laser): lightburn, epilog-uls, ponoko.")
+              shell_complete=complete_preset("laser"), help="Colour conventions (templates/laser): lightburn, epilog-uls, ponoko.")
 @click.option("--frame", "frame_width", type=Length(), default="20mm", show_default=True,
               help="Frame width beyond the hexagon ring.")
 @click.option("--numbers", is_flag=True, help="Engrave piece numbers (engrave layer).")
@@ -43,7 +54,8 @@ from .common import CONTEXT, Length, PageSize, load_mesh, provenance, reports_er
               help="Cutting speed in mm/s for the time estimate (default: the material's).")
 @click.option("--page", type=click.Choice(sorted(PAPER_SIZES)), default="a4",
               show_default=True, help="Printer page for the tiled PDF guides.")
-@click.option("--palette", "palette_name", default="puzzle", show_default=True)
+@click.option("--palette", "palette_name", default="puzzle", show_default=True,
+              shell_complete=complete_preset("palettes"))
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
 @reports_errors
 def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, sheet, laser_name,
@@ -91,4 +103,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
                 files=sorted(written + ["puzzle-summary.json"]))
     text = json.dumps(info, indent=2)
     write_atomic(folder / "puzzle-summary.json", (text + "\n").encode("utf-8"))
-    click.echo(text if as_json else pf.summary_text(info))
+    if as_json:
+        click.echo(text)
+    else:
+        summary(pf.summary_text(info))

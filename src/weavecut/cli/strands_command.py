@@ -13,7 +13,17 @@ from ..papermodel.book import preset_for, strand_book
 from ..subdivision import snub, subdivide
 from ..weave.colour import palette
 from ..weave.snub_weave import snub_weaves
-from .common import CONTEXT, Length, PageSize, input_argument, load_mesh, provenance, reports_errors
+from .common import (
+    CONTEXT,
+    Length,
+    PageSize,
+    complete_preset,
+    input_argument,
+    load_mesh,
+    provenance,
+    reports_errors,
+    summary,
+)
 
 FORMATS = ("pdf", "svg")
 
@@ -29,7 +39,7 @@ FORMATS = ("pdf", "svg")
 @click.option("--margin", type=Length(), default="10mm", show_default=True,
               help="Blank paper round every page.")
 @click.option("--palette", "palette_name", default=None,
-              help="Palette preset: maritime-12 (braided pairs, copies alike; the default) or "
+              shell_complete=complete_preset("palettes"), help="Palette preset: maritime-12 (braided pairs, copies alike; the default) or "
                    "a flat one such as maritime-4 (one colour per module copy).")
 @click.option("--turn", type=float, default=None,
               help="Degrees the pattern is turned on the assembly sheet; module strands head "
@@ -39,9 +49,8 @@ FORMATS = ("pdf", "svg")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
               help="Output: .pdf (one page per sheet) or .svg (a layer per page).")
 @click.option("--json", "as_json", is_flag=True, help="Print the plan (pages, copies) as JSON.")
-@click.pass_context
 @reports_errors
-def strands_command(ctx, input_mesh, levels, page, tile_size, margin, palette_name, turn,
+def strands_command(input_mesh, levels, page, tile_size, margin, palette_name, turn,
                     chirality, output, as_json) -> None:
     """Printable paper strips for weaving INPUT by hand: an assembly sheet, then one strip
     per strand, grouped into modules by the pattern's rotational symmetry.
@@ -75,7 +84,7 @@ def strands_command(ctx, input_mesh, levels, page, tile_size, margin, palette_na
                                "copies": plan.k, "module_strips": int(plan.copies.shape[1]),
                                "extra_strips": len(plan.extras),
                                "strands": int(weaves[-1].n_strands)}, indent=2))
-    elif not ctx.find_root().meta.get("weavecut.quiet"):
-        click.echo(f"{output}: {len(book.drawing.sheets)} pages; C{plan.k}, {plan.k} copies of "
-                   f"a {plan.copies.shape[1]}-strip module"
-                   + (f" + {len(plan.extras)} extras" if len(plan.extras) else ""), err=True)
+    else:
+        summary(f"{output}: {len(book.drawing.sheets)} pages; C{plan.k}, {plan.k} copies of "
+                f"a {plan.copies.shape[1]}-strip module"
+                + (f" + {len(plan.extras)} extras" if len(plan.extras) else ""))

@@ -11,7 +11,15 @@ from ..weave.colour import palette, strand_colours
 from ..weave.report import weave_summary
 from ..weave.schemes import scheme_weaves
 from ..layout.weave_figure import snub_under_points, weave_drawing
-from .common import CONTEXT, Length, input_argument, page_option, reports_errors, write_drawing
+from .common import (
+    CONTEXT,
+    Length,
+    complete_preset,
+    input_argument,
+    page_option,
+    reports_errors,
+    write_drawing,
+)
 from .mesh_commands import run_scheme, scheme_options
 
 DRAWINGS = ("svg", "pdf", "png", "dxf")
@@ -21,7 +29,7 @@ DRAWINGS = ("svg", "pdf", "png", "dxf")
 @input_argument
 @scheme_options
 @click.option("--palette", "palette_name", default="maritime-12", show_default=True,
-              help="Palette preset (templates/palettes) or a .toml file.")
+              shell_complete=complete_preset("palettes"), help="Palette preset (templates/palettes) or a .toml file.")
 @click.option("--outline-level", type=click.IntRange(1, 40), default=None,
               help="Draw the octagons (tiles) of this coarser level over the picture.")
 @click.option("--middle-edges", is_flag=True, help="Highlight the Z middle edges (snub).")
