@@ -5,11 +5,13 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
 from xml.etree import ElementTree
 
 import ezdxf
+import numpy as np
 import pytest
 from click.testing import CliRunner
 
@@ -111,9 +113,15 @@ def test_subdivide_svg_size_is_in_mm(tmp_path):
     out = tmp_path / "p.svg"
     assert run("subdivide", "pentagon", "--levels", "2", "--size", "10cm", "-o", out).exit_code == 0
     root = ElementTree.parse(out).getroot()
-    width, height = (float(root.get(k).removesuffix("mm")) for k in ("width", "height"))
+    assert root.get("width").endswith("mm") and root.get("height").endswith("mm")
+    width, height = (float(root.get(k)[:-2]) for k in ("width", "height"))
     assert max(width, height) == pytest.approx(120.0)  # 100 mm plus two 10 mm margins
     assert root.get("viewBox") == f"0 0 {width:g} {height:g}"
+    # the drawn mesh itself is 100 mm across, measured on the paths, not on the sheet
+    numbers = [float(v) for path in root.iter("{http://www.w3.org/2000/svg}path")
+               for v in re.findall(r"-?\d+(?:\.\d+)?", path.get("d"))]
+    xy = np.array(numbers).reshape(-1, 2)
+    assert (xy.max(axis=0) - xy.min(axis=0)).max() == pytest.approx(100.0, abs=0.01)
 
 
 @pytest.mark.parametrize("suffix", ["svg", "dxf", "obj", "json"])
