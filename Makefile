@@ -13,7 +13,7 @@ OUT    := build
 RECIPES := $(wildcard templates/recipes/*.toml) $(wildcard examples/*.toml)
 BUILT   := $(patsubst %.toml,$(OUT)/%/.built,$(notdir $(RECIPES)))
 
-.PHONY: run figures test bench clean help
+.PHONY: run figures docs test bench clean help
 .DELETE_ON_ERROR:
 
 help:  ## list the targets
@@ -38,6 +38,9 @@ $(OUT)/%/.built: examples/%.toml $(STAMP) $(SRC) examples/*.obj examples/*.json
 	touch $@
 
 figures: $(OUT)/figures/.built  ## every paper figure weave-cut reproduces, into build/figures/
+
+docs: $(STAMP)  ## redraw the README's images (docs/, examples/previews/) from the code
+	$(PY) docs/make_docs.py
 
 test: $(STAMP)  ## run the whole test suite
 	$(PY) -m pytest

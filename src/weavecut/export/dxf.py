@@ -58,6 +58,9 @@ def render(drawing: Drawing) -> bytes:
                 for shape in layer.shapes:
                     _add(doc, msp, shape, layer, layer.name + suffix, dx)
             dx += sheet.width + 10.0
+        # ezdxf adds the CLASSES of the entity types in use in set order; fix the order first
+        doc.classes.add_required_classes(doc.dxfversion)
+        doc.classes.classes = dict(sorted(doc.classes.classes.items()))
         buf = io.StringIO()
         doc.write(buf)
     comments = "".join(f"999\n{key}: {' '.join(value.split())}\n"

@@ -32,7 +32,7 @@ def mesh_drawing(meshes: list[Mesh], size: float, margin: float = 10.0,
     laser would: each shared edge once, the inner trails (layer ``cut-1-inner``) before the
     outline (``cut-2-outline``), so the part stays in the sheet until the end. With
     ``earlier`` the levels before it are drawn too, each on its own layer ``level-K`` under
-    the cut (the input light blue, the others grey), for looking at, not for cutting.
+    the cut (the input light blue, the others light grey), for looking at, not for cutting.
     """
     shown = meshes if earlier else meshes[-1:]
     boxes = np.array([mesh_bounds(m) for m in shown])
@@ -43,7 +43,7 @@ def mesh_drawing(meshes: list[Mesh], size: float, margin: float = 10.0,
     fit = Fit.into((x0, y0, x1, y1), width, height, margin)
     layers = []
     for t, mesh in enumerate(shown[:-1]):
-        colour, factor = (UNDERLAY, 2.0) if t == 0 else ("#555555", 1.0)
+        colour, factor = (UNDERLAY, 2.0) if t == 0 else ("#b0b0b0", 0.7)
         style = Style(colour, factor * line_width(mesh, fit))
         lines = polylines_from_lines([p for part in edge_trails(mesh, fit) for p in part], style)
         layers.append(Layer(f"level-{t}", "guide", (lines,)))
