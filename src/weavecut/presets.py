@@ -1,8 +1,7 @@
-"""Named presets (TOML) from ``templates/``: palettes, materials, laser colours, pages, recipes.
+"""Named presets (TOML) from ``templates/``: palettes, materials, laser colours, recipes.
 
-A preset is found by name in ``<kind>/<name>.toml`` of the package ``weavecut.templates`` (the
-``templates/`` folder of the checkout, installed as package data; ``$WEAVECUT_TEMPLATES`` names
-another folder), or given as a path to a ``.toml`` file.
+A preset is found by name in ``templates/<kind>/<name>.toml`` (the folder beside ``src/`` in a
+checkout, or ``$WEAVECUT_TEMPLATES``), or given as a path to a ``.toml`` file.
 """
 
 from __future__ import annotations
@@ -20,7 +19,9 @@ class PresetError(WeaveCutError, ValueError):
 
 
 def templates_dir() -> Path:
-    """The presets folder: ``$WEAVECUT_TEMPLATES``, or the installed ``weavecut.templates``."""
+    """The presets folder: ``$WEAVECUT_TEMPLATES``, or the package ``weavecut.templates``:
+    ``templates/`` of the checkout, installed as package data (setup.py maps it), so an
+    editable and a wheel install both find it through ``importlib.resources``."""
     env = os.environ.get("WEAVECUT_TEMPLATES")
     return Path(env) if env else Path(resources.files("weavecut.templates"))
 
