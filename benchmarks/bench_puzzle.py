@@ -44,7 +44,7 @@ def run(levels: int, folder: Path) -> dict[str, float]:
                 export.write(one, folder / f"sheet-{n}.{fmt}")
         for side, g in zip(("front", "back"), guides):
             export.write(g, folder / f"{side}.svg")
-            if "pdf" in export.RENDERERS:
+            if "pdf" in export.formats():
                 export.write(tile(g), folder / f"{side}.pdf")
 
     stage("write files", write_all)
