@@ -24,7 +24,8 @@ def on_pages(drawing: Drawing, page: tuple[float, float], overlap: float = 10.0,
              margin: float = 10.0, printer_margin: float = 5.0) -> Drawing:
     """Every sheet of ``drawing`` at 1:1 on printer pages: its content centred on one page,
     upright or turned a quarter (landscape), when it fits inside ``printer_margin``; else the
-    sheet tiled, on whichever orientation needs fewer pages (upright when equal)."""
+    sheet tiled, on whichever orientation needs fewer pages (when equal, the one shaped like
+    the sheet)."""
     pages: list[Sheet] = []
     turned = (page[1], page[0])
     for sheet in drawing.sheets:
@@ -39,7 +40,9 @@ def on_pages(drawing: Drawing, page: tuple[float, float], overlap: float = 10.0,
                 for layer in sheet.layers)))
             continue
         one = replace(drawing, sheets=(sheet,))
-        best = min((page, turned), key=lambda p: math.prod(_grid(sheet, p, overlap, margin)))
+        wide = sheet.width > sheet.height
+        best = min((page, turned), key=lambda p: (math.prod(_grid(sheet, p, overlap, margin)),
+                                                  (p[0] > p[1]) != wide))
         pages.extend(tile(one, best, overlap, margin).sheets)
     return replace(drawing, sheets=tuple(pages))
 
