@@ -13,7 +13,7 @@ OUT    := build
 RECIPES := $(wildcard templates/recipes/*.toml) $(wildcard examples/*.toml)
 BUILT   := $(patsubst %.toml,$(OUT)/%/.built,$(notdir $(RECIPES)))
 
-.PHONY: run figures docs test bench clean help
+.PHONY: run figures docs test bench mutation clean help
 .DELETE_ON_ERROR:
 
 help:  ## list the targets
@@ -53,6 +53,10 @@ bench: $(STAMP)  ## run the benchmarks (throughput, ratios against peers)
 	$(PY) benchmarks/bench_levels.py
 	@for b in benchmarks/bench_puzzle.py benchmarks/bench_strands.py; do \
 		[ -f $$b ] && $(PY) $$b || true; done
+
+mutation: $(STAMP)  ## mutation testing per package (PACKAGES="weave puzzle" for some): build/mutation/report.md
+	$(PY) -m pip install --quiet -e '.[mutation]'
+	$(PY) tools/mutation.py $(PACKAGES)
 
 clean:  ## remove build outputs (keeps .venv)
 	rm -rf $(OUT) .pytest_cache .hypothesis
