@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
+import functools
 import hashlib
 import shlex
 import sys
@@ -70,12 +71,18 @@ IMAGES = {
 
 def drawing(image: Image) -> Drawing:
     """The sheet of ``image`` as its command draws it now (nothing is written but scratch)."""
+    whole = _run(image.args)[image.caught]
+    return dataclasses.replace(whole, sheets=(whole.sheets[image.sheet],), metadata=())
+
+
+@functools.lru_cache(maxsize=None)
+def _run(args: tuple[str, ...]) -> dict[str, Drawing]:
+    """The Drawings a command writes, by file name (commands that make two images run once)."""
     caught: dict[str, Drawing] = {}
     with tempfile.TemporaryDirectory() as out, contextlib.chdir(ROOT), _catch(caught):
-        args = [a.format(out=out) for a in image.args]
-        cli.main(args=["-q", *args], prog_name="weave-cut", standalone_mode=False)
-    whole = caught[image.caught]
-    return dataclasses.replace(whole, sheets=(whole.sheets[image.sheet],), metadata=())
+        argv = [a.format(out=out) for a in args]
+        cli.main(args=["-q", *argv], prog_name="weave-cut", standalone_mode=False)
+    return caught
 
 
 @contextlib.contextmanager
