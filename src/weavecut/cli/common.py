@@ -14,7 +14,7 @@ from click.shell_completion import CompletionItem
 from .. import __version__, inputs, units
 from ..errors import WeaveCutError
 from ..mesh import Mesh
-from ..mesh_io import read_mesh
+from ..mesh_io import read_valid_mesh
 from ..validation import validate
 
 CONTEXT = {"help_option_names": ["-h", "--help"], "max_content_width": 100}
@@ -101,7 +101,7 @@ def load_mesh(spec: str, allow_nonconvex: bool = False) -> Mesh:
     if inputs.is_builtin(spec) or not Path(spec).suffix:
         if not Path(spec).exists():
             return validate(inputs.get(spec), allow_nonconvex=allow_nonconvex)
-    return validate(read_mesh(spec), allow_nonconvex=allow_nonconvex)
+    return read_valid_mesh(spec, allow_nonconvex=allow_nonconvex, note=say)
 
 
 def command_line() -> str:
