@@ -20,6 +20,7 @@ from .mesh_commands import inputs_command, stats_command, subdivide_command
 from .puzzle_command import puzzle_command
 from .strands_command import strands_command
 from .weave_command import weave_command
+from ..subdivision.hierarchy import keep_freed_memory
 
 
 @click.group(context_settings=CONTEXT)
@@ -53,6 +54,7 @@ def _terminate(signum, frame) -> None:
 def main(argv: list[str] | None = None) -> None:
     """Console entry point: run ``cli`` and turn anything unexpected into one line."""
     signal.signal(signal.SIGTERM, _terminate)  # clean up temporary files like Ctrl-C does
+    keep_freed_memory()  # big levels reuse freed pages instead of faulting in new ones
     try:
         cli.main(args=argv, prog_name="weave-cut", standalone_mode=True)
     except KeyboardInterrupt:
