@@ -4,16 +4,20 @@ from __future__ import annotations
 
 import contextlib
 import functools
+import math
 import shlex
 import sys
 from pathlib import Path
 
 import click
+import numpy as np
 
 from .. import __version__, inputs, units
-from ..errors import WeaveCutError
+from ..errors import MeshError, WeaveCutError
+from ..fileio import protect
 from ..mesh import Mesh
 from ..mesh_io import read_mesh
+from ..text import clean
 from ..validation import validate
 
 CONTEXT = {"help_option_names": ["-h", "--help"], "max_content_width": 100}
@@ -28,8 +32,8 @@ class Length(click.ParamType):
         self.minimum, self.inclusive = minimum, inclusive
 
     def convert(self, value, param, ctx):
-        if isinstance(value, float):
-            return value
+        if isinstance(value, bool):
+            self.fail(f"{value!r} is not a length", param, ctx)
         try:
             mm = units.to_mm(value)
         except ValueError as exc:
@@ -40,6 +44,16 @@ class Length(click.ParamType):
         if mm > 1e6:
             self.fail(f"{value!r} is larger than a kilometre", param, ctx)
         return mm
+
+
+class Finite(click.FloatRange):
+    """A finite float within optional bounds (click's FloatRange lets NaN and inf through)."""
+
+    def convert(self, value, param, ctx):
+        number = super().convert(value, param, ctx)
+        if not math.isfinite(number):
+            self.fail(f"{value!r} is not a finite number", param, ctx)
+        return number
 
 
 class PageSize(click.ParamType):
@@ -71,16 +85,32 @@ def reports_errors(f):
 
 
 def load_mesh(spec: str, allow_nonconvex: bool = False) -> Mesh:
-    """A built-in input by name, or a mesh file, validated."""
+    """A built-in input by name, or a mesh file, validated; no output may replace the file."""
     if inputs.is_builtin(spec) or not Path(spec).suffix:
         if not Path(spec).exists():
             return validate(inputs.get(spec), allow_nonconvex=allow_nonconvex)
+    protect(spec)
     return validate(read_mesh(spec), allow_nonconvex=allow_nonconvex)
 
 
+def check_levels(levels, what: str) -> None:
+    """Refuse a subdivision whose last level is empty or has coordinates that are not finite
+    (an area centroid of a face too small for floating point), instead of writing it."""
+    mesh = levels[-1].mesh
+    if mesh.n_faces == 0:
+        raise MeshError(f"{what} has no faces at level {len(levels) - 1} (the scheme needs "
+                        "inner vertices or edges this mesh does not have); try another "
+                        "scheme or input")
+    if not np.isfinite(mesh.vertices).all():
+        raise MeshError(f"{what} has coordinates that are not finite at level "
+                        f"{len(levels) - 1} (faces too small for --centre area?); scale the "
+                        "mesh up or use --centre vertex")
+
+
 def command_line() -> str:
-    """The command that is running, for output metadata."""
-    return "weave-cut " + " ".join(shlex.quote(a) for a in sys.argv[1:])
+    """The command that is running, for output metadata (control characters and undecodable
+    bytes replaced)."""
+    return clean("weave-cut " + " ".join(shlex.quote(a) for a in sys.argv[1:]))
 
 
 def provenance() -> dict[str, str]:

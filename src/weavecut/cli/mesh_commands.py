@@ -16,6 +16,7 @@ from .common import (
     CONTEXT,
     Length,
     allow_nonconvex_option,
+    check_levels,
     input_argument,
     load_mesh,
     progress,
@@ -64,7 +65,9 @@ def run_scheme(input_mesh: str, levels: int, scheme: str, no_smooth: bool, chira
     elif no_smooth or chirality != "left" or centre != "vertex":
         raise click.UsageError("--no-smooth, --chirality and --centre apply to --scheme snub")
     with progress(range(levels), f"{scheme} levels") as steps:
-        return subdivide(mesh, levels, scheme, steps=steps, **options)
+        hierarchy = subdivide(mesh, levels, scheme, steps=steps, **options)
+    check_levels(hierarchy, f"{scheme} of {input_mesh}")
+    return hierarchy
 
 
 @click.command("inputs", context_settings=CONTEXT)

@@ -14,7 +14,7 @@ from ..layout.tiling import tile
 from ..units import PAPER_SIZES
 from ..weave.colour import palette
 from ..fileio import write_atomic
-from .common import CONTEXT, Length, PageSize, load_mesh, provenance, reports_errors
+from .common import CONTEXT, Finite, Length, PageSize, load_mesh, provenance, reports_errors
 
 
 @click.command("puzzle", context_settings=CONTEXT)
@@ -39,7 +39,7 @@ from .common import CONTEXT, Length, PageSize, load_mesh, provenance, reports_er
 @click.option("--frame", "frame_width", type=Length(), default="20mm", show_default=True,
               help="Frame width beyond the hexagon ring.")
 @click.option("--numbers", is_flag=True, help="Engrave piece numbers (engrave layer).")
-@click.option("--speed", type=click.FloatRange(min=0, min_open=True), default=None,
+@click.option("--speed", type=Finite(min=0, min_open=True, max=10_000), default=None,
               help="Cutting speed in mm/s for the time estimate (default: the material's).")
 @click.option("--page", type=click.Choice(sorted(PAPER_SIZES)), default="a4",
               show_default=True, help="Printer page for the tiled PDF guides.")

@@ -13,7 +13,8 @@ from ..papermodel.book import preset_for, strand_book
 from ..subdivision import snub, subdivide
 from ..weave.colour import palette
 from ..weave.snub_weave import snub_weaves
-from .common import CONTEXT, Length, PageSize, input_argument, load_mesh, provenance, reports_errors
+from .common import (CONTEXT, Finite, Length, PageSize, input_argument, load_mesh, provenance,
+                     reports_errors)
 
 FORMATS = ("pdf", "svg")
 
@@ -31,7 +32,7 @@ FORMATS = ("pdf", "svg")
 @click.option("--palette", "palette_name", default=None,
               help="Palette preset: maritime-12 (braided pairs, copies alike; the default) or "
                    "a flat one such as maritime-4 (one colour per module copy).")
-@click.option("--turn", type=float, default=None,
+@click.option("--turn", type=Finite(-3600, 3600), default=None,
               help="Degrees the pattern is turned on the assembly sheet; module strands head "
                    "down in it [default: 45 for square-grid, else 0].")
 @click.option("--chirality", type=click.Choice(snub.CHIRALITIES), default="left",

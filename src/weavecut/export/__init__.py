@@ -8,6 +8,7 @@ from pathlib import Path
 from ..errors import ExportError
 from ..fileio import write_atomic
 from ..layout.drawing import Drawing
+from ..text import clean_drawing
 from . import dxf, pdf, png, svg
 
 RENDERERS: dict[str, Callable[[Drawing], bytes]] = {m.SUFFIX: m.render for m in (svg, dxf, pdf, png)}
@@ -21,7 +22,7 @@ def render(drawing: Drawing, file_format: str) -> bytes:
     fmt = file_format.lower().lstrip(".")
     if fmt not in RENDERERS:
         raise ExportError(f"unknown output format {fmt!r}; choose one of {formats()}")
-    return RENDERERS[fmt](drawing)
+    return RENDERERS[fmt](clean_drawing(drawing))
 
 
 def write(drawing: Drawing, path: str | Path, file_format: str | None = None) -> None:
