@@ -7,8 +7,9 @@ keys). ``read_toml`` refuses anything that is not a regular UTF-8 file of at mos
 dotted key takes tomllib a minute and gigabytes); ``Table.check`` then names the file, table and
 key of the first problem and suggests the nearest key for a misspelt one::
 
-    poplar.toml: [material] kerf: '-1mm' must be >= 0 mm
-    recipe.toml: job 2: unknown key 'level' (did you mean 'levels'?)
+    poplar.toml: kerf: '-1mm' must be >= 0 mm
+    lightburn.toml: [cut] colour: 'red' is not a #rrggbb colour
+    recipe.toml job 2 (weave): unknown key 'level' (did you mean 'levels'?); weave takes ...
 
 Checking returns nothing: a valid document is used as written, so every consumer keeps parsing
 its own values, now knowing that they parse.
@@ -24,7 +25,6 @@ import stat
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
-from pathlib import Path
 
 from . import units
 from .errors import WeaveCutError
@@ -232,25 +232,26 @@ class Table:
 
     def check(self, doc, where: str, error: type[SchemaError] = SchemaError) -> None:
         """Raise ``error`` naming ``where`` (file and table), the key and the problem."""
-        where = f"{where}: [{self.label}]" if self.label else where
+        file = where
+        where = f"{file}: [{self.label}]" if self.label else f"{file}:"
         if not isinstance(doc, dict):
-            raise error(f"{where}: expected a table, got {_kind(doc)}")
+            raise error(f"{where} expected a table, got {_kind(doc)}")
         for key, value in doc.items():
             spec = self.fields.get(key)
             if spec is None:
-                raise error(f"{where}: unknown key {key!r}{nearest(key, self.fields)}; "
+                raise error(f"{where} unknown key {key!r}{nearest(key, self.fields)}; "
                             f"allowed: {', '.join(sorted(self.fields))}")
             if isinstance(spec, Table):
-                spec.check(value, where if spec.label else f"{where} {key}", error)
+                spec.check(value, file, error)
                 continue
             p = spec.problem(value)
             if p:
-                raise error(f"{where} {key}: {p}")
+                raise error(f"{where} {p}" if isinstance(spec, Jobs) else f"{where} {key}: {p}")
         missing = [k for k in self.required if k not in doc]
         if missing:
-            raise error(f"{where}: missing key {missing[0]!r}")
+            raise error(f"{where} missing key {missing[0]!r}")
         if self.one_of and sum(k in doc for k in self.one_of) != 1:
-            raise error(f"{where}: needs exactly one of {' or '.join(map(repr, self.one_of))}")
+            raise error(f"{where} needs exactly one of {' or '.join(map(repr, self.one_of))}")
 
 
 # --- the schemas --------------------------------------------------------------------------
@@ -301,7 +302,7 @@ class Jobs:
 
     def problem(self, value) -> str | None:
         if not isinstance(value, list) or not value:
-            return "expected [[job]] tables"
+            return "job: expected [[job]] tables"
         if len(value) > 1000:
             return "more than 1000 jobs"
         for n, job in enumerate(value, start=1):

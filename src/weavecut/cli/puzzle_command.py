@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import click
 
@@ -13,7 +12,7 @@ from ..puzzle.pieces import build_puzzle, colour_puzzle
 from ..layout.tiling import tile
 from ..units import PAPER_SIZES
 from ..weave.colour import palette
-from ..fileio import write_atomic
+from ..fileio import make_folder, write_atomic
 from .common import CONTEXT, Finite, Length, PageSize, load_mesh, provenance, reports_errors
 
 
@@ -80,8 +79,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
         g = pf.guide(puzzle, colouring, side, numbers)
         files[f"puzzle-{side}-guide.svg"] = g
         files[f"puzzle-{side}-guide-{page}.pdf"] = tile(g, PAPER_SIZES[page])
-    folder = Path(out_dir)
-    folder.mkdir(parents=True, exist_ok=True)
+    folder = make_folder(out_dir)
     meta = provenance()
     for name, drawing in files.items():
         export.write(drawing.with_metadata(**meta), folder / name)

@@ -65,7 +65,8 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
     what = f"the {scheme} weave of {input_mesh} at level {levels}"
     try:
         weaves = scheme_weaves(hierarchy, scheme, face_split)
-    except MeshError as exc:  # the face-split mesh of an irregular level
+        weaves[-1].mesh.topology  # noqa: B018  (a face-split mesh can pinch at a vertex)
+    except MeshError as exc:
         raise click.ClickException(f"{what} cannot be built: {exc}") from exc
     if weaves[-1].n_tiles == 0:
         raise click.ClickException(f"{what} has no tiles: no two faces glue into one; try "
