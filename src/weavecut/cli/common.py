@@ -11,11 +11,14 @@ from pathlib import Path
 
 import click
 import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from shapely.errors import GEOSException
 
 from .. import __version__, inputs, units
 from ..errors import MeshError, WeaveCutError
 from ..fileio import protect
-from ..mesh import Mesh
+from ..mesh import Mesh, signed_areas
 from ..mesh_io import read_mesh
 from ..text import clean
 from ..validation import validate
@@ -77,6 +80,9 @@ def reports_errors(f):
             return f(*args, **kwargs)
         except WeaveCutError as exc:
             raise click.ClickException(str(exc)) from exc
+        except GEOSException as exc:  # a last resort: meshes are checked before layout
+            raise click.ClickException(f"the geometry cannot be laid out ({exc}); a mesh with "
+                                       "sliver faces or tiny features is the usual cause") from exc
         except KeyboardInterrupt:
             click.echo("weave-cut: interrupted; no output was left half-written", err=True)
             sys.exit(130)
@@ -91,6 +97,37 @@ def load_mesh(spec: str, allow_nonconvex: bool = False) -> Mesh:
             return validate(inputs.get(spec), allow_nonconvex=allow_nonconvex)
     protect(spec)
     return validate(read_mesh(spec), allow_nonconvex=allow_nonconvex)
+
+
+THINNEST = 1e-3  # isoperimetric quotient 4 pi A / P^2 of the thinnest face a layout accepts
+
+
+def check_layout(mesh: Mesh, what: str, connected: bool = False) -> Mesh:
+    """``mesh`` if ``what`` (the puzzle, the paper model) can lay it out: no sliver face (its
+    strips and pieces would be thinner than floating point keeps apart) and, if
+    ``connected``, one piece; otherwise a MeshError naming the face or the parts."""
+    quotient = 4 * np.pi * np.abs(signed_areas(mesh)) / face_perimeters(mesh) ** 2
+    worst = int(np.argmin(quotient))
+    if quotient[worst] < THINNEST:
+        raise MeshError(f"face {worst + 1} is a sliver (area {quotient[worst]:.1e} of a circle "
+                        f"with its perimeter); {what} needs faces at least {THINNEST:g} of that")
+    if connected:
+        twin = mesh.topology.twin
+        inner = twin >= 0
+        face = mesh.half_edge_face
+        graph = coo_matrix((np.ones(inner.sum()), (face[inner], face[twin[inner]])),
+                           shape=(mesh.n_faces, mesh.n_faces))
+        parts = connected_components(graph, directed=False)[0]
+        if parts > 1:
+            raise MeshError(f"the mesh has {parts} separate parts; {what} needs one piece")
+    return mesh
+
+
+def face_perimeters(mesh: Mesh):
+    """(F,) perimeter of every face."""
+    p = mesh.vertices[mesh.face_indices]
+    step = np.hypot(*(p[mesh.next_half_edge] - p).T)
+    return np.add.reduceat(step, mesh.face_offsets[:-1])
 
 
 def check_levels(levels, what: str) -> None:

@@ -13,7 +13,8 @@ from ..layout.tiling import tile
 from ..units import PAPER_SIZES
 from ..weave.colour import palette
 from ..fileio import make_folder, write_atomic
-from .common import CONTEXT, Finite, Length, PageSize, load_mesh, provenance, reports_errors
+from .common import (CONTEXT, Finite, Length, PageSize, check_layout, load_mesh, provenance,
+                     reports_errors)
 
 
 @click.command("puzzle", context_settings=CONTEXT)
@@ -62,7 +63,8 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     sheet = mat["sheet"] if sheet is None else sheet
     speed = mat["cut_speed"] if speed is None else speed
     las = pf.laser(laser_name)
-    puzzle = build_puzzle(load_mesh(input_mesh), levels, size, frame_width)
+    puzzle = build_puzzle(check_layout(load_mesh(input_mesh), "the puzzle", connected=True),
+                          levels, size, frame_width)
     pf.check_kerf(puzzle, kerf)
     colouring = colour_puzzle(puzzle, palette(palette_name))
     results, files = {}, {}  # everything is laid out before the first file is written

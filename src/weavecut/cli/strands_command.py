@@ -13,8 +13,8 @@ from ..papermodel.book import preset_for, strand_book
 from ..subdivision import snub, subdivide
 from ..weave.colour import palette
 from ..weave.snub_weave import snub_weaves
-from .common import (CONTEXT, Finite, Length, PageSize, input_argument, load_mesh, provenance,
-                     reports_errors)
+from .common import (CONTEXT, Finite, Length, PageSize, check_layout, input_argument, load_mesh,
+                     provenance, reports_errors)
 
 FORMATS = ("pdf", "svg")
 
@@ -61,7 +61,8 @@ def strands_command(ctx, input_mesh, levels, page, tile_size, margin, palette_na
     levels = preset["levels"] if levels is None else levels
     turn = preset["turn"] if turn is None else math.radians(turn)
     pal = palette(palette_name or preset["palette"])
-    hierarchy = subdivide(load_mesh(input_mesh), levels, chirality=chirality)
+    hierarchy = subdivide(check_layout(load_mesh(input_mesh), "the paper model"), levels,
+                          chirality=chirality)
     weaves = snub_weaves(hierarchy)
     try:
         book = strand_book(weaves, pal, page, tile_size, margin, turn,
