@@ -8,12 +8,24 @@ usage error and exit status 2. Nothing prints a traceback.
 
 from __future__ import annotations
 
-import errno
 import os
-import signal
 import sys
 
+import _signal  # builtin: no import time (``signal`` itself imports enum)
+
 INTERRUPTED = "weave-cut: interrupted; no output was left half-written"
+
+
+def _interrupted_while_loading(signum, frame) -> None:
+    os.write(2, f"{INTERRUPTED}\n".encode())
+    os._exit(130)
+
+
+if os.path.basename(sys.argv[0] if sys.argv else "") == "weave-cut":  # the console script
+    _signal.signal(_signal.SIGINT, _interrupted_while_loading)
+
+import errno  # noqa: E402
+import signal  # noqa: E402
 # a write to stdout or a file that fails for want of room, not for a bug
 _NO_ROOM = {errno.ENOSPC, errno.EPIPE, errno.EIO, errno.EFBIG, errno.EDQUOT}
 
@@ -50,9 +62,11 @@ def _stdout_gone(exc: OSError) -> int:
 
 def main(argv: list[str] | None = None) -> None:
     """Console entry point: run ``cli`` and turn anything unexpected into one line."""
-    # SIGTERM, SIGHUP (terminal closed) and SIGQUIT clean up temporary files like Ctrl-C does
+    # SIGTERM, SIGHUP (terminal closed) and SIGQUIT clean up temporary files like Ctrl-C does;
+    # Ctrl-C while the commands load exits at once (nothing is written yet)
     for sig in (signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT):
         signal.signal(sig, _terminate)
+    signal.signal(signal.SIGINT, _interrupted_while_loading)
     code: int | str | None = 0
     try:
         try:
@@ -62,6 +76,7 @@ def main(argv: list[str] | None = None) -> None:
             sys.exit(1)
         from .app import cli
 
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         cli.main(args=argv, prog_name="weave-cut", standalone_mode=True)
     except SystemExit as exc:
         code = exc.code
