@@ -58,7 +58,8 @@ class Job:
     """One checked job: the command, its typed values by parameter name, and where it writes
     (``output`` absolute; ``prints``: the output is what the command prints)."""
 
-    where: str
+    where: str  # the recipe and the label
+    label: str  # "job 2 (weave)"
     command: click.Command
     values: dict
     output: Path | None
@@ -171,7 +172,8 @@ class Planner:
                 values[options["output"].name] = str(target)
             else:
                 prints = True
-        job = Job(where, command, values, target, shown, prints, tuple(reads))
+        job = Job(where, f"job {n} ({name})", command, values, target, shown, prints,
+                  tuple(reads))
         self.convert(job)
         return job
 
@@ -261,10 +263,10 @@ class Planner:
                 source = read[real]
                 raise RecipeError(f"{job.where}: output {job.shown!r} is "
                                   + ("the recipe itself" if source is None else
-                                     f"an input of {source.where}"))
+                                     f"an input of {source.label}"))
             if real in seen and job.output.suffix:
                 raise RecipeError(f"{job.where}: output {job.shown!r} is also the output of "
-                                  f"{seen[real].where}")
+                                  f"{seen[real].label}")
             seen[real] = job
             for path in self.replaced(job):
                 if path.is_symlink():
