@@ -24,11 +24,11 @@ def clean(text: str) -> str:
 
 
 def clean_drawing(drawing):
-    """``drawing`` with its title, metadata, sheet and layer names and texts ``clean``."""
-    from .layout.drawing import Text
+    """``drawing`` (a ``layout.drawing.Drawing``) with its title, metadata, sheet and layer
+    names and the strings of its Text shapes ``clean``."""
 
     def shape(s):
-        return replace(s, text=clean(s.text)) if isinstance(s, Text) else s
+        return replace(s, text=clean(s.text)) if isinstance(getattr(s, "text", None), str) else s
 
     sheets = tuple(replace(sheet, name=clean(sheet.name), layers=tuple(
         replace(layer, name=clean(layer.name), shapes=tuple(map(shape, layer.shapes)))
