@@ -12,7 +12,7 @@ OUT    := build
 RECIPES := $(wildcard templates/recipes/*.toml) $(wildcard examples/*.toml)
 BUILT   := $(patsubst %.toml,$(OUT)/%/.built,$(notdir $(RECIPES)))
 
-.PHONY: run figures test bench clean help
+.PHONY: run figures test fuzz bench clean help
 .DELETE_ON_ERROR:
 
 help:  ## list the targets
@@ -45,6 +45,9 @@ figures: $(STAMP)  ## every paper figure weave-cut reproduces, into build/figure
 
 test: $(STAMP)  ## run the whole test suite
 	$(PY) -m pytest
+
+fuzz: $(STAMP)  ## the untrusted-input fuzz suite with the long hypothesis profile
+	HYPOTHESIS_PROFILE=long $(PY) -m pytest tests/untrusted -k "fuzz or corpus"
 
 bench: $(STAMP)  ## run the benchmarks (throughput, ratios against peers)
 	$(PY) -m pip install --quiet -e '.[bench]' || echo "some peers did not install"

@@ -26,6 +26,8 @@ CASES = [
     ["weave", "square-grid", "--size", "-0", "-o", "{d}/x.svg"],
     ["levels", "pentagon", "--levels", "2", "--window", "nan,0,1,1", "-o", "{d}/l.png"],
     ["levels", "pentagon", "--levels", "2", "--window", "0,0,1e400,1", "-o", "{d}/l.png"],
+    ["levels", "pentagon", "--levels", "2", "--window", "-1e308,-1e308,1e308,1e308", "-o",
+     "{d}/l.png"],
 ]
 
 
