@@ -27,13 +27,14 @@ $(STAMP): pyproject.toml
 run: $(BUILT)  ## build every recipe (templates/recipes, examples) into build/ (incremental)
 	@echo "built into $(OUT)/: $(notdir $(basename $(RECIPES)))"
 
-# a recipe is rebuilt when it or the package changed; each recipe has its own folder
+# a recipe is rebuilt when it or the package changed; each recipe has its own folder, which
+# belongs to make (--force: replace files a weave-cut without a manifest left there)
 $(OUT)/%/.built: templates/recipes/%.toml $(STAMP) $(SRC)
-	$(WC) -q build $< -o $(OUT)/$* > /dev/null
+	$(WC) -q build $< -o $(OUT)/$* --force > /dev/null
 	touch $@
 
 $(OUT)/%/.built: examples/%.toml $(STAMP) $(SRC) examples/*.obj examples/*.json
-	$(WC) -q build $< -o $(OUT)/$* > /dev/null
+	$(WC) -q build $< -o $(OUT)/$* --force > /dev/null
 	touch $@
 
 figures: $(STAMP)  ## every paper figure weave-cut reproduces, into build/figures/

@@ -69,7 +69,7 @@ def toml_depth(text: str) -> int:
             mode, dots = "header", 0
         elif t == "]" and mode == "header":
             header, mode, dots = header + dots + 1, "done", 0
-            deepest = max(deepest, header)
+            deepest = max(deepest, header + 1)  # the document, then the header's tables
         elif t == "." and mode in ("key", "header"):
             dots += 1
         elif t == "=" and mode == "key":

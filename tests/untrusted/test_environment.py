@@ -1,10 +1,9 @@
 """Odd environments: a read-only or missing folder, stdout on a full device, long names, a
-deleted working folder, and signals (SIGHUP and SIGQUIT clean up like SIGTERM; Ctrl-C while
-the modules load ends in one line)."""
+deleted working folder, and Ctrl-C while the modules load (one line). SIGHUP and SIGQUIT
+cleaning up like SIGTERM: tests/test_fuzz.py."""
 
 from __future__ import annotations
 
-import os
 import signal
 import subprocess
 import sys
@@ -72,22 +71,6 @@ def test_deleted_working_folder(tmp_path):
     assert proc.returncode == 1
     assert proc.stderr == "weave-cut: error: the working folder no longer exists; cd to " \
                           "another one\n"
-
-
-@pytest.mark.parametrize("sig", [signal.SIGHUP, signal.SIGQUIT, signal.SIGTERM])
-def test_hangup_and_quit_clean_up_like_terminate(tmp_path, sig):
-    out = tmp_path / "big.svg"
-    proc = subprocess.Popen([COMMAND, "subdivide", "pentagon", "--levels", "8", "-o", str(out)],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    time.sleep(2.0)
-    proc.send_signal(sig)
-    _, err = proc.communicate(timeout=120)
-    assert proc.returncode in (0, 130), err
-    assert "Traceback" not in err
-    if proc.returncode == 130:
-        assert err == "weave-cut: interrupted; no output was left half-written\n"
-        assert not out.exists()
-    assert not [p for p in tmp_path.iterdir() if p.name.endswith(".part")]
 
 
 def test_interrupt_handler_is_in_place_before_the_heavy_imports():

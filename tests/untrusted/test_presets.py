@@ -135,7 +135,7 @@ def test_deep_dotted_key_is_refused_at_once(tmp_path):
     ("a = 1", 1), ("a.b.c = 1", 3), ("[a.b]\nc = 1", 3), ("[[a.b]]\nc = 1", 4),
     ("a = [[1]]", 3), ("a = {b = {c = 1}}", 3), ("t = {a.b = 1, c.d = 2, e.f = 3}", 3),
     ('"a.b" = "x.y.z"', 1), ("a = '''\n[[[[\n'''", 1), ("a = 1.5 # [[[[ .. ", 1),
-    ("a = [1.5, 2.5, 3.5]", 2), ("[" + "a." * 30 + "b]", 31),
+    ("a = [1.5, 2.5, 3.5]", 2), ("[" + "a." * 30 + "b]", 32), ("[0]", 2),
 ])
 def test_depth_counts_what_the_parser_nests(text, depth):
     assert toml_depth(text) == depth

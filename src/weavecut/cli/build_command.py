@@ -298,6 +298,8 @@ class Planner:
 
     def run(self, job: Job, n: int, total: int) -> None:
         say(f"[{n}/{total}] {job.command_line()}")
+        if job.output is not None:
+            make_folder(job.output.parent)  # checked to lie inside the build folder
         sub = self.context(job)
         printed = io.StringIO()
         try:
