@@ -94,6 +94,9 @@ def test_preset_files_are_read_only_beside_the_recipe(tmp_path):
     recipe = write_recipe(sub, 'output = "w.svg"\nlevels = 1\npalette = "../p.toml"', "weave",
                           "square-grid")
     refused(run("build", recipe, "-o", tmp_path / "out"), "palette", "outside")
+    recipe = write_recipe(sub, 'output = "s.pdf"\npage = "/etc/page.toml"', "strands",
+                          "square-grid")
+    refused(run("build", recipe, "-o", tmp_path / "out"), "page", "outside")
     recipe = write_recipe(sub, 'output = "w.svg"\nlevels = 1\npalette = "nope"', "weave",
                           "square-grid")
     refused(run("build", recipe, "-o", tmp_path / "out"), "job 1 (weave)", "palette",

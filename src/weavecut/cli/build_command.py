@@ -203,13 +203,12 @@ class Planner:
             value = [value]
         if not p.multiple and isinstance(value, list):
             raise RecipeError(f"{where}: {key}: expected one value, got a list")
+        if isinstance(value, str) and value.endswith(".toml"):  # a preset file, any option
+            path = self.readable_file((self.recipe.parent / value).resolve(), value, where, key)
+            reads.append(path)
+            value = str(path)
         kind = PRESET_OPTIONS.get(key)
         if kind and isinstance(value, str):
-            if value.endswith(".toml"):
-                path = self.readable_file((self.recipe.parent / value).resolve(), value, where,
-                                          key)
-                reads.append(path)
-                value = str(path)
             try:
                 presets.load(kind, value)
             except presets.PresetError as exc:
