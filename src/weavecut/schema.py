@@ -290,6 +290,8 @@ class Scalar:
             return f"{value!r} is not a finite number"
         if isinstance(value, str) and len(value) > 1000:
             return "longer than 1000 characters"
+        if isinstance(value, str) and "\x00" in value:
+            return "contains a NUL character"
         if not isinstance(value, (str, int, float, bool)):
             return f"expected a string, number or boolean, got {_kind(value)}"
         return None

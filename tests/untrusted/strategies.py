@@ -19,10 +19,11 @@ HOSTILE_STRINGS = ["--help", "--output=/tmp/x", "-o", "-", "../x.svg", "../../.b
                    "nan", "inf", "1e400", "-1mm", "1e400x1e400", "5", "\x00", "\x1b[31m",
                    "caf\u00e9", "x" * 300, "pentagon", "square-grid:2x2", "ngon:-1",
                    "square-grid:99999x99999", "maritime-12", "poplar-3mm", "lightburn",
-                   "../templates/palettes/puzzle.toml", "p.toml"]
+                   "../templates/palettes/puzzle.toml", "p.toml", "a\x00b.obj",
+                   "x" * 300 + ".obj"]
 OUTPUTS = ["x.svg", "x.json", "x.txt", "sub/x.svg", ".", "../x.svg", "/tmp/x.svg",
            "a/../../x.svg", "", "x" * 300 + ".svg", "link/x.svg", ".weave-cut-manifest.json",
-           "r.toml", "m.obj", "x\x07.svg"]
+           "r.toml", "m.obj", "x\x07.svg", "x\x00.svg", "x" * 300 + "/y.svg"]
 
 scalars = st.one_of(
     st.sampled_from(HOSTILE_STRINGS), st.text(max_size=20),
@@ -58,7 +59,7 @@ def plausible_jobs(draw) -> dict:
     job = {"command": command, "output": draw(st.sampled_from(OUTPUTS))}
     if command != "inputs":
         job["input"] = draw(st.sampled_from(["pentagon", "square-grid:2x2", "m.obj",
-                                             "../m.obj", "--help"]))
+                                             "../m.obj", *HOSTILE_STRINGS]))
     options = PLAUSIBLE[command]
     for key in draw(st.lists(st.sampled_from(sorted(options)), unique=True)):
         job[key] = draw(options[key])

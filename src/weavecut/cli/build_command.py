@@ -182,7 +182,11 @@ class Planner:
         if inputs.is_builtin(value):
             return value
         path = (self.recipe.parent / value).resolve()
-        if not path.is_file():
+        try:
+            found = path.is_file()
+        except OSError:  # a name too long for the file system
+            found = False
+        if not found:
             raise RecipeError(f"{where}: input {value!r} is neither a built-in input"
                               f"{nearest(value, inputs.INPUTS)} nor a file beside the recipe")
         return str(self.readable_file(path, value, where, "input"))
