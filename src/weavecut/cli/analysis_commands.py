@@ -75,6 +75,8 @@ class WindowType(click.ParamType):
             box = ()
         if len(box) != 4 or not all(math.isfinite(v) for v in box):
             self.fail(f"{value!r} is not four numbers X0,Y0,X1,Y1", param, ctx)
+        if max(map(abs, box)) > 1e9:
+            self.fail(f"{value!r}: coordinates beyond +-1e9 (meshes stay within it)", param, ctx)
         if not (box[0] < box[2] and box[1] < box[3]):
             self.fail(f"{value!r}: need X0 < X1 and Y0 < Y1", param, ctx)
         return box

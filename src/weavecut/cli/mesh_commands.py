@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 import click
+import numpy as np
 
 from .. import export, inputs
 from ..analysis.stats import level_stats
@@ -16,6 +17,7 @@ from .common import (
     CONTEXT,
     Length,
     allow_nonconvex_option,
+    check_levels,
     input_argument,
     load_mesh,
     page_option,
@@ -65,8 +67,10 @@ def run_scheme(input_mesh: str, levels: int, scheme: str, no_smooth: bool, chira
         options = {"smooth": not no_smooth, "chirality": chirality, "centre": centre}
     elif no_smooth or chirality != "left" or centre != "vertex":
         raise click.UsageError("--no-smooth, --chirality and --centre apply to --scheme snub")
-    with progress(range(levels), f"{scheme} levels") as steps:
-        return subdivide(mesh, levels, scheme, steps=steps, **options)
+    with progress(range(levels), f"{scheme} levels") as steps, np.errstate(all="ignore"):
+        hierarchy = subdivide(mesh, levels, scheme, steps=steps, **options)
+    check_levels(hierarchy, f"{scheme} of {input_mesh}")
+    return hierarchy
 
 
 @click.command("inputs", context_settings=CONTEXT)

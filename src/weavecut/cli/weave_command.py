@@ -7,6 +7,7 @@ from pathlib import Path
 
 import click
 
+from ..errors import MeshError
 from ..weave.colour import palette, strand_colours
 from ..weave.report import weave_summary
 from ..weave.schemes import scheme_weaves
@@ -70,7 +71,15 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
     pal = palette(palette_name)
     hierarchy = run_scheme(input_mesh, levels, scheme, no_smooth, chirality, centre,
                            allow_nonconvex)
-    weaves = scheme_weaves(hierarchy, scheme, face_split)
+    what = f"the {scheme} weave of {input_mesh} at level {levels}"
+    try:
+        weaves = scheme_weaves(hierarchy, scheme, face_split)
+        weaves[-1].mesh.topology  # noqa: B018  (a face-split mesh can pinch at a vertex)
+    except MeshError as exc:
+        raise click.ClickException(f"{what} cannot be built: {exc}") from exc
+    if weaves[-1].n_tiles == 0:
+        raise click.ClickException(f"{what} has no tiles: no two faces glue into one; try "
+                                   "--face-split or another scheme")
     if as_json:
         first = levels - len(weaves) + 1
         click.echo(json.dumps({"input": input_mesh, "scheme": scheme, "levels": [
