@@ -45,8 +45,10 @@ def validate(mesh: Mesh, *, allow_nonconvex: bool = False) -> Mesh:
         if reflex.any():
             h = int(np.flatnonzero(reflex)[0])
             f = int(mesh.half_edge_face[h])
-            raise MeshError(f"face {f} is not convex at vertex {mesh.face_indices[h]} "
-                            f"(the scheme assumes convex faces; --allow-nonconvex to go on)")
+            raise MeshError(f"face {f} is not convex at vertex {mesh.face_indices[h]}: the "
+                            "snub scheme assumes convex faces (deep levels of some inputs have "
+                            "a few non-convex faces, see weave-cut convexity); pass "
+                            "--allow-nonconvex to use the mesh anyway")
     _check_overlaps(mesh, areas)
     return mesh
 

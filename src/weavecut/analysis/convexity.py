@@ -17,6 +17,7 @@ from ..mesh import Mesh, corner_angles, outer_vertices, vertex_degrees
 from .stats import REFLEX_EPS, nonconvex_faces
 
 ORIGINS = ("input", "z", "centre")
+ORIGIN_NAMES = ("input vertices", "Z vertices", "face centres")
 
 
 def vertex_origins(hierarchy) -> list[NDArray[np.int8]]:
@@ -81,3 +82,63 @@ def convexity_report(hierarchy) -> list[dict]:
     """:func:`level_convexity` for every level of a snub hierarchy."""
     origins = vertex_origins(hierarchy)
     return [level_convexity(lv.mesh, t, o) for t, (lv, o) in enumerate(zip(hierarchy, origins))]
+
+
+def nonconvex_levels(hierarchy, first: int = 1) -> list[dict]:
+    """Every level from ``first`` on that has non-convex faces, and where their reflex corners are.
+
+    Returns
+    -------
+    list of dict ``{"level", "faces", "nonconvex_faces", "where"}``, where ``where`` lists
+    ``(faces, description)`` pairs such as ``(72, "outer Z vertices of degree 3")``: the
+    number of non-convex faces with a reflex corner at that kind of vertex (input vertex,
+    Z vertex or face centre for a snub hierarchy; for other schemes only inner/outer and
+    degree). A face with reflex corners of two kinds counts in both.
+
+    Examples
+    --------
+    >>> from weavecut import inputs
+    >>> from weavecut.subdivision import subdivide
+    >>> nonconvex_levels(subdivide(inputs.get("ngon:24"), 5))[0]["where"]
+    [(72, 'outer Z vertices of degree 3')]
+    """
+    counts = [int(nonconvex_faces(lv.mesh).sum()) if t >= first else 0
+              for t, lv in enumerate(hierarchy)]
+    if not any(counts):
+        return []
+    try:
+        origins = vertex_origins(hierarchy)
+    except ValueError:  # another scheme: no origin classes
+        origins = [None] * len(hierarchy)
+    return [{"level": t, "faces": hierarchy[t].mesh.n_faces, "nonconvex_faces": n,
+             "where": _where(hierarchy[t].mesh, origins[t])}
+            for t, n in enumerate(counts) if n]
+
+
+def _where(mesh: Mesh, origin: NDArray[np.int8] | None) -> list[tuple[int, str]]:
+    """(faces, description) per class of reflex-corner vertex, most faces first."""
+    reflex = reflex_corners(mesh)
+    verts = mesh.face_indices[reflex]
+    faces = mesh.half_edge_face[reflex].astype(np.int64)
+    outer = outer_vertices(mesh)[verts].astype(np.int64)
+    degree = vertex_degrees(mesh)[verts]
+    kind = np.full(len(verts), len(ORIGINS)) if origin is None else origin[verts].astype(np.int64)
+    cls = (kind * 2 + outer) * (int(degree.max()) + 1) + degree
+    pairs = np.unique(np.column_stack([cls, faces]), axis=0)
+    classes, n_faces = np.unique(pairs[:, 0], return_counts=True)
+    order = np.lexsort((classes, -n_faces))
+    out = []
+    for c, n in zip(classes[order].tolist(), n_faces[order].tolist()):  # a loop over classes
+        rest, d = divmod(c, int(degree.max()) + 1)
+        k, o = divmod(rest, 2)
+        name = ORIGIN_NAMES[k] if k < len(ORIGINS) else "vertices"
+        out.append((n, f"{'outer' if o else 'inner'} {name} of degree {d}"))
+    return out
+
+
+def nonconvex_message(row: dict) -> str:
+    """One line for a row of :func:`nonconvex_levels`, e.g. ``level 5: 72 of 15,000 faces are
+    non-convex (72 at outer Z vertices of degree 3)``."""
+    where = "; ".join(f"{n:,} at {text}" for n, text in row["where"])
+    return (f"level {row['level']}: {row['nonconvex_faces']:,} of {row['faces']:,} faces are "
+            f"non-convex ({where})")

@@ -11,6 +11,7 @@ from pathlib import Path
 import click
 
 from .. import __version__, inputs, units
+from ..analysis.convexity import nonconvex_levels, nonconvex_message
 from ..errors import WeaveCutError
 from ..mesh import Mesh
 from ..mesh_io import read_mesh
@@ -107,3 +108,15 @@ def say(message: str) -> None:
     ctx = click.get_current_context(silent=True)
     if not (ctx is not None and ctx.find_root().meta.get("weavecut.quiet", False)):
         click.echo(message, err=True)
+
+
+def flag_nonconvex(hierarchy) -> dict:
+    """Warn on stderr about every produced level (1..N) with non-convex faces (even with -q:
+    such a mesh is refused as input without --allow-nonconvex), and return the counts for
+    --json: ``{"nonconvex_faces": total, "nonconvex_faces_by_level": {"5": 72, ...}}``."""
+    rows = nonconvex_levels(hierarchy)
+    for row in rows:
+        click.echo(f"weave-cut: warning: {nonconvex_message(row)}; see weave-cut convexity",
+                   err=True)
+    return {"nonconvex_faces": sum(r["nonconvex_faces"] for r in rows),
+            "nonconvex_faces_by_level": {str(r["level"]): r["nonconvex_faces"] for r in rows}}

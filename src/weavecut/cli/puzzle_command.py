@@ -15,6 +15,7 @@ from ..units import PAPER_SIZES
 from ..weave.colour import palette
 from ..fileio import write_atomic
 from .common import CONTEXT, Length, PageSize, load_mesh, provenance, reports_errors
+from .common import flag_nonconvex
 
 
 @click.command("puzzle", context_settings=CONTEXT)
@@ -88,6 +89,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     written = list(files)
     info = pf.summary(puzzle, results, speed, colouring)
     info.update(material=mat["name"], kerf_mm=kerf, sheet_mm=list(sheet), laser=las.name,
+                **flag_nonconvex(puzzle.hierarchy),
                 files=sorted(written + ["puzzle-summary.json"]))
     text = json.dumps(info, indent=2)
     write_atomic(folder / "puzzle-summary.json", (text + "\n").encode("utf-8"))

@@ -14,6 +14,7 @@ from ..subdivision import snub, subdivide
 from ..weave.colour import palette
 from ..weave.snub_weave import snub_weaves
 from .common import CONTEXT, Length, PageSize, input_argument, load_mesh, provenance, reports_errors
+from .common import flag_nonconvex
 
 FORMATS = ("pdf", "svg")
 
@@ -62,6 +63,7 @@ def strands_command(ctx, input_mesh, levels, page, tile_size, margin, palette_na
     pal = palette(palette_name or preset["palette"])
     hierarchy = subdivide(load_mesh(input_mesh), levels, chirality=chirality)
     weaves = snub_weaves(hierarchy)
+    flag_nonconvex(hierarchy)
     try:
         book = strand_book(weaves, pal, page, tile_size, margin, turn,
                            title=f"weave-cut strands: {input_mesh}, level {levels}")

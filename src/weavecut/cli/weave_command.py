@@ -9,10 +9,10 @@ import click
 
 from .. import export
 from ..weave.colour import palette, strand_colours
-from ..weave.report import weave_summary
+from ..weave.report import weave_summaries
 from ..weave.schemes import scheme_weaves
 from ..layout.weave_figure import snub_under_points, weave_drawing
-from .common import CONTEXT, Length, input_argument, provenance, reports_errors
+from .common import CONTEXT, Length, flag_nonconvex, input_argument, provenance, reports_errors
 from .mesh_commands import run_scheme, scheme_options
 
 DRAWINGS = ("svg", "pdf", "png", "dxf")
@@ -61,11 +61,12 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
     pal = palette(palette_name)
     hierarchy = run_scheme(input_mesh, levels, scheme, no_smooth, chirality, centre,
                            allow_nonconvex)
+    nonconvex = flag_nonconvex(hierarchy)
     weaves = scheme_weaves(hierarchy, scheme, face_split)
     if as_json:
         first = levels - len(weaves) + 1
-        click.echo(json.dumps({"input": input_mesh, "scheme": scheme, "levels": [
-            {"level": first + i, **weave_summary(w)} for i, w in enumerate(weaves)]}, indent=2))
+        click.echo(json.dumps({"input": input_mesh, "scheme": scheme, **nonconvex, "levels": [
+            {"level": first + i, **s} for i, s in enumerate(weave_summaries(weaves))]}, indent=2))
     if output:
         snub = scheme == "snub" and not face_split
         outline = None
