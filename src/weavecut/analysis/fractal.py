@@ -516,4 +516,7 @@ def fractal_report(hierarchy, chirality: str = "left", curve: tuple[int, int] | 
             rows += [r for r in inner_curves(hierarchy, b) if k == 0 or r["kind"] != "boundary"]
     if rows:
         report["inner_curves"] = rows
+        report["growth_monotonicity"] = [
+            m for b in sorted(set(born)) if 0 <= b < last
+            for m in growth_monotonicity(hierarchy, b) if m["kind"] != "boundary"]
     return report
