@@ -4,7 +4,8 @@ Every panel is drawn from the engine: the stages of a step are the scheme module
 (Loop's and butterfly's 1-to-4 split with unsmoothed points, sqrt3's relaxed old vertices and
 face centres, mid-edge steps), the weaves come from ``weave/``; the strands that run along a
 parent strand are found from face provenance: inside the band of tiles it passes they are on
-top of many faces, strands that cross the band of a few. ``FIGURES`` has the shape of ``figures.subdivision.FIGURES``.
+top of many faces, strands that cross the band of a few. ``FIGURES`` has the shape of
+``figures.subdivision.FIGURES``.
 """
 
 from __future__ import annotations
@@ -209,8 +210,9 @@ def weave_panel(weave: Weave, colours: list[str], caption: str, dots=(), input_m
             layers.append(Layer("removed-edges", "guide", (segments(
                 fit(dashed(dashed_edges)), Style("#000000", 0.8 * lw)),)))
         if region is not None:
+            parts = shapely.get_parts(shapely.transform(region, fit))
             layers.append(Layer("strand-region", "guide", (polygons_from_shapely(
-                list(shapely.get_parts(shapely.transform(region, fit))), Style("#000000", 1.6 * lw)),)))
+                list(parts), Style("#000000", 1.6 * lw)),)))
         if input_mesh is not None:
             layers.append(Layer("input", "guide", (mesh_polygons(
                 input_mesh, fit, Style("#000000", 1.6 * lw)),)))
