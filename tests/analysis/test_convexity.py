@@ -126,3 +126,13 @@ def test_reading_nonconvex_output_back_explains_the_flag(tmp_path):
     assert "--allow-nonconvex" in refused.output and "weave-cut convexity" in refused.output
     accepted = runner.invoke(cli, ["stats", str(out), "--levels", "0", "--allow-nonconvex"])
     assert accepted.exit_code == 0
+
+
+@pytest.mark.parametrize("spec,levels,smooth", [("ngon:24", 5, True), ("pentagon", 5, False),
+                                                ("triangulated-ngon:24", 3, False)])
+def test_reflex_corner_ids_in_batches_match_the_angles(spec, levels, smooth, monkeypatch):
+    monkeypatch.setattr(cv, "CHUNK", 333)        # many batches of faces
+    mesh = subdivide(inputs.get(spec), levels, smooth=smooth)[-1].mesh
+    expected = np.flatnonzero(cv.reflex_corners(mesh))
+    assert len(expected) > 0
+    assert cv.reflex_corner_ids(mesh).tolist() == expected.tolist()

@@ -26,6 +26,7 @@ def test_every_parent_is_counted(name, levels):
         # children: every strand with a parent, counted once
         assert sum(k * v for k, v in hist.items()) == row["strands"] - lin["orphans"]
         assert hist.get(0, 0) == lin["parents_without_children"]
+        assert sum(lin["childless_parent_length_histogram"].values()) == hist.get(0, 0)
 
 
 def test_parents_at_the_end_of_the_numbering_are_not_dropped():
@@ -38,10 +39,10 @@ def test_parents_at_the_end_of_the_numbering_are_not_dropped():
     assert lin["parents_without_children"] > 0
 
 
-def test_lineage_refuses_a_parent_count_too_small():
+def test_lineage_refuses_the_wrong_parent_weave():
     weaves = snub_weaves(subdivide(inputs.get("pentagon"), 3))
     with pytest.raises(ValueError, match="beyond"):
-        lineage_summary(weaves[2], 2)
+        lineage_summary(weaves[2], weaves[0])
 
 
 def test_weave_json_has_lineage_and_nonconvex_counts():

@@ -48,6 +48,32 @@ def reflex_corners(mesh: Mesh) -> NDArray[np.bool_]:
     return corner_angles(mesh) > np.pi + REFLEX_EPS
 
 
+CHUNK = 1 << 18  # faces per batch in reflex_corner_ids
+
+
+def reflex_corner_ids(mesh: Mesh) -> NDArray[np.int64]:
+    """Ids of the corners :func:`reflex_corners` marks, found batch by batch of faces: only
+    corners whose edges turn right get an angle, and no (H,)-sized temporary is made, so
+    checking a level of millions of faces costs little time and memory next to building it."""
+    v, fi, offsets = mesh.vertices, mesh.face_indices, mesh.face_offsets
+    found = [np.zeros(0, dtype=np.int64)]
+    for f0 in range(0, mesh.n_faces, CHUNK):  # a loop over batches of faces
+        bounds = offsets[f0:min(f0 + CHUNK, mesh.n_faces) + 1]
+        h0, starts, ends = bounds[0], bounds[:-1] - bounds[0], bounds[1:] - bounds[0]
+        nxt = np.arange(1, ends[-1] + 1)
+        nxt[ends - 1] = starts
+        prv = np.empty_like(nxt)
+        prv[nxt] = np.arange(len(nxt))
+        p = v[fi[h0:h0 + ends[-1]]]
+        a = p[prv] - p
+        b = p[nxt] - p
+        cross = b[:, 0] * a[:, 1] - b[:, 1] * a[:, 0]   # as in corner_angles
+        turn = np.flatnonzero(cross < 0)
+        angle = np.mod(np.arctan2(cross[turn], (a[turn] * b[turn]).sum(axis=1)), 2 * np.pi)
+        found.append(h0 + turn[angle > np.pi + REFLEX_EPS])
+    return np.concatenate(found)
+
+
 def level_convexity(mesh: Mesh, level: int, origin: NDArray[np.int8]) -> dict:
     """The convexity findings of one level (see the module docstring)."""
     bad = nonconvex_faces(mesh)
@@ -102,24 +128,29 @@ def nonconvex_levels(hierarchy, first: int = 1) -> list[dict]:
     >>> nonconvex_levels(subdivide(inputs.get("ngon:24"), 5))[0]["where"]
     [(72, 'outer Z vertices of degree 3')]
     """
-    counts = [int(nonconvex_faces(lv.mesh).sum()) if t >= first else 0
+    reflex = [reflex_corner_ids(lv.mesh) if t >= first else np.zeros(0, dtype=np.int64)
               for t, lv in enumerate(hierarchy)]
-    if not any(counts):
+    if not any(len(r) for r in reflex):
         return []
     try:
         origins = vertex_origins(hierarchy)
     except ValueError:  # another scheme: no origin classes
         origins = [None] * len(hierarchy)
-    return [{"level": t, "faces": hierarchy[t].mesh.n_faces, "nonconvex_faces": n,
-             "where": _where(hierarchy[t].mesh, origins[t])}
-            for t, n in enumerate(counts) if n]
+    rows = []
+    for t, corners in enumerate(reflex):  # a loop over levels
+        if len(corners):
+            mesh = hierarchy[t].mesh
+            faces = np.searchsorted(mesh.face_offsets, corners, side="right") - 1
+            rows.append({"level": t, "faces": mesh.n_faces,
+                         "nonconvex_faces": int(len(np.unique(faces))),
+                         "where": _where(mesh, corners, faces, origins[t])})
+    return rows
 
 
-def _where(mesh: Mesh, origin: NDArray[np.int8] | None) -> list[tuple[int, str]]:
-    """(faces, description) per class of reflex-corner vertex, most faces first."""
-    reflex = reflex_corners(mesh)
-    verts = mesh.face_indices[reflex]
-    faces = mesh.half_edge_face[reflex].astype(np.int64)
+def _where(mesh: Mesh, corners, faces, origin: NDArray[np.int8] | None) -> list[tuple[int, str]]:
+    """(faces, description) per class of the vertex at the reflex ``corners`` (of ``faces``),
+    most faces first."""
+    verts = mesh.face_indices[corners]
     outer = outer_vertices(mesh)[verts].astype(np.int64)
     degree = vertex_degrees(mesh)[verts]
     kind = np.full(len(verts), len(ORIGINS)) if origin is None else origin[verts].astype(np.int64)

@@ -3,12 +3,13 @@
 Every finding is a function that measures and then words what it measured, so the numbers in
 the statement are the numbers computed. The README's findings section is this module's
 Markdown output, and ``tests/analysis/test_findings.py`` recomputes the fast findings and
-compares them with the README line for line. Findings marked slow (levels 9 and 10 of the
-pentagon: about two minutes and 3.5 GB together) run only in ``weave-cut findings``.
+compares them with the README line for line. Findings marked slow (level 7 of every input,
+levels 7-10 of the pentagon: a few minutes and about 3.5 GB) run only in ``weave-cut findings``.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, replace
@@ -37,10 +38,11 @@ class Finding:
 
 CONVEXITY_INPUTS = ("pentagon", "square-grid", "tiling-8-4", "ngon:24", "triangulated-ngon:24")
 CONVEXITY_LEVELS = 6
-COUNT_LEVELS = 4
+COUNT_LEVELS = 5
 LINEAGE_CASES = (("pentagon", 5), ("square-grid:6x6", 5), ("pentagon-flower", 5))
 DIMENSION_LEVELS = range(6, 11)
 CURVE_LEVELS = 10
+DEEP_LEVEL = 7
 
 
 def _levels_text(levels) -> str:
@@ -71,7 +73,8 @@ def counts() -> Finding:
         for t, lv in enumerate(h):
             expected_length = length0 * (3 / math.sqrt(7)) ** t
             deviation = max(deviation, abs(_boundary_length(lv.mesh) / expected_length - 1))
-    held = "holds" if not failures else f"fails at {', '.join(failures)}"
+    held = ("holds (and so eq. (1) for the pentagon)" if not failures
+            else f"fails at {', '.join(failures)}")
     return Finding(
         "counts", "Eq. (1)/(2) and degrees",
         f"Eq. (2) {held} at levels 0–{COUNT_LEVELS} of all {len(inputs.INPUTS)} built-in "
@@ -94,7 +97,7 @@ def _boundary_length(mesh) -> float:
 
 def lineage() -> Finding:
     """Long children per parent strand, whether siblings cross, parents without children."""
-    parts, orphans, exact = [], [], True
+    parts, orphans, exact, childless = [], [], True, set()
     for name, levels in LINEAGE_CASES:
         weaves = snub_weaves(subdivide(inputs.get(name), levels))
         rows = [s["lineage"] for s in weave_summaries(weaves)[1:]]
@@ -102,6 +105,7 @@ def lineage() -> Finding:
                      len(rows))
         rows, start = rows[first:], first + 2
         for r in rows:
+            childless |= {int(k) for k in r["childless_parent_length_histogram"]}
             with_long = sum(r["long_children_per_parent_with_long_children"].values())
             exact &= (with_long == r["parents_with_exactly_two_long_children"]
                       == r["long_sibling_pairs_that_cross"])
@@ -115,9 +119,10 @@ def lineage() -> Finding:
     return Finding(
         "lineage", "strands and lineage",
         f"Every parent strand with long children (≥ 3 own tiles) {verdict}: "
-        f"{'; '.join(parts)} parents. Short boundary fragments go to the parent strand that "
-        f"covers most of their pentagons, so some parents get none: {'; '.join(orphans)} "
-        "(same levels).",
+        f"{'; '.join(parts)} parents. A child strand goes to the parent strand that owns or "
+        f"passes under most of its pentagons' parent tiles, and some parents get none: "
+        f"{'; '.join(orphans)} (same levels); each of those is on top of "
+        f"{_set(childless)} tile(s).",
         "`weave-cut weave INPUT --levels 5 --json` (lineage)")
 
 
@@ -167,6 +172,28 @@ def convexity_unsmoothed() -> Finding:
         f"`weave-cut convexity INPUT --levels {CONVEXITY_LEVELS} --no-smooth`")
 
 
+def convexity_deep() -> Finding:
+    """Open question 1 beyond level 6: every input at level 7, the pentagon up to level 10."""
+    parts = []
+    for name in CONVEXITY_INPUTS:
+        h = _pentagon() if name == "pentagon" else subdivide(inputs.get(name), DEEP_LEVEL)
+        rows = nonconvex_levels(h, first=DEEP_LEVEL)
+        text = "; ".join(f"{r['nonconvex_faces']:,} of {r['faces']:,} at level {r['level']} "
+                         f"({', '.join(f'{n:,} at {w}' for n, w in r['where'])})" for r in rows)
+        parts.append(f"{name} {text or 'none'}")
+    return Finding(
+        "convexity-deep", "convexity beyond level 6",
+        f"With smoothing and vertex-mean centres, non-convex faces at level {DEEP_LEVEL} "
+        f"(the pentagon: levels {DEEP_LEVEL}–{CURVE_LEVELS}): {'; '.join(parts)}.",
+        f"`weave-cut convexity INPUT --levels {DEEP_LEVEL}`; `weave-cut findings` (slow)")
+
+
+@functools.lru_cache(maxsize=1)
+def _pentagon():
+    """The pentagon to level CURVE_LEVELS, shared by the slow findings (about 3 GB)."""
+    return subdivide(inputs.get("pentagon"), CURVE_LEVELS)
+
+
 def dimension() -> Finding:
     """Box counting on the pentagon's boundary at levels 6-10 (the L-system curves)."""
     pentagon = inputs.get("pentagon")
@@ -194,11 +221,10 @@ def dimension() -> Finding:
 
 def inner_curves() -> Finding:
     """Whether the inner curves' growth per level changes monotonically (pentagon, level 10)."""
-    h = subdivide(inputs.get("pentagon"), CURVE_LEVELS)
+    h = _pentagon()
     rows = {(r["born"], r["kind"]): r for born in (1, 2, 3)
             for r in fr.growth_monotonicity(h, born)}
     spokes, inner2, inner3 = rows[1, "outer-inner"], rows[2, "inner-inner"], rows[3, "inner-inner"]
-    del h
 
     def seq(r):
         return ", ".join(f"{g:.4f}" for g in r["growth"])
@@ -211,7 +237,10 @@ def inner_curves() -> Finding:
         f"{CURVE_LEVELS}. Summed over all curves of a kind, the growth "
         f"{'rises at every level' if aggregate else 'does not always rise'}: the 5 centre-to-"
         f"boundary curves born at level 1: {seq(spokes)} (levels 2–{CURVE_LEVELS}); the "
-        f"{inner2['curves']} curves between inner vertices born at level 2: {seq(inner2)}. "
+        f"{inner2['curves']} curves between inner vertices born at level 2: {seq(inner2)} "
+        f"(levels 3–{CURVE_LEVELS}); if the last growth g held at every scale, the dimension "
+        f"would be log 3/log(3/g) = {fr.implied_dimension(spokes['growth'][-1]):.4f} and "
+        f"{fr.implied_dimension(inner2['growth'][-1]):.4f}. "
         f"Single curves: of those {inner2['curves']}, {inner2['rising']} rise at every level "
         f"and {inner2['curves'] - inner2['rising']} do not (their growth falls at some "
         f"level); of the {inner3['curves']} born at level 3, {inner3['rising']} rise and "
@@ -224,14 +253,17 @@ def inner_curves() -> Finding:
 
 
 FINDINGS: tuple[Callable[[], Finding], ...] = (
-    counts, lineage, convexity_smoothed, convexity_area, convexity_unsmoothed, dimension,
-    inner_curves)
-SLOW = (dimension, inner_curves)
+    counts, lineage, convexity_smoothed, convexity_area, convexity_unsmoothed, convexity_deep,
+    dimension, inner_curves)
+SLOW = (convexity_deep, dimension, inner_curves)
 
 
 def findings(fast: bool = False) -> list[Finding]:
     """Measure every finding (``fast``: only those not in SLOW)."""
-    return [replace(f(), slow=f in SLOW) for f in FINDINGS if not (fast and f in SLOW)]
+    try:
+        return [replace(f(), slow=f in SLOW) for f in FINDINGS if not (fast and f in SLOW)]
+    finally:
+        _pentagon.cache_clear()
 
 
 def markdown_rows(rows: list[Finding]) -> list[str]:

@@ -397,7 +397,7 @@ def inner_curves(hierarchy, level: int = 1) -> list[dict]:
             if j:
                 g = lk[:, j] / lk[:, j - 1]
                 growth = float(lk[:, j].sum() / lk[:, j - 1].sum())
-                row.update(growth=growth, implied_dimension=_implied_dimension(growth),
+                row.update(growth=growth, implied_dimension=implied_dimension(growth),
                            growth_min=float(g.min()), growth_median=float(np.median(g)),
                            growth_max=float(g.max()))
             rows.append(row)
@@ -442,7 +442,7 @@ def growth_monotonicity(hierarchy, level: int) -> list[dict]:
     return rows
 
 
-def _implied_dimension(growth: float) -> float | None:
+def implied_dimension(growth: float) -> float | None:
     """log 3 / log(3 / g): the dimension of a curve whose 3x more edges make it g x longer
     each step (for the boundary, g = 3/sqrt 7 gives log 3 / log sqrt 7)."""
     return math.log(3.0) / math.log(3.0 / growth) if 0 < growth < 3 else None

@@ -12,8 +12,8 @@ from .common import CONTEXT, reports_errors
 
 @click.command("findings", context_settings=CONTEXT)
 @click.option("--json", "as_json", is_flag=True, help="Print JSON instead of Markdown.")
-@click.option("--fast", is_flag=True, help="Skip the slow findings (levels 9 and 10 of the "
-              "pentagon: about two minutes and 3.5 GB).")
+@click.option("--fast", is_flag=True, help="Skip the slow findings (level 7 of every input, "
+              "levels 7-10 of the pentagon: a few minutes and about 3.5 GB).")
 @reports_errors
 def findings_command(as_json: bool, fast: bool) -> None:
     """Measure the paper's claims and open questions, and print every finding with the numbers

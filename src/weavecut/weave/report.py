@@ -57,17 +57,20 @@ def weave_summary(weave: Weave, parent: Weave | None = None) -> dict:
                                & (weave.tile_under >= 0)).sum()),
     }
     if weave.parent_strand is not None and parent is not None:
-        out["lineage"] = lineage_summary(weave, parent.n_strands)
+        out["lineage"] = lineage_summary(weave, parent)
     return out
 
 
-def lineage_summary(weave: Weave, n_parents: int) -> dict:
-    """How the strands of ``weave`` descend from the ``n_parents`` strands of the level before.
+def lineage_summary(weave: Weave, parent_weave: Weave) -> dict:
+    """How the strands of ``weave`` descend from the strands of ``parent_weave`` (the level
+    before).
 
-    ``children_per_parent`` is a histogram over all ``n_parents`` parent strands (key "0":
-    parents without children); see the module docstring for how a child finds its parent.
+    ``children_per_parent`` is a histogram over all parent strands (key "0": parents without
+    children), ``childless_parent_length_histogram`` the own tiles of the parents without
+    children; see the module docstring for how a child finds its parent.
     """
     parent = weave.parent_strand
+    n_parents = parent_weave.n_strands
     if parent.max(initial=-1) >= n_parents:
         raise ValueError(f"parent strand {int(parent.max())} is beyond the {n_parents} parents")
     own = own_tiles(weave)
@@ -81,6 +84,7 @@ def lineage_summary(weave: Weave, n_parents: int) -> dict:
     return {
         "parents": n_parents,
         "parents_without_children": int((children == 0).sum()),
+        "childless_parent_length_histogram": _hist(own_tiles(parent_weave)[children == 0]),
         "children_per_parent": _hist(children),
         "long_children_per_parent_with_long_children": _hist(long_children[long_children > 0]),
         "parents_with_exactly_two_long_children": int((long_children == 2).sum()),
