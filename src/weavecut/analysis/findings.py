@@ -178,7 +178,7 @@ def convexity_deep() -> Finding:
     for name in CONVEXITY_INPUTS:
         h = _pentagon() if name == "pentagon" else subdivide(inputs.get(name), DEEP_LEVEL)
         rows = nonconvex_levels(h, first=DEEP_LEVEL)
-        text = "; ".join(f"{r['nonconvex_faces']:,} of {r['faces']:,} at level {r['level']} "
+        text = " and ".join(f"{r['nonconvex_faces']:,} of {r['faces']:,} at level {r['level']} "
                          f"({', '.join(f'{n:,} at {w}' for n, w in r['where'])})" for r in rows)
         parts.append(f"{name} {text or 'none'}")
     return Finding(
