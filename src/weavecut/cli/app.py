@@ -8,6 +8,7 @@ from .. import __version__
 from .build_command import build_command
 from .common import CONTEXT
 from .analysis_commands import COMMANDS as ANALYSIS_COMMANDS
+from .findings_command import findings_command
 from .mesh_commands import inputs_command, stats_command, subdivide_command
 from .puzzle_command import puzzle_command
 from .strands_command import strands_command
@@ -34,5 +35,6 @@ def cli(ctx: click.Context, quiet: bool) -> None:
 
 
 for command in (inputs_command, subdivide_command, stats_command, weave_command,
-                puzzle_command, strands_command, *ANALYSIS_COMMANDS, build_command):
+                puzzle_command, strands_command, *ANALYSIS_COMMANDS, findings_command,
+                build_command):
     cli.add_command(command)

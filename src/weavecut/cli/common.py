@@ -17,6 +17,7 @@ from scipy.sparse.csgraph import connected_components
 from shapely.errors import GEOSException
 
 from .. import __version__, inputs, units
+from ..analysis.convexity import nonconvex_levels, nonconvex_message
 from ..errors import MeshError, WeaveCutError
 from ..fileio import protect
 from ..mesh import Mesh, signed_areas
@@ -231,3 +232,15 @@ def summary(text: str) -> None:
     """What a command made, for people to read, on stdout, unless -q."""
     if not quiet():
         click.echo(text)
+
+
+def flag_nonconvex(hierarchy) -> dict:
+    """Warn on stderr about every produced level (1..N) with non-convex faces (even with -q:
+    such a mesh is refused as input without --allow-nonconvex), and return the counts for
+    --json: ``{"nonconvex_faces": total, "nonconvex_faces_by_level": {"5": 72, ...}}``."""
+    rows = nonconvex_levels(hierarchy)
+    for row in rows:
+        click.echo(f"weave-cut: warning: {nonconvex_message(row)}; see weave-cut convexity",
+                   err=True)
+    return {"nonconvex_faces": sum(r["nonconvex_faces"] for r in rows),
+            "nonconvex_faces_by_level": {str(r["level"]): r["nonconvex_faces"] for r in rows}}

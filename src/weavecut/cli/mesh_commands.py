@@ -18,6 +18,7 @@ from .common import (
     Length,
     allow_nonconvex_option,
     check_levels,
+    flag_nonconvex,
     input_argument,
     load_mesh,
     page_option,
@@ -131,6 +132,7 @@ def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
             f"{', '.join('.' + f for f in export.formats())}", param_hint="'-o'")
     hierarchy = run_scheme(input_mesh, levels, scheme, no_smooth, chirality, centre,
                            allow_nonconvex)
+    flag_nonconvex(hierarchy)
     if suffix in MESH_SUFFIXES:
         write_mesh(hierarchy[-1].mesh, output, provenance())
         return

@@ -14,7 +14,8 @@ from ..units import PAPER_SIZES
 from ..weave.colour import palette
 from ..fileio import make_folder, write_atomic
 from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_inputs,
-                     complete_preset, load_mesh, provenance, reports_errors, summary)
+                     complete_preset, flag_nonconvex, load_mesh, provenance, reports_errors,
+                     summary)
 
 
 @click.command("puzzle", context_settings=CONTEXT)
@@ -90,6 +91,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     written = list(files)
     info = pf.summary(puzzle, results, speed, colouring)
     info.update(material=mat["name"], kerf_mm=kerf, sheet_mm=list(sheet), laser=las.name,
+                **flag_nonconvex(puzzle.hierarchy),
                 files=sorted(written + ["puzzle-summary.json"]))
     text = json.dumps(info, indent=2)
     write_atomic(folder / "puzzle-summary.json", (text + "\n").encode("utf-8"))

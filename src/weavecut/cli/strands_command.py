@@ -14,7 +14,8 @@ from ..subdivision import snub, subdivide
 from ..weave.colour import palette
 from ..weave.snub_weave import snub_weaves
 from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_preset,
-                     input_argument, load_mesh, provenance, reports_errors, summary)
+                     flag_nonconvex, input_argument, load_mesh, provenance, reports_errors,
+                     summary)
 
 FORMATS = ("pdf", "svg")
 
@@ -63,6 +64,7 @@ def strands_command(input_mesh, levels, page, tile_size, margin, palette_name, t
     hierarchy = subdivide(check_layout(load_mesh(input_mesh), "the paper model"), levels,
                           chirality=chirality)
     weaves = snub_weaves(hierarchy)
+    flag_nonconvex(hierarchy)
     try:
         book = strand_book(weaves, pal, page, tile_size, margin, turn,
                            title=f"weave-cut strands: {input_mesh}, level {levels}")

@@ -9,13 +9,14 @@ import click
 
 from ..errors import MeshError
 from ..weave.colour import palette, strand_colours
-from ..weave.report import weave_summary
+from ..weave.report import weave_summaries
 from ..weave.schemes import scheme_weaves
 from ..layout.weave_figure import snub_under_points, weave_drawing
 from .common import (
     CONTEXT,
     Length,
     complete_preset,
+    flag_nonconvex,
     input_argument,
     page_option,
     reports_errors,
@@ -71,6 +72,7 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
     pal = palette(palette_name)
     hierarchy = run_scheme(input_mesh, levels, scheme, no_smooth, chirality, centre,
                            allow_nonconvex)
+    nonconvex = flag_nonconvex(hierarchy)
     what = f"the {scheme} weave of {input_mesh} at level {levels}"
     try:
         weaves = scheme_weaves(hierarchy, scheme, face_split)
@@ -82,8 +84,8 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
                                    "--face-split or another scheme")
     if as_json:
         first = levels - len(weaves) + 1
-        click.echo(json.dumps({"input": input_mesh, "scheme": scheme, "levels": [
-            {"level": first + i, **weave_summary(w)} for i, w in enumerate(weaves)]}, indent=2))
+        click.echo(json.dumps({"input": input_mesh, "scheme": scheme, **nonconvex, "levels": [
+            {"level": first + i, **s} for i, s in enumerate(weave_summaries(weaves))]}, indent=2))
     if output:
         snub = scheme == "snub" and not face_split
         outline = None
