@@ -45,8 +45,16 @@ def nearest(word: str, choices) -> str:
 
 # --- bounded reading ----------------------------------------------------------------------
 
-_TOKENS = re.compile(r'''"""(?:[^\\]|\\.)*?"""|\'\'\'.*?\'\'\'|"(?:[^"\\\n]|\\.)*"|'[^'\n]*'|#[^\n]*|[\[\]{}=,.\n]|[^"'#\[\]{}=,.\n]+|["']''',
-                     re.S)
+_TOKENS = re.compile(r"""
+    \"\"\"(?:[^\\]|\\.)*?\"\"\"    # multi-line basic string
+  | '''.*?'''                  # multi-line literal string
+  | "(?:[^"\\\n]|\\.)*"          # basic string
+  | '[^'\n]*'                    # literal string
+  | \#[^\n]*                     # comment
+  | [\[\]{}=,.\n]                # structure
+  | [^"'#\[\]{}=,.\n]+           # anything else
+  | ["']                         # an unterminated quote
+""", re.S | re.X)
 
 
 def toml_depth(text: str) -> int:
