@@ -106,7 +106,7 @@ def labels(texts: list[str], centres: NDArray[np.float64], heights: NDArray[np.f
 
 
 def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float,
-               max_height: float, steps: int = 24
+               max_height: float, steps: int = 14
                ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """The largest cap height (up to ``max_height``) at which each text fits inside its polygon
     with ``margin`` mm to spare: centred on the polygon's pole of inaccessibility, its centroid
@@ -134,7 +134,9 @@ def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float,
     best_h, best_a, centres = np.zeros(len(texts)), np.zeros(len(texts)), pole.copy()
     for at in (pole, (pole + middle) / 2, middle):
         for angle in (np.zeros(len(texts)), long_axis):
-            h = _fit(_turned(inner, at, -angle), at, half, max_height, steps)
+            turned = _turned(inner, at, -angle)
+            shapely.prepare(turned)
+            h = _fit(turned, at, half, max_height, steps)
             better = h > best_h + 1e-9
             best_h, best_a = np.where(better, h, best_h), np.where(better, angle, best_a)
             centres[better] = at[better]

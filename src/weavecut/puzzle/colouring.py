@@ -166,6 +166,7 @@ class _Plan:
     paired: NDArray[np.bool_]  # per main strand: holds half of its group's light/dark pair
     colours: list[str]  # every shade of every family, family by family
     family_start: NDArray[np.int64]  # first colour of every family in ``colours``
+    family_size: NDArray[np.int64]  # shades per family (reused when more strands need one)
     difference: NDArray[np.float64]  # (C, C) CIEDE2000 between colours
     pairs: NDArray[np.int64]  # (K, 2) touching strands (all strands)
     fragments: list[tuple[int, NDArray[np.int64]]]  # (strand, candidate colours) each
@@ -208,10 +209,10 @@ def _plan(weave: Weave, lineage, strand_pairs, pal: Palette) -> _Plan:
     k = len(pal.families)
     group_family = _families(group, len(keys), main, strand_pairs, k)
     family = group_family[group]
-    need = np.bincount(family, minlength=k)
-    shades = [_shades(fam, int(m)) for fam, m in zip(pal.families, need)]
+    shades = [list(fam) for fam in pal.families]
     colours = [c for fam in shades for c in fam]
-    family_start = np.r_[0, np.cumsum([len(f) for f in shades])[:-1]].astype(np.int64)
+    family_size = np.array([len(f) for f in shades], dtype=np.int64)
+    family_start = np.r_[0, np.cumsum(family_size)[:-1]].astype(np.int64)
     lab = srgb_to_lab(colours)
     difference = ciede2000(lab[:, None], lab[None])
     # siblings: a group's two longest strands hold a pair
@@ -232,20 +233,8 @@ def _plan(weave: Weave, lineage, strand_pairs, pal: Palette) -> _Plan:
         f = key_family.get(int(parent[s]), -1) if parent[s] >= 0 else -1
         members = np.flatnonzero(family == f) if f >= 0 else np.arange(len(main))
         fragments.append((s, members))
-    return _Plan(main, group, family, paired, colours, family_start, difference,
+    return _Plan(main, group, family, paired, colours, family_start, family_size, difference,
                  np.asarray(strand_pairs, dtype=np.int64).reshape(-1, 2), fragments)
-
-
-def _shades(family: tuple[str, ...], n: int) -> list[str]:
-    """A family's shades, extended by darker and lighter tints of its first when it holds fewer
-    than ``n``."""
-    out, rank = list(family), 0
-    while len(out) < n:
-        extra = shade(family[0], rank)
-        rank += 1
-        if extra not in out:
-            out.append(extra)
-    return out
 
 
 def _families(group, n_groups: int, main, strand_pairs, k: int) -> NDArray[np.int64]:
@@ -287,15 +276,12 @@ def _initial_slots(plan: _Plan, weave: Weave) -> NDArray[np.int64]:
 def _colour_index(plan: _Plan, slot: NDArray[np.int64]) -> NDArray[np.int64]:
     """(S,) colour (index into ``plan.colours``) of every strand; fragments pick the colour of
     their candidates that differs most from what they touch (-1: unpainted)."""
-    n = max(int(plan.pairs.max(initial=-1)), int(plan.main.max(initial=-1)),
-            max((s for s, _ in plan.fragments), default=-1)) + 1
-    out = np.full(n, -1, dtype=np.int64)
-    out[plan.main] = plan.family_start[plan.family] + slot
-    for s, members in plan.fragments:
+    out = _main_colours(plan, slot)
+    for s, members in plan.fragments:  # a few dozen border fragments
         near = np.concatenate([plan.pairs[plan.pairs[:, 0] == s, 1],
                                plan.pairs[plan.pairs[:, 1] == s, 0]])
         near = out[near][out[near] >= 0]
-        candidates = out[plan.main[members]]
+        candidates = np.unique(out[plan.main[members]])
         if not len(near):
             out[s] = candidates.min()
             continue
@@ -304,39 +290,83 @@ def _colour_index(plan: _Plan, slot: NDArray[np.int64]) -> NDArray[np.int64]:
     return out
 
 
-def _score(plan: _Plan, slot: NDArray[np.int64]) -> tuple[float, ...]:
-    """The ten smallest differences between touching strands, ascending (higher is better)."""
-    colour = _colour_index(plan, slot)
+def _main_colours(plan: _Plan, slot: NDArray[np.int64]) -> NDArray[np.int64]:
+    """(S,) colour of every strand with an octagon (-1 elsewhere); a family with more strands
+    than shades reuses them in order."""
+    n = max(int(plan.pairs.max(initial=-1)), int(plan.main.max(initial=-1)),
+            max((s for s, _ in plan.fragments), default=-1)) + 1
+    out = np.full(n, -1, dtype=np.int64)
+    out[plan.main] = plan.family_start[plan.family] + slot % plan.family_size[plan.family]
+    return out
+
+
+def _differences(plan: _Plan, colour: NDArray[np.int64]) -> NDArray[np.float64]:
+    """(K,) CIEDE2000 across every touching pair of strands with an octagon (inf elsewhere)."""
     a, b = colour[plan.pairs[:, 0]], colour[plan.pairs[:, 1]]
     ok = (a >= 0) & (b >= 0)
-    d = np.sort(plan.difference[a[ok], b[ok]])
-    return tuple(np.round(d[:10], 6).tolist())
+    return np.where(ok, plan.difference[np.maximum(a, 0), np.maximum(b, 0)], np.inf)
 
 
-def _search(plan: _Plan, slot: NDArray[np.int64]) -> NDArray[np.int64]:
-    """Hill-climb over the swaps that keep families and sibling pairs (swap two single
-    strands of a family, flip a pair's light and dark, trade two groups' pairs), first
-    improvement in a fixed order, until no swap raises the score."""
-    moves = []
-    for f in np.unique(plan.family).tolist():
-        members = np.flatnonzero(plan.family == f)
-        singles = members[~plan.paired[members]]
-        moves += [((a, b),) for i, a in enumerate(singles.tolist()) for b in singles[i + 1:]]
-        pairs = [members[plan.paired[members] & (plan.group[members] == g)]
-                 for g in np.unique(plan.group[members]).tolist()]
-        pairs = [p for p in pairs if len(p) == 2]
-        moves += [((int(p[0]), int(p[1])),) for p in pairs]
-        moves += [((int(p[0]), int(q[0])), (int(p[1]), int(q[1])))
-                  for i, p in enumerate(pairs) for q in pairs[i + 1:]]
+def _score(plan: _Plan, slot: NDArray[np.int64]) -> tuple:
+    """Higher is better: fewer touching strands sharing a colour, then the ten smallest
+    differences between touching different colours, ascending."""
+    d = _differences(plan, _main_colours(plan, slot))
+    return (-int((d == 0).sum()), tuple(np.round(np.sort(d[d > 0])[:10], 6).tolist()))
+
+
+def _trials(plan: _Plan, slot: NDArray[np.int64], k: int):
+    """Slot arrays one move away that involve main strand ``k`` and keep families and sibling
+    pairs: swap with another single strand of its family, recolour it (when its family has
+    more strands than shades, so shades repeat anyway), or flip or trade its pair."""
+    family = np.flatnonzero(plan.family == plan.family[k])
+    size = int(plan.family_size[plan.family[k]])
+
+    def swapped(*pairs):
+        trial = slot.copy()
+        for a, b in pairs:
+            trial[a], trial[b] = trial[b], trial[a]
+        return trial
+
+    if not plan.paired[k]:
+        yield from (swapped((k, int(o))) for o in family[~plan.paired[family]] if o != k)
+        if len(family) > size:
+            for value in range(size):
+                if value != slot[k] % size:
+                    trial = slot.copy()
+                    trial[k] = value
+                    yield trial
+        return
+    mate = int(family[plan.paired[family] & (plan.group[family] == plan.group[k])
+                      & (family != k)][0])
+    yield swapped((k, mate))
+    for g in np.unique(plan.group[family[plan.paired[family]]]).tolist():
+        if g != plan.group[k]:
+            other = family[plan.paired[family] & (plan.group[family] == g)]
+            yield swapped((k, int(other[0])), (mate, int(other[1])))
+
+
+def _search(plan: _Plan, slot: NDArray[np.int64], rounds: int = 400,
+            worst: int = 12) -> NDArray[np.int64]:
+    """Hill-climb on the worst touching pairs: try the moves that involve the strands of the
+    ``worst`` pairs, worst first (see ``_trials``), keep the first that raises the score; stop
+    when none does (or after ``rounds``)."""
+    index = np.full(int(plan.main.max(initial=-1)) + 1, -1)
+    index[plan.main] = np.arange(len(plan.main))
     best = _score(plan, slot)
-    improved = True
-    while improved:  # each pass tries every move once; stops at a local optimum
-        improved = False
-        for move in moves:
-            trial = slot.copy()
-            for a, b in move:
-                trial[a], trial[b] = trial[b], trial[a]
-            score = _score(plan, trial)
-            if score > best:
-                slot, best, improved = trial, score, True
+    for _ in range(rounds):  # bounded: each round raises the score or stops
+        d = _differences(plan, _main_colours(plan, slot))
+        order = np.argsort(d, kind="stable")[:worst]
+        strands = dict.fromkeys(index[plan.pairs[order[np.isfinite(d[order])]]].ravel().tolist())
+        found = None
+        for k in strands:
+            for trial in _trials(plan, slot, k):
+                score = _score(plan, trial)
+                if score > best:
+                    found, best = trial, score
+                    break
+            if found is not None:
+                break
+        if found is None:
+            break
+        slot = found
     return slot

@@ -191,8 +191,9 @@ def check_kerf(puzzle: Puzzle, kerf: float) -> None:
     inner = 2 * shapely.area(puzzle.pieces) / shapely.length(puzzle.pieces)
     k = int(np.argmin(inner))
     if kerf >= inner[k]:
-        raise WeaveCutError(f"a kerf of {kerf:g} mm is wider than piece {k} ({inner[k]:.3g} mm "
-                            "inner radius); use a smaller --kerf or a larger --size")
+        raise WeaveCutError(f"a kerf of {kerf:g} mm is wider than piece {k + 1} "
+                            f"({inner[k]:.3g} mm inner radius); use a smaller --kerf or a "
+                            "larger --size")
 
 
 def separate_cut(puzzle: Puzzle, las: Laser, kerf: float, sheet: tuple[float, float],
