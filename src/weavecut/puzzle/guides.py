@@ -61,7 +61,9 @@ def piece_halves(puzzle: Puzzle) -> NDArray[np.object_]:
     whole = shapely.union(p0, p1)
     half0 = np.where(octagon, shapely.intersection(whole, side0), p0)
     half1 = np.where(octagon, shapely.difference(whole, side0), p1)
-    return np.column_stack([half0, half1])
+    # a cut through a corner leaves near-duplicate corners (1e-13 mm apart) that turn into a
+    # self-intersection once moved onto a sheet: drop them
+    return shapely.simplify(np.column_stack([half0, half1]), 1e-7)
 
 
 def split_ends(puzzle: Puzzle) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
