@@ -210,3 +210,24 @@ def test_printed_guide_has_no_empty_pages(paper):
     pages = printed(g, colour_key(puzzle, colouring, "front"), (210.0, 297.0))
     for sheet in pages.sheets:
         assert any(layer.shapes for layer in sheet.layers if layer.role in ("paint", "label"))
+
+
+def test_back_guide_numbers_read_left_to_right(paper):
+    """The back is mirrored, its numbers are not: the strokes of "1" in piece 1's number lie
+    where an unmirrored number puts them (the vertical of a 1 is at the right of its box)."""
+    puzzle, colouring = paper
+    numbers = pf.piece_numbers(puzzle, max_height=6.0, margin=1.0)
+    one = [k for k, t in enumerate(numbers.texts) if t == "1"][0]
+    sheet = guide(puzzle, colouring, "back", numbers).sheets[0]
+    layer = next(layer for layer in sheet.layers if layer.name == "numbers")
+    width = sheet.width
+    _, _, shift = pf.placement(puzzle)
+    centre = numbers.centres[one] + shift
+    centre = np.array([width - centre[0], centre[1]])
+    pts = np.concatenate([shape.coords for shape in layer.shapes])
+    near = pts[np.hypot(*(pts - centre).T) < numbers.heights[one]]
+    # the back turns labels by minus their angle a; turned back (by +a), the foot of the 1's
+    # stem (its lowest point) is right of the centre, its flag reaches left
+    a = np.radians(numbers.angles[one])
+    local = (near - centre) @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
+    assert local[np.argmin(local[:, 1]), 0] > 0

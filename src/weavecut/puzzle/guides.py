@@ -149,9 +149,11 @@ def guide(puzzle: Puzzle, colouring: Colouring, side: str, numbers: Labels | Non
     layers.append(Layer("frame", "guide", tuple(outlines)))
     layers.append(Layer("pieces", "guide", (polygons_from_shapely(place(puzzle.pieces),
                                                                   OUTLINE),)))
-    if numbers is not None:
+    if numbers is not None:  # moved with the pieces, but never mirrored: they must read
+        placed = Labels(numbers.texts, numbers.heights, place_xy(numbers.centres),
+                        -numbers.angles if mirror else numbers.angles)
         layers.append(Layer("numbers", "label", _number_shapes(
-            numbers, _number_colours(puzzle, colouring, side), place_xy)))
+            placed, _number_colours(puzzle, colouring, side))))
     layers.append(Layer("registration", "guide", tuple(_registration(width, height, margin))))
     title = f"weave-cut puzzle: {side} painting guide (level {puzzle.levels - (side == 'front')}" \
             " weave)" + (", mirrored" if mirror else "")
@@ -191,12 +193,12 @@ def _number_colours(puzzle: Puzzle, colouring: Colouring, side: str) -> NDArray[
     return out
 
 
-def _number_shapes(numbers: Labels, inks: NDArray[np.object_], place_xy) -> tuple:
+def _number_shapes(numbers: Labels, inks: NDArray[np.object_]) -> tuple:
     shapes = []
     for ink in (BLACK, WHITE):
         pick = np.flatnonzero(inks == ink)
         if len(pick):
-            coords, offsets = numbers.strokes(lambda xy, _: place_xy(xy), pick)
+            coords, offsets = numbers.strokes(pick=pick)
             shapes.append(Polylines(coords, offsets, Style(ink, 0.3)))
     return tuple(shapes)
 
