@@ -182,7 +182,7 @@ def strand_paint(weave: Weave, lineage, strand_pairs, pal: Palette,
     strand_pairs : (K, 2) strands whose painted areas touch on the front
     """
     plan = _plan(weave, lineage, strand_pairs, pal)
-    slot = _search(plan, _initial_slots(plan, weave))
+    slot = _search(plan, _initial_slots(plan))
     colour_of = _colour_index(plan, slot)
     colours = [UNPAINTED] * weave.n_strands
     for s, c in enumerate(colour_of.tolist()):  # strands, not mesh elements
@@ -200,7 +200,7 @@ def strand_paint(weave: Weave, lineage, strand_pairs, pal: Palette,
 def _plan(weave: Weave, lineage, strand_pairs, pal: Palette) -> _Plan:
     n = weave.n_strands
     main = np.flatnonzero(on_top_of_octagon(weave))
-    if not len(main):  # level 1: no octagons yet, every strand on top somewhere is its own
+    if not len(main):  # level 1 has no octagons: every strand on top of a tile is painted
         main = np.unique(weave.tile_over[weave.tile_over >= 0]).astype(np.int64)
     parent = lineage if lineage is not None else np.full(n, -1, dtype=np.int32)
     keys, group = np.unique(np.where(parent[main] >= 0, parent[main], -1 - main),
@@ -209,9 +209,8 @@ def _plan(weave: Weave, lineage, strand_pairs, pal: Palette) -> _Plan:
     k = len(pal.families)
     group_family = _families(group, len(keys), main, strand_pairs, k)
     family = group_family[group]
-    shades = [list(fam) for fam in pal.families]
-    colours = [c for fam in shades for c in fam]
-    family_size = np.array([len(f) for f in shades], dtype=np.int64)
+    colours = [c for fam in pal.families for c in fam]
+    family_size = np.array([len(f) for f in pal.families], dtype=np.int64)
     family_start = np.r_[0, np.cumsum(family_size)[:-1]].astype(np.int64)
     lab = srgb_to_lab(colours)
     difference = ciede2000(lab[:, None], lab[None])
@@ -258,7 +257,7 @@ def _families(group, n_groups: int, main, strand_pairs, k: int) -> NDArray[np.in
     return out
 
 
-def _initial_slots(plan: _Plan, weave: Weave) -> NDArray[np.int64]:
+def _initial_slots(plan: _Plan) -> NDArray[np.int64]:
     """Shade index (within the family) per main strand: each group's pair takes the family's
     next dark/light pair (2j, 2j + 1), the other strands the free shades after them."""
     slot = np.full(len(plan.main), -1, dtype=np.int64)

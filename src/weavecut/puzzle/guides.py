@@ -39,14 +39,9 @@ def piece_halves(puzzle: Puzzle) -> NDArray[np.object_]:
     vertices: the parent edge its Z-triplet replaced, so the paint shows the coarser weave
     ("split diagonally, which shows the replaced edge", paper section 6). An enneagon is one
     half: its pentagon, twice (its hexagon is unpainted)."""
-    weave = puzzle.weaves[-1]
-    mesh = weave.mesh
-    faces = mesh.dense_faces()
-    tiles = puzzle.piece_tiles
-    f0 = weave.tile_faces[weave.tile_offsets[tiles]]
-    f1 = weave.tile_faces[weave.tile_offsets[tiles + 1] - 1]
-    p0 = shapely.polygons(puzzle.to_mm(mesh.vertices[faces[f0]]))
-    p1 = shapely.polygons(puzzle.to_mm(mesh.vertices[faces[f1]]))
+    vertices, faces, f0, f1 = _piece_faces(puzzle)
+    p0 = shapely.polygons(puzzle.to_mm(vertices[faces[f0]]))
+    p1 = shapely.polygons(puzzle.to_mm(vertices[faces[f1]]))
     octagon = f0 != f1
     u, w = split_ends(puzzle)
     # a long quad on f0's side of the line u-w, and the piece cut by it
@@ -69,17 +64,21 @@ def piece_halves(puzzle: Puzzle) -> NDArray[np.object_]:
 def split_ends(puzzle: Puzzle) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(P, 2) twice: the two corners of every piece that are level t-1 vertices (mm), the ends
     of the parent edge its Z-triplet replaced (for an enneagon both lie in its one pentagon)."""
-    weave = puzzle.weaves[-1]
-    mesh = weave.mesh
-    faces = mesh.dense_faces()
-    tiles = puzzle.piece_tiles
-    f0 = weave.tile_faces[weave.tile_offsets[tiles]]
-    f1 = weave.tile_faces[weave.tile_offsets[tiles + 1] - 1]
+    vertices, faces, f0, f1 = _piece_faces(puzzle)
     n_parent = puzzle.hierarchy[-2].mesh.n_vertices
     rows = np.arange(len(f0))
     old0 = faces[f0][rows, np.argmin(np.where(faces[f0] < n_parent, 0, 1), axis=1)]
     old1 = faces[f1][rows, np.argmin(np.where(faces[f1] < n_parent, 0, 1), axis=1)]
-    return puzzle.to_mm(mesh.vertices[old0]), puzzle.to_mm(mesh.vertices[old1])
+    return puzzle.to_mm(vertices[old0]), puzzle.to_mm(vertices[old1])
+
+
+def _piece_faces(puzzle: Puzzle):
+    """The level t vertices and (F, 5) faces, and every piece's first and last face."""
+    weave = puzzle.weaves[-1]
+    tiles = puzzle.piece_tiles
+    return (weave.mesh.vertices, weave.mesh.dense_faces(),
+            weave.tile_faces[weave.tile_offsets[tiles]],
+            weave.tile_faces[weave.tile_offsets[tiles + 1] - 1])
 
 
 @dataclass(frozen=True, eq=False)
