@@ -4,6 +4,7 @@ corners, octagon centroids of the coarser level, a real DXF reader, shapely unio
 
 from __future__ import annotations
 
+import json
 import re
 
 import ezdxf
@@ -181,7 +182,16 @@ def test_cli_on_a_small_sheet_splits_the_frame_and_never_says_part_0(tmp_path):
                                       "600x400mm", "--json"])
     assert result.exit_code == 0, result.output
     assert "part 0" not in result.output
-    assert (out / "README.txt").read_text().count("F1") >= 1
+    info = json.loads(result.stdout)  # warnings go to stderr
+    readme = (out / "README.txt").read_text()
+    assert "F1" in readme and info["frame_parts"] >= 2
+    # the workshop README names every file written, the material, sheets, cut length and time
+    for name in info["files"]:
+        assert (out / name).is_file() and f"  {name}\n" in readme
+    m = info["modes"]["separate"]
+    assert info["material"] in readme and f"{m['sheets']} sheet(s)" in readme
+    assert f"{m['cut_length_m']:.1f} m of cutting" in readme and f"{m['time_min']:g} min" in readme
+    assert f"{info['frame_diagonal_mm']:g} mm diagonal" in readme
     bad = CliRunner().invoke(cli, ["puzzle", "-o", str(tmp_path / "q"), "--levels", "2",
                                    "--sheet", "30x30mm", "--mode", "separate"])
     assert bad.exit_code == 1 and "part 0" not in bad.output

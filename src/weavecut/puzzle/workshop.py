@@ -3,6 +3,8 @@ summary, and the workshop folder's README.txt."""
 
 from __future__ import annotations
 
+import textwrap
+
 import numpy as np
 import shapely
 
@@ -153,13 +155,18 @@ def readme(info: dict, page: str) -> str:
         laser.append(f"  The frame comes in {info['frame_parts']} parts (F1, F2, ... "
                      "engraved, counter-clockwise),\n    joined by dovetails: F1 joins F2, "
                      "F2 joins F3, and the last joins F1. Glue them on a flat\n    surface.")
-    warnings = "".join(f"  - {w}\n" for w in info.get("warnings", [])) or "  none\n"
+    warnings = "".join(textwrap.fill(w, 92, initial_indent="  - ", subsequent_indent="    ",
+                                     break_on_hyphens=False) + "\n"
+                       for w in info.get("warnings", [])) or "  none\n"
+    intro = textwrap.fill(
+        "The paper's two-sided puzzle (Lipschuetz, Reitebuch, Skrodzki, Polthier, section 6): "
+        f"level {info['levels']} pieces of the pentagon snub subdivision; the front is painted "
+        f"with the level {info['levels'] - 1} weave, the back with the level {info['levels']} "
+        "weave.", 92)
     return f"""weave-cut jigsaw puzzle: workshop folder
 ==========================================
 
-The paper's two-sided puzzle (Lipschuetz, Reitebuch, Skrodzki, Polthier, section 6): level
-{info['levels']} pieces of the pentagon snub subdivision; the front is painted with the level
-{info['levels'] - 1} weave, the back with the level {info['levels']} weave.
+{intro}
 
 Material: {info.get('material', '?')}, kerf {info.get('kerf_mm', 0):g} mm.
 Frame: {info['frame_diagonal_mm']:g} mm diagonal ({info['frame_mm'][0]:g} x {info['frame_mm'][1]:g} mm).
@@ -190,8 +197,8 @@ Paints: {info.get('front_colours', '?')} on the front, {info.get('back_colours',
 
 Warnings:
 {warnings}
-Files: {', '.join(files)}
-"""
+Files:
+{''.join(f'  {name}{chr(10)}' for name in files)}"""
 
 
 def _modes_text(info: dict) -> str:
