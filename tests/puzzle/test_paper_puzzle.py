@@ -241,3 +241,28 @@ def test_back_guide_numbers_read_left_to_right(paper):
     a = np.radians(numbers.angles[one])
     local = (near - centre) @ np.array([[np.cos(a), np.sin(a)], [-np.sin(a), np.cos(a)]])
     assert local[np.argmin(local[:, 1]), 0] > 0
+
+
+def test_number_warnings_name_small_pieces_and_unnumbered_ones():
+    labels = pf.Labels(("1", "2", "3"), np.array([4.0, 2.0, 0.0]), np.zeros((3, 2)),
+                       np.zeros(3))
+    lines = pf.number_warnings(labels)
+    assert lines[0].startswith("pieces 2 are too small for 3 mm digits")
+    assert lines[1].startswith("pieces 3 are too small for 1.5 mm digits and get no number")
+    coords, offsets = labels.strokes()
+    assert len(offsets) > 1 and np.abs(coords).max() <= 4.0  # "3" drew nothing
+
+
+def test_a_small_puzzle_warns_and_names_the_largest_good_level():
+    from weavecut.puzzle import workshop
+    puzzle = build_puzzle(subdivide(inputs.get("pentagon"), 4), size=300.0)
+    lines = workshop.size_warnings(puzzle, 3.0)
+    assert any("smaller than 15 mm across" in w for w in lines)
+    assert lines[-1] == "at this size, --levels 3 keeps every piece above both limits"
+    smaller = build_puzzle(subdivide(inputs.get("pentagon"), 3), size=300.0)
+    across, width = workshop.piece_sizes(smaller)
+    assert across.min() >= 15 and width.min() >= 9  # the named level really is fine
+    # sizes across, one piece at a time: the largest distance between two corners
+    corners = [np.asarray(p.exterior.coords) for p in smaller.pieces]
+    np.testing.assert_allclose(across, [np.max(np.hypot(*(c[:, None] - c[None]).T))
+                                        for c in corners], rtol=1e-12)

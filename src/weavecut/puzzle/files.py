@@ -8,7 +8,7 @@ as the flipped board shows it).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import shapely
@@ -24,6 +24,7 @@ from .pieces import Puzzle
 DEFAULT_LASER = "lightburn"
 TRAVEL_SPEED = 300.0  # mm/s head moves between cuts, for the time estimate
 MIN_DIGITS = 3.0  # mm, the smallest engraved digits that read well
+MIN_ENGRAVED = 1.5  # mm, smaller numbers are not engraved at all
 
 
 @dataclass(frozen=True)
@@ -102,6 +103,7 @@ class Labels:
         """Polylines (coords, offsets) of the texts (``pick``: the parts wanted), moved by
         ``transform(coords, part_of_every_point)``."""
         pick = np.arange(len(self.texts)) if pick is None else np.asarray(pick)
+        pick = pick[self.heights[pick] > 0]  # a text too small to engrave is left out
         coords, offsets, owner = strokefont.labels([self.texts[k] for k in pick.tolist()],
                                                    self.centres[pick], self.heights[pick],
                                                    self.angles[pick])
@@ -112,20 +114,31 @@ class Labels:
 
 def piece_numbers(puzzle: Puzzle, max_height: float = 4.0, margin: float = 0.6) -> Labels:
     """Every piece's number (1..P) at the largest cap height up to ``max_height`` mm that keeps
-    its strokes ``margin`` mm inside the piece."""
-    return Labels.fitted(puzzle.pieces, [str(k + 1) for k in range(puzzle.n_pieces)],
-                         max_height, margin)
+    its strokes ``margin`` mm inside the piece; none where that is under MIN_ENGRAVED mm."""
+    labels = Labels.fitted(puzzle.pieces, [str(k + 1) for k in range(puzzle.n_pieces)],
+                           max_height, margin)
+    return replace(labels, heights=np.where(labels.heights >= MIN_ENGRAVED, labels.heights,
+                                            0.0))
 
 
 def number_warnings(numbers: Labels, least: float = MIN_DIGITS) -> list[str]:
-    """One line naming the pieces too small for ``least`` mm digits, if any."""
-    small = np.flatnonzero(numbers.heights < least)
-    if not len(small):
-        return []
-    listed = ", ".join(str(k + 1) for k in small[:12].tolist())
-    more = f" and {len(small) - 12} more" if len(small) > 12 else ""
-    return [f"pieces {listed}{more} are too small for {least:g} mm digits; their numbers are "
-            f"engraved smaller (down to {numbers.heights[small].min():.1f} mm)"]
+    """Lines naming the pieces too small for ``least`` mm digits and those left without."""
+    small = np.flatnonzero((numbers.heights < least) & (numbers.heights > 0))
+    none = np.flatnonzero(numbers.heights == 0)
+    out = []
+    if len(small):
+        out.append(f"pieces {_listed(small)} are too small for {least:g} mm digits; their "
+                   f"numbers are engraved smaller (down to {numbers.heights[small].min():.1f} "
+                   "mm)")
+    if len(none):
+        out.append(f"pieces {_listed(none)} are too small for {MIN_ENGRAVED:g} mm digits and "
+                   "get no number")
+    return out
+
+
+def _listed(pieces: NDArray[np.int64], most: int = 12) -> str:
+    more = f" and {len(pieces) - most} more" if len(pieces) > most else ""
+    return ", ".join(str(k + 1) for k in pieces[:most].tolist()) + more
 
 
 def _number_layer(coords, offsets, style: Style) -> Layer:
