@@ -115,7 +115,7 @@ def test_single_coloured_pieces_are_the_forty_level3_octagon_centres(paper):
 
 def test_back_strand_pairs_wear_the_front_colour_of_the_piece_they_enclose(paper):
     puzzle, colouring = paper
-    w3, w4 = puzzle.weaves[-2], puzzle.weaves[-1]
+    w4 = puzzle.weaves[-1]
     # every back strand wears its parent's front colour, so a pair shares one colour
     for s, p in enumerate(w4.parent_strand.tolist()):
         if p >= 0:

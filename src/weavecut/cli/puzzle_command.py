@@ -105,7 +105,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
         for n, one in enumerate(pf.split_sheets(results["separate"].drawing), start=1):
             for fmt in ("svg", "dxf"):
                 files[f"puzzle-separate-sheet-{n}.{fmt}"] = one
-    guide_numbers = pf.piece_numbers(puzzle, max_height=6.0, margin=1.0)
+    guide_numbers = pf.piece_numbers(puzzle, max_height=6.0, margin=0.6, least=0.8)
     for side in ("front", "back"):
         g = guide(puzzle, colouring, side, guide_numbers)
         files[f"puzzle-{side}-guide.svg"] = g

@@ -33,13 +33,12 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
-import shapely
 from numpy.typing import NDArray
 
 from .. import presets
 from ..mesh import edge_faces
 from ..layout.colour_difference import srgb_to_lab, ciede2000
-from ..weave.colour import Palette, shade
+from ..weave.colour import Palette
 from ..weave.model import Weave
 from .pieces import Puzzle
 

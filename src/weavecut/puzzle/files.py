@@ -112,13 +112,13 @@ class Labels:
         return coords, offsets
 
 
-def piece_numbers(puzzle: Puzzle, max_height: float = 4.0, margin: float = 0.6) -> Labels:
+def piece_numbers(puzzle: Puzzle, max_height: float = 4.0, margin: float = 0.6,
+                  least: float = MIN_ENGRAVED) -> Labels:
     """Every piece's number (1..P) at the largest cap height up to ``max_height`` mm that keeps
-    its strokes ``margin`` mm inside the piece; none where that is under MIN_ENGRAVED mm."""
+    its strokes ``margin`` mm inside the piece; none where that is under ``least`` mm."""
     labels = Labels.fitted(puzzle.pieces, [str(k + 1) for k in range(puzzle.n_pieces)],
                            max_height, margin)
-    return replace(labels, heights=np.where(labels.heights >= MIN_ENGRAVED, labels.heights,
-                                            0.0))
+    return replace(labels, heights=np.where(labels.heights >= least, labels.heights, 0.0))
 
 
 def number_warnings(numbers: Labels, least: float = MIN_DIGITS) -> list[str]:

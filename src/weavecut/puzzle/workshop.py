@@ -158,6 +158,7 @@ def readme(info: dict, page: str) -> str:
     warnings = "".join(textwrap.fill(w, 92, initial_indent="  - ", subsequent_indent="    ",
                                      break_on_hyphens=False) + "\n"
                        for w in info.get("warnings", [])) or "  none\n"
+    (width, height), across = info["frame_mm"], info["piece_across_mm"]
     intro = textwrap.fill(
         "The paper's two-sided puzzle (Lipschuetz, Reitebuch, Skrodzki, Polthier, section 6): "
         f"level {info['levels']} pieces of the pentagon snub subdivision; the front is painted "
@@ -169,9 +170,10 @@ def readme(info: dict, page: str) -> str:
 {intro}
 
 Material: {info.get('material', '?')}, kerf {info.get('kerf_mm', 0):g} mm.
-Frame: {info['frame_diagonal_mm']:g} mm diagonal ({info['frame_mm'][0]:g} x {info['frame_mm'][1]:g} mm).
-Pieces: {info['pieces']}, {info['piece_across_mm'][0]:g}-{info['piece_across_mm'][1]:g} mm across.
-Paints: {info.get('front_colours', '?')} on the front, {info.get('back_colours', '?')} on the back (the same paints).
+Frame: {info['frame_diagonal_mm']:g} mm diagonal ({width:g} x {height:g} mm).
+Pieces: {info['pieces']}, {across[0]:g}-{across[1]:g} mm across.
+Paints: {info.get('front_colours', '?')} on the front, {info.get('back_colours', '?')} on the \
+back (the same paints).
 {_modes_text(info)}
 1. To the laser
 {chr(10).join(laser)}
