@@ -266,3 +266,19 @@ def test_a_small_puzzle_warns_and_names_the_largest_good_level():
     corners = [np.asarray(p.exterior.coords) for p in smaller.pieces]
     np.testing.assert_allclose(across, [np.max(np.hypot(*(c[:, None] - c[None]).T))
                                         for c in corners], rtol=1e-12)
+
+
+def test_the_two_long_children_of_a_strand_are_a_light_and_a_dark_shade(paper):
+    """"the light and dark green strands originate from one strand": the two children of a
+    level-2 strand that run over three octagons each share a family and differ in lightness."""
+    puzzle, colouring = paper
+    w3 = puzzle.weaves[-2]
+    octagon = np.diff(w3.tile_offsets) == 2
+    n_octagons = np.bincount(w3.tile_over[octagon], minlength=w3.n_strands)
+    long = np.flatnonzero(n_octagons >= 3)
+    parents = w3.parent_strand[long]
+    assert len(long) == 10 and sorted(np.bincount(parents)[np.unique(parents)]) == [2] * 5
+    for p in np.unique(parents).tolist():
+        a, b = (colouring.front_strands[s] for s in long[parents == p].tolist())
+        assert _hue_family(a) == _hue_family(b)
+        assert abs(srgb_to_lab(a)[0] - srgb_to_lab(b)[0]) >= 20
