@@ -12,7 +12,7 @@ from .. import presets
 from ..units import page_size, to_mm
 from .colouring import Colouring
 from .files import TRAVEL_SPEED, CutResult
-from .pieces import KIND_NAMES, Puzzle, build_puzzle, diameter
+from .pieces import KIND_NAMES, OCTAGON, Puzzle, build_puzzle, diameter
 
 DEFAULT_MATERIAL = "poplar-3mm"
 MIN_ACROSS = 15.0  # mm: a piece smaller than this is fiddly to hold and easy to lose
@@ -99,6 +99,8 @@ def summary(puzzle: Puzzle, results: dict[str, CutResult], speed: float,
         out["front_colours"] = len(colouring.front_colours)
         out["back_colours"] = len(colouring.back_colours)
         out["smallest_delta_e"] = round(colouring.smallest_difference, 2)
+        out["single_coloured_pieces"] = int(((colouring.front[:, 0] == colouring.front[:, 1])
+                                             & (puzzle.kinds == OCTAGON)).sum())
     for mode, r in results.items():
         seconds = r.cut_length / speed + r.travel_length / TRAVEL_SPEED
         out["modes"][mode] = {"cut_length_m": round(r.cut_length / 1000, 3),
@@ -123,7 +125,8 @@ def summary_text(info: dict) -> str:
                      f"{info['sheet_mm'][0]:g} x {info['sheet_mm'][1]:g} mm")
     if "front_colours" in info:
         lines.append(f"paints: front {info['front_colours']}, back {info['back_colours']}; "
-                     f"touching colours differ by CIEDE2000 >= {info['smallest_delta_e']:g}")
+                     f"touching colours differ by CIEDE2000 >= {info['smallest_delta_e']:g}; "
+                     f"{info['single_coloured_pieces']} single-coloured pieces on the front")
     for mode, m in info["modes"].items():
         lines.append(f"{mode}: cut {m['cut_length_m']:.2f} m in {m['paths']} paths, travel "
                      f"{m['travel_m']:.2f} m, {m['sheets']} sheet(s), about {m['time_min']:g} min "
