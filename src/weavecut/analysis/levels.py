@@ -36,8 +36,9 @@ from numpy.typing import NDArray
 
 from ..errors import WeaveCutError
 from ..fileio import write_atomic
-from ..mesh import Mesh, Topology, outer_vertices
+from ..mesh import Mesh, Topology, outer_vertices, signed_areas
 from ..subdivision import snub
+from ..subdivision.hierarchy import BASE_BYTES, require, sizes
 
 UNSET = 255
 HALO = 3.0
@@ -49,6 +50,12 @@ LEVEL_COLOURS = np.array([
 ], dtype=np.uint8)
 DEEPER = (20, 120, 40)
 BACKGROUND = (255, 255, 255)
+# the memory guard's model (fitted to measured peak RSS, benchmarks/bench_memory.py)
+IMAGE_BYTES_PER_PIXEL = 8      # the level image, its colours, the PNG encoder's copies
+STREAM_BYTES_PER_CORNER = 44   # full refinement: the last level, its parent, the painting
+WINDOW_BYTES_PER_CORNER = 112  # a windowed step per child corner: the step, the flags, the
+                               # faces' boxes, the renumbered patch and its edge sort
+SIZE_FACTOR = 6.0              # largest face box side / sqrt(mean face area) (5.8 at level 10)
 
 
 @dataclass(frozen=True)
@@ -81,10 +88,24 @@ class Grid:
 
     def pixels(self, points: NDArray[np.float64]) -> NDArray[np.int64]:
         """Flat pixel index of every point (points must be inside the window)."""
+        col, row = self.cells(points)
+        return row * self.width + col
+
+    def cells(self, points: NDArray[np.float64]) -> tuple[NDArray[np.int64], NDArray]:
+        """(column, row) of every point (points must be inside the window)."""
         x0, _, _, y1 = self.window
         ix = np.clip(np.floor((points[:, 0] - x0) / self.pixel), 0, self.width - 1)
         iy = np.clip(np.floor((y1 - points[:, 1]) / self.pixel), 0, self.height - 1)
-        return iy.astype(np.int64) * self.width + ix.astype(np.int64)
+        return ix.astype(np.int64), iy.astype(np.int64)
+
+    def region(self, rect) -> tuple[float, float, float, float]:
+        """The mesh-unit window of the pixel rectangle ``(column, row, width, height)``, one
+        pixel larger on every side (what lands in the rectangle is decided by :meth:`cells`,
+        on this whole grid, so a tile's pixels are those of the whole image)."""
+        c, r, w, h = rect
+        x0, _, _, y1 = self.window
+        return (x0 + (c - 1) * self.pixel, y1 - (r + h + 1) * self.pixel,
+                x0 + (c + w + 1) * self.pixel, y1 - (r - 1) * self.pixel)
 
 
 def default_window(mesh: Mesh) -> tuple[float, float, float, float]:
@@ -225,6 +246,69 @@ def refine_full(mesh: Mesh, levels: int, *, smooth: bool = True, centre: str = "
         yield mesh.vertices
 
 
+def window_faces(mesh: Mesh, levels: int, window, halo: float = HALO) -> list[int]:
+    """Estimated faces of the patch :func:`refine_window` keeps at levels 0..``levels``.
+
+    Every input face f of k corners has k * 5**(t - 1) descendants at level t; the patch keeps
+    the share of them that lies in the window grown by the halo and one face, estimated as
+    the area of f's bounding box inside the grown window over f's area (at most 1), with a
+    face size of SIZE_FACTOR * sqrt(area / count). Cheap, made before any refinement.
+    """
+    x0, y0, x1, y1 = window
+    corners = np.take(mesh.vertices, mesh.face_indices, axis=0)
+    starts = mesh.face_offsets[:-1]
+    lo, hi = np.minimum.reduceat(corners, starts), np.maximum.reduceat(corners, starts)
+    area = np.maximum(np.abs(signed_areas(mesh)), 1e-300)
+    out = [mesh.n_faces]
+    for t in range(1, levels + 1):
+        count = mesh.face_sizes * 5.0 ** (t - 1)
+        grow = (halo + 1) * SIZE_FACTOR * np.sqrt(area / count)
+        w = np.minimum(hi[:, 0], x1 + grow) - np.maximum(lo[:, 0], x0 - grow)
+        h = np.minimum(hi[:, 1], y1 + grow) - np.maximum(lo[:, 1], y0 - grow)
+        share = np.minimum(np.clip(w, 0, None) * np.clip(h, 0, None) / area, 1.0)
+        out.append(int(np.ceil((count * share).sum())))
+    return out
+
+
+def memory_need(mesh: Mesh, levels: int, grid: Grid, windowed: bool) -> tuple[list, list]:
+    """(bytes, faces) estimated for stopping at each level 0..``levels``: the peak of the
+    whole refinement (a stream: only the last level and its parent are alive) or of the
+    windowed one (the largest step of the patch), plus the image on ``grid``."""
+    fixed = BASE_BYTES + IMAGE_BYTES_PER_PIXEL * grid.width * grid.height
+    if not windowed:
+        table = sizes(mesh, levels, snub.counts)
+        return ([fixed + STREAM_BYTES_PER_CORNER * h for *_, h in table],
+                [f for _, _, f, _ in table])
+    faces = window_faces(mesh, levels, grid.window)
+    corners = [mesh.n_corners] + [5 * f for f in faces[1:]]
+    need, peak = [], 0
+    for t in range(levels + 1):
+        if t:
+            peak = max(peak, WINDOW_BYTES_PER_CORNER * 5 * corners[t - 1])
+        need.append(fixed + peak)
+    return need, faces
+
+
+def check_memory(mesh: Mesh, levels: int, grid: Grid, windowed: bool,
+                 available: int | None = None) -> None:
+    """Refuse, before any refinement, a level image that would not fit in memory."""
+    need, faces = memory_need(mesh, levels, grid, windowed)
+    require(need, faces, available, " of the window" if windowed else "")
+
+
+def check_tiles_memory(mesh: Mesh, levels: int, grid: Grid, tile_size: int, jobs: int,
+                       available: int | None = None) -> None:
+    """Refuse a tile pyramid that would not fit: the assembled full-resolution level image
+    (and its halves) in this process, plus ``jobs`` windowed tiles rendering at once (a tile
+    at the centre of the image stands for all)."""
+    cx, cy = (grid.window[0] + grid.window[2]) / 2, (grid.window[1] + grid.window[3]) / 2
+    half = tile_size * grid.pixel / 2
+    tile = Grid.fit((cx - half, cy - half, cx + half, cy + half), tile_size)
+    need, faces = memory_need(mesh, levels, tile, windowed=True)
+    image = 2 * grid.width * grid.height
+    require([image + jobs * n for n in need], faces, available, " of a tile")
+
+
 # -- the image ----------------------------------------------------------------------------
 
 def level_image(mesh: Mesh, levels: int, size: int, window=None, *, smooth: bool = True,
@@ -234,22 +318,43 @@ def level_image(mesh: Mesh, levels: int, size: int, window=None, *, smooth: bool
     Without ``window`` the whole mesh is refined over :func:`default_window`; with one, only
     the faces near it (:func:`refine_window`).
     """
-    if not 0 <= levels < UNSET:
-        raise ValueError(f"levels must be 0..{UNSET - 1}, got {levels}")
+    _check_levels(levels)
+    grid = Grid.fit(default_window(mesh) if window is None else window, size)
     options = {"smooth": smooth, "centre": centre, "chirality": chirality}
     if window is None:
-        grid = Grid.fit(default_window(mesh), size)
         stream = refine_full(mesh, levels, **options)
     else:
-        grid = Grid.fit(window, size)
         stream = refine_window(mesh, levels, grid.window, **options)
-    image = np.full(grid.width * grid.height, UNSET, dtype=np.uint8)
+    return paint(grid, (0, 0, grid.width, grid.height), stream), grid
+
+
+def tile_image(mesh: Mesh, levels: int, grid: Grid, rect, **options) -> NDArray[np.uint8]:
+    """(h, w) uint8: the pixel rectangle ``rect = (column, row, w, h)`` of the level image on
+    ``grid``, equal to that part of the whole image, refining only the faces near the tile
+    (so tiles render independently, in any order or process)."""
+    _check_levels(levels)
+    return paint(grid, rect, refine_window(mesh, levels, grid.region(rect), **options))
+
+
+def paint(grid: Grid, rect, stream) -> NDArray[np.uint8]:
+    """(h, w) uint8 of the pixel rectangle ``rect`` of ``grid`` from a stream of per-level
+    points: every pixel gets the first level with a point in it."""
+    c0, r0, w, h = rect
+    image = np.full(w * h, UNSET, dtype=np.uint8)
     for t, points in enumerate(stream):
-        points = points[grid.inside(points)]
-        pix = grid.pixels(points)
+        col, row = grid.cells(points[grid.inside(points)])
+        col -= c0
+        row -= r0
+        mine = (col >= 0) & (col < w) & (row >= 0) & (row < h)
+        pix = row[mine] * w + col[mine]
         pix = pix[image[pix] == UNSET]
         image[pix] = t
-    return image.reshape(grid.height, grid.width), grid
+    return image.reshape(h, w)
+
+
+def _check_levels(levels: int) -> None:
+    if not 0 <= levels < UNSET:
+        raise ValueError(f"levels must be 0..{UNSET - 1}, got {levels}")
 
 
 def colour(image: NDArray[np.uint8]) -> NDArray[np.uint8]:
