@@ -53,8 +53,8 @@ BACKGROUND = (255, 255, 255)
 # the memory guard's model (fitted to measured peak RSS, benchmarks/bench_memory.py)
 IMAGE_BYTES_PER_PIXEL = 8      # the level image, its colours, the PNG encoder's copies
 STREAM_BYTES_PER_CORNER = 44   # full refinement: the last level, its parent, the painting
-WINDOW_BYTES_PER_CORNER = 112  # a windowed step per child corner: the step, the flags, the
-                               # faces' boxes, the renumbered patch and its edge sort
+WINDOW_BYTES_PER_CORNER = 70   # a windowed step per child corner: the step, the flags, the
+                               # faces' boxes, the renumbered patch
 SIZE_FACTOR = 6.0              # largest face box side / sqrt(mean face area) (5.8 at level 10)
 
 
@@ -120,17 +120,6 @@ def default_window(mesh: Mesh) -> tuple[float, float, float, float]:
 
 # -- windowed refinement ------------------------------------------------------------------
 
-def _topology(mesh: Mesh) -> Topology:
-    """Topology.build without the manifold checks: a cut-out patch may pinch at a vertex."""
-    u = mesh.face_indices.astype(np.int64)
-    w = u[mesh.next_half_edge]
-    n_v = max(mesh.n_vertices, 1)
-    key = np.minimum(u, w) * n_v + np.maximum(u, w)
-    edge_key, he_edge = np.unique(key, return_inverse=True)
-    edges = np.column_stack(np.divmod(edge_key, n_v)).astype(np.int32)
-    return Topology(edges, he_edge.reshape(-1).astype(np.int32), (u > w).astype(np.int8))
-
-
 @dataclass(frozen=True, eq=False)
 class Patch:
     """A refined patch: a submesh and the per-vertex flags described in the module docstring."""
@@ -188,7 +177,9 @@ def _step(patch: Patch, window, halo: float, smooth: bool, centre: str,
         exact = ux
 
     # drop the child faces that cannot influence the window
-    boxes = np.concatenate([vertices[faces].min(axis=1), vertices[faces].max(axis=1)], axis=1)
+    corners = np.take(vertices, faces, axis=0)
+    boxes = np.concatenate([corners.min(axis=1), corners.max(axis=1)], axis=1)
+    del corners
     size = float((boxes[:, 2:] - boxes[:, :2]).max()) if len(boxes) else 0.0
     margin = halo * size
     x0, y0, x1, y1 = window
@@ -201,9 +192,22 @@ def _step(patch: Patch, window, halo: float, smooth: bool, centre: str,
     new_id = np.cumsum(used) - 1          # order-preserving renumbering
     flat = new_id[kept.ravel()].astype(np.int32)
     offsets = np.arange(0, len(flat) + 1, 5, dtype=np.int64)
-    sub = Mesh.trusted(np.ascontiguousarray(vertices[used]), offsets, flat)
-    sub.__dict__["topology"] = _topology(sub)
+    sub = Mesh.trusted(np.ascontiguousarray(vertices[used]), offsets, flat,
+                       _sub_topology(child.topology, keep, new_id))
+    sub.__dict__["face_degree"] = 5
     return Patch(sub, exact[used], complete[used], co[used])
+
+
+def _sub_topology(topo: Topology, keep: NDArray[np.bool_], new_id: NDArray) -> Topology:
+    """The topology of the kept faces (pentagons) of a child, read off the child's: the edges
+    they use, renumbered in order (no sort; a cut-out patch may pinch at a vertex, which is
+    fine here)."""
+    he = topo.half_edge_edge.reshape(-1, 5)[keep].ravel()
+    used = np.zeros(topo.n_edges, dtype=bool)
+    used[he] = True
+    edge_id = (np.cumsum(used) - 1).astype(np.int32)
+    edges = new_id[topo.edges[used]].astype(np.int32)
+    return Topology(edges, edge_id[he], topo.half_edge_side.reshape(-1, 5)[keep].ravel())
 
 
 def refine_window(mesh: Mesh, levels: int, window, *, smooth: bool = True,

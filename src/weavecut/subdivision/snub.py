@@ -113,15 +113,16 @@ def _new_vertices(mesh: Mesh, right: bool, centre: str) -> NDArray[np.float64]:
     dx -= ux
     dy -= uy
     s = (-1.0 if right else 1.0) * np.sqrt(3.0)
-    z = vertices[n_v:n_v + 2 * n_e].reshape(n_e, 2, 2)
     sdx, sdy = s * dx, s * dy
-    t = np.empty(n_e)
-    for j, c, factor, sign in ((0, 0, 5, -1), (0, 1, 5, 1), (1, 0, 9, 1), (1, 1, 9, -1)):
-        base, along, across = (ux, dx, sdy) if c == 0 else (uy, dy, sdx)
-        np.multiply(factor, along, out=t)  # z_j = u + (factor d -+ s d_perp) / 14
-        (np.add if sign > 0 else np.subtract)(t, across, out=t)
-        t /= 14
-        np.add(base, t, out=z[:, j, c])
+    z = np.empty((4, n_e))  # z0 x, z0 y, z1 x, z1 y
+    for j, (base, along, across, factor, add) in enumerate((
+            (ux, dx, sdy, 5, False), (uy, dy, sdx, 5, True),
+            (ux, dx, sdy, 9, True), (uy, dy, sdx, 9, False))):
+        np.multiply(factor, along, out=z[j])  # u + (factor d -+ s d_perp) / 14
+        (np.add if add else np.subtract)(z[j], across, out=z[j])
+        z[j] /= 14
+        z[j] += base
+    _interleave(z, out=vertices[n_v:n_v + 2 * n_e].reshape(n_e, 4))
     centre_of = area_centroids if centre == "area" else face_centroids
     vertices[n_v + 2 * n_e:] = centre_of(mesh)
     return vertices
