@@ -216,7 +216,8 @@ def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonco
             click.echo(f"{tiles}/{deepzoom.NAME}.dzi: {grid.width} x {grid.height} px, "
                        f"{summary['tiles']:,} tiles in {summary['pyramid_levels']} levels "
                        f"({summary['full_resolution_tiles']:,} rendered by {summary['jobs']} "
-                       f"processes in {summary['render_seconds']:.1f} s)")
+                       f"process{'es' if summary['jobs'] > 1 else ''} in "
+                       f"{summary['render_seconds']:.1f} s)")
         return
     lv.check_memory(mesh, levels, grid, windowed=window is not None)
     image, grid = lv.level_image(mesh, levels, size, window, **options)
