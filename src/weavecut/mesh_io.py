@@ -9,9 +9,9 @@ JSON format (version 1)::
 Both round-trip exactly: floats are written with ``repr`` (shortest exact form).
 
 Reading is bounded: only regular files (a FIFO, device or directory is refused before it is
-read), at most ``MAX_FACES`` faces and ``MAX_VERTICES`` vertices, and a file size in
-proportion (``BYTES_PER_FACE`` of the format for each face allowed); JSON nesting and number
-sizes are bounded too. An OBJ is parsed with numpy over the whole file; messages about it
+read), at most ``MAX_BYTES`` of the format (1 GiB OBJ, 512 MiB JSON: reading takes 10 to 16
+times the size in memory), ``MAX_FACES`` faces and ``MAX_VERTICES`` vertices; JSON nesting and
+number sizes are bounded too. An OBJ is parsed with numpy over the whole file; messages about it
 count faces and vertices from 1 and give the line, as OBJ users count.
 """
 
@@ -35,10 +35,10 @@ JSON_FORMAT = "weave-cut-mesh"
 SUFFIXES = (".obj", ".json")
 MAX_FACES = 2**24  # 16.8 million, 1.7 times the pentagon's level 10
 MAX_VERTICES = 2**25
-# bytes a face may take: weave-cut's own OBJ needs ~46 per quad, Blender's with UVs and
-# normals ~130, weave-cut's JSON ~44
-BYTES_PER_FACE = {".obj": 128, ".json": 64}
-MAX_BYTES = {suffix: MAX_FACES * n for suffix, n in BYTES_PER_FACE.items()}  # 2 GiB, 1 GiB
+# Reading takes 10 to 16 times the file's size in memory, so these keep it under about 10 GiB.
+# weave-cut writes 46 (quads) to 96 (snub pentagons) bytes per face in OBJ, 44 in JSON,
+# Blender ~130 with UVs and normals: 8 to 23 million faces, more than any level is useful.
+MAX_BYTES = {".obj": 2**30, ".json": 2**29}
 
 Note = Callable[[str], None]
 
@@ -132,21 +132,18 @@ def _read_regular_file(path: Path, limit: int) -> bytes:
             kind = _KINDS.get(stat.S_IFMT(info.st_mode), "not a regular file")
             raise MeshFileError(f"{path}: is {kind}; mesh files must be regular files")
         if info.st_size > limit:
-            raise MeshFileError(_too_big(path, info.st_size, limit))
+            raise MeshFileError(f"{path}: {info.st_size:,} bytes is more than the "
+                                f"{limit >> 20:,} MiB weave-cut reads from a {path.suffix.lower()}"
+                                " file (reading takes 10 to 16 times the size in memory)")
         with os.fdopen(os.dup(fd), "rb") as f:
-            data = f.read(limit + 1)
+            data = f.read(info.st_size + 1)  # one byte more tells whether it grew
     except OSError as exc:
         raise MeshFileError(f"cannot read {path}: {exc.strerror}") from exc
     finally:
         os.close(fd)
-    if len(data) > limit:  # it grew while we read
-        raise MeshFileError(_too_big(path, len(data), limit))
+    if len(data) > info.st_size:
+        raise MeshFileError(f"{path}: the file grew while it was read")
     return data
-
-
-def _too_big(path: Path, size: int, limit: int) -> str:
-    return (f"{path}: {size:,} bytes is more than the {limit // 2**30} GiB weave-cut reads from "
-            f"a {path.suffix.lower()} file (room for {MAX_FACES:,} faces)")
 
 
 # -- OBJ ------------------------------------------------------------------------------------
@@ -392,6 +389,12 @@ def _obj_faces(tok: _Tokens, first, sizes, lines, errors) -> np.ndarray:
     return values
 
 
+# the axis each plane is constant in, its name, and (u, v) seen from the positive axis
+_PLANES = ((2, "xy-plane as (x, y)", lambda x, y, z: (x, y)),
+           (1, "xz-plane as (x, -z), seen from +y", lambda x, y, z: (x, 0.0 - z)),
+           (0, "yz-plane as (y, z), seen from +x", lambda x, y, z: (y, z)))
+
+
 def _in_plane(points: np.ndarray, lines: np.ndarray) -> tuple[np.ndarray, str]:
     """(V, 2) coordinates in the axis-aligned plane the vertices lie in, and a remark.
 
@@ -399,25 +402,18 @@ def _in_plane(points: np.ndarray, lines: np.ndarray) -> tuple[np.ndarray, str]:
     writes it) as (x, -z), and x = c as (y, z): each seen from the positive axis, so
     counter-clockwise faces stay counter-clockwise and nothing is mirrored.
     """
-    constant = [bool((c == c[0]).all()) if len(c) else True for c in points.T]
-    if constant[2]:
-        kept, axis = points[:, :2], ("z", 2)
-    elif constant[1]:
-        kept, axis = np.column_stack([points[:, 0], 0.0 - points[:, 2]]), ("y", 1)
-    elif constant[0]:
-        kept, axis = points[:, 1:], ("x", 0)
-    else:
-        i = int(np.flatnonzero(points[:, 2])[0])
-        raise MeshFileError(
-            f"line {lines[i]}: vertex has z = {float(points[i, 2])!r} while x and y vary too; "
-            "weave-cut reads flat meshes, in a plane where x, y or z is constant")
-    name, k = axis
-    if k == 2 and (not len(points) or points[0, 2] == 0):
-        return np.ascontiguousarray(kept), ""
-    plane = {2: "xy-plane as (x, y)", 1: "xz-plane as (x, -z), seen from +y",
-             0: "yz-plane as (y, z), seen from +x"}[k]
-    return np.ascontiguousarray(kept), (f"all vertices have {name} = {float(points[0, k])!r}; "
-                                        f"read in the {plane}")
+    for axis, plane, project in _PLANES:
+        c = points[:, axis]
+        if (c == c[:1]).all():
+            vertices = np.column_stack(project(*points.T))
+            if axis == 2 and not c[:1].any():
+                return vertices, ""
+            return vertices, (f"all vertices have {'xyz'[axis]} = {float(c[0])!r}; "
+                              f"read in the {plane}")
+    i = int(np.flatnonzero(points[:, 2])[0])
+    raise MeshFileError(f"line {lines[i]}: vertex has z = {float(points[i, 2])!r} while x and y "
+                        "vary too; weave-cut reads flat meshes, in a plane where x, y or z is "
+                        "constant")
 
 
 # -- JSON -----------------------------------------------------------------------------------
@@ -429,8 +425,8 @@ def _parse_json(text: str) -> Mesh:
         raise MeshFileError(f"invalid JSON at line {exc.lineno}: {exc.msg}") from None
     except RecursionError:
         raise MeshFileError("JSON nested too deeply (a mesh needs 3 levels)") from None
-    except ValueError as exc:  # an integer of thousands of digits
-        raise MeshFileError(f"a number in the JSON is too large: {exc}"[:160]) from None
+    except ValueError:  # an integer of more digits than Python converts (4300)
+        raise MeshFileError("a number in the JSON is too large (thousands of digits)") from None
     if not isinstance(doc, dict) or doc.get("format") != JSON_FORMAT:
         raise MeshFileError(f"not a weave-cut mesh (expected \"format\": \"{JSON_FORMAT}\")")
     if doc.get("version") != 1:
