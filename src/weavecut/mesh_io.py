@@ -173,9 +173,10 @@ class _Tokens:
         pad = b" " * MAX_TOKEN  # room for windows of bytes before and after every token
         self.buf = np.frombuffer(bytearray().join([pad, data, b"\n", pad]), dtype=np.uint8)
         text = self.buf[:-MAX_TOKEN]
-        if np.count_nonzero(text < 32) > data.count(b"\n") + 1:
-            _normalise_controls(text)
         line_end = np.flatnonzero(text == 10)
+        if np.count_nonzero(text < 32) > len(line_end):
+            _normalise_controls(text)
+            line_end = np.flatnonzero(text == 10)
         if b"#" in data:
             _blank_comments(text, line_end)
         gap = text <= 32  # space or newline: the only bytes below 33 left
