@@ -79,8 +79,9 @@ def validate(mesh: Mesh, *, allow_nonconvex: bool = False,
         if reflex.any():
             h = int(np.flatnonzero(reflex)[0])
             raise MeshError(f"{n.face(mesh.half_edge_face[h])} is not convex at "
-                            f"{n.vertex(mesh.face_indices[h])} (the scheme assumes convex "
-                            "faces; --allow-nonconvex to go on)")
+                            f"{n.vertex(mesh.face_indices[h])}: the snub scheme assumes convex "
+                            "faces (deep levels of some inputs have a few non-convex faces, see "
+                            "weave-cut convexity); pass --allow-nonconvex to use the mesh anyway")
     _check_overlaps(mesh, corners, scale, n)
     return mesh
 
