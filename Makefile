@@ -13,7 +13,7 @@ OUT    := build
 RECIPES := $(wildcard templates/recipes/*.toml) $(wildcard examples/*.toml)
 BUILT   := $(patsubst %.toml,$(OUT)/%/.built,$(notdir $(RECIPES)))
 
-.PHONY: run figures docs test bench mutation clean help
+.PHONY: run figures docs test fuzz bench mutation clean help
 .DELETE_ON_ERROR:
 
 help:  ## list the targets
@@ -28,13 +28,14 @@ $(STAMP): pyproject.toml setup.py
 run: $(BUILT)  ## build every recipe (templates/recipes, examples) into build/ (incremental)
 	@echo "built into $(OUT)/: $(notdir $(basename $(RECIPES)))"
 
-# a recipe is rebuilt when it or the package changed; each recipe has its own folder
+# a recipe is rebuilt when it or the package changed; each recipe has its own folder, which
+# belongs to make (--force: replace files a weave-cut without a manifest left there)
 $(OUT)/%/.built: templates/recipes/%.toml $(STAMP) $(SRC)
-	$(WC) -q build $< -o $(OUT)/$* > /dev/null
+	$(WC) -q build $< -o $(OUT)/$* --force > /dev/null
 	touch $@
 
 $(OUT)/%/.built: examples/%.toml $(STAMP) $(SRC) examples/*.obj examples/*.json
-	$(WC) -q build $< -o $(OUT)/$* > /dev/null
+	$(WC) -q build $< -o $(OUT)/$* --force > /dev/null
 	touch $@
 
 figures: $(OUT)/figures/.built  ## every paper figure weave-cut reproduces, into build/figures/
@@ -44,6 +45,9 @@ docs: $(STAMP)  ## redraw the README's images (docs/, examples/previews/) from t
 
 test: $(STAMP)  ## run the whole test suite
 	$(PY) -m pytest
+
+fuzz: $(STAMP)  ## the untrusted-input fuzz suite with the long hypothesis profile
+	HYPOTHESIS_PROFILE=long $(PY) -m pytest tests/untrusted -k "fuzz or corpus"
 
 bench: $(STAMP)  ## run the benchmarks (throughput, ratios against peers)
 	$(PY) -m pip install --quiet -e '.[bench]' || echo "some peers did not install"

@@ -75,6 +75,8 @@ class WindowType(click.ParamType):
             box = ()
         if len(box) != 4 or not all(math.isfinite(v) for v in box):
             self.fail(f"{value!r} is not four numbers X0,Y0,X1,Y1", param, ctx)
+        if max(map(abs, box)) > 1e9:
+            self.fail(f"{value!r}: coordinates beyond +-1e9 (meshes stay within it)", param, ctx)
         if not (box[0] < box[2] and box[1] < box[3]):
             self.fail(f"{value!r}: need X0 < X1 and Y0 < Y1", param, ctx)
         return box
@@ -134,9 +136,11 @@ def _print_box(title: str, box: dict) -> None:
         click.echo(f"{title}: not measured ({box['skipped']})")
         return
     s = box["sizes"]
-    click.echo(f"{title}: D = {box['dimension']:.4f} (least squares, r2 = {box['r2']:.5f}, "
+    click.echo(f"{title}: D = {box['dimension']:.4f} \u00b1 {box['stderr']:.4f} (least-squares "
+               f"slope of log N against log 1/eps and its standard error, r2 = {box['r2']:.5f}, "
                f"{len(s)} box sizes {s[0]:.4g} .. {s[-1]:.4g}, counts averaged over "
-               f"{box['grids']} shifted grids)")
+               f"{box['grids']} shifted grids; the coarser and finer half of the sizes alone "
+               f"give {box['halves'][0]:.4f} and {box['halves'][1]:.4f})")
     click.echo("  box size     " + " ".join(f"{x:9.3g}" for x in s[::4]))
     click.echo("  boxes        " + " ".join(f"{x:9.1f}" for x in box["counts"][::4]))
 
@@ -156,6 +160,10 @@ def _print_fractal(r: dict) -> None:
     if "inner_curve" in r:
         c = r["inner_curve"]
         _print_box(f"box counting, curve from level {c['level']} edge {c['edge']}", c)
+    for m in r.get("growth_monotonicity", []):
+        click.echo(f"  {m['kind']:12} born {m['born']}: {m['curves']} curves; growth per curve "
+                   f"from level {m['levels'][0]} to {m['levels'][1]}: {m['constant']} constant, "
+                   f"{m['rising']} rising, {m['falling']} falling, {m['turning']} turning")
     if "inner_curves" in r:
         click.echo("curves born as one edge at level 'born' "
                    "(growth = L(t)/L(t-1); boundary: 3/sqrt7 = 1.133893):")

@@ -4,17 +4,25 @@ from __future__ import annotations
 
 import contextlib
 import functools
+import math
 import shlex
 import sys
 from pathlib import Path
 
 import click
 from click.shell_completion import CompletionItem
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from shapely.errors import GEOSException
 
 from .. import __version__, inputs, units
-from ..errors import WeaveCutError
-from ..mesh import Mesh
-from ..mesh_io import read_mesh
+from ..analysis.convexity import nonconvex_levels, nonconvex_message
+from ..errors import MeshError, WeaveCutError
+from ..fileio import protect
+from ..mesh import Mesh, signed_areas
+from ..mesh_io import read_valid_mesh
+from ..text import clean
 from ..validation import validate
 
 CONTEXT = {"help_option_names": ["-h", "--help"], "max_content_width": 100}
@@ -29,8 +37,8 @@ class Length(click.ParamType):
         self.minimum, self.inclusive = minimum, inclusive
 
     def convert(self, value, param, ctx):
-        if isinstance(value, float):
-            return value
+        if isinstance(value, bool):
+            self.fail(f"{value!r} is not a length", param, ctx)
         try:
             mm = units.to_mm(value)
         except ValueError as exc:
@@ -41,6 +49,16 @@ class Length(click.ParamType):
         if mm > 1e6:
             self.fail(f"{value!r} is larger than a kilometre", param, ctx)
         return mm
+
+
+class Finite(click.FloatRange):
+    """A finite float within optional bounds (click's FloatRange lets NaN and inf through)."""
+
+    def convert(self, value, param, ctx):
+        number = super().convert(value, param, ctx)
+        if not math.isfinite(number):
+            self.fail(f"{value!r} is not a finite number", param, ctx)
+        return number
 
 
 class PageSize(click.ParamType):
@@ -89,6 +107,9 @@ def reports_errors(f):
             return f(*args, **kwargs)
         except WeaveCutError as exc:
             raise click.ClickException(str(exc)) from exc
+        except GEOSException as exc:  # a last resort: meshes are checked before layout
+            raise click.ClickException(f"the geometry cannot be laid out ({exc}); a mesh with "
+                                       "sliver faces or tiny features is the usual cause") from exc
         except KeyboardInterrupt:
             click.echo("weave-cut: interrupted; no output was left half-written", err=True)
             sys.exit(130)
@@ -97,16 +118,63 @@ def reports_errors(f):
 
 
 def load_mesh(spec: str, allow_nonconvex: bool = False) -> Mesh:
-    """A built-in input by name, or a mesh file, validated."""
+    """A built-in input by name, or a mesh file, validated; no output may replace the file."""
     if inputs.is_builtin(spec) or not Path(spec).suffix:
         if not Path(spec).exists():
             return validate(inputs.get(spec), allow_nonconvex=allow_nonconvex)
-    return validate(read_mesh(spec), allow_nonconvex=allow_nonconvex)
+    protect(spec)
+    return read_valid_mesh(spec, allow_nonconvex=allow_nonconvex, note=say)
+
+
+THINNEST = 1e-3  # isoperimetric quotient 4 pi A / P^2 of the thinnest face a layout accepts
+
+
+def check_layout(mesh: Mesh, what: str, connected: bool = False) -> Mesh:
+    """``mesh`` if ``what`` (the puzzle, the paper model) can lay it out: no sliver face (its
+    strips and pieces would be thinner than floating point keeps apart) and, if
+    ``connected``, one piece; otherwise a MeshError naming the face or the parts."""
+    quotient = 4 * np.pi * np.abs(signed_areas(mesh)) / face_perimeters(mesh) ** 2
+    worst = int(np.argmin(quotient))
+    if quotient[worst] < THINNEST:
+        raise MeshError(f"face {worst + 1} is a sliver (area {quotient[worst]:.1e} of a circle "
+                        f"with its perimeter); {what} needs faces at least {THINNEST:g} of that")
+    if connected:
+        twin = mesh.topology.twin
+        inner = twin >= 0
+        face = mesh.half_edge_face
+        graph = coo_matrix((np.ones(inner.sum()), (face[inner], face[twin[inner]])),
+                           shape=(mesh.n_faces, mesh.n_faces))
+        parts = connected_components(graph, directed=False)[0]
+        if parts > 1:
+            raise MeshError(f"the mesh has {parts} separate parts; {what} needs one piece")
+    return mesh
+
+
+def face_perimeters(mesh: Mesh):
+    """(F,) perimeter of every face."""
+    p = mesh.vertices[mesh.face_indices]
+    step = np.hypot(*(p[mesh.next_half_edge] - p).T)
+    return np.add.reduceat(step, mesh.face_offsets[:-1])
+
+
+def check_levels(levels, what: str) -> None:
+    """Refuse a subdivision whose last level is empty or has coordinates that are not finite
+    (an area centroid of a face too small for floating point), instead of writing it."""
+    mesh = levels[-1].mesh
+    if mesh.n_faces == 0:
+        raise MeshError(f"{what} has no faces at level {len(levels) - 1} (the scheme needs "
+                        "inner vertices or edges this mesh does not have); try another "
+                        "scheme or input")
+    if not np.isfinite(mesh.vertices).all():
+        raise MeshError(f"{what} has coordinates that are not finite at level "
+                        f"{len(levels) - 1} (faces too small for --centre area?); scale the "
+                        "mesh up or use --centre vertex")
 
 
 def command_line() -> str:
-    """The command that is running, for output metadata."""
-    return "weave-cut " + " ".join(shlex.quote(a) for a in sys.argv[1:])
+    """The command that is running, for output metadata (control characters and undecodable
+    bytes replaced)."""
+    return clean("weave-cut " + " ".join(shlex.quote(a) for a in sys.argv[1:]))
 
 
 def provenance() -> dict[str, str]:
@@ -164,3 +232,15 @@ def summary(text: str) -> None:
     """What a command made, for people to read, on stdout, unless -q."""
     if not quiet():
         click.echo(text)
+
+
+def flag_nonconvex(hierarchy) -> dict:
+    """Warn on stderr about every produced level (1..N) with non-convex faces (even with -q:
+    such a mesh is refused as input without --allow-nonconvex), and return the counts for
+    --json: ``{"nonconvex_faces": total, "nonconvex_faces_by_level": {"5": 72, ...}}``."""
+    rows = nonconvex_levels(hierarchy)
+    for row in rows:
+        click.echo(f"weave-cut: warning: {nonconvex_message(row)}; see weave-cut convexity",
+                   err=True)
+    return {"nonconvex_faces": sum(r["nonconvex_faces"] for r in rows),
+            "nonconvex_faces_by_level": {str(r["level"]): r["nonconvex_faces"] for r in rows}}

@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 import click
+import numpy as np
 
 from .. import export, inputs
 from ..analysis.stats import level_stats
@@ -16,6 +17,8 @@ from .common import (
     CONTEXT,
     Length,
     allow_nonconvex_option,
+    check_levels,
+    flag_nonconvex,
     input_argument,
     load_mesh,
     page_option,
@@ -65,8 +68,10 @@ def run_scheme(input_mesh: str, levels: int, scheme: str, no_smooth: bool, chira
         options = {"smooth": not no_smooth, "chirality": chirality, "centre": centre}
     elif no_smooth or chirality != "left" or centre != "vertex":
         raise click.UsageError("--no-smooth, --chirality and --centre apply to --scheme snub")
-    with progress(range(levels), f"{scheme} levels") as steps:
-        return subdivide(mesh, levels, scheme, steps=steps, **options)
+    with progress(range(levels), f"{scheme} levels") as steps, np.errstate(all="ignore"):
+        hierarchy = subdivide(mesh, levels, scheme, steps=steps, **options)
+    check_levels(hierarchy, f"{scheme} of {input_mesh}")
+    return hierarchy
 
 
 @click.command("inputs", context_settings=CONTEXT)
@@ -127,6 +132,7 @@ def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
             f"{', '.join('.' + f for f in export.formats())}", param_hint="'-o'")
     hierarchy = run_scheme(input_mesh, levels, scheme, no_smooth, chirality, centre,
                            allow_nonconvex)
+    flag_nonconvex(hierarchy)
     if suffix in MESH_SUFFIXES:
         write_mesh(hierarchy[-1].mesh, output, provenance())
         return

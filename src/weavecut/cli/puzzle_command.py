@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import click
 
@@ -13,18 +12,10 @@ from ..puzzle.pieces import build_puzzle, colour_puzzle
 from ..layout.tiling import tile
 from ..units import PAPER_SIZES
 from ..weave.colour import palette
-from ..fileio import write_atomic
-from .common import (
-    CONTEXT,
-    Length,
-    PageSize,
-    complete_inputs,
-    complete_preset,
-    load_mesh,
-    provenance,
-    reports_errors,
-    summary,
-)
+from ..fileio import make_folder, write_atomic
+from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_inputs,
+                     complete_preset, flag_nonconvex, load_mesh, provenance, reports_errors,
+                     summary)
 
 
 @click.command("puzzle", context_settings=CONTEXT)
@@ -50,7 +41,7 @@ from .common import (
 @click.option("--frame", "frame_width", type=Length(), default="20mm", show_default=True,
               help="Frame width beyond the hexagon ring.")
 @click.option("--numbers", is_flag=True, help="Engrave piece numbers (engrave layer).")
-@click.option("--speed", type=click.FloatRange(min=0, min_open=True), default=None,
+@click.option("--speed", type=Finite(min=0, min_open=True, max=10_000), default=None,
               help="Cutting speed in mm/s for the time estimate (default: the material's).")
 @click.option("--page", type=click.Choice(sorted(PAPER_SIZES)), default="a4",
               show_default=True, help="Printer page for the tiled PDF guides.")
@@ -75,7 +66,8 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     sheet = mat["sheet"] if sheet is None else sheet
     speed = mat["cut_speed"] if speed is None else speed
     las = pf.laser(laser_name)
-    puzzle = build_puzzle(load_mesh(input_mesh), levels, size, frame_width)
+    puzzle = build_puzzle(check_layout(load_mesh(input_mesh), "the puzzle", connected=True),
+                          levels, size, frame_width)
     pf.check_kerf(puzzle, kerf)
     colouring = colour_puzzle(puzzle, palette(palette_name))
     results, files = {}, {}  # everything is laid out before the first file is written
@@ -92,14 +84,14 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
         g = pf.guide(puzzle, colouring, side, numbers)
         files[f"puzzle-{side}-guide.svg"] = g
         files[f"puzzle-{side}-guide-{page}.pdf"] = tile(g, PAPER_SIZES[page])
-    folder = Path(out_dir)
-    folder.mkdir(parents=True, exist_ok=True)
+    folder = make_folder(out_dir)
     meta = provenance()
     for name, drawing in files.items():
         export.write(drawing.with_metadata(**meta), folder / name)
     written = list(files)
     info = pf.summary(puzzle, results, speed, colouring)
     info.update(material=mat["name"], kerf_mm=kerf, sheet_mm=list(sheet), laser=las.name,
+                **flag_nonconvex(puzzle.hierarchy),
                 files=sorted(written + ["puzzle-summary.json"]))
     text = json.dumps(info, indent=2)
     write_atomic(folder / "puzzle-summary.json", (text + "\n").encode("utf-8"))

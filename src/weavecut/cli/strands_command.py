@@ -13,17 +13,9 @@ from ..papermodel.book import preset_for, strand_book
 from ..subdivision import snub, subdivide
 from ..weave.colour import palette
 from ..weave.snub_weave import snub_weaves
-from .common import (
-    CONTEXT,
-    Length,
-    PageSize,
-    complete_preset,
-    input_argument,
-    load_mesh,
-    provenance,
-    reports_errors,
-    summary,
-)
+from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_preset,
+                     flag_nonconvex, input_argument, load_mesh, provenance, reports_errors,
+                     summary)
 
 FORMATS = ("pdf", "svg")
 
@@ -41,7 +33,7 @@ FORMATS = ("pdf", "svg")
 @click.option("--palette", "palette_name", default=None,
               shell_complete=complete_preset("palettes"), help="Palette preset: maritime-12 (braided pairs, copies alike; the default) or "
                    "a flat one such as maritime-4 (one colour per module copy).")
-@click.option("--turn", type=float, default=None,
+@click.option("--turn", type=Finite(-3600, 3600), default=None,
               help="Degrees the pattern is turned on the assembly sheet; module strands head "
                    "down in it [default: 45 for square-grid, else 0].")
 @click.option("--chirality", type=click.Choice(snub.CHIRALITIES), default="left",
@@ -69,8 +61,10 @@ def strands_command(input_mesh, levels, page, tile_size, margin, palette_name, t
     levels = preset["levels"] if levels is None else levels
     turn = preset["turn"] if turn is None else math.radians(turn)
     pal = palette(palette_name or preset["palette"])
-    hierarchy = subdivide(load_mesh(input_mesh), levels, chirality=chirality)
+    hierarchy = subdivide(check_layout(load_mesh(input_mesh), "the paper model"), levels,
+                          chirality=chirality)
     weaves = snub_weaves(hierarchy)
+    flag_nonconvex(hierarchy)
     try:
         book = strand_book(weaves, pal, page, tile_size, margin, turn,
                            title=f"weave-cut strands: {input_mesh}, level {levels}")

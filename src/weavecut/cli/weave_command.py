@@ -7,14 +7,16 @@ from pathlib import Path
 
 import click
 
+from ..errors import MeshError
 from ..weave.colour import palette, strand_colours
-from ..weave.report import weave_summary
+from ..weave.report import weave_summaries
 from ..weave.schemes import scheme_weaves
 from ..layout.weave_figure import snub_under_points, weave_drawing
 from .common import (
     CONTEXT,
     Length,
     complete_preset,
+    flag_nonconvex,
     input_argument,
     page_option,
     reports_errors,
@@ -70,11 +72,20 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
     pal = palette(palette_name)
     hierarchy = run_scheme(input_mesh, levels, scheme, no_smooth, chirality, centre,
                            allow_nonconvex)
-    weaves = scheme_weaves(hierarchy, scheme, face_split)
+    nonconvex = flag_nonconvex(hierarchy)
+    what = f"the {scheme} weave of {input_mesh} at level {levels}"
+    try:
+        weaves = scheme_weaves(hierarchy, scheme, face_split)
+        weaves[-1].mesh.topology  # noqa: B018  (a face-split mesh can pinch at a vertex)
+    except MeshError as exc:
+        raise click.ClickException(f"{what} cannot be built: {exc}") from exc
+    if weaves[-1].n_tiles == 0:
+        raise click.ClickException(f"{what} has no tiles: no two faces glue into one; try "
+                                   "--face-split or another scheme")
     if as_json:
         first = levels - len(weaves) + 1
-        click.echo(json.dumps({"input": input_mesh, "scheme": scheme, "levels": [
-            {"level": first + i, **weave_summary(w)} for i, w in enumerate(weaves)]}, indent=2))
+        click.echo(json.dumps({"input": input_mesh, "scheme": scheme, **nonconvex, "levels": [
+            {"level": first + i, **s} for i, s in enumerate(weave_summaries(weaves))]}, indent=2))
     if output:
         snub = scheme == "snub" and not face_split
         outline = None

@@ -11,6 +11,7 @@ from pathlib import Path
 
 from ..errors import ExportError
 from ..fileio import write_atomic
+from ..text import clean_drawing
 
 FORMATS = ("dxf", "pdf", "png", "svg")  # each the SUFFIX of the module of that name
 
@@ -23,7 +24,7 @@ def render(drawing, file_format: str) -> bytes:
     fmt = file_format.lower().lstrip(".")
     if fmt not in FORMATS:
         raise ExportError(f"unknown output format {fmt!r}; choose one of {formats()}")
-    return importlib.import_module(f".{fmt}", __name__).render(drawing)
+    return importlib.import_module(f".{fmt}", __name__).render(clean_drawing(drawing))
 
 
 def write(drawing, path: str | Path, file_format: str | None = None) -> None:
