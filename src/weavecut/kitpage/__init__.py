@@ -12,7 +12,7 @@ import os
 from pathlib import Path
 
 from ..fileio import write_atomic
-from .page import Run, index, page
+from .document import Run, index, page
 
 __all__ = ["Run", "index", "page", "write", "write_index"]
 

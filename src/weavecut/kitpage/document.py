@@ -32,7 +32,7 @@ STYLE = f"""
 body{{margin:0 auto;max-width:80rem;padding:1rem;font:16px/1.45 system-ui,sans-serif;
 color:{INK};background:{PAPER}}}
 h1{{font-size:1.5rem;margin:0 0 .25rem}}
-h2{{font-size:1.2rem;margin:1.5rem 0 .25rem}}
+h2{{font-size:1.2rem;margin:1.5rem 0 .25rem;overflow-wrap:anywhere}}
 h3{{font-size:1rem;margin:.5rem 0 .25rem;overflow-wrap:anywhere}}
 p,ul{{margin:.25rem 0}}
 a{{color:{LINK}}}
@@ -104,8 +104,8 @@ def _run(k: int, run: Run, folder: Path) -> str:
     for path in run.files:  # one card per file name stem: x.svg and x.dxf of one Drawing
         groups.setdefault(path.with_suffix(""), []).append(path)
     cards = "".join(_card(paths, run.files, figures, folder) for paths in groups.values())
-    words = run.command.split()
-    heading = " ".join(w for w in words[1:3] if not w.startswith("-")) or run.command
+    words = run.command.split()  # "weave-cut COMMAND INPUT ...": the command and the input
+    heading = " ".join(Path(w).name for w in words[1:3] if not w.startswith("-")) or run.command
     said_html = (f'<ul class="said">{"".join(f"<li>{_e(s)}</li>" for s in said)}</ul>'
                  if said else "")
     return (f'<section aria-labelledby="run-{k}"><h2 id="run-{k}">{_e(heading)}</h2>'
@@ -235,20 +235,19 @@ def _purpose(suffixes: list[str], drawing: Drawing | None, figures: dict) -> str
             paper = "US Letter"
         return f"print at 100 % on {paper}"
     roles = {layer.role for sheet in (drawing.sheets if drawing else ()) for layer in sheet.layers}
-    if "cut" in roles:
-        laser = figures.get("laser")
-        how = _laser_description(laser) if isinstance(laser, str) else "the laser's cut colour"
-        speed = figures.get("speed_mm_s")
+    laser, speed = figures.get("laser"), figures.get("speed_mm_s")
+    if "cut" in roles and isinstance(laser, str):  # a laser file of the puzzle
         at = f" at {speed:g} mm/s" if isinstance(speed, (int, float)) else ""
-        return f"cut: {how}{at}" + (" (SVG or DXF)" if ".dxf" in suffixes else "")
-    if suffixes == [".dxf"]:
+        return f"cut: {_laser_description(laser)}{at}" + (" (SVG or DXF)" if ".dxf" in suffixes
+                                                           else "")
+    if ".dxf" in suffixes:
         return DXF_FOR
     if ".json" in suffixes:
         return "figures for scripts (JSON)"
     if ".png" in suffixes:
         return "picture for a screen"
     if ".svg" in suffixes:
-        return "drawing to view, print or edit (Inkscape)"
+        return "drawing in mm: view, print or edit (Inkscape)"
     return "text"
 
 
