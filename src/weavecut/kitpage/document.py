@@ -38,21 +38,25 @@ p,ul{{margin:.25rem 0}}
 a{{color:{LINK}}}
 code{{font-size:.85rem;overflow-wrap:anywhere;color:{MUTED}}}
 .said{{padding-left:1.2rem}}
+main{{display:grid;gap:0 1rem;grid-template-columns:repeat(auto-fill,minmax(min(100%,20rem),1fr))}}
+section.many{{grid-column:1/-1}}
 .cards{{display:grid;gap:1rem;grid-template-columns:repeat(auto-fill,minmax(min(100%,18rem),1fr));
 padding:0;list-style:none}}
 .card{{background:{CARD};border-radius:.5rem;padding:.75rem;break-inside:avoid}}
+.card.wide{{grid-column:1/-1}}
 .card img{{display:block;max-width:100%;max-height:24rem;height:auto;margin:0 auto;
 background:{PAPER};border:1px solid #d0d3d6}}
 .pages{{display:flex;flex-wrap:wrap;gap:.4rem}}
-.pages img{{width:4.5rem;margin:0}}
+.pages img{{width:6.5rem;margin:0}}
 .for{{font-weight:600}}
 .facts{{color:{MUTED};font-size:.9rem}}
-@media print{{body{{max-width:none;padding:0;font-size:11pt}}
+@media print{{body{{max-width:none;padding:0;font-size:11pt}}main{{display:block}}
 .cards{{grid-template-columns:repeat(2,1fr)}}.card{{background:none;border:1px solid #999}}
 a{{color:{INK};text-decoration:none}}}}
 """.replace("\n", "")
 
 DXF_FOR = "CAD file in mm (LibreCAD, LightBurn)"
+HAIRLINE = 0.011  # mm: laser presets draw cuts 0.01 mm wide (or 0), for a laser, not an eye
 
 
 @dataclass(frozen=True)
@@ -98,7 +102,7 @@ def _document(title: str, lead: str, body: str) -> str:
 
 def _run(k: int, run: Run, folder: Path) -> str:
     figures = _run_figures(run)
-    said = [line for text in run.said for line in text.splitlines()
+    said = [_unprefixed(line, run.files) for text in run.said for line in text.splitlines()
             if line.strip() and not line.startswith("files: ")]  # the cards list the files
     groups: dict[Path, list[Path]] = {}
     for path in run.files:  # one card per file name stem: x.svg and x.dxf of one Drawing
@@ -108,9 +112,16 @@ def _run(k: int, run: Run, folder: Path) -> str:
     heading = " ".join(Path(w).name for w in words[1:3] if not w.startswith("-")) or run.command
     said_html = (f'<ul class="said">{"".join(f"<li>{_e(s)}</li>" for s in said)}</ul>'
                  if said else "")
-    return (f'<section aria-labelledby="run-{k}"><h2 id="run-{k}">{_e(heading)}</h2>'
+    many = ' class="many"' if len(groups) > 1 else ""
+    return (f'<section{many} aria-labelledby="run-{k}"><h2 id="run-{k}">{_e(heading)}</h2>'
             f"<p><code>{_e(run.command)}</code></p>{said_html}"
             f'<ul class="cards">{cards}</ul></section>\n')
+
+
+def _unprefixed(line: str, files: dict) -> str:
+    """A summary line without its leading "OUTPUT: " (the card shows the file)."""
+    head, sep, rest = line.partition(": ")
+    return rest if sep and Path(os.path.abspath(head)) in files else line
 
 
 def _card(paths: list[Path], files: dict, figures: dict, folder: Path) -> str:
@@ -119,10 +130,12 @@ def _card(paths: list[Path], files: dict, figures: dict, folder: Path) -> str:
     drawing = next((d for d in pdf + [files[p] for p in paths] if d is not None), None)
     name = paths[0].with_suffix("").name
     picture, pages = _picture(paths, files, folder)
-    facts = [*_sizes(drawing, pages), *_drawing_figures(drawing), _bytes(paths)]
+    made = ".pdf" in suffixes or "laser" in figures  # cut with scissors or a laser
+    facts = [*_sizes(drawing, pages), *_drawing_figures(drawing, made), _bytes(paths)]
     links = " · ".join(f'<a href="{_href(p, folder)}">{_e(p.suffix.lstrip(".").upper() or p.name)}'
                        "</a>" for p in paths)
-    return (f'<li class="card">{picture}<h3>{_e(name)}</h3>'
+    wide = ' wide' if pages > 4 else ""
+    return (f'<li class="card{wide}">{picture}<h3>{_e(name)}</h3>'
             f'<p class="for">{_e(_purpose(suffixes, drawing, figures))}</p>'
             f'<p class="facts">{_e(" · ".join(f for f in facts if f))}</p><p>{links}</p></li>')
 
@@ -137,9 +150,9 @@ def _picture(paths: list[Path], files: dict, folder: Path) -> tuple[str, int]:
                             f"page {n} of {len(thumbs)} of {pdf.name}", previews.png_size(t))
                        for n, t in enumerate(thumbs, 1))
         return f'<a class="pages" href="{_href(pdf, folder)}">{imgs}</a>', len(thumbs)
-    for suffix in (".png", ".svg"):
+    for suffix in (".png", ".svg"):  # the file itself, unless its lines are too thin to see
         path = by.get(suffix)
-        if path is not None and not _hairlines(files[path]):
+        if path is not None and (suffix == ".png" or not _hairlines(files[path])):
             return (f'<a href="{_href(path, folder)}">'
                     f"{_img(_href(path, folder), f'picture of {path.name}')}</a>", 0)
     drawing = next((files[p] for p in paths if files[p] is not None), None)
@@ -155,11 +168,10 @@ def _img(src: str, alt: str, size: tuple[int, int] | None = None) -> str:
 
 
 def _hairlines(drawing: Drawing | None) -> bool:
-    """Whether ``drawing`` has strokes too thin to see when it is shown small (laser cuts)."""
+    """Whether ``drawing`` has laser hairlines (too thin to see when it is shown small)."""
     if drawing is None:
         return False
-    least = sum(s.width for s in drawing.sheets) / previews.PREVIEW_PX
-    return any(s.style.stroke and s.style.stroke_width < least for sheet in drawing.sheets
+    return any(s.style.stroke and s.style.stroke_width < HAIRLINE for sheet in drawing.sheets
                for layer in sheet.layers for s in layer.shapes
                if isinstance(s, (Polygons, Polylines)))
 
@@ -174,13 +186,14 @@ def _sizes(drawing: Drawing | None, pages: int) -> list[str]:
     return [f"{n} {what} of {text}" if n > 1 else text]
 
 
-def _drawing_figures(drawing: Drawing | None) -> list[str]:
-    """Cut length and number of fill colours of ``drawing`` (when it has them)."""
+def _drawing_figures(drawing: Drawing | None, made: bool) -> list[str]:
+    """Cut length (if ``made``: printed or lasered to be cut out) and number of fill colours
+    of ``drawing`` (when it has them)."""
     if drawing is None:
         return []
     shapes = [(layer.role, s) for sheet in drawing.sheets for layer in sheet.layers
               for s in layer.shapes if layer.visible]
-    cut = sum(_length(s) for role, s in shapes if role == "cut")
+    cut = sum(_length(s) for role, s in shapes if role == "cut") if made else 0.0
     fills = {f for _, s in shapes if isinstance(s, Polygons)
              for f in (s.fills or (s.style.fill,)) if f}
     return ([f"cut {cut / 1000:.2f} m"] if cut else []) + (
