@@ -107,15 +107,15 @@ def _run(k: int, run: Run, folder: Path) -> str:
     groups: dict[Path, list[Path]] = {}
     for path in run.files:  # one card per file name stem: x.svg and x.dxf of one Drawing
         groups.setdefault(path.with_suffix(""), []).append(path)
-    cards = "".join(_card(paths, run.files, figures, folder) for paths in groups.values())
+    cards = [_card(paths, run.files, figures, folder) for paths in groups.values()]
     words = run.command.split()  # "weave-cut COMMAND INPUT ...": the command and the input
     heading = " ".join(Path(w).name for w in words[1:3] if not w.startswith("-")) or run.command
     said_html = (f'<ul class="said">{"".join(f"<li>{_e(s)}</li>" for s in said)}</ul>'
                  if said else "")
-    many = ' class="many"' if len(groups) > 1 else ""
+    many = ' class="many"' if len(cards) > 1 or any(wide for _, wide in cards) else ""
     return (f'<section{many} aria-labelledby="run-{k}"><h2 id="run-{k}">{_e(heading)}</h2>'
             f"<p><code>{_e(run.command)}</code></p>{said_html}"
-            f'<ul class="cards">{cards}</ul></section>\n')
+            f'<ul class="cards">{"".join(html for html, _ in cards)}</ul></section>\n')
 
 
 def _unprefixed(line: str, files: dict) -> str:
@@ -124,7 +124,8 @@ def _unprefixed(line: str, files: dict) -> str:
     return rest if sep and Path(os.path.abspath(head)) in files else line
 
 
-def _card(paths: list[Path], files: dict, figures: dict, folder: Path) -> str:
+def _card(paths: list[Path], files: dict, figures: dict, folder: Path) -> tuple[str, bool]:
+    """A card of the files of one stem, and whether it is wide (a PDF of many pages)."""
     suffixes = [p.suffix.lower() for p in paths]
     pdf = [files[p] for p in paths if p.suffix.lower() == ".pdf"]
     drawing = next((d for d in pdf + [files[p] for p in paths] if d is not None), None)
@@ -134,10 +135,11 @@ def _card(paths: list[Path], files: dict, figures: dict, folder: Path) -> str:
     facts = [*_sizes(drawing, pages), *_drawing_figures(drawing, made), _bytes(paths)]
     links = " · ".join(f'<a href="{_href(p, folder)}">{_e(p.suffix.lstrip(".").upper() or p.name)}'
                        "</a>" for p in paths)
-    wide = ' wide' if pages > 4 else ""
-    return (f'<li class="card{wide}">{picture}<h3>{_e(name)}</h3>'
+    wide = pages > 4
+    return (f'<li class="card{" wide" * wide}">{picture}<h3>{_e(name)}</h3>'
             f'<p class="for">{_e(_purpose(suffixes, drawing, figures))}</p>'
-            f'<p class="facts">{_e(" · ".join(f for f in facts if f))}</p><p>{links}</p></li>')
+            f'<p class="facts">{_e(" · ".join(f for f in facts if f))}</p><p>{links}</p></li>',
+            wide)
 
 
 def _picture(paths: list[Path], files: dict, folder: Path) -> tuple[str, int]:
