@@ -223,3 +223,11 @@ def test_html_option_writes_the_page_of_one_command(tmp_path):
     assert [a.get("href") for a in tree.iter("a")] == ["w.svg", "w.svg"]
     result = cli_run("weave", "square-grid", "--levels", "1", "-o", out, "--html", out)
     assert result.exit_code == 2 and "replace an output" in result.output
+
+
+def test_the_index_links_every_page(built, tmp_path):
+    folder = built[0]
+    kitpage.write_index(tmp_path / "index.html", "builds", [folder / "index.html"])
+    tree = parse((tmp_path / "index.html").read_text(encoding="utf-8"))
+    (href,) = [a.get("href") for a in tree.iter("a")]
+    assert (tmp_path / unquote(href)).resolve() == (folder / "index.html").resolve()
