@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 from dataclasses import dataclass
 from html import escape
 from pathlib import Path
@@ -156,12 +157,24 @@ def _picture(paths: list[Path], files: dict, folder: Path) -> tuple[str, int]:
         path = by.get(suffix)
         if path is not None and (suffix == ".png" or not _hairlines(files[path])):
             return (f'<a href="{_href(path, folder)}">'
-                    f"{_img(_href(path, folder), f'picture of {path.name}')}</a>", 0)
+                    f"{_img(_href(path, folder), _alt(path, files[path]))}</a>", 0)
     drawing = next((files[p] for p in paths if files[p] is not None), None)
     if drawing is None:
         return "", 0
     shown = by.get(".svg") or by.get(".dxf") or paths[0]
-    return (f'<a href="{_href(shown, folder)}">{_img(previews.data_uri(previews.svg_preview(drawing), "image/svg+xml"), f"preview of {shown.name}")}</a>', 0)
+    preview = previews.data_uri(previews.svg_preview(drawing), "image/svg+xml")
+    return f'<a href="{_href(shown, folder)}">{_img(preview, _alt(shown, drawing))}</a>', 0
+
+
+def _alt(path: Path, drawing: Drawing | None) -> str:
+    return f"{path.name}: {_title(drawing)}" if _title(drawing) else path.name
+
+
+def _title(drawing: Drawing | None) -> str:
+    """The drawing's title without "weave-cut " and without the folders of input paths."""
+    if drawing is None:
+        return ""
+    return re.sub(r"(?<!\S)/\S*/", "", drawing.title.removeprefix("weave-cut ")).strip()
 
 
 def _img(src: str, alt: str, size: tuple[int, int] | None = None) -> str:
@@ -259,10 +272,11 @@ def _purpose(suffixes: list[str], drawing: Drawing | None, figures: dict) -> str
         return DXF_FOR
     if ".json" in suffixes:
         return "figures for scripts (JSON)"
+    what = f"{_title(drawing)}: " if _title(drawing) else ""
     if ".png" in suffixes:
-        return "picture for a screen"
+        return f"{what}picture for a screen"
     if ".svg" in suffixes:
-        return "drawing in mm: view, print or edit (Inkscape)"
+        return f"{what}1:1 in mm, to view, print or edit"
     return "text"
 
 
