@@ -138,7 +138,8 @@ def html_option(f):
         return result
 
     return click.option("--html", type=click.Path(dir_okay=False), metavar="PAGE",
-                        help="Also write an HTML page showing every output (PAGE.html).")(wrapper)
+                        help="Also write an HTML page that shows every output (pictures, sizes, "
+                        "what each file is for).")(wrapper)
 
 
 def load_mesh(spec: str, allow_nonconvex: bool = False) -> Mesh:

@@ -70,11 +70,9 @@ class Run:
     said: tuple[str, ...] = ()
 
     @classmethod
-    def of(cls, record, command: str, leave_out=()) -> Run:
-        """A Run from a ``fileio.Record``, without the paths in ``leave_out``."""
-        skip = {Path(os.path.abspath(p)) for p in leave_out}
-        return cls(command, {p: d for p, d in record.files.items() if p not in skip},
-                   tuple(record.said))
+    def of(cls, record, command: str) -> Run:
+        """A Run from a ``fileio.Record``."""
+        return cls(command, dict(record.files), tuple(record.said))
 
 
 def page(title: str, runs: list[Run], folder: Path) -> str:
