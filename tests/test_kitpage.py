@@ -231,3 +231,18 @@ def test_the_index_links_every_page(built, tmp_path):
     tree = parse((tmp_path / "index.html").read_text(encoding="utf-8"))
     (href,) = [a.get("href") for a in tree.iter("a")]
     assert (tmp_path / unquote(href)).resolve() == (folder / "index.html").resolve()
+
+
+@pytest.mark.parametrize("args", [
+    ["puzzle", "--levels", "2", "--size", "20cm", "-o", "{out}"],
+    ["strands", "square-grid", "-o", "{out}/strands.pdf"],
+])
+def test_every_file_a_command_wrote_is_on_its_page(tmp_path, args):
+    out = tmp_path / "kit"
+    out.mkdir()
+    result = cli_run(*[a.format(out=out) for a in args], "--html", out / "page.html")
+    assert result.exit_code == 0, result.output
+    tree = parse((out / "page.html").read_text(encoding="utf-8"))
+    linked = {unquote(a.get("href")) for a in tree.iter("a")}
+    assert linked == {p.name for p in out.iterdir()} - {"page.html"}
+    assert all(img.get("alt") for img in tree.iter("img"))
