@@ -14,6 +14,7 @@ import json
 import re
 import subprocess
 import tempfile
+import threading
 import time
 import urllib.request
 from dataclasses import dataclass, field
@@ -66,9 +67,12 @@ class Chromium:
             self.call(f"{domain}.enable")
 
     def _port(self) -> int:
+        """The DevTools port chromium reports on stderr (the rest of stderr is drained, so a
+        chatty browser never blocks on a full pipe)."""
         for line in self.proc.stderr:
             found = re.search(r"DevTools listening on ws://[^:]+:(\d+)/", line)
             if found:
+                threading.Thread(target=self.proc.stderr.read, daemon=True).start()
                 return int(found.group(1))
         raise RuntimeError("chromium ended before it listened for DevTools")
 
