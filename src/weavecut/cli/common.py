@@ -5,6 +5,7 @@ from __future__ import annotations
 import contextlib
 import functools
 import math
+import os
 import shlex
 import sys
 from pathlib import Path
@@ -19,7 +20,7 @@ from shapely.errors import GEOSException
 from .. import __version__, inputs, units
 from ..analysis.convexity import nonconvex_levels, nonconvex_message
 from ..errors import MeshError, WeaveCutError
-from ..fileio import protect
+from ..fileio import note, protect, recording
 from ..mesh import Mesh, signed_areas
 from ..mesh_io import read_valid_mesh
 from ..text import clean
@@ -115,6 +116,30 @@ def reports_errors(f):
             sys.exit(130)
 
     return wrapper
+
+
+def html_option(f):
+    """``--html PAGE``: after the command, write its kit page to PAGE (a picture of every file
+    it wrote, what each is for, sizes, the command and its summary). Goes below
+    ``@reports_errors``."""
+
+    @functools.wraps(f)
+    def wrapper(*args, html: str | None = None, **kwargs):
+        if html is None:
+            return f(*args, **kwargs)
+        from .. import kitpage
+
+        with recording() as record:
+            result = f(*args, **kwargs)
+        if Path(os.path.abspath(html)) in record.files:
+            raise click.BadParameter("the page would replace an output", param_hint="'--html'")
+        run = kitpage.Run.of(record, command_line())
+        kitpage.write(html, f"weave-cut {click.get_current_context().info_name}", [run])
+        return result
+
+    return click.option("--html", type=click.Path(dir_okay=False), metavar="PAGE",
+                        help="Also write an HTML page that shows every output (pictures, sizes, "
+                        "what each file is for).")(wrapper)
 
 
 def load_mesh(spec: str, allow_nonconvex: bool = False) -> Mesh:
@@ -229,7 +254,8 @@ def say(message: str) -> None:
 
 
 def summary(text: str) -> None:
-    """What a command made, for people to read, on stdout, unless -q."""
+    """What a command made, for people to read, on stdout, unless -q (and for the kit page)."""
+    note(said=text)
     if not quiet():
         click.echo(text)
 

@@ -24,6 +24,7 @@ from ..fileio import make_folder, write_atomic
 from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_inputs,
                      complete_preset, flag_nonconvex, load_mesh, provenance, reports_errors,
                      summary)
+from .common import html_option
 
 
 @click.command("puzzle", context_settings=CONTEXT)
@@ -63,6 +64,7 @@ from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_i
               "blue and pink.")
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
 @reports_errors
+@html_option
 def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, sheet, laser_name,
                    frame_width, numbers, speed, page, palette_name, as_json) -> None:
     """Write the jigsaw puzzle's workshop folder: cut files, painting guides, README.txt.

@@ -16,6 +16,7 @@ from ..weave.snub_weave import snub_weaves
 from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_preset,
                      flag_nonconvex, input_argument, load_mesh, provenance, reports_errors,
                      summary)
+from .common import html_option
 
 FORMATS = ("pdf", "svg")
 
@@ -42,6 +43,7 @@ FORMATS = ("pdf", "svg")
               help="Output: .pdf (one page per sheet) or .svg (a layer per page).")
 @click.option("--json", "as_json", is_flag=True, help="Print the plan (pages, copies) as JSON.")
 @reports_errors
+@html_option
 def strands_command(input_mesh, levels, page, tile_size, margin, palette_name, turn,
                     chirality, output, as_json) -> None:
     """Printable paper strips for weaving INPUT by hand: an assembly sheet, then one strip
