@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import readers
 from .errors import MeshError, MeshFileError
 from .fileio import write_atomic
 from .mesh import Mesh
@@ -25,9 +26,12 @@ JSON_FORMAT = "weave-cut-mesh"
 SUFFIXES = (".obj", ".json")
 
 
-def read_mesh(path: str | Path) -> Mesh:
-    """Read an OBJ or JSON mesh; MeshFileError names the file and line of a problem."""
+def read_mesh(path: str | Path, **drawing_options) -> Mesh:
+    """Read an OBJ or JSON mesh, or an SVG or DXF drawing (``readers.read_drawing`` and its
+    options); MeshFileError names the file and line of a problem."""
     path = Path(path)
+    if path.suffix.lower() in readers.SUFFIXES:
+        return readers.read_drawing(path, **drawing_options)
     if path.suffix.lower() not in SUFFIXES:
         raise MeshFileError(f"{path}: unknown mesh format {path.suffix!r}; use .obj or .json")
     try:

@@ -14,11 +14,13 @@ from ..layout.tiling import tile
 from ..units import PAPER_SIZES
 from ..weave.colour import palette
 from ..fileio import write_atomic
-from .common import CONTEXT, Length, PageSize, load_mesh, provenance, reports_errors
+from .common import (CONTEXT, Length, PageSize, drawing_options, load_mesh, provenance,
+                     reports_errors)
 
 
 @click.command("puzzle", context_settings=CONTEXT)
 @click.argument("input_mesh", metavar="[INPUT]", default="pentagon")
+@drawing_options
 @click.option("-o", "--output", "out_dir", required=True,
               type=click.Path(file_okay=False), help="Folder for the files (created).")
 @click.option("--levels", "-n", type=click.IntRange(2, 7), default=4, show_default=True,

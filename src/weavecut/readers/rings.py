@@ -1,0 +1,156 @@
+"""From closed rings to a mesh: checks, nesting (holes), welding near vertices, T-junctions.
+
+A drawing's faces rarely meet exactly: a vertex drawn by hand lands a hair beside its
+neighbour's, or on the middle of a neighbour's edge. ``weld`` merges points closer than a
+tolerance into one vertex and then splits every boundary edge that passes within the
+tolerance of another boundary vertex, so that edges drawn twice become one shared edge.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+import shapely
+from scipy.sparse import coo_array
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import cKDTree
+
+from ..errors import MeshFileError
+from ..mesh import Mesh
+
+
+class Ring(NamedTuple):
+    """One closed outline of a drawing: a label naming its element and (k, 2) points in mm."""
+
+    label: str
+    points: np.ndarray
+
+
+def checked(rings: list[Ring], tolerance: float) -> list[Ring]:
+    """Rings without repeated points, counter-clockwise, each simple and of non-zero area.
+
+    Raises MeshFileError naming the first ring that crosses itself or encloses nothing.
+    """
+    out = []
+    for ring in rings:
+        p = ring.points
+        step = np.hypot(*(p - np.roll(p, 1, axis=0)).T)
+        p = p[step > tolerance * 1e-6] if (step > tolerance * 1e-6).sum() >= 3 else p
+        polygon = shapely.Polygon(p) if len(p) >= 3 else None
+        if polygon is None or polygon.area <= tolerance ** 2:
+            raise MeshFileError(f"{ring.label} encloses no area")
+        if not polygon.is_valid:
+            reason = shapely.is_valid_reason(polygon).replace("Ring Self-intersection",
+                                                              "crosses itself")
+            raise MeshFileError(f"{ring.label} {reason.lower()} (mm, y up); a face must be a "
+                                "simple closed outline")
+        ccw = shapely.is_ccw(polygon.exterior)
+        out.append(Ring(ring.label, p if ccw else p[::-1]))
+    return out
+
+
+def nesting(rings: list[Ring], tolerance: float) -> np.ndarray:
+    """(R,) index of the ring each ring is a hole of, or -1 for an outer ring.
+
+    A ring inside an odd number of others is a hole of the smallest ring around it; two rings
+    whose insides overlap (by more than ``tolerance`` times the smaller one's perimeter) and
+    neither holds the other are an error naming both.
+    """
+    polygons = shapely.polygons([r.points for r in rings])
+    left, right = shapely.STRtree(polygons).query(polygons, predicate="intersects")
+    keep = left != right
+    left, right = left[keep], right[keep]
+    shared = shapely.area(shapely.intersection(polygons[left], polygons[right]))
+    areas = shapely.area(polygons)
+    slack = tolerance * shapely.length(polygons)
+    inside = shared >= areas[left] - slack[left]  # ring `left` lies inside ring `right`
+    overlap = (shared > np.minimum(slack[left], slack[right])) & ~inside
+    overlap &= ~(shared >= areas[right] - slack[right])
+    if overlap.any():
+        k = int(np.flatnonzero(overlap)[0])
+        a, b = sorted((int(left[k]), int(right[k])))
+        raise MeshFileError(f"{rings[a].label} and {rings[b].label} overlap; faces may share "
+                            "edges but not insides")
+    left, right = left[inside], right[inside]
+    depth = np.bincount(left, minlength=len(rings))
+    # the ring around `left` one level up is its hole parent
+    parent_pair = depth[right] == depth[left] - 1
+    parent = np.full(len(rings), -1)
+    parent[left[parent_pair]] = right[parent_pair]
+    parent[depth % 2 == 0] = -1
+    return parent
+
+
+def weld(polygons: list[np.ndarray], tolerance: float) -> tuple[Mesh, int]:
+    """One mesh from counter-clockwise polygons; points closer than ``tolerance`` become one.
+
+    Parameters
+    ----------
+    polygons : list of (k, 2) float64, each a face, counter-clockwise
+    tolerance : points closer than this (mm) are merged; a merged vertex sits where the first
+        of them (in face order) lies
+
+    Returns
+    -------
+    mesh : the welded mesh (``split_t_junctions`` then shares edges drawn split on one side)
+    n_merged : how many points were merged into another one that was not exactly equal
+    """
+    sizes = np.fromiter(map(len, polygons), dtype=np.int64, count=len(polygons))
+    points = np.concatenate(polygons)
+    pairs = cKDTree(points).query_pairs(tolerance, output_type="ndarray")
+    n = len(points)
+    graph = coo_array((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    _, label = connected_components(graph, directed=False)
+    first = np.full(label.max() + 1, n)
+    np.minimum.at(first, label, np.arange(n))
+    target = first[label]
+    n_merged = int((np.any(points != points[target], axis=1)).sum())
+    used, vertex = np.unique(target, return_inverse=True)
+    corners = vertex.reshape(-1)
+    face = np.repeat(np.arange(len(polygons)), sizes)
+    keep = corners != np.roll(corners, 1)  # drop a corner merged into the one before it
+    starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+    keep[starts] = corners[starts] != corners[starts + sizes - 1]
+    corners, face = corners[keep], face[keep]
+    counts = np.bincount(face, minlength=len(polygons))
+    offsets = np.concatenate([[0], np.cumsum(counts)])
+    mesh = Mesh(points[used], offsets, corners) if (counts >= 3).all() else None
+    if mesh is None:
+        bad = int(np.flatnonzero(counts < 3)[0])
+        raise MeshFileError(f"face {bad} collapses to fewer than 3 corners when points closer "
+                            f"than {tolerance:g} mm are merged")
+    return mesh, n_merged
+
+
+def split_t_junctions(mesh: Mesh, tolerance: float) -> Mesh:
+    """Split every boundary edge at the boundary vertices within ``tolerance`` of its inside.
+
+    An edge drawn once along a face and twice (split by a vertex) along its neighbours becomes
+    two shared edges; the split points keep their order along the edge.
+    """
+    u = mesh.face_indices
+    w = u[mesh.next_half_edge]
+    key = np.minimum(u, w).astype(np.int64) * mesh.n_vertices + np.maximum(u, w)
+    _, inverse, count = np.unique(key, return_inverse=True, return_counts=True)
+    boundary = np.flatnonzero(count[inverse] == 1)
+    if len(boundary) == 0:
+        return mesh
+    vertices = mesh.vertices
+    segments = shapely.linestrings(np.stack([vertices[u[boundary]], vertices[w[boundary]]], 1))
+    candidates = np.unique(u[boundary])
+    hit_point, hit_segment = shapely.STRtree(segments).query(
+        shapely.points(vertices[candidates]), predicate="dwithin", distance=tolerance)
+    v, h = candidates[hit_point], boundary[hit_segment]
+    a, b = vertices[u[h]], vertices[w[h]]
+    t = ((vertices[v] - a) * (b - a)).sum(axis=1) / ((b - a) ** 2).sum(axis=1)
+    inner = (v != u[h]) & (v != w[h]) & (t > 0) & (t < 1)
+    if not inner.any():
+        return mesh
+    v, h, t = v[inner], h[inner], t[inner]
+    order = np.lexsort((np.concatenate([np.zeros(len(u)), t]),
+                        np.concatenate([np.arange(len(u)), h])))
+    corners = np.concatenate([u, v])[order]
+    faces = np.concatenate([mesh.half_edge_face, mesh.half_edge_face[h]])[order]
+    offsets = np.concatenate([[0], np.cumsum(np.bincount(faces, minlength=mesh.n_faces))])
+    return Mesh(vertices, offsets, corners)
