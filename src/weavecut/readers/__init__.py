@@ -63,7 +63,7 @@ def read_drawing(path: str | Path, *, flatten: float = DEFAULT_FLATTEN, layer: s
         else:
             region = _region(rings, parent)
             cell = outline_mesh.default_cell(region) if cell is None else cell
-            result = outline_mesh.mesh_outline(region, kind, cell)
+            result = outline_mesh.mesh_outline(region, kind, cell, flatten)
             q = outline_mesh.quality(result, cell)
             line = (f"{path.name}: {len(outer)} outline(s), {len(rings) - len(outer)} hole(s), "
                     f"{region.area:.0f} mm², meshed {kind} with cell {cell:.3g} mm: "

@@ -4,7 +4,7 @@ ezdxf reads the file (``ezdxf.recover``, which also repairs what CAD programs co
 wrong) and turns every entity into a path (``ezdxf.path.make_path``: bulges, arcs, circles,
 ellipses and splines included), flattened so no chord strays beyond the tolerance. Closed
 LWPOLYLINE, 2-D POLYLINE, CIRCLE, closed ELLIPSE and SPLINE are rings; open pieces (LINE, ARC,
-open polylines) that meet end to end are chained into rings. Blocks (INSERT) are ignored.
+open polylines) give the faces they enclose (loops, or a grid drawn with every edge once). Blocks (INSERT) are ignored.
 ``$INSUNITS`` gives the unit (unitless drawings are read as millimetres).
 """
 
@@ -14,6 +14,7 @@ from pathlib import Path
 
 import ezdxf
 import numpy as np
+import shapely
 from ezdxf import path as dxfpath
 from ezdxf import recover
 from ezdxf import units as dxfunits
@@ -26,8 +27,8 @@ ENTITIES = "LWPOLYLINE POLYLINE CIRCLE ELLIPSE SPLINE LINE ARC"
 
 
 def read_rings(path: Path, flatten: float, layer: str | None = None) -> tuple[list[Ring], int]:
-    """Closed rings of the DXF at ``path`` and the number of open pieces left over (always 0:
-    an open end that no other piece continues is an error naming the entity).
+    """Closed rings of the DXF at ``path``, and 0 (an open end that encloses nothing is an
+    error naming the entity, so no open piece is skipped).
 
     Parameters
     ----------
@@ -79,32 +80,27 @@ def _is_closed(entity) -> bool:
 
 
 def _chained(pieces: list[Ring], tolerance: float) -> list[Ring]:
-    """Rings made of open pieces whose ends meet (within ``tolerance``), two at every joint."""
+    """The faces that open pieces (lines, arcs) enclose, as a CAD user draws a mesh: every
+    region bounded by pieces is a ring, whether they form separate loops or a shared grid.
+
+    Ends closer than ``tolerance`` are joined first; a piece with an end that joins nothing is
+    an error naming it.
+    """
     if not pieces:
         return []
     ends = np.array([[p.points[0], p.points[-1]] for p in pieces]).reshape(-1, 2)
     pairs = cKDTree(ends).query_pairs(tolerance, output_type="ndarray")
-    partner = np.full(len(ends), -1)
-    degree = np.bincount(pairs.ravel(), minlength=len(ends))
-    if (degree != 1).any():
-        k = int(np.flatnonzero(degree != 1)[0])
-        what = "meets no other piece" if degree[k] == 0 else f"meets {degree[k]} other pieces"
-        x, y = ends[k]
-        raise MeshFileError(f"{pieces[k // 2].label} ends at ({x:.3f}, {y:.3f}) mm where it "
-                            f"{what}; outlines must be closed loops")
-    partner[pairs[:, 0]], partner[pairs[:, 1]] = pairs[:, 1], pairs[:, 0]
-    rings, done = [], np.zeros(len(pieces), dtype=bool)
-    for start in range(len(pieces)):  # walk each loop once, piece to piece
-        if done[start]:
-            continue
-        chain, piece, forward = [], start, True  # leave the start piece by its last point
-        while not done[piece]:
-            done[piece] = True
-            pts = pieces[piece].points
-            chain.append((pts if forward else pts[::-1])[:-1])
-            end = partner[2 * piece + 1 if forward else 2 * piece]
-            piece, forward = end // 2, end % 2 == 0
-        label = (pieces[start].label if len(chain) == 1
-                 else f"loop of {len(chain)} pieces from {pieces[start].label}")
-        rings.append(Ring(label, np.concatenate(chain)))
-    return rings
+    moved = ends.copy()
+    moved[pairs[:, 1]] = ends[pairs[:, 0]]  # an end takes the place of an end it meets
+    lines = [np.vstack([moved[2 * k], p.points[1:-1], moved[2 * k + 1]])
+             for k, p in enumerate(pieces)]
+    faces, _, dangles, invalid = shapely.polygonize_full(
+        shapely.union_all(shapely.linestrings(lines)))
+    loose = shapely.get_parts(shapely.union(dangles, invalid))
+    if len(loose):
+        x, y = shapely.get_coordinates(loose[0])[0]
+        k = int(np.argmin(shapely.distance(shapely.linestrings(lines), loose[0])))
+        raise MeshFileError(f"{pieces[k].label} near ({x:.3f}, {y:.3f}) mm has an open end; "
+                            "lines and arcs must enclose faces")
+    return [Ring(f"face {k + 1} enclosed by lines and arcs", np.asarray(f.exterior.coords)[:-1])
+            for k, f in enumerate(shapely.get_parts(faces))]

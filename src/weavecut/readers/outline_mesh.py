@@ -16,8 +16,9 @@ Kinds (``cell`` is the side of a square of the faces' target area):
 A clipped cell is convex unless the outline has a reflex corner inside it; such a cell is cut
 from that corner along the corner's bisector until every piece is convex. Every outline vertex
 stays a vertex, so the boundary is the outline (flattened to the reader's tolerance);
-where a cell edge meets the outline within a tenth of ``cell`` of an outline vertex, it moves
-onto that vertex.
+the outline's edges are first cut to at most 0.6 ``cell`` (about a cell's edge), and where a
+cell edge meets the outline it moves onto the nearer outline vertex, so the boundary edges are
+about as long as the inner ones (short ones make slivers after a few snub steps).
 """
 
 from __future__ import annotations
@@ -35,7 +36,7 @@ from .rings import split_t_junctions, weld
 
 KINDS = ("hex", "quad", "tri", "voronoi")
 DEFAULT_FACES = 60  # faces when no --cell is given
-SNAP = 0.1  # cell vertices this close (times cell) to an outline vertex move onto it
+EDGE = 0.6  # outline edges are cut to at most this (times cell), about a cell's edge
 MIN_SIZE = 0.6  # smaller pieces (times cell) merge into a neighbour
 # lattice spacing (times cell) that gives faces of area cell**2
 SPACING = {"quad": 1.0, "hex": math.sqrt(2 / math.sqrt(3)), "tri": math.sqrt(4 / math.sqrt(3))}
@@ -46,7 +47,8 @@ def default_cell(region) -> float:
     return math.sqrt(region.area / DEFAULT_FACES)
 
 
-def mesh_outline(region, kind: str = "hex", cell: float | None = None) -> Mesh:
+def mesh_outline(region, kind: str = "hex", cell: float | None = None,
+                 tolerance: float = 0.2) -> Mesh:
     """Mesh the inside of ``region`` (a shapely Polygon or MultiPolygon, holes allowed).
 
     Parameters
@@ -54,6 +56,7 @@ def mesh_outline(region, kind: str = "hex", cell: float | None = None) -> Mesh:
     region : the outline, in mm
     kind : one of KINDS
     cell : target face size in mm (faces of about cell**2 area); default: about 60 faces
+    tolerance : how far (mm) the boundary may stray from ``region`` to keep faces convex
 
     Returns
     -------
@@ -70,17 +73,27 @@ def mesh_outline(region, kind: str = "hex", cell: float | None = None) -> Mesh:
                         "faces; give a larger --cell")
     if kind == "tri":
         return _triangles(region, cell)
+    region = _densified_region(region, EDGE * cell)
     _, cells = _relaxed_cells(region, kind, cell)
-    pieces = _merged_small([q for c in shapely.get_parts(cells) for q in _convex_pieces(c)],
-                           cell)
+    pieces = _merged_small([q for c in shapely.get_parts(cells)
+                            for q in _convex_pieces(c, tolerance)], cell, tolerance)
     rings = [np.asarray(shapely.orient_polygons(p).exterior.coords)[:-1] for p in pieces]
-    mesh, _ = weld(_snapped(rings, region, SNAP * cell), 1e-9 * cell)
+    mesh, _ = weld(_snapped(rings, region, EDGE * cell), 1e-9 * cell)
     return split_t_junctions(mesh, 1e-9 * cell)
 
 
+def _densified_region(region, side: float):
+    """``region`` with every outline edge longer than ``side`` cut into equal parts."""
+    return shapely.union_all([
+        shapely.Polygon(_densified(np.asarray(p.exterior.coords)[:-1], side),
+                        [_densified(np.asarray(r.coords)[:-1], side) for r in p.interiors])
+        for p in shapely.get_parts(region)])
+
+
 def _snapped(rings: list[np.ndarray], region, reach: float) -> list[np.ndarray]:
-    """Move every point where a cell edge meets the outline onto the outline vertex next to
-    it along the outline, when that is nearer than ``reach`` (so no sliver edge stays)."""
+    """Move every point where a cell edge meets the outline onto the nearer of the outline
+    vertices beside it (nearer than ``reach``), so the outline's edges, all about a cell edge
+    long, are the mesh's boundary edges: no sliver edge, no sliver pentagon later."""
     sizes = [len(r) for r in rings]
     points = np.concatenate(rings)
     outline = shapely.get_coordinates(shapely.get_rings(region))
@@ -98,11 +111,17 @@ def _snapped(rings: list[np.ndarray], region, reach: float) -> list[np.ndarray]:
     on_outline = shapely.distance(region.boundary, shapely.points(points)) < 1e-9 * reach
     snap = on_outline & beside & (distance < reach) & (distance > 0)
     ring = np.repeat(np.arange(len(sizes)), sizes)
-    for _ in range(3):  # a move that bends a straight run of a cell inward is taken back
+    for _ in range(5):  # moves that bend a cell inward or pinch it are taken back
         moved = np.where(snap[:, None], target, points)
         b, a = moved - moved[before_index], moved[after_index] - moved
         reflex = b[:, 0] * a[:, 1] - b[:, 1] * a[:, 0] < -1e-12 * reach ** 2
-        undo = np.isin(ring, ring[reflex]) & snap
+        _, vertex = np.unique(moved, axis=0, return_inverse=True)
+        vertex = vertex.reshape(-1)
+        runs = np.bincount(ring, weights=vertex != vertex[before_index], minlength=len(sizes))
+        distinct = np.bincount(np.unique(ring * len(moved) + vertex) // len(moved),
+                               minlength=len(sizes))
+        pinched = np.flatnonzero(distinct < runs)  # a ring through one point twice
+        undo = np.isin(ring, np.concatenate([ring[reflex], pinched])) & snap
         if not undo.any():
             return np.split(moved, np.cumsum(sizes)[:-1])
         snap &= ~np.isin(same, same[undo])
@@ -175,10 +194,11 @@ def _voronoi_cells(seeds: np.ndarray) -> np.ndarray:
     return shapely.convex_hull(hulls)[: len(seeds)]
 
 
-def _convex_pieces(polygon) -> list:
+def _convex_pieces(polygon, tolerance: float) -> list:
     """``polygon`` cut at its reflex corners until every piece is convex.
 
-    At a reflex corner r the cut runs to another corner of the cell or along one of 9 rays
+    A reflex corner less than ``tolerance`` deep (a gentle S-bend of the outline) is dropped
+    instead, which moves the boundary by less than the tolerance. At a deeper one, r, the cut runs to another corner of the cell or along one of 9 rays
     spread over the corner's angle: of the cuts that leave both pieces convex at r, the one
     whose smaller piece is largest.
     """
@@ -188,13 +208,18 @@ def _convex_pieces(polygon) -> list:
         x, y = np.asarray(polygon.interiors[0].coords)[0]
         x0, y0, x1, y1 = polygon.bounds
         halves = shapely.get_parts(split(polygon, shapely.LineString([(x, y0), (x, y1)])))
-        return [q for p in halves for q in _convex_pieces(p)]
+        return [q for p in halves for q in _convex_pieces(p, tolerance)]
     ring = np.asarray(shapely.orient_polygons(polygon).exterior.coords)[:-1]
     before, after = ring - np.roll(ring, 1, axis=0), np.roll(ring, -1, axis=0) - ring
     turn = before[:, 0] * after[:, 1] - before[:, 1] * after[:, 0]
-    reflex = np.flatnonzero(turn < -1e-12 * polygon.length ** 2)
+    lengths = np.hypot(*before.T) * np.hypot(*after.T)
+    reflex = np.flatnonzero(turn < -1e-6 * lengths)  # turning back by more than 1e-6 rad
     if len(reflex) == 0:
         return [polygon]
+    depth = -turn[reflex] / np.hypot(*(before + after)[reflex].T)
+    if depth.min() <= tolerance:
+        return _convex_pieces(shapely.Polygon(np.delete(ring, reflex[np.argmin(depth)], axis=0)),
+                              tolerance)
     k = reflex[0]
     # cut to another corner, or along one of 9 rays spread over the reflex angle
     a0 = math.atan2(after[k, 1], after[k, 0])
@@ -214,10 +239,10 @@ def _convex_pieces(polygon) -> list:
     if best is None:
         raise MeshError("could not cut a cell at a reflex corner of the outline; try "
                         "another --cell")
-    return [q for p in best for q in _convex_pieces(p)]
+    return [q for p in best for q in _convex_pieces(p, tolerance)]
 
 
-def _merged_small(pieces: list, cell: float) -> list:
+def _merged_small(pieces: list, cell: float, tolerance: float) -> list:
     """Pieces smaller than MIN_SIZE * cell (side of the square of equal area) merged, smallest
     first, into the neighbour with the longest shared edge whose union stays convex."""
     pieces = list(pieces)
@@ -243,7 +268,7 @@ def _merged_small(pieces: list, cell: float) -> list:
             # no convex union: cut the union with the longest shared edge anew, if that helps
             j = int(neighbours[np.argmax(shapely.length(shapely.intersection(
                 pieces[i].boundary, shapely.boundary(np.take(pieces, neighbours)))))])
-            recut = _convex_pieces(shapely.union(pieces[i], pieces[j]))
+            recut = _convex_pieces(shapely.union(pieces[i], pieces[j]), tolerance)
             if len(recut) == 2 and shapely.area(recut).min() > 1.2 * areas[i]:
                 pieces[i], pieces[j] = recut
                 break
