@@ -41,7 +41,7 @@ def read_rings(path: Path, flatten: float, layer: str | None = None) -> tuple[li
     except (OSError, ezdxf.DXFStructureError) as exc:
         raise MeshFileError(f"{path}: not a readable DXF ({exc})"[:200]) from None
     units = doc.header.get("$INSUNITS", 0)
-    scale = 1.0 if units == 0 else dxfunits.conversion_factor(units, dxfunits.InsertUnits.MM)
+    scale = 1.0 if units == 0 else dxfunits.conversion_factor(units, dxfunits.MM)
     entities = doc.modelspace().query(ENTITIES)
     if layer is not None:
         layers = sorted({e.dxf.layer for e in doc.modelspace()})
@@ -95,7 +95,7 @@ def _chained(pieces: list[Ring], tolerance: float) -> list[Ring]:
     lines = [np.vstack([moved[2 * k], p.points[1:-1], moved[2 * k + 1]])
              for k, p in enumerate(pieces)]
     faces, _, dangles, invalid = shapely.polygonize_full(
-        shapely.union_all(shapely.linestrings(lines)))
+        shapely.get_parts(shapely.union_all(shapely.linestrings(lines))))
     loose = shapely.get_parts(shapely.union(dangles, invalid))
     if len(loose):
         x, y = shapely.get_coordinates(loose[0])[0]

@@ -27,16 +27,20 @@ import math
 
 import numpy as np
 import shapely
+from scipy.sparse import coo_array
+from scipy.sparse.csgraph import connected_components
 from scipy.spatial import Delaunay, cKDTree
 from shapely.ops import split
 
 from ..errors import MeshError
 from ..mesh import Mesh, corner_angles, signed_areas
+from ..validation import validate
 from .rings import split_t_junctions, weld
 
 KINDS = ("hex", "quad", "tri", "voronoi")
 DEFAULT_FACES = 60  # faces when no --cell is given
 EDGE = 0.6  # outline edges are cut to at most this (times cell), about a cell's edge
+SHORT = 0.15  # inner cell edges shorter than this (times cell) collapse
 MIN_SIZE = 0.6  # smaller pieces (times cell) merge into a neighbour
 # lattice spacing (times cell) that gives faces of area cell**2
 SPACING = {"quad": 1.0, "hex": math.sqrt(2 / math.sqrt(3)), "tri": math.sqrt(4 / math.sqrt(3))}
@@ -78,8 +82,31 @@ def mesh_outline(region, kind: str = "hex", cell: float | None = None,
     pieces = _merged_small([q for c in shapely.get_parts(cells)
                             for q in _convex_pieces(c, tolerance)], cell, tolerance)
     rings = [np.asarray(shapely.orient_polygons(p).exterior.coords)[:-1] for p in pieces]
-    mesh, _ = weld(_snapped(rings, region, EDGE * cell), 1e-9 * cell)
-    return split_t_junctions(mesh, 1e-9 * cell)
+    for snap, short in ((EDGE, SHORT), (EDGE, 0.0), (0.0, 0.0)):  # the tidiest that is valid
+        tidy = _short_inner_edges_merged(_snapped(rings, region, snap * cell), region,
+                                         short * cell)
+        try:
+            return validate(split_t_junctions(weld(tidy, 1e-9 * cell)[0], 1e-9 * cell))
+        except MeshError as exc:
+            error = exc
+    raise MeshError(f"meshing the outline failed ({error}); try another --cell")
+
+
+def _short_inner_edges_merged(rings: list[np.ndarray], region, short: float) -> list[np.ndarray]:
+    """Inner cell corners closer than ``short`` to one another meet at their mean (a short
+    Voronoi edge would become a sliver pentagon after a snub step); outline points stay."""
+    sizes = [len(r) for r in rings]
+    points = np.concatenate(rings)
+    if short == 0:
+        return rings
+    inner = np.flatnonzero(shapely.distance(region.boundary, shapely.points(points)) > 1e-9 * short)
+    pairs = inner[cKDTree(points[inner]).query_pairs(short, output_type="ndarray")]
+    n = len(points)
+    graph = coo_array((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    _, label = connected_components(graph, directed=False)
+    count = np.bincount(label)
+    mean = np.column_stack([np.bincount(label, weights=points[:, k]) for k in (0, 1)])
+    return np.split(mean[label] / count[label, None], np.cumsum(sizes)[:-1])
 
 
 def _densified_region(region, side: float):
@@ -98,6 +125,8 @@ def _snapped(rings: list[np.ndarray], region, reach: float) -> list[np.ndarray]:
     points = np.concatenate(rings)
     outline = shapely.get_coordinates(shapely.get_rings(region))
     distance, nearest = cKDTree(outline).query(points)
+    if reach == 0:
+        return rings
     target = outline[nearest]
     start = np.repeat(np.cumsum(sizes) - sizes, sizes)
     k = np.arange(len(points)) - start
