@@ -41,6 +41,7 @@ KINDS = ("hex", "quad", "tri", "voronoi")
 DEFAULT_FACES = 60  # faces when no --cell is given
 EDGE = 0.6  # outline edges are cut to at most this (times cell), about a cell's edge
 SHORT = 0.15  # inner cell edges shorter than this (times cell) collapse
+GENTLE = math.sin(math.radians(15))  # reflex turns below 15 degrees are bends of the outline
 MIN_SIZE = 0.6  # smaller pieces (times cell) merge into a neighbour
 # lattice spacing (times cell) that gives faces of area cell**2
 SPACING = {"quad": 1.0, "hex": math.sqrt(2 / math.sqrt(3)), "tri": math.sqrt(4 / math.sqrt(3))}
@@ -226,7 +227,7 @@ def _voronoi_cells(seeds: np.ndarray) -> np.ndarray:
 def _convex_pieces(polygon, tolerance: float) -> list:
     """``polygon`` cut at its reflex corners until every piece is convex.
 
-    A reflex corner less than ``tolerance`` deep (a gentle S-bend of the outline) is dropped
+    A reflex bend under 15 degrees less than ``tolerance`` deep (a gentle S-bend) is dropped
     instead, which moves the boundary by less than the tolerance. At a deeper one, r, the cut runs to another corner of the cell or along one of 9 rays
     spread over the corner's angle: of the cuts that leave both pieces convex at r, the one
     whose smaller piece is largest.
@@ -246,6 +247,7 @@ def _convex_pieces(polygon, tolerance: float) -> list:
     if len(reflex) == 0:
         return [polygon]
     depth = -turn[reflex] / np.hypot(*(before + after)[reflex].T)
+    depth[-turn[reflex] > GENTLE * lengths[reflex]] = np.inf  # a corner, not a bend
     if depth.min() <= tolerance:
         return _convex_pieces(shapely.Polygon(np.delete(ring, reflex[np.argmin(depth)], axis=0)),
                               tolerance)
@@ -272,8 +274,9 @@ def _convex_pieces(polygon, tolerance: float) -> list:
 
 
 def _merged_small(pieces: list, cell: float, tolerance: float) -> list:
-    """Pieces smaller than MIN_SIZE * cell (side of the square of equal area) merged, smallest
-    first, into the neighbour with the longest shared edge whose union stays convex."""
+    """Pieces smaller than MIN_SIZE * cell (side of the square of equal area), smallest first,
+    merged into the neighbour with the longest shared edge whose union stays convex, or else
+    cut anew together with a neighbour if that leaves two larger pieces."""
     pieces = list(pieces)
     while True:
         areas = shapely.area(pieces)
@@ -283,23 +286,20 @@ def _merged_small(pieces: list, cell: float, tolerance: float) -> list:
             neighbours = shapely.STRtree(pieces).query(pieces[i], predicate="intersects")
             neighbours = neighbours[neighbours != i]
             unions = shapely.union(pieces[i], np.take(pieces, neighbours))
-            convex = (shapely.area(shapely.convex_hull(unions)) - shapely.area(unions)
-                      <= 1e-9 * shapely.area(unions)) & (shapely.get_num_geometries(unions) == 1)
-            shared = shapely.length(shapely.intersection(pieces[i].boundary,
-                                                         shapely.boundary(np.take(pieces,
-                                                                                  neighbours))))
-            shared[~convex | (shapely.get_type_id(unions) != 3)] = 0
-            if shared.max(initial=0) > 0:
-                j = int(neighbours[np.argmax(shared)])
-                pieces[j] = unions[np.argmax(shared)]
+            shared = shapely.length(shapely.intersection(
+                pieces[i].boundary, shapely.boundary(np.take(pieces, neighbours))))
+            convex = ((shapely.area(shapely.convex_hull(unions)) - shapely.area(unions)
+                       <= 1e-9 * shapely.area(unions)) & (shapely.get_type_id(unions) == 3))
+            if (shared * convex).max(initial=0) > 0:
+                k = int(np.argmax(shared * convex))
+                pieces[neighbours[k]] = unions[k]
                 del pieces[i]
                 break
-            # no convex union: cut the union with the longest shared edge anew, if that helps
-            j = int(neighbours[np.argmax(shapely.length(shapely.intersection(
-                pieces[i].boundary, shapely.boundary(np.take(pieces, neighbours)))))])
-            recut = _convex_pieces(shapely.union(pieces[i], pieces[j]), tolerance)
-            if len(recut) == 2 and shapely.area(recut).min() > 1.2 * areas[i]:
-                pieces[i], pieces[j] = recut
+            recuts = [_convex_pieces(u, tolerance) if s > 0 else [] for u, s in zip(unions, shared)]
+            gains = [shapely.area(r).min() if len(r) == 2 else 0.0 for r in recuts]
+            if max(gains, default=0.0) > 1.2 * areas[i]:
+                k = int(np.argmax(gains))
+                pieces[i], pieces[neighbours[k]] = recuts[k]
                 break
         else:
             return pieces

@@ -38,13 +38,12 @@ def checked(rings: list[Ring], tolerance: float) -> list[Ring]:
         step = np.hypot(*(p - np.roll(p, 1, axis=0)).T)
         p = p[step > tolerance * 1e-6] if (step > tolerance * 1e-6).sum() >= 3 else p
         polygon = shapely.Polygon(p) if len(p) >= 3 else None
-        if polygon is None or polygon.area <= tolerance ** 2:
+        if polygon is not None and not polygon.is_valid and polygon.area > tolerance ** 2:
+            where = shapely.is_valid_reason(polygon).split("[")[-1].rstrip("]")
+            raise MeshFileError(f"{ring.label} crosses itself near ({where}) (mm, y up); a "
+                                "face must be a simple closed outline")
+        if polygon is None or abs(shapely.area(shapely.make_valid(polygon))) <= tolerance ** 2:
             raise MeshFileError(f"{ring.label} encloses no area")
-        if not polygon.is_valid:
-            reason = shapely.is_valid_reason(polygon).replace("Ring Self-intersection",
-                                                              "crosses itself")
-            raise MeshFileError(f"{ring.label} {reason.lower()} (mm, y up); a face must be a "
-                                "simple closed outline")
         ccw = shapely.is_ccw(polygon.exterior)
         out.append(Ring(ring.label, p if ccw else p[::-1]))
     return out

@@ -50,7 +50,7 @@ def read_rings(path: Path, flatten: float, layer: str | None = None) -> tuple[li
     rings, n_open = [], 0
     tolerance = flatten / MM_PER_PX
     for label, shape in shapes:
-        for k, subpath in enumerate(se.Path(shape).as_subpaths()):
+        for k, subpath in enumerate(abs(se.Path(shape)).as_subpaths()):  # transform applied
             points, closed = _flattened(subpath, tolerance)
             if len(points) == 0:
                 continue
