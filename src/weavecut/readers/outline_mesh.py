@@ -16,9 +16,10 @@ Kinds (``cell`` is the side of a square of the faces' target area):
 A clipped cell is convex unless the outline has a reflex corner inside it; such a cell is cut
 from that corner along the corner's bisector until every piece is convex. Every outline vertex
 stays a vertex, so the boundary is the outline (flattened to the reader's tolerance);
-the outline's edges are first cut to at most 0.6 ``cell`` (about a cell's edge), and where a
-cell edge meets the outline it moves onto the nearer outline vertex, so the boundary edges are
-about as long as the inner ones (short ones make slivers after a few snub steps).
+the outline's edges are first cut to at most a cell's edge, and where a cell edge meets the
+outline it moves onto the nearer outline vertex beside it, so boundary edges are about as long
+as inner ones; inner cell edges shorter than 0.15 ``cell`` collapse (short edges make sliver
+pentagons, which turn over after a few snub steps).
 """
 
 from __future__ import annotations
@@ -39,12 +40,13 @@ from .rings import split_t_junctions, weld
 
 KINDS = ("hex", "quad", "tri", "voronoi")
 DEFAULT_FACES = 60  # faces when no --cell is given
-EDGE = 0.6  # outline edges are cut to at most this (times cell), about a cell's edge
+# lattice spacing (times cell) that gives faces of area cell**2
+SPACING = {"quad": 1.0, "hex": math.sqrt(2 / math.sqrt(3)), "tri": math.sqrt(4 / math.sqrt(3))}
+# outline edges are cut to at most a cell's edge (times cell), and cells meet them at vertices
+EDGE = {"quad": 1.0, "hex": SPACING["hex"] / math.sqrt(3), "voronoi": 0.6}
 SHORT = 0.15  # inner cell edges shorter than this (times cell) collapse
 GENTLE = math.sin(math.radians(15))  # reflex turns below 15 degrees are bends of the outline
 MIN_SIZE = 0.6  # smaller pieces (times cell) merge into a neighbour
-# lattice spacing (times cell) that gives faces of area cell**2
-SPACING = {"quad": 1.0, "hex": math.sqrt(2 / math.sqrt(3)), "tri": math.sqrt(4 / math.sqrt(3))}
 
 
 def default_cell(region) -> float:
@@ -77,13 +79,15 @@ def mesh_outline(region, kind: str = "hex", cell: float | None = None,
         raise MeshError(f"--cell {cell:.4g} mm would give about {region.area / cell**2:,.0f} "
                         "faces; give a larger --cell")
     if kind == "tri":
-        return _triangles(region, cell)
-    region = _densified_region(region, EDGE * cell)
+        return _triangles(shapely.simplify(region, tolerance / 2), cell)
+    # no outline edge shorter than needed (Douglas-Peucker, half the tolerance), none longer
+    # than a cell's edge
+    region = _densified_region(shapely.simplify(region, tolerance / 2), EDGE[kind] * cell)
     _, cells = _relaxed_cells(region, kind, cell)
     pieces = _merged_small([q for c in shapely.get_parts(cells)
                             for q in _convex_pieces(c, tolerance)], cell, tolerance)
     rings = [np.asarray(shapely.orient_polygons(p).exterior.coords)[:-1] for p in pieces]
-    for snap, short in ((EDGE, SHORT), (EDGE, 0.0), (0.0, 0.0)):  # the tidiest that is valid
+    for snap, short in ((EDGE[kind], SHORT), (EDGE[kind], 0.0), (0.0, 0.0)):  # tidiest valid
         tidy = _short_inner_edges_merged(_snapped(rings, region, snap * cell), region,
                                          short * cell)
         try:
@@ -120,8 +124,8 @@ def _densified_region(region, side: float):
 
 def _snapped(rings: list[np.ndarray], region, reach: float) -> list[np.ndarray]:
     """Move every point where a cell edge meets the outline onto the nearer of the outline
-    vertices beside it (nearer than ``reach``), so the outline's edges, all about a cell edge
-    long, are the mesh's boundary edges: no sliver edge, no sliver pentagon later."""
+    vertices beside it when that is nearer than ``reach``: no sliver edge, no sliver pentagon
+    after a few snub steps."""
     sizes = [len(r) for r in rings]
     points = np.concatenate(rings)
     outline = shapely.get_coordinates(shapely.get_rings(region))
@@ -141,10 +145,11 @@ def _snapped(rings: list[np.ndarray], region, reach: float) -> list[np.ndarray]:
     on_outline = shapely.distance(region.boundary, shapely.points(points)) < 1e-9 * reach
     snap = on_outline & beside & (distance < reach) & (distance > 0)
     ring = np.repeat(np.arange(len(sizes)), sizes)
-    for _ in range(5):  # moves that bend a cell inward or pinch it are taken back
+    for _ in range(8):  # moves that bend a cell inward or pinch cells are taken back
         moved = np.where(snap[:, None], target, points)
         b, a = moved - moved[before_index], moved[after_index] - moved
-        reflex = b[:, 0] * a[:, 1] - b[:, 1] * a[:, 0] < -1e-12 * reach ** 2
+        reflex = (b[:, 0] * a[:, 1] - b[:, 1] * a[:, 0]
+                  < -1e-6 * np.hypot(*b.T) * np.hypot(*a.T))  # turning back > 1e-6 rad
         _, vertex = np.unique(moved, axis=0, return_inverse=True)
         vertex = vertex.reshape(-1)
         runs = np.bincount(ring, weights=vertex != vertex[before_index], minlength=len(sizes))
@@ -152,10 +157,20 @@ def _snapped(rings: list[np.ndarray], region, reach: float) -> list[np.ndarray]:
                                minlength=len(sizes))
         pinched = np.flatnonzero(distinct < runs)  # a ring through one point twice
         undo = np.isin(ring, np.concatenate([ring[reflex], pinched])) & snap
+        undo |= np.isin(vertex, _bow_ties(vertex, vertex[after_index])) & snap
         if not undo.any():
             return np.split(moved, np.cumsum(sizes)[:-1])
         snap &= ~np.isin(same, same[undo])
     return np.split(points, np.cumsum(sizes)[:-1])
+
+
+def _bow_ties(tail: np.ndarray, head: np.ndarray) -> np.ndarray:
+    """Vertices that two boundary half-edges leave (cells meeting at a point only)."""
+    keep = tail != head
+    tail, head = tail[keep], head[keep]
+    n = max(tail.max(), head.max()) + 1
+    boundary = ~np.isin(tail * n + head, head * n + tail)
+    return np.flatnonzero(np.bincount(tail[boundary], minlength=n) > 1)
 
 
 def quality(mesh: Mesh, cell: float) -> dict[str, float]:
@@ -168,15 +183,16 @@ def quality(mesh: Mesh, cell: float) -> dict[str, float]:
 
 
 def _lattice(kind: str, region, spacing: float) -> np.ndarray:
-    """(N, 2) lattice points (square or triangular) inside ``region``, centred on it."""
+    """(N, 2) lattice points (square or triangular) inside ``region``."""
     x0, y0, x1, y1 = region.bounds
     if kind == "quad":
         a, b = np.array([spacing, 0.0]), np.array([0.0, spacing])
     else:
         a, b = np.array([spacing, 0.0]), spacing * np.array([0.5, math.sqrt(3) / 2])
-    n = int(math.ceil(max(x1 - x0, y1 - y0) / spacing)) + 2
+    n = int(math.ceil(2 * max(x1 - x0, y1 - y0) / spacing)) + 2
     i, j = np.meshgrid(np.arange(-n, n + 1), np.arange(-n, n + 1))
-    points = i.reshape(-1, 1) * a + j.reshape(-1, 1) * b + ((x0 + x1) / 2, (y0 + y1) / 2)
+    # the lower left corner of the bounding box is a cell corner (a box fits whole cells)
+    points = i.reshape(-1, 1) * a + j.reshape(-1, 1) * b + (a + b) / 2 + (x0, y0)
     return points[shapely.contains_xy(region, *points.T)]
 
 
@@ -276,7 +292,7 @@ def _convex_pieces(polygon, tolerance: float) -> list:
 def _merged_small(pieces: list, cell: float, tolerance: float) -> list:
     """Pieces smaller than MIN_SIZE * cell (side of the square of equal area), smallest first,
     merged into the neighbour with the longest shared edge whose union stays convex, or else
-    cut anew together with a neighbour if that leaves two larger pieces."""
+    cut anew together with one or two neighbours if that leaves larger pieces."""
     pieces = list(pieces)
     while True:
         areas = shapely.area(pieces)
@@ -295,11 +311,17 @@ def _merged_small(pieces: list, cell: float, tolerance: float) -> list:
                 pieces[neighbours[k]] = unions[k]
                 del pieces[i]
                 break
-            recuts = [_convex_pieces(u, tolerance) if s > 0 else [] for u, s in zip(unions, shared)]
-            gains = [shapely.area(r).min() if len(r) == 2 else 0.0 for r in recuts]
+            # else cut the piece anew with one neighbour, or with the two it shares most with
+            groups = [[j] for j in neighbours[shared > 0]]
+            groups.append(list(neighbours[np.argsort(-shared)[:2]]))
+            together = [shapely.union_all(np.take(pieces, [i, *g])) for g in groups]
+            recuts = [_convex_pieces(u, tolerance) if u.geom_type == "Polygon" else []
+                      for u in together]
+            gains = [shapely.area(r).min() if len(r) > 1 else 0.0 for r in recuts]
             if max(gains, default=0.0) > 1.2 * areas[i]:
                 k = int(np.argmax(gains))
-                pieces[i], pieces[neighbours[k]] = recuts[k]
+                pieces = [p for n, p in enumerate(pieces) if n not in (i, *groups[k])]
+                pieces += recuts[k]
                 break
         else:
             return pieces
