@@ -39,9 +39,9 @@ def checked(rings: list[Ring], tolerance: float) -> list[Ring]:
         p = p[step > tolerance * 1e-6] if (step > tolerance * 1e-6).sum() >= 3 else p
         polygon = shapely.Polygon(p) if len(p) >= 3 else None
         if polygon is not None and not polygon.is_valid and polygon.area > tolerance ** 2:
-            where = shapely.is_valid_reason(polygon).split("[")[-1].rstrip("]")
-            raise MeshFileError(f"{ring.label} crosses itself near ({where}) (mm, y up); a "
-                                "face must be a simple closed outline")
+            x, y = map(float, shapely.is_valid_reason(polygon).split("[")[-1].rstrip("]").split())
+            raise MeshFileError(f"{ring.label} crosses itself near ({x:.4g}, {y:.4g}) mm (y up); "
+                                "a face must be a simple closed outline")
         if polygon is None or abs(shapely.area(shapely.make_valid(polygon))) <= tolerance ** 2:
             raise MeshFileError(f"{ring.label} encloses no area")
         ccw = shapely.is_ccw(polygon.exterior)
