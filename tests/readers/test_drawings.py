@@ -241,3 +241,11 @@ def test_not_a_drawing(tmp_path):
         (tmp_path / name).write_bytes(data)
         with pytest.raises(MeshError):
             read_drawing(tmp_path / name)
+
+
+def test_mesh_errors_name_the_element(tmp_path):
+    body = layer("L", '<rect id="a" width="20" height="20"/>'
+                 '<polygon id="b" points="20,0 40,0 30,10 40,20 20,20"/>')
+    with pytest.raises(MeshError, match=r"face 1 \(<polygon id='b'>\) is not convex"):
+        read_drawing(svg(tmp_path, body))
+    assert read_drawing(svg(tmp_path, body), allow_nonconvex=True).n_faces == 2

@@ -37,7 +37,7 @@ def assert_meshes_outline(mesh: Mesh, region, cell: float) -> None:
 
 def outline_of(path: Path):
     """The drawing's outline as drawn (flattened finely), for comparison."""
-    mesh = read_drawing(path, mesh="none", flatten=0.01)
+    mesh = read_drawing(path, mesh="none", flatten=0.01, allow_nonconvex=True)
     return shapely.Polygon(mesh.vertices[mesh.faces()[0]])
 
 

@@ -83,7 +83,8 @@ def load_mesh(spec: str, allow_nonconvex: bool = False) -> Mesh:
     options = {}
     if Path(spec).suffix.lower() in DRAWING_SUFFIXES:
         ctx = click.get_current_context(silent=True)
-        options = {**(ctx.meta.get(DRAWING_KEY, {}) if ctx else {}), "report": say}
+        options = {**(ctx.meta.get(DRAWING_KEY, {}) if ctx else {}), "report": say,
+                   "allow_nonconvex": allow_nonconvex}
     return validate(read_mesh(spec, **options), allow_nonconvex=allow_nonconvex)
 
 

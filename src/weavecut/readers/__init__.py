@@ -8,6 +8,7 @@ drawn into a mesh or meshes the inside of the outline (``outline_mesh``).
 from __future__ import annotations
 
 from collections.abc import Callable
+import re
 from pathlib import Path
 
 import numpy as np
@@ -15,6 +16,7 @@ import shapely
 
 from ..errors import MeshError, MeshFileError
 from ..mesh import Mesh
+from ..validation import validate
 from . import dxf, outline_mesh, svg
 from .rings import Ring, checked, nesting, split_t_junctions, weld
 
@@ -27,6 +29,7 @@ DEFAULT_KIND = "hex"
 
 def read_drawing(path: str | Path, *, flatten: float = DEFAULT_FLATTEN, layer: str | None = None,
                  mesh: str = "auto", cell: float | None = None,
+                 allow_nonconvex: bool = False,
                  report: Callable[[str], None] | None = None) -> Mesh:
     """Read an SVG or DXF drawing as a mesh in millimetres.
 
@@ -40,6 +43,7 @@ def read_drawing(path: str | Path, *, flatten: float = DEFAULT_FLATTEN, layer: s
         other drawing; ``none`` always keeps the faces as drawn; a kind of
         ``outline_mesh.KINDS`` meshes the inside of the whole drawing
     cell : face size for meshing (mm); default: about 60 faces
+    allow_nonconvex : accept faces drawn non-convex (a meshed outline's faces are convex)
     report : called with one line saying what was read (counts, merges, mesh quality)
     """
     path = Path(path)
@@ -57,7 +61,8 @@ def read_drawing(path: str | Path, *, flatten: float = DEFAULT_FLATTEN, layer: s
         skipped = f", {n_open} open paths skipped" if n_open else ""
         if kind == "none":
             result, merged = weld([r.points for r in rings], flatten)
-            result = split_t_junctions(result, flatten)
+            result = _labelled(rings, validate, split_t_junctions(result, flatten),
+                               allow_nonconvex=allow_nonconvex)
             line = (f"{path.name}: {result.n_faces} faces, {result.n_vertices} vertices "
                     f"({merged} points within {flatten:g} mm merged){skipped}")
         else:
@@ -74,6 +79,17 @@ def read_drawing(path: str | Path, *, flatten: float = DEFAULT_FLATTEN, layer: s
     if report is not None:
         report(line)
     return result
+
+
+def _labelled(rings: list[Ring], check, mesh: Mesh, **options) -> Mesh:
+    """``check(mesh)``, with every "face N" in its error followed by the element it was drawn
+    as (faces keep the order of ``rings``)."""
+    try:
+        return check(mesh, **options)
+    except MeshError as exc:
+        text = re.sub(r"face (\d+)", lambda m: f"{m.group(0)} ({rings[int(m.group(1))].label})",
+                      str(exc))
+        raise type(exc)(text) from None
 
 
 def _kind(mesh: str, n_outer: int, n_holes: int, rings: list[Ring], parent) -> str:

@@ -4,8 +4,8 @@ ezdxf reads the file (``ezdxf.recover``, which also repairs what CAD programs co
 wrong) and turns every entity into a path (``ezdxf.path.make_path``: bulges, arcs, circles,
 ellipses and splines included), flattened so no chord strays beyond the tolerance. Closed
 LWPOLYLINE, 2-D POLYLINE, CIRCLE, closed ELLIPSE and SPLINE are rings; open pieces (LINE, ARC,
-open polylines) give the faces they enclose (loops, or a grid drawn with every edge once). Blocks (INSERT) are ignored.
-``$INSUNITS`` gives the unit (unitless drawings are read as millimetres).
+open polylines) give the faces they enclose (loops, or a grid drawn with every edge once).
+Blocks (INSERT) are ignored. ``$INSUNITS`` gives the unit (unitless drawings are read as mm).
 """
 
 from __future__ import annotations

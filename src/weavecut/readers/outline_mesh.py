@@ -9,9 +9,9 @@ Kinds (``cell`` is the side of a square of the faces' target area):
 - ``voronoi``: a centroidal Voronoi tessellation (Du, Faber and Gunzburger, "Centroidal Voronoi
   tessellations", SIAM Review 41, 1999): random seeds, Lloyd-relaxed 40 times, clipped.
 - ``tri``: a conforming Delaunay triangulation (scipy) of the relaxed seeds of ``hex`` (at the
-  triangles' spacing) and points along the outline; a boundary segment missing from the triangulation is split at its
-  middle until every one is an edge (the segment splitting of Ruppert's algorithm), and the
-  inner points are Laplace-smoothed.
+  triangles' spacing) and points along the outline; a boundary segment missing from the
+  triangulation is split at its middle until every one is an edge (the segment splitting of
+  Ruppert's algorithm), and the inner points are Laplace-smoothed.
 
 A clipped cell is convex unless the outline has a reflex corner inside it; such a cell is cut
 from that corner along the corner's bisector until every piece is convex. Every outline vertex
@@ -231,8 +231,9 @@ def _voronoi_cells(seeds: np.ndarray) -> np.ndarray:
     a, b, c = (points[triangles[:, k]] for k in range(3))
     d = 2 * ((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))
     bb, cc = ((b - a) ** 2).sum(axis=1), ((c - a) ** 2).sum(axis=1)
-    centres = a + np.column_stack([(c[:, 1] - a[:, 1]) * bb - (b[:, 1] - a[:, 1]) * cc,
-                                   (b[:, 0] - a[:, 0]) * cc - (c[:, 0] - a[:, 0]) * bb]) / d[:, None]
+    offsets = np.column_stack([(c[:, 1] - a[:, 1]) * bb - (b[:, 1] - a[:, 1]) * cc,
+                               (b[:, 0] - a[:, 0]) * cc - (c[:, 0] - a[:, 0]) * bb])
+    centres = a + offsets / d[:, None]
     owner = triangles.reshape(-1)
     order = np.argsort(owner, kind="stable")
     corners = np.repeat(np.arange(len(triangles)), 3)[order]
@@ -244,9 +245,10 @@ def _convex_pieces(polygon, tolerance: float) -> list:
     """``polygon`` cut at its reflex corners until every piece is convex.
 
     A reflex bend under 15 degrees less than ``tolerance`` deep (a gentle S-bend) is dropped
-    instead, which moves the boundary by less than the tolerance. At a deeper one, r, the cut runs to another corner of the cell or along one of 9 rays
-    spread over the corner's angle: of the cuts that leave both pieces convex at r, the one
-    whose smaller piece is largest.
+    instead, which moves the boundary by less than the tolerance. At a real reflex corner r the
+    cut runs to another corner of the cell or along one of 9 rays spread over the corner's
+    angle: of the cuts that leave both pieces convex at r, the one whose smaller piece is
+    largest.
     """
     if polygon.is_empty or polygon.area == 0:
         return []
