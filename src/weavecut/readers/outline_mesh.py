@@ -36,9 +36,9 @@ from shapely.ops import split
 from ..errors import MeshError
 from ..mesh import Mesh, corner_angles, signed_areas
 from ..validation import validate
+from . import KINDS
 from .rings import split_t_junctions, weld
 
-KINDS = ("hex", "quad", "tri", "voronoi")
 DEFAULT_FACES = 60  # faces when no --cell is given
 # lattice spacing (times cell) that gives faces of area cell**2
 SPACING = {"quad": 1.0, "hex": math.sqrt(2 / math.sqrt(3)), "tri": math.sqrt(4 / math.sqrt(3))}
