@@ -105,3 +105,9 @@ def star_shaped_outlines(draw):
 def test_random_outlines(region, kind, cell):
     mesh = outline_mesh.mesh_outline(region, kind, cell)
     assert_meshes_outline(mesh, region, cell)
+
+
+def test_same_drawing_same_mesh():
+    a, b = (read_drawing(EXAMPLES / "heart.svg", mesh="voronoi") for _ in range(2))
+    assert np.array_equal(a.vertices, b.vertices)
+    assert np.array_equal(a.face_indices, b.face_indices)
