@@ -13,11 +13,16 @@ from pathlib import Path
 import ezdxf
 import numpy as np
 import pytest
+import shapely
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from weavecut.errors import MeshError, MeshFileError
 from weavecut.mesh import Mesh, edge_faces, signed_areas
 from weavecut.readers import read_drawing
 from weavecut.validation import validate
+
+from ..strategies import valid_meshes
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
@@ -249,3 +254,28 @@ def test_mesh_errors_name_the_element(tmp_path):
     with pytest.raises(MeshError, match=r"face 1 \(<polygon id='b'>\) is not convex"):
         read_drawing(svg(tmp_path, body))
     assert read_drawing(svg(tmp_path, body), allow_nonconvex=True).n_faces == 2
+
+
+@settings(max_examples=20, deadline=None)
+@given(valid_meshes, st.integers(0, 2**31 - 1))
+def test_random_meshes_drawn_face_by_face_read_back(tmp_path_factory, mesh, seed):
+    """Any valid mesh, scaled to 100 mm, drawn as one SVG polygon per face with random
+    orientation and every corner nudged by up to 0.05 mm, reads back with its V, E, F."""
+    rng = np.random.default_rng(seed)
+    points = mesh.vertices / np.ptp(mesh.vertices, axis=0).max() * 100.0
+    edges = mesh.topology.edges
+    gaps = shapely.distance(shapely.linestrings(points[edges]).reshape(-1, 1),
+                            shapely.points(points).reshape(1, -1))
+    gaps[np.arange(len(edges)), edges[:, 0]] = gaps[np.arange(len(edges)), edges[:, 1]] = np.inf
+    assume(gaps.min() > 1.0)  # nothing closer than 1 mm that the drawing would merge
+    shapes = []
+    for k, face in enumerate(mesh.faces()):
+        corners = points[face] + rng.uniform(-0.035, 0.035, size=(len(face), 2))
+        corners = corners[::-1] if rng.integers(2) else corners
+        shapes.append(f'<polygon id="f{k}" points="'
+                      + " ".join(f"{x:.4f},{-y:.4f}" for x, y in corners) + '"/>')
+    path = svg(tmp_path_factory.mktemp("draw"), layer("L", "\n".join(shapes)),
+               viewbox="-10 -110 120 120")
+    read = validate(read_drawing(path, mesh="none", allow_nonconvex=True))
+    assert (read.n_vertices, read.topology.n_edges, read.n_faces) == (
+        mesh.n_vertices, mesh.topology.n_edges, mesh.n_faces)
