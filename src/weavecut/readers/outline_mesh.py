@@ -91,10 +91,25 @@ def mesh_outline(region, kind: str = "hex", cell: float | None = None,
         tidy = _short_inner_edges_merged(_snapped(rings, region, snap * cell), region,
                                          short * cell)
         try:
-            return validate(split_t_junctions(weld(tidy, 1e-9 * cell)[0], 1e-9 * cell))
+            mesh = split_t_junctions(weld(tidy, 1e-9 * cell)[0], 1e-9 * cell)
+            return validate(_without_straight_corners(mesh))
         except MeshError as exc:
             error = exc
     raise MeshError(f"meshing the outline failed ({error}); try another --cell")
+
+
+def _without_straight_corners(mesh: Mesh) -> Mesh:
+    """``mesh`` without the outline points that only one face uses where the outline runs
+    straight (180 degree corners make degenerate pentagons in a snub step)."""
+    p = mesh.vertices[mesh.face_indices]
+    a = p - p[mesh.prev_half_edge]
+    b = p[mesh.next_half_edge] - p
+    sine = (a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]) / (np.hypot(*a.T) * np.hypot(*b.T))
+    alone = np.bincount(mesh.face_indices, minlength=mesh.n_vertices)[mesh.face_indices] == 1
+    keep = ~(alone & (np.abs(sine) < 1e-9) & ((a * b).sum(axis=1) > 0))
+    used, corners = np.unique(mesh.face_indices[keep], return_inverse=True)
+    sizes = np.bincount(mesh.half_edge_face[keep], minlength=mesh.n_faces)
+    return Mesh(mesh.vertices[used], np.concatenate([[0], np.cumsum(sizes)]), corners)
 
 
 def _short_inner_edges_merged(rings: list[np.ndarray], region, short: float) -> list[np.ndarray]:
