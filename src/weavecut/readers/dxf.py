@@ -18,10 +18,9 @@ import shapely
 from ezdxf import path as dxfpath
 from ezdxf import recover
 from ezdxf import units as dxfunits
-from scipy.spatial import cKDTree
 
 from ..errors import MeshFileError
-from .rings import Ring
+from .rings import Ring, close_groups
 
 ENTITIES = "LWPOLYLINE POLYLINE CIRCLE ELLIPSE SPLINE LINE ARC"
 
@@ -89,9 +88,8 @@ def _chained(pieces: list[Ring], tolerance: float) -> list[Ring]:
     if not pieces:
         return []
     ends = np.array([[p.points[0], p.points[-1]] for p in pieces]).reshape(-1, 2)
-    pairs = cKDTree(ends).query_pairs(tolerance, output_type="ndarray")
-    moved = ends.copy()
-    moved[pairs[:, 1]] = ends[pairs[:, 0]]  # an end takes the place of an end it meets
+    label = close_groups(ends, tolerance)
+    moved = ends[np.unique(label, return_index=True)[1][label]]  # ends that meet coincide
     lines = [np.vstack([moved[2 * k], p.points[1:-1], moved[2 * k + 1]])
              for k, p in enumerate(pieces)]
     faces, _, dangles, invalid = shapely.polygonize_full(

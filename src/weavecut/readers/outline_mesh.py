@@ -3,9 +3,9 @@
 Kinds (``cell`` is the side of a square of the faces' target area):
 
 - ``quad`` and ``hex``: the Voronoi cells of a square or triangular lattice (squares and
-  regular hexagons) clipped to the outline; the seeds whose cells reach the boundary are then
-  Lloyd-relaxed (moved to their clipped cell's centroid, 15 times), so the boundary cells grow
-  to full size instead of leaving slivers.
+  regular hexagons), Lloyd-relaxed 15 times (every seed moved to the centroid of its cell
+  clipped to the outline): inner cells stay regular, the boundary cells grow to about full
+  size instead of leaving slivers.
 - ``voronoi``: a centroidal Voronoi tessellation (Du, Faber and Gunzburger, "Centroidal Voronoi
   tessellations", SIAM Review 41, 1999): random seeds, Lloyd-relaxed 40 times, clipped.
 - ``tri``: a conforming Delaunay triangulation (scipy) of the relaxed seeds of ``hex`` (at the
@@ -14,12 +14,13 @@ Kinds (``cell`` is the side of a square of the faces' target area):
   Ruppert's algorithm), and the inner points are Laplace-smoothed.
 
 A clipped cell is convex unless the outline has a reflex corner inside it; such a cell is cut
-from that corner along the corner's bisector until every piece is convex. Every outline vertex
-stays a vertex, so the boundary is the outline (flattened to the reader's tolerance);
-the outline's edges are first cut to at most a cell's edge, and where a cell edge meets the
-outline it moves onto the nearer outline vertex beside it, so boundary edges are about as long
-as inner ones; inner cell edges shorter than 0.15 ``cell`` collapse (short edges make sliver
-pentagons, which turn over after a few snub steps).
+at that corner (``_convex_pieces``) until every piece is convex, and pieces under 0.6 ``cell``
+are merged into a neighbour or cut anew with it (``_merged_small``). Every outline vertex stays
+a vertex, so the boundary is the outline to the tolerance. The outline's edges are first cut to
+at most a cell's edge, where a cell edge meets the outline it moves onto the nearer outline
+vertex beside it, inner cell edges shorter than 0.15 ``cell`` collapse, and straight outline
+points of one face are dropped: short edges and 180-degree corners make sliver pentagons, which
+turn over after a few snub steps.
 """
 
 from __future__ import annotations
@@ -28,8 +29,6 @@ import math
 
 import numpy as np
 import shapely
-from scipy.sparse import coo_array
-from scipy.sparse.csgraph import connected_components
 from scipy.spatial import Delaunay, cKDTree
 from shapely.ops import split
 
@@ -37,7 +36,7 @@ from ..errors import MeshError
 from ..mesh import Mesh, corner_angles, signed_areas
 from ..validation import validate
 from . import KINDS
-from .rings import split_t_junctions, weld
+from .rings import close_groups, split_t_junctions, weld
 
 DEFAULT_FACES = 60  # faces when no --cell is given
 # lattice spacing (times cell) that gives faces of area cell**2
@@ -119,11 +118,8 @@ def _short_inner_edges_merged(rings: list[np.ndarray], region, short: float) -> 
     points = np.concatenate(rings)
     if short == 0:
         return rings
-    inner = np.flatnonzero(shapely.distance(region.boundary, shapely.points(points)) > 1e-9 * short)
-    pairs = inner[cKDTree(points[inner]).query_pairs(short, output_type="ndarray")]
-    n = len(points)
-    graph = coo_array((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
-    _, label = connected_components(graph, directed=False)
+    inner = shapely.distance(region.boundary, shapely.points(points)) > 1e-9 * short
+    label = close_groups(points, short, movable=inner)
     count = np.bincount(label)
     mean = np.column_stack([np.bincount(label, weights=points[:, k]) for k in (0, 1)])
     return np.split(mean[label] / count[label, None], np.cumsum(sizes)[:-1])

@@ -81,6 +81,19 @@ def nesting(rings: list[Ring], tolerance: float) -> np.ndarray:
     return parent
 
 
+def close_groups(points: np.ndarray, tolerance: float,
+                 movable: np.ndarray | None = None) -> np.ndarray:
+    """(N,) group of every point: points closer than ``tolerance`` (in a chain) share one.
+
+    Only ``movable`` points (a mask; default all) join groups; the others stay alone.
+    """
+    idx = np.arange(len(points)) if movable is None else np.flatnonzero(movable)
+    pairs = idx[cKDTree(points[idx]).query_pairs(tolerance, output_type="ndarray")]
+    n = len(points)
+    graph = coo_array((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    return connected_components(graph, directed=False)[1]
+
+
 def weld(polygons: list[np.ndarray], tolerance: float) -> tuple[Mesh, int]:
     """One mesh from counter-clockwise polygons; points closer than ``tolerance`` become one.
 
@@ -97,13 +110,8 @@ def weld(polygons: list[np.ndarray], tolerance: float) -> tuple[Mesh, int]:
     """
     sizes = np.fromiter(map(len, polygons), dtype=np.int64, count=len(polygons))
     points = np.concatenate(polygons)
-    pairs = cKDTree(points).query_pairs(tolerance, output_type="ndarray")
-    n = len(points)
-    graph = coo_array((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
-    _, label = connected_components(graph, directed=False)
-    first = np.full(label.max() + 1, n)
-    np.minimum.at(first, label, np.arange(n))
-    target = first[label]
+    label = close_groups(points, tolerance)
+    target = np.unique(label, return_index=True)[1][label]  # the first point of its group
     n_merged = int((np.hypot(*(points - points[target]).T) > 1e-6).sum())  # beyond 1 nm
     used, vertex = np.unique(target, return_inverse=True)
     corners = vertex.reshape(-1)
