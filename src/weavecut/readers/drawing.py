@@ -18,6 +18,7 @@ from . import DEFAULT_FLATTEN, DEFAULT_KIND, MESH_CHOICES, dxf, outline_mesh, sv
 from .rings import Ring, checked, nesting, split_t_junctions, weld
 
 READERS = {".svg": svg.read_rings, ".dxf": dxf.read_rings}
+MAX_BYTES = 64 * 2**20  # an untrusted drawing is read whole into memory
 
 
 def read(path: Path, *, flatten: float = DEFAULT_FLATTEN, layer: str | None = None,
@@ -26,6 +27,9 @@ def read(path: Path, *, flatten: float = DEFAULT_FLATTEN, layer: str | None = No
     """``weavecut.readers.read_drawing``, which documents the parameters."""
     if not path.is_file():
         raise MeshFileError(f"cannot read {path}: no such file")
+    if path.stat().st_size > MAX_BYTES:
+        raise MeshFileError(f"{path}: {path.stat().st_size / 2**20:.0f} MiB is more than a "
+                            f"drawing of faces needs (at most {MAX_BYTES // 2**20} MiB)")
     found, n_open = READERS[path.suffix.lower()](path, flatten, layer)
     if not found:
         raise MeshFileError(f"{path}: no closed outlines found"

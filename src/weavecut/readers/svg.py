@@ -70,7 +70,7 @@ def _shapes(group, layer: str | None, inside: bool = False) -> Iterator[tuple[st
             yield from _shapes(element, layer, inside or layer in names)
         elif isinstance(element, se.Shape) and (layer is None or inside):
             tag = type(element).__name__.lower()
-            yield (f"<{tag} id={element.id!r}>" if element.id else f"<{tag}>"), element
+            yield (f"<{tag} id={element.id[:40]!r}>" if element.id else f"<{tag}>"), element
 
 
 def _layer_names(document) -> list[str]:
