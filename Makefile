@@ -1,5 +1,6 @@
-# weave-cut: `make run` builds every recipe in templates/recipes into build/<recipe>/,
-# `make test` runs the tests. Both create .venv and install the project first when needed.
+# weave-cut: `make run` builds every recipe in templates/recipes into build/<recipe>/ (the
+# figures recipe is also `make figures`), `make test` runs the tests, `make docs` redraws the
+# README's images. All create .venv and install the project first when needed.
 
 PYTHON ?= python3
 VENV   := .venv
@@ -12,13 +13,13 @@ OUT    := build
 RECIPES := $(wildcard templates/recipes/*.toml) $(wildcard examples/*.toml)
 BUILT   := $(patsubst %.toml,$(OUT)/%/.built,$(notdir $(RECIPES)))
 
-.PHONY: run figures test bench clean help
+.PHONY: run figures docs test fuzz bench mutation clean help
 .DELETE_ON_ERROR:
 
 help:  ## list the targets
 	@grep -E '^[a-z]+:.*## ' $(MAKEFILE_LIST) | sed 's/:.*## /\t/'
 
-$(STAMP): pyproject.toml
+$(STAMP): pyproject.toml setup.py
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e '.[test]'
@@ -27,24 +28,26 @@ $(STAMP): pyproject.toml
 run: $(BUILT)  ## build every recipe (templates/recipes, examples) into build/ (incremental)
 	@echo "built into $(OUT)/: $(notdir $(basename $(RECIPES)))"
 
-# a recipe is rebuilt when it or the package changed; each recipe has its own folder
+# a recipe is rebuilt when it or the package changed; each recipe has its own folder, which
+# belongs to make (--force: replace files a weave-cut without a manifest left there)
 $(OUT)/%/.built: templates/recipes/%.toml $(STAMP) $(SRC)
-	$(WC) -q build $< -o $(OUT)/$* > /dev/null
+	$(WC) -q build $< -o $(OUT)/$* --force > /dev/null
 	touch $@
 
 $(OUT)/%/.built: examples/%.toml $(STAMP) $(SRC) examples/*.obj examples/*.json examples/*.svg examples/*.dxf
-	$(WC) -q build $< -o $(OUT)/$* > /dev/null
+	$(WC) -q build $< -o $(OUT)/$* --force > /dev/null
 	touch $@
 
-figures: $(STAMP)  ## every paper figure weave-cut reproduces, into build/figures/
-	mkdir -p $(OUT)/figures
-	@for name in $$($(WC) figure --list | cut -d' ' -f1); do \
-		case $$name in level-image) ext=png;; *) ext=svg;; esac; \
-		echo "figure $$name"; $(WC) -q figure $$name -o $(OUT)/figures/$$name.$$ext || exit 1; \
-	done
+figures: $(OUT)/figures/.built  ## every paper figure weave-cut reproduces, into build/figures/
+
+docs: $(STAMP)  ## redraw the README's images (docs/, examples/previews/) from the code
+	$(PY) docs/make_docs.py
 
 test: $(STAMP)  ## run the whole test suite
 	$(PY) -m pytest
+
+fuzz: $(STAMP)  ## the untrusted-input fuzz suite with the long hypothesis profile
+	HYPOTHESIS_PROFILE=long $(PY) -m pytest tests/untrusted -k "fuzz or corpus"
 
 bench: $(STAMP)  ## run the benchmarks (throughput, ratios against peers)
 	$(PY) -m pip install --quiet -e '.[bench]' || echo "some peers did not install"
@@ -52,8 +55,13 @@ bench: $(STAMP)  ## run the benchmarks (throughput, ratios against peers)
 	$(PY) benchmarks/bench_weave.py
 	$(PY) benchmarks/bench_schemes.py
 	$(PY) benchmarks/bench_levels.py
+	$(PY) benchmarks/bench_startup.py  # fails when --help gets slow against import numpy
 	@for b in benchmarks/bench_puzzle.py benchmarks/bench_strands.py; do \
 		[ -f $$b ] && $(PY) $$b || true; done
+
+mutation: $(STAMP)  ## mutation testing per package (PACKAGES="weave puzzle" for some): build/mutation/report.md
+	$(PY) -m pip install --quiet -e '.[mutation]'
+	$(PY) tools/mutation.py $(PACKAGES)
 
 clean:  ## remove build outputs (keeps .venv)
 	rm -rf $(OUT) .pytest_cache .hypothesis

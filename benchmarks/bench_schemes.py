@@ -4,12 +4,15 @@ Run: ``.venv/bin/python benchmarks/bench_schemes.py`` (peers from ``pip install 
 missing peers are skipped). Inputs: a flat triangle grid of 125k triangles (Loop, butterfly:
 two steps to 2M faces; sqrt(3): two steps to 1.125M faces) and a 125k-quad grid
 (Catmull-Clark: two steps to 2M faces). Every library starts from plain (V, 3) / (F, k)
-arrays, so weave-cut's time includes building its Mesh and topology. Best of ``REPEATS`` runs.
-Prints a table; asserts nothing.
+arrays, so weave-cut's time includes building its Mesh and topology. Best and median of
+``REPEATS`` runs; the ratio "weave-cut x" compares best with best and median with median.
+Prints a table and the load average; asserts nothing.
 """
 
 from __future__ import annotations
 
+import os
+import statistics
 import sys
 import time
 
@@ -18,7 +21,7 @@ import numpy as np
 from weavecut.mesh import Mesh
 from weavecut.subdivision import butterfly, catmull_clark, loop, sqrt3
 
-REPEATS = 3
+REPEATS = 5
 
 
 def grid(n: int, m: int, quads: bool):
@@ -111,13 +114,14 @@ def peers():
     return out
 
 
-def best(fn, v, f):
+def timed(fn, v, f):
+    """(best, median) seconds of ``REPEATS`` runs, and the face count."""
     times, n = [], None
     for _ in range(REPEATS):
         t = time.perf_counter()
         n = fn(v, f)
         times.append(time.perf_counter() - t)
-    return min(times), n
+    return min(times), statistics.median(times), n
 
 
 def main() -> int:
@@ -127,20 +131,23 @@ def main() -> int:
              ("sqrt3", tri, ours(sqrt3.step, 2)),
              ("catmull-clark", quad, ours(catmull_clark.step, 2))]
     others = peers()
-    print(f"{'scheme':14s} {'library':12s} {'faces':>9s} {'seconds':>8s} {'Mfaces/s':>9s} "
-          f"{'weave-cut x':>11s}")
+    print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores")
+    print(f"{'scheme':14s} {'library':12s} {'faces':>9s} {'best s':>8s} {'median s':>8s} "
+          f"{'Mfaces/s':>9s} {'weave-cut x (best, median)':>27s}")
     for name, (v, f), fn in cases:
-        t_ours, n_ours = best(fn, v, f)
-        print(f"{name:14s} {'weave-cut':12s} {n_ours:9d} {t_ours:8.3f} {n_ours / t_ours / 1e6:9.2f}")
+        t_ours, m_ours, n_ours = timed(fn, v, f)
+        print(f"{name:14s} {'weave-cut':12s} {n_ours:9d} {t_ours:8.3f} {m_ours:8.3f} "
+              f"{n_ours / t_ours / 1e6:9.2f}")
         for lib, schemes in others.items():
             if name not in schemes:
                 continue
             try:
-                t, n = best(schemes[name], v, f)
+                t, m, n = timed(schemes[name], v, f)
             except Exception as exc:  # a peer's API drift must not stop the table
                 print(f"{'':14s} {lib:12s} failed: {exc}")
                 continue
-            print(f"{'':14s} {lib:12s} {n:9d} {t:8.3f} {n / t / 1e6:9.2f} {t / t_ours:10.2f}x")
+            print(f"{'':14s} {lib:12s} {n:9d} {t:8.3f} {m:8.3f} {n / t / 1e6:9.2f} "
+                  f"{t / t_ours:13.2f}x {m / m_ours:6.2f}x")
         sys.stdout.flush()
     return 0
 

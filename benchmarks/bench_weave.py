@@ -8,16 +8,13 @@ As a peer in the same process: the loop-based zig-zag walk of the tests on the s
 from __future__ import annotations
 
 import argparse
-import sys
 import time
 from dataclasses import replace
-from pathlib import Path
 
 from weavecut import inputs
 from weavecut.subdivision import subdivide
 from weavecut.weave.snub_weave import lineage, snub_weave
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from zigzag import zigzag_strands  # the loop-based peer, beside this file
 
 
 def best_of(fn, repeat: int):
@@ -34,8 +31,6 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--levels", type=int, default=8)
     args = parser.parse_args()
-    from tests.weave.test_snub_weave import zigzag_strands  # the loop-based peer
-
     hierarchy = subdivide(inputs.get("pentagon"), args.levels)
     print("level, pentagons, weave (s), lineage (s), pentagons/s, strands, zig-zag peer (s)")
     previous = None

@@ -2,8 +2,13 @@ import os
 
 from hypothesis import HealthCheck, settings
 
+# dev: quick local runs; ci: bounded and reproducible; long: the fuzz suite on demand
+# (HYPOTHESIS_PROFILE=long, or `make fuzz`)
 settings.register_profile("dev", max_examples=25, deadline=None,
                           suppress_health_check=[HealthCheck.too_slow])
 settings.register_profile("ci", max_examples=60, deadline=None, derandomize=True,
                           suppress_health_check=[HealthCheck.too_slow])
-settings.load_profile("ci" if os.environ.get("CI") else "dev")
+settings.register_profile("long", max_examples=2000, deadline=None,
+                          suppress_health_check=[HealthCheck.too_slow])
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE") or ("ci" if os.environ.get("CI")
+                                                               else "dev"))

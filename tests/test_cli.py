@@ -5,11 +5,13 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
 from xml.etree import ElementTree
 
 import ezdxf
+import numpy as np
 import pytest
 from click.testing import CliRunner
 
@@ -70,28 +72,56 @@ def test_subdivide_writes_a_mesh_that_reads_back(tmp_path, suffix):
     assert read_mesh(again).n_faces == 5 * back.n_faces
 
 
-def test_subdivide_dxf_has_units_layers_and_closed_polylines(tmp_path):
+def _segments(polylines) -> set[tuple]:
+    """Every segment of the polylines as a pair of rounded points, in either direction."""
+    out = []
+    for p in polylines:
+        pts = [tuple(round(c, 5) for c in xy) for xy in p.get_points("xy")]
+        if p.closed:
+            pts.append(pts[0])
+        out += [tuple(sorted(s)) for s in zip(pts[:-1], pts[1:])]
+    return out
+
+
+def test_subdivide_dxf_cuts_every_edge_once(tmp_path):
     out = tmp_path / "p.dxf"
     assert run("subdivide", "pentagon", "--levels", "3", "-o", out).exit_code == 0
     doc = ezdxf.readfile(out)
     auditor = doc.audit()
     assert not auditor.has_errors
-    assert doc.header["$INSUNITS"] == 4 and doc.dxfversion == "AC1015"
-    layers = {layer.dxf.name for layer in doc.layers}
-    assert {"level-0", "level-1", "level-2", "level-3"} <= layers
-    polys = doc.modelspace().query("LWPOLYLINE")
-    assert all(p.closed for p in polys)
-    per_layer = {name: len(polys.query(f'*[layer=="{name}"]')) for name in layers}
-    assert per_layer["level-3"] == 125 and per_layer["level-0"] == 1
+    assert doc.header["$INSUNITS"] == 4
+    assert {layer.dxf.name for layer in doc.layers} - {"0", "Defpoints"} == {"cut-1-inner",
+                                                                         "cut-2-outline"}
+    mesh = subdivide(inputs.get("pentagon"), 3)[-1].mesh
+    msp = doc.modelspace()
+    inner = _segments(msp.query('LWPOLYLINE[layer=="cut-1-inner"]'))
+    outline = _segments(msp.query('LWPOLYLINE[layer=="cut-2-outline"]'))
+    n_boundary = 5 * 3 ** 3  # every step turns a boundary edge into three (paper, eq. 2)
+    assert len(outline) == len(set(outline)) == n_boundary
+    assert len(inner) == len(set(inner)) == mesh.topology.n_edges - n_boundary
+    assert not set(inner) & set(outline)
 
 
+def test_subdivide_earlier_levels_get_their_own_layers(tmp_path):
+    out = tmp_path / "p.dxf"
+    assert run("subdivide", "pentagon", "--levels", "3", "--earlier-levels", "-o",
+               out).exit_code == 0
+    msp = ezdxf.readfile(out).modelspace()
+    segments = [_segments(msp.query(f'LWPOLYLINE[layer=="level-{t}"]')) for t in range(3)]
+    assert [len(s) for s in segments] == [len(set(s)) for s in segments] == [5, 20, 85]  # eq. 2
 def test_subdivide_svg_size_is_in_mm(tmp_path):
     out = tmp_path / "p.svg"
     assert run("subdivide", "pentagon", "--levels", "2", "--size", "10cm", "-o", out).exit_code == 0
     root = ElementTree.parse(out).getroot()
-    width, height = (float(root.get(k).removesuffix("mm")) for k in ("width", "height"))
+    assert root.get("width").endswith("mm") and root.get("height").endswith("mm")
+    width, height = (float(root.get(k)[:-2]) for k in ("width", "height"))
     assert max(width, height) == pytest.approx(120.0)  # 100 mm plus two 10 mm margins
     assert root.get("viewBox") == f"0 0 {width:g} {height:g}"
+    # the drawn mesh itself is 100 mm across, measured on the paths, not on the sheet
+    numbers = [float(v) for path in root.iter("{http://www.w3.org/2000/svg}path")
+               for v in re.findall(r"-?\d+(?:\.\d+)?", path.get("d"))]
+    xy = np.array(numbers).reshape(-1, 2)
+    assert (xy.max(axis=0) - xy.min(axis=0)).max() == pytest.approx(100.0, abs=0.01)
 
 
 @pytest.mark.parametrize("suffix", ["svg", "dxf", "obj", "json"])
@@ -172,7 +202,7 @@ def test_weave_pictures_in_every_format(tmp_path, suffix):
     assert result.exit_code == 0, result.output
     head = out.read_bytes()[:8]
     assert head.startswith({"svg": b"<svg", "pdf": b"%PDF", "png": b"\x89PNG",
-                            "dxf": b"  0"}[suffix])
+                            "dxf": b"999\n"}[suffix])
 
 
 @pytest.mark.parametrize("scheme, mesh", [("loop", "triangle-grid:2x2"),

@@ -156,7 +156,7 @@ def test_interrupt_leaves_earlier_outputs_and_no_partial_files(tmp_path):
     done = tmp_path / "done.svg"
     assert run("subdivide", "pentagon", "--levels", "2", "-o", done).exit_code == 0
     before = done.read_bytes()
-    for sig in (signal.SIGINT, signal.SIGTERM):
+    for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT):
         proc = subprocess.Popen([sys.executable, "-m", "weavecut", "subdivide", "pentagon",
                                  "--levels", "8", "-o", str(tmp_path / "big.svg")],
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)

@@ -42,7 +42,7 @@ def test_edge_in_three_faces_is_non_manifold():
 
 def test_edge_twice_in_the_same_direction_is_an_error():
     v = [(0, 0), (1, 0), (0.5, 1), (0.5, -1)]
-    with pytest.raises(NonManifoldError, match="runs the same way in faces 0 and 1"):
+    with pytest.raises(NonManifoldError, match="runs the same way in face 0 and face 1"):
         Mesh.from_faces(v, [[0, 1, 2], [0, 1, 3]]).topology
 
 

@@ -2,14 +2,23 @@
 
 from __future__ import annotations
 
+import json
+import os
+import re
+import subprocess
+import sys
+
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
+from tests import obj_reference
 from tests.strategies import any_mesh
 from weavecut import inputs
-from weavecut.errors import MeshFileError
-from weavecut.mesh_io import read_mesh, write_mesh
+from weavecut.errors import MeshError, MeshFileError
+from weavecut.mesh import signed_areas
+from weavecut.mesh_io import MAX_BYTES, obj_text, read_mesh, read_valid_mesh, write_mesh
 
 
 @pytest.mark.parametrize("suffix", [".obj", ".json"])
@@ -79,3 +88,222 @@ def test_binary_garbage_and_unknown_suffix(tmp_path):
         read_mesh(tmp_path / "mesh.stl")
     with pytest.raises(MeshFileError, match="cannot read"):
         read_mesh(tmp_path / "missing.obj")
+
+
+# -- the vectorised OBJ reader against a line-by-line oracle ---------------------------------
+
+VERTICES = ["v 0 0", "v 1 0 0", "v 0 1", "v 1 1 0", "v 0.5 -0.25", "v 2 0 0 1", "v 1_0 2",
+            "\tv\t2\t0", "v 0 0 # c", "v 3 1e-3"]
+READABLE = VERTICES + [
+    "f 1 2 3", "f -1 -2 -3", "f 1/1 2/2/2 3//3", "f 1 2 3 4", "f 3 2 1", "f -3/1 -1 -2",
+    "f 0001 2 3", "f +1 2 3", "f 4 5 6", "f 2 -1 -3 1", "vt 0 0", "vn 0 0 1",
+    "# comment", "", "   ", "o x", "s off", "g a b", "f 1 2 3 # tail", "l 1 2", "f 1 2 3\x0b4",
+]
+UNREADABLE = [
+    "v 1", "v 1 2 3 4 5", "v x 1", "v nan 0", "v 1e400 0", "v 0 0 inf", "v 0 0 1", "v 2 5 1",
+    "f 0 1 2", "f 1 2", "f", "f 1 2 a", "f 1 2 1.5", "f 99999999999999999999 1 2", "f /1 2 3",
+    "f 1 1 2", "f 9 1 2", "f 00000000000000000001 2 3", "bogus 1", "v 0\x00 1", "\x01bad",
+    "é 1",
+]
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.sampled_from(VERTICES), min_size=3, max_size=6),
+       st.lists(st.sampled_from(READABLE * 8 + UNREADABLE), max_size=12),
+       st.lists(st.sampled_from(["\n", "\r\n", "\r"]), min_size=18, max_size=18))
+def test_obj_reader_agrees_with_a_line_by_line_reading(tmp_path_factory, head, body, ends):
+    lines = head + body
+    data = "".join(a + b for a, b in zip(lines, ends)).encode()
+    path = tmp_path_factory.mktemp("obj") / "m.obj"
+    path.write_bytes(data)
+    notes = []
+    try:
+        want = obj_reference.read(data)
+    except obj_reference.Refused as exc:
+        with pytest.raises(MeshError) as got:
+            read_mesh(path, note=notes.append)
+        assert str(got.value) == f"{path}: {exc}"
+        return
+    mesh = read_mesh(path, note=notes.append)
+    assert mesh.vertices.tobytes() == want[0].tobytes()
+    assert mesh.faces() == want[1]
+    assert notes == ([f"{path}: {want[2]}"] if want[2] else [])
+
+
+def test_obj_index_rules(tmp_path):
+    path = tmp_path / "m.obj"
+    # negative indices count back from the last vertex read so far, not from the end
+    path.write_text("v 0 0\nv 1 0\nv 0 1\nf -3 -2 -1\nv 1 1\nf -3 -1 -2\nf 2 4 3\n")
+    assert read_mesh(path).faces() == [[0, 1, 2], [1, 3, 2], [1, 3, 2]]
+    path.write_text("v 0 0\nv 1 0\nv 0 1\nf 0 1 2\n")
+    with pytest.raises(MeshFileError, match="line 4: face index 0 refers to no vertex"):
+        read_mesh(path)
+    path.write_text("v 0 0\nv 1 0\nf -1 -2 -3\nv 0 1\n")  # vertex 3 comes too late
+    with pytest.raises(MeshFileError, match=r"line 3: face index -3 refers to no vertex \(2 "):
+        read_mesh(path)
+    path.write_text("v 0 0\nv 1 0\nv 0 1\nf 1 2 3\nf 1 2 4\nv 1 1\n")
+    with pytest.raises(MeshFileError, match="line 5: face index 4"):
+        read_mesh(path)
+
+
+def test_mixed_degrees_slashes_and_big_files_agree_with_the_oracle(tmp_path):
+    rng = np.random.default_rng(7)
+    mesh = inputs.get("tiling-8-4:30x30")  # octagons and squares
+    text = obj_text(mesh)
+    # the same mesh with texture/normal indices and stray whitespace, as exporters write it
+    text = re.sub(r"^f (.*)$", lambda m: "f " + "  ".join(
+        f"{i}/{i}/{int(rng.integers(1, 9))}" for i in m.group(1).split()), text, flags=re.M)
+    path = tmp_path / "m.obj"
+    path.write_text(text.replace("\nv ", "\nv\t"))
+    back = read_mesh(path)
+    assert back.faces() == mesh.faces() == obj_reference.read(path.read_bytes())[1]
+    np.testing.assert_array_equal(back.vertices, mesh.vertices)
+
+
+# -- flat meshes in any axis-aligned plane ----------------------------------------------------
+
+BLENDER_PLANE = """# Blender 4.2 OBJ File: ''
+o Plane
+v -1.000000 0.000000 1.000000
+v 1.000000 0.000000 1.000000
+v -1.000000 0.000000 -1.000000
+v 1.000000 0.000000 -1.000000
+vn -0.0000 1.0000 -0.0000
+vt 0.000000 0.000000
+vt 1.000000 0.000000
+vt 1.000000 1.000000
+vt 0.000000 1.000000
+s 0
+f 1/1/1 2/2/1 4/3/1 3/4/1
+"""
+
+
+def test_blender_plane_is_read_in_xz_seen_from_above(tmp_path):
+    path = tmp_path / "plane.obj"
+    path.write_text(BLENDER_PLANE)
+    notes = []
+    mesh = read_valid_mesh(path, note=notes.append)
+    assert notes == [f"{path}: all vertices have y = 0.0; read in the xz-plane as (x, -z), "
+                     "seen from +y"]
+    # Blender's ground plane seen from above: (x, -z), counter-clockwise, not mirrored
+    np.testing.assert_array_equal(mesh.vertices, [[-1, -1], [1, -1], [-1, 1], [1, 1]])
+    assert mesh.faces() == [[0, 1, 3, 2]] and signed_areas(mesh)[0] == 4.0
+
+
+@pytest.mark.parametrize("plane, note", [
+    ("{a} {b} 0", ""),
+    ("{a} {b} 2.5", "all vertices have z = 2.5; read in the xy-plane as (x, y)"),
+    ("{a} -3 {c}", "all vertices have y = -3.0; read in the xz-plane as (x, -z), seen from +y"),
+    ("7 {a} {b}", "all vertices have x = 7.0; read in the yz-plane as (y, z), seen from +x"),
+])
+def test_flat_meshes_in_every_axis_aligned_plane(tmp_path, plane, note):
+    square = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    text = "".join("v " + plane.format(a=a, b=b, c=-b) + "\n" for a, b in square)
+    path = tmp_path / "sq.obj"
+    path.write_text(text + "f 1 2 3 4\n")
+    notes = []
+    mesh = read_valid_mesh(path, note=notes.append)
+    assert notes == ([f"{path}: {note}"] if note else [])
+    assert mesh.n_faces == 1 and signed_areas(mesh)[0] == 1.0
+
+
+def test_a_mesh_that_is_not_flat_is_refused(tmp_path):
+    path = tmp_path / "tilted.obj"
+    path.write_text("v 0 0 0\nv 1 0 0\nv 0 1 1\nf 1 2 3\n")
+    with pytest.raises(MeshFileError, match=r"tilted.obj: line 3: vertex has z = 1.0 while x "
+                                            "and y vary too"):
+        read_mesh(path)
+
+
+# -- messages count as the file does -----------------------------------------------------------
+
+@pytest.mark.parametrize("text, message", [
+    ("v 0 0\nv 2 0\nv 2 2\nv 1 0.5\nv 0 2\n# a dent\nf 1 2 3 4 5\n",
+     "face 1 (line 7) is not convex at vertex 4"),
+    ("v 0 0\nv 1 0\nv 2 0\nv 2 1\nv 1 1\nv 0 1\nf 1 2 5 6\nf 2 5 4 3\n",
+     "face 2 (line 8) is clockwise while others are counter-clockwise"),
+    ("v 0 0\nv 1 0\nv 0 1\nf 1 2 2 3\n", "face 1 (line 4) visits vertex 2 more than once"),
+    ("v 0 0\nv 1 0\nf 1 2\n", "face 1 (line 3) has 2 corner"),
+    ("v 0 0\nv 1 0\nv 2 0\nf 1 2 3\n", "face 1 (line 4) has zero area"),
+    ("v 0 0\nv 1 0\nv 0.5 1\nv 0.5 2\nf 1 2 3\nf 1 2 4\n",
+     "edge (1, 2) runs the same way in face 1 (line 5) and face 2 (line 6)"),
+    ("v 0 0\nv 1 -1\nv 1 1\nv -1 1\nv -1 -1\nf 1 2 3\nf 1 4 5\n",
+     "vertex 1 joins 2 separate fans"),
+    ("v 0 0\nv 4 0\nv 4 4\nv 0 4\nv 1 1\nv 2 1\nv 2 2\nv 1 2\nf 1 2 3 4\nf 5 6 7 8\n",
+     "vertex 5 lies inside face 1 (line 9)"),
+])
+def test_obj_messages_are_one_based_with_lines_and_the_file(tmp_path, text, message):
+    path = tmp_path / "in.obj"
+    path.write_text(text)
+    with pytest.raises(MeshError) as error:
+        read_valid_mesh(path)
+    assert str(error.value).startswith(f"{path}: {message}")
+
+
+def test_json_messages_stay_zero_based_as_the_file_counts(tmp_path):
+    path = tmp_path / "in.json"
+    doc = {"format": "weave-cut-mesh", "version": 1,
+           "vertices": [[0, 0], [2, 0], [2, 2], [1, 0.5], [0, 2]], "faces": [[0, 1, 2, 3, 4]]}
+    path.write_text(json.dumps(doc))
+    with pytest.raises(MeshError, match=f"^{re.escape(str(path))}: face 0 is not convex at "
+                                        "vertex 3"):
+        read_valid_mesh(path)
+
+
+# -- bounded inputs ---------------------------------------------------------------------------
+
+def test_fifo_is_refused_at_once(tmp_path):
+    fifo = tmp_path / "pipe.obj"
+    os.mkfifo(fifo)  # no writer: opening it for reading the usual way would block forever
+    result = subprocess.run([sys.executable, "-m", "weavecut", "stats", str(fifo)],
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 1
+    assert f"{fifo}: is a FIFO (named pipe); mesh files must be regular files" in result.stderr
+
+
+def test_devices_and_directories_are_refused(tmp_path):
+    zero = tmp_path / "zero.obj"
+    zero.symlink_to("/dev/zero")  # read until memory runs out, before
+    with pytest.raises(MeshFileError, match="is a character device"):
+        read_mesh(zero)
+    folder = tmp_path / "folder.json"
+    folder.mkdir()
+    with pytest.raises(MeshFileError, match="is a directory"):
+        read_mesh(folder)
+
+
+@pytest.mark.parametrize("suffix", [".obj", ".json"])
+def test_huge_files_are_refused_before_reading(tmp_path, suffix):
+    path = tmp_path / f"huge{suffix}"
+    with open(path, "wb") as f:
+        f.truncate(MAX_BYTES[suffix] + 1)  # sparse: takes no disk space
+    with pytest.raises(MeshFileError, match=r"is more than the [12] GiB weave-cut reads"):
+        read_mesh(path)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("[" * 100_000 + "]" * 100_000, "nested too deeply"),
+    ('{"format": "weave-cut-mesh", "version": 1, "vertices": [[0, 0], [1, 0], [0, 1]], '
+     '"faces": [[0, 1, ' + "9" * 5000 + "]]}", "a number in the JSON is too large"),
+    ('{"format": "weave-cut-mesh", "version": 1, "vertices": [[0, 0], [1, 0], [0, '
+     + "9" * 400 + ']], "faces": [[0, 1, 2]]}', "too large for a float"),
+    ('{"format": "weave-cut-mesh", "version": 1, "vertices": [[0, 0], [1, 0], [0, 1]], '
+     '"faces": [[0, 1, ' + "9" * 40 + "]]}", "integers in range"),
+    ('{"format": "weave-cut-mesh", "version": 1, "vertices": [[0, 0], [1, 0], [0, 1e999]], '
+     '"faces": [[0, 1, 2]]}', "non-finite"),
+])
+def test_json_depth_and_number_sizes_are_bounded(tmp_path, text, message):
+    path = tmp_path / "m.json"
+    path.write_text(text)
+    with pytest.raises(MeshError, match=message):
+        read_mesh(path)
+
+
+def test_control_characters_are_no_numbers(tmp_path):
+    path = tmp_path / "m.obj"
+    path.write_bytes(b"v 0 0\nv 1\x00 0\nv 0 1\nf 1 2 3\n")
+    with pytest.raises(MeshFileError, match="line 2: vertex coordinates must be numbers"):
+        read_mesh(path)
+    path.write_bytes(b"v 0 0\nv 1 0\nv 0 1\nf 1 2 3\x01\n")
+    with pytest.raises(MeshFileError, match="line 4: face indices must be whole numbers"):
+        read_mesh(path)

@@ -4,8 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import shapely
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from tests import meshes
+from tests.strategies import valid_meshes
 from weavecut.errors import MeshError
 from weavecut.mesh import Mesh, signed_areas
 from weavecut.validation import validate
@@ -81,3 +85,42 @@ def test_huge_coordinates_are_refused():
     mesh = Mesh.from_faces([(0, 0), (1e300, 0), (0, 1)], [[0, 1, 2]])
     with pytest.raises(MeshError, match="beyond"):
         validate(mesh)
+
+
+@settings(max_examples=150, deadline=None)
+@given(valid_meshes, st.integers(0, 2**32 - 1), st.floats(0.05, 1.5))
+def test_verdict_agrees_with_polygon_union(mesh, seed, reach):
+    """Move one vertex at random; validate must accept the mesh exactly when its faces are
+    simple polygons whose union has the sum of their areas (no overlap), name the first face
+    that crosses itself, and refuse non-convex faces unless allowed (hull area > area)."""
+    rng = np.random.default_rng(seed)
+    v = mesh.vertices.copy()
+    v[rng.integers(len(v))] += rng.normal(size=2) * reach * np.ptp(v, axis=0).max()
+    moved = Mesh(v, mesh.face_offsets, mesh.face_indices)
+    areas = signed_areas(moved)
+    assume((areas > 1e-6 * areas.max()).all())  # orientation and zero area are tested above
+    polys = np.array([shapely.Polygon(v[f]) for f in moved.faces()])
+    simple = shapely.is_valid(polys)
+    embedded = simple.all() and abs(shapely.union_all(polys).area - areas.sum()) < 1e-9 * areas.sum()
+    convex = np.abs(shapely.area(shapely.convex_hull(polys)) - areas) < 1e-9 * areas.max()
+    for allow in (True, False):
+        try:
+            validate(moved, allow_nonconvex=allow)
+            verdict = "valid"
+        except MeshError as exc:
+            verdict = str(exc)
+        if not allow and not convex.all():
+            assert "not convex" in verdict
+        elif not simple.all():
+            assert verdict.startswith(f"face {np.flatnonzero(~simple)[0]} intersects itself")
+        else:
+            assert (verdict == "valid") == embedded, verdict
+
+
+@pytest.mark.parametrize("allow", [False, True])
+def test_a_star_that_turns_left_at_every_corner_intersects_itself(allow):
+    t = np.pi / 2 + 2 * np.pi * np.arange(5) / 5
+    star = Mesh.from_faces(np.column_stack([np.cos(t), np.sin(t)]), [[0, 2, 4, 1, 3]])
+    assert signed_areas(star)[0] > 0  # it winds round twice, always turning left
+    with pytest.raises(MeshError, match="face 0 intersects itself"):
+        validate(star, allow_nonconvex=allow)

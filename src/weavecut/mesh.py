@@ -16,6 +16,38 @@ from numpy.typing import NDArray
 from .errors import MeshError, NonManifoldError
 
 
+@dataclass(frozen=True)
+class Numbering:
+    """How error messages name faces and vertices: from 0, as the arrays (and weave-cut's JSON)
+    count them, or from 1 with the line that defines each face, as an OBJ file counts them.
+
+    Examples
+    --------
+    >>> Numbering().face(4), Numbering(first=1, face_lines=np.array([7, 9])).face(1)
+    ('face 4', 'face 2 (line 9)')
+    """
+
+    first: int = 0
+    face_lines: NDArray[np.int64] | None = None
+
+    def number(self, index) -> int:
+        """The number a reader of the source gives element ``index``."""
+        return int(index) + self.first
+
+    def face(self, f) -> str:
+        line = "" if self.face_lines is None else f" (line {self.face_lines[f]})"
+        return f"face {self.number(f)}{line}"
+
+    def vertex(self, v) -> str:
+        return f"vertex {self.number(v)}"
+
+    def edge(self, u, w) -> str:
+        return f"edge ({self.number(u)}, {self.number(w)})"
+
+
+ZERO_BASED = Numbering()
+
+
 @dataclass(frozen=True, eq=False)
 class Mesh:
     """Planar mesh with faces of any degree.
@@ -40,7 +72,7 @@ class Mesh:
             arr = np.array(getattr(self, name), dtype=dtype)  # a private copy
             arr.flags.writeable = False
             object.__setattr__(self, name, arr)
-        _check_structure(self)
+        check_structure(self)
 
     @classmethod
     def from_faces(cls, vertices, faces) -> Mesh:
@@ -161,7 +193,9 @@ class Mesh:
         return Mesh(self.vertices, self.face_offsets, self.face_indices[order])
 
 
-def _check_structure(mesh: Mesh) -> None:
+def check_structure(mesh: Mesh, numbering: Numbering = ZERO_BASED) -> None:
+    """Raise MeshError for bad shapes, indices, short faces, repeated corners or coordinates."""
+    n = numbering
     v, off, idx = mesh.vertices, mesh.face_offsets, mesh.face_indices
     if v.ndim != 2 or v.shape[1] != 2:
         raise MeshError(f"vertices must have shape (V, 2), got {v.shape}")
@@ -169,24 +203,25 @@ def _check_structure(mesh: Mesh) -> None:
         raise MeshError(f"{len(v)} vertices is more than weave-cut indexes ({2**31 - 1})")
     bad = np.flatnonzero(~np.isfinite(v).all(axis=1))
     if len(bad):
-        raise MeshError(f"vertex {bad[0]} has a non-finite coordinate {tuple(v[bad[0]])}")
+        raise MeshError(f"{n.vertex(bad[0])} has a non-finite coordinate {tuple(v[bad[0]])}")
     if off.ndim != 1 or len(off) < 1 or off[0] != 0 or off[-1] != len(idx):
         raise MeshError("face offsets must start at 0 and end at the number of corners")
     sizes = np.diff(off)
     if (sizes < 3).any():
         f = int(np.flatnonzero(sizes < 3)[0])
-        raise MeshError(f"face {f} has {sizes[f]} corner(s); a face needs at least 3")
+        raise MeshError(f"{n.face(f)} has {sizes[f]} corner(s); a face needs at least 3")
     if len(idx) and (idx.min() < 0 or idx.max() >= len(v)):
         h = int(np.flatnonzero((idx < 0) | (idx >= len(v)))[0])
         f = int(np.searchsorted(off, h, side="right") - 1)
-        raise MeshError(f"face {f} uses vertex {idx[h]}, out of range 0..{len(v) - 1}")
+        raise MeshError(f"{n.face(f)} uses vertex {n.number(idx[h])}, out of range "
+                        f"{n.number(0)}..{n.number(len(v) - 1)}")
     # a vertex repeated within a face: sort (face, vertex) pairs, look for equal neighbours
     face = np.repeat(np.arange(len(sizes), dtype=np.int64), sizes)
     key = np.sort(face * max(len(v), 1) + idx)
     dup = np.flatnonzero(key[1:] == key[:-1])
     if len(dup):
         f, vtx = divmod(int(key[dup[0]]), max(len(v), 1))
-        raise MeshError(f"face {f} visits vertex {vtx} more than once")
+        raise MeshError(f"{n.face(f)} visits {n.vertex(vtx)} more than once")
 
 
 @dataclass(frozen=True, eq=False)
@@ -205,8 +240,10 @@ class Topology:
     half_edge_side: NDArray[np.int8]
 
     @classmethod
-    def build(cls, mesh: Mesh) -> Topology:
-        """Derive the topology with one sort; raise NonManifoldError on a bad edge."""
+    def build(cls, mesh: Mesh, numbering: Numbering = ZERO_BASED) -> Topology:
+        """Derive the topology with one sort; raise NonManifoldError on a bad edge or vertex
+        (elements named by ``numbering``)."""
+        n = numbering
         u = mesh.face_indices.astype(np.int64)
         w = u[mesh.next_half_edge]
         n_v = max(mesh.n_vertices, 1)
@@ -219,18 +256,18 @@ class Topology:
         if (uses > 2).any():
             e = int(np.flatnonzero(uses > 2)[0])
             raise NonManifoldError(
-                f"edge ({edges[e, 0]}, {edges[e, 1]}) is in {uses[e]} faces; at most 2 allowed"
+                f"{n.edge(*edges[e])} is in {uses[e]} faces; at most 2 allowed"
             )
         taken = np.bincount(2 * he_edge.astype(np.int64) + side, minlength=2 * len(edges))
         if (taken > 1).any():
             e = int(np.flatnonzero(taken > 1)[0] // 2)
             faces = mesh.half_edge_face[he_edge == e].tolist()
             raise NonManifoldError(
-                f"edge ({edges[e, 0]}, {edges[e, 1]}) runs the same way in faces "
-                f"{faces[0]} and {faces[1]}"
+                f"{n.edge(*edges[e])} runs the same way in {n.face(faces[0])} and "
+                f"{n.face(faces[1])}"
             )
         topo = cls(edges, he_edge, side)
-        _check_vertex_fans(mesh, topo)
+        _check_vertex_fans(mesh, topo, n)
         return topo
 
     @property
@@ -257,14 +294,15 @@ class Topology:
         return (self.edge_half_edges < 0).any(axis=1)
 
 
-def _check_vertex_fans(mesh: Mesh, topo: Topology) -> None:
+def _check_vertex_fans(mesh: Mesh, topo: Topology, numbering: Numbering) -> None:
     """A vertex where two boundary fans meet (a bow-tie) is not 2-manifold."""
     he = topo.edge_half_edges
     lone = he[(he < 0).any(axis=1)].max(axis=1)
     starts = np.bincount(mesh.face_indices[lone], minlength=mesh.n_vertices)
     if (starts > 1).any():
         v = int(np.flatnonzero(starts > 1)[0])
-        raise NonManifoldError(f"vertex {v} joins {starts[v]} separate fans of faces (a bow-tie)")
+        raise NonManifoldError(f"{numbering.vertex(v)} joins {starts[v]} separate fans of faces "
+                               "(a bow-tie)")
 
 
 def edge_faces(mesh: Mesh) -> NDArray[np.int32]:

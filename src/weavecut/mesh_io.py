@@ -1,4 +1,4 @@
-"""Read and write meshes: Wavefront OBJ in the xy-plane and weave-cut's JSON.
+"""Read and write meshes: Wavefront OBJ and weave-cut's JSON.
 
 JSON format (version 1)::
 
@@ -7,44 +7,62 @@ JSON format (version 1)::
      "faces": [[i, j, k, ...], ...]}     # 0-based vertex indices, counter-clockwise
 
 Both round-trip exactly: floats are written with ``repr`` (shortest exact form).
+
+Reading is bounded: only regular files (a FIFO, device or directory is refused before it is
+read), at most ``MAX_FACES`` faces and ``MAX_VERTICES`` vertices, and a file size in
+proportion (``BYTES_PER_FACE`` of the format for each face allowed); JSON nesting and number
+sizes are bounded too. An OBJ is parsed with numpy over the whole file; messages about it
+count faces and vertices from 1 and give the line, as OBJ users count.
 """
 
 from __future__ import annotations
 
 import json
-import math
+import os
+import re
+import stat
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
 
 from . import readers
 from .errors import MeshError, MeshFileError
 from .fileio import write_atomic
-from .mesh import Mesh
+from .mesh import ZERO_BASED, Mesh, Numbering, check_structure
+from .validation import validate
 
 JSON_FORMAT = "weave-cut-mesh"
 SUFFIXES = (".obj", ".json")
+MAX_FACES = 2**24  # 16.8 million, 1.7 times the pentagon's level 10
+MAX_VERTICES = 2**25
+# bytes a face may take: weave-cut's own OBJ needs ~46 per quad, Blender's with UVs and
+# normals ~130, weave-cut's JSON ~44
+BYTES_PER_FACE = {".obj": 128, ".json": 64}
+MAX_BYTES = {suffix: MAX_FACES * n for suffix, n in BYTES_PER_FACE.items()}  # 2 GiB, 1 GiB
+
+Note = Callable[[str], None]
 
 
-def read_mesh(path: str | Path, **drawing_options) -> Mesh:
-    """Read an OBJ or JSON mesh, or an SVG or DXF drawing (``readers.read_drawing`` and its
-    options); MeshFileError names the file and line of a problem."""
+def read_mesh(path: str | Path, note: Note | None = None, **drawing_options) -> Mesh:
+    """Read an OBJ or JSON mesh, or an SVG or DXF drawing (``drawing_options``: see
+    ``readers.read_drawing``); MeshFileError names the file and line of a problem.
+
+    ``note`` receives remarks that are no errors (an OBJ read in the xz- or yz-plane, what a
+    drawing held).
+    """
+    return _read(Path(path), note, drawing_options)[0]
+
+
+def read_valid_mesh(path: str | Path, *, allow_nonconvex: bool = False,
+                    note: Note | None = None, **drawing_options) -> Mesh:
+    """Read a mesh file and validate it; errors name the file and count as the file does
+    (faces and vertices from 1, with line numbers, in an OBJ)."""
     path = Path(path)
-    if path.suffix.lower() in readers.SUFFIXES:
-        return readers.read_drawing(path, **drawing_options)
-    if path.suffix.lower() not in SUFFIXES:
-        raise MeshFileError(f"{path}: unknown mesh format {path.suffix!r}; use .obj or .json")
+    mesh, numbering = _read(path, note, {**drawing_options, "allow_nonconvex": allow_nonconvex})
     try:
-        raw = path.read_bytes()
-    except OSError as exc:
-        raise MeshFileError(f"cannot read {path}: {exc.strerror}") from exc
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError:
-        raise MeshFileError(f"{path}: not a text file (not UTF-8)") from None
-    parse = _parse_obj if path.suffix.lower() == ".obj" else _parse_json
-    try:
-        return parse(text)
+        return validate(mesh, allow_nonconvex=allow_nonconvex, numbering=numbering)
     except MeshError as exc:
         raise type(exc)(f"{path}: {exc}") from None
 
@@ -77,68 +95,306 @@ def json_text(mesh: Mesh, metadata: dict[str, str] | None = None) -> str:
     return json.dumps(doc, separators=(",", ":")) + "\n"
 
 
-def _parse_obj(text: str) -> Mesh:
-    vertices: list[tuple[float, float]] = []
-    faces: list[list[int]] = []
-    face_lines: list[int] = []
-    face_seen: list[int] = []  # vertices defined before each face (for negative indices)
-    for n, line in enumerate(text.splitlines(), start=1):
-        parts = line.split("#", 1)[0].split() if "#" in line else line.split()
-        if not parts:
-            continue
-        tag = parts[0]
-        if tag == "v":
-            vertices.append(_obj_vertex(parts[1:], n))
-        elif tag == "f":
-            try:
-                faces.append([int(p.split("/", 1)[0]) for p in parts[1:]])
-            except ValueError:
-                raise MeshFileError(f"line {n}: face indices must be whole numbers") from None
-            face_lines.append(n)
-            face_seen.append(len(vertices))
-        elif tag in ("vt", "vn", "vp", "o", "g", "s", "usemtl", "mtllib", "l"):
-            continue
-        else:
-            raise MeshFileError(f"line {n}: unknown OBJ statement {tag!r}"[:200])
-    if not faces:
-        raise MeshFileError("no faces ('f' lines) found")
-    sizes = np.fromiter(map(len, faces), dtype=np.int64, count=len(faces))
+def _read(path: Path, note: Note | None, drawing_options: dict) -> tuple[Mesh, Numbering]:
+    suffix = path.suffix.lower()
+    if suffix in readers.SUFFIXES:
+        return readers.read_drawing(path, report=note, **drawing_options), ZERO_BASED
+    if suffix not in SUFFIXES:
+        raise MeshFileError(f"{path}: unknown mesh format {path.suffix!r}; use .obj or .json")
+    raw = _read_regular_file(path, MAX_BYTES[suffix])
     try:
-        flat = np.fromiter((i for f in faces for i in f), dtype=np.int64, count=int(sizes.sum()))
-    except OverflowError:
-        raise MeshFileError("a face index is too large") from None
-    seen = np.repeat(np.array(face_seen, dtype=np.int64), sizes)
-    bad = (flat == 0) | (np.abs(flat) > seen)
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        raise MeshFileError(f"{path}: not a text file (not UTF-8)") from None
+    try:
+        if suffix == ".obj":
+            mesh, numbering, remark = _parse_obj(raw)
+            if remark and note:
+                note(f"{path}: {remark}")
+            return mesh, numbering
+        return _parse_json(text), ZERO_BASED
+    except MeshError as exc:
+        raise type(exc)(f"{path}: {exc}") from None
+
+
+_KINDS = {stat.S_IFDIR: "a directory", stat.S_IFIFO: "a FIFO (named pipe)",
+          stat.S_IFCHR: "a character device", stat.S_IFBLK: "a block device",
+          stat.S_IFSOCK: "a socket"}
+
+
+def _read_regular_file(path: Path, limit: int) -> bytes:
+    """The bytes of ``path`` if it is a regular file of at most ``limit`` bytes.
+
+    The file is opened non-blocking (a FIFO without a writer must not hang) and checked with
+    fstat before a byte is read, so devices behind a symlink are refused too.
+    """
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    except OSError as exc:
+        raise MeshFileError(f"cannot read {path}: {exc.strerror}") from exc
+    try:
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode):
+            kind = _KINDS.get(stat.S_IFMT(info.st_mode), "not a regular file")
+            raise MeshFileError(f"{path}: is {kind}; mesh files must be regular files")
+        if info.st_size > limit:
+            raise MeshFileError(_too_big(path, info.st_size, limit))
+        with os.fdopen(os.dup(fd), "rb") as f:
+            data = f.read(limit + 1)
+    except OSError as exc:
+        raise MeshFileError(f"cannot read {path}: {exc.strerror}") from exc
+    finally:
+        os.close(fd)
+    if len(data) > limit:  # it grew while we read
+        raise MeshFileError(_too_big(path, len(data), limit))
+    return data
+
+
+def _too_big(path: Path, size: int, limit: int) -> str:
+    return (f"{path}: {size:,} bytes is more than the {limit // 2**30} GiB weave-cut reads from "
+            f"a {path.suffix.lower()} file (room for {MAX_FACES:,} faces)")
+
+
+# -- OBJ ------------------------------------------------------------------------------------
+
+_IGNORED = (b"vt", b"vn", b"vp", b"o", b"g", b"s", b"usemtl", b"mtllib", b"l")
+# tab, vertical tab and form feed separate tokens like spaces; other control characters
+# become DEL, which no number contains
+_CONTROLS = bytes.maketrans(bytes(range(32)), bytes(
+    c if c == 10 else 32 if c in (9, 11, 12) else 127 for c in range(32)))
+MAX_TOKEN = 40  # longer numbers are parsed one by one
+_INT_DIGITS = 16  # 16 digits and 16 bytes before them (< 256 * 10**17) fit in an int64
+
+
+def _key(tag: bytes) -> np.uint64:
+    return np.frombuffer(tag.ljust(8, b"\0"), dtype=np.uint64)[0]
+
+
+class _Tokens:
+    """The whitespace-separated tokens of an OBJ text, as byte offsets, grouped into lines.
+
+    Comments and carriage returns are removed first, so line ``n`` is the n-th line of the
+    file. Only non-empty lines are kept: ``line`` (1-based number), ``first`` (its first
+    token, the statement) and ``count`` (tokens on it, the statement included).
+    """
+
+    def __init__(self, data: bytes) -> None:
+        if b"\r" in data:
+            data = data.replace(b"\r\n", b"\n").replace(b"\r", b"\n")
+        if np.count_nonzero(np.frombuffer(data, dtype=np.uint8) < 32) > data.count(b"\n"):
+            data = data.translate(_CONTROLS)
+        last = data.rfind(b"#")
+        if last >= 0:  # comments are mostly at the top: rewrite only up to the last one
+            cut = data.find(b"\n", last)
+            cut = len(data) if cut < 0 else cut
+            data = re.sub(rb"#[^\n]*", b"", data[:cut]) + data[cut:]
+        pad = b" " * MAX_TOKEN  # room for windows of bytes before and after every token
+        self.buf = np.frombuffer(b"".join([pad, data, b"\n", pad]), dtype=np.uint8)
+        text = self.buf[:-MAX_TOKEN]
+        gap = (text == 32) | (text == 10)
+        change = np.flatnonzero(gap[1:] != gap[:-1])  # a token starts or ends after these
+        self.start, self.end = change[0::2] + 1, change[1::2] + 1
+        line_end = np.flatnonzero(text == 10)
+        line_start = np.concatenate([[MAX_TOKEN], line_end[:-1] + 1])
+        first = np.searchsorted(self.start, line_start)
+        used = first < len(self.start)
+        used[used] = self.start[first[used]] < line_end[used]
+        self.line = np.flatnonzero(used) + 1
+        self.first = first[used]
+        self.count = np.diff(np.append(self.first, len(self.start)))
+
+    def text(self, token: int) -> str:
+        """Token ``token`` as text (its first few hundred characters)."""
+        a, b = int(self.start[token]), int(self.end[token])
+        return self.buf[a:min(b, a + 800)].tobytes().decode("utf-8", errors="ignore")
+
+    def keys(self, tokens) -> np.ndarray:
+        """A uint64 key for each token of up to 8 bytes (0 for longer ones)."""
+        length = self.end[tokens] - self.start[tokens]
+        window = sliding_window_view(self.buf, 8)[self.start[tokens]]
+        window[np.arange(8) >= length[:, None]] = 0
+        keys = window.view(np.uint64).ravel()
+        keys[length > 8] = 0
+        return keys
+
+    def floats(self, tokens) -> tuple[np.ndarray, int | None]:
+        """The tokens as float64 (Python's float syntax) and the position of the first one
+        that is no number (or None)."""
+        start, length = self.start[tokens], self.end[tokens] - self.start[tokens]
+        width = int(min(length.max(initial=1), MAX_TOKEN))
+        window = sliding_window_view(self.buf, width)[start]
+        window[np.arange(width) >= length[:, None]] = 0
+        long = np.flatnonzero(length > width)
+        window[long] = ord("0")  # decided one by one below
+        strings = window.view(f"S{width}").ravel()
+        try:
+            values, bad = strings.astype(np.float64), []
+        except ValueError:
+            first_bad = _first_unconvertible(strings)
+            values = np.full(len(strings), np.nan)
+            values[:first_bad] = strings[:first_bad].astype(np.float64)
+            bad = [first_bad]
+        for i in long.tolist():
+            try:
+                values[i] = float(self.buf[start[i]:start[i] + length[i]].tobytes())
+            except ValueError:
+                bad.append(i)
+        return values, min(bad, default=None)
+
+    def ints(self, start, end) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Whole numbers ``[+-]digits`` in the given bytes: (int64 values, not-a-number mask,
+        more than 16 digits mask)."""
+        sign = (end > start) & np.isin(self.buf[start], (ord("+"), ord("-")))
+        negative = sign & (self.buf[start] == ord("-"))
+        length = end - start - sign
+        width = int(min(length.max(initial=1), _INT_DIGITS))
+        # right-aligned: column j holds a digit of every token with more than width - j - 1
+        columns = (sliding_window_view(self.buf, width)[end - width] - np.uint8(ord("0"))).T
+        bad = length == 0
+        values = np.zeros(len(start), dtype=np.int64)
+        for j, digit in enumerate(np.ascontiguousarray(columns)):  # Horner's rule
+            bad |= (digit > 9) & (length >= width - j)
+            values *= 10
+            values += digit
+        values %= 10 ** np.minimum(length, width)  # drop the bytes left of each number
+        long = np.flatnonzero(length > width)
+        for i in long.tolist():
+            bad[i] = not self.buf[end[i] - length[i]:end[i]].tobytes().isdigit()
+        too_large = np.zeros(len(start), dtype=bool)
+        too_large[long] = ~bad[long]
+        return np.where(negative, -values, values), bad, too_large
+
+
+def _first_unconvertible(strings: np.ndarray) -> int:
+    """Position of the first entry that does not convert to float (one is known to exist)."""
+    lo, hi = 0, len(strings)
+    while hi - lo > 1:  # bisect, converting halves in C
+        mid = (lo + hi) // 2
+        try:
+            strings[lo:mid].astype(np.float64)
+            lo = mid
+        except ValueError:
+            hi = mid
+    return lo
+
+
+def _parse_obj(data: bytes) -> tuple[Mesh, Numbering, str]:
+    """Mesh, 1-based numbering with face lines, and a remark about the plane ("" if none)."""
+    tok = _Tokens(data)
+    tags = tok.keys(tok.first)
+    is_v, is_f = tags == _key(b"v"), tags == _key(b"f")
+    errors: list[tuple[int, int, str]] = []  # (line, rank on the line, message)
+    unknown = np.flatnonzero(~(is_v | is_f | np.isin(tags, [_key(t) for t in _IGNORED])))
+    if len(unknown):
+        i = unknown[0]
+        errors.append((tok.line[i], 0, f"line {tok.line[i]}: unknown OBJ statement "
+                                       f"{tok.text(tok.first[i])!r}"[:200]))
+    v_line, f_line = tok.line[is_v], tok.line[is_f]
+    if len(f_line) > MAX_FACES or len(v_line) > MAX_VERTICES:
+        raise MeshFileError(f"{len(f_line):,} faces and {len(v_line):,} vertices; weave-cut "
+                            f"reads at most {MAX_FACES:,} faces and {MAX_VERTICES:,} vertices")
+    points = _obj_vertices(tok, tok.first[is_v], tok.count[is_v] - 1, v_line, errors)
+    sizes = tok.count[is_f] - 1
+    indices, too_large = _obj_faces(tok, tok.first[is_f], sizes, f_line, errors)
+    if errors:
+        raise MeshFileError(min(errors)[2])
+    if not len(f_line):
+        raise MeshFileError("no faces ('f' lines) found")
+    if too_large.any():
+        raise MeshFileError("a face index is too large")
+    seen = np.repeat(np.searchsorted(v_line, f_line), sizes)  # vertices defined before
+    bad = (indices == 0) | (np.abs(indices) > seen)
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
         f = int(np.searchsorted(np.cumsum(sizes), k, side="right"))
-        raise MeshFileError(f"line {face_lines[f]}: face index {flat[k]} refers to no vertex "
+        raise MeshFileError(f"line {f_line[f]}: face index {indices[k]} refers to no vertex "
                             f"({seen[k]} defined so far)")
-    flat = np.where(flat > 0, flat - 1, seen + flat)
+    vertices, remark = _in_plane(points, v_line)
     offsets = np.concatenate([[0], np.cumsum(sizes)])
-    return Mesh(np.array(vertices, dtype=float).reshape(-1, 2), offsets, flat)
+    corners = np.where(indices > 0, indices - 1, seen + indices).astype(np.int32)
+    mesh = Mesh.trusted(vertices, offsets, corners)
+    numbering = Numbering(first=1, face_lines=f_line)
+    check_structure(mesh, numbering)
+    return mesh, numbering, remark
 
 
-def _obj_vertex(fields: list[str], n: int) -> tuple[float, float]:
-    if len(fields) < 2 or len(fields) > 4:
-        raise MeshFileError(f"line {n}: a vertex needs x y [z], got {len(fields)} numbers")
-    try:
-        x, y, *rest = (float(f) for f in fields[:3])
-    except ValueError:
-        raise MeshFileError(f"line {n}: vertex coordinates must be numbers") from None
-    if not (math.isfinite(x) and math.isfinite(y)):
-        raise MeshFileError(f"line {n}: vertex coordinate is not finite")
-    if rest and rest[0] != 0.0:
-        raise MeshFileError(f"line {n}: vertex has z = {rest[0]!r}; weave-cut meshes are planar "
-                            "(z must be 0)")
-    return (x, y)
+def _obj_vertices(tok: _Tokens, first, n_numbers, lines, errors) -> np.ndarray:
+    """(V, 3) coordinates of the ``v`` lines (z = 0 when left out); appends line errors."""
+    wrong = np.flatnonzero((n_numbers < 2) | (n_numbers > 4))
+    if len(wrong):
+        i = wrong[0]
+        errors.append((lines[i], 0, f"line {lines[i]}: a vertex needs x y [z], got "
+                                    f"{n_numbers[i]} numbers"))
+    used = np.arange(3) < np.clip(n_numbers, 0, 3)[:, None]
+    used[wrong] = False
+    points = np.zeros((len(first), 3))
+    values, bad = tok.floats((first[:, None] + 1 + np.arange(3))[used])
+    points[used] = values
+    if bad is not None:
+        i = np.flatnonzero(used.ravel())[bad] // 3
+        errors.append((lines[i], 1, f"line {lines[i]}: vertex coordinates must be numbers"))
+    infinite = np.flatnonzero(~np.isfinite(points).all(axis=1))
+    if len(infinite):
+        i = infinite[0]
+        errors.append((lines[i], 2, f"line {lines[i]}: vertex coordinate is not finite"))
+    return points
 
+
+def _obj_faces(tok: _Tokens, first, sizes, lines, errors) -> tuple[np.ndarray, np.ndarray]:
+    """Vertex indices of the ``f`` lines as written (``i/t/n`` gives i) and a mask of those
+    too large to hold; appends line errors."""
+    token = np.repeat(first + 1 - np.cumsum(sizes) + sizes, sizes) + np.arange(sizes.sum())
+    start, end = tok.start[token], tok.end[token]
+    slash = np.flatnonzero(tok.buf == ord("/"))
+    if len(slash):
+        after = slash[np.minimum(np.searchsorted(slash, start), len(slash) - 1)]
+        end = np.where((after >= start) & (after < end), after, end)
+    values, bad, too_large = tok.ints(start, end)
+    if bad.any():
+        i = int(np.searchsorted(np.cumsum(sizes), np.flatnonzero(bad)[0], side="right"))
+        errors.append((lines[i], 0, f"line {lines[i]}: face indices must be whole numbers"))
+    return values, too_large
+
+
+def _in_plane(points: np.ndarray, lines: np.ndarray) -> tuple[np.ndarray, str]:
+    """(V, 2) coordinates in the axis-aligned plane the vertices lie in, and a remark.
+
+    A plane z = c is read as (x, y); y = c (Blender's ground plane, as its OBJ export
+    writes it) as (x, -z), and x = c as (y, z): each seen from the positive axis, so
+    counter-clockwise faces stay counter-clockwise and nothing is mirrored.
+    """
+    constant = [bool((c == c[0]).all()) if len(c) else True for c in points.T]
+    if constant[2]:
+        kept, axis = points[:, :2], ("z", 2)
+    elif constant[1]:
+        kept, axis = np.column_stack([points[:, 0], 0.0 - points[:, 2]]), ("y", 1)
+    elif constant[0]:
+        kept, axis = points[:, 1:], ("x", 0)
+    else:
+        i = int(np.flatnonzero(points[:, 2])[0])
+        raise MeshFileError(
+            f"line {lines[i]}: vertex has z = {float(points[i, 2])!r} while x and y vary too; "
+            "weave-cut reads flat meshes, in a plane where x, y or z is constant")
+    name, k = axis
+    if k == 2 and (not len(points) or points[0, 2] == 0):
+        return np.ascontiguousarray(kept), ""
+    plane = {2: "xy-plane as (x, y)", 1: "xz-plane as (x, -z), seen from +y",
+             0: "yz-plane as (y, z), seen from +x"}[k]
+    return np.ascontiguousarray(kept), (f"all vertices have {name} = {float(points[0, k])!r}; "
+                                        f"read in the {plane}")
+
+
+# -- JSON -----------------------------------------------------------------------------------
 
 def _parse_json(text: str) -> Mesh:
     try:
         doc = json.loads(text)
     except json.JSONDecodeError as exc:
         raise MeshFileError(f"invalid JSON at line {exc.lineno}: {exc.msg}") from None
+    except RecursionError:
+        raise MeshFileError("JSON nested too deeply (a mesh needs 3 levels)") from None
+    except ValueError as exc:  # an integer of thousands of digits
+        raise MeshFileError(f"a number in the JSON is too large: {exc}"[:160]) from None
     if not isinstance(doc, dict) or doc.get("format") != JSON_FORMAT:
         raise MeshFileError(f"not a weave-cut mesh (expected \"format\": \"{JSON_FORMAT}\")")
     if doc.get("version") != 1:
@@ -146,6 +402,9 @@ def _parse_json(text: str) -> Mesh:
     vertices, faces = doc.get("vertices"), doc.get("faces")
     if not isinstance(vertices, list) or not isinstance(faces, list):
         raise MeshFileError("\"vertices\" and \"faces\" must be lists")
+    if len(faces) > MAX_FACES or len(vertices) > MAX_VERTICES:
+        raise MeshFileError(f"{len(faces):,} faces and {len(vertices):,} vertices; weave-cut "
+                            f"reads at most {MAX_FACES:,} faces and {MAX_VERTICES:,} vertices")
     for i, v in enumerate(vertices):
         if (not isinstance(v, list) or len(v) != 2
                 or not all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in v)):
@@ -155,4 +414,8 @@ def _parse_json(text: str) -> Mesh:
             raise MeshFileError(f"face {i} must be a list of vertex indices, got {f!r}"[:120])
     if not faces:
         raise MeshFileError("the mesh has no faces")
-    return Mesh.from_faces(np.array(vertices, dtype=float).reshape(-1, 2), faces)
+    try:
+        points = np.array(vertices, dtype=float).reshape(-1, 2)
+    except OverflowError:
+        raise MeshFileError("a vertex coordinate is too large for a float") from None
+    return Mesh.from_faces(points, faces)

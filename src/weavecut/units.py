@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import math
 import re
 
 UNITS = {"mm": 1.0, "cm": 10.0, "m": 1000.0, "in": 25.4, "pt": 25.4 / 72, "px": 25.4 / 96}
+
+LARGEST_PAGE = 10_000.0  # mm: no sheet or page is larger than 10 m
 
 PAPER_SIZES = {"a4": (210.0, 297.0), "a3": (297.0, 420.0), "letter": (215.9, 279.4)}
 
@@ -12,7 +15,8 @@ _LENGTH = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*([a-z]*
 
 
 def to_mm(value: str | float) -> float:
-    """Convert a length to millimetres; a bare number is millimetres.
+    """Convert a length to millimetres; a bare number is millimetres. A length that is not
+    finite (``nan``, ``1e400``) is a ValueError.
 
     Examples
     --------
@@ -20,11 +24,15 @@ def to_mm(value: str | float) -> float:
     (25.0, 25.4, 3.0)
     """
     if isinstance(value, (int, float)):
-        return float(value)
-    m = _LENGTH.match(value.lower())
-    if not m or m.group(2) not in UNITS and m.group(2) != "":
-        raise ValueError(f"{value!r} is not a length like '3mm', '2.5cm' or '1in'")
-    return float(m.group(1)) * UNITS.get(m.group(2) or "mm")
+        mm = float(value)
+    else:
+        m = _LENGTH.match(value.lower())
+        if not m or m.group(2) not in UNITS and m.group(2) != "":
+            raise ValueError(f"{value!r} is not a length like '3mm', '2.5cm' or '1in'")
+        mm = float(m.group(1)) * UNITS.get(m.group(2) or "mm")
+    if not math.isfinite(mm):
+        raise ValueError(f"{value!r} is not a finite length")
+    return mm
 
 
 def page_size(value: str) -> tuple[float, float]:
@@ -49,6 +57,8 @@ def page_size(value: str) -> tuple[float, float]:
     h = to_mm(parts[1])
     if w <= 0 or h <= 0:
         raise ValueError(f"page size {value!r} must be positive")
+    if max(w, h) > LARGEST_PAGE:
+        raise ValueError(f"page size {value!r} is larger than {LARGEST_PAGE / 1000:g} m")
     return (w, h)
 
 

@@ -126,3 +126,56 @@ def test_inner_curves_table():
     # they never get shorter than the distance from the centre to their boundary end
     assert all(r["mean_length"] >= spokes[0]["mean_chord"] - 1e-12 for r in spokes)
     assert [r["edges_each"] for r in spokes] == [1, 3, 9, 27, 81]
+
+
+@pytest.mark.parametrize("name,levels", [("pentagon", 5), ("square-grid:2x2", 3),
+                                         ("pentagon-flower", 3)])
+def test_lsystem_boundary_is_the_mesh_boundary(name, levels):
+    """The cheap boundary (no mesh) equals the level's boundary edges, as a set of segments."""
+    mesh = inputs.get(name)
+    cheap = fractal.lsystem_boundary(mesh, levels)
+    real = fractal.boundary_segments(subdivide(mesh, levels)[-1].mesh)
+
+    def key(segs):
+        pts = np.round(segs, 9) + 0.0          # + 0.0: no negative zeros
+        return {frozenset(map(tuple, s)) for s in pts.tolist()}
+
+    assert len(cheap) == len(real)
+    assert key(cheap) == key(real)
+
+
+def test_box_counting_uncertainty_of_a_line():
+    # a straight line has dimension 1 at every scale: tiny standard error, equal halves
+    line = fractal.curve_segments(np.column_stack([np.linspace(0, 1, 2001),
+                                                   np.zeros(2001)]))
+    r = fractal.box_counting(line)
+    assert r["dimension"] == pytest.approx(1.0, abs=0.01)
+    assert r["stderr"] < 0.01
+    assert r["halves"] == pytest.approx([1.0, 1.0], abs=0.02)
+
+
+def test_growth_monotonicity_counts_every_curve_once():
+    h = subdivide(inputs.get("pentagon"), 6)
+    for born in (1, 2):
+        for row in fractal.growth_monotonicity(h, born):
+            assert (row["constant"] + row["rising"] + row["falling"] + row["turning"]
+                    == row["curves"])
+            if row["kind"] == "boundary":   # 3/sqrt 7 at every level, exactly
+                assert row["constant"] == row["curves"]
+                assert row["growth"] == pytest.approx([3 / math.sqrt(7)] * (6 - born))
+    # the aggregate agrees with inner_curves' total growth
+    rows = fractal.growth_monotonicity(h, 2)
+    table = {(r["kind"], r["level"]): r["growth"] for r in fractal.inner_curves(h, 2)
+             if "growth" in r}
+    for r in rows:
+        assert r["growth"] == pytest.approx([table[r["kind"], t] for t in range(3, 7)])
+
+
+def test_single_inner_curves_need_not_rise_monotonically():
+    # the paper's observation, measured: some curves between inner vertices born at level 2
+    # have a growth factor that falls at some level (up to level 6 already)
+    h = subdivide(inputs.get("pentagon"), 6)
+    inner = [r for r in fractal.growth_monotonicity(h, 2) if r["kind"] == "inner-inner"][0]
+    assert inner["curves"] == 20
+    assert inner["turning"] + inner["falling"] > 0
+    assert inner["aggregate_rising"]

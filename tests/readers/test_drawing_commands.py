@@ -87,11 +87,12 @@ def test_recipes_pass_drawing_options(tmp_path):
 
 @pytest.mark.parametrize("suffix", ["svg", "dxf"])
 def test_weave_cuts_own_drawings_read_back_with_the_papers_counts(tmp_path, suffix):
-    """The tiles (V, E, F) = (18, 30, 13) after one snub step, drawn by weave-cut and read
-    back from the drawing's level-1 layer: eq. (2) gives V + 2E + F = 91, 3E + 48 = 138, 48."""
+    """The tiles (V, E, F) = (18, 30, 13) after one snub step, drawn by weave-cut as a cut file
+    (every edge once: inner lines and the outline) and read back as the faces the lines
+    enclose: eq. (2) gives V + 2E + F = 91, 3E + 48 = 138 and 48."""
     out = tmp_path / f"tiles-1.{suffix}"
     assert run("subdivide", EXAMPLES / "tiles.svg", "--levels", 1, "-o", out).exit_code == 0
-    result = run("stats", out, "--layer", "level-1", "--levels", 0, "--json")
+    result = run("stats", out, "--levels", 0, "--json")
     assert result.exit_code == 0, result.output
     level = json.loads(result.output[result.output.index("{"):])["levels"][0]
     assert (level["vertices"], level["edges"], level["faces"]) == (91, 138, 48)

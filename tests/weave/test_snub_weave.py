@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 from hypothesis import given
 
+from benchmarks.zigzag import zigzag_strands  # the loop-based oracle, also a benchmark peer
 from tests.strategies import valid_meshes
 from weavecut import inputs
 from weavecut.errors import MeshError
@@ -17,42 +18,6 @@ from weavecut.weave.snub_weave import snub_weave, snub_weaves
 
 NAMES = ["square-grid:3x3", "pentagon", "pentagon-flower", "tiling-8-4:2x2", "hex-grid:2x2",
          "triangulated-ngon:7"]
-
-
-def zigzag_strands(parent):
-    """Strands from the parent mesh alone: walk edge, next edge in its face, previous edge in
-    the face across, ... (a plain loop, sharing no code with the weave). Every parent edge is a
-    tile; returns {frozenset(over edges): frozenset(all edges)}."""
-    topo = parent.topology
-    nxt, prv, twin, edge = (parent.next_half_edge.tolist(), parent.prev_half_edge.tolist(),
-                            topo.twin.tolist(), topo.half_edge_edge.tolist())
-
-    def walk(a):
-        over, every, seen = [], [], set()
-        cur = a
-        while cur >= 0 and cur not in seen:
-            seen.add(cur)
-            over.append(edge[cur])
-            b = nxt[cur]
-            every.append(edge[b])
-            t = twin[b]
-            if t < 0:
-                break
-            c = prv[t]
-            cur = twin[c]
-            if cur < 0:
-                over.append(edge[c])
-        return over, every
-
-    strands = {}
-    for a in range(parent.n_corners):
-        if twin[a] >= 0 and a > twin[a]:
-            continue  # each tile once: from one of its half-edges
-        o1, e1 = walk(a)
-        o2, e2 = walk(twin[a]) if twin[a] >= 0 else ([], [])
-        over = frozenset(o1 + o2)
-        strands.setdefault(over, frozenset(o1 + o2 + e1 + e2))
-    return strands
 
 
 def weave_strands(weave):

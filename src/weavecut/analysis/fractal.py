@@ -256,7 +256,10 @@ def box_counting(segments: NDArray[np.float64], sizes=None, n_grids: int = 8) ->
     Returns
     -------
     dict with ``sizes``, ``counts`` (mean over grids), ``dimension`` (the slope),
-    ``intercept``, ``r2`` and ``grids``.
+    ``intercept``, ``r2``, ``grids``, ``stderr`` (the slope's standard error from the fit's
+    residuals) and ``halves`` (the slopes fitted to the coarser and the finer half of the
+    sizes alone: how much the answer depends on the fit range, usually far more than
+    ``stderr``, because the counts of a self-similar curve wave with log eps).
     """
     segments = np.asarray(segments, dtype=np.float64).reshape(-1, 2, 2)
     sizes = box_sizes(segments) if sizes is None else np.asarray(sizes, dtype=float)
@@ -272,9 +275,29 @@ def box_counting(segments: NDArray[np.float64], sizes=None, n_grids: int = 8) ->
     fit = slope * x + intercept
     ss = float(((y - y.mean()) ** 2).sum())
     r2 = 1.0 - float(((y - fit) ** 2).sum()) / ss if ss > 0 else 1.0
+    dof = len(x) - 2
+    stderr = (math.sqrt(float(((y - fit) ** 2).sum()) / dof / float(((x - x.mean()) ** 2).sum()))
+              if dof > 0 else math.nan)
+    half = len(x) // 2
+    halves = [float(np.polyfit(x[part], y[part], 1)[0]) if len(x[part]) > 1 else math.nan
+              for part in (slice(0, half + 1), slice(half, None))]
     return {"sizes": [float(s) for s in sizes], "counts": [float(c) for c in counts],
             "dimension": float(slope), "intercept": float(intercept), "r2": r2,
-            "grids": n_grids}
+            "grids": n_grids, "stderr": stderr, "halves": halves}
+
+
+def lsystem_boundary(mesh: Mesh, levels: int, chirality: str = "left") -> NDArray[np.float64]:
+    """(n, 2, 2) segments of the L-system curves of ``levels`` on every boundary edge of
+    ``mesh`` in its face's direction: the boundary of the snub level ``levels`` (see
+    :func:`boundary_lsystem_error`) without building the mesh, so deep levels are cheap."""
+    topo = mesh.topology
+    lone = topo.edge_half_edges[topo.boundary_edges].max(axis=1)
+    a = mesh.vertices[mesh.face_indices[lone]]
+    b = mesh.vertices[mesh.face_indices[mesh.next_half_edge[lone]]]
+    ref = lsystem_curve(levels, chirality=chirality)
+    unit = ref[:, 0] + 1j * ref[:, 1]
+    pts = (a[:, 0] + 1j * a[:, 1])[:, None] + ((b - a) @ [1, 1j])[:, None] * unit[None]
+    return curve_segments(np.stack([pts.real, pts.imag], axis=-1))
 
 
 def mesh_segments(mesh: Mesh, edges: NDArray | None = None) -> NDArray[np.float64]:
@@ -374,14 +397,52 @@ def inner_curves(hierarchy, level: int = 1) -> list[dict]:
             if j:
                 g = lk[:, j] / lk[:, j - 1]
                 growth = float(lk[:, j].sum() / lk[:, j - 1].sum())
-                row.update(growth=growth, implied_dimension=_implied_dimension(growth),
+                row.update(growth=growth, implied_dimension=implied_dimension(growth),
                            growth_min=float(g.min()), growth_median=float(np.median(g)),
                            growth_max=float(g.max()))
             rows.append(row)
     return rows
 
 
-def _implied_dimension(growth: float) -> float | None:
+def growth_monotonicity(hierarchy, level: int) -> list[dict]:
+    """Whether the growth of the curves born at ``level`` changes monotonically, by kind.
+
+    For every curve (one per level-t edge, see :func:`curve_lengths`) the growth factors
+    g(t') = L(t') / L(t' - 1) for t' = t + 1 .. T form a sequence; it is *rising* when every
+    step is >= the one before, *falling* when every step is <=, *constant* when both (the
+    boundary: 3/sqrt 7 every step), each up to a relative 1e-9 for rounding. One row per
+    kind: the total growth per level (sum of lengths, as in :func:`inner_curves`), whether
+    that aggregate sequence rises, and how many single curves are constant, rise, fall, or do
+    neither (turn).
+    """
+    tol = 1e-9
+    lengths = curve_lengths(hierarchy, level)
+    kinds = edge_kinds(hierarchy[level].mesh)
+    rows = []
+    for k, name in enumerate(CURVE_KINDS):
+        sel = kinds == k
+        if not sel.any() or lengths.shape[1] < 3:
+            continue
+        lk = lengths[sel]
+        total = lk.sum(axis=0)
+        aggregate = total[1:] / total[:-1]
+        g = lk[:, 1:] / lk[:, :-1]
+        step = np.diff(g, axis=1)
+        rising = (step >= -tol).all(axis=1)
+        falling = (step <= tol).all(axis=1)
+        rows.append({"kind": name, "born": level, "levels": [level + 1, len(hierarchy) - 1],
+                     "curves": int(sel.sum()), "growth": [float(x) for x in aggregate],
+                     "aggregate_rising": bool((np.diff(aggregate) >= -tol).all()),
+                     "constant": int((rising & falling).sum()),
+                     "rising": int((rising & ~falling).sum()),
+                     "falling": int((falling & ~rising).sum()),
+                     "turning": int((~rising & ~falling).sum()),
+                     "growth_min": [float(x) for x in g.min(axis=0)],
+                     "growth_max": [float(x) for x in g.max(axis=0)]})
+    return rows
+
+
+def implied_dimension(growth: float) -> float | None:
     """log 3 / log(3 / g): the dimension of a curve whose 3x more edges make it g x longer
     each step (for the boundary, g = 3/sqrt 7 gives log 3 / log sqrt 7)."""
     return math.log(3.0) / math.log(3.0 / growth) if 0 < growth < 3 else None
@@ -455,4 +516,7 @@ def fractal_report(hierarchy, chirality: str = "left", curve: tuple[int, int] | 
             rows += [r for r in inner_curves(hierarchy, b) if k == 0 or r["kind"] != "boundary"]
     if rows:
         report["inner_curves"] = rows
+        report["growth_monotonicity"] = [
+            m for b in sorted(set(born)) if 0 <= b < last
+            for m in growth_monotonicity(hierarchy, b) if m["kind"] != "boundary"]
     return report

@@ -1,4 +1,6 @@
-"""The ``weave-cut`` command: a click group whose commands are thin shells over the library.
+"""The ``weave-cut`` command line. ``main`` is the console entry point; it is light on purpose:
+signals are handled and the working folder checked before the commands (numpy, shapely, ...)
+are imported, so Ctrl-C at any moment ends in one line.
 
 Errors: a WeaveCutError is one line on stderr and exit status 1; a bad option is click's
 usage error and exit status 2. Nothing prints a traceback.
@@ -7,63 +9,96 @@ usage error and exit status 2. Nothing prints a traceback.
 from __future__ import annotations
 
 import os
-import signal
 import sys
 
-import click
+import _signal  # builtin: no import time (``signal`` itself imports enum)
 
-from .. import __version__
-from .build_command import build_command
-from .common import CONTEXT
-from .analysis_commands import COMMANDS as ANALYSIS_COMMANDS
-from .mesh_commands import inputs_command, stats_command, subdivide_command
-from .puzzle_command import puzzle_command
-from .strands_command import strands_command
-from .weave_command import weave_command
+INTERRUPTED = "weave-cut: interrupted; no output was left half-written"
 
 
-@click.group(context_settings=CONTEXT)
-@click.version_option(__version__, prog_name="weave-cut")
-@click.option("-q", "--quiet", is_flag=True, help="No progress output.")
-@click.pass_context
-def cli(ctx: click.Context, quiet: bool) -> None:
-    """Pentagon snub subdivision, its weaving patterns, paper strand models and laser-cut
-    jigsaw puzzles (Lipschuetz, Reitebuch, Skrodzki, Polthier).
-
-    \b
-    Examples:
-      weave-cut inputs
-      weave-cut subdivide pentagon --levels 4 -o pentagon.svg
-      weave-cut stats pentagon --levels 6 --json
-
-    Shell completion (bash): eval "$(_WEAVE_CUT_COMPLETE=bash_source weave-cut)"
-    """
-    ctx.meta["weavecut.quiet"] = quiet or ctx.meta.get("weavecut.quiet", False)
+def _interrupted_while_loading(signum, frame) -> None:
+    os.write(2, f"{INTERRUPTED}\n".encode())
+    os._exit(130)
 
 
-for command in (inputs_command, subdivide_command, stats_command, weave_command,
-                puzzle_command, strands_command, *ANALYSIS_COMMANDS, build_command):
-    cli.add_command(command)
+if os.path.basename(sys.argv[0] if sys.argv else "") == "weave-cut":  # the console script
+    _signal.signal(_signal.SIGINT, _interrupted_while_loading)
+
+import errno  # noqa: E402
+import signal  # noqa: E402
+# a write to stdout or a file that fails for want of room, not for a bug
+_NO_ROOM = {errno.ENOSPC, errno.EPIPE, errno.EIO, errno.EFBIG, errno.EDQUOT}
+
+
+def __getattr__(name: str):
+    if name == "cli":  # ``from weavecut.cli import cli`` imports the commands on first use
+        from .app import cli
+
+        return cli
+    raise AttributeError(name)
 
 
 def _terminate(signum, frame) -> None:
     raise KeyboardInterrupt
 
 
+def _say(message: str) -> None:
+    try:
+        sys.stderr.write(f"weave-cut: {message}\n")
+        sys.stderr.flush()
+    except OSError:
+        pass
+
+
+def _stdout_gone(exc: OSError) -> int:
+    """Report a failed write to stdout once, and silence the flush at exit."""
+    _say(f"error: cannot write the output: {exc.strerror or exc}")
+    try:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    except (OSError, ValueError):
+        pass
+    return 1
+
+
 def main(argv: list[str] | None = None) -> None:
     """Console entry point: run ``cli`` and turn anything unexpected into one line."""
-    signal.signal(signal.SIGTERM, _terminate)  # clean up temporary files like Ctrl-C does
+    # SIGTERM, SIGHUP (terminal closed) and SIGQUIT clean up temporary files like Ctrl-C does;
+    # Ctrl-C while the commands load exits at once (nothing is written yet)
+    for sig in (signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT):
+        signal.signal(sig, _terminate)
+    signal.signal(signal.SIGINT, _interrupted_while_loading)
+    code: int | str | None = 0
     try:
+        try:
+            os.getcwd()
+        except OSError:
+            _say("error: the working folder no longer exists; cd to another one")
+            sys.exit(1)
+        from ..subdivision.hierarchy import keep_freed_memory
+        from .app import cli
+
+        keep_freed_memory()  # big levels reuse freed pages instead of faulting in new ones
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         cli.main(args=argv, prog_name="weave-cut", standalone_mode=True)
+    except SystemExit as exc:
+        code = exc.code
     except KeyboardInterrupt:
-        click.echo("weave-cut: interrupted; no output was left half-written", err=True)
-        sys.exit(130)
+        _say(INTERRUPTED.removeprefix("weave-cut: "))
+        code = 130
     except MemoryError:
-        click.echo("weave-cut: error: out of memory; try fewer levels", err=True)
-        sys.exit(1)
+        _say("error: out of memory; try fewer levels")
+        code = 1
     except Exception as exc:  # a bug: still one line, unless asked for the traceback
-        if os.environ.get("WEAVECUT_DEBUG"):
+        if isinstance(exc, OSError) and exc.errno in _NO_ROOM:
+            code = _stdout_gone(exc)
+        elif os.environ.get("WEAVECUT_DEBUG"):
             raise
-        click.echo(f"weave-cut: internal error: {type(exc).__name__}: {exc} "
-                   "(set WEAVECUT_DEBUG=1 for a traceback)", err=True)
-        sys.exit(1)
+        else:
+            _say(f"internal error: {type(exc).__name__}: {exc} (set WEAVECUT_DEBUG=1 for a "
+                 "traceback)")
+            code = 1
+    try:
+        sys.stdout.flush()
+    except OSError as exc:
+        code = _stdout_gone(exc)
+    sys.exit(code)

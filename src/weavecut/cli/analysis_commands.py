@@ -8,17 +8,26 @@ from pathlib import Path
 
 import click
 import numpy as np
+from click.shell_completion import CompletionItem
 
 from .. import export
 from ..analysis import convexity as cv
 from ..analysis import fractal as fr
 from ..analysis import levels as lv
-from ..fileio import write_atomic
 from ..figures import gallery
 from ..figures import subdivision as figures
 from ..subdivision import snub
 from ..subdivision.hierarchy import check_fits
-from .common import CONTEXT, input_argument, load_mesh, provenance, reports_errors
+from .common import (
+    CONTEXT,
+    input_argument,
+    load_mesh,
+    page_option,
+    reports_errors,
+    summary,
+    write_drawing,
+    write_png,
+)
 from .mesh_commands import level_options, run_scheme
 
 
@@ -66,6 +75,8 @@ class WindowType(click.ParamType):
             box = ()
         if len(box) != 4 or not all(math.isfinite(v) for v in box):
             self.fail(f"{value!r} is not four numbers X0,Y0,X1,Y1", param, ctx)
+        if max(map(abs, box)) > 1e9:
+            self.fail(f"{value!r}: coordinates beyond +-1e9 (meshes stay within it)", param, ctx)
         if not (box[0] < box[2] and box[1] < box[3]):
             self.fail(f"{value!r}: need X0 < X1 and Y0 < Y1", param, ctx)
         return box
@@ -86,10 +97,11 @@ def _output_option(suffixes: str):
               show_default=True, help="Levels whose edges start the inner-curve table "
               "(repeat the option for several).")
 @click.option("--json", "as_json", is_flag=True, help="Print JSON (all numbers, all boxes).")
-@_output_option(".svg or .dxf")
+@_output_option(".svg, .dxf, .pdf or .png")
+@page_option
 @reports_errors
 def fractal_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex, curve,
-                    born, as_json, output) -> None:
+                    born, as_json, output, page) -> None:
     """The boundary L-system, dimensions and inner-curve growth of INPUT refined --levels times.
 
     \b
@@ -112,7 +124,7 @@ def fractal_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonc
               "chirality": chirality, **report}
     if output:
         drawing = figures.fractal_drawing(h, min(min(born, default=1), levels))
-        export.write(drawing.with_metadata(**provenance()), output)
+        write_drawing(drawing, output, page)
     if as_json:
         click.echo(json.dumps(report, indent=2))
         return
@@ -124,9 +136,11 @@ def _print_box(title: str, box: dict) -> None:
         click.echo(f"{title}: not measured ({box['skipped']})")
         return
     s = box["sizes"]
-    click.echo(f"{title}: D = {box['dimension']:.4f} (least squares, r2 = {box['r2']:.5f}, "
+    click.echo(f"{title}: D = {box['dimension']:.4f} \u00b1 {box['stderr']:.4f} (least-squares "
+               f"slope of log N against log 1/eps and its standard error, r2 = {box['r2']:.5f}, "
                f"{len(s)} box sizes {s[0]:.4g} .. {s[-1]:.4g}, counts averaged over "
-               f"{box['grids']} shifted grids)")
+               f"{box['grids']} shifted grids; the coarser and finer half of the sizes alone "
+               f"give {box['halves'][0]:.4f} and {box['halves'][1]:.4f})")
     click.echo("  box size     " + " ".join(f"{x:9.3g}" for x in s[::4]))
     click.echo("  boxes        " + " ".join(f"{x:9.1f}" for x in box["counts"][::4]))
 
@@ -146,6 +160,10 @@ def _print_fractal(r: dict) -> None:
     if "inner_curve" in r:
         c = r["inner_curve"]
         _print_box(f"box counting, curve from level {c['level']} edge {c['edge']}", c)
+    for m in r.get("growth_monotonicity", []):
+        click.echo(f"  {m['kind']:12} born {m['born']}: {m['curves']} curves; growth per curve "
+                   f"from level {m['levels'][0]} to {m['levels'][1]}: {m['constant']} constant, "
+                   f"{m['rising']} rising, {m['falling']} falling, {m['turning']} turning")
     if "inner_curves" in r:
         click.echo("curves born as one edge at level 'born' "
                    "(growth = L(t)/L(t-1); boundary: 3/sqrt7 = 1.133893):")
@@ -192,7 +210,8 @@ def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonco
         raise click.BadParameter(f"at most {lv.UNSET - 1}", param_hint="'--levels'")
     image, grid = lv.level_image(mesh, levels, size, window, smooth=not no_smooth,
                                  centre=centre, chirality=chirality)
-    lv.write_png(output, lv.colour(image))
+    title = f"{input_mesh}: first level per pixel, to level {levels}"
+    write_png(lv.png_bytes(lv.colour(image)), output, title)
     hit = image != lv.UNSET
     if as_json:
         per_level = np.bincount(image[hit].ravel().astype(np.int64), minlength=levels + 1)
@@ -201,19 +220,20 @@ def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonco
                                "window": list(grid.window), "pixels_reached": int(hit.sum()),
                                "pixels_per_level": per_level.tolist()}, indent=2))
         return
-    click.echo(f"{output}: {grid.width} x {grid.height} px over "
-               f"{', '.join(f'{v:g}' for v in grid.window)}; {int(hit.sum()):,} pixels reached, "
-               f"the last at level {int(image[hit].max()) if hit.any() else '-'}")
+    summary(f"{output}: {grid.width} x {grid.height} px over "
+            f"{', '.join(f'{v:g}' for v in grid.window)}; {int(hit.sum()):,} pixels reached, "
+            f"the last at level {int(image[hit].max()) if hit.any() else '-'}")
 
 
 @click.command("convexity", context_settings=CONTEXT)
 @input_argument
 @snub_options
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
-@_output_option(".svg or .dxf: the last level, non-convex faces red")
+@_output_option(".svg, .dxf, .pdf or .png: the last level, non-convex faces red")
+@page_option
 @reports_errors
 def convexity_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex,
-                      as_json, output) -> None:
+                      as_json, output, page) -> None:
     """Where non-convex faces occur at every level: inner or boundary faces, and at which kind
     of vertex (input vertex, Z vertex or face centre; inner or outer; its degree).
 
@@ -230,7 +250,7 @@ def convexity_command(input_mesh, levels, no_smooth, chirality, centre, allow_no
     if output:
         title = f"{input_mesh}, level {levels}: non-convex faces"
         drawing = figures.convexity_drawing(h[-1].mesh, title=title)
-        export.write(drawing.with_metadata(**provenance()), output)
+        write_drawing(drawing, output, page)
     if as_json:
         click.echo(json.dumps({"input": input_mesh, "smooth": not no_smooth, "centre": centre,
                                "chirality": chirality, "levels": rows}, indent=2))
@@ -251,13 +271,18 @@ def convexity_command(input_mesh, levels, no_smooth, chirality, centre, allow_no
                f"{next(r['level'] for r in rows if r['nonconvex_faces'])}")
 
 
+def _complete_figures(ctx, param, incomplete: str) -> list[CompletionItem]:
+    return [CompletionItem(n) for n in gallery.FIGURES if n.startswith(incomplete)]
+
+
 @click.command("figure", context_settings=CONTEXT)
-@click.argument("name", required=False)
+@click.argument("name", required=False, shell_complete=_complete_figures)
 @click.option("--list", "list_all", is_flag=True, help="List the figures.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False),
-              help="Output file (.svg, .dxf, ...; .png for raster figures).")
+              help="Output file (.svg, .dxf, .pdf, .png; .png for raster figures).")
+@page_option
 @reports_errors
-def figure_command(name, list_all, output) -> None:
+def figure_command(name, list_all, output, page) -> None:
     """Reproduce one of the paper's figures.
 
     \b
@@ -281,9 +306,9 @@ def figure_command(name, list_all, output) -> None:
     result = gallery.FIGURES[name][1]()
     if isinstance(result, bytes):
         _suffix_check(output, ("png",))
-        write_atomic(output, result)
+        write_png(result, output, gallery.FIGURES[name][0])
     else:
-        export.write(result.with_metadata(**provenance()), output)
+        write_drawing(result, output, page)
 
 
 COMMANDS = (fractal_command, levels_command, convexity_command, figure_command)

@@ -1,142 +1,419 @@
-"""``weave-cut build RECIPE.toml``: run the jobs of a recipe, as if typed on the command line.
+"""``weave-cut build RECIPE``: run the jobs of a recipe into one folder.
 
 A recipe is TOML with one ``[[job]]`` table per output::
 
     [[job]]
-    command = "weave"                 # any weave-cut command
-    input = "square-grid"             # its INPUT (a mesh file is read beside the recipe)
-    output = "square-weave.svg"       # -o, relative to the build folder
+    command = "weave"                 # any weave-cut command but build
+    input = "square-grid"             # its INPUT: a built-in name, or a file beside the recipe
+    output = "square-weave.svg"       # -o, inside the build folder
     levels = 2                        # every other key is an option of that command
     outline-level = 1                 # (dashes or underscores; true for a flag)
 
-``--set KEY=VALUE`` overrides a key in every job whose command has that option. An unknown key
-is an error that names the key, the job and the file.
+A recipe is untrusted input. Every job is checked before the first one runs, and the first
+problem is one line naming the recipe, the job and the key:
+
+- the command and its keys (a misspelt key gets the nearest one), and every value through the
+  option's own type; values reach the command as typed values, never as argv, so no value can
+  become an option;
+- the input: a built-in name, or a file in the recipe's folder (and below) or in a folder given
+  with ``--allow-read``; preset files (``palette = "my.toml"``) likewise;
+- the output: a relative path inside ``-o DIR`` (no ``..``, not absolute, not through a
+  symlink out of it), never an input, a device or a FIFO, and never an existing file that
+  weave-cut did not write there (recorded with its hash in ``.weave-cut-manifest.json``) unless
+  ``--force``.
 """
 
 from __future__ import annotations
 
 import contextlib
+import fcntl
+import hashlib
 import io
-import tomllib
+import json
+import os
+import shlex
+import stat
+from dataclasses import dataclass
 from pathlib import Path
 
 import click
 
+from .. import inputs, presets
 from ..errors import WeaveCutError
-from ..fileio import write_atomic
-from .common import CONTEXT, reports_errors, say
+from ..fileio import check_writable, make_folder, protect, write_atomic
+from ..schema import RECIPE, SchemaError, nearest, read_toml
+from .common import CONTEXT, complete_preset, reports_errors, say
 
-RESERVED = {"command", "input", "output", "name"}
-
-
-class RecipeError(WeaveCutError, ValueError):
-    """A recipe file is missing, malformed, or names an unknown command or option."""
+MANIFEST = ".weave-cut-manifest.json"
+PRESET_OPTIONS = {"palette": "palettes", "material": "materials", "laser": "laser"}
 
 
-def load_recipe(path: Path) -> list[dict]:
+class RecipeError(SchemaError):
+    """A recipe is missing or malformed, names an unknown command or key, or reads or writes
+    outside its folders."""
+
+
+@dataclass(frozen=True)
+class Job:
+    """One checked job: the command, its typed values by parameter name, and where it writes
+    (``output`` absolute; ``prints``: the output is what the command prints)."""
+
+    where: str  # the recipe and the label
+    label: str  # "job 2 (weave)"
+    command: click.Command
+    values: dict
+    output: Path | None
+    shown: str | None  # the output as the user sees it
+    prints: bool
+    reads: tuple[Path, ...]
+
+    def command_line(self) -> str:
+        """The job as a shell command (for --dry-run and progress lines)."""
+        words = [self.command.name]
+        for p in self.command.params:
+            if p.name not in self.values:
+                continue
+            value = self.values[p.name]
+            if isinstance(p, click.Argument):
+                words.append(str(value))
+            elif "-o" in p.opts:
+                words += ["-o", self.shown]
+            elif getattr(p, "is_flag", False):
+                words += [_long(p)] if value in (True, "true", "1", "yes") else []
+            else:
+                for item in value if isinstance(value, list) else [value]:
+                    words += [_long(p), str(item)]
+        line = "weave-cut " + " ".join(shlex.quote(w) for w in words)
+        return line + (f" > {shlex.quote(self.shown)}" if self.prints else "")
+
+
+def _long(p: click.Parameter) -> str:
+    return max(p.opts, key=len)
+
+
+def _key(p: click.Parameter) -> str:
+    return _long(p).lstrip("-")
+
+
+def find_recipe(spec: str) -> Path:
+    """A recipe file, or a recipe preset by name (``templates/recipes/NAME.toml``)."""
+    path = Path(spec)
+    if path.suffix or os.sep in spec or path.exists():
+        return path
     try:
+        return presets.find("recipes", spec)
+    except presets.PresetError as exc:
+        raise RecipeError(str(exc)) from exc
+
+
+def _inside(path: Path, folders) -> bool:
+    return any(path == f or path.is_relative_to(f) for f in folders)
+
+
+class Planner:
+    """Checks the jobs of one recipe against the commands of ``group``."""
+
+    def __init__(self, group: click.Group, root: click.Context, recipe: Path, out_dir: Path,
+                 shown_dir: str, allow_read: tuple[Path, ...], force: bool) -> None:
+        self.group, self.root, self.recipe = group, root, recipe
+        self.out_dir, self.shown_dir, self.force = out_dir, shown_dir, force
+        self.readable = (recipe.resolve().parent, *(d.resolve() for d in allow_read))
+        self.ours = read_manifest(out_dir)
+
+    def commands(self) -> dict[str, click.Command]:
+        return {n: c for n, c in self.group.commands.items() if n != "build"}
+
+    def options(self, command: click.Command) -> dict[str, click.Parameter]:
+        """Recipe keys (dashed long names) of ``command``'s options, -o as 'output'."""
+        out = {}
+        for p in command.params:
+            if isinstance(p, click.Option):
+                out["output" if "-o" in p.opts else _key(p)] = p
+        return out
+
+    def plan(self, n: int, job: dict, overrides: dict[str, str]) -> Job:
+        name = job["command"]
+        command = self.commands().get(name)
+        where = f"{self.recipe} job {n} ({name})"
+        if command is None:
+            raise RecipeError(f"{self.recipe} job {n}: unknown command {name!r}"
+                              f"{nearest(name, self.commands())}; choose one of "
+                              f"{', '.join(sorted(self.commands()))}")
+        options = self.options(command)
+        argument = next((p for p in command.params if isinstance(p, click.Argument)), None)
+        allowed = {"command", "output", *options, *(["input"] if argument else [])}
+        raw = {}
+        for key, value in job.items():
+            norm = key.replace("_", "-")
+            if norm not in allowed:
+                raise RecipeError(f"{where}: unknown key {key!r}{nearest(norm, allowed)}; "
+                                  f"{name} takes {', '.join(sorted(allowed - {'command'}))}")
+            raw[norm] = value
+        raw.update({k: v for k, v in overrides.items() if k in options and k != "output"})
+        values, reads = {}, []
+        if argument is not None and "input" in raw:
+            value = raw.pop("input")
+            if not isinstance(value, str):
+                raise RecipeError(f"{where}: input: expected a string")
+            if argument.name == "input_mesh":
+                value = self.mesh_input(value, where)
+                reads += [Path(value)] if Path(value).is_absolute() else []
+            values[argument.name] = value
+        raw.pop("command")
+        output = raw.pop("output", None)
+        for key, value in raw.items():
+            values[options[key].name] = self.value(options[key], key, value, where, reads)
+        target = shown = None
+        prints = False
+        if output is not None:
+            target = self.output(output, where)
+            shown = str(Path(self.shown_dir) / output)
+            if "output" in options:
+                values[options["output"].name] = str(target)
+            else:
+                prints = True
+        job = Job(where, f"job {n} ({name})", command, values, target, shown, prints,
+                  tuple(reads))
+        self.convert(job)
+        return job
+
+    def mesh_input(self, value: str, where: str) -> str:
+        """A built-in input name as it is, or a mesh file inside a readable folder."""
+        if inputs.is_builtin(value):
+            return value
+        path = (self.recipe.parent / value).resolve()
+        try:
+            found = path.is_file()
+        except OSError:  # a name too long for the file system
+            found = False
+        if not found:
+            raise RecipeError(f"{where}: input {value!r} is neither a built-in input"
+                              f"{nearest(value, inputs.INPUTS)} nor a file beside the recipe")
+        return str(self.readable_file(path, value, where, "input"))
+
+    def readable_file(self, path: Path, value: str, where: str, key: str) -> Path:
+        if not _inside(path, self.readable):
+            raise RecipeError(f"{where}: {key} {value!r} is outside the recipe's folder; "
+                              "allow its folder with --allow-read DIR")
+        return path
+
+    def value(self, p: click.Parameter, key: str, value, where: str, reads: list) -> object:
+        """A recipe value for option ``p``, checked for its kind (click converts it later)."""
+        if isinstance(value, bool) and not getattr(p, "is_flag", False):
+            raise RecipeError(f"{where}: {key}: expected a value, not {value!r}")
+        if isinstance(p.type, click.types.IntParamType) and isinstance(value, float):
+            raise RecipeError(f"{where}: {key}: expected an integer, got {value!r}")
+        if p.multiple and not isinstance(value, list):
+            value = [value]
+        if not p.multiple and isinstance(value, list):
+            raise RecipeError(f"{where}: {key}: expected one value, got a list")
+        if isinstance(value, str) and value.endswith(".toml"):  # a preset file, any option
+            path = self.readable_file((self.recipe.parent / value).resolve(), value, where, key)
+            reads.append(path)
+            value = str(path)
+        kind = PRESET_OPTIONS.get(key)
+        if kind and isinstance(value, str):
+            try:
+                presets.load(kind, value)
+            except presets.PresetError as exc:
+                raise RecipeError(f"{where}: {key}: {exc}") from exc
+        return value
+
+    def output(self, value, where: str) -> Path:
+        """The checked absolute path of output ``value`` inside the build folder."""
+        rel = Path(value) if isinstance(value, str) else None
+        if rel is None or not value or rel.is_absolute() or ".." in rel.parts:
+            raise RecipeError(f"{where}: output {value!r} must be a relative path inside the "
+                              "build folder (not absolute, no '..')")
+        target = self.out_dir / rel
+        if not _inside(target.resolve(), [self.out_dir.resolve()]):
+            raise RecipeError(f"{where}: output {value!r} leads out of the build folder "
+                              "through a symlink")
+        if rel.name == MANIFEST:
+            raise RecipeError(f"{where}: output {value!r} is weave-cut's manifest")
+        return target
+
+    def convert(self, job: Job) -> None:
+        """Convert every value with the command's own option types, as click would."""
+        sub = self.context(job)
+        sub.close()
+
+    def context(self, job: Job) -> click.Context:
+        try:
+            return job.command.make_context(job.command.name, [], parent=self.root,
+                                            default_map=job.values)
+        except click.MissingParameter as exc:
+            what = "output" if exc.param is not None and "-o" in exc.param.opts else (
+                "input" if isinstance(exc.param, click.Argument) else
+                (_key(exc.param) if exc.param else "a key"))
+            raise RecipeError(f"{job.where}: needs {what!r}") from exc
+        except click.BadParameter as exc:
+            key = _key(exc.param) if exc.param is not None and exc.param.opts else "input"
+            raise RecipeError(f"{job.where}: {key}: {exc.message}") from exc
+        except click.ClickException as exc:
+            raise RecipeError(f"{job.where}: {exc.format_message()}") from exc
+
+    def check_outputs(self, jobs: list[Job]) -> None:
+        """No output is an input, another job's output, or a file weave-cut did not write."""
+        read = {p.resolve(): j for j in jobs for p in j.reads}
+        read[self.recipe.resolve()] = None
+        seen: dict[Path, Job] = {}
+        for job in jobs:
+            if job.output is None:
+                continue
+            real = job.output.resolve()
+            if real in read:
+                source = read[real]
+                raise RecipeError(f"{job.where}: output {job.shown!r} is "
+                                  + ("the recipe itself" if source is None else
+                                     f"an input of {source.label}"))
+            if real in seen and job.output.suffix:
+                raise RecipeError(f"{job.where}: output {job.shown!r} is also the output of "
+                                  f"{seen[real].label}")
+            seen[real] = job
+            for path in self.replaced(job):
+                if path.is_symlink():
+                    raise RecipeError(f"{job.where}: {path} is a symlink; weave-cut does not "
+                                      "replace links")
+                try:
+                    check_writable(path)
+                except WeaveCutError as exc:
+                    raise RecipeError(f"{job.where}: {exc}") from exc
+                if not self.force and self.ours.get(self.rel(path)) != file_hash(path):
+                    raise RecipeError(f"{job.where}: {self.shown_dir}/{self.rel(path)} exists "
+                                      "and weave-cut did not write it (it is not in "
+                                      f"{MANIFEST}); use --force to replace it")
+
+    def replaced(self, job: Job) -> list[Path]:
+        """Existing files job's output would replace (a folder output: its COMMAND-* files)."""
+        try:
+            st = os.lstat(job.output)
+        except OSError:
+            return []
+        option = self.options(job.command).get("output")
+        folder = not job.prints and not getattr(option.type, "file_okay", True)
+        if folder and stat.S_ISDIR(st.st_mode):
+            return sorted(p for p in job.output.glob(f"{job.command.name}-*"))
+        return [job.output]
+
+    def rel(self, path: Path) -> str:
+        return path.resolve().relative_to(self.out_dir.resolve()).as_posix()
+
+    def run(self, job: Job, n: int, total: int) -> None:
+        say(f"[{n}/{total}] {job.command_line()}")
+        if job.output is not None:
+            make_folder(job.output.parent)  # checked to lie inside the build folder
+        sub = self.context(job)
+        printed = io.StringIO()
+        try:
+            with sub, (contextlib.redirect_stdout(printed) if job.prints
+                       else contextlib.nullcontext()):
+                job.command.invoke(sub)
+        except click.ClickException as exc:  # no usage line of the nested command
+            raise RecipeError(f"{job.where}: {exc.format_message()}") from exc
+        if job.prints:
+            write_atomic(job.output, printed.getvalue().encode("utf-8"))
+        if job.output is not None:
+            written = self.replaced(job)
+            record_manifest(self.out_dir, {self.rel(p): file_hash(p) for p in written
+                                           if p.is_file()})
+
+
+def file_hash(path: Path) -> str | None:
+    """SHA-256 of a regular file (None for anything else)."""
+    try:
+        if not stat.S_ISREG(os.lstat(path).st_mode):
+            return None
         with open(path, "rb") as f:
-            doc = tomllib.load(f)
-    except OSError as exc:
-        raise RecipeError(f"cannot read {path}: {exc.strerror}") from exc
-    except tomllib.TOMLDecodeError as exc:
-        raise RecipeError(f"{path}: {exc}") from exc
-    unknown = set(doc) - {"job", "recipe"}
-    if unknown:
-        raise RecipeError(f"{path}: unknown key {sorted(unknown)[0]!r} (a recipe has [recipe] "
-                          "and [[job]] tables)")
-    jobs = doc.get("job")
-    if not isinstance(jobs, list) or not jobs:
-        raise RecipeError(f"{path}: no [[job]] tables")
-    return jobs
+            return hashlib.file_digest(f, "sha256").hexdigest()
+    except OSError:
+        return None
 
 
-def job_arguments(group: click.Group, job: dict, where: str, out_dir: Path,
-                  overrides: dict[str, str], base: Path = Path(".")) -> list[str]:
-    """The command line of one job: ``[command, INPUT, options..., -o OUT]``."""
-    name = job.get("command")
-    command = group.commands.get(name) if isinstance(name, str) else None
-    if command is None or name == "build":
-        raise RecipeError(f"{where}: unknown command {name!r}; choose one of "
-                          f"{', '.join(sorted(set(group.commands) - {'build'}))}")
-    options = {}
-    for p in command.params:
-        if isinstance(p, click.Option):
-            for opt in p.opts:
-                if opt.startswith("--"):
-                    options[opt[2:].replace("-", "_")] = p
-    has_input = any(isinstance(p, click.Argument) for p in command.params)
-    args = [name]
-    if has_input:
-        if "input" not in job:
-            raise RecipeError(f"{where}: command {name!r} needs an 'input'")
-        given = str(job["input"])
-        beside = base / given
-        args.append(str(beside) if Path(given).suffix and beside.exists() else given)
-    values = {k.replace("-", "_"): v for k, v in job.items() if k not in RESERVED}
-    for key, value in overrides.items():
-        if key in options:
-            values[key] = value
-    for key, value in values.items():
-        option = options.get(key)
-        if option is None or key == "output":
-            raise RecipeError(f"{where}: unknown key {key.replace('_', '-')!r} for command "
-                              f"{name!r}")
-        flag = max(option.opts, key=len)
-        if option.is_flag:
-            if value is True or str(value).lower() in ("true", "1", "yes"):
-                args.append(flag)
-        elif isinstance(value, list):
-            for item in value:
-                args += [flag, str(item)]
-        else:
-            args += [flag, str(value)]
-    if "output" in job and "o" in {o.lstrip("-") for p in command.params for o in p.opts}:
-        args += ["-o", str(out_dir / str(job["output"]))]
-    return args
+def read_manifest(out_dir: Path) -> dict[str, str]:
+    """The files weave-cut wrote into ``out_dir`` (relative path -> SHA-256)."""
+    path = out_dir / MANIFEST
+    if not path.exists():
+        return {}
+    try:
+        if os.lstat(path).st_size > 16 * 2**20 or not path.is_file():
+            raise ValueError("not a small regular file")
+        doc = json.loads(path.read_bytes())
+        files = doc["files"]
+        if doc.get("format") != "weave-cut-manifest" or not all(
+                isinstance(k, str) and isinstance(v, str) for k, v in files.items()):
+            raise ValueError("not a weave-cut manifest")
+    except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
+        raise RecipeError(f"{path}: unreadable manifest ({exc}); remove it and build with "
+                          "--force") from exc
+    return files
+
+
+def record_manifest(out_dir: Path, entries: dict[str, str]) -> None:
+    """Add ``entries`` to the manifest of ``out_dir`` (locked against concurrent builds)."""
+    fd = os.open(out_dir, os.O_RDONLY)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+        files = {**read_manifest(out_dir), **entries}
+        doc = {"format": "weave-cut-manifest", "version": 1, "files": dict(sorted(files.items()))}
+        write_atomic(out_dir / MANIFEST, (json.dumps(doc, indent=1) + "\n").encode())
+    finally:
+        os.close(fd)
 
 
 @click.command("build", context_settings=CONTEXT)
-@click.argument("recipe", type=click.Path(dir_okay=False, path_type=Path))
-@click.option("-o", "--output-dir", type=click.Path(file_okay=False, path_type=Path),
-              default=Path("build"), show_default=True, help="Folder for the outputs.")
+@click.argument("recipe", metavar="RECIPE", shell_complete=complete_preset("recipes"))
+@click.option("-o", "--output-dir", type=click.Path(file_okay=False), default="build",
+              show_default=True, help="Folder for the outputs; every output lands inside it.")
 @click.option("--set", "overrides", multiple=True, metavar="KEY=VALUE",
               help="Override an option in every job that has it (repeatable).")
-@click.option("--dry-run", is_flag=True, help="Print the commands instead of running them.")
+@click.option("--allow-read", multiple=True, metavar="DIR",
+              type=click.Path(file_okay=False, exists=True, path_type=Path),
+              help="Also read inputs from DIR (default: the recipe's folder only; repeatable).")
+@click.option("--force", is_flag=True,
+              help="Replace existing files that a previous build did not write.")
+@click.option("--dry-run", is_flag=True,
+              help="Check the recipe and print every job and output path without running.")
 @click.pass_context
 @reports_errors
-def build_command(ctx: click.Context, recipe: Path, output_dir: Path, overrides: tuple[str, ...],
-                  dry_run: bool) -> None:
-    """Run every job of RECIPE (a .toml file, see templates/recipes) into a folder.
+def build_command(ctx: click.Context, recipe: str, output_dir: str, overrides: tuple[str, ...],
+                  allow_read: tuple[Path, ...], force: bool, dry_run: bool) -> None:
+    """Run every job of RECIPE (a .toml file, or a recipe name from templates/recipes) into a
+    folder. The whole recipe is checked before the first job runs.
 
     \b
     Examples:
-      weave-cut build templates/recipes/square-grid-paper-model.toml
-      weave-cut build templates/recipes/jigsaw-50cm-poplar.toml -o out --set kerf=0.2mm
+      weave-cut build jigsaw-50cm-poplar -o out --set kerf=0.2mm
+      weave-cut build templates/recipes/square-grid-paper-model.toml --dry-run
+      weave-cut build examples/house.toml -o house --allow-read shared-meshes
     """
     parsed = {}
     for item in overrides:
         key, sep, value = item.partition("=")
-        if not sep or not key:
+        if not sep or not key.strip():
             raise click.BadParameter(f"{item!r} is not KEY=VALUE", param_hint="'--set'")
-        parsed[key.strip().replace("-", "_")] = value.strip()
-    group = ctx.parent.command
-    jobs = load_recipe(recipe)
-    commands = [job_arguments(group, job, f"{recipe} job {n + 1}", output_dir, parsed,
-                              recipe.parent) for n, job in enumerate(jobs)]
+        parsed[key.strip().replace("_", "-")] = value.strip()
+    path = find_recipe(recipe)
+    doc = read_toml(path, RecipeError)
+    RECIPE.check(doc, str(path), RecipeError)
+    out_dir = Path(output_dir).absolute()
+    planner = Planner(ctx.parent.command, ctx.parent, path, out_dir, output_dir, allow_read,
+                      force)
+    known = {k for job in doc["job"] for c in [planner.commands().get(job["command"])] if c
+             for k in planner.options(c)}
+    for key in parsed:
+        if key not in known or key == "output":
+            raise click.BadParameter(f"no job has an option {key!r}{nearest(key, known)}",
+                                     param_hint="'--set'")
+    jobs = [planner.plan(n, job, parsed) for n, job in enumerate(doc["job"], start=1)]
+    planner.check_outputs(jobs)
     if dry_run:
-        for args in commands:
-            click.echo("weave-cut " + " ".join(args))
+        for job in jobs:
+            click.echo(job.command_line())
         return
-    output_dir.mkdir(parents=True, exist_ok=True)
-    for n, (job, args) in enumerate(zip(jobs, commands), start=1):
-        say(f"[{n}/{len(commands)}] weave-cut {' '.join(args)}")
-        sub = group.make_context("weave-cut", list(args), parent=ctx.parent)
-        if "-o" in args or "output" not in job:
-            with sub:
-                group.invoke(sub)
-            continue
-        printed = io.StringIO()  # a command that prints (stats --json): its output is the file
-        with sub, contextlib.redirect_stdout(printed):
-            group.invoke(sub)
-        write_atomic(output_dir / str(job["output"]), printed.getvalue().encode("utf-8"))
+    make_folder(out_dir)
+    for job in jobs:
+        for p in job.reads:
+            protect(p)
+    for n, job in enumerate(jobs, start=1):
+        planner.run(job, n, len(jobs))

@@ -4,17 +4,26 @@ from __future__ import annotations
 
 import contextlib
 import functools
+import math
 import shlex
 import sys
 from pathlib import Path
 
 import click
+from click.shell_completion import CompletionItem
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from shapely.errors import GEOSException
 
 from .. import __version__, inputs, units
-from ..errors import WeaveCutError
-from ..mesh import Mesh
-from ..mesh_io import read_mesh
-from ..readers import DEFAULT_FLATTEN, MESH_CHOICES, SUFFIXES as DRAWING_SUFFIXES
+from ..analysis.convexity import nonconvex_levels, nonconvex_message
+from ..errors import MeshError, WeaveCutError
+from ..fileio import protect
+from ..mesh import Mesh, signed_areas
+from ..mesh_io import read_valid_mesh
+from ..readers import DEFAULT_FLATTEN, MESH_CHOICES
+from ..text import clean
 from ..validation import validate
 
 CONTEXT = {"help_option_names": ["-h", "--help"], "max_content_width": 100}
@@ -29,8 +38,8 @@ class Length(click.ParamType):
         self.minimum, self.inclusive = minimum, inclusive
 
     def convert(self, value, param, ctx):
-        if isinstance(value, float):
-            return value
+        if isinstance(value, bool):
+            self.fail(f"{value!r} is not a length", param, ctx)
         try:
             mm = units.to_mm(value)
         except ValueError as exc:
@@ -41,6 +50,16 @@ class Length(click.ParamType):
         if mm > 1e6:
             self.fail(f"{value!r} is larger than a kilometre", param, ctx)
         return mm
+
+
+class Finite(click.FloatRange):
+    """A finite float within optional bounds (click's FloatRange lets NaN and inf through)."""
+
+    def convert(self, value, param, ctx):
+        number = super().convert(value, param, ctx)
+        if not math.isfinite(number):
+            self.fail(f"{value!r} is not a finite number", param, ctx)
+        return number
 
 
 class PageSize(click.ParamType):
@@ -55,6 +74,31 @@ class PageSize(click.ParamType):
             self.fail(str(exc), param, ctx)
 
 
+page_option = click.option(
+    "--page", type=PageSize(), default="a4", show_default=True,
+    help="PDF page: a4, letter, a3, a preset or WxH like 300x200mm. The drawing is printed "
+         "1:1, centred, or tiled over pages with overlap marks when larger.")
+
+
+def write_drawing(drawing, output: str, page: tuple[float, float]) -> None:
+    """Write ``drawing`` with its provenance to ``output``; a PDF goes onto ``page``s."""
+    from .. import export
+    from ..layout.tiling import on_pages
+
+    drawing = drawing.with_metadata(**provenance())
+    if Path(output).suffix.lower() == ".pdf":
+        drawing = on_pages(drawing, page)
+    export.write(drawing, output)
+
+
+def write_png(data: bytes, output: str, title: str) -> None:
+    """Write a raster picture's PNG ``data`` with its title and provenance as text chunks."""
+    from ..export.png import with_text
+    from ..fileio import write_atomic
+
+    write_atomic(output, with_text(data, [("Title", title), *provenance().items()]))
+
+
 def reports_errors(f):
     """Turn a WeaveCutError (or a ValueError from option checks) into a one-line exit 1."""
 
@@ -64,6 +108,9 @@ def reports_errors(f):
             return f(*args, **kwargs)
         except WeaveCutError as exc:
             raise click.ClickException(str(exc)) from exc
+        except GEOSException as exc:  # a last resort: meshes are checked before layout
+            raise click.ClickException(f"the geometry cannot be laid out ({exc}); a mesh with "
+                                       "sliver faces or tiny features is the usual cause") from exc
         except KeyboardInterrupt:
             click.echo("weave-cut: interrupted; no output was left half-written", err=True)
             sys.exit(130)
@@ -72,34 +119,99 @@ def reports_errors(f):
 
 
 def load_mesh(spec: str, allow_nonconvex: bool = False) -> Mesh:
-    """A built-in input by name, or a mesh file or drawing, validated.
-
-    A drawing (.svg, .dxf) is read with the options of ``drawing_options``, which the running
-    command keeps in its context.
-    """
+    """A built-in input by name, or a mesh file or drawing, validated; no output may replace
+    the file. A drawing (.svg, .dxf) is read with the options of ``drawing_options``, which
+    the running command keeps in its context."""
     if inputs.is_builtin(spec) or not Path(spec).suffix:
         if not Path(spec).exists():
             return validate(inputs.get(spec), allow_nonconvex=allow_nonconvex)
-    options = {}
-    if Path(spec).suffix.lower() in DRAWING_SUFFIXES:
-        ctx = click.get_current_context(silent=True)
-        options = {**(ctx.meta.get(DRAWING_KEY, {}) if ctx else {}), "report": say,
-                   "allow_nonconvex": allow_nonconvex}
-    return validate(read_mesh(spec, **options), allow_nonconvex=allow_nonconvex)
+    protect(spec)
+    ctx = click.get_current_context(silent=True)
+    drawing = ctx.meta.get(DRAWING_KEY, {}) if ctx else {}
+    return read_valid_mesh(spec, allow_nonconvex=allow_nonconvex, note=say, **drawing)
+
+
+THINNEST = 1e-3  # isoperimetric quotient 4 pi A / P^2 of the thinnest face a layout accepts
+
+
+def check_layout(mesh: Mesh, what: str, connected: bool = False) -> Mesh:
+    """``mesh`` if ``what`` (the puzzle, the paper model) can lay it out: no sliver face (its
+    strips and pieces would be thinner than floating point keeps apart) and, if
+    ``connected``, one piece; otherwise a MeshError naming the face or the parts."""
+    quotient = 4 * np.pi * np.abs(signed_areas(mesh)) / face_perimeters(mesh) ** 2
+    worst = int(np.argmin(quotient))
+    if quotient[worst] < THINNEST:
+        raise MeshError(f"face {worst + 1} is a sliver (area {quotient[worst]:.1e} of a circle "
+                        f"with its perimeter); {what} needs faces at least {THINNEST:g} of that")
+    if connected:
+        twin = mesh.topology.twin
+        inner = twin >= 0
+        face = mesh.half_edge_face
+        graph = coo_matrix((np.ones(inner.sum()), (face[inner], face[twin[inner]])),
+                           shape=(mesh.n_faces, mesh.n_faces))
+        parts = connected_components(graph, directed=False)[0]
+        if parts > 1:
+            raise MeshError(f"the mesh has {parts} separate parts; {what} needs one piece")
+    return mesh
+
+
+def face_perimeters(mesh: Mesh):
+    """(F,) perimeter of every face."""
+    p = mesh.vertices[mesh.face_indices]
+    step = np.hypot(*(p[mesh.next_half_edge] - p).T)
+    return np.add.reduceat(step, mesh.face_offsets[:-1])
+
+
+def check_levels(levels, what: str) -> None:
+    """Refuse a subdivision whose last level is empty or has coordinates that are not finite
+    (an area centroid of a face too small for floating point), instead of writing it."""
+    mesh = levels[-1].mesh
+    if mesh.n_faces == 0:
+        raise MeshError(f"{what} has no faces at level {len(levels) - 1} (the scheme needs "
+                        "inner vertices or edges this mesh does not have); try another "
+                        "scheme or input")
+    if not np.isfinite(mesh.vertices).all():
+        raise MeshError(f"{what} has coordinates that are not finite at level "
+                        f"{len(levels) - 1} (faces too small for --centre area?); scale the "
+                        "mesh up or use --centre vertex")
 
 
 def command_line() -> str:
-    """The command that is running, for output metadata."""
-    return "weave-cut " + " ".join(shlex.quote(a) for a in sys.argv[1:])
+    """The command that is running, for output metadata (control characters and undecodable
+    bytes replaced)."""
+    return clean("weave-cut " + " ".join(shlex.quote(a) for a in sys.argv[1:]))
 
 
 def provenance() -> dict[str, str]:
     return {"generator": f"weave-cut {__version__}", "command": command_line()}
 
 
+def _names_or_files(names, incomplete: str) -> list[CompletionItem]:
+    """Shell completion: the names that start with ``incomplete``, and the shell's files."""
+    return ([CompletionItem(n) for n in names if n.startswith(incomplete)]
+            + [CompletionItem(incomplete, type="file")])
+
+
+def complete_inputs(ctx, param, incomplete: str) -> list[CompletionItem]:
+    """Built-in input names, then mesh files."""
+    return _names_or_files(inputs.INPUTS, incomplete)
+
+
+def complete_preset(kind: str):
+    """Shell completion for a preset of ``kind`` (palettes, materials, ...): names, then files."""
+
+    def complete(ctx, param, incomplete: str) -> list[CompletionItem]:
+        from .. import presets
+
+        return _names_or_files(presets.names(kind), incomplete)
+
+    return complete
+
+
 def input_argument(f):
     """Decorator adding the INPUT argument and the options for reading a drawing as INPUT."""
-    return click.argument("input_mesh", metavar="INPUT")(drawing_options(f))
+    return click.argument("input_mesh", metavar="INPUT",
+                          shell_complete=complete_inputs)(drawing_options(f))
 
 
 allow_nonconvex_option = click.option(
@@ -139,17 +251,38 @@ def drawing_options(f):
     return f
 
 
+def quiet() -> bool:
+    """Whether -q was given: then stdout carries only what was asked for (such as --json)."""
+    ctx = click.get_current_context(silent=True)
+    return ctx is not None and ctx.find_root().meta.get("weavecut.quiet", False)
+
+
 def progress(items, label: str):
     """A progress bar on stderr over ``items``; silent with -q or when stderr is no terminal."""
-    ctx = click.get_current_context(silent=True)
-    quiet = ctx is not None and ctx.find_root().meta.get("weavecut.quiet", False)
-    if quiet or not sys.stderr.isatty():
+    if quiet() or not sys.stderr.isatty():
         return contextlib.nullcontext(items)
     return click.progressbar(items, label=label, file=sys.stderr)
 
 
 def say(message: str) -> None:
     """A line of progress on stderr, unless -q."""
-    ctx = click.get_current_context(silent=True)
-    if not (ctx is not None and ctx.find_root().meta.get("weavecut.quiet", False)):
+    if not quiet():
         click.echo(message, err=True)
+
+
+def summary(text: str) -> None:
+    """What a command made, for people to read, on stdout, unless -q."""
+    if not quiet():
+        click.echo(text)
+
+
+def flag_nonconvex(hierarchy) -> dict:
+    """Warn on stderr about every produced level (1..N) with non-convex faces (even with -q:
+    such a mesh is refused as input without --allow-nonconvex), and return the counts for
+    --json: ``{"nonconvex_faces": total, "nonconvex_faces_by_level": {"5": 72, ...}}``."""
+    rows = nonconvex_levels(hierarchy)
+    for row in rows:
+        click.echo(f"weave-cut: warning: {nonconvex_message(row)}; see weave-cut convexity",
+                   err=True)
+    return {"nonconvex_faces": sum(r["nonconvex_faces"] for r in rows),
+            "nonconvex_faces_by_level": {str(r["level"]): r["nonconvex_faces"] for r in rows}}

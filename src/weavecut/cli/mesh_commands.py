@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 import click
+import numpy as np
 
 from .. import export, inputs
 from ..analysis.stats import level_stats
@@ -16,11 +17,15 @@ from .common import (
     CONTEXT,
     Length,
     allow_nonconvex_option,
+    check_levels,
+    flag_nonconvex,
     input_argument,
     load_mesh,
+    page_option,
     progress,
     provenance,
     reports_errors,
+    write_drawing,
 )
 
 MESH_SUFFIXES = (".obj", ".json")
@@ -63,8 +68,10 @@ def run_scheme(input_mesh: str, levels: int, scheme: str, no_smooth: bool, chira
         options = {"smooth": not no_smooth, "chirality": chirality, "centre": centre}
     elif no_smooth or chirality != "left" or centre != "vertex":
         raise click.UsageError("--no-smooth, --chirality and --centre apply to --scheme snub")
-    with progress(range(levels), f"{scheme} levels") as steps:
-        return subdivide(mesh, levels, scheme, steps=steps, **options)
+    with progress(range(levels), f"{scheme} levels") as steps, np.errstate(all="ignore"):
+        hierarchy = subdivide(mesh, levels, scheme, steps=steps, **options)
+    check_levels(hierarchy, f"{scheme} of {input_mesh}")
+    return hierarchy
 
 
 @click.command("inputs", context_settings=CONTEXT)
@@ -96,18 +103,26 @@ def inputs_command(as_json: bool) -> None:
 @input_argument
 @scheme_options
 @click.option("--size", type=Length(), default="200mm", show_default=True,
-              help="Longer side of the drawing (SVG/DXF), without margins.")
+              help="Longer side of the drawing, without margins.")
+@click.option("--earlier-levels", is_flag=True,
+              help="Also draw the input and every level before the last, one layer each "
+                   "(level-0, level-1, ...), under the cut lines.")
+@page_option
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
-              help="Output file: .svg, .dxf (drawings) or .obj, .json (the mesh).")
+              help="Output file: .svg, .dxf, .pdf, .png (drawings) or .obj, .json (the mesh).")
 @reports_errors
 def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
-                      allow_nonconvex, size, output) -> None:
+                      allow_nonconvex, size, earlier_levels, page, output) -> None:
     """Subdivide INPUT (a built-in name or an .obj/.json file) and write the result.
+
+    A drawing is cut-ready: the last level's edges each once, joined into trails, inner cuts
+    before the outline.
 
     \b
     Examples:
       weave-cut subdivide pentagon --levels 4 -o pentagon.svg
       weave-cut subdivide tiling-8-4 --levels 3 -o tiling.dxf
+      weave-cut subdivide pentagon --levels 3 --earlier-levels -o levels.svg
       weave-cut subdivide my-mesh.obj --levels 2 --no-smooth -o refined.obj
     """
     suffix = Path(output).suffix.lower()
@@ -117,12 +132,14 @@ def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
             f"{', '.join('.' + f for f in export.formats())}", param_hint="'-o'")
     hierarchy = run_scheme(input_mesh, levels, scheme, no_smooth, chirality, centre,
                            allow_nonconvex)
+    flag_nonconvex(hierarchy)
     if suffix in MESH_SUFFIXES:
         write_mesh(hierarchy[-1].mesh, output, provenance())
         return
     title = f"{input_mesh}, {scheme} level {levels}"
-    drawing = mesh_drawing([lv.mesh for lv in hierarchy], size, title=title)
-    export.write(drawing.with_metadata(**provenance()), output)
+    drawing = mesh_drawing([lv.mesh for lv in hierarchy], size, title=title,
+                           earlier=earlier_levels)
+    write_drawing(drawing, output, page)
 
 
 @click.command("stats", context_settings=CONTEXT)

@@ -13,7 +13,9 @@ from ..papermodel.book import preset_for, strand_book
 from ..subdivision import snub, subdivide
 from ..weave.colour import palette
 from ..weave.snub_weave import snub_weaves
-from .common import CONTEXT, Length, PageSize, input_argument, load_mesh, provenance, reports_errors
+from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_preset,
+                     flag_nonconvex, input_argument, load_mesh, provenance, reports_errors,
+                     summary)
 
 FORMATS = ("pdf", "svg")
 
@@ -29,9 +31,9 @@ FORMATS = ("pdf", "svg")
 @click.option("--margin", type=Length(), default="10mm", show_default=True,
               help="Blank paper round every page.")
 @click.option("--palette", "palette_name", default=None,
-              help="Palette preset: maritime-12 (braided pairs, copies alike; the default) or "
+              shell_complete=complete_preset("palettes"), help="Palette preset: maritime-12 (braided pairs, copies alike; the default) or "
                    "a flat one such as maritime-4 (one colour per module copy).")
-@click.option("--turn", type=float, default=None,
+@click.option("--turn", type=Finite(-3600, 3600), default=None,
               help="Degrees the pattern is turned on the assembly sheet; module strands head "
                    "down in it [default: 45 for square-grid, else 0].")
 @click.option("--chirality", type=click.Choice(snub.CHIRALITIES), default="left",
@@ -39,9 +41,8 @@ FORMATS = ("pdf", "svg")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
               help="Output: .pdf (one page per sheet) or .svg (a layer per page).")
 @click.option("--json", "as_json", is_flag=True, help="Print the plan (pages, copies) as JSON.")
-@click.pass_context
 @reports_errors
-def strands_command(ctx, input_mesh, levels, page, tile_size, margin, palette_name, turn,
+def strands_command(input_mesh, levels, page, tile_size, margin, palette_name, turn,
                     chirality, output, as_json) -> None:
     """Printable paper strips for weaving INPUT by hand: an assembly sheet, then one strip
     per strand, grouped into modules by the pattern's rotational symmetry.
@@ -60,8 +61,10 @@ def strands_command(ctx, input_mesh, levels, page, tile_size, margin, palette_na
     levels = preset["levels"] if levels is None else levels
     turn = preset["turn"] if turn is None else math.radians(turn)
     pal = palette(palette_name or preset["palette"])
-    hierarchy = subdivide(load_mesh(input_mesh), levels, chirality=chirality)
+    hierarchy = subdivide(check_layout(load_mesh(input_mesh), "the paper model"), levels,
+                          chirality=chirality)
     weaves = snub_weaves(hierarchy)
+    flag_nonconvex(hierarchy)
     try:
         book = strand_book(weaves, pal, page, tile_size, margin, turn,
                            title=f"weave-cut strands: {input_mesh}, level {levels}")
@@ -75,7 +78,7 @@ def strands_command(ctx, input_mesh, levels, page, tile_size, margin, palette_na
                                "copies": plan.k, "module_strips": int(plan.copies.shape[1]),
                                "extra_strips": len(plan.extras),
                                "strands": int(weaves[-1].n_strands)}, indent=2))
-    elif not ctx.find_root().meta.get("weavecut.quiet"):
-        click.echo(f"{output}: {len(book.drawing.sheets)} pages; C{plan.k}, {plan.k} copies of "
-                   f"a {plan.copies.shape[1]}-strip module"
-                   + (f" + {len(plan.extras)} extras" if len(plan.extras) else ""), err=True)
+    else:
+        summary(f"{output}: {len(book.drawing.sheets)} pages; C{plan.k}, {plan.k} copies of "
+                f"a {plan.copies.shape[1]}-strip module"
+                + (f" + {len(plan.extras)} extras" if len(plan.extras) else ""))

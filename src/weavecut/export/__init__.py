@@ -1,30 +1,33 @@
-"""Writers: every format renders a Drawing to bytes; ``write`` picks one by suffix."""
+"""Writers: every format renders a Drawing to bytes; ``write`` picks one by suffix.
+
+A writer module is imported when its format is first used, so a command that writes SVG never
+loads ezdxf, reportlab or Pillow.
+"""
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import importlib
 from pathlib import Path
 
 from ..errors import ExportError
 from ..fileio import write_atomic
-from ..layout.drawing import Drawing
-from . import dxf, pdf, png, svg
+from ..text import clean_drawing
 
-RENDERERS: dict[str, Callable[[Drawing], bytes]] = {m.SUFFIX: m.render for m in (svg, dxf, pdf, png)}
+FORMATS = ("dxf", "pdf", "png", "svg")  # each the SUFFIX of the module of that name
 
 
 def formats() -> list[str]:
-    return sorted(RENDERERS)
+    return list(FORMATS)
 
 
-def render(drawing: Drawing, file_format: str) -> bytes:
+def render(drawing, file_format: str) -> bytes:
     fmt = file_format.lower().lstrip(".")
-    if fmt not in RENDERERS:
+    if fmt not in FORMATS:
         raise ExportError(f"unknown output format {fmt!r}; choose one of {formats()}")
-    return RENDERERS[fmt](drawing)
+    return importlib.import_module(f".{fmt}", __name__).render(clean_drawing(drawing))
 
 
-def write(drawing: Drawing, path: str | Path, file_format: str | None = None) -> None:
+def write(drawing, path: str | Path, file_format: str | None = None) -> None:
     """Render ``drawing`` in the format of ``path``'s suffix and write it atomically."""
     fmt = file_format or Path(path).suffix
     write_atomic(path, render(drawing, fmt))

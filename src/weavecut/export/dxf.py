@@ -1,19 +1,35 @@
-"""DXF writer: R2000, millimetres ($INSUNITS = 4), one layer per Drawing layer, closed
-LWPOLYLINEs for rings. Sheets after the first are placed to the right of it."""
+"""DXF writer: R2004, millimetres ($INSUNITS = 4), one layer per Drawing layer, closed
+LWPOLYLINEs for stroked rings. Sheets after the first are placed to the right of it.
+
+Colours: a layer has its role's colour (cut red, score blue, engrave green, as laser software
+expects); a shape drawn in a colour of its own carries it as a true colour (R2004 is the
+oldest DXF with true colours), except black on a cut, score or engrave layer, which stays
+BYLAYER. Filled polygons become solid HATCHes, one layer per fill colour
+(``<layer>-<rrggbb>``, in that true colour), so a weave keeps one layer per strand colour.
+
+The title and metadata (generator, command) open the file as 999 comment groups, as LibreCAD
+stamps its own files; every reader skips comments, ``ezdxf.comments`` reads them back. Text is
+in the file's code page (ANSI_1252), other characters escaped as ``\\U+XXXX`` as ezdxf does.
+"""
 
 from __future__ import annotations
 
 import contextlib
+import functools
 import io
 
 import ezdxf
 from ezdxf import colors
+from ezdxf.enums import TextEntityAlignment
+from ezdxf.lldxf.const import VALID_DXF_LINEWEIGHTS
 
-from ..layout.drawing import Drawing, Polygons, Polylines, Text
+from ..layout.drawing import Drawing, Layer, Polygons, Polylines, Text
 
 SUFFIX = "dxf"
+VERSION = "R2004"
 ROLE_COLOURS = {"cut": 1, "score": 5, "engrave": 3, "paint": 8, "label": 7, "guide": 9}
-ALIGN = {"start": "LEFT", "middle": "CENTER", "end": "RIGHT"}
+LASER_ROLES = {"cut", "score", "engrave"}
+ALIGN = {"start": "BOTTOM_LEFT", "middle": "BOTTOM_CENTER", "end": "BOTTOM_RIGHT"}
 
 
 @contextlib.contextmanager
@@ -29,52 +45,97 @@ def _fixed_metadata():
 
 def render(drawing: Drawing) -> bytes:
     with _fixed_metadata():
-        doc = ezdxf.new("R2000", setup=False)
+        doc = ezdxf.new(VERSION, setup=False)
         doc.units = ezdxf.units.MM
         doc.header["$INSUNITS"] = 4
         doc.header["$MEASUREMENT"] = 1
-        for key, value in drawing.metadata:
-            doc.header.custom_vars.append(key, value)
+        doc.header["$LWDISPLAY"] = 1
         msp = doc.modelspace()
         dx = 0.0
         for n, sheet in enumerate(drawing.sheets):
+            suffix = "" if len(drawing.sheets) == 1 else f"-{n + 1}"
             for layer in sheet.layers:
-                name = layer.name if len(drawing.sheets) == 1 else f"{layer.name}-{n + 1}"
-                name = _layer_name(name)
-                if name not in doc.layers:
-                    entry = doc.layers.add(name, color=ROLE_COLOURS.get(layer.role, 7))
-                    if not layer.visible:
-                        entry.off()
                 for shape in layer.shapes:
-                    _add(msp, shape, name, dx)
+                    _add(doc, msp, shape, layer, layer.name + suffix, dx)
             dx += sheet.width + 10.0
+        # ezdxf adds the CLASSES of the entity types in use in set order; fix the order first
+        doc.classes.add_required_classes(doc.dxfversion)
+        doc.classes.classes = dict(sorted(doc.classes.classes.items()))
         buf = io.StringIO()
         doc.write(buf)
-    return buf.getvalue().encode("utf-8")
+    comments = "".join(f"999\n{key}: {' '.join(value.split())}\n"
+                       for key, value in [("title", drawing.title), *drawing.metadata])
+    return doc.encode(comments + buf.getvalue())
 
 
-def _add(msp, shape, layer: str, dx: float) -> None:
-    attribs = {"layer": layer}
+def _add(doc, msp, shape, layer: Layer, name: str, dx: float) -> None:
     if isinstance(shape, Text):
+        attribs = _attribs(doc, layer, name, shape.fill)
         msp.add_text(shape.text, height=shape.size, rotation=shape.angle,
                      dxfattribs=attribs).set_placement(
-            (shape.x + dx, shape.y), align=ezdxf.enums.TextEntityAlignment[
-                {"start": "BOTTOM_LEFT", "middle": "BOTTOM_CENTER", "end": "BOTTOM_RIGHT"}[
-                    shape.anchor]])
+            (shape.x + dx, shape.y), align=TextEntityAlignment[ALIGN[shape.anchor]])
         return
-    if shape.style.stroke and shape.style.stroke != "#000000":
-        attribs["true_color"] = colors.rgb2int(_rgb(shape.style.stroke))
-    if isinstance(shape, Polygons):
-        for ring in shape.rings():
+    if isinstance(shape, Polylines):
+        if shape.style.stroke:
+            attribs = _attribs(doc, layer, name, shape.style.stroke, shape.style.stroke_width)
+            for line in shape.lines():
+                msp.add_lwpolyline((line + (dx, 0.0)).tolist(), close=False, dxfattribs=attribs)
+        return
+    rings = shape.rings()
+    po = shape.polygon_rings().tolist()
+    fills = shape.fills or (shape.style.fill,) * shape.n_polygons
+    by_fill: dict[str, list[int]] = {}
+    for i, fill in enumerate(fills):
+        if fill:
+            by_fill.setdefault(fill, []).append(i)
+    for fill in sorted(by_fill):
+        fill_layer = _layer(doc, layer, f"{name}-{fill.lstrip('#').lower()}", fill)
+        hatch = msp.add_hatch(dxfattribs={"layer": fill_layer})
+        hatch.set_solid_fill(_aci(fill), style=0, rgb=_rgb(fill))  # odd parity: holes open
+        for i in by_fill[fill]:
+            for ring in rings[po[i]:po[i + 1]]:
+                hatch.paths.add_polyline_path((ring + (dx, 0.0)).tolist(), is_closed=True)
+    if shape.style.stroke:
+        attribs = _attribs(doc, layer, name, shape.style.stroke, shape.style.stroke_width)
+        for ring in rings:
             msp.add_lwpolyline((ring + (dx, 0.0)).tolist(), close=True, dxfattribs=attribs)
-    elif isinstance(shape, Polylines):
-        for line in shape.lines():
-            msp.add_lwpolyline((line + (dx, 0.0)).tolist(), close=False, dxfattribs=attribs)
+
+
+def _attribs(doc, layer: Layer, name: str, colour: str, width: float = 0.0) -> dict:
+    """Entity attributes: the layer, a true colour unless black on a laser layer, and the
+    line weight nearest ``width`` mm off laser layers (where lines are hairlines)."""
+    attribs = {"layer": _layer(doc, layer, name)}
+    if not (colour.lower() == "#000000" and layer.role in LASER_ROLES):
+        attribs["true_color"] = colors.rgb2int(_rgb(colour))
+    if width > 0 and layer.role not in LASER_ROLES:
+        attribs["lineweight"] = min(VALID_DXF_LINEWEIGHTS, key=lambda w: abs(w - 100 * width))
+    return attribs
+
+
+def _layer(doc, layer: Layer, name: str, colour: str | None = None) -> str:
+    """The DXF layer ``name`` (created on first use): the role's colour, or ``colour``."""
+    name = _layer_name(name)
+    if name not in doc.layers:
+        entry = doc.layers.add(name, color=ROLE_COLOURS[layer.role] if colour is None
+                               else _aci(colour))
+        if colour is not None:
+            entry.rgb = _rgb(colour)
+        if not layer.visible:
+            entry.off()
+    return name
 
 
 def _rgb(hex_colour: str) -> tuple[int, int, int]:
     h = hex_colour.lstrip("#")
     return (int(h[0:2], 16), int(h[2:4], 16), int(h[4:6], 16))
+
+
+@functools.lru_cache(maxsize=None)
+def _aci(hex_colour: str) -> int:
+    """The nearest AutoCAD colour index, for programs that ignore true colours."""
+    r, g, b = _rgb(hex_colour)
+    return min(range(1, 256), key=lambda i: sum((a - c) ** 2 for a, c in
+                                                 zip(colors.aci2rgb(i), (r, g, b))))
 
 
 def _layer_name(name: str) -> str:

@@ -1,13 +1,17 @@
 """PNG writer (Pillow): sheets rasterised at ``DPI``, supersampled for smooth edges; several
-sheets are stacked top to bottom. Hidden layers are left out. Pillow installs from wheels with
+sheets are stacked top to bottom. Hidden layers are left out. The title and the metadata
+(generator, command) are text chunks, which ``with_text`` also adds to raster figures. Pillow installs from wheels with
 no system libraries, so PNG output works everywhere weave-cut does."""
 
 from __future__ import annotations
 
 import io
+import struct
+import zlib
+from collections.abc import Iterable
 
 import numpy as np
-from PIL import Image, ImageDraw, ImageFont, PngImagePlugin
+from PIL import Image, ImageDraw, ImageFont
 
 from ..errors import ExportError
 from ..layout.drawing import Drawing, Polylines, Text
@@ -27,13 +31,26 @@ def render(drawing: Drawing, dpi: float = DPI) -> bytes:
     for page in pages:
         out.paste(page, (0, y))
         y += page.height + 10
-    info = PngImagePlugin.PngInfo()
-    info.add_text("Title", drawing.title)
-    for key, value in drawing.metadata:
-        info.add_text(key, value)
     buf = io.BytesIO()
-    out.save(buf, "PNG", pnginfo=info, dpi=(dpi, dpi), optimize=False)
-    return buf.getvalue()
+    out.save(buf, "PNG", dpi=(dpi, dpi), optimize=False)
+    return with_text(buf.getvalue(), [("Title", drawing.title), *drawing.metadata])
+
+
+def with_text(data: bytes, items: Iterable[tuple[str, str]]) -> bytes:
+    """The PNG ``data`` with a text chunk per (keyword, text) after its header chunk: tEXt
+    when the text is Latin-1, else iTXt (UTF-8). The pixels are not decoded again."""
+    if data[12:16] != b"IHDR":
+        raise ExportError("not a PNG stream")
+    end = 8 + 4 + 4 + 13 + 4  # signature, then IHDR: length, type, 13 bytes, CRC
+    return data[:end] + b"".join(_text_chunk(k, v) for k, v in items) + data[end:]
+
+
+def _text_chunk(keyword: str, text: str) -> bytes:
+    try:
+        kind, body = b"tEXt", keyword.encode("latin-1") + b"\0" + text.encode("latin-1")
+    except UnicodeEncodeError:  # keyword, no compression, no language, no translated keyword
+        kind, body = b"iTXt", keyword.encode("latin-1") + b"\0\0\0\0\0" + text.encode("utf-8")
+    return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
 
 
 def _sheet(sheet, dpi: float) -> Image.Image:

@@ -1,8 +1,9 @@
 """Every figure weave-cut reproduces, by name: the subdivision and fractal figures of
-``figures.subdivision`` and the weave and scheme figures of ``figures.weaving``."""
+``figures.subdivision``, the weave figures of ``figures.weaving``, the classic schemes'
+stages and weaves of ``figures.schemes`` and the jigsaw puzzle's of ``figures.jigsaw``."""
 
 from __future__ import annotations
 
-from . import subdivision, weaving
+from . import jigsaw, schemes, subdivision, weaving
 
-FIGURES = {**subdivision.FIGURES, **weaving.FIGURES}
+FIGURES = {**subdivision.FIGURES, **weaving.FIGURES, **schemes.FIGURES, **jigsaw.FIGURES}

@@ -58,6 +58,18 @@ def _arc(centre, radius, a0, a1, n=24) -> NDArray[np.float64]:
     return np.asarray(centre) + radius * np.column_stack([np.cos(t), np.sin(t)])
 
 
+ANGLE_ARC = 0.09         # radius of the 2pi/3 arcs (the edge is 1 long)
+ANGLE_LABEL = 0.145      # distance from the vertex to the middle of its 2pi/3 label
+ANGLE_TEXT = 0.036       # height of the 2pi/3 labels
+
+
+def angle_label_point(vertex, first_arm: float) -> NDArray[np.float64]:
+    """Where the middle of a 2pi/3 label goes: on the bisector of the angle that opens at
+    ``first_arm`` (radians) and turns 2pi/3 counter-clockwise, ANGLE_LABEL from ``vertex``."""
+    mid = first_arm + np.pi / 3
+    return np.asarray(vertex, dtype=float) + ANGLE_LABEL * np.array([np.cos(mid), np.sin(mid)])
+
+
 def z_triplet_panel() -> Panel:
     pts = fr.lsystem_curve(1)
     a = fr.ALPHA
@@ -74,19 +86,20 @@ def z_triplet_panel() -> Panel:
         e1 = pts[1] - pts[0]
         back = math.atan2(-e1[1], -e1[0])          # from z0 back to u: -160.9 degrees
         # the 120-degree angles: at z0 below the Z, at z1 above it
-        arc_b = Polylines(fit(_arc(pts[1], 0.09, back, back + 2 * np.pi / 3)),
-                          np.array([0, 24]), Style("#000000", 0.5 * lw))
-        arc_c = Polylines(fit(_arc(pts[2], 0.09, a, a + 2 * np.pi / 3)),
-                          np.array([0, 24]), Style("#000000", 0.5 * lw))
+        arcs = ((pts[1], back), (pts[2], a))        # (vertex, first arm's angle)
+        arc_b, arc_c = (Polylines(fit(_arc(v, ANGLE_ARC, a0, a0 + 2 * np.pi / 3)),
+                                  np.array([0, 24]), Style("#000000", 0.5 * lw))
+                        for v, a0 in arcs)
         r = 0.025 * s
         ends = discs(fit(pts[[0, 3]]), r, Style("#000000", 0.4 * lw, fill=WHITE))
         mids = discs(fit(pts[[1, 2]]), r, Style("#000000", 0.4 * lw, fill=BLUE))
         size = 0.06 * s
-        lab = [Text(*fit(np.array([0.24, 0.012])), "\u03b1", size=0.8 * size),
-               Text(*fit(pts[1] + np.array([0.02, -0.2])), "2\u03c0/3", size=0.8 * size,
-                    anchor="middle"),
-               Text(*fit(pts[2] + np.array([-0.02, 0.15])), "2\u03c0/3", size=0.8 * size,
-                    anchor="middle")]
+        lab = [Text(*fit(np.array([0.24, 0.012])), "\u03b1", size=0.8 * size)]
+        # each 2pi/3 on its angle's bisector just beyond the arc (the text's middle there)
+        for v, a0 in arcs:
+            middle = angle_label_point(v, a0)
+            lab.append(Text(*fit(middle - np.array([0.0, 0.35 * ANGLE_TEXT])), "2\u03c0/3",
+                            size=ANGLE_TEXT * s, anchor="middle"))
         return [Layer("edge", "guide", (segments(fit(dashes), Style(GREY, 0.6 * lw)),)),
                 Layer("z-triplet", "cut", (z, arc_a, arc_b, arc_c)),
                 Layer("vertices", "paint", (ends, mids)),

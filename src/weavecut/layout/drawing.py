@@ -144,6 +144,14 @@ def polygons_from_rings(rings, style: Style = Style(), fills=None) -> Polygons:
     return Polygons(coords, offsets, style, None, None if fills is None else tuple(fills))
 
 
+def polylines_from_lines(lines, style: Style = Style()) -> Polylines:
+    """Polylines from a list of (n, 2) arrays."""
+    lines = [np.asarray(line, dtype=float).reshape(-1, 2) for line in lines]
+    coords = np.concatenate(lines) if lines else np.zeros((0, 2))
+    offsets = np.concatenate([[0], np.cumsum([len(line) for line in lines])]).astype(np.int64)
+    return Polylines(coords, offsets, style)
+
+
 def polygons_from_shapely(geoms, style: Style = Style(), fills=None) -> Polygons:
     """Polygons from shapely Polygons (holes kept); rings are written counter-clockwise
     for exteriors and clockwise for holes."""

@@ -20,14 +20,67 @@ from .drawing import Drawing, Layer, Polygons, Polylines, Sheet, Style, Text, po
 MARK = Style("#808080", 0.2)
 
 
+def on_pages(drawing: Drawing, page: tuple[float, float], overlap: float = 10.0,
+             margin: float = 10.0, printer_margin: float = 5.0) -> Drawing:
+    """Every sheet of ``drawing`` at 1:1 on printer pages: its content centred on one page,
+    upright or turned a quarter (landscape), when it fits inside ``printer_margin``; else the
+    sheet tiled, on whichever orientation needs fewer pages (when equal, the one shaped like
+    the sheet)."""
+    pages: list[Sheet] = []
+    turned = (page[1], page[0])
+    for sheet in drawing.sheets:
+        x0, y0, x1, y1 = _content_box(sheet)
+        room = 2 * printer_margin
+        fits = [p for p in (page, turned) if x1 - x0 <= p[0] - room and y1 - y0 <= p[1] - room]
+        if fits:
+            w, h = fits[0]
+            dx, dy = (w - x0 - x1) / 2, (h - y0 - y1) / 2
+            pages.append(replace(sheet, width=w, height=h, layers=tuple(
+                replace(layer, shapes=tuple(_moved(s, dx, dy) for s in layer.shapes))
+                for layer in sheet.layers)))
+            continue
+        one = replace(drawing, sheets=(sheet,))
+        wide = sheet.width > sheet.height
+        best = min((page, turned), key=lambda p: (math.prod(_grid(sheet, p, overlap, margin)),
+                                                  (p[0] > p[1]) != wide))
+        pages.extend(tile(one, best, overlap, margin).sheets)
+    return replace(drawing, sheets=tuple(pages))
+
+
+def _content_box(sheet: Sheet) -> tuple[float, float, float, float]:
+    """Bounds of everything drawn on ``sheet`` (text by its anchor point); the whole sheet
+    when it is empty."""
+    points = [s.coords for layer in sheet.layers for s in layer.shapes if not isinstance(s, Text)]
+    points += [np.array([[s.x, s.y]]) for layer in sheet.layers for s in layer.shapes
+               if isinstance(s, Text)]
+    xy = np.concatenate(points) if points else np.zeros((0, 2))
+    if not len(xy):
+        return (0.0, 0.0, sheet.width, sheet.height)
+    (x0, y0), (x1, y1) = xy.min(axis=0), xy.max(axis=0)
+    return (float(x0), float(y0), float(x1), float(y1))
+
+
+def _moved(shape, dx: float, dy: float):
+    if isinstance(shape, Text):
+        return replace(shape, x=shape.x + dx, y=shape.y + dy)
+    return replace(shape, coords=shape.coords + (dx, dy))
+
+
+def _grid(big: Sheet, page, overlap: float, margin: float) -> tuple[int, int]:
+    """(columns, rows) of pages that ``tile`` lays over ``big``."""
+    step_x = page[0] - 2 * margin - overlap
+    step_y = page[1] - 2 * margin - overlap
+    return (max(1, math.ceil((big.width - overlap) / step_x)),
+            max(1, math.ceil((big.height - overlap) / step_y)))
+
+
 def tile(drawing: Drawing, page: tuple[float, float] = (210.0, 297.0), overlap: float = 10.0,
          margin: float = 10.0) -> Drawing:
     """One page per window over the first sheet of ``drawing`` (rows from the top)."""
     big = drawing.sheets[0]
     pw, ph = page[0] - 2 * margin, page[1] - 2 * margin
     step_x, step_y = pw - overlap, ph - overlap
-    cols = max(1, math.ceil((big.width - overlap) / step_x))
-    rows = max(1, math.ceil((big.height - overlap) / step_y))
+    cols, rows = _grid(big, page, overlap, margin)
     pages = []
     for r in range(rows):  # pages, a handful
         for c in range(cols):

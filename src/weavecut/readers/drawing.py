@@ -15,7 +15,7 @@ from ..errors import MeshError, MeshFileError
 from ..mesh import Mesh
 from ..validation import validate
 from . import DEFAULT_FLATTEN, DEFAULT_KIND, MESH_CHOICES, dxf, outline_mesh, svg
-from .rings import Ring, checked, nesting, split_t_junctions, weld
+from .rings import Ring, checked, enclosed_faces, nesting, split_t_junctions, weld
 
 READERS = {".svg": svg.read_rings, ".dxf": dxf.read_rings}
 MAX_BYTES = 64 * 2**20  # an untrusted drawing is read whole into memory
@@ -30,22 +30,22 @@ def read(path: Path, *, flatten: float = DEFAULT_FLATTEN, layer: str | None = No
     if path.stat().st_size > MAX_BYTES:
         raise MeshFileError(f"{path}: {path.stat().st_size / 2**20:.0f} MiB is more than a "
                             f"drawing of faces needs (at most {MAX_BYTES // 2**20} MiB)")
-    found, n_open = READERS[path.suffix.lower()](path, flatten, layer)
-    if not found:
-        raise MeshFileError(f"{path}: no closed outlines found"
-                            + (f" ({n_open} open paths skipped)" if n_open else ""))
+    found, pieces = READERS[path.suffix.lower()](path, flatten, layer)
+    if not found and not pieces:
+        raise MeshFileError(f"{path}: no outlines found")
     try:
+        if pieces:
+            found = enclosed_faces(found, pieces, flatten)
         rings = checked(found, flatten)
         parent = nesting(rings, flatten)
         outer = np.flatnonzero(parent < 0)
         kind = _kind(mesh, len(outer), len(rings) - len(outer), rings, parent)
-        skipped = f", {n_open} open paths skipped" if n_open else ""
         if kind == "none":
             result, merged = weld([r.points for r in rings], flatten)
             result = _labelled(rings, validate, split_t_junctions(result, flatten),
                                allow_nonconvex=allow_nonconvex)
             line = (f"{path.name}: {result.n_faces} faces, {result.n_vertices} vertices "
-                    f"({merged} points within {flatten:g} mm merged){skipped}")
+                    f"({merged} points within {flatten:g} mm merged)")
         else:
             region = _region(rings, parent)
             cell = outline_mesh.default_cell(region) if cell is None else cell
@@ -54,7 +54,7 @@ def read(path: Path, *, flatten: float = DEFAULT_FLATTEN, layer: str | None = No
             line = (f"{path.name}: {len(outer)} outline(s), {len(rings) - len(outer)} hole(s), "
                     f"{region.area:.0f} mm², meshed {kind} with cell {cell:.3g} mm: "
                     f"{q['faces']} faces, angles {q['min_angle']:.0f}-{q['max_angle']:.0f}°, "
-                    f"size {q['min_size']:.2f}-{q['max_size']:.2f} × cell{skipped}")
+                    f"size {q['min_size']:.2f}-{q['max_size']:.2f} × cell")
     except MeshError as exc:
         raise type(exc)(f"{path}: {exc}") from None
     if report is not None:

@@ -4,7 +4,7 @@ ezdxf reads the file (``ezdxf.recover``, which also repairs what CAD programs co
 wrong) and turns every entity into a path (``ezdxf.path.make_path``: bulges, arcs, circles,
 ellipses and splines included), flattened so no chord strays beyond the tolerance. Closed
 LWPOLYLINE, 2-D POLYLINE, CIRCLE, closed ELLIPSE and SPLINE are rings; open pieces (LINE, ARC,
-open polylines) give the faces they enclose (loops, or a grid drawn with every edge once).
+open polylines) are returned apart: ``rings.enclosed_faces`` finds the faces they enclose.
 Blocks (INSERT) are ignored. ``$INSUNITS`` gives the unit (unitless drawings are read as mm).
 """
 
@@ -14,20 +14,19 @@ from pathlib import Path
 
 import ezdxf
 import numpy as np
-import shapely
 from ezdxf import path as dxfpath
 from ezdxf import recover
 from ezdxf import units as dxfunits
 
 from ..errors import MeshFileError
-from .rings import Ring, close_groups
+from .rings import Ring
 
 ENTITIES = "LWPOLYLINE POLYLINE CIRCLE ELLIPSE SPLINE LINE ARC"
 
 
-def read_rings(path: Path, flatten: float, layer: str | None = None) -> tuple[list[Ring], int]:
-    """Closed rings of the DXF at ``path``, and 0 (an open end that encloses nothing is an
-    error naming the entity, so no open piece is skipped).
+def read_rings(path: Path, flatten: float,
+               layer: str | None = None) -> tuple[list[Ring], list[Ring]]:
+    """Closed rings and open pieces (lines, arcs, open polylines) of the DXF at ``path``.
 
     Parameters
     ----------
@@ -62,7 +61,7 @@ def read_rings(path: Path, flatten: float, layer: str | None = None) -> tuple[li
             rings.append(Ring(name, points[:-1] if closes else points))
         else:
             pieces.append(Ring(name, points))
-    return rings + _chained(pieces, flatten), 0
+    return rings, pieces
 
 
 def _is_closed(entity) -> bool:
@@ -76,29 +75,3 @@ def _is_closed(entity) -> bool:
     if kind == "ELLIPSE":
         return bool(np.isclose(abs(entity.dxf.end_param - entity.dxf.start_param), 2 * np.pi))
     return kind == "CIRCLE"
-
-
-def _chained(pieces: list[Ring], tolerance: float) -> list[Ring]:
-    """The faces that open pieces (lines, arcs) enclose, as a CAD user draws a mesh: every
-    region bounded by pieces is a ring, whether they form separate loops or a shared grid.
-
-    Ends closer than ``tolerance`` are joined first; a piece with an end that joins nothing is
-    an error naming it.
-    """
-    if not pieces:
-        return []
-    ends = np.array([[p.points[0], p.points[-1]] for p in pieces]).reshape(-1, 2)
-    label = close_groups(ends, tolerance)
-    moved = ends[np.unique(label, return_index=True)[1][label]]  # ends that meet coincide
-    lines = [np.vstack([moved[2 * k], p.points[1:-1], moved[2 * k + 1]])
-             for k, p in enumerate(pieces)]
-    faces, _, dangles, invalid = shapely.polygonize_full(
-        shapely.get_parts(shapely.union_all(shapely.linestrings(lines))))
-    loose = shapely.get_parts(shapely.union(dangles, invalid))
-    if len(loose):
-        x, y = shapely.get_coordinates(loose[0])[0]
-        k = int(np.argmin(shapely.distance(shapely.linestrings(lines), loose[0])))
-        raise MeshFileError(f"{pieces[k].label} near ({x:.3f}, {y:.3f}) mm has an open end; "
-                            "lines and arcs must enclose faces")
-    return [Ring(f"face {k + 1} enclosed by lines and arcs", np.asarray(f.exterior.coords)[:-1])
-            for k, f in enumerate(shapely.get_parts(faces))]

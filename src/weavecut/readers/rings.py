@@ -161,3 +161,32 @@ def split_t_junctions(mesh: Mesh, tolerance: float) -> Mesh:
     faces = np.concatenate([mesh.half_edge_face, mesh.half_edge_face[h]])[order]
     offsets = np.concatenate([[0], np.cumsum(np.bincount(faces, minlength=mesh.n_faces))])
     return Mesh(vertices, offsets, corners)
+
+
+def enclosed_faces(rings: list[Ring], pieces: list[Ring], tolerance: float) -> list[Ring]:
+    """The faces that closed ``rings`` and open ``pieces`` (lines, arcs) enclose together, as
+    a CAD user draws a mesh: loops of lines, a grid drawn with every edge once, or an outline
+    with lines across it.
+
+    A piece's end within ``tolerance`` of a ring's corner or of another end joins it; a piece
+    with an end that joins nothing is an error naming it.
+    """
+    corners = np.concatenate([r.points for r in rings]) if rings else np.empty((0, 2))
+    ends = np.array([[p.points[0], p.points[-1]] for p in pieces]).reshape(-1, 2)
+    points = np.concatenate([corners, ends])
+    label = close_groups(points, tolerance)
+    moved = points[np.unique(label, return_index=True)[1][label]][len(corners):]
+    lines = [np.vstack([moved[2 * k], p.points[1:-1], moved[2 * k + 1]])
+             for k, p in enumerate(pieces)]
+    lines += [np.vstack([r.points, r.points[:1]]) for r in rings]
+    lines = np.array([shapely.LineString(line) for line in lines])
+    faces, _, dangles, invalid = shapely.polygonize_full(
+        shapely.get_parts(shapely.union_all(lines)))
+    loose = shapely.get_parts(shapely.union(dangles, invalid))
+    if len(loose):
+        x, y = shapely.get_coordinates(loose[0])[0]
+        k = int(np.argmin(shapely.distance(lines[:len(pieces)], loose[0])))
+        raise MeshFileError(f"{pieces[k].label} near ({x + 0:.4g}, {y + 0:.4g}) mm has an open "
+                            "end; lines and arcs must enclose faces")
+    return [Ring(f"face {k + 1} enclosed by lines", np.asarray(f.exterior.coords)[:-1])
+            for k, f in enumerate(shapely.get_parts(faces))]

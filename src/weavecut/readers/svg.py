@@ -2,8 +2,9 @@
 
 svgelements parses the file: it applies every ``transform``, the ``viewBox`` and the
 ``width``/``height`` units (mm, cm, in, pt, px at 96 per inch, as Inkscape and browsers do),
-and turns rects, circles, ellipses, polygons and polylines into paths. Here each closed
-subpath becomes one ring; open ones are counted and skipped. Hidden elements
+and turns rects, circles, ellipses, polygons, polylines and lines into paths. Here each
+closed subpath becomes one ring and each open one a piece (``rings.enclosed_faces`` finds the
+faces that pieces enclose). Hidden elements
 (``display:none``, such as a hidden Inkscape layer) are skipped by svgelements. The y axis is
 turned round (SVG's points down) so that the drawing reads the same way up.
 """
@@ -24,8 +25,9 @@ MM_PER_PX = 25.4 / 96  # svgelements works in CSS pixels, 96 per inch
 INKSCAPE = "{http://www.inkscape.org/namespaces/inkscape}"
 
 
-def read_rings(path: Path, flatten: float, layer: str | None = None) -> tuple[list[Ring], int]:
-    """Closed rings of the SVG at ``path`` and the number of open subpaths skipped.
+def read_rings(path: Path, flatten: float,
+               layer: str | None = None) -> tuple[list[Ring], list[Ring]]:
+    """Closed rings and open pieces (open subpaths, lines, polylines) of the SVG at ``path``.
 
     Parameters
     ----------
@@ -36,7 +38,7 @@ def read_rings(path: Path, flatten: float, layer: str | None = None) -> tuple[li
     Returns
     -------
     rings : closed outlines (label, (k, 2) float64 mm, counter-clockwise or not)
-    n_open : number of open subpaths that were skipped
+    pieces : open polylines, in mm
     """
     try:
         document = se.SVG.parse(str(path), reify=True)
@@ -47,19 +49,17 @@ def read_rings(path: Path, flatten: float, layer: str | None = None) -> tuple[li
     if layer is not None and not shapes:
         raise MeshFileError(f"{path}: no shapes in a layer or group named {layer!r}; layers: "
                             f"{', '.join(_layer_names(document)) or 'none'}")
-    rings, n_open = [], 0
+    rings, pieces = [], []
     tolerance = flatten / MM_PER_PX
     for label, shape in shapes:
         for k, subpath in enumerate(abs(se.Path(shape)).as_subpaths()):  # transform applied
             points, closed = _flattened(subpath, tolerance)
-            if len(points) == 0:
-                continue
-            if not closed:
-                n_open += 1
+            if len(points) < 2:
                 continue
             name = label if k == 0 else f"{label} (subpath {k + 1})"
-            rings.append(Ring(name, points * np.array([MM_PER_PX, -MM_PER_PX])))
-    return rings, n_open
+            ring = Ring(name, points * np.array([MM_PER_PX, -MM_PER_PX]))
+            (rings if closed else pieces).append(ring)
+    return rings, pieces
 
 
 def _shapes(group, layer: str | None, inside: bool = False) -> Iterator[tuple[str, se.Shape]]:

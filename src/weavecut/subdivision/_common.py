@@ -19,6 +19,118 @@ def require_degree(mesh: Mesh, k: int, scheme: str) -> NDArray[np.int32]:
     return mesh.face_indices.reshape(-1, k)
 
 
+class Corners:
+    """Corner (half-edge) arithmetic of a mesh: the face of a corner, its next and previous.
+
+    When every face has k corners, corner h is position ``h % k`` of face ``h // k``, so the
+    next corner is the next element (but at the end of a face) and no index array is needed;
+    otherwise the mesh's ``next_half_edge``, ``prev_half_edge`` and ``half_edge_face`` are
+    used. Methods take and write (H,) per-corner arrays, which may be strided views.
+
+    Examples
+    --------
+    >>> from weavecut.mesh import Mesh
+    >>> ring = Corners(Mesh.from_faces([(0, 0), (1, 0), (1, 1), (0, 1)], [[0, 1, 2, 3]]))
+    >>> out = np.empty(4, dtype=np.int32)
+    >>> ring.corner_ids(1, out, offset=10); out
+    array([11, 12, 13, 10], dtype=int32)
+    """
+
+    def __init__(self, mesh: Mesh) -> None:
+        self.mesh = mesh
+        self.k = mesh.face_degree
+
+    def grid(self, a: NDArray) -> NDArray:
+        """(F, k) view of a per-corner array when faces have one degree (never a copy)."""
+        view = a.view()
+        view.shape = (-1, self.k)  # raises rather than copy
+        return view
+
+    def shifted(self, src: NDArray, shift: int, out: NDArray, plus: NDArray | None = None) -> None:
+        """``out[h] = src[h']`` (``plus[h] + src[h']`` with ``plus``, which may be ``out``), h'
+        the next (shift 1) or previous (-1) corner of h's face. With one degree k this is one
+        contiguous operation over all corners, the first or last of every face redone."""
+        if not self.k:
+            value = src[self.mesh.next_half_edge if shift == 1 else self.mesh.prev_half_edge]
+            if plus is None:
+                out[...] = value
+            else:
+                np.add(plus, value, out=out)
+            return
+        k = self.k
+        if shift == 1:  # h' = h + 1, but the last corner of a face takes its first
+            to, frm, ends, starts = slice(0, -1), slice(1, None), slice(k - 1, None, k), \
+                slice(0, None, k)
+        else:
+            to, frm, ends, starts = slice(1, None), slice(0, -1), slice(0, None, k), \
+                slice(k - 1, None, k)
+        if plus is None:
+            out[to] = src[frm]
+            out[ends] = src[starts]
+        else:
+            wrapped = plus[ends] + src[starts]  # before ``out`` (maybe ``plus``) changes
+            np.add(plus[to], src[frm], out=out[to])
+            out[ends] = wrapped
+
+    def per_corner(self, values: NDArray) -> NDArray:
+        """(H, ...) the value of every corner's face."""
+        return np.repeat(values, self.k or self.mesh.face_sizes, axis=0)
+
+    def face_values(self, offset: int, out: NDArray) -> None:
+        """``out[h] = offset + (face of h)``."""
+        if self.k:
+            self.grid(out)[...] = (np.arange(self.mesh.n_faces, dtype=np.int32) + offset)[:, None]
+        else:
+            np.add(self.mesh.half_edge_face, offset, out=out)
+
+    def corner_ids(self, shift: int, out: NDArray, scale: int = 1, offset: int = 0) -> None:
+        """``out[h] = scale * h' + offset``, h' = h (shift 0), its next (1) or previous (-1)
+        corner."""
+        if self.k:
+            first = np.arange(0, self.mesh.n_corners, self.k, dtype=np.int32)
+            step = np.roll(np.arange(self.k, dtype=np.int32), -shift)
+            np.add((scale * first + offset)[:, None], scale * step, out=self.grid(out))
+        else:
+            ids = np.arange(self.mesh.n_corners, dtype=np.int32)
+            np.add(scale * (ids if shift == 0 else self.neighbour(ids, shift)), offset, out=out)
+
+    def neighbour(self, ids: NDArray[np.int32], shift: int) -> NDArray[np.int32]:
+        """The next (shift 1) or previous (-1) corner of each corner in ``ids`` (any value
+        where ``ids`` is negative)."""
+        if not self.k:
+            return (self.mesh.next_half_edge if shift == 1 else self.mesh.prev_half_edge)[ids]
+        wrap = (ids % self.k) == (self.k - 1 if shift == 1 else 0)
+        out = ids + shift
+        out -= shift * self.k * wrap
+        return out
+
+    def face_ids(self) -> NDArray[np.int32]:
+        """(H,) face of every corner."""
+        if not self.k:
+            return self.mesh.half_edge_face
+        return np.repeat(np.arange(self.mesh.n_faces, dtype=np.int32), self.k)
+
+    def positions(self) -> NDArray[np.int32]:
+        """(H,) position of every corner within its face."""
+        if not self.k:
+            return corner_index(self.mesh)
+        out = np.empty(self.mesh.n_corners, dtype=np.int32)
+        fill_rows(self.grid(out), np.arange(self.k, dtype=np.int32))
+        return out
+
+
+def fill_rows(out: NDArray, row) -> None:
+    """Set every row of the C-contiguous (n, m) ``out`` to ``row``, by doubling block copies
+    (a few contiguous copies instead of one short copy per row)."""
+    n = len(out)
+    out[:min(n, 1024)] = row
+    done = min(n, 1024)
+    while done < n:
+        step = min(done, n - done)
+        out[done:done + step] = out[:step]
+        done += step
+
+
 def corner_index(mesh: Mesh) -> NDArray[np.int32]:
     """(H,) position of every corner within its face (0 .. n_f - 1)."""
     start = np.repeat(mesh.face_offsets[:-1], mesh.face_sizes)

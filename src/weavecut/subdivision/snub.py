@@ -17,6 +17,13 @@ Numbering (child of a mesh with V, E, F, H): vertices ``[old V | z0, z1 of every
 faces: one per parent half-edge (face h comes from half-edge h), edges: ``3e + part`` for the Z
 parts (FIRST = (u, z0), MIDDLE = (z0, z1), LAST = (w, z1)) and ``3E + h`` for the spoke (x_h, c_f).
 Counts (paper eq. 2): V' = V + 2E + F, E' = 3E + H, F' = H.
+
+The step writes each output array once, in place, and reads the parent only through its corner
+arithmetic (:class:`Corners`), so it runs close to the speed of writing its output. The
+numbers are those of the plain definition, bit for bit: every sum adds the same terms in the
+same order as "the vertex mean of a child face" and "the mean of a vertex's face centres"
+would (``tests/subdivision/test_snub_identity.py`` holds the earlier, direct implementation
+as the oracle), which the windowed refinement of :mod:`weavecut.analysis.levels` relies on.
 """
 
 from __future__ import annotations
@@ -25,6 +32,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..mesh import Mesh, Topology, area_centroids, face_centroids, outer_vertices
+from ._common import Corners, fill_rows
 from .hierarchy import Level
 
 FIRST, MIDDLE, LAST, SPOKE = 0, 1, 2, 3
@@ -65,116 +73,245 @@ def step(mesh: Mesh, *, smooth: bool = True, centre: str = "vertex",
     if chirality not in CHIRALITIES:
         raise ValueError(f"chirality must be one of {CHIRALITIES}, got {chirality!r}")
     right = chirality == "right"
-    topo = mesh.topology
-    n_v, n_e, n_f, n_h = mesh.n_vertices, topo.n_edges, mesh.n_faces, mesh.n_corners
-    centre_of = area_centroids if centre == "area" else face_centroids
+    ring = Corners(mesh)
+    vertices = _new_vertices(mesh, right, centre)
+    x, y, old = _corner_vertices(mesh, ring, right)
+    if smooth:  # first, while the vertices are the only output: it needs the most scratch
+        if centre == "area":
+            faces = _faces(mesh, ring, x, y, old, right).reshape(-1)
+            offsets = np.arange(0, len(faces) + 1, 5, dtype=np.int64)
+            centres = area_centroids(Mesh.trusted(vertices.view(), offsets, faces))
+            centres = centres.view(np.complex128).ravel()
+            del faces, offsets
+        else:
+            centres = _vertex_centres(mesh, ring, vertices, x, y, old, right)
+        _smooth(mesh, ring, vertices, centres, old, right)
+        del centres
+    faces = _faces(mesh, ring, x, y, old, right)
+    del y, old
+    edges, parent_edge, edge_part, boundary = _edges(mesh, ring, x)
+    del x
+    child_topo = Topology(edges, *_half_edges(mesh, ring, right))
+    child_topo.__dict__["boundary_edges"] = boundary
+    child_topo.__dict__["edge_half_edges"] = _edge_half_edges(mesh, ring, right)
+    offsets = np.arange(0, faces.size + 1, 5, dtype=np.int64)
+    child = Mesh.trusted(vertices, offsets, faces.reshape(-1), child_topo)
+    child.__dict__["face_degree"] = 5
+    return Level(child, ring.face_ids(), ring.positions(), parent_edge, edge_part)
 
-    # operations 1 and 2: Z vertices and face centres
-    vertices = np.empty((n_v + 2 * n_e + n_f, 2))
+
+def _new_vertices(mesh: Mesh, right: bool, centre: str) -> NDArray[np.float64]:
+    """Operations 1 and 2: ``[old | z0, z1 of every edge | face centres]``, (V + 2E + F, 2)."""
+    topo = mesh.topology
+    n_v, n_e = mesh.n_vertices, topo.n_edges
+    vertices = np.empty((n_v + 2 * n_e + mesh.n_faces, 2))
     vertices[:n_v] = mesh.vertices
-    u = np.take(mesh.vertices, topo.edges[:, 0], axis=0)
-    d = np.take(mesh.vertices, topo.edges[:, 1], axis=0) - u
+    vx, vy = np.ascontiguousarray(mesh.vertices.T)
+    u, w = (np.ascontiguousarray(topo.edges[:, c], dtype=np.intp) for c in (0, 1))
+    ux, uy = vx.take(u, mode="clip"), vy.take(u, mode="clip")
+    dx, dy = vx.take(w, mode="clip"), vy.take(w, mode="clip")
+    dx -= ux
+    dy -= uy
     s = (-1.0 if right else 1.0) * np.sqrt(3.0)
     z = vertices[n_v:n_v + 2 * n_e].reshape(n_e, 2, 2)
-    z[:, 0, 0] = u[:, 0] + (5 * d[:, 0] - s * d[:, 1]) / 14
-    z[:, 0, 1] = u[:, 1] + (5 * d[:, 1] + s * d[:, 0]) / 14
-    z[:, 1, 0] = u[:, 0] + (9 * d[:, 0] + s * d[:, 1]) / 14
-    z[:, 1, 1] = u[:, 1] + (9 * d[:, 1] - s * d[:, 0]) / 14
+    sdx, sdy = s * dx, s * dy
+    t = np.empty(n_e)
+    for j, c, factor, sign in ((0, 0, 5, -1), (0, 1, 5, 1), (1, 0, 9, 1), (1, 1, 9, -1)):
+        base, along, across = (ux, dx, sdy) if c == 0 else (uy, dy, sdx)
+        np.multiply(factor, along, out=t)  # z_j = u + (factor d -+ s d_perp) / 14
+        (np.add if sign > 0 else np.subtract)(t, across, out=t)
+        t /= 14
+        np.add(base, t, out=z[:, j, c])
+    centre_of = area_centroids if centre == "area" else face_centroids
     vertices[n_v + 2 * n_e:] = centre_of(mesh)
+    return vertices
 
-    # operation 3: one pentagon per half-edge, with its topology read off the parent's
-    he_edge = topo.half_edge_edge.astype(np.int32)
-    side = topo.half_edge_side
-    face_side = side if not right else 1 - side  # which of z0, z1 is x_h
-    x = n_v + 2 * he_edge + face_side
-    y = n_v + 2 * he_edge + (1 - face_side)
-    c = n_v + 2 * n_e + mesh.half_edge_face
-    a = mesh.face_indices
-    nb = mesh.prev_half_edge if right else mesh.next_half_edge
-    spoke = 3 * n_e + np.arange(n_h, dtype=np.int32)
-    middle = 3 * he_edge + MIDDLE
-    near_end = 3 * he_edge + 2 * (1 - side)       # the Z part at b, the end of h
-    near_start = 3 * he_edge + 2 * side           # the Z part at a, the start of h
-    sidecol = side.astype(np.int8)
+
+def _corner_vertices(mesh: Mesh, ring: Corners, right: bool):
+    """(x, y, old): per parent corner h, the child vertex ids of x_h and y_h (int32) and of
+    P_h's old vertex (intp): a, the start of h (right), or b, its end (left)."""
+    topo = mesh.topology
+    face_side = 1 - topo.half_edge_side if right else topo.half_edge_side  # x_h is z0 or z1
+    x = 2 * topo.half_edge_edge.astype(np.int32, copy=False)
+    x += mesh.n_vertices
+    y = x + 1
+    x += face_side
+    y -= face_side
+    old = np.empty(mesh.n_corners, dtype=np.intp)
     if right:
-        corners = (a, y, x, c, x[nb])
-        parts = (near_start, middle, spoke, spoke[nb], near_end[nb])
-        sides = (0, sidecol, 0, 1, 1)
+        old[:] = mesh.face_indices
     else:
-        corners = (c, x, y, a[mesh.next_half_edge], x[nb])
-        parts = (spoke, middle, near_end, near_start[nb], spoke[nb])
-        sides = (1, sidecol, 1, 0, 0)
-    faces = _stack(corners, np.int32, n_h)
-    child_he_edge = _stack(parts, np.int32, n_h)
-    child_side = _stack(sides, np.int8, n_h)
+        ring.shifted(mesh.face_indices, 1, out=old)
+    return x, y, old
 
+
+def _faces(mesh: Mesh, ring: Corners, x, y, old, right: bool) -> NDArray[np.int32]:
+    """Operation 3: (H, 5) the pentagons P_h."""
+    centre = mesh.n_vertices + 2 * mesh.topology.n_edges
+    faces = np.empty((mesh.n_corners, 5), dtype=np.int32)
+    if right:  # (a, y, x, c, x[prev])
+        faces[:, 0], faces[:, 1], faces[:, 2] = old, y, x
+        ring.face_values(centre, out=faces[:, 3])
+        ring.shifted(x, -1, out=faces[:, 4])
+    else:  # (c, x, y, b, x[next])
+        ring.face_values(centre, out=faces[:, 0])
+        faces[:, 1], faces[:, 2], faces[:, 3] = x, y, old
+        ring.shifted(x, 1, out=faces[:, 4])
+    return faces
+
+
+def _half_edges(mesh: Mesh, ring: Corners, right: bool) -> tuple[NDArray[np.int32], NDArray]:
+    """The child's half-edge -> edge map and sides, (5H,) each (see the module docstring)."""
+    topo = mesh.topology
+    spoke = 3 * topo.n_edges
+    parts = np.empty((mesh.n_corners, 5), dtype=np.int32)
+    sides = np.empty((mesh.n_corners, 5), dtype=np.int8)
+    e3 = 3 * topo.half_edge_edge.astype(np.int32, copy=False)
+    side2 = 2 * topo.half_edge_side
+    near_start = e3 + side2  # the Z part at a, the start of h
+    near_end = e3 - side2    # the Z part at b, its end
+    near_end += 2
+    if right:  # (near_start, middle, spoke, spoke[prev], near_end[prev])
+        parts[:, 0] = near_start
+        ring.corner_ids(0, parts[:, 2], offset=spoke)
+        ring.corner_ids(-1, parts[:, 3], offset=spoke)
+        ring.shifted(near_end, -1, out=parts[:, 4])
+        fill_rows(sides, np.array([0, 0, 0, 1, 1], dtype=np.int8))
+    else:  # (spoke, middle, near_end, near_start[next], spoke[next])
+        ring.corner_ids(0, parts[:, 0], offset=spoke)
+        parts[:, 2] = near_end
+        ring.shifted(near_start, 1, out=parts[:, 3])
+        ring.corner_ids(1, parts[:, 4], offset=spoke)
+        fill_rows(sides, np.array([1, 0, 1, 0, 0], dtype=np.int8))
+    np.add(e3, MIDDLE, out=parts[:, 1])
+    sides[:, 1] = topo.half_edge_side
+    return parts.reshape(-1), sides.reshape(-1)
+
+
+def _edges(mesh: Mesh, ring: Corners, x: NDArray[np.int32]):
+    """(edges, parent_edge, edge_part, boundary) of the child: 3 Z parts per edge, then spokes."""
+    topo = mesh.topology
+    n_v, n_e, n_h = mesh.n_vertices, topo.n_edges, mesh.n_corners
     edges = np.empty((3 * n_e + n_h, 2), dtype=np.int32)
-    zids = n_v + 2 * np.arange(n_e, dtype=np.int32)
+    z0 = n_v + 2 * np.arange(n_e, dtype=np.int32)
     ez = edges[:3 * n_e].reshape(n_e, 3, 2)
-    ez[:, FIRST, 0], ez[:, FIRST, 1] = topo.edges[:, 0], zids
-    ez[:, MIDDLE, 0], ez[:, MIDDLE, 1] = zids, zids + 1
-    ez[:, LAST, 0], ez[:, LAST, 1] = topo.edges[:, 1], zids + 1
-    edges[3 * n_e:, 0], edges[3 * n_e:, 1] = x, c
-
-    child_topo = Topology(edges, child_he_edge, child_side)
-    boundary = np.zeros(len(edges), dtype=bool)
-    boundary[:3 * n_e] = np.repeat(topo.boundary_edges, 3)
-    child_topo.__dict__["boundary_edges"] = boundary
-    offsets = np.arange(0, 5 * n_h + 1, 5, dtype=np.int64)
-    child = Mesh.trusted(vertices, offsets, faces, child_topo)
-    if smooth:
-        around = mesh.next_half_edge if right else mesh.prev_half_edge  # P_h's neighbour at x_h
-        child = Mesh.trusted(_smoothed(mesh, child, x, around, right, centre_of), offsets,
-                             faces, child_topo)
-
+    ez[:, FIRST, 0], ez[:, FIRST, 1] = topo.edges[:, 0], z0
+    ez[:, MIDDLE, 0] = z0
+    z0 += 1
+    ez[:, MIDDLE, 1], ez[:, LAST, 0], ez[:, LAST, 1] = z0, topo.edges[:, 1], z0
+    edges[3 * n_e:, 0] = x
+    ring.face_values(n_v + 2 * n_e, out=edges[3 * n_e:, 1])
     parent_edge = np.empty(len(edges), dtype=np.int32)
     parent_edge[:3 * n_e] = np.repeat(np.arange(n_e, dtype=np.int32), 3)
-    parent_edge[3 * n_e:] = mesh.half_edge_face
-    edge_part = np.full(len(edges), SPOKE, dtype=np.int8)
-    edge_part[:3 * n_e] = np.tile(np.array([FIRST, MIDDLE, LAST], dtype=np.int8), n_e)
-    corner = np.arange(n_h, dtype=np.int32) - mesh.face_offsets[:-1].astype(np.int32)[
-        mesh.half_edge_face]
-    return Level(child, mesh.half_edge_face, corner, parent_edge, edge_part)
+    ring.face_values(0, out=parent_edge[3 * n_e:])
+    edge_part = np.empty(len(edges), dtype=np.int8)
+    fill_rows(edge_part[:3 * n_e].reshape(n_e, 3), np.array([FIRST, MIDDLE, LAST], np.int8))
+    edge_part[3 * n_e:] = SPOKE
+    boundary = np.zeros(len(edges), dtype=bool)
+    boundary[:3 * n_e] = np.repeat(topo.boundary_edges, 3)
+    return edges, parent_edge, edge_part, boundary
 
 
-def _stack(columns, dtype, n: int) -> NDArray:
-    """(n * 5,) row-major interleave of five columns (arrays or scalars)."""
-    out = np.empty((n, len(columns)), dtype=dtype)
-    for k, col in enumerate(columns):
-        out[:, k] = col
-    return out.reshape(-1)
+def _edge_half_edges(mesh: Mesh, ring: Corners, right: bool) -> NDArray[np.int32]:
+    """The child's ``Topology.edge_half_edges`` (E', 2), from the parent's by arithmetic.
+
+    Child half-edge 5h + j is corner j of P_h. The three Z parts of parent edge e come from
+    its half-edges h0 (u -> w) and h1 (w -> u) and their neighbours in their faces, the spoke
+    of h from h and its neighbour: every row is written in edge order, with no scatter.
+    """
+    topo = mesh.topology
+    n_e = topo.n_edges
+    h0, h1 = topo.edge_half_edges[:, 0] * 5, topo.edge_half_edges[:, 1] * 5
+    out = np.empty((3 * n_e + mesh.n_corners, 2), dtype=np.int32)
+    z = out[:3 * n_e].reshape(n_e, 3, 2)
+    np.add(h0, 1, out=z[:, MIDDLE, 0])
+    np.add(h1, 1, out=z[:, MIDDLE, 1])
+    spokes = out[3 * n_e:]
+    if right:  # FIRST: (5 h0, 5 next(h1) + 4), LAST: (5 h1, 5 next(h0) + 4)
+        z[:, FIRST, 0], z[:, LAST, 0] = h0, h1
+        np.add(5 * ring.neighbour(topo.edge_half_edges[:, 1], 1), 4, out=z[:, FIRST, 1])
+        np.add(5 * ring.neighbour(topo.edge_half_edges[:, 0], 1), 4, out=z[:, LAST, 1])
+        ring.corner_ids(0, spokes[:, 0], scale=5, offset=2)
+        ring.corner_ids(1, spokes[:, 1], scale=5, offset=3)
+    else:  # FIRST: (5 prev(h0) + 3, 5 h1 + 2), LAST: (5 prev(h1) + 3, 5 h0 + 2)
+        np.add(5 * ring.neighbour(topo.edge_half_edges[:, 0], -1), 3, out=z[:, FIRST, 0])
+        np.add(5 * ring.neighbour(topo.edge_half_edges[:, 1], -1), 3, out=z[:, LAST, 0])
+        np.add(h1, 2, out=z[:, FIRST, 1])
+        np.add(h0, 2, out=z[:, LAST, 1])
+        ring.corner_ids(-1, spokes[:, 0], scale=5, offset=4)
+        ring.corner_ids(0, spokes[:, 1], scale=5)
+    for col in (0, 1):  # outer edges: no half-edge on one side
+        e = np.flatnonzero(topo.edge_half_edges[:, col] < 0)
+        z[e, FIRST, col] = z[e, MIDDLE, col] = z[e, LAST, 1 - col] = -1
+    return out
 
 
-def _smoothed(parent: Mesh, child: Mesh, x, around, right: bool,
-              centre_of) -> NDArray[np.float64]:
-    """Operation 4: every inner vertex moves, all at once, to the mean centre of its faces.
+def _divide(values: NDArray[np.complex128], by) -> None:
+    """``values /= by`` in place for real ``by``, with the bits numpy's complex division gives
+    (it multiplies by the reciprocal), on the float view: a third of the time."""
+    floats = values.view(np.float64).reshape(-1, 2)
+    floats *= (1.0 / np.asarray(by, dtype=np.float64))[..., None]
+
+
+def _vertex_centres(mesh: Mesh, ring: Corners, vertices, x, y, old, right: bool):
+    """(H,) complex vertex mean of every child face before smoothing.
+
+    The five corners are added in face order, exactly as ``face_centroids`` of the child would,
+    but read from where they are known: the parent's centre (per face), the old vertex and the
+    Z vertices x_h and y_h (once per corner; the last corner, x of the neighbour, by shifting
+    x along the face).
+    """
+    points = vertices.view(np.complex128).ravel()
+    centre = ring.per_corner(points[mesh.n_vertices + 2 * mesh.topology.n_edges:])
+    xs = np.take(points, x, mode="clip")
+    scratch = np.take(points, y, mode="clip")
+    if right:  # a + y + x + c + x[prev]
+        out = np.take(points, old, mode="clip")
+        out += scratch
+        out += xs
+        out += centre
+    else:  # c + x + y + b + x[next]
+        out = centre
+        out += xs
+        out += scratch
+        out += np.take(points, old, out=scratch, mode="clip")
+    ring.shifted(xs, -1 if right else 1, out=out, plus=out)
+    _divide(out, 5)
+    return out
+
+
+def _smooth(parent: Mesh, ring: Corners, vertices, centres, old, right: bool) -> None:
+    """Operation 4, in place: every inner vertex moves to the mean centre of its faces.
 
     The faces around each kind of child vertex are known from the parent, so the sums run
-    over parent corners (H) instead of child corners (5H):
-    a Z vertex x_h lies in P_h, P_around(h) and (inner edges) P_twin(h); a centre in the faces of
-    its parent face; an old vertex in one face per parent corner at it.
+    over parent corners (H) instead of child corners (5H), from ``centres``, the child face
+    centres before smoothing: a Z vertex x_h lies in P_h, P_around(h) and (inner edges)
+    P_twin(h), summed in that order edge by edge; a centre in the faces of its parent face; an
+    old vertex in one face per parent corner at it.
     """
     topo = parent.topology
     n_v, n_e = parent.n_vertices, topo.n_edges
-    centres = centre_of(child).view(np.complex128).ravel()  # (H,) one per child face
-    out = child.vertices.copy()
-    flat = out.view(np.complex128).ravel()
-    twin = topo.twin
-    inner = twin >= 0
-    z_sum = centres + centres[around] + np.where(inner, centres[np.maximum(twin, 0)], 0)
-    z_new = z_sum / np.where(inner, 3.0, 2.0)
-    z_ids = x[inner]  # the x of an inner half-edge is an inner Z vertex
-    flat[z_ids] = z_new[inner]
-    k = parent.face_degree
-    if k:
-        face_sum = centres.reshape(-1, k).sum(axis=1)
+    flat = vertices.view(np.complex128).ravel()
+    z = flat[n_v:n_v + 2 * n_e].reshape(n_e, 2)
+    lone = np.flatnonzero(topo.boundary_edges)  # outer Z vertices stay
+    keep = z[lone]
+    near = np.empty_like(centres)  # c_h + c_around(h)
+    ring.shifted(centres, 1 if right else -1, out=near, plus=centres)
+    h0, h1 = (np.ascontiguousarray(topo.edge_half_edges[:, c], dtype=np.intp) for c in (0, 1))
+    first, other = np.empty(n_e, dtype=np.complex128), np.empty(n_e, dtype=np.complex128)
+    for h, twin, col in ((h0, h1, int(right)), (h1, h0, 1 - int(right))):  # x_h0 is z0 (left)
+        np.add(np.take(near, h, out=first, mode="clip"),
+               np.take(centres, twin, out=other, mode="clip"), out=z[:, col])
+    del near, first, other
+    _divide(z.ravel(), 3)
+    z[lone] = keep
+    if ring.k:
+        face_sum = centres.reshape(-1, ring.k).sum(axis=1)
     else:
         face_sum = np.add.reduceat(centres, parent.face_offsets[:-1])
-    flat[n_v + 2 * n_e:] = face_sum / parent.face_sizes
-    corner_vertex = parent.face_indices if right else parent.face_indices[parent.next_half_edge]
-    count = np.bincount(corner_vertex, minlength=n_v)
-    mean = (np.bincount(corner_vertex, weights=centres.real, minlength=n_v)
-            + 1j * np.bincount(corner_vertex, weights=centres.imag, minlength=n_v))
-    old_inner = ~outer_vertices(parent)
-    flat[:n_v][old_inner] = mean[old_inner] / count[old_inner]
-    return out
+    _divide(face_sum, parent.face_sizes)
+    flat[n_v + 2 * n_e:] = face_sum
+    inner = ~outer_vertices(parent)
+    scale = 1.0 / np.bincount(old, minlength=n_v)[inner]  # as _divide: times the reciprocal
+    for c, part in ((0, centres.real), (1, centres.imag)):
+        vertices[:n_v, c][inner] = np.bincount(old, weights=part, minlength=n_v)[inner] * scale

@@ -1,0 +1,16 @@
+"""Which packages the distribution holds (everything else is in pyproject.toml).
+
+The code is in ``src/``; the presets stay in ``templates/`` at the top of the checkout, where
+users look for them, and install as the package ``weavecut.templates`` (its TOML files are
+package data, read with ``importlib.resources``). Folders are found, not listed, so a new
+subpackage or preset kind ships without touching this file.
+"""
+
+from setuptools import find_namespace_packages, find_packages, setup
+
+TEMPLATES = ["weavecut.templates",
+             *(f"weavecut.templates.{kind}" for kind in find_namespace_packages("templates"))]
+
+setup(packages=find_packages("src") + TEMPLATES,
+      package_dir={"": "src", "weavecut.templates": "templates"},
+      package_data={"weavecut.templates": ["*/*.toml"]})

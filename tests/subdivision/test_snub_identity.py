@@ -1,0 +1,67 @@
+"""The in-place snub step gives the same arrays, bit for bit, as the direct one it replaced
+(``snub_oracle.py``): on built-in and random meshes, both chiralities, both centres, with and
+without smoothing, over several levels (faces of one degree and of mixed degrees)."""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+
+from tests import meshes
+from tests.strategies import valid_meshes
+from tests.subdivision import snub_oracle
+from weavecut import inputs
+from weavecut.mesh import Mesh, Topology
+from weavecut.subdivision import snub
+
+OPTIONS = [dict(chirality=c, centre=k, smooth=s)
+           for c, k, s in itertools.product(snub.CHIRALITIES, snub.CENTRES, (True, False))]
+MESHES = {name: (lambda name=name: inputs.get(name)) for name in
+          ["pentagon", "tiling-8-4:2x2", "triangulated-ngon:6", "square-grid:3x2",
+           "hex-grid:2x2", "pentagon-flower"]}
+MESHES["mixed"] = meshes.mixed
+
+
+def _arrays(level) -> dict[str, np.ndarray]:
+    mesh, topo = level.mesh, level.mesh.topology
+    return {"vertices": mesh.vertices, "face_offsets": mesh.face_offsets,
+            "face_indices": mesh.face_indices, "edges": topo.edges,
+            "half_edge_edge": topo.half_edge_edge, "half_edge_side": topo.half_edge_side,
+            "boundary_edges": topo.boundary_edges, "parent_face": level.parent_face,
+            "parent_corner": level.parent_corner, "parent_edge": level.parent_edge,
+            "edge_part": level.edge_part}
+
+
+def _assert_same_chain(mesh: Mesh, levels: int, **options) -> None:
+    new = old = mesh
+    for t in range(1, levels + 1):
+        got, want = snub.step(new, **options), snub_oracle.step(old, **options)
+        for name, expected in _arrays(want).items():
+            actual = _arrays(got)[name]
+            assert actual.dtype == expected.dtype, (t, name)
+            assert np.array_equal(actual, expected), f"level {t}: {name} differs"
+        # what the step stores for the next step equals what the mesh would derive itself
+        fresh = Mesh.trusted(got.mesh.vertices, got.mesh.face_offsets, got.mesh.face_indices)
+        assert got.mesh.face_degree == fresh.face_degree
+        rebuilt = Topology(got.mesh.topology.edges, got.mesh.topology.half_edge_edge,
+                           got.mesh.topology.half_edge_side)
+        assert np.array_equal(got.mesh.topology.edge_half_edges, rebuilt.edge_half_edges)
+        assert np.array_equal(got.mesh.topology.boundary_edges, rebuilt.boundary_edges)
+        new, old = got.mesh, want.mesh
+
+
+@pytest.mark.parametrize("options", OPTIONS, ids=lambda o: "-".join(map(str, o.values())))
+@pytest.mark.parametrize("name", MESHES)
+def test_same_arrays_as_the_direct_step(name, options):
+    mesh = MESHES[name]()
+    _assert_same_chain(mesh, 4 if mesh.n_faces < 4 else 3, **options)
+
+
+@settings(max_examples=25, deadline=None)
+@given(valid_meshes)
+def test_same_arrays_on_random_meshes(mesh):
+    for options in OPTIONS[::3]:
+        _assert_same_chain(mesh, 2, **options)
