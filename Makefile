@@ -38,7 +38,7 @@ $(OUT)/%/.built: templates/recipes/%.toml $(STAMP) $(SRC)
 	$(WC) -q build $< -o $(OUT)/$* --force > /dev/null
 	touch $@
 
-$(OUT)/%/.built: examples/%.toml $(STAMP) $(SRC) examples/*.obj examples/*.json
+$(OUT)/%/.built: examples/%.toml $(STAMP) $(SRC) examples/*.obj examples/*.json examples/*.svg examples/*.dxf
 	$(WC) -q build $< -o $(OUT)/$* --force > /dev/null
 	touch $@
 

@@ -23,6 +23,7 @@ from ..errors import MeshError, WeaveCutError
 from ..fileio import note, protect, recording
 from ..mesh import Mesh, signed_areas
 from ..mesh_io import read_valid_mesh
+from ..readers import DEFAULT_FLATTEN, MESH_CHOICES
 from ..text import clean
 from ..validation import validate
 
@@ -143,12 +144,16 @@ def html_option(f):
 
 
 def load_mesh(spec: str, allow_nonconvex: bool = False) -> Mesh:
-    """A built-in input by name, or a mesh file, validated; no output may replace the file."""
+    """A built-in input by name, or a mesh file or drawing, validated; no output may replace
+    the file. A drawing (.svg, .dxf) is read with the options of ``drawing_options``, which
+    the running command keeps in its context."""
     if inputs.is_builtin(spec) or not Path(spec).suffix:
         if not Path(spec).exists():
             return validate(inputs.get(spec), allow_nonconvex=allow_nonconvex)
     protect(spec)
-    return read_valid_mesh(spec, allow_nonconvex=allow_nonconvex, note=say)
+    ctx = click.get_current_context(silent=True)
+    drawing = ctx.meta.get(DRAWING_KEY, {}) if ctx else {}
+    return read_valid_mesh(spec, allow_nonconvex=allow_nonconvex, note=say, **drawing)
 
 
 THINNEST = 1e-3  # isoperimetric quotient 4 pi A / P^2 of the thinnest face a layout accepts
@@ -228,10 +233,47 @@ def complete_preset(kind: str):
     return complete
 
 
-input_argument = click.argument("input_mesh", metavar="INPUT", shell_complete=complete_inputs)
+def input_argument(f):
+    """Decorator adding the INPUT argument and the options for reading a drawing as INPUT."""
+    return click.argument("input_mesh", metavar="INPUT",
+                          shell_complete=complete_inputs)(drawing_options(f))
+
+
 allow_nonconvex_option = click.option(
     "--allow-nonconvex", is_flag=True, help="Accept non-convex input faces (the paper assumes "
     "convex ones).")
+
+
+DRAWING_KEY = "weavecut.drawing"
+
+
+def _keep_drawing_option(ctx: click.Context, param: click.Parameter, value):
+    ctx.meta.setdefault(DRAWING_KEY, {})[param.name] = value
+    return value
+
+
+def drawing_options(f):
+    """Decorator adding how to read an SVG or DXF INPUT: --flatten, --layer, --mesh, --cell.
+
+    The values go to ``load_mesh`` through the command's context, so a command's own
+    parameters stay as they are.
+    """
+    kept = {"expose_value": False, "callback": _keep_drawing_option}
+    options = [
+        click.option("--flatten", type=Length(), default=f"{DEFAULT_FLATTEN}mm",
+                     show_default=True, help="Drawings: curves stay this close to their "
+                     "polylines; points closer than this merge.", **kept),
+        click.option("--layer", default=None, help="Drawings: read only this DXF layer or "
+                     "SVG (Inkscape) layer.", **kept),
+        click.option("--mesh", type=click.Choice(MESH_CHOICES), default="auto",
+                     show_default=True, help="Drawings: mesh the inside of the outline (auto: "
+                     "when there is a single outline; none: faces as drawn).", **kept),
+        click.option("--cell", type=Length(), default=None, help="Drawings: face size when "
+                     "meshing an outline [default: about 60 faces].", **kept),
+    ]
+    for option in reversed(options):
+        f = option(f)
+    return f
 
 
 def quiet() -> bool:

@@ -22,14 +22,14 @@ from ..units import PAPER_SIZES
 from ..weave.colour import palette
 from ..fileio import make_folder, write_atomic
 from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_inputs,
-                     complete_preset, flag_nonconvex, load_mesh, provenance, reports_errors,
-                     summary)
-from .common import html_option
+                     complete_preset, drawing_options, flag_nonconvex, html_option, load_mesh,
+                     provenance, reports_errors, summary)
 
 
 @click.command("puzzle", context_settings=CONTEXT)
 @click.argument("input_mesh", metavar="[INPUT]", default="pentagon",
                 shell_complete=complete_inputs)
+@drawing_options
 @click.option("-o", "--output", "out_dir", required=True,
               type=click.Path(file_okay=False), help="Folder for the files (created).")
 @click.option("--levels", "-n", type=click.IntRange(2, 7), default=4, show_default=True,
