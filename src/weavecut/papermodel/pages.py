@@ -65,7 +65,8 @@ class PageArea:
 def split_strip(strip: Strip, max_length: float, overlap: float = 8.0) -> list[Strip]:
     """``strip`` (unlabelled) cut into pieces no longer than ``max_length`` mm that overlap by
     ``overlap`` mm to glue; pieces are named "A7 1/2", "A7 2/2" and every piece but the last
-    carries its glue band (glued under the start of the next piece)."""
+    carries its glue band (glued under the start of the next piece). A tile cut so that less
+    than half of it is on a piece loses its name there (the other piece names it)."""
     if strip.length <= max_length:
         return [strip]
     if max_length <= 2 * overlap:
@@ -80,6 +81,9 @@ def split_strip(strip: Strip, max_length: float, overlap: float = 8.0) -> list[S
         outline = shapely.intersection(strip.outline, window)
         tiles = shapely.intersection(strip.tiles, window)
         keep = ~shapely.is_empty(tiles) & (shapely.area(tiles) > 1e-9)
+        # a tile mostly on the next piece is named there
+        names = np.where(shapely.area(tiles) >= 0.5 * shapely.area(strip.tiles),
+                         np.asarray(strip.names, dtype=object), "")
         glue = None
         if i + 1 < n:
             glue = np.array([shapely.intersection(strip.outline,
@@ -87,7 +91,7 @@ def split_strip(strip: Strip, max_length: float, overlap: float = 8.0) -> list[S
                             dtype=object)
         piece = replace(strip, label=f"{strip.label} {i + 1}/{n}", outline=outline,
                         tiles=tiles[keep], fills=tuple(np.asarray(strip.fills)[keep].tolist()),
-                        over=strip.over[keep], names=tuple(np.asarray(strip.names)[keep].tolist()),
+                        over=strip.over[keep], names=tuple(names[keep].tolist()),
                         glue=glue)
         pieces.append(piece.moved(affine(0.0, (-a, 0.0))))
     return pieces

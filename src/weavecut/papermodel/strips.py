@@ -332,13 +332,15 @@ def build_strips(weave: Weave, plan: ModulePlan, colours: list[str], scale: floa
     names = plan.labels if labels is None else labels
     names = [names[t] for t in image.tolist()]
     cols = [colours[t] for t in image.tolist()]
+    c = plan.symmetry.centre
+    back = affine(0.0, c) @ affine(-np.degrees(copy * plan.symmetry.angle)) @ affine(0.0, -c)
     out = []
     for s in np.asarray(strands).tolist():  # strands, not mesh elements
         visits, over = weave.strand(s)
         if plan.reversed[s]:
             visits, over = visits[::-1], over[::-1]
         strip = _strip(weave, s, visits, over, tiles, centres, names, cols, scale, tile_mm)
-        out.append(replace(strip, strand=int(image[s])))
+        out.append(replace(strip, strand=int(image[s]), frame=strip.frame @ back))
     return out
 
 
@@ -405,7 +407,7 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
             id_tiles += [int(own[r]) for r in rank.tolist() if half[r]
                          and id_size[r] >= MIN_CAP][:1]
     wanted = [(i, strip.label, ID_SIZE) for i in id_tiles] + \
-        [(int(i), strip.names[i], NAME_SIZE) for i in under]
+        [(int(i), strip.names[i], NAME_SIZE) for i in under if strip.names[i]]
     texts, plates, plate_fills = _place(strip, wanted, regions, centres, band)
     if len(plates):
         regions = shapely.difference(regions, shapely.buffer(shapely.union_all(plates), PAD))
