@@ -121,3 +121,16 @@ def inner_centres(regions) -> np.ndarray:
         lines = shapely.maximum_inscribed_circle(regions[ok], tolerance[ok])
         out[ok] = shapely.get_coordinates(shapely.get_point(lines, 0))
     return out
+
+
+def wrap(text: str, width: float, size: float) -> list[str]:
+    """``text`` broken at spaces into lines no wider than ``width`` mm at cap height ``size``."""
+    out, line = [], ""
+    for word in text.split(" "):
+        trial = f"{line} {word}" if line else word
+        if line and text_width(trial, size) > width:
+            out.append(line)
+            line = word
+        else:
+            line = trial
+    return out + [line]

@@ -14,7 +14,15 @@ import shapely.ops
 
 from ..layout.contrast import text_colour_on
 from ..layout.drawing import Fit, Layer, Polylines, Sheet, Style, Text, polygons_from_shapely
-from ..layout.labels import MIN_CAP, centred_text, largest_fit, text_box, text_width, unit_box
+from ..layout.labels import (
+    MIN_CAP,
+    centred_text,
+    largest_fit,
+    text_box,
+    text_width,
+    unit_box,
+    wrap,
+)
 from ..weave.model import Weave
 from .pages import GAP, page_layers
 from .strips import arrow_polygon, copy_letter, model_tiles
@@ -26,19 +34,6 @@ ALONG = 6  # an extra ID every this many own tiles along a strand
 OUTLINE = Style("#333333", 0.1)
 
 
-def wrap(text: str, width: float, size: float = TEXT) -> list[str]:
-    """``text`` broken at spaces into lines no wider than ``width`` mm at cap height ``size``."""
-    out, line = [], ""
-    for word in text.split(" "):
-        trial = f"{line} {word}" if line else word
-        if line and text_width(trial, size) > width:
-            out.append(line)
-            line = word
-        else:
-            line = trial
-    return out + [line]
-
-
 def _paragraphs(items: list[str], x: float, top: float, width: float,
                 numbered: bool = False) -> tuple[list[Text], float]:
     """Wrapped lines from ``top`` down; returns the texts and the y below the last line."""
@@ -46,7 +41,7 @@ def _paragraphs(items: list[str], x: float, top: float, width: float,
     for n, item in enumerate(items, start=1):
         head = f"{n}. " if numbered else ""
         indent = text_width(head, TEXT) if numbered else 0.0
-        for i, line in enumerate(wrap(item, width - indent)):
+        for i, line in enumerate(wrap(item, width - indent, TEXT)):
             y -= LINE
             if i == 0 and head:
                 texts.append(Text(x, y, head.strip(), TEXT))

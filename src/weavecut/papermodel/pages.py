@@ -11,7 +11,7 @@ import numpy as np
 import shapely
 
 from ..layout.drawing import Layer, Polygons, Polylines, Style, Text, polygons_from_shapely
-from ..layout.labels import MIN_CAP, text_width
+from ..layout.labels import MIN_CAP, text_width, wrap
 from .strips import Strip, affine, tint
 
 HEADER = 14.5  # mm above the printable area for the title lines
@@ -191,15 +191,7 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
 def _wrap(text: str, width: float, lines: int) -> list[str]:
     """``text`` broken at spaces into at most ``lines`` lines no wider than ``width`` mm (the
     last line is shortened with an ellipsis if it must be)."""
-    out, line = [], ""
-    for word in text.split(" "):
-        trial = f"{line} {word}" if line else word
-        if line and text_width(trial, SMALL) > width:
-            out.append(line)
-            line = word
-        else:
-            line = trial
-    out.append(line)
+    out = wrap(text, width, SMALL)
     if len(out) > lines:
         last = " ".join(out[lines - 1:])
         while text_width(last + " ...", SMALL) > width and " " in last:
