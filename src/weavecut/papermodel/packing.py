@@ -18,7 +18,8 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 from numpy.typing import NDArray
-from scipy.signal import fftconvolve
+from scipy.ndimage import binary_dilation
+from scipy.fft import irfft2, next_fast_len, rfft2
 
 ANGLE_STEP = 15.0  # degrees between the turns tried
 
@@ -65,17 +66,41 @@ def _mask(shape, angle: float, gap: float, cell: float, width: float, height: fl
     return mask.astype(np.float64), origin
 
 
+def nest_offset(shape, gap: float, step: float = 0.25) -> NDArray[np.float64]:
+    """(dx, dy): the move that nests a copy of ``shape`` (long axis along x) ``gap`` mm clear of
+    it most tightly: for every slide dx along the axis the least clear dy across it, and of
+    those the one whose pair has the smallest convex hull (congruent wavy strips nest)."""
+    x0, y0, x1, y1 = shape.bounds
+    slide = min(x1 - x0, 30.0)
+    dxs = np.arange(-slide, slide + 1e-9, 1.0)
+    dys = np.arange(0.0, y1 - y0 + gap + step, step)
+    moves = np.array(np.meshgrid(dxs, dys)).reshape(2, -1).T
+    copies = shapely.transform(np.full(len(moves), shape, dtype=object),
+                               lambda xy: xy + np.repeat(moves, len(xy) // len(moves), axis=0))
+    clear = (shapely.distance(shape, copies) >= gap).reshape(len(dys), len(dxs))
+    lowest = np.argmax(clear, axis=0)  # per dx, the first clear dy
+    ok = clear[lowest, np.arange(len(dxs))]
+    cand = np.column_stack([dxs, dys[lowest]])[ok]
+    pairs = shapely.union(shape, copies.reshape(len(dys), len(dxs))[lowest, np.arange(len(dxs))][ok])
+    box = shapely.area(shapely.convex_hull(pairs))
+    return cand[np.lexsort((np.abs(cand[:, 0]), np.round(box, 3)))[0]]
+
+
 def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 1.0,
          kinds=None, angle_step: float = ANGLE_STEP) -> list[Place]:
     """Pack ``shapes`` (shapely polygons, mm) onto as few ``width`` x ``height`` areas as it can.
 
+    Congruent pieces (equal ``kinds``, the same polygon in their own frames) are first nested
+    into a stack, each copy moved by :func:`nest_offset` from the one before, and the stack is
+    packed as one piece; a stack that fits on no open page is halved before a page is opened.
+
     Parameters
     ----------
-    shapes : (n,) polygons in their own frames
+    shapes : (n,) polygons in their own frames, long axis along x
     width, height : the packing area (mm); the area's lower-left corner is the origin
     gap : least distance between two pieces (mm)
     cell : grid size (mm); smaller packs tighter and slower
-    kinds : (n,) ints, equal for congruent pieces (their masks are computed once)
+    kinds : (n,) ints, equal for congruent pieces
     angle_step : turns tried are the multiples of this (degrees), never a mirror
 
     Returns
@@ -89,53 +114,163 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 1.
     shapes = np.asarray(shapes, dtype=object)
     n = len(shapes)
     kinds = np.arange(n) if kinds is None else np.asarray(kinds)
-    angles = np.arange(0.0, 360.0, angle_step)
+    angles = np.arange(0.0, 360.0, angle_step).tolist()
     nx, ny = int(width // cell), int(height // cell)
-    masks: dict[int, list] = {}
-    areas = shapely.area(shapes)
-    order = np.lexsort((np.arange(n), -areas))
-    grids: list[NDArray[np.float64]] = []
-    out: list[Place | None] = [None] * n
-    for i in order.tolist():  # pieces, not mesh elements
-        key = int(kinds[i])
+    _, first, inverse = np.unique(kinds, return_index=True, return_inverse=True)
+    units = []  # (members, move between members)
+    for g in np.argsort(first, kind="stable").tolist():  # kinds of piece
+        members = np.flatnonzero(inverse == g).tolist()
+        move = nest_offset(shapes[members[0]], gap) if len(members) > 1 else np.zeros(2)
+        units.append((members, move))
+    masks: dict[tuple, list] = {}
+
+    def options(members, move):
+        key = (members[0], len(members))
         if key not in masks:
-            masks[key] = [(a, *m) for a in angles.tolist()
-                          if (m := _mask(shapes[i], a, gap, cell, width, height)) is not None]
-            if not masks[key]:
-                x0, y0, x1, y1 = shapes[i].bounds
-                raise ValueError(f"a strip of {x1 - x0:.0f} x {y1 - y0:.0f} mm fits the printable "
-                                 f"area of {width:.0f} x {height:.0f} mm at no angle")
-        need = masks[key][0][1].sum()
-        for page in range(len(grids) + 1):
-            if page == len(grids):
-                grids.append(np.zeros((ny, nx)))
-            grid = grids[page]
-            if grid.size - grid.sum() < need:
-                continue
-            best = _best_spot(grid, masks[key])
-            if best is not None:
-                (iy, ix), angle, mask, origin = best
-                grid[iy:iy + mask.shape[0], ix:ix + mask.shape[1]] += mask
-                shift = (ix * cell - origin[0], iy * cell - origin[1])
-                out[i] = Place(page, float(angle), (float(shift[0]), float(shift[1])))
-                break
-    return out  # type: ignore[return-value]
+            stack = shapely.union_all([shapely.transform(shapes[members[0]],
+                                                         lambda xy, j=j: xy + j * move)
+                                       for j in range(len(members))])
+            masks[key] = [(a, m[0], m[1], _rim(m[0])) for a in angles
+                          if (m := _mask(stack, a, gap, cell, width, height)) is not None]
+        return masks[key]
 
+    def area(unit):
+        return -sum(shapes[i].area for i in unit[0])
 
-def _best_spot(grid, options):
-    """((iy, ix), angle, mask, origin) with the lowest top, then leftmost; None if none fits."""
-    best, best_key = None, None
-    for angle, mask, origin in options:  # the allowed turns
-        my, mx = mask.shape
-        if my > grid.shape[0] or mx > grid.shape[1]:
-            continue
-        hits = fftconvolve(grid, mask[::-1, ::-1], mode="valid")
-        free = np.argwhere(hits < 0.5)
-        if len(free) == 0:
-            continue
-        tops = free[:, 0] + my
-        j = np.lexsort((free[:, 1], tops))[0]
-        key = (int(tops[j]), int(free[j, 1]))
-        if best_key is None or key < best_key:
-            best, best_key = ((int(free[j, 0]), int(free[j, 1])), angle, mask, origin), key
+    def rank(r):
+        return (max(p.page for p in r), _last_fill(r, shapes))
+
+    tries = [(_fill(units, shapes, options, area, nx, ny, cell, rule, set()), rule)
+             for rule in RULES]
+    best, rule = min(tries, key=lambda t: rank(t[0]))
+    first = set()
+    for _ in range(REPAIRS):  # the last page's pieces go first next time
+        last = max(p.page for p in best)
+        if last == 0:
+            break
+        first |= {i for i, p in enumerate(best) if p.page == last}
+        again = _fill(units, shapes, options, area, nx, ny, cell, rule, first)
+        if rank(again) < rank(best):
+            best = again
     return best
+
+
+RULES = ("gravity", "columns", "contact")
+REPAIRS = 2  # re-packings with the last page's pieces first
+
+
+def _last_fill(places, shapes) -> float:
+    last = max(p.page for p in places)
+    return sum(s.area for p, s in zip(places, shapes) if p.page == last)
+
+
+def _fill(units, shapes, options, area, nx: int, ny: int, cell: float, rule: str, first):
+    """Places for every piece: the units (stacks) largest first (those holding a piece in
+    ``first`` before all others), first fit, by ``rule``."""
+    def order(u):
+        return (not first.intersection(u[0]), area(u), u[0][0])
+
+    queue = sorted(units, key=order)
+    pages: list[_Page] = []
+    spectra: dict = {}
+    out: list[Place | None] = [None] * len(shapes)
+    while queue:  # stacks of pieces
+        members, move = queue.pop(0)
+        opts = options(members, move)
+        spot = None
+        for number, page in enumerate(pages):
+            if opts and page.free >= opts[0][1].sum():
+                if (best := _best_spot(page, opts, rule)) is not None:
+                    spot = number, best
+                    break
+        if spot is None and (len(members) > 1 and (pages or not opts)):
+            half = (len(members) + 1) // 2
+            queue = sorted(queue + [(members[:half], move), (members[half:], move)], key=order)
+            continue
+        if spot is None:
+            if not opts:
+                x0, y0, x1, y1 = shapes[members[0]].bounds
+                raise ValueError(f"a strip of {x1 - x0:.0f} x {y1 - y0:.0f} mm fits the printable "
+                                 f"area at no angle")
+            pages.append(_Page(ny, nx, spectra))
+            spot = len(pages) - 1, _best_spot(pages[-1], opts, rule)
+        number, ((iy, ix), angle, mask, origin) = spot
+        pages[number].add(mask, iy, ix)
+        shift = np.array([ix * cell - origin[0], iy * cell - origin[1]])
+        turn = Place(number, float(angle), (0.0, 0.0)).matrix()[:2, :2]
+        for j, i in enumerate(members):
+            at = shift + turn @ (j * move)
+            out[i] = Place(number, float(angle), (float(at[0]), float(at[1])))
+    return out
+
+
+def _rim(mask):
+    """The cells just outside ``mask`` (padded by one cell)."""
+    inside = np.pad(mask, 1) > 0.5
+    return (binary_dilation(inside) & ~inside).astype(float)
+
+
+def _best_spot(grid: "_Page", options, rule: str):
+    """((iy, ix), angle, mask, origin) of the best place on ``grid`` among the turns in
+    ``options``; None if the piece fits nowhere. ``rule`` "gravity": lowest top, then leftmost;
+    "columns": least right edge, then lowest; "contact": touching most of what is there (pieces and the area's edge, as a share of the
+    piece's rim), then lowest top, then leftmost."""
+    best, best_key = None, None
+    for angle, mask, origin, rim in options:  # the allowed turns
+        my, mx = mask.shape
+        hits = grid.correlate(mask)
+        free = hits < 0.5
+        if not free.any():
+            continue
+        iy, ix = np.nonzero(free)
+        if rule == "contact":
+            touch = grid.correlate(rim, walled=True)[iy, ix]
+            score = -np.rint(touch) / rim.sum()
+        else:
+            score = np.zeros(len(iy))
+        if rule == "columns":
+            j = np.lexsort((iy, ix + mx))[0]
+            key = (0.0, int(ix[j] + mx), int(iy[j]))
+        else:
+            j = np.lexsort((ix, iy, np.round(score, 6)))[0]
+            key = (round(float(score[j]), 6), int(iy[j] + my), int(ix[j]))
+        if best_key is None or key < best_key:
+            best, best_key = ((int(iy[j]), int(ix[j])), angle, mask, origin), key
+    return best
+
+
+class _Page:
+    """A page's occupancy grid and its Fourier transform, kept in step (one FFT per placed
+    piece, one inverse FFT per mask tried)."""
+
+    def __init__(self, ny: int, nx: int, spectra: dict):
+        self.cells = np.zeros((ny, nx))
+        self.spectra = spectra  # mask spectra, shared by the pages of one packing
+        self.shape = (next_fast_len(ny + 2), next_fast_len(nx + 2))  # no wrap where valid
+        self._fft = None
+        self._walled = None
+
+    @property
+    def free(self) -> float:
+        return self.cells.size - self.cells.sum()
+
+    def add(self, mask, iy: int, ix: int) -> None:
+        self.cells[iy:iy + mask.shape[0], ix:ix + mask.shape[1]] += mask
+        self._fft = self._walled = None
+
+    def correlate(self, mask, walled: bool = False):
+        """sum over (i, j) of cells[y + i, x + j] * mask[i, j] for every (y, x) where the mask
+        lies inside the page (``walled``: the page ringed by one occupied cell)."""
+        if walled:
+            if self._walled is None:
+                self._walled = rfft2(np.pad(self.cells, 1, constant_values=1.0), self.shape)
+            grid, (ny, nx) = self._walled, (self.cells.shape[0] + 2, self.cells.shape[1] + 2)
+        else:
+            if self._fft is None:
+                self._fft = rfft2(self.cells, self.shape)
+            grid, (ny, nx) = self._fft, self.cells.shape
+        key = (id(mask), walled)
+        if key not in self.spectra:
+            self.spectra[key] = (mask, np.conj(rfft2(mask, self.shape)))
+        full = irfft2(grid * self.spectra[key][1], self.shape)
+        return full[:ny - mask.shape[0] + 1, :nx - mask.shape[1] + 1]

@@ -14,9 +14,9 @@ from ..layout.drawing import Layer, Polygons, Polylines, Style, Text, polygons_f
 from ..layout.labels import MIN_CAP, text_width, wrap
 from .strips import Strip, affine, tint
 
-HEADER = 14.5  # mm above the printable area for the title lines
-FOOTER = 15.0  # mm below it for the scale bar and the legend
-GAP = 2.5  # mm between strips, and between the area and header / footer
+HEADER = 10.0  # mm above the printable area for the title line and one line of subtitle
+FOOTER = 8.5  # mm below it for the scale bar and the legend
+GAP = 2.0  # mm between strips (at least), and between the area and header / footer
 SMALL = MIN_CAP  # cap height of the page furniture (mm)
 CUT = Style("#ff0000", 0.25)
 TILE_LINE = Style("#555555", 0.12)
@@ -34,7 +34,7 @@ class PageArea:
     @property
     def footer(self) -> float:
         """Footer height: the legend sits beside the scale bar on wide pages, above it else."""
-        return FOOTER if self.width - 2 * self.margin >= 190 else FOOTER + 10
+        return FOOTER if self.width - 2 * self.margin >= 190 else FOOTER + 6
 
     @property
     def box(self) -> tuple[float, float, float, float]:
@@ -145,9 +145,9 @@ def scale_bar(x: float, y: float, length: float = 100.0) -> tuple:
 
 LEGEND = (
     ("own", "on top"),
-    ("light", "under the strand named"),
-    ("cut", "cut line"),
-    ("glue", "glue band"),
+    ("light", "under"),
+    ("cut", "cut"),
+    ("glue", "glue"),
 )
 
 
@@ -159,18 +159,17 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
     number_text = f"page {number} / {total}"
     room = w - 2 * m - text_width(number_text, 3.2) - 4
     title_size = max(MIN_CAP, min(4.0, 4.0 * room / max(text_width(title, 4.0), 1e-9)))
-    texts = [Text(m, h - m - 4.5, title, title_size),
-             Text(w - m, h - m - 4.5, number_text, 3.2, "end"),
-             *(Text(m, h - m - 9.0 - 3.8 * i, line, SMALL)
-               for i, line in enumerate(_wrap(subtitle, w - 2 * m, 2)))]
+    texts = [Text(m, h - m - 4.0, title, title_size),
+             Text(w - m, h - m - 4.0, number_text, 3.2, "end"),
+             Text(m, h - m - 8.5, _wrap(subtitle, w - 2 * m, 1)[0], SMALL)]
     bar, marks, caption = scale_bar(m, m + 1.5)
     shapes: list = [bar, marks, caption]
     # legend: right of the bar on wide pages, above it otherwise; entries left to right
-    x, y = (m + 106.0, m + 1.0) if w - 2 * m >= 190 else (m, m + 8.0)
+    x, y = (m + 106.0, m + 0.5) if w - 2 * m >= 190 else (m, m + 7.0)
     start = x
     swatches, fills, strokes = [], [], []
     for kind, text in (e for e in LEGEND if glue or e[0] != "glue"):
-        step = 6.5 + text_width(text, SMALL) + 3.0
+        step = 6.5 + text_width(text, SMALL) + 2.5
         if x + step > w - m and x > start:
             x, y = start, y + 5.0
         box = shapely.box(x, y, x + 5, y + 3)
@@ -179,7 +178,7 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
         else:
             swatches.append(box)
             fills.append({"own": sample, "light": tint(sample), "glue": GLUE}[kind])
-        texts.append(Text(x + 6.5, y + 0.3, text, SMALL))
+        texts.append(Text(x + 6.5, y + 0.25, text, SMALL))
         x += step
     if swatches:
         shapes.append(polygons_from_shapely(swatches, TILE_LINE, fills))

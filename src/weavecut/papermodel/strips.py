@@ -385,8 +385,9 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
     """``strip`` with its labels: its ID in its largest own tile (and in the other half of a
     long strip), the ID of the strand on top in every under tile, and direction arrows in own
     tiles that hold no ID. Every label is fitted into its tile (less ``PAD``) as large as it goes
-    up to a cap; one that cannot reach ``MIN_CAP`` is kept at the size that fits (so the caller
-    can name the tile size that works)."""
+    up to a cap, or spread over the neighbouring tiles on a plate; a name at the strip's end
+    that still cannot reach ``MIN_CAP`` is left out, any other label is kept at the size that
+    fits (so the caller can name the tile size that works)."""
     band = None if strip.glue is None else shapely.union_all(strip.glue)
     regions = shapely.intersection(strip.tiles, strip.outline)
     if band is not None:
@@ -409,6 +410,11 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
     wanted = [(i, strip.label, ID_SIZE) for i in id_tiles] + \
         [(int(i), strip.names[i], NAME_SIZE) for i in under if strip.names[i]]
     texts, plates, plate_fills = _place(strip, wanted, regions, centres, band)
+    # a strip's end tucked under a border tile too small for the name: the assembly sheet
+    # shows that crossing, the strip leaves it out
+    ends = {0, len(strip.tiles) - 1}
+    texts = [t for t, w in zip(texts, wanted) if t.size >= MIN_CAP or w[1] == strip.label
+             or w[0] not in ends]
     if len(plates):
         regions = shapely.difference(regions, shapely.buffer(shapely.union_all(plates), PAD))
     # arrows: the first and the last own tile without an ID, pointing the way the strand goes
@@ -450,7 +456,8 @@ def _place(strip: Strip, wanted, regions, centres, band):
         i, text, _ = wanted[k]
         wide = shapely.intersection(shapely.union_all(strip.tiles[max(i - 1, 0):i + 2]),
                                     strip.outline)
-        blocked = [band, *(text_box(t) for j, t in enumerate(texts) if j != k), *plates]
+        blocked = [band, *plates, *(text_box(t) for j, t in enumerate(texts)
+                                    if j != k and t.size >= MIN_CAP)]
         blocked = [g for g in blocked if g is not None]
         if blocked:
             wide = shapely.difference(wide, shapely.buffer(shapely.union_all(blocked), PAD))
@@ -458,7 +465,7 @@ def _place(strip: Strip, wanted, regions, centres, band):
         near = inner_centres([shapely.intersection(wide, shapely.buffer(strip.tiles[i],
                                                                          2 * MIN_CAP))])
         z, a = _fit_text([wide], near, [text], MIN_CAP)
-        if z[0] > size[k]:
+        if z[0] >= MIN_CAP - 1e-9:
             texts[k] = centred_text(near[0], text, float(z[0]), float(a[0]),
                                     text_colour_on(strip.fills[i]))
             plates.append(shapely.buffer(text_box(texts[k]), PLATE, join_style="mitre"))
