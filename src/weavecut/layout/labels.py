@@ -2,7 +2,8 @@
 
 A :class:`~weavecut.layout.drawing.Text` has its cap height as ``size``. Its extent is measured
 with Helvetica's widths (what the PDF writer uses), widened by ``WIDEN`` so that the SVG
-writer's DejaVu Sans fits too, and runs from ``DESCENT`` below the baseline to the cap height.
+writer's DejaVu Sans fits too, and runs from the cap height down to the baseline (``DESCENT``
+below it for a text with descenders).
 Checks and placement both use :func:`text_box`, so a label that passes them prints inside its
 box in either format.
 
@@ -23,7 +24,8 @@ MIN_CAP = 2.5
 """The smallest cap height (mm) a printed label may have."""
 CAP_RATIO = 0.72  # Helvetica cap height per em (the PDF writer sets size / 0.72)
 WIDEN = 1.1  # margin for the SVG writer's DejaVu Sans, a little wider than Helvetica
-DESCENT = 0.3  # share of the cap height below the baseline (g, p, y)
+DESCENT = 0.3  # share of the cap height below the baseline for texts with descenders
+DESCENDERS = frozenset("gjpqy,;()[]{}/|_")
 
 
 def text_width(text: str, size: float) -> float:
@@ -34,7 +36,8 @@ def text_width(text: str, size: float) -> float:
 def _box_in_frame(text: str, size: float, anchor: str) -> tuple[float, float, float, float]:
     w = text_width(text, size)
     x0 = {"start": 0.0, "middle": -w / 2, "end": -w}[anchor]
-    return (x0, -DESCENT * size, x0 + w, size)
+    below = DESCENT if DESCENDERS.intersection(text) else 0.05
+    return (x0, -below * size, x0 + w, size)
 
 
 def _turn(xy, angle_deg: float, origin) -> np.ndarray:

@@ -407,9 +407,20 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
             half = own > own[first] if own[first] < own[len(own) // 2] else own < own[first]
             id_tiles += [int(own[r]) for r in rank.tolist() if half[r]
                          and id_size[r] >= MIN_CAP][:1]
-    wanted = [(i, strip.label, ID_SIZE) for i in id_tiles] + \
-        [(int(i), strip.names[i], NAME_SIZE) for i in under if strip.names[i]]
-    texts, plates, plate_fills = _place(strip, wanted, regions, centres, band)
+    # IDs first (spread onto the neighbours if they must), then the names round them
+    texts, plates, plate_fills = _place(strip, [(i, strip.label, ID_SIZE) for i in id_tiles],
+                                        regions, centres, band)
+    taken = [*plates, *(text_box(t) for t in texts)]
+    if taken:
+        regions = shapely.difference(regions, shapely.buffer(shapely.union_all(taken), PAD))
+        centres = inner_centres(regions)
+    wanted = [(int(i), strip.names[i], NAME_SIZE) for i in under
+              if strip.names[i] and not shapely.is_empty(regions[i])]
+    more, more_plates, more_fills = _place(strip, wanted, regions, centres, band, taken)
+    texts += more
+    plates = np.array([*plates, *more_plates], dtype=object)
+    plate_fills += more_fills
+    wanted = [(i, strip.label, ID_SIZE) for i in id_tiles] + wanted
     # a strip's end tucked under a border tile too small for the name: the assembly sheet
     # shows that crossing, the strip leaves it out
     ends = {0, len(strip.tiles) - 1}
@@ -439,10 +450,11 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
                    plates=plates, plate_fills=plate_fills)
 
 
-def _place(strip: Strip, wanted, regions, centres, band):
+def _place(strip: Strip, wanted, regions, centres, band, taken=()):
     """(texts, plates, plate fills) for ``wanted`` (tile, text, largest size) labels: each
     fitted into its tile; one that does not reach ``MIN_CAP`` there is spread over its
-    neighbouring tiles on a plate of its tile's fill, clear of the labels placed before it."""
+    neighbouring tiles on a plate of its tile's fill, clear of ``taken`` and of the labels
+    placed before it."""
     if not wanted:
         return [], np.zeros(0, dtype=object), ()
     idx = np.array([w[0] for w in wanted])
@@ -456,15 +468,19 @@ def _place(strip: Strip, wanted, regions, centres, band):
         i, text, _ = wanted[k]
         wide = shapely.intersection(shapely.union_all(strip.tiles[max(i - 1, 0):i + 2]),
                                     strip.outline)
-        blocked = [band, *plates, *(text_box(t) for j, t in enumerate(texts)
-                                    if j != k and t.size >= MIN_CAP)]
+        blocked = [band, *taken, *plates, *(text_box(t) for j, t in enumerate(texts)
+                                            if j != k and t.size >= MIN_CAP)]
         blocked = [g for g in blocked if g is not None]
         if blocked:
             wide = shapely.difference(wide, shapely.buffer(shapely.union_all(blocked), PAD))
         wide = shapely.buffer(wide, -PAD - PLATE, join_style="mitre")
-        near = inner_centres([shapely.intersection(wide, shapely.buffer(strip.tiles[i],
-                                                                         2 * MIN_CAP))])
-        z, a = _fit_text([wide], near, [text], MIN_CAP)
+        zone = shapely.intersection(wide, shapely.buffer(strip.tiles[i], 2 * MIN_CAP))
+        inner = inner_centres([zone])[0]
+        mid = shapely.get_coordinates(shapely.centroid(zone)).reshape(-1, 2)[:1]
+        spots = np.vstack([inner, mid, (inner + mid) / 2]) if len(mid) else inner[None]
+        z, a = _fit_text([wide] * len(spots), spots, [text] * len(spots), MIN_CAP)
+        best = int(np.argmax(z))
+        near, z, a = spots[best:best + 1], z[best:best + 1], a[best:best + 1]
         if z[0] >= MIN_CAP - 1e-9:
             texts[k] = centred_text(near[0], text, float(z[0]), float(a[0]),
                                     text_colour_on(strip.fills[i]))
