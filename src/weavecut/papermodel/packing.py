@@ -5,10 +5,13 @@ whose centre lies within ``gap / 2 + cell / sqrt(2)`` of the piece. Two pieces w
 no cell are at least ``gap`` apart (a point nearer than ``gap / 2`` to both would put its
 cell in both masks), and a piece lies inside the union of its mask's cells, so inside the page
 when its mask is. Where a mask fits on a page's occupancy grid is one FFT correlation per
-angle; of all the places that fit the piece goes where its top is lowest, then leftmost
-(gravity packing), pieces largest first, each on the first page with room (first fit).
+angle (the page's transform is kept and the masks' are cached, so each try is one inverse FFT).
 
-Congruent pieces (the k copies of a module strip) share their masks: pass the same ``kind``.
+Congruent pieces (the k copies of a module strip, the same ``kind``) are nested into a stack
+first. Stacks go largest first, each on the first page with room (first fit), where its right
+edge is least (columns) or its top lowest (gravity); a stack that fits no open page is halved
+before a page is opened. Both rules are tried and, when the last page is nearly empty, the
+packing is redone with that page's pieces first; the packing with the fewest pages wins.
 """
 
 from __future__ import annotations
@@ -18,7 +21,6 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 from numpy.typing import NDArray
-from scipy.ndimage import binary_dilation
 from scipy.fft import irfft2, next_fast_len, rfft2
 
 ANGLE_STEP = 15.0  # degrees between the turns tried
@@ -130,8 +132,11 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 1.
             stack = shapely.union_all([shapely.transform(shapes[members[0]],
                                                          lambda xy, j=j: xy + j * move)
                                        for j in range(len(members))])
-            masks[key] = [(a, m[0], m[1], _rim(m[0])) for a in angles
-                          if (m := _mask(stack, a, gap, cell, width, height)) is not None]
+            half = [(a, _mask(stack, a, gap, cell, width, height)) for a in angles if a < 180]
+            # the turn by a + 180 is the turn by a read backwards (the grid is symmetric)
+            masks[key] = [(a, *m) for a, m in half if m is not None] + [
+                (a + 180.0, m[0][::-1, ::-1], -m[1] - np.array(m[0].shape[::-1]) * cell)
+                for a, m in half if m is not None]
         return masks[key]
 
     def area(unit):
@@ -146,7 +151,7 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 1.
     first = set()
     for _ in range(REPAIRS):  # the last page's pieces go first next time
         last = max(p.page for p in best)
-        if last == 0:
+        if last == 0 or _last_fill(best, shapes) > REPAIR_BELOW * width * height:
             break
         first |= {i for i, p in enumerate(best) if p.page == last}
         again = _fill(units, shapes, options, area, nx, ny, cell, rule, first)
@@ -155,8 +160,9 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 1.
     return best
 
 
-RULES = ("gravity", "columns", "contact")
-REPAIRS = 2  # re-packings with the last page's pieces first
+RULES = ("columns", "gravity")
+REPAIRS = 2  # re-packings with the last page's pieces first ...
+REPAIR_BELOW = 0.15  # ... when the last page is this empty (a page may be saved)
 
 
 def _last_fill(places, shapes) -> float:
@@ -173,16 +179,19 @@ def _fill(units, shapes, options, area, nx: int, ny: int, cell: float, rule: str
     queue = sorted(units, key=order)
     pages: list[_Page] = []
     spectra: dict = {}
+    full: set = set()
     out: list[Place | None] = [None] * len(shapes)
     while queue:  # stacks of pieces
         members, move = queue.pop(0)
         opts = options(members, move)
         spot = None
+        key = (members[0], len(members))
         for number, page in enumerate(pages):
-            if opts and page.free >= opts[0][1].sum():
+            if opts and (key, number) not in full and page.free >= opts[0][1].sum():
                 if (best := _best_spot(page, opts, rule)) is not None:
                     spot = number, best
                     break
+                full.add((key, number))  # pages only fill up: no need to try again
         if spot is None and (len(members) > 1 and (pages or not opts)):
             half = (len(members) + 1) // 2
             queue = sorted(queue + [(members[:half], move), (members[half:], move)], key=order)
@@ -204,36 +213,23 @@ def _fill(units, shapes, options, area, nx: int, ny: int, cell: float, rule: str
     return out
 
 
-def _rim(mask):
-    """The cells just outside ``mask`` (padded by one cell)."""
-    inside = np.pad(mask, 1) > 0.5
-    return (binary_dilation(inside) & ~inside).astype(float)
-
-
 def _best_spot(grid: "_Page", options, rule: str):
     """((iy, ix), angle, mask, origin) of the best place on ``grid`` among the turns in
-    ``options``; None if the piece fits nowhere. ``rule`` "gravity": lowest top, then leftmost;
-    "columns": least right edge, then lowest; "contact": touching most of what is there (pieces and the area's edge, as a share of the
-    piece's rim), then lowest top, then leftmost."""
+    ``options``; None if the piece fits nowhere. ``rule`` "columns": least right edge, then
+    lowest; "gravity": lowest top, then leftmost."""
     best, best_key = None, None
-    for angle, mask, origin, rim in options:  # the allowed turns
+    for angle, mask, origin in options:  # the allowed turns
         my, mx = mask.shape
-        hits = grid.correlate(mask)
-        free = hits < 0.5
+        free = grid.correlate(mask) < 0.5
         if not free.any():
             continue
         iy, ix = np.nonzero(free)
-        if rule == "contact":
-            touch = grid.correlate(rim, walled=True)[iy, ix]
-            score = -np.rint(touch) / rim.sum()
-        else:
-            score = np.zeros(len(iy))
         if rule == "columns":
-            j = np.lexsort((iy, ix + mx))[0]
-            key = (0.0, int(ix[j] + mx), int(iy[j]))
+            j = np.lexsort((iy, ix))[0]
+            key = (int(ix[j] + mx), int(iy[j]))
         else:
-            j = np.lexsort((ix, iy, np.round(score, 6)))[0]
-            key = (round(float(score[j]), 6), int(iy[j] + my), int(ix[j]))
+            j = np.lexsort((ix, iy))[0]
+            key = (int(iy[j] + my), int(ix[j]))
         if best_key is None or key < best_key:
             best, best_key = ((int(iy[j]), int(ix[j])), angle, mask, origin), key
     return best
@@ -244,11 +240,10 @@ class _Page:
     piece, one inverse FFT per mask tried)."""
 
     def __init__(self, ny: int, nx: int, spectra: dict):
-        self.cells = np.zeros((ny, nx))
+        self.cells = np.zeros((ny, nx), dtype=np.float32)
         self.spectra = spectra  # mask spectra, shared by the pages of one packing
-        self.shape = (next_fast_len(ny + 2), next_fast_len(nx + 2))  # no wrap where valid
+        self.shape = (next_fast_len(ny), next_fast_len(nx))  # no wrap where it is read
         self._fft = None
-        self._walled = None
 
     @property
     def free(self) -> float:
@@ -256,21 +251,16 @@ class _Page:
 
     def add(self, mask, iy: int, ix: int) -> None:
         self.cells[iy:iy + mask.shape[0], ix:ix + mask.shape[1]] += mask
-        self._fft = self._walled = None
+        self._fft = None
 
-    def correlate(self, mask, walled: bool = False):
+    def correlate(self, mask):
         """sum over (i, j) of cells[y + i, x + j] * mask[i, j] for every (y, x) where the mask
-        lies inside the page (``walled``: the page ringed by one occupied cell)."""
-        if walled:
-            if self._walled is None:
-                self._walled = rfft2(np.pad(self.cells, 1, constant_values=1.0), self.shape)
-            grid, (ny, nx) = self._walled, (self.cells.shape[0] + 2, self.cells.shape[1] + 2)
-        else:
-            if self._fft is None:
-                self._fft = rfft2(self.cells, self.shape)
-            grid, (ny, nx) = self._fft, self.cells.shape
-        key = (id(mask), walled)
+        lies inside the page."""
+        if self._fft is None:
+            self._fft = rfft2(self.cells, self.shape)
+        key = id(mask)  # masks live as long as the packing
         if key not in self.spectra:
-            self.spectra[key] = (mask, np.conj(rfft2(mask, self.shape)))
-        full = irfft2(grid * self.spectra[key][1], self.shape)
+            self.spectra[key] = (mask, np.conj(rfft2(mask.astype(np.float32), self.shape)))
+        full = irfft2(self._fft * self.spectra[key][1], self.shape)
+        ny, nx = self.cells.shape
         return full[:ny - mask.shape[0] + 1, :nx - mask.shape[1] + 1]

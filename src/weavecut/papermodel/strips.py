@@ -500,8 +500,11 @@ def _fit_text(regions, centres, texts, high: float):
     n = len(texts)
     if n == 0:
         return np.zeros(0), np.zeros(0)
-    fits = [largest_fit(regions, [unit_box(t, a) for t in texts], centres, 0.2, high)
-            for a in ANGLES]
-    sizes = np.nan_to_num(np.column_stack(fits), nan=0.0)
+    regions = np.asarray(regions, dtype=object)
+    reps = len(ANGLES)
+    shapes = [unit_box(t, a) for a in ANGLES for t in texts]
+    fits = largest_fit(np.tile(regions, reps), shapes, np.tile(np.asarray(centres), (reps, 1)),
+                       0.2, np.tile(np.broadcast_to(np.asarray(high, float), (n,)), reps), 10)
+    sizes = np.nan_to_num(fits.reshape(reps, n).T, nan=0.0)
     pick = sizes.argmax(axis=1)
     return sizes[np.arange(n), pick], np.asarray(ANGLES)[pick]
