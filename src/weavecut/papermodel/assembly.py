@@ -182,17 +182,17 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
         spot = _free_spot(centres[t], label, obstacles, frame, tile_mm)
         if spot is None:
             continue
-        text_at, plate = spot
+        text_at, plate, leader = spot
         ids.append(text_at)
         boxes.append(plate)
-        obstacles.append(plate)
-        near = shapely.ops.nearest_points(plate, shapely.Point(centres[t]))[0]
-        leaders.append(np.array([[near.x, near.y], centres[t]]))
+        obstacles += [plate, shapely.buffer(leader, 0.3)]
+        leaders.append(np.asarray(leader.coords))
     return ids, boxes, leaders, arrows
 
 
 def _free_spot(at, label: str, obstacles, frame, tile_mm: float):
-    """(text, white plate) near ``at`` overlapping no obstacle, or None."""
+    """(text, white plate, leader line) near ``at``: neither the plate nor its leader line
+    touches an obstacle; None if there is no such place."""
     plate_pad = 0.8
     w = text_width(label, MIN_CAP) + 2 * plate_pad
     h = MIN_CAP * 1.3 + 2 * plate_pad
@@ -203,9 +203,12 @@ def _free_spot(at, label: str, obstacles, frame, tile_mm: float):
             plate = shapely.box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
             if not frame.contains(plate):
                 continue
-            if tree is not None and len(tree.query(plate, predicate="intersects")):
+            near = shapely.ops.nearest_points(plate, shapely.Point(at))[0]
+            leader = shapely.LineString([(near.x, near.y), tuple(at)])
+            if tree is not None and (len(tree.query(plate, predicate="intersects"))
+                                     or len(tree.query(leader, predicate="intersects"))):
                 continue
-            return centred_text(c, label, MIN_CAP, 0.0, "#000000"), plate
+            return centred_text(c, label, MIN_CAP, 0.0, "#000000"), plate, leader
     return None
 
 

@@ -158,27 +158,14 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
     else:
         colours = copy_family_colours(weave, plan, pal)
     scale = tile_size / octagon_size(weave)
-    tile_mm = octagon_size(weave) * scale
     x0, y0, x1, y1 = area.box
-    m = plan.copies.shape[1]
-
-    pieces, kinds = [], []
-    copies = range(plan.k) if layout == "mixed" else [0]
-    names = None if layout == "mixed" else _module_names(plan)
-    for j in copies:  # module copies
-        strips = build_strips(weave, plan, colours, scale, plan.copies[0], j, names)
-        for i, s in enumerate(strips):
-            parts = split_strip(s, max(x1 - x0, y1 - y0), OVERLAP)
-            pieces += parts
-            kinds += [i * 64 + n for n in range(len(parts))]
-    extra = build_strips(weave, plan, colours, scale, plan.extras, 0, names) \
-        if len(plan.extras) else []
-    for s in extra:
-        parts = split_strip(s, max(x1 - x0, y1 - y0), OVERLAP)
-        kinds += [(m + len(kinds)) * 64 + n for n in range(len(parts))]
-        pieces += parts
-    pieces = [label_strip(p, tile_mm) for p in pieces]
-    _check_labels(pieces, tile_size)
+    pieces, kinds = labelled_pieces(weave, plan, colours, tile_size, layout, area)
+    small = min((t.size for p in pieces for t in p.texts), default=MIN_CAP)
+    if small < MIN_CAP - 1e-6:
+        need = smallest_tile_size(weave, plan, colours, tile_size, layout, area)
+        raise SizeError(f"some labels would be {small:.1f} mm tall at --tile-size {tile_size:.1f}mm"
+                        f"; labels need {MIN_CAP:g} mm: use --tile-size {need:g}mm or more "
+                        f"(--size {math.ceil(tile_size_width(weave, need) / 10)}cm or more)")
 
     places = pack([p.outline for p in pieces], x1 - x0, y1 - y0, GAP, kinds=kinds)
     n_strip = max(pl.page for pl in places) + 1 if places else 0
@@ -218,15 +205,44 @@ def _module_names(plan: ModulePlan) -> tuple[str, ...]:
     return tuple(names)
 
 
-def _check_labels(pieces: list[Strip], tile_size: float) -> None:
-    sizes = [(t.size, p.label) for p in pieces for t in p.texts]
-    if not sizes:
-        return
-    small, label = min(sizes)
-    if small < MIN_CAP - 1e-6:
-        need = math.ceil(tile_size * MIN_CAP / max(small, 0.1) * 1.05 + 0.5)
-        raise SizeError(f"a label on strip {label} would be {small:.1f} mm tall; labels need "
-                        f"{MIN_CAP:g} mm: use --tile-size {need}mm or more")
+def labelled_pieces(weave: Weave, plan: ModulePlan, colours, tile_size: float, layout: str,
+                    area: PageArea) -> tuple[list[Strip], list[int]]:
+    """Every strip piece to print, labelled, and its kind (equal for congruent pieces)."""
+    scale = tile_size / octagon_size(weave)
+    x0, y0, x1, y1 = area.box
+    longest = max(x1 - x0, y1 - y0)
+    m = plan.copies.shape[1]
+    pieces, kinds = [], []
+    names = None if layout == "mixed" else _module_names(plan)
+    for j in (range(plan.k) if layout == "mixed" else [0]):  # module copies
+        strips = build_strips(weave, plan, colours, scale, plan.copies[0], j, names)
+        for i, s in enumerate(strips):
+            parts = split_strip(s, longest, OVERLAP)
+            pieces += parts
+            kinds += [i * 64 + n for n in range(len(parts))]
+    if len(plan.extras):
+        for i, s in enumerate(build_strips(weave, plan, colours, scale, plan.extras, 0, names)):
+            parts = split_strip(s, longest, OVERLAP)
+            pieces += parts
+            kinds += [(m + i) * 64 + n for n in range(len(parts))]
+    return [label_strip(p, tile_size) for p in pieces], kinds
+
+
+def smallest_tile_size(weave: Weave, plan: ModulePlan, colours, tile_size: float, layout: str,
+                       area: PageArea) -> float:
+    """The smallest tile size (whole mm, above ``tile_size``) at which every label reaches
+    ``MIN_CAP``: grown by a quarter until it works, then bisected."""
+    def reads(t: float) -> bool:
+        pieces, _ = labelled_pieces(weave, plan, colours, t, layout, area)
+        return min((x.size for p in pieces for x in p.texts), default=MIN_CAP) >= MIN_CAP - 1e-6
+
+    low, high = math.floor(tile_size), math.ceil(tile_size * 1.25)
+    while not reads(high):  # a few sizes
+        low, high = high, math.ceil(high * 1.25)
+    while high - low > 1:
+        mid = (low + high) // 2
+        low, high = (low, mid) if reads(mid) else (mid, high)
+    return float(high)
 
 
 def _label_key(label: str):

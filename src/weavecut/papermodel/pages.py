@@ -63,8 +63,8 @@ class PageArea:
 
 
 def split_strip(strip: Strip, max_length: float, overlap: float = 8.0) -> list[Strip]:
-    """``strip`` (unlabelled) cut into pieces no longer than ``max_length`` mm that overlap by
-    ``overlap`` mm to glue; pieces are named "A7 1/2", "A7 2/2" and every piece but the last
+    """``strip`` (unlabelled) cut into equal pieces no longer than ``max_length`` mm that
+    overlap by ``overlap`` mm to glue; pieces are named "A7 1/2", "A7 2/2" and every piece but the last
     carries its glue band (glued under the start of the next piece). A tile cut so that less
     than half of it is on a piece loses its name there (the other piece names it)."""
     if strip.length <= max_length:
@@ -72,11 +72,12 @@ def split_strip(strip: Strip, max_length: float, overlap: float = 8.0) -> list[S
     if max_length <= 2 * overlap:
         raise ValueError(f"a strip piece must be longer than twice the glue overlap "
                          f"({2 * overlap:g} mm); the page is too small for strip {strip.label}")
-    step = max_length - overlap
-    n = math.ceil((strip.length - overlap) / step)
+    n = math.ceil((strip.length - overlap) / (max_length - overlap))
+    size = (strip.length + (n - 1) * overlap) / n  # pieces of equal length: no short stubs
+    step = size - overlap
     pieces = []
     for i in range(n):  # pieces of one strip
-        a, b = i * step, min(i * step + max_length, strip.length)
+        a, b = i * step, min(i * step + size, strip.length)
         window = shapely.box(a - 1e-9, -1e3, b + 1e-9, 1e3)
         outline = shapely.intersection(strip.outline, window)
         tiles = shapely.intersection(strip.tiles, window)
