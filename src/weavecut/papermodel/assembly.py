@@ -25,7 +25,7 @@ from ..layout.labels import (
 )
 from ..weave.model import Weave
 from .pages import GAP, page_layers
-from .strips import arrow_polygon, copy_letter, model_tiles
+from .strips import arrow_polygon, copy_letter, model_tiles, turn_to
 from .symmetry import rotate, tile_centres
 
 TEXT = 2.6  # cap height of running text on these pages (mm)
@@ -169,7 +169,7 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
             used.add(t)
     ts = list(arrow_tiles)
     unit = [shapely.transform(arrow_polygon((0.5, 0.0), (1.0, 0.0), 1.0),
-                              lambda xy, d=arrow_tiles[t]: xy @ _rot(d).T) for t in ts]
+                              lambda xy, d=arrow_tiles[t]: xy @ turn_to(d).T) for t in ts]
     length = largest_fit(regions[ts], unit, centres[ts], 1.5, 0.6 * tile_mm) if ts else []
     arrows: dict[str, list] = {}
     for t, u, z in zip(ts, unit, list(length)):
@@ -210,11 +210,6 @@ def _free_spot(at, label: str, obstacles, frame, tile_mm: float):
                 continue
             return centred_text(c, label, MIN_CAP, 0.0, "#000000"), plate, leader
     return None
-
-
-def _rot(d):
-    d = np.asarray(d, dtype=float) / max(float(np.hypot(*d)), 1e-12)
-    return np.array([[d[0], -d[1]], [d[1], d[0]]])
 
 
 def weaving_steps(weave: Weave, book, turn: float) -> tuple[list[str], list[np.ndarray]]:

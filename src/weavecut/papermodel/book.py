@@ -32,7 +32,6 @@ from .strips import (
     build_strips,
     copy_colours,
     copy_family_colours,
-    copy_letter,
     label_strip,
     octagon_size,
     orbit_colours,

@@ -436,7 +436,7 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
         pts = np.array([(c.x, c.y) for c in shapely.centroid(strip.tiles)])
         dirs = [pts[min(i + 1, len(pts) - 1)] - pts[max(i - 1, 0)] for i in ends]
         unit = [arrow_polygon((0.5, 0.0), (1.0, 0.0), 1.0) for _ in ends]
-        unit = [shapely.transform(u, lambda xy, d=d: xy @ _rot(d).T) for u, d in zip(unit, dirs)]
+        unit = [shapely.transform(u, lambda xy, d=d: xy @ turn_to(d).T) for u, d in zip(unit, dirs)]
         length = largest_fit(regions[ends], unit, centres[ends], 2.0, 0.45 * tile_mm)
         arrows = [shapely.transform(u, lambda xy, z=z, c=centres[i]: xy * z + c)
                   for u, z, i in zip(unit, length.tolist(), ends) if np.isfinite(z)]
@@ -489,7 +489,8 @@ def _place(strip: Strip, wanted, regions, centres, band, taken=()):
     return texts, np.array(plates, dtype=object), tuple(fills)
 
 
-def _rot(d) -> NDArray[np.float64]:
+def turn_to(d) -> NDArray[np.float64]:
+    """(2, 2) the turn taking the x axis to the direction ``d``."""
     d = np.asarray(d, dtype=float) / max(float(np.hypot(*d)), 1e-12)
     return np.array([[d[0], -d[1]], [d[1], d[0]]])
 
