@@ -39,7 +39,7 @@ from .strips import (
     strip_width,
 )
 
-OVERLAP = 8.0  # mm of glue overlap where a long strip is split
+CURL = 0.45  # a strip wider than this share of the page (a curl) is cut into pieces
 MIN_STRIP = 8.0  # mm: narrower strips tear (paper section 5.2)
 WARN_STRIP = 12.0  # mm: below this, strips are fiddly
 LAYOUTS = ("mixed", "module")
@@ -209,19 +209,19 @@ def labelled_pieces(weave: Weave, plan: ModulePlan, colours, tile_size: float, l
     """Every strip piece to print, labelled, and its kind (equal for congruent pieces)."""
     scale = tile_size / octagon_size(weave)
     x0, y0, x1, y1 = area.box
-    longest = max(x1 - x0, y1 - y0)
+    longest, widest = max(x1 - x0, y1 - y0), CURL * min(x1 - x0, y1 - y0)
     m = plan.copies.shape[1]
     pieces, kinds = [], []
     names = None if layout == "mixed" else _module_names(plan)
     for j in (range(plan.k) if layout == "mixed" else [0]):  # module copies
         strips = build_strips(weave, plan, colours, scale, plan.copies[0], j, names)
         for i, s in enumerate(strips):
-            parts = split_strip(s, longest, OVERLAP)
+            parts = split_strip(s, longest, widest)
             pieces += parts
             kinds += [i * 64 + n for n in range(len(parts))]
     if len(plan.extras):
         for i, s in enumerate(build_strips(weave, plan, colours, scale, plan.extras, 0, names)):
-            parts = split_strip(s, longest, OVERLAP)
+            parts = split_strip(s, longest, widest)
             pieces += parts
             kinds += [(m + i) * 64 + n for n in range(len(parts))]
     return [label_strip(p, tile_size) for p in pieces], kinds

@@ -4,7 +4,6 @@ carries (title, page number, a 100 mm scale bar, a legend). ``packing`` places t
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -12,7 +11,7 @@ import shapely
 
 from ..layout.drawing import Layer, Polygons, Polylines, Style, Text, polygons_from_shapely
 from ..layout.labels import MIN_CAP, text_width, wrap
-from .strips import Strip, affine, tint
+from .strips import Strip, affine, flat_angle, outline_of, tint
 
 HEADER = 10.0  # mm above the printable area for the title line and one line of subtitle
 FOOTER = 8.5  # mm below it for the scale bar and the legend
@@ -62,39 +61,45 @@ class PageArea:
                              f"{self.margin:g} mm leaves no room for strips")
 
 
-def split_strip(strip: Strip, max_length: float, overlap: float = 8.0) -> list[Strip]:
-    """``strip`` (unlabelled) cut into equal pieces no longer than ``max_length`` mm that
-    overlap by ``overlap`` mm to glue; pieces are named "A7 1/2", "A7 2/2" and every piece but the last
-    carries its glue band (glued under the start of the next piece). A tile cut so that less
-    than half of it is on a piece loses its name there (the other piece names it)."""
-    if strip.length <= max_length:
+def _fits(geom, length: float, width: float) -> bool:
+    rect = np.asarray(shapely.minimum_rotated_rectangle(geom).exterior.coords)[:3]
+    sides = np.sort(np.hypot(*np.diff(rect, axis=0).T))
+    return bool(sides[1] <= length and sides[0] <= width)
+
+
+def split_strip(strip: Strip, max_length: float, max_width: float) -> list[Strip]:
+    """``strip`` (unlabelled) as it is if it fits a ``max_length`` x ``max_width`` rectangle,
+    else cut into runs of whole tiles that do, each laid flat. Consecutive pieces share one
+    tile: on the earlier piece it is the glue band, glued under the same tile of the next.
+    Pieces are named "A7 1/2", "A7 2/2"."""
+    if _fits(strip.outline, max_length, max_width):
         return [strip]
-    if max_length <= 2 * overlap:
-        raise ValueError(f"a strip piece must be longer than twice the glue overlap "
-                         f"({2 * overlap:g} mm); the page is too small for strip {strip.label}")
-    n = math.ceil((strip.length - overlap) / (max_length - overlap))
-    size = (strip.length + (n - 1) * overlap) / n  # pieces of equal length: no short stubs
-    step = size - overlap
+    tiles, n = strip.tiles, len(strip.tiles)
+    runs, a = [], 0
+    while True:  # runs of tiles
+        b = a + 1
+        while b + 1 < n and _fits(shapely.union_all(tiles[a:b + 2]), max_length, max_width):
+            b += 1
+        runs.append((a, min(b, n - 1)))
+        if b >= n - 1:
+            break
+        a = b
+    # as many runs, of equal length where they still fit (no short stub at the end)
+    ends = np.round(np.linspace(0, n - 1, len(runs) + 1)).astype(int)
+    even = list(zip(ends[:-1].tolist(), ends[1:].tolist()))
+    if all(_fits(shapely.union_all(tiles[a:b + 1]), max_length, max_width) for a, b in even):
+        runs = even
+    eps = 1e-6 * max(strip.length, 1.0)
     pieces = []
-    for i in range(n):  # pieces of one strip
-        a, b = i * step, min(i * step + size, strip.length)
-        window = shapely.box(a - 1e-9, -1e3, b + 1e-9, 1e3)
-        outline = shapely.intersection(strip.outline, window)
-        tiles = shapely.intersection(strip.tiles, window)
-        keep = ~shapely.is_empty(tiles) & (shapely.area(tiles) > 1e-9)
-        # a tile mostly on the next piece is named there
-        names = np.where(shapely.area(tiles) >= 0.5 * shapely.area(strip.tiles),
-                         np.asarray(strip.names, dtype=object), "")
-        glue = None
-        if i + 1 < n:
-            glue = np.array([shapely.intersection(strip.outline,
-                                                  shapely.box(b - overlap, -1e3, b, 1e3))],
-                            dtype=object)
-        piece = replace(strip, label=f"{strip.label} {i + 1}/{n}", outline=outline,
-                        tiles=tiles[keep], fills=tuple(np.asarray(strip.fills)[keep].tolist()),
-                        over=strip.over[keep], names=tuple(names[keep].tolist()),
-                        glue=glue)
-        pieces.append(piece.moved(affine(0.0, (-a, 0.0))))
+    for i, (a, b) in enumerate(runs):
+        part = slice(a, b + 1)
+        piece = replace(strip, label=f"{strip.label} {i + 1}/{len(runs)}",
+                        outline=outline_of(tiles[part], eps), tiles=tiles[part],
+                        fills=strip.fills[part], over=strip.over[part], names=strip.names[part],
+                        glue=tiles[b:b + 1] if i + 1 < len(runs) else None)
+        flat = piece.moved(affine(flat_angle(piece.outline)))
+        x0, y0 = flat.outline.bounds[:2]
+        pieces.append(flat.moved(affine(0.0, (-x0, -y0))))
     return pieces
 
 

@@ -344,19 +344,31 @@ def build_strips(weave: Weave, plan: ModulePlan, colours: list[str], scale: floa
     return out
 
 
-def _strip(weave, s, visits, over, tiles, centres, labels, colours, scale, tile_mm) -> Strip:
-    shapes = tiles[visits]
-    pts = centres[visits]
+def outline_of(shapes, eps: float) -> shapely.Polygon:
+    """The cut line round ``shapes`` (tiles of one strip): their union without holes; tiles
+    that only touch at a corner are joined by growing them ``eps``."""
     outline = shapely.union_all(shapes)
     if outline.geom_type != "Polygon":  # tiles touching at a corner: keep one piece
-        outline = shapely.union_all(shapely.buffer(shapes, 1e-6 * tile_mm / scale,
-                                                   join_style="mitre"))
-    outline = shapely.Polygon(outline.exterior)
-    # orient: long side of the minimum-area rectangle along x, walking towards +x
+        outline = shapely.union_all(shapely.buffer(shapes, eps, join_style="mitre"))
+    if outline.geom_type != "Polygon":
+        outline = max(shapely.get_parts(outline), key=lambda g: g.area)
+    return shapely.Polygon(outline.exterior)
+
+
+def flat_angle(outline) -> float:
+    """Degrees to turn ``outline`` so that its smallest rectangle's long side lies along x."""
     rect = np.asarray(shapely.minimum_rotated_rectangle(outline).exterior.coords)[:4]
     edges = np.diff(np.vstack([rect, rect[:1]]), axis=0)
     long = edges[np.argmax(np.hypot(edges[:, 0], edges[:, 1]))]
-    theta = -np.degrees(np.arctan2(long[1], long[0]))
+    return float(-np.degrees(np.arctan2(long[1], long[0])))
+
+
+def _strip(weave, s, visits, over, tiles, centres, labels, colours, scale, tile_mm) -> Strip:
+    # a twisted tile of an irregular mesh becomes the polygons it encloses
+    shapes = shapely.make_valid(tiles[visits], method="structure", keep_collapsed=False)
+    pts = centres[visits]
+    outline = outline_of(shapes, 1e-6 * tile_mm / scale)
+    theta = flat_angle(outline)  # long side along x, walking towards +x
     travel = (pts[-1] - pts[0]) @ affine(theta)[:2, :2].T
     turn = affine(theta + 180.0 if len(pts) > 1 and travel[0] < 0 else theta, scale=scale)
     x0, y0 = shapely.transform(outline, lambda xy: xy @ turn[:2, :2].T).bounds[:2]
@@ -399,7 +411,8 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
     # the strip's ID: largest own tile; a long strip also in the largest of its other half
     id_tiles: list[int] = []
     if len(own):
-        id_size, _ = _fit_text(regions[own], centres[own], [strip.label] * len(own), ID_SIZE)
+        id_size, _ = _fit_text(regions[own], centres[own],
+                               [strip.label.partition(" ")[0]] * len(own), ID_SIZE)
         rank = np.lexsort((np.arange(len(own)), -shapely.area(regions[own])))
         first = rank[0] if id_size[rank[0]] >= MIN_CAP else int(np.argmax(id_size))
         id_tiles = [int(own[first])]
@@ -407,9 +420,21 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
             half = own > own[first] if own[first] < own[len(own) // 2] else own < own[first]
             id_tiles += [int(own[r]) for r in rank.tolist() if half[r]
                          and id_size[r] >= MIN_CAP][:1]
-    # IDs first (spread onto the neighbours if they must), then the names round them
-    texts, plates, plate_fills = _place(strip, [(i, strip.label, ID_SIZE) for i in id_tiles],
-                                        regions, centres, band)
+    # IDs first (spread onto the neighbours if they must), a piece's number ("2/3") in another
+    # own tile, then the names round them
+    name, _, part = strip.label.partition(" ")
+    wanted = [(i, name, ID_SIZE) for i in id_tiles]
+    if part and id_tiles:
+        spare = [int(own[r]) for r in rank.tolist() if int(own[r]) not in id_tiles]
+        wanted.append((spare[0] if spare else id_tiles[0], part, NAME_SIZE))
+    texts, plates, plate_fills = _place(strip, wanted[:1], regions, centres, band)
+    if len(wanted) > 1:
+        more = _place(strip, wanted[1:], regions, centres, band,
+                      [*plates, *(text_box(t) for t in texts)])
+        texts += more[0]
+        plates = np.array([*plates, *more[1]], dtype=object)
+        plate_fills += more[2]
+    id_wanted = wanted
     taken = [*plates, *(text_box(t) for t in texts)]
     if taken:
         regions = shapely.difference(regions, shapely.buffer(shapely.union_all(taken), PAD))
@@ -420,11 +445,11 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
     texts += more
     plates = np.array([*plates, *more_plates], dtype=object)
     plate_fills += more_fills
-    wanted = [(i, strip.label, ID_SIZE) for i in id_tiles] + wanted
+    wanted = id_wanted + wanted
     # a strip's end tucked under a border tile too small for the name: the assembly sheet
     # shows that crossing, the strip leaves it out
     ends = {0, len(strip.tiles) - 1}
-    texts = [t for t, w in zip(texts, wanted) if t.size >= MIN_CAP or w[1] == strip.label
+    texts = [t for t, w in zip(texts, wanted) if t.size >= MIN_CAP or w in id_wanted
              or w[0] not in ends]
     if len(plates):
         regions = shapely.difference(regions, shapely.buffer(shapely.union_all(plates), PAD))
