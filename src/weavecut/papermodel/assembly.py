@@ -83,7 +83,7 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
     lines = [f"{weave.n_strands} strands: {k} copies (A-{copy_letter(k - 1)}) of a module of "
              f"{m} strips" + (f" + {len(plan.extras)} extras (X)" if len(plan.extras) else "")
              + f"; copy j is the module turned by j x {360 / k:g} deg. Finished model about "
-             f"{size_mm[0] / 10:.1f} x {size_mm[1] / 10:.1f} cm, octagons {tile_size:g} mm "
+             f"{size_mm[0] / 10:.1f} x {size_mm[1] / 10:.1f} cm, octagons {tile_size:.1f} mm "
              "across. Print at 100 % (no fit to page)."]
     if book.layout == "module":
         turns = "; ".join(f"print {j + 1} = copy {copy_letter(j)}: turned by {j * 360 / k:g} deg"

@@ -390,7 +390,7 @@ PAD = 0.3  # mm between a label and its tile's edge
 PLATE = 0.4  # mm a label's plate reaches beyond its text
 ANGLES = tuple(np.arange(0.0, 180.0, 15.0).tolist())  # label turns tried (strip frame)
 ID_SIZE = 6.0  # largest cap height of a strip's ID (mm)
-NAME_SIZE = 4.0  # largest cap height of the ID printed in an under tile
+NAME_SIZE = 3.0  # largest cap height of the ID printed in an under tile (well below an ID)
 
 
 def label_strip(strip: Strip, tile_mm: float) -> Strip:
