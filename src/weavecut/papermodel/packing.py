@@ -9,9 +9,9 @@ angle (the page's transform is kept and the masks' are cached, so each try is on
 
 Congruent pieces (the k copies of a module strip, the same ``kind``) are nested into a stack
 first. Stacks go largest first, each on the first page with room (first fit), where its right
-edge is least (columns) or its top lowest (gravity); a stack that fits no open page is halved
-before a page is opened. Both rules are tried and, when the last page is nearly empty, the
-packing is redone with that page's pieces first; the packing with the fewest pages wins.
+edge is least, then lowest (columns from the left); a stack that fits no open page is halved
+before a page is opened. When the last page is nearly empty, the packing is redone with that
+page's pieces first, and the packing with the fewer pages kept.
 """
 
 from __future__ import annotations
@@ -145,22 +145,19 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 1.
     def rank(r):
         return (max(p.page for p in r), _last_fill(r, shapes))
 
-    tries = [(_fill(units, shapes, options, area, nx, ny, cell, rule, set()), rule)
-             for rule in RULES]
-    best, rule = min(tries, key=lambda t: rank(t[0]))
-    first = set()
+    best = _fill(units, shapes, options, area, nx, ny, cell, set())
+    first: set = set()
     for _ in range(REPAIRS):  # the last page's pieces go first next time
         last = max(p.page for p in best)
         if last == 0 or _last_fill(best, shapes) > REPAIR_BELOW * width * height:
             break
         first |= {i for i, p in enumerate(best) if p.page == last}
-        again = _fill(units, shapes, options, area, nx, ny, cell, rule, first)
+        again = _fill(units, shapes, options, area, nx, ny, cell, first)
         if rank(again) < rank(best):
             best = again
     return best
 
 
-RULES = ("columns", "gravity")
 REPAIRS = 2  # re-packings with the last page's pieces first ...
 REPAIR_BELOW = 0.15  # ... when the last page is this empty (a page may be saved)
 
@@ -170,9 +167,9 @@ def _last_fill(places, shapes) -> float:
     return sum(s.area for p, s in zip(places, shapes) if p.page == last)
 
 
-def _fill(units, shapes, options, area, nx: int, ny: int, cell: float, rule: str, first):
+def _fill(units, shapes, options, area, nx: int, ny: int, cell: float, first):
     """Places for every piece: the units (stacks) largest first (those holding a piece in
-    ``first`` before all others), first fit, by ``rule``."""
+    ``first`` before all others), first fit."""
     def order(u):
         return (not first.intersection(u[0]), area(u), u[0][0])
 
@@ -188,7 +185,7 @@ def _fill(units, shapes, options, area, nx: int, ny: int, cell: float, rule: str
         key = (members[0], len(members))
         for number, page in enumerate(pages):
             if opts and (key, number) not in full and page.free >= opts[0][1].sum():
-                if (best := _best_spot(page, opts, rule)) is not None:
+                if (best := _best_spot(page, opts)) is not None:
                     spot = number, best
                     break
                 full.add((key, number))  # pages only fill up: no need to try again
@@ -202,7 +199,7 @@ def _fill(units, shapes, options, area, nx: int, ny: int, cell: float, rule: str
                 raise ValueError(f"a strip of {x1 - x0:.0f} x {y1 - y0:.0f} mm fits the printable "
                                  f"area at no angle")
             pages.append(_Page(ny, nx, spectra))
-            spot = len(pages) - 1, _best_spot(pages[-1], opts, rule)
+            spot = len(pages) - 1, _best_spot(pages[-1], opts)
         number, ((iy, ix), angle, mask, origin) = spot
         pages[number].add(mask, iy, ix)
         shift = np.array([ix * cell - origin[0], iy * cell - origin[1]])
@@ -213,23 +210,18 @@ def _fill(units, shapes, options, area, nx: int, ny: int, cell: float, rule: str
     return out
 
 
-def _best_spot(grid: "_Page", options, rule: str):
-    """((iy, ix), angle, mask, origin) of the best place on ``grid`` among the turns in
-    ``options``; None if the piece fits nowhere. ``rule`` "columns": least right edge, then
-    lowest; "gravity": lowest top, then leftmost."""
+def _best_spot(grid: "_Page", options):
+    """((iy, ix), angle, mask, origin) of the place on ``grid``, among the turns in ``options``,
+    with the least right edge, then the lowest (columns from the left); None if the piece fits
+    nowhere."""
     best, best_key = None, None
     for angle, mask, origin in options:  # the allowed turns
-        my, mx = mask.shape
         free = grid.correlate(mask) < 0.5
         if not free.any():
             continue
         iy, ix = np.nonzero(free)
-        if rule == "columns":
-            j = np.lexsort((iy, ix))[0]
-            key = (int(ix[j] + mx), int(iy[j]))
-        else:
-            j = np.lexsort((ix, iy))[0]
-            key = (int(iy[j] + my), int(ix[j]))
+        j = np.lexsort((iy, ix))[0]
+        key = (int(ix[j] + mask.shape[1]), int(iy[j]))
         if best_key is None or key < best_key:
             best, best_key = ((int(iy[j]), int(ix[j])), angle, mask, origin), key
     return best
