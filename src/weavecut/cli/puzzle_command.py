@@ -7,9 +7,6 @@ import json
 import click
 
 from .. import export
-from ..puzzle import files as pf
-from ..puzzle.pieces import build_puzzle, colour_puzzle
-from ..layout.tiling import tile
 from ..units import PAPER_SIZES
 from ..weave.colour import palette
 from ..fileio import make_folder, write_atomic
@@ -30,14 +27,16 @@ from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_i
 @click.option("--mode", type=click.Choice(["shared", "separate", "both"]), default="both",
               show_default=True, help="shared: one sheet, shared edges cut once (no kerf "
               "compensation possible); separate: kerf-offset pieces nested on sheets.")
-@click.option("--material", default=pf.DEFAULT_MATERIAL, show_default=True,
-              shell_complete=complete_preset("materials"), help="Material preset (templates/materials): kerf, sheet, speed.")
+@click.option("--material", default="poplar-3mm", show_default=True,
+              shell_complete=complete_preset("materials"),
+              help="Material preset (templates/materials): kerf, sheet, speed.")
 @click.option("--kerf", type=Length(inclusive=True), default=None,
               help="Beam width (default: the material's); 0 leaves it to the laser software.")
 @click.option("--sheet", type=PageSize(), default=None, help="Sheet WxH, e.g. 1000x700mm "
               "(default: the material's).")
-@click.option("--laser", "laser_name", default=pf.DEFAULT_LASER, show_default=True,
-              shell_complete=complete_preset("laser"), help="Colour conventions (templates/laser): lightburn, epilog-uls, ponoko.")
+@click.option("--laser", "laser_name", default="lightburn", show_default=True,
+              shell_complete=complete_preset("laser"),
+              help="Colour conventions (templates/laser): lightburn, epilog-uls, ponoko.")
 @click.option("--frame", "frame_width", type=Length(), default="20mm", show_default=True,
               help="Frame width beyond the hexagon ring.")
 @click.option("--numbers", is_flag=True, help="Engrave piece numbers (engrave layer).")
@@ -61,6 +60,10 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     Example:
       weave-cut puzzle -o build/puzzle --material poplar-3mm --numbers
     """
+    from ..layout.tiling import tile
+    from ..puzzle import files as pf
+    from ..puzzle.pieces import build_puzzle, colour_puzzle
+
     mat = pf.material(material)
     kerf = mat["kerf"] if kerf is None else kerf
     sheet = mat["sheet"] if sheet is None else sheet

@@ -9,10 +9,8 @@ from pathlib import Path
 import click
 
 from .. import export
-from ..papermodel.book import preset_for, strand_book
 from ..subdivision import snub, subdivide
 from ..weave.colour import palette
-from ..weave.snub_weave import snub_weaves
 from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_preset,
                      flag_nonconvex, input_argument, load_mesh, provenance, reports_errors,
                      summary)
@@ -53,6 +51,9 @@ def strands_command(input_mesh, levels, page, tile_size, margin, palette_name, t
       weave-cut strands pentagon-flower -o pentagon.pdf
       weave-cut strands square-grid --palette maritime-4 --page letter -o square-4.pdf
     """
+    from ..papermodel.book import preset_for, strand_book
+    from ..weave.snub_weave import snub_weaves
+
     fmt = Path(output).suffix.lower().lstrip(".")
     if fmt not in FORMATS:
         raise click.BadParameter(f"unknown format {Path(output).suffix!r}; use .pdf or .svg",
