@@ -55,6 +55,8 @@ bench: $(STAMP)  ## run the benchmarks (throughput, ratios against peers)
 	$(PY) benchmarks/bench_weave.py
 	$(PY) benchmarks/bench_schemes.py
 	$(PY) benchmarks/bench_levels.py
+	$(PY) benchmarks/bench_memory.py
+	$(PY) benchmarks/bench_mesh_io.py
 	$(PY) benchmarks/bench_startup.py  # fails when --help gets slow against import numpy
 	@for b in benchmarks/bench_puzzle.py benchmarks/bench_strands.py; do \
 		[ -f $$b ] && $(PY) $$b || true; done

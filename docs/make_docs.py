@@ -66,6 +66,13 @@ IMAGES = {
         ("puzzle", "--mode", "shared", "-o", "{out}"), "puzzle-front-guide.svg", 520),
     "docs/puzzle-back.png": Image(
         ("puzzle", "--mode", "shared", "-o", "{out}"), "puzzle-back-guide.svg", 520),
+    "docs/puzzle-colour-key.png": Image(
+        ("puzzle", "--mode", "shared", "-o", "{out}"), "puzzle-front-guide-a4.pdf", 420),
+    "docs/puzzle-split-sheet.png": Image(
+        ("puzzle", "--mode", "separate", "--sheet", "600x400mm", "--numbers", "-o", "{out}"),
+        "puzzle-separate-sheet-1.dxf", 520),
+    "docs/puzzle-closeup.png": Image(
+        ("figure", "jigsaw-closeup", "-o", "{out}/j.svg"), "j.svg", 640),
 }
 
 

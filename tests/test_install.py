@@ -114,7 +114,7 @@ def test_strands_prints_a_paper_model(weave_cut, tmp_path):
 def test_puzzle_finds_its_material(weave_cut, tmp_path):
     out = weave_cut("-q", "puzzle", "--levels", "3", "--mode", "shared",
                     "--material", "poplar-3mm", "-o", "p", "--json").stdout
-    assert json.loads(out)["material"] == "poplar-3mm"
+    assert json.loads(out)["material"] == "3 mm poplar plywood (the paper's puzzle)"
     assert (tmp_path / "p" / "puzzle-shared-cut.dxf").is_file()
 
 

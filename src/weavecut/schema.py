@@ -274,7 +274,8 @@ def _stroke(role: str) -> Table:
 
 SCHEMAS: dict[str, Table] = {
     "palettes": Table({**_ABOUT, "colours": ListOf(Colour(), 1, 256),
-                       "families": ListOf(ListOf(Colour(), 1, 16), 1, 256)},
+                       "families": ListOf(ListOf(Colour(), 1, 16), 1, 256),
+                       "family_names": ListOf(Text(40), 1, 256)},
                       one_of=("colours", "families")),
     "materials": Table({**_ABOUT, "thickness": Length(0, 100, open_lo=True),
                         "kerf": Length(0, 5), "sheet": Sheet(),

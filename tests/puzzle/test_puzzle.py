@@ -17,13 +17,16 @@ from click.testing import CliRunner
 from weavecut import inputs
 from weavecut.cli import cli
 from weavecut.puzzle import files as pf
-from weavecut.puzzle.pieces import ENNEAGON, OCTAGON, build_puzzle, colour_puzzle, piece_halves
+from weavecut.puzzle.colouring import colour_puzzle
+from weavecut.puzzle.guides import guide, piece_halves
+from weavecut.puzzle.pieces import ENNEAGON, OCTAGON, build_puzzle
+from weavecut.subdivision import subdivide
 from weavecut.weave.colour import palette
 
 
 @pytest.fixture(scope="module")
 def puzzle():
-    return build_puzzle(inputs.get("pentagon"), levels=3, size=300.0)
+    return build_puzzle(subdivide(inputs.get("pentagon"), 3), size=300.0)
 
 
 def test_pieces_tile_the_hole_without_overlaps(puzzle):
@@ -167,7 +170,7 @@ def test_front_guide_paints_every_piece_once(puzzle):
     """Each painted half appears once: the same ring twice in one even-odd path cancels out
     (which once left every border piece blank)."""
     colouring = colour_puzzle(puzzle, palette("puzzle"))
-    drawing = pf.guide(puzzle, colouring, "front")
+    drawing = guide(puzzle, colouring, "front")
     paint = next(layer for layer in drawing.sheets[0].layers if layer.name == "paint")
     polys = paint.shapes[0].to_shapely()
     keys = {tuple(np.round(shapely.normalize(p).exterior.coords, 6).ravel()) for p in polys}
@@ -181,7 +184,8 @@ def test_front_guide_paints_every_piece_once(puzzle):
 
 def test_separate_sheet_dxf_has_one_closed_polyline_per_outline(tmp_path, puzzle):
     from weavecut import export
-    result = pf.separate_cut(puzzle, pf.laser("ponoko"), 0.15, (700.0, 700.0), numbers=True)
+    result = pf.separate_cut(puzzle, pf.laser("ponoko"), 0.15, (700.0, 700.0),
+                             numbers=pf.piece_numbers(puzzle))
     n_outlines = 0
     for n, one in enumerate(pf.split_sheets(result.drawing)):
         path = tmp_path / f"sheet-{n}.dxf"
@@ -189,12 +193,15 @@ def test_separate_sheet_dxf_has_one_closed_polyline_per_outline(tmp_path, puzzle
         doc = ezdxf.readfile(path)
         assert not doc.audit().has_errors
         assert doc.header["$INSUNITS"] == 4
-        polys = doc.modelspace().query("LWPOLYLINE")
+        polys = [p for p in doc.modelspace().query("LWPOLYLINE")
+                 if p.dxf.layer.startswith("cut")]
         assert all(p.closed for p in polys)
         assert {p.dxf.layer for p in polys} <= {"cut-1-inner", "cut-2-outer"}
         n_outlines += len(polys)
-        texts = doc.modelspace().query("TEXT")
-        assert all(t.dxf.layer == "engrave-numbers" for t in texts)
+        assert not doc.modelspace().query("TEXT MTEXT")  # numbers are strokes
+        strokes = doc.modelspace().query("LWPOLYLINE LINE")
+        assert {e.dxf.layer for e in strokes} <= {"cut-1-inner", "cut-2-outer",
+                                                  "engrave-numbers"}
     assert n_outlines == puzzle.n_pieces + 2  # pieces, the frame's hole and its outline
     # ponoko cuts in blue
     cut = result.drawing.sheets[0].layers[0].shapes[0].style
@@ -204,8 +211,8 @@ def test_separate_sheet_dxf_has_one_closed_polyline_per_outline(tmp_path, puzzle
 def test_guides_are_registered_to_the_cut_sheet(puzzle):
     colouring = colour_puzzle(puzzle, palette("puzzle"))
     cut = pf.shared_cut(puzzle, pf.laser()).drawing.sheets[0]
-    front = pf.guide(puzzle, colouring, "front").sheets[0]
-    back = pf.guide(puzzle, colouring, "back").sheets[0]
+    front = guide(puzzle, colouring, "front").sheets[0]
+    back = guide(puzzle, colouring, "back").sheets[0]
     assert (front.width, front.height) == (cut.width, cut.height) == (back.width, back.height)
     outer_cut = cut.layers[2].shapes[0].coords
     frame_front = next(layer for layer in front.layers if layer.name == "frame").shapes[0]

@@ -20,7 +20,7 @@ from hypothesis import strategies as st
 
 from weavecut import presets
 from weavecut.cli import cli
-from weavecut.puzzle import files as pf
+from weavecut.puzzle import workshop
 from weavecut.schema import SchemaError, read_toml, toml_depth
 from weavecut.weave.colour import palette
 
@@ -118,7 +118,7 @@ def test_material_preset_is_refused_or_in_range(tmp_path_factory, table):
     path = tmp_path_factory.mktemp("m") / "m.toml"
     path.write_text(ws.toml_table(table))
     try:
-        mat = pf.material(str(path))
+        mat = workshop.material(str(path))
     except presets.PresetError as exc:
         assert "m.toml" in str(exc)
         return

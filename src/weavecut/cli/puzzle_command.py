@@ -5,8 +5,11 @@ from __future__ import annotations
 import json
 
 import click
+import numpy as np
 
 from .. import export
+from ..errors import WeaveCutError
+from ..subdivision import subdivide
 from ..units import PAPER_SIZES
 from ..weave.colour import palette
 from ..fileio import make_folder, write_atomic
@@ -23,82 +26,115 @@ from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_i
 @click.option("--levels", "-n", type=click.IntRange(2, 7), default=4, show_default=True,
               help="Refinement level t of the pieces (the front shows t-1).")
 @click.option("--size", type=Length(), default="50cm", show_default=True,
-              help="Diagonal of the input pentagon (largest vertex distance).")
+              help="Diagonal of the frame, the surrounding pentagon (the paper's 50 cm): its "
+              "largest corner-to-corner distance.")
 @click.option("--mode", type=click.Choice(["shared", "separate", "both"]), default="both",
-              show_default=True, help="shared: one sheet, shared edges cut once (no kerf "
-              "compensation possible); separate: kerf-offset pieces nested on sheets.")
+              show_default=True, help="shared: one board, shared edges cut once (no kerf "
+              "compensation possible); separate: kerf-offset pieces nested on sheets, the frame "
+              "split into dovetailed parts when it is larger than a sheet.")
 @click.option("--material", default="poplar-3mm", show_default=True,
               shell_complete=complete_preset("materials"),
-              help="Material preset (templates/materials): kerf, sheet, speed.")
+              help="Material preset (templates/materials): thickness, kerf, sheet, speed.")
 @click.option("--kerf", type=Length(inclusive=True), default=None,
               help="Beam width (default: the material's); 0 leaves it to the laser software.")
-@click.option("--sheet", type=PageSize(), default=None, help="Sheet WxH, e.g. 1000x700mm "
+@click.option("--sheet", type=PageSize(), default=None, help="Sheet WxH, e.g. 600x400mm "
               "(default: the material's).")
 @click.option("--laser", "laser_name", default="lightburn", show_default=True,
               shell_complete=complete_preset("laser"),
               help="Colour conventions (templates/laser): lightburn, epilog-uls, ponoko.")
 @click.option("--frame", "frame_width", type=Length(), default="20mm", show_default=True,
               help="Frame width beyond the hexagon ring.")
-@click.option("--numbers", is_flag=True, help="Engrave piece numbers (engrave layer).")
+@click.option("--numbers", is_flag=True, help="Engrave piece numbers as single strokes "
+              "(engrave layer); the guides always show them.")
 @click.option("--speed", type=Finite(min=0, min_open=True, max=10_000), default=None,
               help="Cutting speed in mm/s for the time estimate (default: the material's).")
 @click.option("--page", type=click.Choice(sorted(PAPER_SIZES)), default="a4",
-              show_default=True, help="Printer page for the tiled PDF guides.")
+              show_default=True, help="Printer page for the colour keys and tiled guides.")
 @click.option("--palette", "palette_name", default="puzzle", show_default=True,
-              shell_complete=complete_preset("palettes"))
+              shell_complete=complete_preset("palettes"),
+              help="Paint families (templates/palettes); the default is the paper's green, "
+              "blue and pink.")
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
 @reports_errors
 def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, sheet, laser_name,
                    frame_width, numbers, speed, page, palette_name, as_json) -> None:
-    """Write the jigsaw puzzle's cut files and painting guides to a folder.
+    """Write the jigsaw puzzle's workshop folder: cut files, painting guides, README.txt.
 
     \b
     Files: puzzle-shared-cut.{svg,dxf}, puzzle-separate-sheet-N.{svg,dxf},
-    puzzle-{front,back}-guide.svg (1:1) and .pdf (tiled on printer pages),
-    puzzle-summary.json.
+    puzzle-{front,back}-guide.svg (1:1) and -PAGE.pdf (colour key, then tiled pages),
+    puzzle-summary.json, README.txt (what goes where, the order of work).
     \b
     Example:
       weave-cut puzzle -o build/puzzle --material poplar-3mm --numbers
     """
-    from ..layout.tiling import tile
-    from ..puzzle import files as pf
-    from ..puzzle.pieces import build_puzzle, colour_puzzle
+    import shapely
 
-    mat = pf.material(material)
+    from ..puzzle import files as pf
+    from ..puzzle import workshop
+    from ..puzzle.colouring import colour_puzzle, palette_names
+    from ..puzzle.frame import fits, split_frame
+    from ..puzzle.guides import colour_key, guide, printed
+    from ..puzzle.pieces import build_puzzle
+
+    mat = workshop.material(material)
     kerf = mat["kerf"] if kerf is None else kerf
     sheet = mat["sheet"] if sheet is None else sheet
     speed = mat["cut_speed"] if speed is None else speed
     las = pf.laser(laser_name)
-    puzzle = build_puzzle(check_layout(load_mesh(input_mesh), "the puzzle", connected=True),
-                          levels, size, frame_width)
+    pal = palette(palette_name)
+    mesh = check_layout(load_mesh(input_mesh), "the puzzle", connected=True)
+    puzzle = build_puzzle(subdivide(mesh, levels), size, frame_width)
     pf.check_kerf(puzzle, kerf)
-    colouring = colour_puzzle(puzzle, palette(palette_name))
+    warnings = workshop.size_warnings(puzzle, mat["thickness"])
+    colouring = colour_puzzle(puzzle, pal, palette_names(palette_name, pal))
+    engraved = pf.piece_numbers(puzzle) if numbers else None
+    if engraved is not None:
+        warnings += pf.number_warnings(engraved)
     results, files = {}, {}  # everything is laid out before the first file is written
+    frame_parts = None
     if mode in ("shared", "both"):
-        results["shared"] = pf.shared_cut(puzzle, las, numbers)
-        for fmt in ("svg", "dxf"):
-            files[f"puzzle-shared-cut.{fmt}"] = results["shared"].drawing
+        board = pf.placement(puzzle)[:2]
+        if fits(np.array([shapely.box(0, 0, *board)], dtype=object), sheet, 0.0)[0]:
+            results["shared"] = pf.shared_cut(puzzle, las, engraved)
+            for fmt in ("svg", "dxf"):
+                files[f"puzzle-shared-cut.{fmt}"] = results["shared"].drawing
+        else:
+            note = (f"the shared-edge cut needs one {board[0]:.0f} x {board[1]:.0f} mm board, "
+                    f"larger than the {sheet[0]:g} x {sheet[1]:g} mm sheet")
+            if mode == "shared":
+                raise WeaveCutError(f"{note}; use --mode separate (the frame is then split "
+                                    "into parts) or a larger --sheet")
+            warnings.append(f"{note}: only the separate sheets are written")
     if mode in ("separate", "both"):
-        results["separate"] = pf.separate_cut(puzzle, las, kerf, sheet, numbers=numbers)
+        frame_parts = split_frame(puzzle.frame, puzzle.outer, sheet, 5.0, kerf)
+        results["separate"] = pf.separate_cut(puzzle, las, kerf, sheet, numbers=engraved,
+                                              frame_parts=frame_parts)
         for n, one in enumerate(pf.split_sheets(results["separate"].drawing), start=1):
             for fmt in ("svg", "dxf"):
                 files[f"puzzle-separate-sheet-{n}.{fmt}"] = one
+    guide_numbers = pf.piece_numbers(puzzle, max_height=6.0, margin=0.6, least=0.8)
     for side in ("front", "back"):
-        g = pf.guide(puzzle, colouring, side, numbers)
+        g = guide(puzzle, colouring, side, guide_numbers)
         files[f"puzzle-{side}-guide.svg"] = g
-        files[f"puzzle-{side}-guide-{page}.pdf"] = tile(g, PAPER_SIZES[page])
+        files[f"puzzle-{side}-guide-{page}.pdf"] = printed(
+            g, colour_key(puzzle, colouring, side, PAPER_SIZES[page]), PAPER_SIZES[page])
+    info = workshop.summary(puzzle, results, speed, colouring)
+    info.update(material=mat["description"], thickness_mm=mat["thickness"], kerf_mm=kerf,
+                sheet_mm=list(sheet), laser=las.name,
+                frame_parts=1 if frame_parts is None else len(frame_parts), warnings=warnings,
+                **flag_nonconvex(puzzle.hierarchy),
+                files=sorted(list(files) + ["puzzle-summary.json", "README.txt"]))
+    text = json.dumps(info, indent=2)
     folder = make_folder(out_dir)
     meta = provenance()
     for name, drawing in files.items():
         export.write(drawing.with_metadata(**meta), folder / name)
-    written = list(files)
-    info = pf.summary(puzzle, results, speed, colouring)
-    info.update(material=mat["name"], kerf_mm=kerf, sheet_mm=list(sheet), laser=las.name,
-                **flag_nonconvex(puzzle.hierarchy),
-                files=sorted(written + ["puzzle-summary.json"]))
-    text = json.dumps(info, indent=2)
+    write_atomic(folder / "README.txt", workshop.readme(info, page).encode("utf-8"))
     write_atomic(folder / "puzzle-summary.json", (text + "\n").encode("utf-8"))
+    for w in warnings:
+        click.echo(f"weave-cut: warning: {w}", err=True)
     if as_json:
         click.echo(text)
     else:
-        summary(pf.summary_text(info))
+        summary(workshop.summary_text(info))

@@ -1,9 +1,9 @@
 """Every figure weave-cut reproduces, by name: the subdivision and fractal figures of
-``figures.subdivision``, the weave figures of ``figures.weaving`` and the classic schemes'
-stages and weaves of ``figures.schemes``."""
+``figures.subdivision``, the weave figures of ``figures.weaving``, the classic schemes'
+stages and weaves of ``figures.schemes`` and the jigsaw puzzle's of ``figures.jigsaw``."""
 
 from __future__ import annotations
 
-from . import schemes, subdivision, weaving
+from . import jigsaw, schemes, subdivision, weaving
 
-FIGURES = {**subdivision.FIGURES, **weaving.FIGURES, **schemes.FIGURES}
+FIGURES = {**subdivision.FIGURES, **weaving.FIGURES, **schemes.FIGURES, **jigsaw.FIGURES}

@@ -11,6 +11,8 @@ import numpy as np
 
 from .. import inputs
 from ..mesh import Mesh
+from ..puzzle.colouring import colour_puzzle
+from ..puzzle.pieces import build_puzzle
 from ..subdivision import subdivide
 from ..weave.colour import palette, strand_colours
 from ..weave.schemes import scheme_weaves
@@ -84,13 +86,15 @@ def fig_square_grid_weaving() -> Drawing:
 
 
 def fig_pentagon_weave() -> Drawing:
-    """The pentagon's weave at level 4 over its level-3 octagons, and level 3 alone."""
-    weaves = snub_weaves(subdivide(inputs.get("pentagon"), 4))
-    pal = palette("puzzle")
-    panels = [_weave_panel(weaves[2], strand_colours(weaves[:3], pal),
-                           "level 3 weave, puzzle palette"),
-              _weave_panel(weaves[3], strand_colours(weaves, pal),
-                           "level 4 over the level-3 octagons", outline=weaves[2],
+    """The pentagon's weave at level 3 and at level 4 over its level-3 octagons, in the jigsaw
+    puzzle's paints: its front (level 3) and back (level 4) assignment."""
+    puzzle = build_puzzle(subdivide(inputs.get("pentagon"), 4))
+    colouring = colour_puzzle(puzzle, palette("puzzle"))
+    weaves = puzzle.weaves
+    panels = [_weave_panel(weaves[2], list(colouring.front_strands),
+                           "level 3 weave: the puzzle's front"),
+              _weave_panel(weaves[3], list(colouring.back_strands),
+                           "level 4 over the level-3 octagons: the back", outline=weaves[2],
                            under_points=snub_under_points(weaves[3]))]
     return compose(panels, columns=2, cell=110.0, title="pentagon weave")
 
@@ -131,7 +135,8 @@ def fig_scheme_weaves() -> Drawing:
 FIGURES: dict[str, tuple[str, Callable[[], Drawing | bytes]]] = {
     "square-grid-weaving": ("square grid weaving (a)-(f): mesh, middle edges, octagons, a "
                             "strand, its split into two and four", fig_square_grid_weaving),
-    "pentagon-weave": ("the pentagon's weave at levels 3 and 4 in the puzzle palette",
+    "pentagon-weave": ("the pentagon's weave at levels 3 and 4 in the puzzle's front and back "
+                       "paints",
                        fig_pentagon_weave),
     "schemes": ("Loop, butterfly, sqrt3, mid-edge, Doo-Sabin, Catmull-Clark, dual, Akleman on "
                 "the paper's kinds of input", fig_schemes),

@@ -60,7 +60,8 @@ def upright_angles(parts: NDArray[np.object_]) -> NDArray[np.float64]:
 
 
 def nest(parts: NDArray[np.object_], sheet: tuple[float, float], spacing: float,
-         margin: float = 5.0, rotate: NDArray[np.bool_] | None = None) -> Placement:
+         margin: float = 5.0, rotate: NDArray[np.bool_] | None = None,
+         names: list[str] | None = None) -> Placement:
     """Place ``parts`` on as few ``sheet`` (width, height) mm sheets as the packer finds.
 
     Parameters
@@ -69,6 +70,7 @@ def nest(parts: NDArray[np.object_], sheet: tuple[float, float], spacing: float,
     spacing : mm between the bounding rectangles of two parts (>= kerf)
     margin : mm kept free along the sheet edges
     rotate : (N,) False for parts to keep unturned (default: all may turn)
+    names : what to call each part in an error (default: "part 1", "part 2", ...)
     """
     n = len(parts)
     angle = upright_angles(parts)
@@ -82,8 +84,9 @@ def nest(parts: NDArray[np.object_], sheet: tuple[float, float], spacing: float,
     too_big = (w > room_w + 1e-9) | (h > room_h + 1e-9)
     if too_big.any():
         k = int(np.flatnonzero(too_big)[0])
+        name = names[k] if names is not None else f"part {k + 1}"
         raise WeaveCutError(
-            f"part {k} is {w[k] - spacing:.1f} x {h[k] - spacing:.1f} mm and does not fit a "
+            f"{name} is {w[k] - spacing:.1f} x {h[k] - spacing:.1f} mm and does not fit a "
             f"{sheet[0]:g} x {sheet[1]:g} mm sheet with {margin:g} mm margins; use a larger "
             "--sheet or a smaller --size")
     order = np.lexsort((np.arange(n), -w, -h))  # tallest first, then widest

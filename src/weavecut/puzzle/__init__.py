@@ -1,1 +1,3 @@
-"""The laser-cut jigsaw puzzle (paper section 6): pieces, ring, frame, colours, cut files and painting guides."""
+"""The laser-cut jigsaw puzzle (paper section 6): pieces, ring and frame (``pieces``), paint
+(``colouring``), cut files (``files``), frame parts (``frame``), painting guides and colour keys
+(``guides``), and the workshop folder's summary and README (``workshop``)."""

@@ -8,22 +8,23 @@ as the flipped board shows it).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import shapely
 from numpy.typing import NDArray
-from shapely import affinity
 
 from .. import presets
 from ..layout import cutpaths, nesting
-from ..layout.drawing import (Drawing, Layer, Polygons, Polylines, Sheet, Style, Text,
-                      polygons_from_shapely)
+from ..layout import strokefont
+from ..layout.drawing import Drawing, Layer, Polygons, Polylines, Sheet, Style
 from ..errors import WeaveCutError
-from .pieces import KIND_NAMES, UNPAINTED, Colouring, Puzzle, piece_halves
+from .pieces import Puzzle
 
 DEFAULT_LASER = "lightburn"
 TRAVEL_SPEED = 300.0  # mm/s head moves between cuts, for the time estimate
+MIN_DIGITS = 3.0  # mm, the smallest engraved digits that read well
+MIN_ENGRAVED = 1.5  # mm, smaller numbers are not engraved at all
 
 
 @dataclass(frozen=True)
@@ -76,14 +77,72 @@ def placement(puzzle: Puzzle, margin: float = 10.0) -> tuple[float, float, NDArr
     return x1 - x0 + 2 * margin, y1 - y0 + 2 * margin, np.array([margin - x0, margin - y0])
 
 
-def _number_texts(points: NDArray, angles: NDArray, size: float, style: Style) -> list[Text]:
-    """Piece numbers 1..P centred on ``points``."""
-    rad = np.radians(angles)
-    dx, dy = np.sin(rad) * size / 2, -np.cos(rad) * size / 2  # baseline half a cap below
-    return [Text(float(x + ex), float(y + ey), str(k + 1), size, "middle", float(a),
-                 style.stroke or "#000000")
-            for k, (x, y, ex, ey, a) in enumerate(zip(points[:, 0], points[:, 1], dx, dy,
-                                                      angles))]
+@dataclass(frozen=True, eq=False)
+class Labels:
+    """Texts as single strokes, each fitted inside its part (mm, in the parts' coordinates).
+
+    Parameters
+    ----------
+    texts : one per part
+    heights : (N,) cap heights, the largest that fit up to a maximum
+    centres : (N, 2) where each text's ink box is centred
+    angles : (N,) degrees counter-clockwise
+    """
+
+    texts: tuple[str, ...]
+    heights: NDArray[np.float64]
+    centres: NDArray[np.float64]
+    angles: NDArray[np.float64]
+
+    @classmethod
+    def fitted(cls, parts: NDArray[np.object_], texts: list[str], max_height: float,
+               margin: float) -> Labels:
+        return cls(tuple(texts), *strokefont.fit_labels(parts, texts, margin, max_height))
+
+    def strokes(self, transform=None, pick=None) -> tuple[NDArray, NDArray]:
+        """Polylines (coords, offsets) of the texts (``pick``: the parts wanted), moved by
+        ``transform(coords, part_of_every_point)``."""
+        pick = np.arange(len(self.texts)) if pick is None else np.asarray(pick)
+        pick = pick[self.heights[pick] > 0]  # a text too small to engrave is left out
+        coords, offsets, owner = strokefont.labels([self.texts[k] for k in pick.tolist()],
+                                                   self.centres[pick], self.heights[pick],
+                                                   self.angles[pick])
+        if transform is not None and len(coords):
+            coords = transform(coords, pick[np.repeat(owner, np.diff(offsets))])
+        return coords, offsets
+
+
+def piece_numbers(puzzle: Puzzle, max_height: float = 4.0, margin: float = 0.6,
+                  least: float = MIN_ENGRAVED) -> Labels:
+    """Every piece's number (1..P) at the largest cap height up to ``max_height`` mm that keeps
+    its strokes ``margin`` mm inside the piece; none where that is under ``least`` mm."""
+    labels = Labels.fitted(puzzle.pieces, [str(k + 1) for k in range(puzzle.n_pieces)],
+                           max_height, margin)
+    return replace(labels, heights=np.where(labels.heights >= least, labels.heights, 0.0))
+
+
+def number_warnings(numbers: Labels, least: float = MIN_DIGITS) -> list[str]:
+    """Lines naming the pieces too small for ``least`` mm digits and those left without."""
+    small = np.flatnonzero((numbers.heights < least) & (numbers.heights > 0))
+    none = np.flatnonzero(numbers.heights == 0)
+    out = []
+    if len(small):
+        out.append(f"pieces {_listed(small)} are too small for {least:g} mm digits; their "
+                   f"numbers are engraved smaller (down to {numbers.heights[small].min():.1f} "
+                   "mm)")
+    if len(none):
+        out.append(f"pieces {_listed(none)} are too small for {MIN_ENGRAVED:g} mm digits and "
+                   "get no number")
+    return out
+
+
+def _listed(pieces: NDArray[np.int64], most: int = 12) -> str:
+    more = f" and {len(pieces) - most} more" if len(pieces) > most else ""
+    return ", ".join(str(k + 1) for k in pieces[:most].tolist()) + more
+
+
+def _number_layer(coords, offsets, style: Style) -> Layer:
+    return Layer("engrave-numbers", "engrave", (Polylines(coords, offsets, style),))
 
 
 def ring_score_lines(puzzle: Puzzle) -> list[NDArray]:
@@ -97,8 +156,8 @@ def ring_score_lines(puzzle: Puzzle) -> list[NDArray]:
     return [np.asarray(p.coords) for p in parts if p.length > 1e-6]
 
 
-def shared_cut(puzzle: Puzzle, las: Laser, numbers: bool = False, score_ring: bool = True,
-               margin: float = 10.0, number_size: float = 3.0) -> CutResult:
+def shared_cut(puzzle: Puzzle, las: Laser, numbers: Labels | None = None,
+               score_ring: bool = True, margin: float = 10.0) -> CutResult:
     """One sheet, every shared edge cut once: inner trails, then the hole outline, then the
     frame's outer outline, in an order that shortens head travel (home: top-left)."""
     width, height, shift = placement(puzzle, margin)
@@ -118,7 +177,7 @@ def shared_cut(puzzle: Puzzle, las: Laser, numbers: bool = False, score_ring: bo
     layers = [Layer("cut-1-inner", "cut", (_lines(inner, cut),)),
               Layer("cut-2-hole", "cut", (_lines(hole, cut),)),
               Layer("cut-3-outer", "cut", (_lines(outer, cut),))]
-    layers += _extras(puzzle, las, shift, numbers, score_ring, number_size)
+    layers += _extras(puzzle, las, shift, numbers, score_ring)
     meta = (("mode", "shared"),)
     drawing = Drawing((Sheet(width, height, tuple(layers), "puzzle shared cut"),),
                       "weave-cut puzzle: shared-edge cut", meta)
@@ -126,17 +185,16 @@ def shared_cut(puzzle: Puzzle, las: Laser, numbers: bool = False, score_ring: bo
                      cutpaths.travel_length(paths, home), len(paths), 1)
 
 
-def _extras(puzzle: Puzzle, las: Laser, shift, numbers: bool, score_ring: bool,
-            number_size: float) -> list[Layer]:
+def _extras(puzzle: Puzzle, las: Laser, shift, numbers: Labels | None,
+            score_ring: bool) -> list[Layer]:
     layers = []
     if score_ring:
         lines = [p + shift for p in ring_score_lines(puzzle)]
         if lines:
             layers.append(Layer("score-ring", "score", (_lines(lines, las.style("score")),)))
-    if numbers:
-        at = shapely.get_coordinates(shapely.point_on_surface(puzzle.pieces)) + shift
-        texts = _number_texts(at, np.zeros(len(at)), number_size, las.style("engrave"))
-        layers.append(Layer("engrave-numbers", "engrave", tuple(texts)))
+    if numbers is not None:
+        coords, offsets = numbers.strokes(lambda xy, _: xy + shift)
+        layers.append(_number_layer(coords, offsets, las.style("engrave")))
     return layers
 
 
@@ -146,30 +204,43 @@ def check_kerf(puzzle: Puzzle, kerf: float) -> None:
     inner = 2 * shapely.area(puzzle.pieces) / shapely.length(puzzle.pieces)
     k = int(np.argmin(inner))
     if kerf >= inner[k]:
-        raise WeaveCutError(f"a kerf of {kerf:g} mm is wider than piece {k} ({inner[k]:.3g} mm "
-                            "inner radius); use a smaller --kerf or a larger --size")
+        raise WeaveCutError(f"a kerf of {kerf:g} mm is wider than piece {k + 1} "
+                            f"({inner[k]:.3g} mm inner radius); use a smaller --kerf or a "
+                            "larger --size")
 
 
 def separate_cut(puzzle: Puzzle, las: Laser, kerf: float, sheet: tuple[float, float],
-                 spacing: float = 2.0, numbers: bool = False, margin: float = 5.0,
-                 number_size: float = 3.0) -> CutResult:
-    """Every piece a closed outline offset by kerf/2, the frame (hole shrunk by kerf/2) first,
-    all nested onto ``sheet``-sized sheets; per sheet: pieces and the frame's hole, then the
-    frame's outer outline last."""
+                 spacing: float = 2.0, numbers: Labels | None = None, margin: float = 5.0,
+                 frame_parts: NDArray[np.object_] | None = None) -> CutResult:
+    """Every piece a closed outline offset by kerf/2, the frame (its ``frame_parts`` when split,
+    hole shrunk by kerf/2) first, all nested onto ``sheet``-sized sheets; per sheet: pieces and
+    the frame's hole, then the frame's outer outlines last. Frame parts carry engraved labels
+    (F1, F2, ...)."""
     spacing = max(spacing, kerf)
-    frame = nesting.offset(np.array([puzzle.frame], dtype=object), kerf)
-    parts = np.concatenate([frame, nesting.offset(puzzle.pieces, kerf)])
-    placed_at = nesting.nest(parts, sheet, spacing, margin)
+    frames = np.array([puzzle.frame], dtype=object) if frame_parts is None else frame_parts
+    n_frame = len(frames)
+    labels = frame_labels(frames)
+    parts = np.concatenate([nesting.offset(frames, kerf), nesting.offset(puzzle.pieces, kerf)])
+    names = ([f"frame part {t}" for t in labels] if n_frame > 1 else ["the frame"]) + [
+        f"piece {k + 1}" for k in range(puzzle.n_pieces)]
+    placed_at = nesting.nest(parts, sheet, spacing, margin, names=names)
     placed = placed_at.apply(parts)
     cut, eng = las.style("cut"), las.style("engrave")
     sheets, total, travel, n_paths = [], 0.0, 0.0, 0
-    label_at = shapely.get_coordinates(shapely.point_on_surface(puzzle.pieces))
+
+    def move(coords, owner):  # owner: part index; rotate about the origin, then shift
+        rad = np.radians(placed_at.angle[owner])
+        c, s_ = np.cos(rad), np.sin(rad)
+        x, y = coords[:, 0], coords[:, 1]
+        return np.column_stack([c * x - s_ * y, s_ * x + c * y]) + placed_at.shift[owner]
+
+    frame_text = _frame_text(frames, labels)
     for s in range(placed_at.n_sheets):
         on = np.flatnonzero(placed_at.sheet == s)
         home = (0.0, sheet[1])
-        frame_here = on[on == 0]
+        frame_here = on[on < n_frame]
         inner_rings = [np.asarray(r.coords) for k in frame_here for r in placed[k].interiors]
-        piece_rings = [np.asarray(placed[k].exterior.coords) for k in on[on > 0]]
+        piece_rings = [np.asarray(placed[k].exterior.coords) for k in on[on >= n_frame]]
         inner, here = cutpaths.order_paths(piece_rings + inner_rings, home)
         outer, _ = cutpaths.order_paths([np.asarray(placed[k].exterior.coords)
                                          for k in frame_here], here)
@@ -180,19 +251,31 @@ def separate_cut(puzzle: Puzzle, las: Laser, kerf: float, sheet: tuple[float, fl
         layers = [Layer("cut-1-inner", "cut", (_closed(inner, cut),))]
         if outer:
             layers.append(Layer("cut-2-outer", "cut", (_closed(outer, cut),)))
-        if numbers:
-            pk = on[on > 0]
-            pts = np.array([affinity.translate(affinity.rotate(
-                shapely.Point(label_at[k - 1]), placed_at.angle[k], origin=(0, 0)),
-                *placed_at.shift[k]).coords[0] for k in pk.tolist()]).reshape(-1, 2)
-            texts = [Text(t.x, t.y, str(int(k)), t.size, t.anchor, t.angle, t.fill)
-                     for t, k in zip(_number_texts(pts, placed_at.angle[pk], number_size, eng),
-                                     pk.tolist())]
-            layers.append(Layer("engrave-numbers", "engrave", tuple(texts)))
+        engrave = []
+        if numbers is not None and (on >= n_frame).any():
+            engrave.append(numbers.strokes(lambda xy, part: move(xy, part + n_frame),
+                                           on[on >= n_frame] - n_frame))
+        if frame_text is not None and len(frame_here):
+            engrave.append(frame_text.strokes(move, frame_here))
+        if engrave:
+            coords = np.concatenate([c for c, _ in engrave])
+            counts = np.concatenate([np.diff(o) for _, o in engrave])
+            layers.append(_number_layer(coords, np.r_[0, np.cumsum(counts)].astype(np.int64),
+                                        eng))
         sheets.append(Sheet(sheet[0], sheet[1], tuple(layers), f"sheet {s + 1}"))
     drawing = Drawing(tuple(sheets), "weave-cut puzzle: separate pieces",
                       (("mode", "separate"), ("kerf", f"{kerf:g} mm")))
     return CutResult(drawing, total, travel, n_paths, placed_at.n_sheets)
+
+
+def frame_labels(frames: NDArray[np.object_]) -> list[str]:
+    """F1, F2, ... for the parts of a split frame; nothing for a frame in one piece."""
+    return [f"F{k + 1}" for k in range(len(frames))] if len(frames) > 1 else [""]
+
+
+def _frame_text(frames: NDArray[np.object_], labels: list[str]) -> Labels | None:
+    """The frame parts' labels, fitted inside each part (None for an unsplit frame)."""
+    return Labels.fitted(frames, labels, 8.0, 1.0) if len(frames) > 1 else None
 
 
 def _closed(paths: list[NDArray], style: Style) -> Polygons:
@@ -213,123 +296,6 @@ def nested_parts(result: CutResult) -> list[NDArray[np.object_]]:
     return out
 
 
-# --- painting guides --------------------------------------------------------------------------
-
-def guide(puzzle: Puzzle, colouring: Colouring, side: str, numbers: bool = False,
-          margin: float = 10.0) -> Drawing:
-    """The front (level t-1 weave, two halves per piece) or back (level t weave, mirrored)
-    painting guide at 1:1, registered to the shared cut sheet."""
-    width, height, shift = placement(puzzle, margin)
-    mirror = side == "back"
-
-    def place(geoms):
-        moved = shapely.transform(geoms, lambda xy: xy + shift)
-        if mirror:
-            moved = shapely.transform(moved, lambda xy: np.column_stack([width - xy[:, 0],
-                                                                         xy[:, 1]]))
-        return moved
-
-    thin = Style("#555555", 0.25)
-    layers = []
-    if side == "front":
-        halves = piece_halves(puzzle)
-        # an enneagon's 'halves' are its one pentagon twice: draw it once (even-odd fills)
-        one = shapely.equals(halves[:, 0], halves[:, 1])
-        pick = np.column_stack([np.ones(len(one), dtype=bool), ~one]).ravel()
-        layers.append(Layer("paint", "paint", (polygons_from_shapely(
-            place(halves.ravel()[pick]), Style(None, 0.0),
-            colouring.front.ravel()[pick].tolist()),)))
-    else:
-        layers.append(Layer("paint", "paint", (polygons_from_shapely(
-            place(puzzle.pieces), Style(None, 0.0), colouring.back.tolist()),)))
-    hexes = puzzle.hexagons[puzzle.hexagons != None]  # noqa: E711
-    if len(hexes):  # the ring stays natural wood on both sides
-        layers.append(Layer("ring-unpainted", "paint", (polygons_from_shapely(
-            place(hexes), Style(None, 0.0, UNPAINTED)),)))
-    frame = place(np.array([puzzle.frame], dtype=object))
-    outlines = [polygons_from_shapely(frame, Style("#000000", 0.4))]
-    if len(puzzle.ring):
-        outlines.append(polygons_from_shapely(place(puzzle.ring), thin))
-    layers.append(Layer("frame", "guide", tuple(outlines)))
-    layers.append(Layer("pieces", "guide", (polygons_from_shapely(place(puzzle.pieces), thin),)))
-    if numbers:
-        at = shapely.get_coordinates(place(shapely.point_on_surface(puzzle.pieces)))
-        layers.append(Layer("numbers", "label", tuple(_number_texts(
-            at, np.zeros(len(at)), 2.5, Style("#000000")))))
-    layers.append(Layer("registration", "guide", tuple(_registration(width, height, margin))))
-    title = f"weave-cut puzzle: {side} painting guide (level {puzzle.levels - (side == 'front')}" \
-            " weave)" + (", mirrored" if mirror else "")
-    return Drawing((Sheet(width, height, tuple(layers), f"{side} guide"),), title)
-
-
-def _registration(width: float, height: float, margin: float) -> list:
-    """Crosshairs in the four corners (symmetric, so front and back register) and a label."""
-    r = margin * 0.4
-    pts = [(margin / 2, margin / 2), (width - margin / 2, margin / 2),
-           (margin / 2, height - margin / 2), (width - margin / 2, height - margin / 2)]
-    segs = np.array([[(x - r, y), (x + r, y), (x, y - r), (x, y + r)] for x, y in pts])
-    coords = segs.reshape(-1, 2)
-    return [Polylines(coords, np.arange(0, len(coords) + 1, 2, dtype=np.int64),
-                      Style("#000000", 0.2))]
-
-
-# --- summary ----------------------------------------------------------------------------------
-
-def summary(puzzle: Puzzle, results: dict[str, CutResult], speed: float,
-            colouring: Colouring | None = None) -> dict:
-    """Pieces by type, cut length, sheets and estimated time per mode (plain data)."""
-    counts = {name: int((puzzle.kinds == k).sum()) for k, name in enumerate(KIND_NAMES)}
-    out = {"levels": puzzle.levels, "pieces": int(puzzle.n_pieces), "pieces_by_type": counts,
-           "ring_hexagons_in_frame": int(len(puzzle.ring)),
-           "frame_mm": [round(v, 1) for v in np.subtract(puzzle.outer.bounds[2:],
-                                                         puzzle.outer.bounds[:2]).tolist()],
-           "speed_mm_s": speed, "modes": {}}
-    if colouring is not None:
-        out["front_colours"] = len(set(colouring.front.ravel()) - {UNPAINTED})
-        out["back_colours"] = len(set(colouring.back) - {UNPAINTED})
-    for mode, r in results.items():
-        seconds = r.cut_length / speed + r.travel_length / TRAVEL_SPEED
-        out["modes"][mode] = {"cut_length_m": round(r.cut_length / 1000, 3),
-                              "travel_m": round(r.travel_length / 1000, 3),
-                              "paths": r.n_paths, "sheets": r.n_sheets,
-                              "time_min": round(seconds / 60, 1)}
-    return out
-
-
-DEFAULT_MATERIAL = "poplar-3mm"
-
-
-def material(name: str = DEFAULT_MATERIAL) -> dict:
-    """A material preset (``templates/materials``) with lengths in mm: thickness, kerf,
-    sheet (width, height) and cut_speed (mm/s)."""
-    from ..units import page_size, to_mm
-
-    doc = presets.load("materials", name)
-    try:
-        return {"name": str(doc.get("name", name)), "thickness": to_mm(doc["thickness"]),
-                "kerf": to_mm(doc["kerf"]), "sheet": page_size(doc["sheet"]),
-                "cut_speed": float(doc["cut_speed"])}
-    except (KeyError, ValueError) as exc:
-        raise presets.PresetError(f"material {name!r}: bad or missing {exc}") from exc
-
-
 def split_sheets(drawing: Drawing) -> list[Drawing]:
     """One Drawing per sheet."""
     return [Drawing((s,), f"{drawing.title}, {s.name}", drawing.metadata) for s in drawing.sheets]
-
-
-def summary_text(info: dict) -> str:
-    """The summary as a few readable lines."""
-    kinds = ", ".join(f"{n} {k}s" for k, n in info["pieces_by_type"].items())
-    lines = [f"level {info['levels']} puzzle: {info['pieces']} pieces ({kinds}); "
-             f"{info['ring_hexagons_in_frame']} ring hexagons stay in the frame; frame "
-             f"{info['frame_mm'][0]:g} x {info['frame_mm'][1]:g} mm"]
-    if "front_colours" in info:
-        lines.append(f"colours: front {info['front_colours']}, back {info['back_colours']}")
-    for mode, m in info["modes"].items():
-        lines.append(f"{mode}: cut {m['cut_length_m']:.2f} m in {m['paths']} paths, travel "
-                     f"{m['travel_m']:.2f} m, {m['sheets']} sheet(s), about {m['time_min']:g} min "
-                     f"at {info['speed_mm_s']:g} mm/s")
-    if "files" in info:
-        lines.append("files: " + ", ".join(info["files"]))
-    return "\n".join(lines)

@@ -18,14 +18,11 @@ Decisions (documented here and in the README):
   the next). Cells that would overlap the mesh or an earlier cell are dropped (claimed cells
   first); on the pentagon none overlap.
 - **The frame** is the input outline offset outward (mitred) to ``frame_width`` beyond the ring's
-  outermost point, minus the union of the pieces (the hole). ``size`` is the largest distance
-  between two input vertices: the diagonal for the pentagon, 50 cm in the paper.
+  outermost point, minus the union of the pieces (the hole). ``size`` is the frame's diagonal
+  (the largest distance between two corners of its outer outline): "the diagonal of the
+  surrounding pentagon measures 50 cm" (paper, section 6). The model is scaled to make it so.
 
-Colours: the front shows the level-(t-1) weave on level-t pieces (every level-t pentagon takes
-the colour of the strand on top of its parent's tile), the back the level-t weave (one colour
-per piece, the tile's top strand); a level-t strand takes its parent strand's front colour, its
-sibling a lighter or darker tint of it, so a strand pair on the back matches the front colour
-of the pieces it runs over. Ring hexagons and the frame stay unpainted (natural wood).
+Colours are in ``colouring``, cut files in ``files``, painting guides in ``guides``.
 """
 
 from __future__ import annotations
@@ -42,16 +39,13 @@ from scipy.spatial import cKDTree
 
 from ..errors import WeaveCutError
 from ..mesh import Mesh
-from ..subdivision import subdivide
 from ..subdivision.hierarchy import Level
-from ..weave.colour import Palette, strand_colours
 from ..weave.model import Weave
 from ..weave.snub_weave import snub_weaves
 from ..layout.weave_figure import tile_rings
 
 OCTAGON, ENNEAGON = 0, 1
 KIND_NAMES = ("octagon", "enneagon")
-UNPAINTED = "#ffffff"
 _SIN60, _COS60 = np.sqrt(3.0) / 2.0, 0.5
 
 
@@ -69,6 +63,8 @@ class Puzzle:
     outer : shapely Polygon, the frame's outer outline
     hierarchy, weaves : levels 0..t and the weaves of levels 1..t (with lineage)
     scale : mm per model unit
+    centre : the input's vertex mean (model units), at the origin in mm
+    frame_width : mm of frame beyond the ring
     """
 
     pieces: NDArray[np.object_]
@@ -81,6 +77,7 @@ class Puzzle:
     weaves: list[Weave]
     scale: float
     centre: tuple[float, float]
+    frame_width: float
 
     @property
     def levels(self) -> int:
@@ -110,63 +107,69 @@ class Puzzle:
         return (np.asarray(xy, dtype=float) - self.centre) * self.scale
 
 
-def build_puzzle(mesh: Mesh, levels: int = 4, size: float = 500.0,
-                 frame_width: float = 20.0, **snub_options) -> Puzzle:
-    """Subdivide ``mesh`` ``levels`` times and cut the result into puzzle pieces.
+def build_puzzle(hierarchy: tuple[Level, ...], size: float = 500.0,
+                 frame_width: float = 20.0) -> Puzzle:
+    """Cut the last level of a snub ``hierarchy`` into puzzle pieces inside a frame.
 
     Parameters
     ----------
-    mesh : level-0 input (the paper: a regular pentagon)
-    levels : t >= 2 (the front shows level t-1, whose colours need the level t-2 strands)
-    size : mm, the largest distance between two input vertices (the pentagon's diagonal)
+    hierarchy : snub levels 0..t, t >= 2 (the front shows level t-1, whose colours need the
+        level t-2 strands); the command builds it (``subdivide(mesh, t)``)
+    size : mm, the diagonal of the frame's outer outline (its largest vertex distance): 50 cm
+        in the paper, where the surrounding pentagon is the frame
     frame_width : mm of frame beyond the ring's outermost point
     """
+    levels = len(hierarchy) - 1
     if levels < 2:
         raise WeaveCutError(f"a puzzle needs --levels >= 2 (front shows level t-1), got {levels}")
-    if size <= 0 or frame_width <= 0:
+    if not (size > 0 and frame_width > 0):
         raise WeaveCutError("size and frame width must be positive")
-    hierarchy = subdivide(mesh, levels, **snub_options)
     weaves = snub_weaves(hierarchy)
+    mesh = hierarchy[0].mesh
     v0 = mesh.vertices
-    diagonal = float(np.max(np.linalg.norm(v0[:, None] - v0[None], axis=2)))
-    scale = size / diagonal
     centre = tuple(float(c) for c in v0.mean(axis=0))
+    diagonal = float(np.max(np.linalg.norm(v0[:, None] - v0[None], axis=2)))
     weave = weaves[-1]
     level_mesh = weave.mesh
 
-    def to_mm(xy):
-        return (np.asarray(xy, dtype=float) - centre) * scale
+    def to_model(xy):  # centred model units; scaled to mm once the frame's size is solved
+        return np.asarray(xy, dtype=float) - centre
 
     coords, offsets = tile_rings(weave)
     lone = np.diff(weave.tile_offsets) == 1
     ring_id = np.repeat(np.arange(len(offsets) - 1), np.diff(offsets))
-    octagon_xy = to_mm(coords[~lone[ring_id]])
+    octagon_xy = to_model(coords[~lone[ring_id]])
     octagon_sizes = np.diff(offsets)[~lone]
     octagon_tiles = np.flatnonzero(~lone).astype(np.int32)
 
     # the ring: a hexagon outward on every boundary half-edge (interior on its left)
     bhe = np.flatnonzero(level_mesh.topology.twin < 0)
-    a = to_mm(level_mesh.vertices[level_mesh.face_indices[bhe]])
-    b = to_mm(level_mesh.vertices[level_mesh.face_indices[level_mesh.next_half_edge[bhe]]])
+    a = to_model(level_mesh.vertices[level_mesh.face_indices[bhe]])
+    b = to_model(level_mesh.vertices[level_mesh.face_indices[level_mesh.next_half_edge[bhe]]])
     face = level_mesh.half_edge_face[bhe]
     claimed = (bhe - level_mesh.face_offsets[face]) == 1  # local edge 1: the Z middle edge
     cells = _outer_hexagons(a, b)  # (B, 6, 2): b, a, then four new corners
-    keep = _non_overlapping(cells, claimed, level_mesh, to_mm)
+    keep = _non_overlapping(cells, claimed, level_mesh, to_model)
     lone_tiles = weave.face_tile[face[claimed & keep]]
     mesh_faces = level_mesh.dense_faces()
-    pent = to_mm(level_mesh.vertices[mesh_faces[face[claimed & keep]]])  # (N, 5, 2)
+    pent = to_model(level_mesh.vertices[mesh_faces[face[claimed & keep]]])  # (N, 5, 2)
     hexes = cells[claimed & keep]
     # enneagon, counter-clockwise: p1, four hexagon corners, p2, p3, p4, p0
     ennea = np.concatenate([hexes[:, 1:], pent[:, 2:], pent[:, :1]], axis=1)
     # boundary pentagons whose hexagon was dropped stay plain pentagons (never on the pentagon)
     dropped = np.setdiff1d(np.flatnonzero(lone), lone_tiles)
-    plain = to_mm(level_mesh.vertices[mesh_faces[weave.tile_faces[weave.tile_offsets[dropped]]]])
+    plain = to_model(level_mesh.vertices[mesh_faces[weave.tile_faces[weave.tile_offsets[
+        dropped]]]])
     ring_cells = _unique_cells(cells[~claimed & keep], hexes)
 
     # one coordinate per corner: computed hexagon corners snap onto mesh vertices and each other
     parts = [octagon_xy, ennea.reshape(-1, 2), plain.reshape(-1, 2), hexes.reshape(-1, 2),
              ring_cells.reshape(-1, 2)]
-    snapped = _snap(np.concatenate(parts), tol=1e-6 * size)
+    snapped = _snap(np.concatenate(parts), tol=1e-6 * diagonal)
+    outline = _outline(mesh, to_model)
+    depth = float(np.max(shapely.distance(shapely.points(snapped), outline)))
+    scale = frame_scale(outline, depth, frame_width, size)
+    snapped = snapped * scale
     bounds = np.cumsum([0] + [len(p) for p in parts])
     octagon_xy, ennea, plain, hexes, ring_cells = (
         snapped[bounds[k]:bounds[k + 1]].reshape(parts[k].shape if k == 0 else (-1,) + shape)
@@ -179,11 +182,44 @@ def build_puzzle(mesh: Mesh, levels: int = 4, size: float = 500.0,
     hex_polys = np.concatenate([np.full(len(octagons), None, dtype=object),
                                 shapely.polygons(hexes), np.full(len(plain), None, object)])
     ring = shapely.polygons(ring_cells) if len(ring_cells) else np.empty(0, dtype=object)
-    outer = _outer_outline(mesh, to_mm, np.concatenate([shapely.get_coordinates(pieces),
-                                                        ring_cells.reshape(-1, 2)]),
-                           frame_width)
-    return Puzzle(pieces, kinds, tiles, hex_polys, ring, outer, hierarchy, weaves, scale,
-                  centre)
+    outer = _frame_outline(outline, depth, frame_width, scale)
+    return Puzzle(pieces, kinds, tiles, hex_polys, ring, outer, tuple(hierarchy), weaves, scale,
+                  centre, frame_width)
+
+
+def diameter(polygon: shapely.Polygon) -> float:
+    """The largest distance between two corners of a polygon's outline (its diagonal)."""
+    xy = np.asarray(polygon.exterior.coords)
+    return float(np.max(np.linalg.norm(xy[:, None] - xy[None], axis=2)))
+
+
+def _frame_outline(outline: shapely.Polygon, depth: float, frame_width: float,
+                   scale: float) -> shapely.Polygon:
+    """The outline at ``scale`` offset (mitred) by the ring's depth plus the frame width."""
+    scaled = shapely.transform(outline, lambda xy: xy * scale)
+    return shapely.buffer(scaled, depth * scale + frame_width, join_style="mitre",
+                          mitre_limit=10.0)
+
+
+def frame_scale(outline: shapely.Polygon, depth: float, frame_width: float,
+                size: float) -> float:
+    """mm per model unit that makes the frame's diagonal ``size`` mm.
+
+    The frame is the (centred) input outline scaled, then offset by the scaled ring depth plus
+    the fixed frame width; its diagonal grows monotonically with the scale, so a bracketing root
+    search finds it to far below 0.01 mm."""
+    from scipy.optimize import brentq
+
+    def excess(scale: float) -> float:
+        return diameter(_frame_outline(outline, depth, frame_width, scale)) - size
+
+    high = size / diameter(outline)  # the outline alone already spans ``size``
+    low = high * 1e-9
+    if excess(low) >= 0:
+        raise WeaveCutError(f"a frame of {size:g} mm diagonal leaves no room for the pieces "
+                            f"inside a {frame_width:g} mm frame; use a larger --size or a "
+                            "narrower --frame")
+    return float(brentq(excess, low, high, xtol=1e-12 * high, rtol=1e-14))
 
 
 def _polygons(coords: NDArray[np.float64], offsets: NDArray[np.int64]) -> NDArray[np.object_]:
@@ -268,115 +304,8 @@ def _unique_cells(cells: NDArray[np.float64], claimed_cells: NDArray[np.float64]
     return cells[first]
 
 
-def _outer_outline(mesh: Mesh, to_mm, points: NDArray[np.float64],
-                   frame_width: float) -> shapely.Polygon:
-    """The input outline offset (mitred) to ``frame_width`` beyond the farthest point."""
+def _outline(mesh: Mesh, to_model) -> shapely.Polygon:
+    """The input mesh's outer outline (holes filled), in centred model units."""
     outline = shapely.union_all(shapely.polygons(shapely.linearrings(
-        to_mm(mesh.vertices[mesh.face_indices]), indices=mesh.half_edge_face)))
-    outline = shapely.Polygon(outline.exterior)
-    depth = float(np.max(shapely.distance(shapely.points(points), outline)))
-    return shapely.buffer(outline, depth + frame_width, join_style="mitre", mitre_limit=10.0)
-
-
-# --- colours ----------------------------------------------------------------------------------
-
-def _tint(colour: str, towards: float, amount: float) -> str:
-    rgb = np.array([int(colour[i:i + 2], 16) for i in (1, 3, 5)], dtype=float)
-    rgb = rgb + (towards - rgb) * amount
-    return "#{:02x}{:02x}{:02x}".format(*np.clip(np.round(rgb), 0, 255).astype(int))
-
-
-def _luma(colour: str) -> float:
-    r, g, b = (int(colour[i:i + 2], 16) for i in (1, 3, 5))
-    return 0.299 * r + 0.587 * g + 0.114 * b
-
-
-@dataclass(frozen=True)
-class Colouring:
-    """Front: (P, 2) colours of every piece's two halves (same colour twice for one-colour
-    pieces; hexagon parts unpainted). Back: (P,) one colour per piece. Plus the level t-1
-    strand colours (front) and level t strand colours (back)."""
-
-    front: NDArray[np.object_]
-    back: NDArray[np.object_]
-    front_strands: tuple[str, ...]
-    back_strands: tuple[str, ...]
-    face_colours: NDArray[np.object_]  # (F_t,) front colour of every level-t pentagon
-
-
-def colour_puzzle(puzzle: Puzzle, pal: Palette) -> Colouring:
-    """Front and back colours of every piece (see the module docstring)."""
-    weaves = puzzle.weaves
-    # level t-1 strands: families by their level t-2 parents, the two siblings the shades
-    front_strands = strand_colours(weaves[max(0, len(weaves) - 3):-1], pal)
-    parent, child = weaves[-2], weaves[-1]
-    parent_face = puzzle.hierarchy[-1].parent_face
-    over = parent.tile_over[parent.face_tile[parent_face]]
-    under = parent.tile_under[parent.face_tile[parent_face]]
-    strand = np.where(over >= 0, over, under)  # lone boundary tiles may have no top strand
-    fs = np.array(list(front_strands) + [UNPAINTED], dtype=object)
-    face_colours = fs[strand]  # strand -1 -> UNPAINTED
-
-    # back: children of one parent strand share its front colour; the second a tint of it
-    ps = child.parent_strand
-    n = child.n_strands
-    key = np.where(ps >= 0, ps, parent.n_strands + np.arange(n))
-    order = np.lexsort((np.arange(n), key))
-    first = np.r_[True, key[order][1:] != key[order][:-1]]
-    start = np.maximum.accumulate(np.where(first, np.arange(n), 0))
-    rank = np.empty(n, dtype=np.int64)
-    rank[order] = np.arange(n) - start
-    back_strands = []
-    for p, r in zip(ps.tolist(), rank.tolist()):  # strands, not mesh elements
-        base = front_strands[p] if p >= 0 else "#9e9e9e"
-        if r % 2 == 1:
-            base = _tint(base, 255.0, 0.5) if _luma(base) < 128 else _tint(base, 0.0, 0.4)
-        back_strands.append(base)
-    bs = np.array(back_strands + [UNPAINTED], dtype=object)
-
-    tiles = puzzle.piece_tiles
-    t_over = child.tile_over[tiles]
-    t_strand = np.where(t_over >= 0, t_over, child.tile_under[tiles])
-    back = bs[t_strand]
-    first_face = child.tile_faces[child.tile_offsets[tiles]]
-    last_face = child.tile_faces[child.tile_offsets[tiles + 1] - 1]
-    front = np.column_stack([face_colours[first_face], face_colours[last_face]])
-    return Colouring(front, back, tuple(front_strands), tuple(back_strands), face_colours)
-
-
-def piece_halves(puzzle: Puzzle) -> NDArray[np.object_]:
-    """(P, 2) the two painted halves of every piece, in the order of its tile's faces.
-
-    An octagon is split along the straight line between its two corners that are level-(t-1)
-    vertices: the parent edge its Z-triplet replaced, so the paint shows the coarser weave
-    ("split diagonally, which shows the replaced edge", paper section 6). An enneagon is one
-    half: its pentagon, twice (its hexagon is unpainted)."""
-    weave = puzzle.weaves[-1]
-    mesh = weave.mesh
-    faces = mesh.dense_faces()
-    tiles = puzzle.piece_tiles
-    f0 = weave.tile_faces[weave.tile_offsets[tiles]]
-    f1 = weave.tile_faces[weave.tile_offsets[tiles + 1] - 1]
-    p0 = shapely.polygons(puzzle.to_mm(mesh.vertices[faces[f0]]))
-    p1 = shapely.polygons(puzzle.to_mm(mesh.vertices[faces[f1]]))
-    octagon = f0 != f1
-    # the two corners of a tile's pentagons that are parent vertices: u (in f0) and w (in f1)
-    n_parent = puzzle.hierarchy[-2].mesh.n_vertices
-    old0 = faces[f0][np.arange(len(f0)), np.argmin(np.where(faces[f0] < n_parent, 0, 1),
-                                                    axis=1)]
-    old1 = faces[f1][np.arange(len(f1)), np.argmin(np.where(faces[f1] < n_parent, 0, 1),
-                                                    axis=1)]
-    u, w = puzzle.to_mm(mesh.vertices[old0]), puzzle.to_mm(mesh.vertices[old1])
-    # a long quad on f0's side of the line u-w, and the piece cut by it
-    d = w - u
-    n = np.column_stack([-d[:, 1], d[:, 0]])
-    c0 = shapely.get_coordinates(shapely.centroid(p0))
-    n *= np.sign(((c0 - u) * n).sum(axis=1))[:, None]
-    far = 10.0 * np.hypot(*d.T)[:, None] / np.maximum(np.hypot(*n.T)[:, None], 1e-12)
-    ext = d * 10.0
-    quad = np.stack([u - ext, w + ext, w + ext + n * far, u - ext + n * far], axis=1)
-    side0 = shapely.polygons(quad)
-    whole = shapely.union(p0, p1)
-    half0 = np.where(octagon, shapely.intersection(whole, side0), p0)
-    half1 = np.where(octagon, shapely.difference(whole, side0), p1)
-    return np.column_stack([half0, half1])
+        to_model(mesh.vertices[mesh.face_indices]), indices=mesh.half_edge_face)))
+    return shapely.Polygon(outline.exterior)

@@ -1,0 +1,185 @@
+"""Single-stroke vector text (Hershey Simplex Roman), and labels fitted inside polygons.
+
+Lasers engrave and plotters draw lines, and CAM programs substitute or drop font-dependent text
+entities; a stroke font turns text into plain polylines that every writer, cutter and viewer
+shows the same. The glyphs are the public-domain Hershey fonts (1967), read from the
+``Hershey-Fonts`` package (MIT licence, pure Python, no dependencies).
+
+Coordinates are millimetres, y up. A label of height ``h`` has its cap height ``h``: digits and
+capitals span exactly ``[0, h]`` above the baseline.
+
+>>> coords, offsets, width = text_strokes("10", 3.0)
+>>> round(float(coords[:, 1].max()), 6), len(offsets) - 1   # the 1 is one stroke, the 0 one more
+(3.0, 2)
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+import shapely
+from numpy.typing import NDArray
+
+FONT = "futural"  # Hershey Simplex Roman: single strokes, the engravers' font
+_CAP, _BASE = -12, 9  # raw cap and base lines (raw y points down)
+
+
+@lru_cache(maxsize=1)
+def _font():
+    from HersheyFonts import HersheyFonts
+
+    font = HersheyFonts()
+    font.load_default_font(FONT)
+    return font
+
+
+@lru_cache(maxsize=256)
+def _glyph(char: str) -> tuple[tuple[NDArray[np.float64], ...], float]:
+    """Strokes of one character at cap height 1 (x from its left side), and its advance."""
+    glyph = next(iter(_font().glyphs_for_text(char)))
+    scale = 1.0 / (_BASE - _CAP)
+    strokes = tuple(np.array([((x - glyph.left_offset) * scale, (_BASE - y) * scale)
+                              for x, y in stroke]) for stroke in glyph.strokes if len(stroke) > 1)
+    return strokes, glyph.char_width * scale
+
+
+def text_strokes(text: str, height: float) -> tuple[NDArray[np.float64], NDArray[np.int64],
+                                                    float]:
+    """Polylines of ``text`` with its baseline on y = 0, starting at x = 0.
+
+    Returns
+    -------
+    coords : (N, 2) float64, mm
+    offsets : (L + 1,) int64, polyline l is ``coords[offsets[l]:offsets[l + 1]]``
+    width : the advance of the whole text, mm
+    """
+    strokes, x = [], 0.0
+    for char in text:
+        glyph, advance = _glyph(char)
+        strokes.extend(s + (x, 0.0) for s in glyph)
+        x += advance
+    coords = np.concatenate(strokes) * height if strokes else np.zeros((0, 2))
+    offsets = np.r_[0, np.cumsum([len(s) for s in strokes])].astype(np.int64)
+    return coords, offsets, x * height
+
+
+def ink_box(text: str) -> tuple[float, float, float, float]:
+    """(x0, y0, x1, y1) of the strokes of ``text`` at cap height 1."""
+    coords, _, _ = text_strokes(text, 1.0)
+    return (*coords.min(axis=0), *coords.max(axis=0)) if len(coords) else (0.0, 0.0, 0.0, 0.0)
+
+
+def labels(texts: list[str], centres: NDArray[np.float64], heights: NDArray[np.float64],
+           angles: NDArray[np.float64] | None = None
+           ) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.int64]]:
+    """Every text's strokes with its ink box centred on its centre, at its height, turned by
+    its angle (degrees counter-clockwise).
+
+    Returns
+    -------
+    coords : (N, 2) float64
+    offsets : (L + 1,) int64 polyline offsets
+    owner : (L,) int64 the label each polyline belongs to
+    """
+    angles = np.zeros(len(texts)) if angles is None else np.asarray(angles, dtype=float)
+    parts, counts, owner = [], [], []
+    for k, (text, h) in enumerate(zip(texts, np.asarray(heights, dtype=float))):
+        coords, offsets, _ = text_strokes(text, h)  # a label, not a mesh element
+        if not len(coords):
+            continue
+        x0, y0, x1, y1 = np.array(ink_box(text)) * h
+        parts.append(coords - ((x0 + x1) / 2, (y0 + y1) / 2))
+        counts.extend(np.diff(offsets).tolist())
+        owner.extend([k] * (len(offsets) - 1))
+    if not parts:
+        return np.zeros((0, 2)), np.zeros(1, dtype=np.int64), np.zeros(0, dtype=np.int64)
+    coords = np.concatenate(parts)
+    offsets = np.r_[0, np.cumsum(counts)].astype(np.int64)
+    owner = np.array(owner, dtype=np.int64)
+    point_owner = np.repeat(owner, np.diff(offsets))
+    rad = np.radians(angles[point_owner])
+    c, s = np.cos(rad), np.sin(rad)
+    turned = np.column_stack([c * coords[:, 0] - s * coords[:, 1],
+                              s * coords[:, 0] + c * coords[:, 1]])
+    return turned + np.asarray(centres, dtype=float)[point_owner], offsets, owner
+
+
+def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float,
+               max_height: float, steps: int = 14
+               ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """The largest cap height (up to ``max_height``) at which each text fits inside its polygon
+    with ``margin`` mm to spare: centred on the polygon's pole of inaccessibility, its centroid
+    or half-way between, level or along the polygon's long axis, whichever fits largest (the
+    first on a tie).
+
+    Parameters
+    ----------
+    polygons : (N,) shapely polygons, mm
+    texts : N strings
+
+    Returns
+    -------
+    heights : (N,) float64, 0 where not even a tiny label fits
+    centres : (N, 2) float64, where each label's ink box is centred
+    angles : (N,) float64, degrees counter-clockwise, in (-90, 90]
+    """
+    inner = shapely.buffer(polygons, -margin, join_style="mitre")
+    circles = shapely.maximum_inscribed_circle(polygons, tolerance=0.01)
+    pole = shapely.get_coordinates(shapely.get_point(circles, 0))
+    middle = shapely.get_coordinates(shapely.centroid(polygons))
+    boxes = np.array([ink_box(t) for t in texts], dtype=float).reshape(-1, 4)
+    half = np.column_stack([boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1]]) / 2
+    long_axis = _long_axes(polygons)
+    best_h, best_a, centres = np.zeros(len(texts)), np.zeros(len(texts)), pole.copy()
+    for at in (pole, (pole + middle) / 2, middle):
+        for angle in (np.zeros(len(texts)), long_axis):
+            turned = _turned(inner, at, -angle)
+            shapely.prepare(turned)
+            h = _fit(turned, at, half, max_height, steps)
+            better = h > best_h + 1e-9
+            best_h, best_a = np.where(better, h, best_h), np.where(better, angle, best_a)
+            centres[better] = at[better]
+    return best_h, centres, best_a
+
+
+def _long_axes(polygons) -> NDArray[np.float64]:
+    """(N,) direction of every polygon's minimum rotated rectangle's long side, in (-90, 90]."""
+    rect = shapely.minimum_rotated_rectangle(polygons)
+    ring = shapely.get_coordinates(shapely.get_exterior_ring(rect)).reshape(len(rect), -1, 2)
+    e1, e2 = ring[:, 1] - ring[:, 0], ring[:, 2] - ring[:, 1]
+    long = np.where((np.hypot(*e1.T) >= np.hypot(*e2.T))[:, None], e1, e2)
+    angle = np.degrees(np.arctan2(long[:, 1], long[:, 0]))
+    return np.where(angle <= -90, angle + 180, np.where(angle > 90, angle - 180, angle))
+
+
+def _turned(polys, centres, angles):
+    """Every polygon turned by its angle (degrees) about its centre."""
+    _, index = shapely.get_coordinates(polys, return_index=True)
+    rad = np.radians(angles[index])
+    c, s = np.cos(rad), np.sin(rad)
+
+    def turn(xy):
+        d = xy - centres[index]
+        return np.column_stack([c * d[:, 0] - s * d[:, 1], s * d[:, 0] + c * d[:, 1]]) + \
+            centres[index]
+
+    return shapely.transform(polys, turn)
+
+
+def _fit(inner, centres, half, max_height: float, steps: int) -> NDArray[np.float64]:
+    """Bisection on the height of level boxes, all labels at once."""
+    lo, hi = np.zeros(len(centres)), np.full(len(centres), float(max_height))
+    full = _fits(inner, centres, half * hi[:, None])
+    lo[full] = hi[full]
+    for _ in range(steps):
+        mid = (lo + hi) / 2
+        ok = _fits(inner, centres, half * mid[:, None])
+        lo, hi = np.where(ok, mid, lo), np.where(ok, hi, mid)
+    return lo
+
+
+def _fits(inner, centres, half) -> NDArray[np.bool_]:
+    boxes = shapely.box(centres[:, 0] - half[:, 0], centres[:, 1] - half[:, 1],
+                        centres[:, 0] + half[:, 0], centres[:, 1] + half[:, 1])
+    return shapely.contains(inner, boxes) & ~shapely.is_empty(inner)

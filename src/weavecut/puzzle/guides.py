@@ -1,0 +1,270 @@
+"""Painting guides a maker paints from: 1:1 sheets registered to the cut, printer pages, and a
+colour key per side.
+
+A guide shows every piece in its paint with a bold outline (the cut), the front's split lines
+thin and dashed (the parent edge a Z-triplet replaced: "split diagonally, which shows the
+replaced edge", paper section 6; the back has none), and every piece's number inside it in
+black or white, whichever reads better on its paint. The back is mirrored, as the flipped board
+shows it. Printed on pages, only pages that hold paint are kept; the colour key lists every
+paint with its swatch, name, hex code, the pieces that carry it and the area it covers.
+"""
+
+from __future__ import annotations
+
+import textwrap
+from dataclasses import dataclass, replace
+
+import numpy as np
+import shapely
+from numpy.typing import NDArray
+
+from ..layout.contrast import BLACK, WHITE, contrast_ratio
+from ..layout.drawing import (Drawing, Layer, Polylines, Sheet, Style, Text,
+                              polygons_from_rings, polygons_from_shapely)
+from ..layout.tiling import tile
+from .colouring import UNPAINTED, Colouring
+from .files import Labels, placement
+from .pieces import Puzzle
+
+OUTLINE = Style("#000000", 0.5)
+SPLIT = Style("#000000", 0.2)
+THIN = Style("#555555", 0.25)
+DASH, GAP = 1.5, 1.2  # mm, the split lines' dashes
+
+
+def piece_halves(puzzle: Puzzle) -> NDArray[np.object_]:
+    """(P, 2) the two painted halves of every piece, in the order of its tile's faces.
+
+    An octagon is split along the straight line between its two corners that are level-(t-1)
+    vertices: the parent edge its Z-triplet replaced, so the paint shows the coarser weave
+    ("split diagonally, which shows the replaced edge", paper section 6). An enneagon is one
+    half: its pentagon, twice (its hexagon is unpainted)."""
+    vertices, faces, f0, f1 = _piece_faces(puzzle)
+    p0 = shapely.polygons(puzzle.to_mm(vertices[faces[f0]]))
+    p1 = shapely.polygons(puzzle.to_mm(vertices[faces[f1]]))
+    octagon = f0 != f1
+    u, w = split_ends(puzzle)
+    # a long quad on f0's side of the line u-w, and the piece cut by it
+    d = w - u
+    n = np.column_stack([-d[:, 1], d[:, 0]])
+    c0 = shapely.get_coordinates(shapely.centroid(p0))
+    n *= np.sign(((c0 - u) * n).sum(axis=1))[:, None]
+    far = 10.0 * np.hypot(*d.T)[:, None] / np.maximum(np.hypot(*n.T)[:, None], 1e-12)
+    ext = d * 10.0
+    quad = np.stack([u - ext, w + ext, w + ext + n * far, u - ext + n * far], axis=1)
+    side0 = shapely.polygons(quad)
+    whole = shapely.union(p0, p1)
+    half0 = np.where(octagon, shapely.intersection(whole, side0), p0)
+    half1 = np.where(octagon, shapely.difference(whole, side0), p1)
+    # a cut through a corner leaves near-duplicate corners (1e-13 mm apart) that turn into a
+    # self-intersection once moved onto a sheet: drop them
+    return shapely.simplify(np.column_stack([half0, half1]), 1e-7)
+
+
+def split_ends(puzzle: Puzzle) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(P, 2) twice: the two corners of every piece that are level t-1 vertices (mm), the ends
+    of the parent edge its Z-triplet replaced (for an enneagon both lie in its one pentagon)."""
+    vertices, faces, f0, f1 = _piece_faces(puzzle)
+    n_parent = puzzle.hierarchy[-2].mesh.n_vertices
+    rows = np.arange(len(f0))
+    old0 = faces[f0][rows, np.argmin(np.where(faces[f0] < n_parent, 0, 1), axis=1)]
+    old1 = faces[f1][rows, np.argmin(np.where(faces[f1] < n_parent, 0, 1), axis=1)]
+    return puzzle.to_mm(vertices[old0]), puzzle.to_mm(vertices[old1])
+
+
+def _piece_faces(puzzle: Puzzle):
+    """The level t vertices and (F, 5) faces, and every piece's first and last face."""
+    weave = puzzle.weaves[-1]
+    tiles = puzzle.piece_tiles
+    return (weave.mesh.vertices, weave.mesh.dense_faces(),
+            weave.tile_faces[weave.tile_offsets[tiles]],
+            weave.tile_faces[weave.tile_offsets[tiles + 1] - 1])
+
+
+@dataclass(frozen=True, eq=False)
+class Painted:
+    """What one side paints: polygons, their colours and the piece each belongs to."""
+
+    polygons: NDArray[np.object_]
+    colours: NDArray[np.object_]
+    piece: NDArray[np.int64]
+
+    def areas(self) -> dict[str, float]:
+        """Painted area (mm^2) per colour."""
+        area = shapely.area(self.polygons)
+        return {c: float(area[self.colours == c].sum()) for c in dict.fromkeys(self.colours)}
+
+    def pieces(self, colour: str) -> NDArray[np.int64]:
+        """Piece numbers (1-based) that carry ``colour``, ascending."""
+        return np.unique(self.piece[self.colours == colour]) + 1
+
+
+def painted(puzzle: Puzzle, colouring: Colouring, side: str) -> Painted:
+    """Every painted area of one side (ring hexagons stay unpainted)."""
+    if side == "front":
+        halves = piece_halves(puzzle)
+        # an enneagon's 'halves' are its one pentagon twice: paint it once
+        one = shapely.equals(halves[:, 0], halves[:, 1])
+        pick = np.column_stack([np.ones(len(one), dtype=bool), ~one]).ravel()
+        polys, colours = halves.ravel()[pick], colouring.front.ravel()[pick]
+        piece = np.repeat(np.arange(puzzle.n_pieces), 2)[pick]
+    else:
+        hexes = puzzle.hexagons
+        has = hexes != None  # noqa: E711
+        polys = puzzle.pieces.copy()
+        polys[has] = shapely.difference(polys[has], hexes[has].astype(object))
+        colours, piece = colouring.back, np.arange(puzzle.n_pieces)
+    keep = colours != UNPAINTED
+    return Painted(polys[keep], colours[keep].astype(object), piece[keep].astype(np.int64))
+
+
+def guide(puzzle: Puzzle, colouring: Colouring, side: str, numbers: Labels | None = None,
+          margin: float = 10.0) -> Drawing:
+    """The front (level t-1 weave, two halves per piece) or back (level t weave, mirrored)
+    painting guide at 1:1, registered to the shared cut sheet."""
+    width, height, shift = placement(puzzle, margin)
+    mirror = side == "back"
+
+    def place_xy(xy):
+        xy = xy + shift
+        return np.column_stack([width - xy[:, 0], xy[:, 1]]) if mirror else xy
+
+    def place(geoms):
+        return shapely.transform(geoms, place_xy)
+
+    paint = painted(puzzle, colouring, side)
+    layers = [Layer("paint", "paint", (polygons_from_shapely(
+        place(paint.polygons), Style(None, 0.0), paint.colours.tolist()),))]
+    hexes = puzzle.hexagons[puzzle.hexagons != None]  # noqa: E711
+    if len(hexes):  # the ring stays natural wood on both sides
+        layers.append(Layer("ring-unpainted", "paint", (polygons_from_shapely(
+            place(hexes), Style(None, 0.0, UNPAINTED)),)))
+    if side == "front":
+        layers.append(Layer("split-lines", "guide", (_split_lines(puzzle, colouring,
+                                                                  place_xy),)))
+    outlines = [polygons_from_shapely(place(np.array([puzzle.frame], dtype=object)), OUTLINE)]
+    if len(puzzle.ring):
+        outlines.append(polygons_from_shapely(place(puzzle.ring), THIN))
+    layers.append(Layer("frame", "guide", tuple(outlines)))
+    layers.append(Layer("pieces", "guide", (polygons_from_shapely(place(puzzle.pieces),
+                                                                  OUTLINE),)))
+    if numbers is not None:  # moved with the pieces, but never mirrored: they must read
+        placed = Labels(numbers.texts, numbers.heights, place_xy(numbers.centres),
+                        -numbers.angles if mirror else numbers.angles)
+        layers.append(Layer("numbers", "label", _number_shapes(
+            placed, _number_colours(puzzle, colouring, side))))
+    layers.append(Layer("registration", "guide", tuple(_registration(width, height, margin))))
+    title = f"weave-cut puzzle: {side} painting guide (level {puzzle.levels - (side == 'front')}" \
+            " weave)" + (", mirrored" if mirror else "")
+    return Drawing((Sheet(width, height, tuple(layers), f"{side} guide"),), title)
+
+
+def _split_lines(puzzle: Puzzle, colouring: Colouring, place_xy) -> Polylines:
+    """Dashed parent edges across the two-coloured pieces (the paint's diagonal)."""
+    u, w = split_ends(puzzle)
+    two = colouring.front[:, 0] != colouring.front[:, 1]
+    return _dashes(place_xy(u[two]), place_xy(w[two]), SPLIT)
+
+
+def _dashes(a: NDArray[np.float64], b: NDArray[np.float64], style: Style) -> Polylines:
+    """Every segment a -> b as dashes of DASH mm with GAP mm between (vectorised)."""
+    length = np.hypot(*(b - a).T)
+    n = np.maximum(np.floor((length + GAP) / (DASH + GAP)), 1).astype(np.int64)
+    seg = np.repeat(np.arange(len(a)), n)
+    k = np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n)
+    spare = (length - (n * DASH + (n - 1) * GAP)) / 2  # centre the dashes on the segment
+    start = spare[seg] + k * (DASH + GAP)
+    end = np.minimum(start + DASH, length[seg])
+    d = (b - a)[seg] / np.maximum(length[seg], 1e-12)[:, None]
+    coords = np.stack([a[seg] + d * start[:, None], a[seg] + d * end[:, None]], axis=1)
+    return Polylines(coords.reshape(-1, 2), np.arange(0, 2 * len(seg) + 1, 2, dtype=np.int64),
+                     style)
+
+
+def _number_colours(puzzle: Puzzle, colouring: Colouring, side: str) -> NDArray[np.object_]:
+    """(P,) black or white per piece: the better worst-case contrast on its paint(s)."""
+    fills = colouring.front if side == "front" else colouring.back[:, None]
+    out = np.empty(puzzle.n_pieces, dtype=object)
+    for colour in dict.fromkeys(map(tuple, fills.tolist())):  # distinct paint combinations
+        worst = {ink: min(contrast_ratio(ink, f) for f in colour) for ink in (BLACK, WHITE)}
+        rows = (fills == np.array(colour, dtype=object)).all(axis=1)
+        out[rows] = BLACK if worst[BLACK] >= worst[WHITE] else WHITE
+    return out
+
+
+def _number_shapes(numbers: Labels, inks: NDArray[np.object_]) -> tuple:
+    shapes = []
+    for ink in (BLACK, WHITE):
+        pick = np.flatnonzero(inks == ink)
+        if len(pick):
+            coords, offsets = numbers.strokes(pick=pick)
+            shapes.append(Polylines(coords, offsets, Style(ink, 0.3)))
+    return tuple(shapes)
+
+
+def _registration(width: float, height: float, margin: float) -> list:
+    """Crosshairs in the four corners (symmetric, so front and back register)."""
+    r = margin * 0.4
+    pts = [(margin / 2, margin / 2), (width - margin / 2, margin / 2),
+           (margin / 2, height - margin / 2), (width - margin / 2, height - margin / 2)]
+    segs = np.array([[(x - r, y), (x + r, y), (x, y - r), (x, y + r)] for x, y in pts])
+    coords = segs.reshape(-1, 2)
+    return [Polylines(coords, np.arange(0, len(coords) + 1, 2, dtype=np.int64),
+                      Style("#000000", 0.2))]
+
+
+# --- printed pages ----------------------------------------------------------------------------
+
+def printed(guide_drawing: Drawing, key: Drawing, page: tuple[float, float]) -> Drawing:
+    """The colour key, then the guide tiled on ``page``s, keeping only pages with paint."""
+    tiled = tile(guide_drawing, page)
+    keep = tuple(s for s in tiled.sheets
+                 if any(layer.role == "paint" and layer.shapes for layer in s.layers))
+    return replace(tiled, sheets=key.sheets + keep)
+
+
+def colour_key(puzzle: Puzzle, colouring: Colouring, side: str,
+               page: tuple[float, float] = (210.0, 297.0), margin: float = 15.0) -> Drawing:
+    """Every paint of one side: swatch, name, hex code, pieces and area (cm^2), on as many
+    ``page``s as it takes."""
+    paint = painted(puzzle, colouring, side)
+    areas = paint.areas()
+    order = [c for c in colouring.names if c in areas] + sorted(set(areas) - set(
+        colouring.names))
+    size, line = 3.0, 4.2
+    chars = max(20, int((page[0] - 2 * margin - 45) / (0.55 * size)))
+    rows = []
+    for colour in order:
+        numbers = " ".join(str(k) for k in paint.pieces(colour).tolist())
+        wrapped = _wrap(f"pieces: {numbers}", chars)
+        rows.append((colour, wrapped, max(14.0, line * (len(wrapped) + 1) + 3)))
+    total = sum(areas.values())
+    sheets, shapes, y = [], [], None
+    heading = (f"Colour key, {side}: {len(order)} paints, {total / 100:.0f} cm^2 painted "
+               f"({'level ' + str(puzzle.levels - (side == 'front')) + ' weave'})")
+    for colour, wrapped, height in rows:
+        if y is None or y - height < margin:
+            if shapes:
+                sheets.append(shapes)
+            y = page[1] - margin
+            shapes = [Text(margin, y - 6, heading, 5.0)]
+            y -= 14
+        swatch = np.array([(margin, y - 12), (margin + 25, y - 12), (margin + 25, y),
+                           (margin, y)])
+        shapes.append(polygons_from_rings([swatch], Style("#000000", 0.3), [colour]))
+        x = margin + 30
+        name = colouring.names.get(colour, colour)
+        shapes.append(Text(x, y - 4, f"{name}   {colour}   {areas[colour] / 100:.1f} cm^2",
+                           3.5))
+        for k, text in enumerate(wrapped):
+            shapes.append(Text(x, y - 4 - line * (k + 1), text, size, fill="#333333"))
+        y -= height
+    if shapes:
+        sheets.append(shapes)
+    out = [Sheet(page[0], page[1], (Layer("key", "label", tuple(s)),),
+                 f"{side} colour key {k + 1}") for k, s in enumerate(sheets)]
+    return Drawing(tuple(out), f"weave-cut puzzle: {side} colour key")
+
+
+def _wrap(text: str, width: int) -> list[str]:
+    return textwrap.wrap(text, width) or [""]

@@ -1,0 +1,214 @@
+"""What a maker needs beside the cut files: the material, checks of the puzzle against it, the
+summary, and the workshop folder's README.txt."""
+
+from __future__ import annotations
+
+import textwrap
+
+import numpy as np
+import shapely
+
+from .. import presets
+from ..units import page_size, to_mm
+from .colouring import Colouring
+from .files import TRAVEL_SPEED, CutResult
+from .pieces import KIND_NAMES, OCTAGON, Puzzle, build_puzzle, diameter
+
+DEFAULT_MATERIAL = "poplar-3mm"
+MIN_ACROSS = 15.0  # mm: a piece smaller than this is fiddly to hold and easy to lose
+MIN_WIDTH_X_THICKNESS = 3.0  # a piece narrower than 3x the material thickness breaks
+
+
+def material(name: str = DEFAULT_MATERIAL) -> dict:
+    """A material preset (``templates/materials``) with lengths in mm: thickness, kerf,
+    sheet (width, height) and cut_speed (mm/s)."""
+    doc = presets.load("materials", name)
+    try:
+        return {"name": str(doc.get("name", name)),
+                "description": str(doc.get("description", name)),
+                "thickness": to_mm(doc["thickness"]), "kerf": to_mm(doc["kerf"]),
+                "sheet": page_size(doc["sheet"]), "cut_speed": float(doc["cut_speed"])}
+    except (KeyError, ValueError) as exc:
+        raise presets.PresetError(f"material {name!r}: bad or missing {exc}") from exc
+
+
+def piece_sizes(puzzle: Puzzle) -> tuple[np.ndarray, np.ndarray]:
+    """(P,) twice: every piece's size across (its largest corner distance) and its width (the
+    narrow side of its minimum rotated rectangle), mm."""
+    coords, index = shapely.get_coordinates(puzzle.pieces, return_index=True)
+    counts = np.bincount(index, minlength=puzzle.n_pieces)
+    corners = np.full((puzzle.n_pieces, counts.max(), 2), np.nan)
+    corners[index, np.arange(len(index)) - np.repeat(np.cumsum(counts) - counts, counts)] = coords
+    across = np.nanmax(np.linalg.norm(corners[:, :, None] - corners[:, None], axis=3),
+                       axis=(1, 2))
+    rect = shapely.minimum_rotated_rectangle(puzzle.pieces)
+    ring = shapely.get_coordinates(shapely.get_exterior_ring(rect)).reshape(len(rect), -1, 2)
+    sides = np.linalg.norm(ring[:, 1:3] - ring[:, 0:2], axis=2)
+    width = sides.min(axis=1)
+    return across, width
+
+
+def size_warnings(puzzle: Puzzle, thickness: float) -> list[str]:
+    """Warnings when pieces are too small for the material: smaller than MIN_ACROSS mm across
+    or narrower than MIN_WIDTH_X_THICKNESS x ``thickness``, naming the largest level whose
+    pieces all stay above both limits."""
+    limit = MIN_WIDTH_X_THICKNESS * thickness
+    out = []
+    across, width = piece_sizes(puzzle)
+    if across.min() < MIN_ACROSS:
+        out.append(f"{int((across < MIN_ACROSS).sum())} of {puzzle.n_pieces} pieces are "
+                   f"smaller than {MIN_ACROSS:g} mm across (smallest {across.min():.1f} mm)")
+    if width.min() < limit:
+        out.append(f"{int((width < limit).sum())} of {puzzle.n_pieces} pieces are narrower "
+                   f"than 3 x {thickness:g} mm material (narrowest {width.min():.1f} mm)")
+    if out:
+        ok = largest_good_level(puzzle, thickness)
+        out.append(f"at this size, --levels {ok} keeps every piece above both limits" if ok
+                   else "no level keeps every piece above both limits at this size; use a "
+                   "larger --size")
+    return out
+
+
+def largest_good_level(puzzle: Puzzle, thickness: float) -> int | None:
+    """The largest level below the puzzle's whose pieces, at the same frame size, are all at
+    least MIN_ACROSS across and MIN_WIDTH_X_THICKNESS x ``thickness`` wide (None: none)."""
+    size = diameter(puzzle.outer)
+    frame_width = puzzle.frame_width
+    for level in range(puzzle.levels - 1, 1, -1):  # each lower level is ~4x smaller to build
+        smaller = build_puzzle(puzzle.hierarchy[:level + 1], size, frame_width)
+        across, width = piece_sizes(smaller)
+        if across.min() >= MIN_ACROSS and width.min() >= MIN_WIDTH_X_THICKNESS * thickness:
+            return level
+    return None
+
+
+def summary(puzzle: Puzzle, results: dict[str, CutResult], speed: float,
+            colouring: Colouring | None = None) -> dict:
+    """Pieces by type and size, frame, paints, cut length, sheets and time per mode."""
+    counts = {name: int((puzzle.kinds == k).sum()) for k, name in enumerate(KIND_NAMES)}
+    across, width = piece_sizes(puzzle)
+    out = {"levels": puzzle.levels, "pieces": int(puzzle.n_pieces), "pieces_by_type": counts,
+           "piece_across_mm": [round(float(across.min()), 1), round(float(across.max()), 1)],
+           "piece_width_min_mm": round(float(width.min()), 1),
+           "ring_hexagons_in_frame": int(len(puzzle.ring)),
+           "frame_diagonal_mm": round(diameter(puzzle.outer), 2),
+           "frame_mm": [round(v, 1) for v in np.subtract(puzzle.outer.bounds[2:],
+                                                         puzzle.outer.bounds[:2]).tolist()],
+           "speed_mm_s": speed, "modes": {}}
+    if colouring is not None:
+        out["front_colours"] = len(colouring.front_colours)
+        out["back_colours"] = len(colouring.back_colours)
+        out["smallest_delta_e"] = round(colouring.smallest_difference, 2)
+        out["single_coloured_pieces"] = int(((colouring.front[:, 0] == colouring.front[:, 1])
+                                             & (puzzle.kinds == OCTAGON)).sum())
+    for mode, r in results.items():
+        seconds = r.cut_length / speed + r.travel_length / TRAVEL_SPEED
+        out["modes"][mode] = {"cut_length_m": round(r.cut_length / 1000, 3),
+                              "travel_m": round(r.travel_length / 1000, 3),
+                              "paths": r.n_paths, "sheets": r.n_sheets,
+                              "time_min": round(seconds / 60, 1)}
+    return out
+
+
+def summary_text(info: dict) -> str:
+    """The summary as a few readable lines."""
+    kinds = ", ".join(f"{n} {k}s" for k, n in info["pieces_by_type"].items())
+    lo, hi = info["piece_across_mm"]
+    lines = [f"level {info['levels']} puzzle: {info['pieces']} pieces ({kinds}), {lo:g}-{hi:g} "
+             f"mm across, narrowest {info['piece_width_min_mm']:g} mm; "
+             f"{info['ring_hexagons_in_frame']} ring hexagons stay in the frame",
+             f"frame: {info['frame_diagonal_mm']:g} mm diagonal, {info['frame_mm'][0]:g} x "
+             f"{info['frame_mm'][1]:g} mm" + (f", in {info['frame_parts']} dovetailed parts"
+                                              if info.get("frame_parts", 1) > 1 else "")]
+    if "material" in info:
+        lines.append(f"material: {info['material']}, kerf {info['kerf_mm']:g} mm, sheet "
+                     f"{info['sheet_mm'][0]:g} x {info['sheet_mm'][1]:g} mm")
+    if "front_colours" in info:
+        lines.append(f"paints: front {info['front_colours']}, back {info['back_colours']}; "
+                     f"touching colours differ by CIEDE2000 >= {info['smallest_delta_e']:g}; "
+                     f"{info['single_coloured_pieces']} single-coloured pieces on the front")
+    for mode, m in info["modes"].items():
+        lines.append(f"{mode}: cut {m['cut_length_m']:.2f} m in {m['paths']} paths, travel "
+                     f"{m['travel_m']:.2f} m, {m['sheets']} sheet(s), about {m['time_min']:g} min "
+                     f"at {info['speed_mm_s']:g} mm/s")
+    if "files" in info:
+        lines.append("files: " + ", ".join(info["files"]))
+    return "\n".join(lines)
+
+
+def readme(info: dict, page: str) -> str:
+    """README.txt for the workshop folder: what goes to the laser, what to print, the order of
+    work, and the summary's figures."""
+    modes = info["modes"]
+    files = info.get("files", [])
+    laser = []
+    if "shared" in modes:
+        laser.append("  puzzle-shared-cut.svg / .dxf - everything from one board, every shared "
+                     "edge cut once.\n    Layers in order: engrave-numbers (engrave, lowest "
+                     "power), score-ring (score: low power,\n    fast), cut-1-inner, "
+                     "cut-2-hole, cut-3-outer (cut: full power). Keep the order: the\n    "
+                     "outline last, so nothing shifts before its inner cuts are done.")
+    if "separate" in modes:
+        n = modes["separate"]["sheets"]
+        laser.append(f"  puzzle-separate-sheet-1..{n}.svg / .dxf - pieces and frame nested on "
+                     f"{n} sheet(s),\n    each outline offset by half the kerf so the pieces fit "
+                     "snugly. Layers in order:\n    engrave-numbers (engrave), cut-1-inner, "
+                     "cut-2-outer (cut).")
+    if info.get("frame_parts", 1) > 1:
+        laser.append(f"  The frame comes in {info['frame_parts']} parts (F1, F2, ... "
+                     "engraved, counter-clockwise),\n    joined by dovetails: F1 joins F2, "
+                     "F2 joins F3, and the last joins F1. Glue them on a flat\n    surface.")
+    warnings = "".join(textwrap.fill(w, 92, initial_indent="  - ", subsequent_indent="    ",
+                                     break_on_hyphens=False) + "\n"
+                       for w in info.get("warnings", [])) or "  none\n"
+    (width, height), across = info["frame_mm"], info["piece_across_mm"]
+    intro = textwrap.fill(
+        "The paper's two-sided puzzle (Lipschuetz, Reitebuch, Skrodzki, Polthier, section 6): "
+        f"level {info['levels']} pieces of the pentagon snub subdivision; the front is painted "
+        f"with the level {info['levels'] - 1} weave, the back with the level {info['levels']} "
+        "weave.", 92)
+    return f"""weave-cut jigsaw puzzle: workshop folder
+==========================================
+
+{intro}
+
+Material: {info.get('material', '?')}, kerf {info.get('kerf_mm', 0):g} mm.
+Frame: {info['frame_diagonal_mm']:g} mm diagonal ({width:g} x {height:g} mm).
+Pieces: {info['pieces']}, {across[0]:g}-{across[1]:g} mm across.
+Paints: {info.get('front_colours', '?')} on the front, {info.get('back_colours', '?')} on the \
+back (the same paints).
+{_modes_text(info)}
+1. To the laser
+{chr(10).join(laser)}
+  Test first: cut a 20 mm square, measure it; kerf = 20 mm - its size. Rerun with
+  --kerf if it differs from {info.get('kerf_mm', 0):g} mm.
+
+2. To the printer (at 100 %, no scaling; check the 100 mm bar)
+  puzzle-front-guide-{page}.pdf - colour key, then the front guide tiled on pages.
+  puzzle-back-guide-{page}.pdf  - the same for the back (mirrored, as the flipped board).
+  puzzle-front-guide.svg, puzzle-back-guide.svg - the same guides in one piece at 1:1.
+  The colour key lists every paint: swatch, name, hex code, the pieces that carry it and the
+  area it covers, so you know how much to buy.
+
+3. Order of work
+  a. Cut (engrave, score, then cut; outlines last). Keep the pieces in the frame.
+  b. Sand the burr off lightly; prime both sides if the wood is porous.
+  c. Paint the front from the front guide: bold lines are piece outlines, thin dashed
+     lines split two-coloured pieces along the parent edge (the paper's diagonal). Numbers
+     tell you which piece is which; single-coloured pieces sit at the centres of the large
+     octagons of the coarser weave.
+  d. Let it dry, turn the whole puzzle over in its frame, paint the back from the back guide.
+  e. Seal. Paint swells the wood a little and closes the cutting gaps.
+
+Warnings:
+{warnings}
+Files:
+{''.join(f'  {name}{chr(10)}' for name in files)}"""
+
+
+def _modes_text(info: dict) -> str:
+    lines = []
+    for mode, m in info["modes"].items():
+        lines.append(f"{mode.capitalize()} cut: {m['sheets']} sheet(s), {m['cut_length_m']:.1f} m "
+                     f"of cutting, about {m['time_min']:g} min at {info['speed_mm_s']:g} mm/s.")
+    return "\n".join(lines) + "\n"
