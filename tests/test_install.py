@@ -122,5 +122,5 @@ def test_recipe_by_name(weave_cut, tmp_path):
     weave_cut("-q", "build", "subdivisions", "-o", "out")
     built = sorted(p.name for p in (tmp_path / "out").iterdir()
                    if not p.name.startswith("."))  # not the build manifest
-    assert built == ["pentagon-level4.dxf", "pentagon-level4.svg", "square-grid-level3.dxf",
-                     "square-grid-level3.svg"]
+    assert built == ["index.html", "pentagon-level4.dxf", "pentagon-level4.svg",
+                     "square-grid-level3.dxf", "square-grid-level3.svg"]

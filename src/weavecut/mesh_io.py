@@ -26,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import readers
 from .errors import MeshError, MeshFileError
 from .fileio import write_atomic
 from .mesh import ZERO_BASED, Mesh, Numbering, check_structure
@@ -43,20 +44,22 @@ MAX_BYTES = {".obj": 2**30, ".json": 2**29}
 Note = Callable[[str], None]
 
 
-def read_mesh(path: str | Path, note: Note | None = None) -> Mesh:
-    """Read an OBJ or JSON mesh; MeshFileError names the file and line of a problem.
+def read_mesh(path: str | Path, note: Note | None = None, **drawing_options) -> Mesh:
+    """Read an OBJ or JSON mesh, or an SVG or DXF drawing (``drawing_options``: see
+    ``readers.read_drawing``); MeshFileError names the file and line of a problem.
 
-    ``note`` receives remarks that are no errors (an OBJ read in the xz- or yz-plane).
+    ``note`` receives remarks that are no errors (an OBJ read in the xz- or yz-plane, what a
+    drawing held).
     """
-    return _read(Path(path), note)[0]
+    return _read(Path(path), note, drawing_options)[0]
 
 
 def read_valid_mesh(path: str | Path, *, allow_nonconvex: bool = False,
-                    note: Note | None = None) -> Mesh:
+                    note: Note | None = None, **drawing_options) -> Mesh:
     """Read a mesh file and validate it; errors name the file and count as the file does
     (faces and vertices from 1, with line numbers, in an OBJ)."""
     path = Path(path)
-    mesh, numbering = _read(path, note)
+    mesh, numbering = _read(path, note, {**drawing_options, "allow_nonconvex": allow_nonconvex})
     try:
         return validate(mesh, allow_nonconvex=allow_nonconvex, numbering=numbering)
     except MeshError as exc:
@@ -91,8 +94,10 @@ def json_text(mesh: Mesh, metadata: dict[str, str] | None = None) -> str:
     return json.dumps(doc, separators=(",", ":")) + "\n"
 
 
-def _read(path: Path, note: Note | None) -> tuple[Mesh, Numbering]:
+def _read(path: Path, note: Note | None, drawing_options: dict) -> tuple[Mesh, Numbering]:
     suffix = path.suffix.lower()
+    if suffix in readers.SUFFIXES:
+        return readers.read_drawing(path, report=note, **drawing_options), ZERO_BASED
     if suffix not in SUFFIXES:
         raise MeshFileError(f"{path}: unknown mesh format {path.suffix!r}; use .obj or .json")
     raw = _read_regular_file(path, MAX_BYTES[suffix])

@@ -9,6 +9,7 @@ from __future__ import annotations
 import contextlib
 import functools
 import math
+import os
 import shlex
 import sys
 from pathlib import Path
@@ -19,8 +20,9 @@ import numpy as np
 
 from .. import __version__, inputs, units
 from ..errors import MeshError, WeaveCutError
-from ..fileio import protect
+from ..fileio import note, protect, recording
 from ..mesh import Mesh, signed_areas
+from ..readers import DEFAULT_FLATTEN, MESH_CHOICES
 from ..text import clean
 
 CONTEXT = {"help_option_names": ["-h", "--help"], "max_content_width": 100}
@@ -121,8 +123,34 @@ def _geometry_errors() -> tuple[type[Exception], ...]:
     return (errors.GEOSException,) if errors else ()
 
 
+def html_option(f):
+    """``--html PAGE``: after the command, write its kit page to PAGE (a picture of every file
+    it wrote, what each is for, sizes, the command and its summary). Goes below
+    ``@reports_errors``."""
+
+    @functools.wraps(f)
+    def wrapper(*args, html: str | None = None, **kwargs):
+        if html is None:
+            return f(*args, **kwargs)
+        from .. import kitpage
+
+        with recording() as record:
+            result = f(*args, **kwargs)
+        if Path(os.path.abspath(html)) in record.files:
+            raise click.BadParameter("the page would replace an output", param_hint="'--html'")
+        run = kitpage.Run.of(record, command_line())
+        kitpage.write(html, f"weave-cut {click.get_current_context().info_name}", [run])
+        return result
+
+    return click.option("--html", type=click.Path(dir_okay=False), metavar="PAGE",
+                        help="Also write an HTML page that shows every output (pictures, sizes, "
+                        "what each file is for).")(wrapper)
+
+
 def load_mesh(spec: str, allow_nonconvex: bool = False) -> Mesh:
-    """A built-in input by name, or a mesh file, validated; no output may replace the file."""
+    """A built-in input by name, or a mesh file or drawing, validated; no output may replace
+    the file. A drawing (.svg, .dxf) is read with the options of ``drawing_options``, which
+    the running command keeps in its context."""
     from ..mesh_io import read_valid_mesh
     from ..validation import validate
 
@@ -130,7 +158,9 @@ def load_mesh(spec: str, allow_nonconvex: bool = False) -> Mesh:
         if not Path(spec).exists():
             return validate(inputs.get(spec), allow_nonconvex=allow_nonconvex)
     protect(spec)
-    return read_valid_mesh(spec, allow_nonconvex=allow_nonconvex, note=say)
+    ctx = click.get_current_context(silent=True)
+    drawing = ctx.meta.get(DRAWING_KEY, {}) if ctx else {}
+    return read_valid_mesh(spec, allow_nonconvex=allow_nonconvex, note=say, **drawing)
 
 
 THINNEST = 1e-3  # isoperimetric quotient 4 pi A / P^2 of the thinnest face a layout accepts
@@ -213,10 +243,47 @@ def complete_preset(kind: str):
     return complete
 
 
-input_argument = click.argument("input_mesh", metavar="INPUT", shell_complete=complete_inputs)
+def input_argument(f):
+    """Decorator adding the INPUT argument and the options for reading a drawing as INPUT."""
+    return click.argument("input_mesh", metavar="INPUT",
+                          shell_complete=complete_inputs)(drawing_options(f))
+
+
 allow_nonconvex_option = click.option(
     "--allow-nonconvex", is_flag=True, help="Accept non-convex input faces (the paper assumes "
     "convex ones).")
+
+
+DRAWING_KEY = "weavecut.drawing"
+
+
+def _keep_drawing_option(ctx: click.Context, param: click.Parameter, value):
+    ctx.meta.setdefault(DRAWING_KEY, {})[param.name] = value
+    return value
+
+
+def drawing_options(f):
+    """Decorator adding how to read an SVG or DXF INPUT: --flatten, --layer, --mesh, --cell.
+
+    The values go to ``load_mesh`` through the command's context, so a command's own
+    parameters stay as they are.
+    """
+    kept = {"expose_value": False, "callback": _keep_drawing_option}
+    options = [
+        click.option("--flatten", type=Length(), default=f"{DEFAULT_FLATTEN}mm",
+                     show_default=True, help="Drawings: curves stay this close to their "
+                     "polylines; points closer than this merge.", **kept),
+        click.option("--layer", default=None, help="Drawings: read only this DXF layer or "
+                     "SVG (Inkscape) layer.", **kept),
+        click.option("--mesh", type=click.Choice(MESH_CHOICES), default="auto",
+                     show_default=True, help="Drawings: mesh the inside of the outline (auto: "
+                     "when there is a single outline; none: faces as drawn).", **kept),
+        click.option("--cell", type=Length(), default=None, help="Drawings: face size when "
+                     "meshing an outline [default: about 60 faces].", **kept),
+    ]
+    for option in reversed(options):
+        f = option(f)
+    return f
 
 
 def quiet() -> bool:
@@ -239,7 +306,8 @@ def say(message: str) -> None:
 
 
 def summary(text: str) -> None:
-    """What a command made, for people to read, on stdout, unless -q."""
+    """What a command made, for people to read, on stdout, unless -q (and for the kit page)."""
+    note(said=text)
     if not quiet():
         click.echo(text)
 

@@ -14,13 +14,14 @@ from ..units import PAPER_SIZES
 from ..weave.colour import palette
 from ..fileio import make_folder, write_atomic
 from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_inputs,
-                     complete_preset, flag_nonconvex, load_mesh, provenance, reports_errors,
-                     summary)
+                     complete_preset, drawing_options, flag_nonconvex, html_option, load_mesh,
+                     provenance, reports_errors, summary)
 
 
 @click.command("puzzle", context_settings=CONTEXT)
 @click.argument("input_mesh", metavar="[INPUT]", default="pentagon",
                 shell_complete=complete_inputs)
+@drawing_options
 @click.option("-o", "--output", "out_dir", required=True,
               type=click.Path(file_okay=False), help="Folder for the files (created).")
 @click.option("--levels", "-n", type=click.IntRange(2, 7), default=4, show_default=True,
@@ -56,6 +57,7 @@ from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_i
               "blue and pink.")
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
 @reports_errors
+@html_option
 def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, sheet, laser_name,
                    frame_width, numbers, speed, page, palette_name, as_json) -> None:
     """Write the jigsaw puzzle's workshop folder: cut files, painting guides, README.txt.

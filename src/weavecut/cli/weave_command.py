@@ -20,6 +20,7 @@ from .common import (
     reports_errors,
     write_drawing,
 )
+from .common import html_option
 from .mesh_commands import run_scheme, scheme_options
 
 DRAWINGS = ("svg", "pdf", "png", "dxf")
@@ -45,6 +46,7 @@ DRAWINGS = ("svg", "pdf", "png", "dxf")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), default=None,
               help="Picture: .svg, .pdf, .png or .dxf.")
 @reports_errors
+@html_option
 def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allow_nonconvex,
                   palette_name, outline_level, middle_edges, crossings, style, face_split, size,
                   page, as_json, output) -> None:
