@@ -20,7 +20,7 @@ import time
 from pathlib import Path
 
 COMMANDS = ("inputs", "subdivide", "stats", "weave", "puzzle", "strands", "fractal", "levels",
-            "convexity", "figure", "build")
+            "convexity", "figure", "findings", "build")
 
 
 def weave_cut() -> list[str]:

@@ -67,8 +67,8 @@ IMAGES = {
     "examples/previews/tiles-level2.png": Image(
         ("subdivide", "examples/tiles.svg", "-n", "2", "-o", "{out}/t.svg"), "t.svg", 320),
     "examples/previews/star-paper-model.png": Image(
-        ("strands", "examples/star.svg", "--cell", "10mm", "-n", "1", "--tile-size", "15mm",
-         "-o", "{out}/s.svg"), "s.svg", 320),
+        ("strands", "examples/star.svg", "--cell", "10mm", "-n", "1", "--tile-size", "19mm",
+         "-o", "{out}/s.svg"), "s.svg", 331),
     "docs/scheme-weaves.png": Image(
         ("figure", "scheme-weaves", "-o", "{out}/s.svg"), "s.svg", 800),
     "docs/square-grid-paper-model.png": Image(

@@ -16,8 +16,6 @@ from ..analysis import convexity as cv
 from ..analysis import deepzoom
 from ..analysis import fractal as fr
 from ..analysis import levels as lv
-from ..figures import gallery
-from ..figures import subdivision as figures
 from .common import (
     CONTEXT,
     input_argument,
@@ -111,6 +109,8 @@ def fractal_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonc
       weave-cut fractal pentagon --levels 5 -o fractal.svg
       weave-cut fractal square-grid:3x3 --levels 6 --curve 2:40
     """
+    from ..figures import subdivision as figures
+
     _suffix_check(output, tuple(export.formats()))
     if curve is not None and curve[0] > levels:
         raise click.BadParameter(f"level {curve[0]} is beyond --levels {levels}",
@@ -273,6 +273,8 @@ def convexity_command(input_mesh, levels, no_smooth, chirality, centre, allow_no
       weave-cut convexity pentagon --levels 6 --no-smooth -o nonconvex.svg
       weave-cut convexity ngon:24 --levels 4 --centre area
     """
+    from ..figures import subdivision as figures
+
     _suffix_check(output, tuple(export.formats()))
     h = _hierarchy(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex)
     rows = cv.convexity_report(h)
@@ -301,6 +303,8 @@ def convexity_command(input_mesh, levels, no_smooth, chirality, centre, allow_no
 
 
 def _complete_figures(ctx, param, incomplete: str) -> list[CompletionItem]:
+    from ..figures import gallery
+
     return [CompletionItem(n) for n in gallery.FIGURES if n.startswith(incomplete)]
 
 
@@ -320,6 +324,8 @@ def figure_command(name, list_all, output, page) -> None:
       weave-cut figure edge-renders -o edges.svg
       weave-cut figure level-image -o levels.png
     """
+    from ..figures import gallery
+
     if list_all or name is None:
         if name is None and not list_all:
             raise click.UsageError("give a figure NAME, or --list")
@@ -339,5 +345,3 @@ def figure_command(name, list_all, output, page) -> None:
     else:
         write_drawing(result, output, page)
 
-
-COMMANDS = (fractal_command, levels_command, convexity_command, figure_command)

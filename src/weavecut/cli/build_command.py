@@ -40,7 +40,7 @@ from pathlib import Path
 
 import click
 
-from .. import inputs, kitpage, presets
+from .. import inputs, presets
 from ..errors import WeaveCutError
 from ..fileio import check_writable, make_folder, protect, recording, write_atomic
 from ..schema import RECIPE, SchemaError, nearest, read_toml
@@ -312,6 +312,8 @@ class Planner:
 
     def run(self, job: Job, n: int, total: int) -> kitpage.Run:
         """Run ``job``; what it wrote, for the kit page."""
+        from .. import kitpage
+
         say(f"[{n}/{total}] {job.command_line()}")
         if job.output is not None:
             make_folder(job.output.parent)  # checked to lie inside the build folder
@@ -435,5 +437,7 @@ def build_command(ctx: click.Context, recipe: str, output_dir: str, overrides: t
             protect(p)
     runs = [planner.run(job, n, len(jobs)) for n, job in enumerate(jobs, start=1)]
     page = out_dir / PAGE
+    from .. import kitpage
+
     kitpage.write(page, (doc.get("recipe") or {}).get("name") or path.stem, runs)
     record_manifest(out_dir, {PAGE: file_hash(page)})

@@ -1,4 +1,8 @@
-"""What every command shares: option types, the error wrapper, mesh loading, provenance."""
+"""What every command shares: option types, the error wrapper, mesh loading, provenance.
+
+Light on purpose (numpy at most): every command module imports it, and ``weave-cut --help``
+imports every command module; shapely, scipy and the writers load where they are used.
+"""
 
 from __future__ import annotations
 
@@ -13,19 +17,13 @@ from pathlib import Path
 import click
 from click.shell_completion import CompletionItem
 import numpy as np
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
-from shapely.errors import GEOSException
 
 from .. import __version__, inputs, units
-from ..analysis.convexity import nonconvex_levels, nonconvex_message
 from ..errors import MeshError, WeaveCutError
 from ..fileio import note, protect, recording
 from ..mesh import Mesh, signed_areas
-from ..mesh_io import read_valid_mesh
 from ..readers import DEFAULT_FLATTEN, MESH_CHOICES
 from ..text import clean
-from ..validation import validate
 
 CONTEXT = {"help_option_names": ["-h", "--help"], "max_content_width": 100}
 
@@ -109,7 +107,7 @@ def reports_errors(f):
             return f(*args, **kwargs)
         except WeaveCutError as exc:
             raise click.ClickException(str(exc)) from exc
-        except GEOSException as exc:  # a last resort: meshes are checked before layout
+        except _geometry_errors() as exc:  # a last resort: meshes are checked before layout
             raise click.ClickException(f"the geometry cannot be laid out ({exc}); a mesh with "
                                        "sliver faces or tiny features is the usual cause") from exc
         except KeyboardInterrupt:
@@ -117,6 +115,12 @@ def reports_errors(f):
             sys.exit(130)
 
     return wrapper
+
+
+def _geometry_errors() -> tuple[type[Exception], ...]:
+    """shapely's GEOSException, once shapely is loaded (nothing else raises it)."""
+    errors = sys.modules.get("shapely.errors")
+    return (errors.GEOSException,) if errors else ()
 
 
 def html_option(f):
@@ -147,6 +151,9 @@ def load_mesh(spec: str, allow_nonconvex: bool = False) -> Mesh:
     """A built-in input by name, or a mesh file or drawing, validated; no output may replace
     the file. A drawing (.svg, .dxf) is read with the options of ``drawing_options``, which
     the running command keeps in its context."""
+    from ..mesh_io import read_valid_mesh
+    from ..validation import validate
+
     if inputs.is_builtin(spec) or not Path(spec).suffix:
         if not Path(spec).exists():
             return validate(inputs.get(spec), allow_nonconvex=allow_nonconvex)
@@ -163,6 +170,9 @@ def check_layout(mesh: Mesh, what: str, connected: bool = False) -> Mesh:
     """``mesh`` if ``what`` (the puzzle, the paper model) can lay it out: no sliver face (its
     strips and pieces would be thinner than floating point keeps apart) and, if
     ``connected``, one piece; otherwise a MeshError naming the face or the parts."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
     quotient = 4 * np.pi * np.abs(signed_areas(mesh)) / face_perimeters(mesh) ** 2
     worst = int(np.argmin(quotient))
     if quotient[worst] < THINNEST:
@@ -306,6 +316,8 @@ def flag_nonconvex(hierarchy) -> dict:
     """Warn on stderr about every produced level (1..N) with non-convex faces (even with -q:
     such a mesh is refused as input without --allow-nonconvex), and return the counts for
     --json: ``{"nonconvex_faces": total, "nonconvex_faces_by_level": {"5": 72, ...}}``."""
+    from ..analysis.convexity import nonconvex_levels, nonconvex_message
+
     rows = nonconvex_levels(hierarchy)
     for row in rows:
         click.echo(f"weave-cut: warning: {nonconvex_message(row)}; see weave-cut convexity",

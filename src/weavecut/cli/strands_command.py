@@ -10,11 +10,8 @@ from pathlib import Path
 import click
 
 from .. import export
-from ..papermodel.book import LAYOUTS, preset_for, strand_book, tile_size_for
-from ..papermodel.checks import report
 from ..subdivision import snub, subdivide
 from ..weave.colour import palette
-from ..weave.snub_weave import snub_weaves
 from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_preset,
                      flag_nonconvex, input_argument, load_mesh, provenance, reports_errors,
                      html_option, summary)
@@ -42,7 +39,7 @@ class PrintLength(Length):
                    "[default: 20mm]. Strips under 8 mm wide are refused (they tear).")
 @click.option("--size", "model_size", type=PrintLength(), default=None,
               help="Width of the finished model, with a unit (e.g. 23cm); sets the tile size.")
-@click.option("--layout", type=click.Choice(LAYOUTS), default="mixed", show_default=True,
+@click.option("--layout", type=click.Choice(("mixed", "module")), default="mixed", show_default=True,
               help="mixed: every copy's strips packed densely together; module: the paper's "
                    "way, the module's pages printed once per direction.")
 @click.option("--margin", type=Length(), default="10mm", show_default=True,
@@ -73,6 +70,10 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
       weave-cut strands pentagon-flower --size 23cm -o pentagon.pdf
       weave-cut strands square-grid --layout module --page letter -o square-module.pdf
     """
+    from ..papermodel.book import preset_for, strand_book, tile_size_for
+    from ..papermodel.checks import report
+    from ..weave.snub_weave import snub_weaves
+
     fmt = Path(output).suffix.lower().lstrip(".")
     if fmt not in FORMATS:
         raise click.BadParameter(f"unknown format {Path(output).suffix!r}; use .pdf or .svg",

@@ -10,8 +10,6 @@ import click
 from ..errors import MeshError
 from ..weave.colour import palette, strand_colours
 from ..weave.report import weave_summaries
-from ..weave.schemes import scheme_weaves
-from ..layout.weave_figure import snub_under_points, weave_drawing
 from .common import (
     CONTEXT,
     Length,
@@ -62,6 +60,9 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
       weave-cut weave square-grid:3x3 --levels 2 --json
       weave-cut weave triangle-grid --scheme loop --levels 2 --style ribbons -o loop.svg
     """
+    from ..layout.weave_figure import snub_under_points, weave_drawing
+    from ..weave.schemes import scheme_weaves
+
     if output is None and not as_json:
         raise click.UsageError("give -o OUTPUT for a picture, or --json for the counts")
     if output and Path(output).suffix.lower().lstrip(".") not in DRAWINGS:
