@@ -5,7 +5,9 @@ surviving mutant). Mutants listed in ``tests/mutation_equivalents.toml`` with a 
 equivalent and leave the denominator.
 
 Each package runs in its own copy of the tracked tree under ``build/mutation/<package>/``, so a
-run can be repeated per package and mutmut's own cache is kept between runs. Why mutmut: it is
+run can be repeated per package and mutmut's own cache is kept between runs: a second run
+tests only the mutants of functions that changed, and ``--survivors`` re-tests only the
+mutants that survived last time (after new tests were written: minutes, not the whole run). Why mutmut: it is
 maintained, pytest-native, and runs only the tests that reach a mutated function, which keeps a
 whole run within an hour on two cores (cosmic-ray needs a session database and a separate
 baseline per module for the same result).
@@ -13,10 +15,13 @@ baseline per module for the same result).
 
 from __future__ import annotations
 
+import argparse
+import importlib.util
 import json
 import shutil
 import subprocess
 import sys
+import time
 import tomllib
 from pathlib import Path
 
@@ -63,21 +68,24 @@ def configure(work: Path, mutate: list[str], tests: list[str]) -> None:
     (work / "pyproject.toml").write_text(text, encoding="utf-8")
 
 
-def run_package(name: str, children: int) -> dict:
+def run_package(name: str, children: int, only: list[str]) -> dict:
+    """Run mutmut on one package (only the mutants named in ``only``, if any)."""
     mutate, tests = PACKAGES[name]
     work = OUT / name
     tracked_tree(work)
     configure(work, mutate, tests)
     mutmut = [sys.executable, "-m", "mutmut"]
-    subprocess.run([*mutmut, "run", "--max-children", str(children)], cwd=work, check=True,
-                   stdout=subprocess.DEVNULL)
+    start = time.monotonic()
+    subprocess.run([*mutmut, "run", "--max-children", str(children), *only], cwd=work,
+                   check=True, stdout=subprocess.DEVNULL)
+    minutes = (time.monotonic() - start) / 60
     subprocess.run([*mutmut, "export-cicd-stats"], cwd=work, check=True,
                    capture_output=True)
     stats = json.loads((work / "mutants" / "mutmut-cicd-stats.json").read_text())
     listing = subprocess.run([*mutmut, "results", "--all", "true"], cwd=work, check=True,
                              capture_output=True, text=True).stdout
     status = dict(line.strip().rsplit(": ", 1) for line in listing.splitlines() if ": " in line)
-    return {"stats": stats, "status": status}
+    return {"stats": stats, "status": status, "minutes": round(minutes, 1)}
 
 
 def summarise(results: dict[str, dict], equivalents: dict[str, str]) -> dict:
@@ -91,8 +99,17 @@ def summarise(results: dict[str, dict], equivalents: dict[str, str]) -> dict:
         equivalent = sorted(m for m in status if m in equivalents)
         total = len(status) - len(equivalent)
         report[name] = {"mutants": len(status), "killed": killed, "equivalent": len(equivalent),
-                        "survived": alive, "kill_rate": killed / total if total else 1.0}
+                        "survived": alive, "kill_rate": killed / total if total else 1.0,
+                        "minutes": result.get("minutes")}
     return report
+
+
+def function_of(mutant: str) -> str:
+    """``weavecut.weave.report.x_lineage_summary__mutmut_3`` -> ``report.lineage_summary``;
+    methods (``x\u01c1Class\u01c1method``) -> ``module.Class.method``."""
+    module, _, mangled = mutant.split("__mutmut_")[0].rpartition(".")
+    name = mangled[2:].replace("\u01c1", ".") if mangled.startswith("x\u01c1") else mangled[2:]
+    return f"{module.rpartition('.')[2]}.{name}"
 
 
 def markdown(report: dict) -> str:
@@ -101,16 +118,36 @@ def markdown(report: dict) -> str:
     for name, r in report.items():
         rows.append(f"| {name} | {r['mutants']} | {r['equivalent']} | {r['killed']} | "
                     f"{len(r['survived'])} | {100 * r['kill_rate']:.1f} % |")
+    by_function = []
+    for name, r in report.items():
+        counts: dict[str, int] = {}
+        for m in r["survived"]:
+            counts[function_of(m)] = counts.get(function_of(m), 0) + 1
+        top = sorted(counts.items(), key=lambda kv: (-kv[1], kv[0]))
+        by_function.append(f"- {name}: " + ", ".join(f"{f} {n}" for f, n in top))
     survivors = [f"- `{m}` ({name})" for name, r in report.items() for m in r["survived"]]
-    return "\n".join(rows + ["", "Surviving mutants (`mutmut show NAME` in "
+    return "\n".join(rows + ["", "Survivors by function:", *by_function, "",
+                             "Surviving mutants (`mutmut show NAME` in "
                              "build/mutation/PACKAGE):", *survivors]) + "\n"
 
 
 def main(argv: list[str]) -> int:
-    names = argv or list(PACKAGES)
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("packages", nargs="*", metavar="PACKAGE",
+                        help=f"packages to test (default: all of {', '.join(PACKAGES)})")
+    parser.add_argument("--survivors", action="store_true",
+                        help="re-test only the mutants that survived the last run")
+    parser.add_argument("--max-children", type=int, default=2,
+                        help="parallel test processes (default 2: this machine's cores)")
+    args = parser.parse_args(argv)
+    names = args.packages or list(PACKAGES)
     unknown = sorted(set(names) - set(PACKAGES))
     if unknown:
         print(f"unknown package(s) {unknown}; choose from {sorted(PACKAGES)}", file=sys.stderr)
+        return 2
+    if importlib.util.find_spec("mutmut") is None:
+        print("mutation: mutmut is not installed; run `make mutation` (it installs "
+              "'.[mutation]') or `pip install -e '.[mutation]'`", file=sys.stderr)
         return 2
     equivalents = (tomllib.loads(EQUIVALENTS.read_text(encoding="utf-8"))
                    if EQUIVALENTS.exists() else {})
@@ -118,8 +155,19 @@ def main(argv: list[str]) -> int:
     previous = OUT / "report.json"
     results = json.loads(previous.read_text())["raw"] if previous.exists() else {}
     for name in names:
-        print(f"mutation: {name}", flush=True)
-        results[name] = run_package(name, children=2)
+        only = []
+        if args.survivors:
+            if name not in results:
+                print(f"mutation: no earlier run of {name} to take survivors from",
+                      file=sys.stderr)
+                return 2
+            only = [m for m, s in results[name]["status"].items()
+                    if s in ("survived", "no tests")]
+        print(f"mutation: {name}" + (f" ({len(only)} survivors)" if args.survivors else ""),
+              flush=True)
+        if args.survivors and not only:
+            continue
+        results[name] = run_package(name, args.max_children, only)
     report = summarise({n: results[n] for n in PACKAGES if n in results}, equivalents)
     previous.write_text(json.dumps({"report": report, "raw": results}, indent=1))
     (OUT / "report.md").write_text(markdown(report))
