@@ -9,8 +9,9 @@ from hypothesis import given, settings
 from weavecut import inputs
 from weavecut.errors import MeshError
 from weavecut.mesh import Mesh
-from weavecut.subdivision import butterfly, loop, sqrt3
+from weavecut.subdivision import butterfly, loop, sqrt3, subdivide
 from weavecut.weave.face_split import face_split_mesh, face_split_weave
+from weavecut.weave.schemes import scheme_weaves
 from weavecut.weave.triangles import sqrt3_weave, triangle_weave
 from weavecut.weave.two_colouring import (
     check_triangle_colouring,
@@ -137,3 +138,33 @@ def test_triangle_three_colouring_refuses_what_has_none(name, message):
     assert mesh.face_degree != 3 or _three_colouring_oracle(mesh) is None
     with pytest.raises(MeshError, match=message):
         triangle_three_colouring(mesh)
+
+
+@pytest.mark.parametrize("scheme, name, tile_sizes", [
+    ("snub", "pentagon", {1, 2}),                  # boundary pentagons and octagons
+    ("catmull-clark", "square-grid:2x2", {1}),     # every quad is a tile
+    ("loop", "triangle-grid:2x2", {2}),            # glued triangle pairs
+    ("butterfly", "triangle-grid:2x2", {2}),
+    ("sqrt3", "triangle-grid:2x2", {2}),
+    ("doo-sabin", "hex-grid:2x2", None),           # no weave of its own: face split
+])
+def test_scheme_weaves_one_per_level_of_the_schemes_kind(scheme, name, tile_sizes):
+    hierarchy = subdivide(inputs.get(name), 2, scheme)
+    weaves = scheme_weaves(hierarchy, scheme)
+    levels = hierarchy[1:] if tile_sizes else hierarchy  # the face split weaves level 0 too
+    assert len(weaves) == len(levels)
+    for w, level in zip(weaves, levels):
+        assert w.n_strands > 0 and w.n_tiles > 0
+        if tile_sizes:  # tiles of the level's own faces
+            assert w.tile_faces.max() < level.mesh.n_faces
+            assert set(np.diff(w.tile_offsets).tolist()) <= tile_sizes
+            # tiles are disjoint sets of faces
+            assert len(np.unique(w.tile_faces)) == len(w.tile_faces)
+    # the snub weave carries its lineage from the second woven level on
+    assert (weaves[1].parent_strand is not None) == (scheme == "snub")
+    split = scheme_weaves(hierarchy, scheme, face_split=True)
+    assert len(split) == len(hierarchy)
+    for w, level in zip(split, hierarchy):
+        want = face_split_weave(level.mesh)
+        assert np.array_equal(w.strand_visits, want.strand_visits)
+        assert np.array_equal(w.tile_faces, want.tile_faces)
