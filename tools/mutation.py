@@ -4,13 +4,12 @@
 surviving mutant). Mutants listed in ``tests/mutation_equivalents.toml`` with a reason count as
 equivalent and leave the denominator.
 
-Each package runs in its own copy of the tracked tree under ``build/mutation/<package>/``, so a
-run can be repeated per package and mutmut's own cache is kept between runs: a second run
-tests only the mutants of functions that changed, and ``--survivors`` re-tests only the
-mutants that survived last time (after new tests were written: minutes, not the whole run). Why mutmut: it is
-maintained, pytest-native, and runs only the tests that reach a mutated function, which keeps a
-whole run within an hour on two cores (cosmic-ray needs a session database and a separate
-baseline per module for the same result).
+Each package runs in its own copy of the tracked tree under ``build/mutation/<package>/``,
+where mutmut's cache stays between runs: a second run tests only the mutants of functions that
+changed, ``--survivors`` re-tests only last run's survivors (after new tests were written),
+and ``--report`` runs nothing and reports what the caches hold (after a stopped run). Why
+mutmut: it is maintained, pytest-native, and runs only the tests that reach a mutated function
+(cosmic-ray needs a session database and a separate baseline per module for the same result).
 """
 
 from __future__ import annotations
@@ -28,6 +27,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "build" / "mutation"
 EQUIVALENTS = ROOT / "tests" / "mutation_equivalents.toml"
+MUTMUT = [sys.executable, "-m", "mutmut"]
 
 # test_fuzz's tests that run weave-cut in subprocesses for many seconds: no mutant is reached
 # through the subprocesses (mutmut maps tests to what they call in-process), but the
@@ -80,22 +80,27 @@ def run_package(name: str, children: int, only: list[str]) -> dict:
     work = OUT / name
     tracked_tree(work)
     configure(work, mutate, tests, DESELECT.get(name, ""))
-    mutmut = [sys.executable, "-m", "mutmut"]
     start = time.monotonic()
-    subprocess.run([*mutmut, "run", "--max-children", str(children), *only], cwd=work,
+    subprocess.run([*MUTMUT, "run", "--max-children", str(children), *only], cwd=work,
                    check=True, stdout=subprocess.DEVNULL)
-    minutes = (time.monotonic() - start) / 60
-    subprocess.run([*mutmut, "export-cicd-stats"], cwd=work, check=True,
-                   capture_output=True)
+    return {**collect(name), "minutes": round((time.monotonic() - start) / 60, 1)}
+
+
+def collect(name: str) -> dict:
+    """The status of every mutant of a package as mutmut's cache holds it."""
+    work = OUT / name
+    subprocess.run([*MUTMUT, "export-cicd-stats"], cwd=work, check=True, capture_output=True)
     stats = json.loads((work / "mutants" / "mutmut-cicd-stats.json").read_text())
-    listing = subprocess.run([*mutmut, "results", "--all", "true"], cwd=work, check=True,
+    listing = subprocess.run([*MUTMUT, "results", "--all", "true"], cwd=work, check=True,
                              capture_output=True, text=True).stdout
     status = dict(line.strip().rsplit(": ", 1) for line in listing.splitlines() if ": " in line)
-    return {"stats": stats, "status": status, "minutes": round(minutes, 1)}
+    return {"stats": stats, "status": status}
 
 
 def summarise(results: dict[str, dict], equivalents: dict[str, str]) -> dict:
-    """Kill rate per package over non-equivalent mutants; untested mutants count as survivors."""
+    """Kill rate per package over the non-equivalent mutants tested so far; untested mutants
+    (no test reaches them) count as survivors, mutants a stopped run never reached as
+    ``unchecked``."""
     report = {}
     for name, result in results.items():
         status = result["status"]
@@ -103,9 +108,11 @@ def summarise(results: dict[str, dict], equivalents: dict[str, str]) -> dict:
                        if s in ("survived", "no tests") and m not in equivalents)
         killed = sum(s in ("killed", "timeout", "segfault") for s in status.values())
         equivalent = sorted(m for m in status if m in equivalents)
-        total = len(status) - len(equivalent)
+        unchecked = sum(s == "not checked" for s in status.values())
+        total = len(alive) + killed
         report[name] = {"mutants": len(status), "killed": killed, "equivalent": len(equivalent),
-                        "survived": alive, "kill_rate": killed / total if total else 1.0,
+                        "unchecked": unchecked, "survived": alive,
+                        "kill_rate": killed / total if total else 1.0,
                         "minutes": result.get("minutes")}
     return report
 
@@ -119,11 +126,12 @@ def function_of(mutant: str) -> str:
 
 
 def markdown(report: dict) -> str:
-    rows = ["| package | mutants | equivalent | killed | survived | kill rate |",
-            "| --- | ---: | ---: | ---: | ---: | ---: |"]
+    rows = ["| package | mutants | equivalent | killed | survived | not yet run | kill rate |",
+            "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for name, r in report.items():
         rows.append(f"| {name} | {r['mutants']} | {r['equivalent']} | {r['killed']} | "
-                    f"{len(r['survived'])} | {100 * r['kill_rate']:.1f} % |")
+                    f"{len(r['survived'])} | {r.get('unchecked', 0)} | "
+                    f"{100 * r['kill_rate']:.1f} % |")
     by_function = []
     for name, r in report.items():
         counts: dict[str, int] = {}
@@ -143,6 +151,9 @@ def main(argv: list[str]) -> int:
                         help=f"packages to test (default: all of {', '.join(PACKAGES)})")
     parser.add_argument("--survivors", action="store_true",
                         help="re-test only the mutants that survived the last run")
+    parser.add_argument("--report", action="store_true",
+                        help="run nothing: report what each package's cache holds (after a "
+                             "run was stopped, say)")
     parser.add_argument("--max-children", type=int, default=2,
                         help="parallel test processes (default 2: this machine's cores)")
     args = parser.parse_args(argv)
@@ -172,6 +183,9 @@ def main(argv: list[str]) -> int:
         print(f"mutation: {name}" + (f" ({len(only)} survivors)" if args.survivors else ""),
               flush=True)
         if args.survivors and not only:
+            continue
+        if args.report:
+            results[name] = {**results.get(name, {}), **collect(name)}
             continue
         results[name] = run_package(name, args.max_children, only)
     report = summarise({n: results[n] for n in PACKAGES if n in results}, equivalents)
