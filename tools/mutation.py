@@ -81,8 +81,12 @@ def run_package(name: str, children: int, only: list[str]) -> dict:
     tracked_tree(work)
     configure(work, mutate, tests, DESELECT.get(name, ""))
     start = time.monotonic()
-    subprocess.run([*MUTMUT, "run", "--max-children", str(children), *only], cwd=work,
-                   check=True, stdout=subprocess.DEVNULL)
+    run = subprocess.run([*MUTMUT, "run", "--max-children", str(children), *only], cwd=work,
+                         capture_output=True, text=True)
+    if run.returncode:  # e.g. the tests fail without any mutant: show why, then stop
+        print(run.stdout[-3000:], run.stderr[-3000:], sep="\n", file=sys.stderr)
+        raise SystemExit(f"mutation: mutmut failed on {name} (status {run.returncode}); "
+                         f"see above, or run `mutmut run` in {work}")
     return {**collect(name), "minutes": round((time.monotonic() - start) / 60, 1)}
 
 
