@@ -41,7 +41,7 @@ PACKAGES: dict[str, tuple[list[str], list[str]]] = {
     "mesh-core": (["src/weavecut/mesh.py", "src/weavecut/mesh_io.py",
                    "src/weavecut/validation.py"],
                   ["tests/test_mesh.py", "tests/test_mesh_io.py", "tests/test_validation.py",
-                   "tests/test_fuzz.py"]),
+                   "tests/test_fuzz.py", "tests/subdivision/test_snub.py"]),
     "puzzle": (["src/weavecut/puzzle/*"], ["tests/puzzle"]),
     "papermodel": (["src/weavecut/papermodel/*"], ["tests/papermodel"]),
     "export": (["src/weavecut/export/*"], ["tests/export", "tests/test_cli.py"]),
