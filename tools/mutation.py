@@ -70,7 +70,7 @@ def configure(work: Path, mutate: list[str], tests: list[str], deselect: str = "
              f"pytest_add_cli_args_test_selection = [{quoted(json.dumps(t) for t in tests)}]\n"
              "pytest_add_cli_args = [\"-p\", \"no:cacheprovider\", \"-x\", \"-q\""
              + (f", \"-k\", {json.dumps(deselect)}" if deselect else "") + "]\n"
-             "also_copy = [\"templates/\", \"examples/\"]\n")
+             "also_copy = [\"templates/\", \"examples/\", \"benchmarks/\"]\n")
     (work / "pyproject.toml").write_text(text, encoding="utf-8")
 
 
