@@ -65,9 +65,9 @@ bench: $(STAMP)  ## run the benchmarks (throughput, ratios against peers)
 	@for b in benchmarks/bench_puzzle.py benchmarks/bench_strands.py; do \
 		[ -f $$b ] && $(PY) $$b || true; done
 
-mutation: $(STAMP)  ## mutation testing per package (PACKAGES="weave puzzle" for some): build/mutation/report.md
+mutation: $(STAMP)  ## mutation testing per package (PACKAGES="weave export", MUTATION_ARGS=--survivors): build/mutation/report.md
 	$(PY) -m pip install --quiet -e '.[mutation]'
-	$(PY) tools/mutation.py $(PACKAGES)
+	$(PY) tools/mutation.py $(MUTATION_ARGS) $(PACKAGES)
 
 clean:  ## remove build outputs (keeps .venv)
 	rm -rf $(OUT) .pytest_cache .hypothesis

@@ -13,7 +13,9 @@ from xml.etree import ElementTree
 import ezdxf
 import numpy as np
 import pytest
+import shapely
 from click.testing import CliRunner
+from PIL import Image
 
 from weavecut.cli import cli
 from weavecut.mesh_io import read_mesh
@@ -194,15 +196,45 @@ def test_weave_json_counts_and_lineage():
     assert levels[0]["tiles"] == e and levels[1]["tiles"] == 3 * e + 4 * f
 
 
-@pytest.mark.parametrize("suffix", ["svg", "pdf", "png", "dxf"])
-def test_weave_pictures_in_every_format(tmp_path, suffix):
-    out = tmp_path / f"w.{suffix}"
-    result = run("weave", "pentagon", "--levels", "3", "--outline-level", "2", "--crossings",
-                 "--middle-edges", "-o", out)
-    assert result.exit_code == 0, result.output
-    head = out.read_bytes()[:8]
-    assert head.startswith({"svg": b"<svg", "pdf": b"%PDF", "png": b"\x89PNG",
-                            "dxf": b"999\n"}[suffix])
+def test_weave_pictures_in_every_format(tmp_path):
+    """One weave in four formats, each read back by its own reader, shows the same picture:
+    the SVG's tile colours are the DXF's tile layers and are painted in the PNG, whose shape is
+    the SVG's; the PDF is one page."""
+    args = ["weave", "pentagon", "--levels", "3", "--outline-level", "2", "--crossings",
+            "--middle-edges"]
+    for suffix in ("svg", "pdf", "png", "dxf"):
+        result = run(*args, "-o", tmp_path / f"w.{suffix}")
+        assert result.exit_code == 0, result.output
+    assert run(*args[:4], "-o", tmp_path / "tiles.png").exit_code == 0  # no lines over tiles
+    root = ElementTree.parse(tmp_path / "w.svg").getroot()
+    ns = "{http://www.w3.org/2000/svg}"
+    tiles = [g for g in root.iter(f"{ns}g") if g.get("id") == "paint-tiles"][0]
+    fills = {p.get("fill") for p in tiles.iter(f"{ns}path")}
+    assert len(fills) >= 10 and all(re.fullmatch(r"#[0-9a-f]{6}", f) for f in fills)
+    doc = ezdxf.readfile(tmp_path / "w.dxf")
+    assert doc.header["$INSUNITS"] == 4  # mm
+    assert {layer.dxf.name for layer in doc.layers if layer.dxf.name.startswith("tiles-")} == \
+        {f"tiles-{f[1:]}" for f in fills}
+    assert len(doc.modelspace().query("HATCH")) >= len(fills)
+    with Image.open(tmp_path / "w.png") as im:
+        im.verify()
+    with Image.open(tmp_path / "tiles.png") as im:
+        pixels = np.asarray(im.convert("RGB"))
+    height, width = pixels.shape[:2]
+    w_mm, h_mm = (float(root.get(k).removesuffix("mm")) for k in ("width", "height"))
+    assert width / height == pytest.approx(w_mm / h_mm, abs=2 / height)
+    # a point inside each SVG tile has the tile's colour in the PNG (tile outlines cover a few)
+    hits = []
+    for path in tiles.iter(f"{ns}path"):
+        for ring in path.get("d").split("M")[1:]:
+            xy = [tuple(map(float, p.split(","))) for p in ring.rstrip("Z").split()]
+            inside = shapely.Polygon(xy).representative_point()
+            rgb = pixels[int(inside.y * height / h_mm), int(inside.x * width / w_mm)]
+            hits.append("#%02x%02x%02x" % tuple(rgb) == path.get("fill"))
+    assert len(hits) > 100 and np.mean(hits) > 0.9
+    pdf = (tmp_path / "w.pdf").read_bytes()
+    assert pdf.startswith(b"%PDF-") and pdf.rstrip().endswith(b"%%EOF")
+    assert len(re.findall(rb"/Type /Page\b", pdf)) == 1
 
 
 @pytest.mark.parametrize("scheme, mesh", [("loop", "triangle-grid:2x2"),

@@ -44,6 +44,7 @@ def test_random_meshes_round_trip(tmp_path_factory, mesh):
 
 @pytest.mark.parametrize("text, message", [
     ("v 0 0 0\nv 1 0 0\nv 0 1 1\nf 1 2 3\n", "z = 1.0"),
+    ("v 0 0 0\nv 1 0 0\nv 0 1 -1\nf 1 2 3\n", "line 3: vertex has z = -1.0"),
     ("v 0 0\nv 1 0\nv 0 1\nf 1 2 4\n", "line 4: face index 4 refers to no vertex"),
     ("v 0 0\nv 1 x\n", "line 2: vertex coordinates must be numbers"),
     ("v 0 0\nv 1 0\nv 0 1\n", "no faces"),

@@ -20,6 +20,22 @@ def test_clockwise_mesh_is_reoriented():
     assert (signed_areas(mesh) < 0).all()
     fixed = validate(mesh)
     assert (signed_areas(fixed) > 0).all()
+    # the same points, each face's corners in the opposite order
+    np.testing.assert_array_equal(fixed.vertices, mesh.vertices)
+    assert [set(zip(f, f[1:] + f[:1])) for f in fixed.faces()] == \
+        [set(zip(f[1:] + f[:1], f)) for f in mesh.faces()]
+
+
+@pytest.mark.parametrize("clockwise", [[0, 1], [0, 2], [1, 2], [0], [2]])
+def test_a_mesh_mostly_or_partly_clockwise_is_refused_not_reoriented(clockwise):
+    """Only a mesh whose faces are all clockwise is turned; two of three (or one of three)
+    clockwise faces are an error that names the first clockwise face and the count."""
+    v = [(0, 0), (1, 0), (2, 0), (3, 0), (0, 1), (1, 1), (2, 1), (3, 1)]
+    faces = [[0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6]]
+    faces = [f[::-1] if k in clockwise else f for k, f in enumerate(faces)]
+    with pytest.raises(MeshError, match=rf"^face {clockwise[0]} is clockwise while others are "
+                                        rf"counter-clockwise \({len(clockwise)} of 3 faces"):
+        validate(Mesh.from_faces(v, faces))
 
 
 def test_mixed_orientation_is_an_error():

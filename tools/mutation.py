@@ -4,25 +4,35 @@
 surviving mutant). Mutants listed in ``tests/mutation_equivalents.toml`` with a reason count as
 equivalent and leave the denominator.
 
-Each package runs in its own copy of the tracked tree under ``build/mutation/<package>/``, so a
-run can be repeated per package and mutmut's own cache is kept between runs. Why mutmut: it is
-maintained, pytest-native, and runs only the tests that reach a mutated function, which keeps a
-whole run within an hour on two cores (cosmic-ray needs a session database and a separate
-baseline per module for the same result).
+Each package runs in its own copy of the tracked tree under ``build/mutation/<package>/``,
+where mutmut's cache stays between runs: a second run tests only the mutants of functions that
+changed, ``--survivors`` re-tests only last run's survivors (after new tests were written),
+and ``--report`` runs nothing and reports what the caches hold (after a stopped run). Why
+mutmut: it is maintained, pytest-native, and runs only the tests that reach a mutated function
+(cosmic-ray needs a session database and a separate baseline per module for the same result).
 """
 
 from __future__ import annotations
 
+import argparse
+import importlib.util
 import json
 import shutil
 import subprocess
 import sys
+import time
 import tomllib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "build" / "mutation"
 EQUIVALENTS = ROOT / "tests" / "mutation_equivalents.toml"
+MUTMUT = [sys.executable, "-m", "mutmut"]
+
+# test_fuzz's tests that run weave-cut in subprocesses for many seconds: no mutant is reached
+# through the subprocesses (mutmut maps tests to what they call in-process), but the
+# in-process warm-up they start with would make them run for nearly every mesh-core mutant
+DESELECT = {"mesh-core": "not interrupt and not hash_seeds"}
 
 # package -> (files to mutate, tests that guard them)
 PACKAGES: dict[str, tuple[list[str], list[str]]] = {
@@ -31,7 +41,7 @@ PACKAGES: dict[str, tuple[list[str], list[str]]] = {
     "mesh-core": (["src/weavecut/mesh.py", "src/weavecut/mesh_io.py",
                    "src/weavecut/validation.py"],
                   ["tests/test_mesh.py", "tests/test_mesh_io.py", "tests/test_validation.py",
-                   "tests/test_fuzz.py"]),
+                   "tests/test_fuzz.py", "tests/subdivision/test_snub.py"]),
     "puzzle": (["src/weavecut/puzzle/*"], ["tests/puzzle"]),
     "papermodel": (["src/weavecut/papermodel/*"], ["tests/papermodel"]),
     "export": (["src/weavecut/export/*"], ["tests/export", "tests/test_cli.py"]),
@@ -51,37 +61,50 @@ def tracked_tree(dest: Path) -> None:
                 shutil.copy2(src, target)
 
 
-def configure(work: Path, mutate: list[str], tests: list[str]) -> None:
+def configure(work: Path, mutate: list[str], tests: list[str], deselect: str = "") -> None:
     """Append a [tool.mutmut] table for this package to the copy's pyproject.toml."""
     text = (ROOT / "pyproject.toml").read_text(encoding="utf-8")
     quoted = ", ".join
     text += ("\n[tool.mutmut]\nsource_paths = [\"src\"]\n"
              f"only_mutate = [{quoted(json.dumps(m) for m in mutate)}]\n"
              f"pytest_add_cli_args_test_selection = [{quoted(json.dumps(t) for t in tests)}]\n"
-             "pytest_add_cli_args = [\"-p\", \"no:cacheprovider\", \"-x\", \"-q\"]\n"
-             "also_copy = [\"templates/\", \"examples/\"]\n")
+             "pytest_add_cli_args = [\"-p\", \"no:cacheprovider\", \"-x\", \"-q\""
+             + (f", \"-k\", {json.dumps(deselect)}" if deselect else "") + "]\n"
+             "also_copy = [\"templates/\", \"examples/\", \"benchmarks/\"]\n")
     (work / "pyproject.toml").write_text(text, encoding="utf-8")
 
 
-def run_package(name: str, children: int) -> dict:
+def run_package(name: str, children: int, only: list[str]) -> dict:
+    """Run mutmut on one package (only the mutants named in ``only``, if any)."""
     mutate, tests = PACKAGES[name]
     work = OUT / name
     tracked_tree(work)
-    configure(work, mutate, tests)
-    mutmut = [sys.executable, "-m", "mutmut"]
-    subprocess.run([*mutmut, "run", "--max-children", str(children)], cwd=work, check=True,
-                   stdout=subprocess.DEVNULL)
-    subprocess.run([*mutmut, "export-cicd-stats"], cwd=work, check=True,
-                   capture_output=True)
+    configure(work, mutate, tests, DESELECT.get(name, ""))
+    start = time.monotonic()
+    run = subprocess.run([*MUTMUT, "run", "--max-children", str(children), *only], cwd=work,
+                         capture_output=True, text=True)
+    if run.returncode:  # e.g. the tests fail without any mutant: show why, then stop
+        print(run.stdout[-3000:], run.stderr[-3000:], sep="\n", file=sys.stderr)
+        raise SystemExit(f"mutation: mutmut failed on {name} (status {run.returncode}); "
+                         f"see above, or run `mutmut run` in {work}")
+    return {**collect(name), "minutes": round((time.monotonic() - start) / 60, 1)}
+
+
+def collect(name: str) -> dict:
+    """The status of every mutant of a package as mutmut's cache holds it."""
+    work = OUT / name
+    subprocess.run([*MUTMUT, "export-cicd-stats"], cwd=work, check=True, capture_output=True)
     stats = json.loads((work / "mutants" / "mutmut-cicd-stats.json").read_text())
-    listing = subprocess.run([*mutmut, "results", "--all", "true"], cwd=work, check=True,
+    listing = subprocess.run([*MUTMUT, "results", "--all", "true"], cwd=work, check=True,
                              capture_output=True, text=True).stdout
     status = dict(line.strip().rsplit(": ", 1) for line in listing.splitlines() if ": " in line)
     return {"stats": stats, "status": status}
 
 
 def summarise(results: dict[str, dict], equivalents: dict[str, str]) -> dict:
-    """Kill rate per package over non-equivalent mutants; untested mutants count as survivors."""
+    """Kill rate per package over the non-equivalent mutants tested so far; untested mutants
+    (no test reaches them) count as survivors, mutants a stopped run never reached as
+    ``unchecked``."""
     report = {}
     for name, result in results.items():
         status = result["status"]
@@ -89,28 +112,63 @@ def summarise(results: dict[str, dict], equivalents: dict[str, str]) -> dict:
                        if s in ("survived", "no tests") and m not in equivalents)
         killed = sum(s in ("killed", "timeout", "segfault") for s in status.values())
         equivalent = sorted(m for m in status if m in equivalents)
-        total = len(status) - len(equivalent)
+        unchecked = sum(s == "not checked" for s in status.values())
+        total = len(alive) + killed
         report[name] = {"mutants": len(status), "killed": killed, "equivalent": len(equivalent),
-                        "survived": alive, "kill_rate": killed / total if total else 1.0}
+                        "unchecked": unchecked, "survived": alive,
+                        "kill_rate": killed / total if total else 1.0,
+                        "minutes": result.get("minutes")}
     return report
 
 
+def function_of(mutant: str) -> str:
+    """``weavecut.weave.report.x_lineage_summary__mutmut_3`` -> ``report.lineage_summary``;
+    methods (``x\u01c1Class\u01c1method``) -> ``module.Class.method``."""
+    module, _, mangled = mutant.split("__mutmut_")[0].rpartition(".")
+    name = mangled[2:].replace("\u01c1", ".") if mangled.startswith("x\u01c1") else mangled[2:]
+    return f"{module.rpartition('.')[2]}.{name}"
+
+
 def markdown(report: dict) -> str:
-    rows = ["| package | mutants | equivalent | killed | survived | kill rate |",
-            "| --- | ---: | ---: | ---: | ---: | ---: |"]
+    rows = ["| package | mutants | equivalent | killed | survived | not yet run | kill rate |",
+            "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for name, r in report.items():
         rows.append(f"| {name} | {r['mutants']} | {r['equivalent']} | {r['killed']} | "
-                    f"{len(r['survived'])} | {100 * r['kill_rate']:.1f} % |")
+                    f"{len(r['survived'])} | {r.get('unchecked', 0)} | "
+                    f"{100 * r['kill_rate']:.1f} % |")
+    by_function = []
+    for name, r in report.items():
+        counts: dict[str, int] = {}
+        for m in r["survived"]:
+            counts[function_of(m)] = counts.get(function_of(m), 0) + 1
+        top = sorted(counts.items(), key=lambda kv: (-kv[1], kv[0]))
+        by_function.append(f"- {name}: " + ", ".join(f"{f} {n}" for f, n in top))
     survivors = [f"- `{m}` ({name})" for name, r in report.items() for m in r["survived"]]
-    return "\n".join(rows + ["", "Surviving mutants (`mutmut show NAME` in "
+    return "\n".join(rows + ["", "Survivors by function:", *by_function, "",
+                             "Surviving mutants (`mutmut show NAME` in "
                              "build/mutation/PACKAGE):", *survivors]) + "\n"
 
 
 def main(argv: list[str]) -> int:
-    names = argv or list(PACKAGES)
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("packages", nargs="*", metavar="PACKAGE",
+                        help=f"packages to test (default: all of {', '.join(PACKAGES)})")
+    parser.add_argument("--survivors", action="store_true",
+                        help="re-test only the mutants that survived the last run")
+    parser.add_argument("--report", action="store_true",
+                        help="run nothing: report what each package's cache holds (after a "
+                             "run was stopped, say)")
+    parser.add_argument("--max-children", type=int, default=2,
+                        help="parallel test processes (default 2: this machine's cores)")
+    args = parser.parse_args(argv)
+    names = args.packages or list(PACKAGES)
     unknown = sorted(set(names) - set(PACKAGES))
     if unknown:
         print(f"unknown package(s) {unknown}; choose from {sorted(PACKAGES)}", file=sys.stderr)
+        return 2
+    if importlib.util.find_spec("mutmut") is None:
+        print("mutation: mutmut is not installed; run `make mutation` (it installs "
+              "'.[mutation]') or `pip install -e '.[mutation]'`", file=sys.stderr)
         return 2
     equivalents = (tomllib.loads(EQUIVALENTS.read_text(encoding="utf-8"))
                    if EQUIVALENTS.exists() else {})
@@ -118,8 +176,22 @@ def main(argv: list[str]) -> int:
     previous = OUT / "report.json"
     results = json.loads(previous.read_text())["raw"] if previous.exists() else {}
     for name in names:
-        print(f"mutation: {name}", flush=True)
-        results[name] = run_package(name, children=2)
+        only = []
+        if args.survivors:
+            if name not in results:
+                print(f"mutation: no earlier run of {name} to take survivors from",
+                      file=sys.stderr)
+                return 2
+            only = [m for m, s in results[name]["status"].items()
+                    if s in ("survived", "no tests")]
+        print(f"mutation: {name}" + (f" ({len(only)} survivors)" if args.survivors else ""),
+              flush=True)
+        if args.survivors and not only:
+            continue
+        if args.report:
+            results[name] = {**results.get(name, {}), **collect(name)}
+            continue
+        results[name] = run_package(name, args.max_children, only)
     report = summarise({n: results[n] for n in PACKAGES if n in results}, equivalents)
     previous.write_text(json.dumps({"report": report, "raw": results}, indent=1))
     (OUT / "report.md").write_text(markdown(report))

@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 
+from tests.svg_readback import assert_svg_shows
 from weavecut import export, inputs
 from weavecut.figures import gallery, schemes
 from weavecut.figures import subdivision as sub_figures
@@ -21,8 +22,7 @@ def test_scheme_figures_render(name):
     assert name in gallery.FIGURES
     drawing = schemes.FIGURES[name][1]()
     assert isinstance(drawing, Drawing)
-    svg = export.render(drawing, "svg")
-    assert svg.startswith(b"<svg") and len(svg) > 5000
+    assert_svg_shows(drawing, export.render(drawing, "svg"))
 
 
 def test_figure_inputs_are_valid_meshes():

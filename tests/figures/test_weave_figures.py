@@ -4,8 +4,12 @@ from __future__ import annotations
 
 import pytest
 
+from click.testing import CliRunner
+
+from tests.svg_readback import assert_svg_shows
 from weavecut import export
-from weavecut.figures import gallery, weaving as weave_figures
+from weavecut.cli import cli
+from weavecut.figures import gallery, schemes, subdivision, weaving as weave_figures
 from weavecut.layout.drawing import Drawing
 
 
@@ -13,11 +17,23 @@ from weavecut.layout.drawing import Drawing
 def test_weave_figures_render(name):
     drawing = weave_figures.FIGURES[name][1]()
     assert isinstance(drawing, Drawing)
-    svg = export.render(drawing, "svg")
-    assert svg.startswith(b"<svg") and len(svg) > 5000
+    assert_svg_shows(drawing, export.render(drawing, "svg"))
 
 
 def test_gallery_has_every_figure_once():
+    """No figure is lost to a name clash between the modules, none is listed under two names,
+    and ``figure --list`` names each once, in the gallery's order."""
+    parts = [subdivision.FIGURES, weave_figures.FIGURES, schemes.FIGURES]
+    assert len(gallery.FIGURES) == sum(len(p) for p in parts)
+    for part in parts:
+        assert all(gallery.FIGURES[name] == entry for name, entry in part.items())
+    builders = [builder for _, builder in gallery.FIGURES.values()]
+    assert len(set(builders)) == len(builders)
+    descriptions = [description for description, _ in gallery.FIGURES.values()]
+    assert len(set(descriptions)) == len(descriptions)
+    listed = CliRunner().invoke(cli, ["figure", "--list"]).output.split("\n")
+    names = [line.split()[0] for line in listed if line.strip()]
+    assert names == list(gallery.FIGURES)
     assert set(gallery.FIGURES) >= {"first-steps", "square-grid-weaving", "pentagon-weave",
                                      "schemes", "scheme-weaves", "level-image"}
 

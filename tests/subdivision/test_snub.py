@@ -6,16 +6,21 @@ import math
 
 import numpy as np
 import pytest
+import shapely
+from click.testing import CliRunner
 from hypothesis import given
 
 from tests import meshes
 from tests.strategies import valid_meshes
 from weavecut import inputs
+from weavecut.cli import cli
+from weavecut.mesh_io import read_mesh, write_mesh
 from weavecut.mesh import (
     Mesh, Topology, corner_angles, edge_lengths, mirrored, outer_vertices, signed_areas,
     vertex_degrees,
 )
 from weavecut.subdivision import snub, subdivide
+from weavecut.validation import validate
 
 BUILTINS = ["pentagon", "ngon:7", "triangulated-ngon:6", "square-grid:3x2", "tiling-8-4:2x2",
             "pentagon-flower", "triangle-grid:2x2", "hex-grid:2x2"]
@@ -188,6 +193,44 @@ def test_mirror_with_opposite_chirality_gives_the_mirror(name):
     other = subdivide(mirrored(mesh), 3, chirality="left")[-1].mesh
     assert meshes.face_set(meshes.mirror_points(meshes.mesh_face_points(left))) != \
         meshes.face_set(meshes.mesh_face_points(other))
+
+
+def _centres(mesh, centre):
+    """Face centres by an independent rule: shapely's area centroid, or the vertex mean."""
+    if centre == "area":
+        return np.array([shapely.Polygon(mesh.vertices[f]).centroid.coords[0]
+                         for f in mesh.faces()])
+    return np.array([mesh.vertices[f].mean(axis=0) for f in mesh.faces()])
+
+
+@pytest.mark.parametrize("centre", snub.CENTRES)
+@pytest.mark.parametrize("make", [meshes.mixed, lambda: inputs.get("pentagon-flower")])
+def test_smoothing_moves_inner_vertices_to_the_mean_of_the_chosen_centres(make, centre):
+    """Operation 4 by hand: every inner vertex of the unsmoothed child moves to the mean centre
+    (of the kind asked for) of the child faces around it; outer vertices stay. On these inputs
+    the two kinds of centre differ, so the smoothed meshes differ too."""
+    raw = snub.step(make(), smooth=False, centre=centre).mesh
+    smoothed = snub.step(make(), smooth=True, centre=centre).mesh
+    centres, faces = _centres(raw, centre), raw.faces()
+    inner = ~outer_vertices(raw)
+    want = raw.vertices.copy()
+    for v in np.flatnonzero(inner):
+        want[v] = centres[[k for k, f in enumerate(faces) if v in f]].mean(axis=0)
+    np.testing.assert_allclose(smoothed.vertices, want, atol=1e-12)
+    other = "vertex" if centre == "area" else "area"
+    assert not np.allclose(smoothed.vertices, snub.step(make(), centre=other).mesh.vertices)
+
+
+def test_cli_passes_centre_area_to_the_smoothing(tmp_path):
+    source = tmp_path / "mixed.obj"
+    write_mesh(meshes.mixed(), source)
+    for centre in snub.CENTRES:
+        out = tmp_path / f"{centre}.json"
+        result = CliRunner().invoke(cli, ["subdivide", str(source), "--levels", "1",
+                                          "--centre", centre, "-o", str(out)])
+        assert result.exit_code == 0, result.output
+        want = snub.step(validate(read_mesh(source)), centre=centre).mesh
+        np.testing.assert_allclose(read_mesh(out).vertices, want.vertices, atol=1e-9)
 
 
 def test_area_centre_option_differs_only_for_irregular_faces():

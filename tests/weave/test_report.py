@@ -51,3 +51,71 @@ def test_weave_json_has_lineage_and_nonconvex_counts():
     assert data["nonconvex_faces"] == 0
     assert "lineage" not in data["levels"][0]
     assert data["levels"][1]["lineage"]["parents"] == data["levels"][0]["strands"]
+
+
+def _recount(weave, parent_weave=None) -> dict:
+    """The summary recounted strand by strand with plain loops and Counters."""
+    from collections import Counter
+    from itertools import combinations
+
+    sizes = [weave.tile_offsets[t + 1] - weave.tile_offsets[t] for t in range(weave.n_tiles)]
+    walks = [list(zip(*(a.tolist() for a in weave.strand(s)))) for s in range(weave.n_strands)]
+    own = [sum(over for _, over in walk) for walk in walks]
+    hist = lambda values: {str(k): n for k, n in sorted(Counter(values).items())}  # noqa: E731
+    top, below = {}, {}
+    for s, walk in enumerate(walks):
+        for tile, over in walk:
+            (top if over else below)[tile] = s
+    out = {
+        "tiles": weave.n_tiles,
+        "octagons": sizes.count(2),
+        "boundary_pentagons": sizes.count(1),
+        "strands": len(walks),
+        "closed_strands": int(sum(weave.strand_closed.tolist())),
+        "strands_with_octagon": sum(any(over and sizes[t] == 2 for t, over in walk)
+                                    for walk in walks),
+        "strand_length_histogram": hist(own),
+        "self_crossings": sum(top.get(t) == below.get(t) for t in below),
+    }
+    if parent_weave is None:
+        return out
+    parent = weave.parent_strand.tolist()
+    kids = {p: [s for s in range(len(walks)) if parent[s] == p]
+            for p in range(parent_weave.n_strands)}
+    long_kids = {p: [s for s in ss if own[s] >= 3] for p, ss in kids.items()}
+    crossing = {tuple(sorted((top[t], below[t]))) for t in below
+                if t in top and top[t] != below[t]}
+    siblings = [(a, b) for a, b in crossing if parent[a] == parent[b] >= 0]
+    parent_own = [sum(over) for over in
+                  (parent_weave.strand(p)[1].tolist() for p in range(parent_weave.n_strands))]
+    out["lineage"] = {
+        "parents": parent_weave.n_strands,
+        "parents_without_children": sum(not ss for ss in kids.values()),
+        "childless_parent_length_histogram": hist(parent_own[p] for p, ss in kids.items()
+                                                  if not ss),
+        "children_per_parent": hist(len(ss) for ss in kids.values()),
+        "long_children_per_parent_with_long_children": hist(len(ss) for ss in
+                                                            long_kids.values() if ss),
+        "parents_with_exactly_two_long_children": sum(len(ss) == 2
+                                                      for ss in long_kids.values()),
+        "sibling_pairs": sum(len(list(combinations(ss, 2))) for ss in kids.values()),
+        "sibling_pairs_that_cross": len(siblings),
+        "long_sibling_pairs_that_cross": sum(own[a] >= 3 and own[b] >= 3 for a, b in siblings),
+        "short_fragments": sum(n < 3 for n in own),
+        "orphans": parent.count(-1),
+    }
+    return out
+
+
+@pytest.mark.parametrize("name,levels", [("pentagon", 4), ("square-grid:2x2", 3),
+                                         ("triangulated-ngon:7", 3)])
+def test_summary_equals_a_loop_recount(name, levels):
+    weaves = snub_weaves(subdivide(inputs.get(name), levels))
+    rows = weave_summaries(weaves)
+    assert rows[0] == _recount(weaves[0])
+    for parent, weave, row in zip(weaves, weaves[1:], rows[1:]):
+        assert row == _recount(weave, parent)
+    # the recount is not trivially empty: crossings, octagons and lineage all occur
+    last = rows[-1]
+    assert last["octagons"] and last["lineage"]["sibling_pairs_that_cross"]
+    assert last["strands_with_octagon"] and last["lineage"]["short_fragments"]

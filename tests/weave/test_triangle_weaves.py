@@ -6,14 +6,18 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 
+from weavecut import inputs
+from weavecut.errors import MeshError
 from weavecut.mesh import Mesh
-from weavecut.subdivision import butterfly, loop, sqrt3
+from weavecut.subdivision import butterfly, loop, sqrt3, subdivide
 from weavecut.weave.face_split import face_split_mesh, face_split_weave
+from weavecut.weave.schemes import scheme_weaves
 from weavecut.weave.triangles import sqrt3_weave, triangle_weave
 from weavecut.weave.two_colouring import (
     check_triangle_colouring,
     disc_two_colouring,
     triangle_colouring_step,
+    triangle_three_colouring,
 )
 
 from ..subdivision.classic_meshes import any_meshes, jittered_tri_grids, quad_grid
@@ -78,3 +82,89 @@ def test_face_split_strands_alternate_on_a_quad_grid():
     for s in range(w.n_strands):
         over = w.strand(s)[1]
         assert (over[1:] != over[:-1]).all()
+
+
+def _three_colouring_oracle(mesh: Mesh) -> np.ndarray:
+    """c1 by hand: colour the first face's corners 0, 1, 2 (per connected part, its lowest
+    face first), then give every vertex the colour its triangle still lacks, face by face,
+    until nothing changes; c1 is colour 0. None if some triangle ends without three colours."""
+    faces = mesh.faces()
+    colour: dict[int, int] = {}
+    for start in range(len(faces)):
+        if any(v in colour for v in faces[start]):
+            continue
+        # only a face of a part not yet reached can start one
+        colour.update(zip(faces[start], range(3)))
+        changed = True
+        while changed:
+            changed = False
+            for f in faces:
+                known = [colour[v] for v in f if v in colour]
+                if len(known) == 2:
+                    (v,) = [v for v in f if v not in colour]
+                    colour[v] = 3 - sum(known)
+                    changed = True
+    if any(sorted(colour.get(v, -1) for v in f) != [0, 1, 2] for f in faces):
+        return None
+    return np.array([colour[v] == 0 for v in range(mesh.n_vertices)])
+
+
+def _two_parts(name: str) -> Mesh:
+    one = inputs.get(name)
+    far = one.vertices + [100.0, 0.0]
+    return Mesh.from_faces(np.vstack([one.vertices, far]),
+                           one.faces() + [[v + one.n_vertices for v in f] for f in one.faces()])
+
+
+@pytest.mark.parametrize("make", [lambda: inputs.get("triangle-grid:3x2"),
+                                  lambda: inputs.get("triangulated-ngon:6"),
+                                  lambda: split_quads(3, 3)[0],
+                                  lambda: _two_parts("triangle-grid:2x2")])
+def test_triangle_three_colouring_agrees_with_a_face_by_face_oracle(make):
+    mesh = make()
+    c1 = triangle_three_colouring(mesh)
+    assert c1.dtype == bool and c1.shape == (mesh.n_vertices,)
+    check_triangle_colouring(mesh, c1)
+    np.testing.assert_array_equal(c1, _three_colouring_oracle(mesh))
+
+
+@pytest.mark.parametrize("name, message", [
+    ("triangulated-ngon:5", "an inner vertex of odd degree"),
+    ("triangulated-ngon:7", "an inner vertex of odd degree"),
+    ("square-grid:2x2", "a mesh of triangles only"),
+])
+def test_triangle_three_colouring_refuses_what_has_none(name, message):
+    mesh = inputs.get(name)
+    assert mesh.face_degree != 3 or _three_colouring_oracle(mesh) is None
+    with pytest.raises(MeshError, match=message):
+        triangle_three_colouring(mesh)
+
+
+@pytest.mark.parametrize("scheme, name, tile_sizes", [
+    ("snub", "pentagon", {1, 2}),                  # boundary pentagons and octagons
+    ("catmull-clark", "square-grid:2x2", {1}),     # every quad is a tile
+    ("loop", "triangle-grid:2x2", {2}),            # glued triangle pairs
+    ("butterfly", "triangle-grid:2x2", {2}),
+    ("sqrt3", "triangle-grid:2x2", {2}),
+    ("doo-sabin", "hex-grid:2x2", None),           # no weave of its own: face split
+])
+def test_scheme_weaves_one_per_level_of_the_schemes_kind(scheme, name, tile_sizes):
+    hierarchy = subdivide(inputs.get(name), 2, scheme)
+    weaves = scheme_weaves(hierarchy, scheme)
+    levels = hierarchy[1:] if tile_sizes else hierarchy  # the face split weaves level 0 too
+    assert len(weaves) == len(levels)
+    for w, level in zip(weaves, levels):
+        assert w.n_strands > 0 and w.n_tiles > 0
+        if tile_sizes:  # tiles of the level's own faces
+            assert w.tile_faces.max() < level.mesh.n_faces
+            assert set(np.diff(w.tile_offsets).tolist()) <= tile_sizes
+            # tiles are disjoint sets of faces
+            assert len(np.unique(w.tile_faces)) == len(w.tile_faces)
+    # the snub weave carries its lineage from the second woven level on
+    assert (weaves[1].parent_strand is not None) == (scheme == "snub")
+    split = scheme_weaves(hierarchy, scheme, face_split=True)
+    assert len(split) == len(hierarchy)
+    for w, level in zip(split, hierarchy):
+        want = face_split_weave(level.mesh)
+        assert np.array_equal(w.strand_visits, want.strand_visits)
+        assert np.array_equal(w.tile_faces, want.tile_faces)
