@@ -35,7 +35,8 @@ snub_options = level_options(6, with_scheme=False)
 
 
 def _hierarchy(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex):
-    return run_scheme(input_mesh, levels, "snub", no_smooth, chirality, centre, allow_nonconvex)
+    return run_scheme(input_mesh, levels, "snub", no_smooth, chirality, centre, allow_nonconvex,
+                      flat=f"weave-cut {click.get_current_context().info_name}")
 
 
 def _suffix_check(output: str | None, allowed: tuple[str, ...]) -> None:
@@ -203,7 +204,7 @@ def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonco
       weave-cut levels pentagon --levels 12 --size 1024 --window 0.05,0.25,0.2,0.4 -o zoom.png
     """
     _suffix_check(output, ("png",))
-    mesh = load_mesh(input_mesh, allow_nonconvex)
+    mesh = load_mesh(input_mesh, allow_nonconvex, flat="weave-cut levels")
     if window is None:
         check_fits(mesh, levels, snub.counts)
     if not levels < lv.UNSET:

@@ -117,13 +117,18 @@ def reports_errors(f):
     return wrapper
 
 
-def load_mesh(spec: str, allow_nonconvex: bool = False) -> Mesh:
-    """A built-in input by name, or a mesh file, validated; no output may replace the file."""
-    if inputs.is_builtin(spec) or not Path(spec).suffix:
-        if not Path(spec).exists():
-            return validate(inputs.get(spec), allow_nonconvex=allow_nonconvex)
-    protect(spec)
-    return read_valid_mesh(spec, allow_nonconvex=allow_nonconvex, note=say)
+def load_mesh(spec: str, allow_nonconvex: bool = False, flat: str | None = None) -> Mesh:
+    """A built-in input by name, or a mesh file, validated; no output may replace the file.
+    With ``flat`` (what needs a flat mesh) a surface in space is refused."""
+    if (inputs.is_builtin(spec) or not Path(spec).suffix) and not Path(spec).exists():
+        mesh = validate(inputs.get(spec), allow_nonconvex=allow_nonconvex)
+    else:
+        protect(spec)
+        mesh = read_valid_mesh(spec, allow_nonconvex=allow_nonconvex, note=say)
+    if flat and mesh.dim == 3:
+        raise MeshError(f"{spec} is a surface in space (x, y, z vertices); {flat} needs a flat "
+                        "mesh so far")
+    return mesh
 
 
 THINNEST = 1e-3  # isoperimetric quotient 4 pi A / P^2 of the thinnest face a layout accepts
@@ -133,6 +138,9 @@ def check_layout(mesh: Mesh, what: str, connected: bool = False) -> Mesh:
     """``mesh`` if ``what`` (the puzzle, the paper model) can lay it out: no sliver face (its
     strips and pieces would be thinner than floating point keeps apart) and, if
     ``connected``, one piece; otherwise a MeshError naming the face or the parts."""
+    if mesh.dim == 3:
+        raise MeshError(f"the mesh is a surface in space (x, y, z vertices); {what} needs a "
+                        "flat mesh so far")
     quotient = 4 * np.pi * np.abs(signed_areas(mesh)) / face_perimeters(mesh) ** 2
     worst = int(np.argmin(quotient))
     if quotient[worst] < THINNEST:
@@ -238,7 +246,7 @@ def flag_nonconvex(hierarchy) -> dict:
     """Warn on stderr about every produced level (1..N) with non-convex faces (even with -q:
     such a mesh is refused as input without --allow-nonconvex), and return the counts for
     --json: ``{"nonconvex_faces": total, "nonconvex_faces_by_level": {"5": 72, ...}}``."""
-    rows = nonconvex_levels(hierarchy)
+    rows = nonconvex_levels(hierarchy) if hierarchy[0].mesh.dim == 2 else []  # flat faces only
     for row in rows:
         click.echo(f"weave-cut: warning: {nonconvex_message(row)}; see weave-cut convexity",
                    err=True)

@@ -22,7 +22,7 @@ from .common import (
     reports_errors,
     write_drawing,
 )
-from .mesh_commands import run_scheme, scheme_options
+from .mesh_commands import project_option, run_scheme, scheme_options
 
 DRAWINGS = ("svg", "pdf", "png", "dxf")
 
@@ -30,6 +30,7 @@ DRAWINGS = ("svg", "pdf", "png", "dxf")
 @click.command("weave", context_settings=CONTEXT)
 @input_argument
 @scheme_options
+@project_option
 @click.option("--palette", "palette_name", default="maritime-12", show_default=True,
               shell_complete=complete_preset("palettes"), help="Palette preset (templates/palettes) or a .toml file.")
 @click.option("--outline-level", type=click.IntRange(1, 40), default=None,
@@ -48,8 +49,8 @@ DRAWINGS = ("svg", "pdf", "png", "dxf")
               help="Picture: .svg, .pdf, .png or .dxf.")
 @reports_errors
 def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allow_nonconvex,
-                  palette_name, outline_level, middle_edges, crossings, style, face_split, size,
-                  page, as_json, output) -> None:
+                  project, palette_name, outline_level, middle_edges, crossings, style,
+                  face_split, size, page, as_json, output) -> None:
     """Weave INPUT after N subdivision steps: strands, over/under crossings and lineage.
 
     \b
@@ -59,6 +60,7 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
       weave-cut weave square-grid --levels 2 --page letter -o square-weave.pdf
       weave-cut weave square-grid:3x3 --levels 2 --json
       weave-cut weave triangle-grid --scheme loop --levels 2 --style ribbons -o loop.svg
+      weave-cut weave dodecahedron --levels 2 --project sphere --json
     """
     if output is None and not as_json:
         raise click.UsageError("give -o OUTPUT for a picture, or --json for the counts")
@@ -71,7 +73,7 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
         raise click.BadParameter(f"must be below --levels {levels}", param_hint="'--outline-level'")
     pal = palette(palette_name)
     hierarchy = run_scheme(input_mesh, levels, scheme, no_smooth, chirality, centre,
-                           allow_nonconvex)
+                           allow_nonconvex, project, flat=output and "a drawing")
     nonconvex = flag_nonconvex(hierarchy)
     what = f"the {scheme} weave of {input_mesh} at level {levels}"
     try:
