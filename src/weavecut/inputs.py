@@ -231,6 +231,10 @@ INPUTS: dict[str, Input] = {
 }
 
 
+SURFACES = ("tetrahedron", "cube", "octahedron", "dodecahedron", "icosahedron", "icosphere")
+FLAT = tuple(name for name in INPUTS if name not in SURFACES)
+
+
 def get(spec: str) -> Mesh:
     """The built-in mesh named ``spec`` (``name`` or ``name:param``).
 

@@ -390,7 +390,8 @@ def corner_angles(mesh: Mesh) -> NDArray[np.float64]:
 def edge_lengths(mesh: Mesh) -> NDArray[np.float64]:
     """(E,) length of every edge."""
     e = mesh.topology.edges
-    return np.linalg.norm(mesh.vertices[e[:, 1]] - mesh.vertices[e[:, 0]], axis=1)
+    d = mesh.vertices[e[:, 1]] - mesh.vertices[e[:, 0]]
+    return np.hypot(*d.T) if mesh.dim == 2 else np.linalg.norm(d, axis=1)
 
 
 def mirrored(mesh: Mesh) -> Mesh:

@@ -9,6 +9,7 @@ import click
 import numpy as np
 
 from .. import export, inputs
+from ..errors import MeshError
 from ..analysis.stats import level_stats
 from ..layout.mesh_figure import mesh_drawing
 from ..mesh_io import write_mesh
@@ -76,8 +77,8 @@ def run_scheme(input_mesh: str, levels: int, scheme: str, no_smooth: bool, chira
         raise click.UsageError("--no-smooth, --chirality, --centre and --project apply to "
                                "--scheme snub")
     if mesh.dim == 3 and scheme != "snub":
-        raise click.UsageError(f"{input_mesh} is a surface in space; only --scheme snub "
-                               "subdivides surfaces so far")
+        raise MeshError(f"{input_mesh} is a surface in space; only --scheme snub subdivides "
+                        "surfaces so far")
     with progress(range(levels), f"{scheme} levels") as steps, np.errstate(all="ignore"):
         hierarchy = subdivide(mesh, levels, scheme, steps=steps, **options)
     check_levels(hierarchy, f"{scheme} of {input_mesh}")
