@@ -72,12 +72,21 @@ def test_z_triplets_are_the_paper_shape_in_the_bisecting_plane(name):
                                np.ones(3), rtol=1e-12)  # three edges of |e| / sqrt(7)
     cos = (steps[:, :-1] * steps[:, 1:]).sum(axis=2) / (length[:, None] ** 2 / 7)
     np.testing.assert_allclose(cos, 0.5 * np.ones_like(cos), atol=1e-12)  # 60 deg turns
-    normal = edge_normals(mesh)
-    plane = np.cross(w - u, np.cross(normal, w - u))  # normal of the triplet's plane
+    # the triplet is planar, in a plane that makes equal angles with the two faces' planes
+    plane = np.cross(w - u, z[:, 0] - u)
+    plane /= np.linalg.norm(plane, axis=1)[:, None]
     np.testing.assert_allclose((steps * plane[:, None]).sum(axis=2), 0, atol=1e-12)
+    p = mesh.vertices[mesh.dense_faces()[:, :3]]  # face normals from three corners (flat faces)
+    face_normal = np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0])
+    face_normal /= np.linalg.norm(face_normal, axis=1)[:, None]
+    he = mesh.topology.edge_half_edges
+    left, right = (face_normal[mesh.half_edge_face[he[:, c]]] for c in (0, 1))
+    np.testing.assert_allclose(np.einsum("ij,ij->i", plane, left),
+                               np.einsum("ij,ij->i", plane, right), atol=1e-12)
     # left chirality: the first Z edge turns towards the face on the left of u -> w
-    side = np.einsum("ij,ij->i", np.cross(w - u, z[:, 0] - u), normal)
-    assert (side > 0).all()
+    assert (np.einsum("ij,ij->i", plane, left + right) > 0).all()
+    np.testing.assert_allclose(edge_normals(mesh), (left + right) / np.linalg.norm(
+        left + right, axis=1)[:, None], atol=1e-12)
 
 
 @pytest.mark.parametrize("name", ["dodecahedron", "cube", "icosphere:1"])
