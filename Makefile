@@ -1,5 +1,6 @@
 # weave-cut: `make run` builds every recipe in templates/recipes into build/<recipe>/ (the
-# figures recipe is also `make figures`), `make test` runs the tests, `make docs` redraws the
+# figures recipe is also `make figures`) with a page build/<recipe>/index.html each, and
+# build/index.html linking them; `make test` runs the tests, `make docs` redraws the
 # README's images. All create .venv and install the project first when needed.
 
 PYTHON ?= python3
@@ -25,8 +26,11 @@ $(STAMP): pyproject.toml setup.py
 	$(PY) -m pip install --quiet -e '.[test]'
 	touch $(STAMP)
 
-run: $(BUILT)  ## build every recipe (templates/recipes, examples) into build/ (incremental)
-	@echo "built into $(OUT)/: $(notdir $(basename $(RECIPES)))"
+run: $(OUT)/index.html  ## build every recipe (templates/recipes, examples) into build/ (incremental)
+	@echo "built into $(OUT)/: $(notdir $(basename $(RECIPES))); open $(OUT)/index.html"
+
+$(OUT)/index.html: $(BUILT)
+	$(PY) -m weavecut.kitpage $@ $(patsubst %/.built,%/index.html,$(BUILT))
 
 # a recipe is rebuilt when it or the package changed; each recipe has its own folder, which
 # belongs to make (--force: replace files a weave-cut without a manifest left there)
@@ -34,7 +38,7 @@ $(OUT)/%/.built: templates/recipes/%.toml $(STAMP) $(SRC)
 	$(WC) -q build $< -o $(OUT)/$* --force > /dev/null
 	touch $@
 
-$(OUT)/%/.built: examples/%.toml $(STAMP) $(SRC) examples/*.obj examples/*.json
+$(OUT)/%/.built: examples/%.toml $(STAMP) $(SRC) examples/*.obj examples/*.json examples/*.svg examples/*.dxf
 	$(WC) -q build $< -o $(OUT)/$* --force > /dev/null
 	touch $@
 
@@ -55,6 +59,8 @@ bench: $(STAMP)  ## run the benchmarks (throughput, ratios against peers)
 	$(PY) benchmarks/bench_weave.py
 	$(PY) benchmarks/bench_schemes.py
 	$(PY) benchmarks/bench_levels.py
+	$(PY) benchmarks/bench_memory.py
+	$(PY) benchmarks/bench_mesh_io.py
 	$(PY) benchmarks/bench_startup.py  # fails when --help gets slow against import numpy
 	@for b in benchmarks/bench_puzzle.py benchmarks/bench_strands.py; do \
 		[ -f $$b ] && $(PY) $$b || true; done

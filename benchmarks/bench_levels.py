@@ -1,10 +1,14 @@
 """Level-image throughput (prints a table; not a test).
 
-    .venv/bin/python benchmarks/bench_levels.py [--quick]
+    .venv/bin/python benchmarks/bench_levels.py [--quick] [--pyramid]
 
 Cases: the pentagon at level 9 over 2048 x 2048 pixels (target <= 10 s) and a level-12 zoom
 window of about 1/100 of the pentagon's area (target <= 30 s and <= 4 GiB peak). Each case runs
 in a fresh subprocess so that its peak resident memory (ru_maxrss) is its own.
+
+Then a DeepZoom pyramid (``weave-cut levels --tiles``): its full-resolution tiles rendered by
+one process and by two, in tiles per second (all tiles, and the full-resolution ones that do
+the refinement).
 """
 
 from __future__ import annotations
@@ -19,6 +23,8 @@ CASES = {
     "pentagon level 12 zoom, 2048 px": dict(levels=12, size=2048,
                                             window=(0.05, 0.25, 0.2042, 0.4042)),
 }
+PYRAMID = dict(levels=10, size=2048, tile_size=256)
+QUICK_PYRAMID = dict(levels=9, size=1024, tile_size=256)
 QUICK = {
     "pentagon level 7, 512 px": dict(levels=7, size=512, window=None),
     "pentagon level 9 zoom, 512 px": dict(levels=9, size=512, window=(0.05, 0.25, 0.2042, 0.4042)),
@@ -47,9 +53,45 @@ def run_case(levels: int, size: int, window) -> dict:
             "png_bytes": len(png), "area_fraction": area}
 
 
+def pyramid(levels: int, size: int, tile_size: int) -> None:
+    """Tiles per second of the DeepZoom pyramid with one and with two processes."""
+    import os
+    import tempfile
+
+    from weavecut import inputs
+    from weavecut.analysis import deepzoom
+    from weavecut.analysis import levels as lv
+
+    mesh = inputs.get("pentagon")
+    grid = lv.Grid.fit(lv.default_window(mesh), size)
+    print(f"\nDeepZoom pyramid, pentagon level {levels}, {grid.width} x {grid.height} px, "
+          f"{tile_size}-px tiles (load {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores):")
+    for jobs in (1, 2):
+        with tempfile.TemporaryDirectory() as folder:
+            cpu = _cpu()
+            r = deepzoom.write_pyramid(mesh, levels, grid, folder, tile_size=tile_size, jobs=jobs)
+            cpu = _cpu() - cpu
+        print(f"  {jobs} process(es): {r['tiles']:,} tiles in {r['seconds']:.1f} s = "
+              f"{r['tiles'] / r['seconds']:.1f} tiles/s; {r['full_resolution_tiles']:,} "
+              f"full-resolution tiles in {r['render_seconds']:.1f} s = "
+              f"{r['full_resolution_tiles'] / r['render_seconds']:.2f} tiles/s; CPU {cpu:.1f} s "
+              f"= {cpu / r['full_resolution_tiles']:.2f} s per full-resolution tile")
+
+
+def _cpu() -> float:
+    """CPU seconds of this process and its finished children (the pool's workers)."""
+    import resource
+
+    return sum(resource.getrusage(who).ru_utime + resource.getrusage(who).ru_stime
+               for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
+
+
 def main() -> None:
     if len(sys.argv) > 1 and sys.argv[1] == "--case":
         print(json.dumps(run_case(**json.loads(sys.argv[2]))))
+        return
+    if "--pyramid" in sys.argv:
+        pyramid(**(QUICK_PYRAMID if "--quick" in sys.argv else PYRAMID))
         return
     cases = QUICK if "--quick" in sys.argv else CASES
     print(f"{'case':36} {'seconds':>8} {'peak RSS':>10} {'pixels set':>12} {'deepest':>8} "
@@ -61,6 +103,7 @@ def main() -> None:
         area = f"{r['area_fraction']:.4f}" if r["area_fraction"] else "all"
         print(f"{name:36} {r['seconds']:8.2f} {r['peak_bytes'] / 2**30:8.2f} GiB "
               f"{r['set']:12,} {r['deepest']:8} {area:>7}")
+    pyramid(**(QUICK_PYRAMID if "--quick" in sys.argv else PYRAMID))
 
 
 if __name__ == "__main__":

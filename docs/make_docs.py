@@ -58,6 +58,17 @@ IMAGES = {
     "examples/previews/house-weave-level2.png": Image(
         ("weave", "examples/house.obj", "-n", "2", "--style", "ribbons", "--crossings",
          "-o", "{out}/h.svg"), "h.svg", 320),
+    "examples/previews/heart-weave-level2.png": Image(
+        ("weave", "examples/heart.svg", "--cell", "10mm", "-n", "2", "--outline-level", "1",
+         "-o", "{out}/h.svg"), "h.svg", 320),
+    "examples/previews/star-weave-level2.png": Image(
+        ("weave", "examples/star.svg", "-n", "2", "--outline-level", "1", "--palette", "puzzle",
+         "-o", "{out}/s.svg"), "s.svg", 320),
+    "examples/previews/tiles-level2.png": Image(
+        ("subdivide", "examples/tiles.svg", "-n", "2", "-o", "{out}/t.svg"), "t.svg", 320),
+    "examples/previews/star-paper-model.png": Image(
+        ("strands", "examples/star.svg", "--cell", "10mm", "-n", "1", "--tile-size", "19mm",
+         "-o", "{out}/s.svg"), "s.svg", 331),
     "docs/scheme-weaves.png": Image(
         ("figure", "scheme-weaves", "-o", "{out}/s.svg"), "s.svg", 800),
     "docs/square-grid-paper-model.png": Image(

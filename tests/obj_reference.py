@@ -29,7 +29,6 @@ def read(data: bytes) -> tuple[np.ndarray, list[list[int]], str]:
 def _read(data: bytes):
     text = data.replace(b"\r\n", b"\n").replace(b"\r", b"\n")
     points, faces, face_lines, v_lines, seen = [], [], [], [], []
-    too_large = False
     for n, line in enumerate(text.split(b"\n"), start=1):
         parts = [p for p in re.split(rb"[ \t\v\f]+", line.split(b"#")[0]) if p]
         if not parts:
@@ -50,8 +49,10 @@ def _read(data: bytes):
             numbers = [a.split(b"/")[0] for a in args]
             if not all(re.fullmatch(rb"[+-]?[0-9]+", a) for a in numbers):
                 raise Refused(f"line {n}: face indices must be whole numbers")
-            if any(len(a.lstrip(b"+-")) > 16 for a in numbers):
-                too_large = True
+            for a in numbers:
+                if len(a.lstrip(b"+-")) > 16:
+                    shown = a.decode() if len(a) <= 40 else a[:37].decode() + "..."
+                    raise Refused(f"line {n}: face index {shown} is too large")
             faces.append([int(a) for a in numbers])
             face_lines.append(n)
             seen.append(len(points))
@@ -60,8 +61,6 @@ def _read(data: bytes):
             raise Refused(f"line {n}: unknown OBJ statement {shown!r}"[:200])
     if not faces:
         raise Refused("no faces ('f' lines) found")
-    if too_large:
-        raise Refused("a face index is too large")
     corners = []
     for face, line, known in zip(faces, face_lines, seen):
         for i in face:

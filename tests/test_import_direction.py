@@ -21,6 +21,7 @@ FORBIDDEN = {
     "puzzle": {"papermodel", "figures", "cli"},
     "figures": {"cli"},
     "analysis": {"layout", *PRODUCTS, "export", "cli"},
+    "readers": {"subdivision", "weave", "analysis", "layout", *PRODUCTS, "export", "cli"},
 }
 
 

@@ -114,7 +114,7 @@ def test_strands_prints_a_paper_model(weave_cut, tmp_path):
 def test_puzzle_finds_its_material(weave_cut, tmp_path):
     out = weave_cut("-q", "puzzle", "--levels", "3", "--mode", "shared",
                     "--material", "poplar-3mm", "-o", "p", "--json").stdout
-    assert json.loads(out)["material"] == "poplar-3mm"
+    assert json.loads(out)["material"] == "3 mm poplar plywood (the paper's puzzle)"
     assert (tmp_path / "p" / "puzzle-shared-cut.dxf").is_file()
 
 
@@ -122,5 +122,5 @@ def test_recipe_by_name(weave_cut, tmp_path):
     weave_cut("-q", "build", "subdivisions", "-o", "out")
     built = sorted(p.name for p in (tmp_path / "out").iterdir()
                    if not p.name.startswith("."))  # not the build manifest
-    assert built == ["pentagon-level4.dxf", "pentagon-level4.svg", "square-grid-level3.dxf",
-                     "square-grid-level3.svg"]
+    assert built == ["index.html", "pentagon-level4.dxf", "pentagon-level4.svg",
+                     "square-grid-level3.dxf", "square-grid-level3.svg"]

@@ -102,7 +102,8 @@ UNREADABLE = [
     "v 1", "v 1 2 3 4 5", "v x 1", "v nan 0", "v 1e400 0", "v 0 0 inf", "v 0 0 1", "v 2 5 1",
     "f 0 1 2", "f 1 2", "f", "f 1 2 a", "f 1 2 1.5", "f 99999999999999999999 1 2", "f /1 2 3",
     "f 1 1 2", "f 9 1 2", "f 00000000000000000001 2 3", "bogus 1", "v 0\x00 1", "\x01bad",
-    "é 1",
+    "é 1", "f 1 2 " + "9" * 30, "f 1 " + "9" * 20 + "x 2", "f -" + "1" * 17 + " 1 2",
+    "f 12345678901234 1 2", "f " + "7" * 50 + " 1 " + "8" * 25, "f 1 2 " + "9" * 24 + "/5",
 ]
 
 
@@ -274,7 +275,7 @@ def test_huge_files_are_refused_before_reading(tmp_path, suffix):
     path = tmp_path / f"huge{suffix}"
     with open(path, "wb") as f:
         f.truncate(MAX_BYTES[suffix] + 1)  # sparse: takes no disk space
-    with pytest.raises(MeshFileError, match=r"is more than the [12] GiB weave-cut reads"):
+    with pytest.raises(MeshFileError, match=r"bytes is more than the [0-9,]+ MiB weave-cut reads"):
         read_mesh(path)
 
 
@@ -304,3 +305,23 @@ def test_control_characters_are_no_numbers(tmp_path):
     path.write_bytes(b"v 0 0\nv 1 0\nv 0 1\nf 1 2 3\x01\n")
     with pytest.raises(MeshFileError, match="line 4: face indices must be whole numbers"):
         read_mesh(path)
+
+
+def test_hostile_files_fail_in_one_line_in_the_cli(tmp_path):
+    from click.testing import CliRunner
+
+    from weavecut.cli import cli
+
+    (tmp_path / "zero.obj").symlink_to("/dev/zero")
+    (tmp_path / "folder.obj").mkdir()
+    with open(tmp_path / "huge.json", "wb") as f:
+        f.truncate(MAX_BYTES[".json"] + 1)
+    (tmp_path / "deep.json").write_text("[" * 50_000)
+    (tmp_path / "digits.json").write_text('{"a": ' + "1" * 10_000 + "}")
+    (tmp_path / "bytes.obj").write_bytes(b"v 0 0\nv 1 0\nv 0 1\nf 1 2 3\x00\n")
+    for name in ("zero.obj", "folder.obj", "huge.json", "deep.json", "digits.json",
+                 "bytes.obj"):
+        result = CliRunner().invoke(cli, ["stats", str(tmp_path / name)])
+        assert result.exit_code == 1, (name, result.output)
+        assert result.output.startswith(f"Error: {tmp_path / name}: "), result.output
+        assert len(result.output.strip().splitlines()) == 1 and "internal" not in result.output

@@ -1,16 +1,57 @@
 """Atomic file writes: a file is written whole or not at all, never over an input of the same
-command and never in place of a device, FIFO or socket."""
+command and never in place of a device, FIFO or socket. Inside ``recording()`` every write is
+also noted (with the Drawing it was rendered from, and the summary a command printed), which
+is what the kit page shows."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import stat
 import tempfile
+from contextvars import ContextVar
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from .errors import ExportError
 
 _INPUTS: set[tuple[int, int]] = set()  # (device, inode) of every file read as an input
+
+
+@dataclass
+class Record:
+    """What was written inside one ``recording()``: ``files`` maps every path written, in
+    order, to the Drawing it was rendered from (None for other files); ``said`` holds the
+    summary lines the command printed (also with -q)."""
+
+    files: dict[Path, object] = field(default_factory=dict)
+    said: list[str] = field(default_factory=list)
+
+
+_RECORD: ContextVar[Record | None] = ContextVar("weavecut_record", default=None)
+
+
+@contextlib.contextmanager
+def recording():
+    """Note every file written and every summary said inside the block; yields the Record."""
+    record = Record()
+    token = _RECORD.set(record)
+    try:
+        yield record
+    finally:
+        _RECORD.reset(token)
+
+
+def note(path: str | os.PathLike | None = None, drawing=None, said: str | None = None) -> None:
+    """Note a written ``path`` (and the ``drawing`` it shows) or a summary line, if recording."""
+    record = _RECORD.get()
+    if record is None:
+        return
+    if path is not None:
+        key = Path(os.path.abspath(path))
+        record.files[key] = drawing if drawing is not None else record.files.get(key)
+    if said is not None:
+        record.said.append(said)
 
 
 def protect(path: str | os.PathLike) -> None:
@@ -72,6 +113,7 @@ def write_atomic(path: str | os.PathLike, data: bytes) -> None:
             f.write(data)
         os.chmod(tmp, 0o644)
         os.replace(tmp, path)
+        note(path)
     except OSError as exc:
         _unlink_quietly(tmp)
         raise ExportError(f"cannot write {path}: {exc.strerror}") from exc

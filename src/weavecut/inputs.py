@@ -10,7 +10,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial import ConvexHull
 
 from .errors import MeshError
 from .mesh import Mesh
@@ -143,6 +142,7 @@ def hex_grid(param: str | None = None) -> Mesh:
 def _convex_solid(points) -> Mesh:
     """The convex polyhedron with ``points`` as corners, scaled to unit circumradius: the
     convex hull's coplanar triangles merged into faces, counter-clockwise seen from outside."""
+    from scipy.spatial import ConvexHull  # loaded when a solid is asked for
     points = np.asarray(points, dtype=np.float64)
     points /= np.linalg.norm(points, axis=1)[:, None]
     hull = ConvexHull(points)

@@ -9,9 +9,9 @@ JSON format (version 1)::
 Both round-trip exactly: floats are written with ``repr`` (shortest exact form).
 
 Reading is bounded: only regular files (a FIFO, device or directory is refused before it is
-read), at most ``MAX_FACES`` faces and ``MAX_VERTICES`` vertices, and a file size in
-proportion (``BYTES_PER_FACE`` of the format for each face allowed); JSON nesting and number
-sizes are bounded too. An OBJ is parsed with numpy over the whole file; messages about it
+read), at most ``MAX_BYTES`` of the format (1 GiB OBJ, 512 MiB JSON: reading takes 10 to 16
+times the size in memory), ``MAX_FACES`` faces and ``MAX_VERTICES`` vertices; JSON nesting and
+number sizes are bounded too. An OBJ is parsed with numpy over the whole file; messages about it
 count faces and vertices from 1 and give the line, as OBJ users count.
 """
 
@@ -25,8 +25,8 @@ from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
-from numpy.lib.stride_tricks import sliding_window_view
 
+from . import readers
 from .errors import MeshError, MeshFileError
 from .fileio import write_atomic
 from .mesh import ZERO_BASED, Mesh, Numbering, check_structure
@@ -36,28 +36,30 @@ JSON_FORMAT = "weave-cut-mesh"
 SUFFIXES = (".obj", ".json")
 MAX_FACES = 2**24  # 16.8 million, 1.7 times the pentagon's level 10
 MAX_VERTICES = 2**25
-# bytes a face may take: weave-cut's own OBJ needs ~46 per quad, Blender's with UVs and
-# normals ~130, weave-cut's JSON ~44
-BYTES_PER_FACE = {".obj": 128, ".json": 64}
-MAX_BYTES = {suffix: MAX_FACES * n for suffix, n in BYTES_PER_FACE.items()}  # 2 GiB, 1 GiB
+# Reading takes 10 to 16 times the file's size in memory, so these keep it under about 10 GiB.
+# weave-cut writes 46 (quads) to 96 (snub pentagons) bytes per face in OBJ, 44 in JSON,
+# Blender ~130 with UVs and normals: 8 to 23 million faces, more than any level is useful.
+MAX_BYTES = {".obj": 2**30, ".json": 2**29}
 
 Note = Callable[[str], None]
 
 
-def read_mesh(path: str | Path, note: Note | None = None) -> Mesh:
-    """Read an OBJ or JSON mesh; MeshFileError names the file and line of a problem.
+def read_mesh(path: str | Path, note: Note | None = None, **drawing_options) -> Mesh:
+    """Read an OBJ or JSON mesh, or an SVG or DXF drawing (``drawing_options``: see
+    ``readers.read_drawing``); MeshFileError names the file and line of a problem.
 
-    ``note`` receives remarks that are no errors (an OBJ read in the xz- or yz-plane).
+    ``note`` receives remarks that are no errors (an OBJ read in the xz- or yz-plane, what a
+    drawing held).
     """
-    return _read(Path(path), note)[0]
+    return _read(Path(path), note, drawing_options)[0]
 
 
 def read_valid_mesh(path: str | Path, *, allow_nonconvex: bool = False,
-                    note: Note | None = None) -> Mesh:
+                    note: Note | None = None, **drawing_options) -> Mesh:
     """Read a mesh file and validate it; errors name the file and count as the file does
     (faces and vertices from 1, with line numbers, in an OBJ)."""
     path = Path(path)
-    mesh, numbering = _read(path, note)
+    mesh, numbering = _read(path, note, {**drawing_options, "allow_nonconvex": allow_nonconvex})
     try:
         return validate(mesh, allow_nonconvex=allow_nonconvex, numbering=numbering)
     except MeshError as exc:
@@ -93,8 +95,10 @@ def json_text(mesh: Mesh, metadata: dict[str, str] | None = None) -> str:
     return json.dumps(doc, separators=(",", ":")) + "\n"
 
 
-def _read(path: Path, note: Note | None) -> tuple[Mesh, Numbering]:
+def _read(path: Path, note: Note | None, drawing_options: dict) -> tuple[Mesh, Numbering]:
     suffix = path.suffix.lower()
+    if suffix in readers.SUFFIXES:
+        return readers.read_drawing(path, report=note, **drawing_options), ZERO_BASED
     if suffix not in SUFFIXES:
         raise MeshFileError(f"{path}: unknown mesh format {path.suffix!r}; use .obj or .json")
     raw = _read_regular_file(path, MAX_BYTES[suffix])
@@ -134,32 +138,29 @@ def _read_regular_file(path: Path, limit: int) -> bytes:
             kind = _KINDS.get(stat.S_IFMT(info.st_mode), "not a regular file")
             raise MeshFileError(f"{path}: is {kind}; mesh files must be regular files")
         if info.st_size > limit:
-            raise MeshFileError(_too_big(path, info.st_size, limit))
+            raise MeshFileError(f"{path}: {info.st_size:,} bytes is more than the "
+                                f"{limit >> 20:,} MiB weave-cut reads from a {path.suffix.lower()}"
+                                " file (reading takes 10 to 16 times the size in memory)")
         with os.fdopen(os.dup(fd), "rb") as f:
-            data = f.read(limit + 1)
+            data = f.read(info.st_size + 1)  # one byte more tells whether it grew
     except OSError as exc:
         raise MeshFileError(f"cannot read {path}: {exc.strerror}") from exc
     finally:
         os.close(fd)
-    if len(data) > limit:  # it grew while we read
-        raise MeshFileError(_too_big(path, len(data), limit))
+    if len(data) > info.st_size:
+        raise MeshFileError(f"{path}: the file grew while it was read")
     return data
-
-
-def _too_big(path: Path, size: int, limit: int) -> str:
-    return (f"{path}: {size:,} bytes is more than the {limit // 2**30} GiB weave-cut reads from "
-            f"a {path.suffix.lower()} file (room for {MAX_FACES:,} faces)")
 
 
 # -- OBJ ------------------------------------------------------------------------------------
 
 _IGNORED = (b"vt", b"vn", b"vp", b"o", b"g", b"s", b"usemtl", b"mtllib", b"l")
-# tab, vertical tab and form feed separate tokens like spaces; other control characters
-# become DEL, which no number contains
-_CONTROLS = bytes.maketrans(bytes(range(32)), bytes(
-    c if c == 10 else 32 if c in (9, 11, 12) else 127 for c in range(32)))
+_CONTROLS = np.array([c if c in (10, 13) or c > 31 else 32 if c in (9, 11, 12) else 127
+                      for c in range(256)], dtype=np.uint8)  # see _normalise_controls
 MAX_TOKEN = 40  # longer numbers are parsed one by one
-_INT_DIGITS = 16  # 16 digits and 16 bytes before them (< 256 * 10**17) fit in an int64
+_ZEROS = np.uint64(0x3030303030303030)  # "00000000"
+_HIGH_NIBBLES = np.uint64(0xF0F0F0F0F0F0F0F0)
+_LOW_BYTES = np.array([(1 << 8 * k) - 1 for k in range(9)], dtype=np.uint64)
 
 
 def _key(tag: bytes) -> np.uint64:
@@ -175,29 +176,25 @@ class _Tokens:
     """
 
     def __init__(self, data: bytes) -> None:
-        if b"\r" in data:
-            data = data.replace(b"\r\n", b"\n").replace(b"\r", b"\n")
-        if np.count_nonzero(np.frombuffer(data, dtype=np.uint8) < 32) > data.count(b"\n"):
-            data = data.translate(_CONTROLS)
-        last = data.rfind(b"#")
-        if last >= 0:  # comments are mostly at the top: rewrite only up to the last one
-            cut = data.find(b"\n", last)
-            cut = len(data) if cut < 0 else cut
-            data = re.sub(rb"#[^\n]*", b"", data[:cut]) + data[cut:]
         pad = b" " * MAX_TOKEN  # room for windows of bytes before and after every token
-        self.buf = np.frombuffer(b"".join([pad, data, b"\n", pad]), dtype=np.uint8)
+        self.buf = np.frombuffer(bytearray().join([pad, data, b"\n", pad]), dtype=np.uint8)
         text = self.buf[:-MAX_TOKEN]
-        gap = (text == 32) | (text == 10)
+        line_end = np.flatnonzero(text == 10)
+        if np.count_nonzero(text < 32) > len(line_end):
+            _normalise_controls(text)
+            line_end = np.flatnonzero(text == 10)
+        if b"#" in data:
+            _blank_comments(text, line_end)
+        gap = text <= 32  # space or newline: the only bytes below 33 left
         change = np.flatnonzero(gap[1:] != gap[:-1])  # a token starts or ends after these
         self.start, self.end = change[0::2] + 1, change[1::2] + 1
-        line_end = np.flatnonzero(text == 10)
         line_start = np.concatenate([[MAX_TOKEN], line_end[:-1] + 1])
         first = np.searchsorted(self.start, line_start)
         used = first < len(self.start)
         used[used] = self.start[first[used]] < line_end[used]
         self.line = np.flatnonzero(used) + 1
         self.first = first[used]
-        self.count = np.diff(np.append(self.first, len(self.start)))
+        self.count = np.diff(self.first, append=len(self.start))
 
     def text(self, token: int) -> str:
         """Token ``token`` as text (its first few hundred characters)."""
@@ -207,22 +204,25 @@ class _Tokens:
     def keys(self, tokens) -> np.ndarray:
         """A uint64 key for each token of up to 8 bytes (0 for longer ones)."""
         length = self.end[tokens] - self.start[tokens]
-        window = sliding_window_view(self.buf, 8)[self.start[tokens]]
-        window[np.arange(8) >= length[:, None]] = 0
-        keys = window.view(np.uint64).ravel()
+        keys = self._items(8, "<u8")[self.start[tokens]]
+        keys &= _LOW_BYTES[np.minimum(length, 8)]
         keys[length > 8] = 0
         return keys
+
+    def _items(self, width: int, dtype) -> np.ndarray:
+        """Item i is bytes i .. i + width - 1 of the text (overlapping, no copy)."""
+        return np.ndarray(len(self.buf) - width + 1, dtype, self.buf, strides=(1,))
 
     def floats(self, tokens) -> tuple[np.ndarray, int | None]:
         """The tokens as float64 (Python's float syntax) and the position of the first one
         that is no number (or None)."""
         start, length = self.start[tokens], self.end[tokens] - self.start[tokens]
         width = int(min(length.max(initial=1), MAX_TOKEN))
-        window = sliding_window_view(self.buf, width)[start]
-        window[np.arange(width) >= length[:, None]] = 0
+        strings = self._items(width, f"S{width}")[start]
+        window = strings.view(np.uint8).reshape(-1, width)
+        window *= np.arange(width) < length[:, None]  # NUL after each number
         long = np.flatnonzero(length > width)
         window[long] = ord("0")  # decided one by one below
-        strings = window.view(f"S{width}").ravel()
         try:
             values, bad = strings.astype(np.float64), []
         except ValueError:
@@ -239,26 +239,65 @@ class _Tokens:
 
     def ints(self, start, end) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Whole numbers ``[+-]digits`` in the given bytes: (int64 values, not-a-number mask,
-        more than 16 digits mask)."""
-        sign = (end > start) & np.isin(self.buf[start], (ord("+"), ord("-")))
-        negative = sign & (self.buf[start] == ord("-"))
+        mask of those with more than 16 digits, whose value is not computed)."""
+        first = self.buf[start]
+        sign = (end > start) & ((first == ord("+")) | (first == ord("-")))
         length = end - start - sign
-        width = int(min(length.max(initial=1), _INT_DIGITS))
-        # right-aligned: column j holds a digit of every token with more than width - j - 1
-        columns = (sliding_window_view(self.buf, width)[end - width] - np.uint8(ord("0"))).T
-        bad = length == 0
-        values = np.zeros(len(start), dtype=np.int64)
-        for j, digit in enumerate(np.ascontiguousarray(columns)):  # Horner's rule
-            bad |= (digit > 9) & (length >= width - j)
-            values *= 10
-            values += digit
-        values %= 10 ** np.minimum(length, width)  # drop the bytes left of each number
-        long = np.flatnonzero(length > width)
-        for i in long.tolist():
-            bad[i] = not self.buf[end[i] - length[i]:end[i]].tobytes().isdigit()
-        too_large = np.zeros(len(start), dtype=bool)
-        too_large[long] = ~bad[long]
-        return np.where(negative, -values, values), bad, too_large
+        values, ok = self._eight_digits(end, np.minimum(length, 8))
+        if length.max(initial=0) > 8:
+            high, high_ok = self._eight_digits(end - 8, np.clip(length - 8, 0, 8))
+            values += high * np.uint64(10**8)
+            ok &= high_ok
+        values = values.astype(np.int64)
+        bad = (length == 0) | ~ok
+        long = np.flatnonzero(length > 16)
+        if len(long):  # check the rest of their digits, eight at a time
+            chunks = (length[long] - 9) // 8
+            rest = np.repeat(length[long] - 16, chunks)
+            step = 8 * (np.arange(len(rest)) - np.repeat(np.cumsum(chunks) - chunks, chunks))
+            ok = self._eight_digits(np.repeat(end[long] - 16, chunks) - step,
+                                    np.minimum(rest - step, 8))[1]
+            bad[long] |= ~np.logical_and.reduceat(ok, np.cumsum(chunks) - chunks)
+        too_long = np.zeros(len(start), dtype=bool)
+        too_long[long] = ~bad[long]
+        return np.where(sign & (first == ord("-")), -values, values), bad, too_long
+
+    def _eight_digits(self, end, length) -> tuple[np.ndarray, np.ndarray]:
+        """The number of the ``length`` (0..8) digits before each ``end``, and whether they
+        are all digits: eight bytes at a time in a uint64 (SWAR)."""
+        d = self._items(8, "<u8")[end - 8]
+        pad = _LOW_BYTES[8 - length]  # the bytes before the number become "0"
+        d |= pad
+        d ^= pad & ~_ZEROS
+        scratch = np.bitwise_and(d, _HIGH_NIBBLES, out=pad)
+        ok = scratch == _ZEROS
+        np.add(d, np.uint64(0x0606060606060606), out=scratch)
+        scratch &= _HIGH_NIBBLES
+        ok &= scratch == _ZEROS
+        d -= _ZEROS  # a digit 0..9 in each byte, the first digit in the lowest byte
+        for shift, mask in ((8, 0x00FF00FF00FF00FF), (16, 0x0000FFFF0000FFFF), (32, 0xFFFFFFFF)):
+            np.right_shift(d, np.uint64(shift), out=scratch)  # pairs of digits, then fours
+            d *= np.uint64(10 ** (shift // 8))
+            d += scratch
+            d &= np.uint64(mask)
+        return d, ok
+
+
+def _normalise_controls(text: np.ndarray) -> None:
+    """In place: CR LF and a lone CR end a line like LF; tab, vertical tab and form feed are
+    spaces; other control characters become DEL, which no number or statement contains."""
+    cr = np.flatnonzero(text == 13)
+    text[cr] = np.where(text[cr + 1] == 10, 32, 10)
+    text[:] = _CONTROLS[text]
+
+
+def _blank_comments(text: np.ndarray, line_end: np.ndarray) -> None:
+    """In place: spaces from every ``#`` to the end of its line."""
+    hashes = np.flatnonzero(text == ord("#"))
+    end = line_end[np.searchsorted(line_end, hashes)]
+    first = np.flatnonzero(np.diff(end, prepend=-1))  # the first # of each line
+    start, length = hashes[first], end[first] - hashes[first]
+    text[np.repeat(start - np.cumsum(length) + length, length) + np.arange(length.sum())] = 32
 
 
 def _first_unconvertible(strings: np.ndarray) -> int:
@@ -291,13 +330,11 @@ def _parse_obj(data: bytes) -> tuple[Mesh, Numbering, str]:
                             f"reads at most {MAX_FACES:,} faces and {MAX_VERTICES:,} vertices")
     points = _obj_vertices(tok, tok.first[is_v], tok.count[is_v] - 1, v_line, errors)
     sizes = tok.count[is_f] - 1
-    indices, too_large = _obj_faces(tok, tok.first[is_f], sizes, f_line, errors)
+    indices = _obj_faces(tok, tok.first[is_f], sizes, f_line, errors)
     if errors:
         raise MeshFileError(min(errors)[2])
     if not len(f_line):
         raise MeshFileError("no faces ('f' lines) found")
-    if too_large.any():
-        raise MeshFileError("a face index is too large")
     seen = np.repeat(np.searchsorted(v_line, f_line), sizes)  # vertices defined before
     bad = (indices == 0) | (np.abs(indices) > seen)
     if bad.any():
@@ -336,20 +373,33 @@ def _obj_vertices(tok: _Tokens, first, n_numbers, lines, errors) -> np.ndarray:
     return points
 
 
-def _obj_faces(tok: _Tokens, first, sizes, lines, errors) -> tuple[np.ndarray, np.ndarray]:
-    """Vertex indices of the ``f`` lines as written (``i/t/n`` gives i) and a mask of those
-    too large to hold; appends line errors."""
+def _obj_faces(tok: _Tokens, first, sizes, lines, errors) -> np.ndarray:
+    """Vertex indices of the ``f`` lines as written (``i/t/n`` gives i); appends line errors
+    (an index of more than 16 digits is too large)."""
     token = np.repeat(first + 1 - np.cumsum(sizes) + sizes, sizes) + np.arange(sizes.sum())
     start, end = tok.start[token], tok.end[token]
     slash = np.flatnonzero(tok.buf == ord("/"))
     if len(slash):
         after = slash[np.minimum(np.searchsorted(slash, start), len(slash) - 1)]
         end = np.where((after >= start) & (after < end), after, end)
-    values, bad, too_large = tok.ints(start, end)
+    values, bad, too_long = tok.ints(start, end)
+    face = np.cumsum(sizes)
     if bad.any():
-        i = int(np.searchsorted(np.cumsum(sizes), np.flatnonzero(bad)[0], side="right"))
+        i = int(np.searchsorted(face, np.flatnonzero(bad)[0], side="right"))
         errors.append((lines[i], 0, f"line {lines[i]}: face indices must be whole numbers"))
-    return values, too_large
+    if too_long.any():
+        k = int(np.flatnonzero(too_long)[0])
+        i = int(np.searchsorted(face, k, side="right"))
+        number = tok.buf[start[k]:end[k]][:41].tobytes().decode()
+        number = number if len(number) <= 40 else number[:37] + "..."
+        errors.append((lines[i], 1, f"line {lines[i]}: face index {number} is too large"))
+    return values
+
+
+# the axis each plane is constant in, its name, and (u, v) seen from the positive axis
+_PLANES = ((2, "xy-plane as (x, y)", lambda x, y, z: (x, y)),
+           (1, "xz-plane as (x, -z), seen from +y", lambda x, y, z: (x, 0.0 - z)),
+           (0, "yz-plane as (y, z), seen from +x", lambda x, y, z: (y, z)))
 
 
 def _in_plane(points: np.ndarray, lines: np.ndarray) -> tuple[np.ndarray, str]:
@@ -360,22 +410,15 @@ def _in_plane(points: np.ndarray, lines: np.ndarray) -> tuple[np.ndarray, str]:
     writes it) as (x, -z), and x = c as (y, z): each seen from the positive axis, so
     counter-clockwise faces stay counter-clockwise and nothing is mirrored.
     """
-    constant = [bool((c == c[0]).all()) if len(c) else True for c in points.T]
-    if constant[2]:
-        kept, axis = points[:, :2], ("z", 2)
-    elif constant[1]:
-        kept, axis = np.column_stack([points[:, 0], 0.0 - points[:, 2]]), ("y", 1)
-    elif constant[0]:
-        kept, axis = points[:, 1:], ("x", 0)
-    else:  # a surface in space
-        return points, ""
-    name, k = axis
-    if k == 2 and (not len(points) or points[0, 2] == 0):
-        return np.ascontiguousarray(kept), ""
-    plane = {2: "xy-plane as (x, y)", 1: "xz-plane as (x, -z), seen from +y",
-             0: "yz-plane as (y, z), seen from +x"}[k]
-    return np.ascontiguousarray(kept), (f"all vertices have {name} = {float(points[0, k])!r}; "
-                                        f"read in the {plane}")
+    for axis, plane, project in _PLANES:
+        c = points[:, axis]
+        if (c == c[:1]).all():
+            vertices = np.column_stack(project(*points.T))
+            if axis == 2 and not c[:1].any():
+                return vertices, ""
+            return vertices, (f"all vertices have {'xyz'[axis]} = {float(c[0])!r}; "
+                              f"read in the {plane}")
+    return points, ""  # a surface in space
 
 
 # -- JSON -----------------------------------------------------------------------------------
@@ -387,8 +430,8 @@ def _parse_json(text: str) -> Mesh:
         raise MeshFileError(f"invalid JSON at line {exc.lineno}: {exc.msg}") from None
     except RecursionError:
         raise MeshFileError("JSON nested too deeply (a mesh needs 3 levels)") from None
-    except ValueError as exc:  # an integer of thousands of digits
-        raise MeshFileError(f"a number in the JSON is too large: {exc}"[:160]) from None
+    except ValueError:  # an integer of more digits than Python converts (4300)
+        raise MeshFileError("a number in the JSON is too large (thousands of digits)") from None
     if not isinstance(doc, dict) or doc.get("format") != JSON_FORMAT:
         raise MeshFileError(f"not a weave-cut mesh (expected \"format\": \"{JSON_FORMAT}\")")
     if doc.get("version") != 1:

@@ -14,7 +14,8 @@ from weavecut import export, inputs
 from weavecut.layout.drawing import Polylines
 from weavecut.papermodel.pages import GAP, occupied
 from weavecut.papermodel.book import strand_book
-from weavecut.papermodel.strips import build_strips, copy_colours, plan_modules
+from weavecut.papermodel.checks import report, text_checks
+from weavecut.papermodel.strips import build_strips, copy_colours, model_tiles, plan_modules
 from weavecut.papermodel.symmetry import rotate, rotation_group, strand_orbits, tile_centres
 from weavecut.mesh import Mesh
 from weavecut.subdivision import subdivide
@@ -132,13 +133,14 @@ def test_strips_do_not_overlap_and_stay_in_the_printable_area(book):
                         (120.0, 150.0), tile_size=30.0, margin=8.0)
         labels = [t.text for s in b.drawing.sheets for layer in s.layers
                   if layer.name == "labels" for t in layer.shapes]
-        assert any(re.fullmatch(r"[A-Z]\d+ 2/\d", t) for t in labels)
+        assert any(re.fullmatch(r"2/\d", t) for t in labels)
+        assert any(re.fullmatch(r"[A-Z]\d+ 2/\d", p.label) for _, p in b.pieces)
     else:
         b = small_book(book)
     x0, y0, x1, y1 = b.area.box
     inside = shapely.box(x0 - 1e-6, y0 - 1e-6, x1 + 1e-6, y1 + 1e-6)
-    for sheet in b.drawing.sheets[1:]:
-        outlines = occupied(sheet.layers)
+    for n in b.strip_pages:
+        outlines = occupied(b.drawing.sheets[n - 1].layers)
         assert outlines
         assert all(inside.contains(o) for o in outlines)
         for i in range(len(outlines)):
@@ -167,7 +169,7 @@ def test_scale_bar_is_100_mm_on_every_page(tmp_path):
 def test_every_strip_is_on_a_page_and_on_the_assembly_sheet():
     book = small_book()
     plan = book.plan
-    assert set(book.strip_pages) == set(plan.labels)
+    assert all(book.pages_of(label) for label in plan.labels)
     ids = {t.text for layer in book.drawing.sheets[0].layers if layer.name == "ids"
            for t in layer.shapes}
     assert set(plan.labels) <= ids
@@ -182,3 +184,164 @@ def test_cli_writes_a_pdf(tmp_path):
     assert out.read_bytes().startswith(b"%PDF")
     bad = CliRunner().invoke(cli, ["strands", "square-grid:2x2", "-o", str(tmp_path / "m.dxf")])
     assert bad.exit_code == 2
+
+
+def hexagon() -> Mesh:
+    """A hexagon of six triangles (C6 after the snub step)."""
+    ring = [(np.cos(a), np.sin(a)) for a in np.arange(6) * np.pi / 3]
+    return Mesh.from_faces([(0.0, 0.0), *ring], [[0, i + 1, (i + 1) % 6 + 1] for i in range(6)])
+
+
+@lru_cache(maxsize=None)
+def user_book(layout: str = "mixed"):
+    ws = snub_weaves(subdivide(hexagon(), 2))
+    return strand_book(ws, palette("maritime-12"), (210.0, 297.0), tile_size=25.0,
+                       layout=layout)
+
+
+BOOKS = {"square-grid:2x2": small_book, "hexagon": user_book,
+         "module": lambda: user_book("module")}
+
+
+@pytest.mark.parametrize("name", BOOKS)
+def test_every_label_is_readable(name):
+    """Upright, >= 2.5 mm, inside its strip's cut line, on one fill with contrast >= 4.5, no
+    overlaps (checked over the Drawing by text_checks, an oracle apart from the placement)."""
+    book = BOOKS[name]()
+    for n, sheet in enumerate(book.drawing.sheets, start=1):
+        records = text_checks(sheet, book.area.box if n in book.strip_pages else None)
+        assert records
+        bad = [r for r in records if r["broken"]]
+        assert not bad, bad[:5]
+    rep = report(book)
+    assert rep["label_violations"] == 0 and rep["smallest_text_mm"] >= 2.5
+    assert rep["smallest_contrast"] >= 4.5
+
+
+def test_the_checks_catch_a_bad_label():
+    """Plant the bugs the checks are for: a small, upside-down, low-contrast text off its strip."""
+    from weavecut.layout.drawing import Layer, Sheet, Text
+    book = small_book()
+    n = book.strip_pages[0]
+    sheet = book.drawing.sheets[n - 1]
+    bad = Text(1.0, 150.0, "A1", 2.0, "middle", 180.0, "#ffffff")
+    planted = Sheet(sheet.width, sheet.height, sheet.layers + (Layer("labels", "label", (bad,)),))
+    broken = text_checks(planted, book.area.box)[-1]["broken"]
+    assert {"small", "upside down", "low contrast", "outside its strip"} <= set(broken)
+
+
+@pytest.mark.parametrize("name", BOOKS)
+def test_virtual_assembly_reproduces_the_weave(name):
+    """Every printed piece, put back by the inverse of its page transform, covers exactly the
+    tiles of its strand, and every label in an under tile names the strand on top there."""
+    book = BOOKS[name]()
+    weave = (weaves("square-grid:2x2", 2) if name == "square-grid:2x2"
+             else tuple(snub_weaves(subdivide(hexagon(), 2))))[-1]
+    tiles = model_tiles(weave)
+    tree = shapely.STRtree(tiles)
+    covered: dict[int, float] = {}
+    checked = 0
+    plan = book.plan
+    names = list(plan.labels)
+    if book.layout == "module":  # the module print names strands by number only
+        for row in plan.copies.tolist():
+            for i, s in enumerate(row):
+                names[s] = str(i + 1)
+    for _, piece in book.pieces:
+        inv = np.linalg.inv(piece.frame)
+        back = shapely.transform(piece.outline, lambda xy: xy @ inv[:2, :2].T + inv[:2, 2])
+        visits, _ = weave.strand(piece.strand)
+        own = shapely.union_all(tiles[visits])
+        assert shapely.difference(back, own).area < 1e-6 * own.area
+        covered[piece.strand] = covered.get(piece.strand, 0.0) + back.area
+        for t in piece.texts:
+            c = text_centre(t)
+            p = inv[:2, :2] @ c + inv[:2, 2]
+            hit = [i for i in tree.query(shapely.Point(p)) if tiles[i].covers(shapely.Point(p))]
+            if not hit or t.text == "glue":
+                continue
+            tile = hit[0]
+            if weave.tile_under[tile] == piece.strand and t.text != piece.label:
+                expect = weave.tile_over[tile]
+                assert t.text == names[expect]
+                checked += 1
+    for s, area in covered.items():  # pieces overlap only by their glue bands
+        visits, _ = weave.strand(s)
+        assert area >= shapely.union_all(tiles[visits]).area - 1e-6
+    printed = (weave.n_strands if book.layout == "mixed"
+               else plan.copies.shape[1] + len(plan.extras))
+    assert len(covered) == printed and checked > 0
+
+
+def text_centre(t):
+    from weavecut.layout.labels import text_box
+    c = text_box(t).centroid
+    return np.array([c.x, c.y])
+
+
+def test_module_layout_prints_the_module_once_without_copy_letters():
+    book = user_book("module")
+    labels = [p.label for _, p in book.pieces]
+    m = book.plan.copies.shape[1]
+    assert len({lab.split(" ")[0] for lab in labels}) == m + len(book.plan.extras)
+    assert all(lab[0].isdigit() or lab.startswith("X") for lab in labels)
+    # the module print serves every copy: module strands have one colour in every copy
+    cols = np.array(book.colours)
+    assert (cols[book.plan.copies] == cols[book.plan.copies[:1]]).all()
+
+
+def test_copies_are_told_apart_in_the_mixed_layout():
+    book = user_book()
+    cols = np.array(book.colours)
+    fam = palette("maritime-12").families
+    family_of = {c: i for i, f in enumerate(fam) for c in f}
+    for j, row in enumerate(book.plan.copies.tolist()):
+        assert {family_of[c] for c in cols[row]} == {j % len(fam)}
+
+
+def test_weaving_page_has_numbered_steps_and_diagrams():
+    book = small_book()
+    page = book.drawing.sheets[1]
+    steps = next(layer for layer in page.layers if layer.name == "steps").shapes
+    numbers = [t.text for t in steps if re.fullmatch(r"\d+\.", t.text)]
+    assert numbers == [f"{i}." for i in range(1, len(numbers) + 1)] and len(numbers) >= 6
+    text = " ".join(t.text for t in steps)
+    assert "45 degrees" in text and "two" in text and "glue" in text.lower()
+    diagrams = next(layer for layer in page.layers if layer.name == "diagrams").shapes
+    assert len(diagrams) >= 2
+
+
+def run_cli(*args):
+    from weavecut.cli import cli
+    return CliRunner().invoke(cli, ["strands", *map(str, args)])
+
+
+def test_sizes_are_checked(tmp_path):
+    out = tmp_path / "m.pdf"
+    bare = run_cli("square-grid:2x2", "--tile-size", "20", "-o", out)
+    assert bare.exit_code == 2 and "no unit" in bare.output and "20mm" in bare.output
+    thin = run_cli("square-grid:2x2", "--tile-size", "3mm", "-o", out)
+    assert thin.exit_code == 1 and "--tile-size" in thin.output and "tear" in thin.output
+    assert not out.exists()
+    need = float(re.search(r"--tile-size ([\d.]+)mm", thin.output).group(1))
+    from weavecut.papermodel.book import SizeError, check_strip_width
+    w = weaves("square-grid:2x2", 2)[-1]
+    width, warnings = check_strip_width(w, need)
+    assert 8.0 <= width < 8.5 and warnings  # 8-12 mm: a warning
+    with pytest.raises(SizeError):
+        check_strip_width(w, need - 0.5)
+    assert not check_strip_width(w, need * 1.6)[1]
+
+
+def test_size_sets_the_finished_width(tmp_path):
+    import json
+    out = tmp_path / "m.pdf"
+    result = run_cli("square-grid:2x2", "--size", "14cm", "--json", "-o", out)
+    assert result.exit_code == 0, result.output
+    rep = json.loads(result.output)
+    assert rep["pages"]["extra"] == 2 and rep["pages"]["strip"] >= 1
+    assert rep["label_violations"] == 0 and rep["smallest_text_mm"] >= 2.5
+    assert 0 < rep["ink_fraction"] <= 1 and rep["smallest_contrast"] >= 4.5
+    w = weaves("square-grid:2x2", 2)[-1]
+    from weavecut.papermodel.book import tile_size_width
+    assert tile_size_width(w, rep["tile_size_mm"]) == pytest.approx(140.0, rel=1e-3)

@@ -18,19 +18,7 @@ from weavecut.subdivision.snub import FIRST, LAST, MIDDLE, SPOKE
 
 def step(mesh: Mesh, *, smooth: bool = True, centre: str = "vertex",
          chirality: str = "left") -> Level:
-    """The pentagon snub step, written directly (see the module docstring).
-
-    Parameters
-    ----------
-    mesh : Mesh with counter-clockwise faces
-    smooth : apply operation 4 (move inner vertices to the mean centre of their faces)
-    centre : "vertex" (vertex mean, the paper's figures) or "area" (area centroid)
-    chirality : "left" or "right"
-
-    Returns
-    -------
-    Level with provenance (see the module docstring for the numbering).
-    """
+    """``weavecut.subdivision.snub.step`` as it was written directly (module docstring)."""
     right = chirality == "right"
     topo = mesh.topology
     n_v, n_e, n_f, n_h = mesh.n_vertices, topo.n_edges, mesh.n_faces, mesh.n_corners

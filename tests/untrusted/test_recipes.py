@@ -139,7 +139,7 @@ def test_existing_files_are_replaced_only_if_weave_cut_wrote_them(tmp_path):
     assert run("build", recipe, "-o", out).exit_code == 0
     assert run("build", recipe, "-o", out).exit_code == 0  # its own output: rebuilt freely
     manifest = json.loads((out / MANIFEST).read_text())
-    assert set(manifest["files"]) == {"s.txt"}
+    assert set(manifest["files"]) == {"s.txt", "index.html"}  # and the build's page
     (out / "s.txt").write_text("edited by hand")  # no longer what weave-cut wrote
     refused(run("build", recipe, "-o", out), "s.txt")
     assert run("build", recipe, "-o", out, "--force").exit_code == 0

@@ -36,8 +36,9 @@ from numpy.typing import NDArray
 
 from ..errors import WeaveCutError
 from ..fileio import write_atomic
-from ..mesh import Mesh, Topology, outer_vertices
+from ..mesh import Mesh, Topology, outer_vertices, signed_areas
 from ..subdivision import snub
+from ..subdivision.hierarchy import BASE_BYTES, require, sizes
 
 UNSET = 255
 HALO = 3.0
@@ -49,6 +50,12 @@ LEVEL_COLOURS = np.array([
 ], dtype=np.uint8)
 DEEPER = (20, 120, 40)
 BACKGROUND = (255, 255, 255)
+# the memory guard's model (fitted to measured peak RSS, benchmarks/bench_memory.py)
+IMAGE_BYTES_PER_PIXEL = 8      # the level image, its colours, the PNG encoder's copies
+STREAM_BYTES_PER_CORNER = 44   # full refinement: the last level, its parent, the painting
+WINDOW_BYTES_PER_CORNER = 70   # a windowed step per child corner: the step, the flags, the
+                               # faces' boxes, the renumbered patch
+SIZE_FACTOR = 6.0              # largest face box side / sqrt(mean face area) (5.8 at level 10)
 
 
 @dataclass(frozen=True)
@@ -81,10 +88,24 @@ class Grid:
 
     def pixels(self, points: NDArray[np.float64]) -> NDArray[np.int64]:
         """Flat pixel index of every point (points must be inside the window)."""
+        col, row = self.cells(points)
+        return row * self.width + col
+
+    def cells(self, points: NDArray[np.float64]) -> tuple[NDArray[np.int64], NDArray]:
+        """(column, row) of every point (points must be inside the window)."""
         x0, _, _, y1 = self.window
         ix = np.clip(np.floor((points[:, 0] - x0) / self.pixel), 0, self.width - 1)
         iy = np.clip(np.floor((y1 - points[:, 1]) / self.pixel), 0, self.height - 1)
-        return iy.astype(np.int64) * self.width + ix.astype(np.int64)
+        return ix.astype(np.int64), iy.astype(np.int64)
+
+    def region(self, rect) -> tuple[float, float, float, float]:
+        """The mesh-unit window of the pixel rectangle ``(column, row, width, height)``, one
+        pixel larger on every side (what lands in the rectangle is decided by :meth:`cells`,
+        on this whole grid, so a tile's pixels are those of the whole image)."""
+        c, r, w, h = rect
+        x0, _, _, y1 = self.window
+        return (x0 + (c - 1) * self.pixel, y1 - (r + h + 1) * self.pixel,
+                x0 + (c + w + 1) * self.pixel, y1 - (r - 1) * self.pixel)
 
 
 def default_window(mesh: Mesh) -> tuple[float, float, float, float]:
@@ -98,17 +119,6 @@ def default_window(mesh: Mesh) -> tuple[float, float, float, float]:
 
 
 # -- windowed refinement ------------------------------------------------------------------
-
-def _topology(mesh: Mesh) -> Topology:
-    """Topology.build without the manifold checks: a cut-out patch may pinch at a vertex."""
-    u = mesh.face_indices.astype(np.int64)
-    w = u[mesh.next_half_edge]
-    n_v = max(mesh.n_vertices, 1)
-    key = np.minimum(u, w) * n_v + np.maximum(u, w)
-    edge_key, he_edge = np.unique(key, return_inverse=True)
-    edges = np.column_stack(np.divmod(edge_key, n_v)).astype(np.int32)
-    return Topology(edges, he_edge.reshape(-1).astype(np.int32), (u > w).astype(np.int8))
-
 
 @dataclass(frozen=True, eq=False)
 class Patch:
@@ -167,7 +177,9 @@ def _step(patch: Patch, window, halo: float, smooth: bool, centre: str,
         exact = ux
 
     # drop the child faces that cannot influence the window
-    boxes = np.concatenate([vertices[faces].min(axis=1), vertices[faces].max(axis=1)], axis=1)
+    corners = np.take(vertices, faces, axis=0)
+    boxes = np.concatenate([corners.min(axis=1), corners.max(axis=1)], axis=1)
+    del corners
     size = float((boxes[:, 2:] - boxes[:, :2]).max()) if len(boxes) else 0.0
     margin = halo * size
     x0, y0, x1, y1 = window
@@ -180,9 +192,22 @@ def _step(patch: Patch, window, halo: float, smooth: bool, centre: str,
     new_id = np.cumsum(used) - 1          # order-preserving renumbering
     flat = new_id[kept.ravel()].astype(np.int32)
     offsets = np.arange(0, len(flat) + 1, 5, dtype=np.int64)
-    sub = Mesh.trusted(np.ascontiguousarray(vertices[used]), offsets, flat)
-    sub.__dict__["topology"] = _topology(sub)
+    sub = Mesh.trusted(np.ascontiguousarray(vertices[used]), offsets, flat,
+                       _sub_topology(child.topology, keep, new_id))
+    sub.__dict__["face_degree"] = 5
     return Patch(sub, exact[used], complete[used], co[used])
+
+
+def _sub_topology(topo: Topology, keep: NDArray[np.bool_], new_id: NDArray) -> Topology:
+    """The topology of the kept faces (pentagons) of a child, read off the child's: the edges
+    they use, renumbered in order (no sort; a cut-out patch may pinch at a vertex, which is
+    fine here)."""
+    he = topo.half_edge_edge.reshape(-1, 5)[keep].ravel()
+    used = np.zeros(topo.n_edges, dtype=bool)
+    used[he] = True
+    edge_id = (np.cumsum(used) - 1).astype(np.int32)
+    edges = new_id[topo.edges[used]].astype(np.int32)
+    return Topology(edges, edge_id[he], topo.half_edge_side.reshape(-1, 5)[keep].ravel())
 
 
 def refine_window(mesh: Mesh, levels: int, window, *, smooth: bool = True,
@@ -225,6 +250,69 @@ def refine_full(mesh: Mesh, levels: int, *, smooth: bool = True, centre: str = "
         yield mesh.vertices
 
 
+def window_faces(mesh: Mesh, levels: int, window, halo: float = HALO) -> list[int]:
+    """Estimated faces of the patch :func:`refine_window` keeps at levels 0..``levels``.
+
+    Every input face f of k corners has k * 5**(t - 1) descendants at level t; the patch keeps
+    the share of them that lies in the window grown by the halo and one face, estimated as
+    the area of f's bounding box inside the grown window over f's area (at most 1), with a
+    face size of SIZE_FACTOR * sqrt(area / count). Cheap, made before any refinement.
+    """
+    x0, y0, x1, y1 = window
+    corners = np.take(mesh.vertices, mesh.face_indices, axis=0)
+    starts = mesh.face_offsets[:-1]
+    lo, hi = np.minimum.reduceat(corners, starts), np.maximum.reduceat(corners, starts)
+    area = np.maximum(np.abs(signed_areas(mesh)), 1e-300)
+    out = [mesh.n_faces]
+    for t in range(1, levels + 1):
+        count = mesh.face_sizes * 5.0 ** (t - 1)
+        grow = (halo + 1) * SIZE_FACTOR * np.sqrt(area / count)
+        w = np.minimum(hi[:, 0], x1 + grow) - np.maximum(lo[:, 0], x0 - grow)
+        h = np.minimum(hi[:, 1], y1 + grow) - np.maximum(lo[:, 1], y0 - grow)
+        share = np.minimum(np.clip(w, 0, None) * np.clip(h, 0, None) / area, 1.0)
+        out.append(int(np.ceil((count * share).sum())))
+    return out
+
+
+def memory_need(mesh: Mesh, levels: int, grid: Grid, windowed: bool) -> tuple[list, list]:
+    """(bytes, faces) estimated for stopping at each level 0..``levels``: the peak of the
+    whole refinement (a stream: only the last level and its parent are alive) or of the
+    windowed one (the largest step of the patch), plus the image on ``grid``."""
+    fixed = BASE_BYTES + IMAGE_BYTES_PER_PIXEL * grid.width * grid.height
+    if not windowed:
+        table = sizes(mesh, levels, snub.counts)
+        return ([fixed + STREAM_BYTES_PER_CORNER * h for *_, h in table],
+                [f for _, _, f, _ in table])
+    faces = window_faces(mesh, levels, grid.window)
+    corners = [mesh.n_corners] + [5 * f for f in faces[1:]]
+    need, peak = [], 0
+    for t in range(levels + 1):
+        if t:
+            peak = max(peak, WINDOW_BYTES_PER_CORNER * 5 * corners[t - 1])
+        need.append(fixed + peak)
+    return need, faces
+
+
+def check_memory(mesh: Mesh, levels: int, grid: Grid, windowed: bool,
+                 available: int | None = None) -> None:
+    """Refuse, before any refinement, a level image that would not fit in memory."""
+    need, faces = memory_need(mesh, levels, grid, windowed)
+    require(need, faces, available, " of the window" if windowed else "")
+
+
+def check_tiles_memory(mesh: Mesh, levels: int, grid: Grid, tile_size: int, jobs: int,
+                       available: int | None = None) -> None:
+    """Refuse a tile pyramid that would not fit: the assembled full-resolution level image
+    (and its halves) in this process, plus ``jobs`` windowed tiles rendering at once (a tile
+    at the centre of the image stands for all)."""
+    cx, cy = (grid.window[0] + grid.window[2]) / 2, (grid.window[1] + grid.window[3]) / 2
+    half = tile_size * grid.pixel / 2
+    tile = Grid.fit((cx - half, cy - half, cx + half, cy + half), tile_size)
+    need, faces = memory_need(mesh, levels, tile, windowed=True)
+    image = 2 * grid.width * grid.height
+    require([image + jobs * n for n in need], faces, available, " of a tile")
+
+
 # -- the image ----------------------------------------------------------------------------
 
 def level_image(mesh: Mesh, levels: int, size: int, window=None, *, smooth: bool = True,
@@ -234,22 +322,43 @@ def level_image(mesh: Mesh, levels: int, size: int, window=None, *, smooth: bool
     Without ``window`` the whole mesh is refined over :func:`default_window`; with one, only
     the faces near it (:func:`refine_window`).
     """
-    if not 0 <= levels < UNSET:
-        raise ValueError(f"levels must be 0..{UNSET - 1}, got {levels}")
+    _check_levels(levels)
+    grid = Grid.fit(default_window(mesh) if window is None else window, size)
     options = {"smooth": smooth, "centre": centre, "chirality": chirality}
     if window is None:
-        grid = Grid.fit(default_window(mesh), size)
         stream = refine_full(mesh, levels, **options)
     else:
-        grid = Grid.fit(window, size)
         stream = refine_window(mesh, levels, grid.window, **options)
-    image = np.full(grid.width * grid.height, UNSET, dtype=np.uint8)
+    return paint(grid, (0, 0, grid.width, grid.height), stream), grid
+
+
+def tile_image(mesh: Mesh, levels: int, grid: Grid, rect, **options) -> NDArray[np.uint8]:
+    """(h, w) uint8: the pixel rectangle ``rect = (column, row, w, h)`` of the level image on
+    ``grid``, equal to that part of the whole image, refining only the faces near the tile
+    (so tiles render independently, in any order or process)."""
+    _check_levels(levels)
+    return paint(grid, rect, refine_window(mesh, levels, grid.region(rect), **options))
+
+
+def paint(grid: Grid, rect, stream) -> NDArray[np.uint8]:
+    """(h, w) uint8 of the pixel rectangle ``rect`` of ``grid`` from a stream of per-level
+    points: every pixel gets the first level with a point in it."""
+    c0, r0, w, h = rect
+    image = np.full(w * h, UNSET, dtype=np.uint8)
     for t, points in enumerate(stream):
-        points = points[grid.inside(points)]
-        pix = grid.pixels(points)
+        col, row = grid.cells(points[grid.inside(points)])
+        col -= c0
+        row -= r0
+        mine = (col >= 0) & (col < w) & (row >= 0) & (row < h)
+        pix = row[mine] * w + col[mine]
         pix = pix[image[pix] == UNSET]
         image[pix] = t
-    return image.reshape(grid.height, grid.width), grid
+    return image.reshape(h, w)
+
+
+def _check_levels(levels: int) -> None:
+    if not 0 <= levels < UNSET:
+        raise ValueError(f"levels must be 0..{UNSET - 1}, got {levels}")
 
 
 def colour(image: NDArray[np.uint8]) -> NDArray[np.uint8]:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 from pathlib import Path
 
 import click
@@ -12,12 +13,9 @@ from click.shell_completion import CompletionItem
 
 from .. import export
 from ..analysis import convexity as cv
+from ..analysis import deepzoom
 from ..analysis import fractal as fr
 from ..analysis import levels as lv
-from ..figures import gallery
-from ..figures import subdivision as figures
-from ..subdivision import snub
-from ..subdivision.hierarchy import check_fits
 from .common import (
     CONTEXT,
     input_argument,
@@ -112,6 +110,8 @@ def fractal_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonc
       weave-cut fractal pentagon --levels 5 -o fractal.svg
       weave-cut fractal square-grid:3x3 --levels 6 --curve 2:40
     """
+    from ..figures import subdivision as figures
+
     _suffix_check(output, tuple(export.formats()))
     if curve is not None and curve[0] > levels:
         raise click.BadParameter(f"level {curve[0]} is beyond --levels {levels}",
@@ -182,35 +182,64 @@ def _print_fractal(r: dict) -> None:
 @click.command("levels", context_settings=CONTEXT)
 @input_argument
 @snub_options
-@click.option("--size", type=click.IntRange(1, 16384), default=1024, show_default=True,
-              help="Pixels along the longer side.")
+@click.option("--size", type=click.IntRange(1, 1 << 20), default=1024, show_default=True,
+              help="Pixels along the longer side (at most 16384 for one PNG; more with --tiles).")
 @click.option("--window", type=WindowType(), default=None,
               help="Zoom window X0,Y0,X1,Y1 in mesh units; only faces near it are refined.")
-@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
+@click.option("-o", "--output", type=click.Path(dir_okay=False), default=None,
               help="Output .png file.")
+@click.option("--tiles", type=click.Path(file_okay=False), default=None,
+              help="Write a DeepZoom tile pyramid (levels.dzi, levels_files/) into this folder "
+                   "instead of one PNG; tiles render in parallel.")
+@click.option("--tile-size", type=click.IntRange(16, 4096), default=256, show_default=True,
+              help="Tile side in pixels (with --tiles).")
+@click.option("--jobs", "-j", type=click.IntRange(1, 256), default=None,
+              help="Processes rendering tiles (with --tiles; default: one per core).")
 @click.option("--json", "as_json", is_flag=True, help="Print pixels reached per level as JSON.")
 @reports_errors
 def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex, size,
-                   window, output, as_json) -> None:
+                   window, output, tiles, tile_size, jobs, as_json) -> None:
     """Colour every pixel by the first refinement step with a vertex in it (Figure colorLevels).
 
     Levels 0-9 get brighter (black, purple, orange, pale yellow), 10-12 turn green; pixels no
     vertex reached stay white. With --window only the faces that can influence the window are
-    refined, so deep zooms (level 12 and beyond) stay fast.
+    refined, so deep zooms (level 12 and beyond) stay fast. With --tiles the image becomes a
+    DeepZoom pyramid for OpenSeadragon and other deep-zoom viewers: every full-resolution tile
+    is refined on its own, in parallel, and equals its part of the single image.
 
     \b
     Examples:
       weave-cut levels pentagon --levels 9 --size 2048 -o levels.png
       weave-cut levels pentagon --levels 12 --size 1024 --window 0.05,0.25,0.2,0.4 -o zoom.png
+      weave-cut levels pentagon --levels 12 --size 16384 --tiles poster/
     """
+    if (output is None) == (tiles is None):
+        raise click.UsageError("give either -o FILE.png or --tiles FOLDER")
     _suffix_check(output, ("png",))
-    mesh = load_mesh(input_mesh, allow_nonconvex, flat="weave-cut levels")
-    if window is None:
-        check_fits(mesh, levels, snub.counts)
+    if output is not None and size > 16384:
+        raise click.BadParameter("at most 16384 pixels for one PNG; use --tiles",
+                                 param_hint="'--size'")
     if not levels < lv.UNSET:
         raise click.BadParameter(f"at most {lv.UNSET - 1}", param_hint="'--levels'")
-    image, grid = lv.level_image(mesh, levels, size, window, smooth=not no_smooth,
-                                 centre=centre, chirality=chirality)
+    mesh = load_mesh(input_mesh, allow_nonconvex, flat="weave-cut levels")
+    options = {"smooth": not no_smooth, "centre": centre, "chirality": chirality}
+    grid = lv.Grid.fit(lv.default_window(mesh) if window is None else window, size)
+    if tiles is not None:
+        lv.check_tiles_memory(mesh, levels, grid, tile_size, jobs or os.cpu_count() or 1)
+        made = deepzoom.write_pyramid(mesh, levels, grid, tiles, tile_size=tile_size,
+                                      jobs=jobs, **options)
+        if as_json:
+            click.echo(json.dumps({"input": input_mesh, "levels": levels, "tiles": tiles,
+                                   **made}, indent=2))
+        else:
+            summary(f"{tiles}/{deepzoom.NAME}.dzi: {grid.width} x {grid.height} px, "
+                    f"{made['tiles']:,} tiles in {made['pyramid_levels']} levels "
+                    f"({made['full_resolution_tiles']:,} rendered by {made['jobs']} "
+                    f"process{'es' if made['jobs'] > 1 else ''} in "
+                    f"{made['render_seconds']:.1f} s)")
+        return
+    lv.check_memory(mesh, levels, grid, windowed=window is not None)
+    image, grid = lv.level_image(mesh, levels, size, window, **options)
     title = f"{input_mesh}: first level per pixel, to level {levels}"
     write_png(lv.png_bytes(lv.colour(image)), output, title)
     hit = image != lv.UNSET
@@ -245,6 +274,8 @@ def convexity_command(input_mesh, levels, no_smooth, chirality, centre, allow_no
       weave-cut convexity pentagon --levels 6 --no-smooth -o nonconvex.svg
       weave-cut convexity ngon:24 --levels 4 --centre area
     """
+    from ..figures import subdivision as figures
+
     _suffix_check(output, tuple(export.formats()))
     h = _hierarchy(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex)
     rows = cv.convexity_report(h)
@@ -273,6 +304,8 @@ def convexity_command(input_mesh, levels, no_smooth, chirality, centre, allow_no
 
 
 def _complete_figures(ctx, param, incomplete: str) -> list[CompletionItem]:
+    from ..figures import gallery
+
     return [CompletionItem(n) for n in gallery.FIGURES if n.startswith(incomplete)]
 
 
@@ -292,6 +325,8 @@ def figure_command(name, list_all, output, page) -> None:
       weave-cut figure edge-renders -o edges.svg
       weave-cut figure level-image -o levels.png
     """
+    from ..figures import gallery
+
     if list_all or name is None:
         if name is None and not list_all:
             raise click.UsageError("give a figure NAME, or --list")
@@ -311,5 +346,3 @@ def figure_command(name, list_all, output, page) -> None:
     else:
         write_drawing(result, output, page)
 
-
-COMMANDS = (fractal_command, levels_command, convexity_command, figure_command)

@@ -1,23 +1,19 @@
-"""The ``weave-cut`` click group: every command, each a thin shell over the library."""
+"""The ``weave-cut`` click group: every command, each a thin shell over the library, imported
+when it is first used (``lazy.LazyCommands``)."""
 
 from __future__ import annotations
 
 import click
 
 from .. import __version__
-from .build_command import build_command
 from .common import CONTEXT
-from .analysis_commands import COMMANDS as ANALYSIS_COMMANDS
-from .findings_command import findings_command
-from .mesh_commands import inputs_command, stats_command, subdivide_command
-from .puzzle_command import puzzle_command
-from .strands_command import strands_command
-from .weave_command import weave_command
+from .lazy import LazyCommands
 
 
 @click.group(context_settings=CONTEXT)
 @click.version_option(__version__, prog_name="weave-cut")
-@click.option("-q", "--quiet", is_flag=True, help="No progress output.")
+@click.option("-q", "--quiet", is_flag=True,
+              help="No progress or summaries: stdout holds only what was asked for (--json).")
 @click.pass_context
 def cli(ctx: click.Context, quiet: bool) -> None:
     """Pentagon snub subdivision, its weaving patterns, paper strand models and laser-cut
@@ -34,7 +30,17 @@ def cli(ctx: click.Context, quiet: bool) -> None:
     ctx.meta["weavecut.quiet"] = quiet or ctx.meta.get("weavecut.quiet", False)
 
 
-for command in (inputs_command, subdivide_command, stats_command, weave_command,
-                puzzle_command, strands_command, *ANALYSIS_COMMANDS, findings_command,
-                build_command):
-    cli.add_command(command)
+cli.commands = LazyCommands({
+    "inputs": ".mesh_commands:inputs_command",
+    "subdivide": ".mesh_commands:subdivide_command",
+    "stats": ".mesh_commands:stats_command",
+    "weave": ".weave_command:weave_command",
+    "puzzle": ".puzzle_command:puzzle_command",
+    "strands": ".strands_command:strands_command",
+    "fractal": ".analysis_commands:fractal_command",
+    "levels": ".analysis_commands:levels_command",
+    "convexity": ".analysis_commands:convexity_command",
+    "figure": ".analysis_commands:figure_command",
+    "findings": ".findings_command:findings_command",
+    "build": ".build_command:build_command",
+})

@@ -21,6 +21,8 @@ problem is one line naming the recipe, the job and the key:
   symlink out of it), never an input, a device or a FIFO, and never an existing file that
   weave-cut did not write there (recorded with its hash in ``.weave-cut-manifest.json``) unless
   ``--force``.
+
+After the last job, ``DIR/index.html`` shows every output (the kit page, ``weavecut.kitpage``).
 """
 
 from __future__ import annotations
@@ -40,11 +42,12 @@ import click
 
 from .. import inputs, presets
 from ..errors import WeaveCutError
-from ..fileio import check_writable, make_folder, protect, write_atomic
+from ..fileio import check_writable, make_folder, protect, recording, write_atomic
 from ..schema import RECIPE, SchemaError, nearest, read_toml
 from .common import CONTEXT, complete_preset, reports_errors, say
 
 MANIFEST = ".weave-cut-manifest.json"
+PAGE = "index.html"  # the kit page of the build
 PRESET_OPTIONS = {"palette": "palettes", "material": "materials", "laser": "laser"}
 
 
@@ -127,7 +130,7 @@ class Planner:
         """Recipe keys (dashed long names) of ``command``'s options, -o as 'output'."""
         out = {}
         for p in command.params:
-            if isinstance(p, click.Option):
+            if isinstance(p, click.Option) and p.name != "html":  # build writes the page
                 out["output" if "-o" in p.opts else _key(p)] = p
         return out
 
@@ -229,8 +232,9 @@ class Planner:
         if not _inside(target.resolve(), [self.out_dir.resolve()]):
             raise RecipeError(f"{where}: output {value!r} leads out of the build folder "
                               "through a symlink")
-        if rel.name == MANIFEST:
-            raise RecipeError(f"{where}: output {value!r} is weave-cut's manifest")
+        if rel.name == MANIFEST or rel == Path(PAGE):
+            raise RecipeError(f"{where}: output {value!r} is weave-cut's "
+                              + ("manifest" if rel.name == MANIFEST else "page of the build"))
         return target
 
     def convert(self, job: Job) -> None:
@@ -272,17 +276,24 @@ class Planner:
                                   f"{seen[real].label}")
             seen[real] = job
             for path in self.replaced(job):
-                if path.is_symlink():
-                    raise RecipeError(f"{job.where}: {path} is a symlink; weave-cut does not "
-                                      "replace links")
-                try:
-                    check_writable(path)
-                except WeaveCutError as exc:
-                    raise RecipeError(f"{job.where}: {exc}") from exc
-                if not self.force and self.ours.get(self.rel(path)) != file_hash(path):
-                    raise RecipeError(f"{job.where}: {self.shown_dir}/{self.rel(path)} exists "
-                                      "and weave-cut did not write it (it is not in "
-                                      f"{MANIFEST}); use --force to replace it")
+                self.check_replace(path, job.where)
+        self.check_replace(self.out_dir / PAGE, str(self.recipe))
+
+    def check_replace(self, path: Path, where: str) -> None:
+        """``path`` may be written: no link, no folder or device, and weave-cut wrote it (or
+        ``--force``)."""
+        if not os.path.lexists(path):
+            return
+        if path.is_symlink():
+            raise RecipeError(f"{where}: {path} is a symlink; weave-cut does not replace links")
+        try:
+            check_writable(path)
+        except WeaveCutError as exc:
+            raise RecipeError(f"{where}: {exc}") from exc
+        if not self.force and self.ours.get(self.rel(path)) != file_hash(path):
+            raise RecipeError(f"{where}: {self.shown_dir}/{self.rel(path)} exists and weave-cut "
+                              f"did not write it (it is not in {MANIFEST}); use --force to "
+                              "replace it")
 
     def replaced(self, job: Job) -> list[Path]:
         """Existing files job's output would replace (a folder output: its COMMAND-* files)."""
@@ -299,20 +310,29 @@ class Planner:
     def rel(self, path: Path) -> str:
         return path.resolve().relative_to(self.out_dir.resolve()).as_posix()
 
-    def run(self, job: Job, n: int, total: int) -> None:
+    def run(self, job: Job, n: int, total: int) -> kitpage.Run:
+        """Run ``job``; what it wrote, for the kit page."""
+        from .. import kitpage
+
         say(f"[{n}/{total}] {job.command_line()}")
         if job.output is not None:
             make_folder(job.output.parent)  # checked to lie inside the build folder
         sub = self.context(job)
         printed = io.StringIO()
         try:
-            with sub, (contextlib.redirect_stdout(printed) if job.prints
-                       else contextlib.nullcontext()):
-                job.command.invoke(sub)
+            with recording() as record:
+                with sub, (contextlib.redirect_stdout(printed) if job.prints
+                           else contextlib.nullcontext()):
+                    job.command.invoke(sub)
+                if job.prints:
+                    write_atomic(job.output, printed.getvalue().encode("utf-8"))
         except click.ClickException as exc:  # no usage line of the nested command
             raise RecipeError(f"{job.where}: {exc.format_message()}") from exc
-        if job.prints:
-            write_atomic(job.output, printed.getvalue().encode("utf-8"))
+        self.remember(job)
+        return kitpage.Run.of(record, job.command_line())
+
+    def remember(self, job: Job) -> None:
+        """Record the files ``job`` wrote in the manifest."""
         if job.output is not None:
             written = self.replaced(job)
             record_manifest(self.out_dir, {self.rel(p): file_hash(p) for p in written
@@ -415,5 +435,9 @@ def build_command(ctx: click.Context, recipe: str, output_dir: str, overrides: t
     for job in jobs:
         for p in job.reads:
             protect(p)
-    for n, job in enumerate(jobs, start=1):
-        planner.run(job, n, len(jobs))
+    runs = [planner.run(job, n, len(jobs)) for n, job in enumerate(jobs, start=1)]
+    page = out_dir / PAGE
+    from .. import kitpage
+
+    kitpage.write(page, (doc.get("recipe") or {}).get("name") or path.stem, runs)
+    record_manifest(out_dir, {PAGE: file_hash(page)})

@@ -1,10 +1,15 @@
-"""What every command shares: option types, the error wrapper, mesh loading, provenance."""
+"""What every command shares: option types, the error wrapper, mesh loading, provenance.
+
+Light on purpose (numpy at most): every command module imports it, and ``weave-cut --help``
+imports every command module; shapely, scipy and the writers load where they are used.
+"""
 
 from __future__ import annotations
 
 import contextlib
 import functools
 import math
+import os
 import shlex
 import sys
 from pathlib import Path
@@ -12,18 +17,13 @@ from pathlib import Path
 import click
 from click.shell_completion import CompletionItem
 import numpy as np
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
-from shapely.errors import GEOSException
 
 from .. import __version__, inputs, units
-from ..analysis.convexity import nonconvex_levels, nonconvex_message
 from ..errors import MeshError, WeaveCutError
-from ..fileio import protect
+from ..fileio import note, protect, recording
 from ..mesh import Mesh, signed_areas
-from ..mesh_io import read_valid_mesh
+from ..readers import DEFAULT_FLATTEN, MESH_CHOICES
 from ..text import clean
-from ..validation import validate
 
 CONTEXT = {"help_option_names": ["-h", "--help"], "max_content_width": 100}
 
@@ -107,7 +107,7 @@ def reports_errors(f):
             return f(*args, **kwargs)
         except WeaveCutError as exc:
             raise click.ClickException(str(exc)) from exc
-        except GEOSException as exc:  # a last resort: meshes are checked before layout
+        except _geometry_errors() as exc:  # a last resort: meshes are checked before layout
             raise click.ClickException(f"the geometry cannot be laid out ({exc}); a mesh with "
                                        "sliver faces or tiny features is the usual cause") from exc
         except KeyboardInterrupt:
@@ -117,14 +117,51 @@ def reports_errors(f):
     return wrapper
 
 
+def _geometry_errors() -> tuple[type[Exception], ...]:
+    """shapely's GEOSException, once shapely is loaded (nothing else raises it)."""
+    errors = sys.modules.get("shapely.errors")
+    return (errors.GEOSException,) if errors else ()
+
+
+def html_option(f):
+    """``--html PAGE``: after the command, write its kit page to PAGE (a picture of every file
+    it wrote, what each is for, sizes, the command and its summary). Goes below
+    ``@reports_errors``."""
+
+    @functools.wraps(f)
+    def wrapper(*args, html: str | None = None, **kwargs):
+        if html is None:
+            return f(*args, **kwargs)
+        from .. import kitpage
+
+        with recording() as record:
+            result = f(*args, **kwargs)
+        if Path(os.path.abspath(html)) in record.files:
+            raise click.BadParameter("the page would replace an output", param_hint="'--html'")
+        run = kitpage.Run.of(record, command_line())
+        kitpage.write(html, f"weave-cut {click.get_current_context().info_name}", [run])
+        return result
+
+    return click.option("--html", type=click.Path(dir_okay=False), metavar="PAGE",
+                        help="Also write an HTML page that shows every output (pictures, sizes, "
+                        "what each file is for).")(wrapper)
+
+
 def load_mesh(spec: str, allow_nonconvex: bool = False, flat: str | None = None) -> Mesh:
-    """A built-in input by name, or a mesh file, validated; no output may replace the file.
-    With ``flat`` (what needs a flat mesh) a surface in space is refused."""
+    """A built-in input by name, or a mesh file or drawing, validated; no output may replace
+    the file. A drawing (.svg, .dxf) is read with the options of ``drawing_options``, which
+    the running command keeps in its context. With ``flat`` (what needs a flat mesh) a
+    surface in space is refused."""
+    from ..mesh_io import read_valid_mesh
+    from ..validation import validate
+
     if (inputs.is_builtin(spec) or not Path(spec).suffix) and not Path(spec).exists():
         mesh = validate(inputs.get(spec), allow_nonconvex=allow_nonconvex)
     else:
         protect(spec)
-        mesh = read_valid_mesh(spec, allow_nonconvex=allow_nonconvex, note=say)
+        ctx = click.get_current_context(silent=True)
+        drawing = ctx.meta.get(DRAWING_KEY, {}) if ctx else {}
+        mesh = read_valid_mesh(spec, allow_nonconvex=allow_nonconvex, note=say, **drawing)
     if flat and mesh.dim == 3:
         raise MeshError(f"{spec} is a surface in space (x, y, z vertices); {flat} needs a flat "
                         "mesh so far")
@@ -141,6 +178,9 @@ def check_layout(mesh: Mesh, what: str, connected: bool = False) -> Mesh:
     if mesh.dim == 3:
         raise MeshError(f"the mesh is a surface in space (x, y, z vertices); {what} needs a "
                         "flat mesh so far")
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
     quotient = 4 * np.pi * np.abs(signed_areas(mesh)) / face_perimeters(mesh) ** 2
     worst = int(np.argmin(quotient))
     if quotient[worst] < THINNEST:
@@ -211,10 +251,47 @@ def complete_preset(kind: str):
     return complete
 
 
-input_argument = click.argument("input_mesh", metavar="INPUT", shell_complete=complete_inputs)
+def input_argument(f):
+    """Decorator adding the INPUT argument and the options for reading a drawing as INPUT."""
+    return click.argument("input_mesh", metavar="INPUT",
+                          shell_complete=complete_inputs)(drawing_options(f))
+
+
 allow_nonconvex_option = click.option(
     "--allow-nonconvex", is_flag=True, help="Accept non-convex input faces (the paper assumes "
     "convex ones).")
+
+
+DRAWING_KEY = "weavecut.drawing"
+
+
+def _keep_drawing_option(ctx: click.Context, param: click.Parameter, value):
+    ctx.meta.setdefault(DRAWING_KEY, {})[param.name] = value
+    return value
+
+
+def drawing_options(f):
+    """Decorator adding how to read an SVG or DXF INPUT: --flatten, --layer, --mesh, --cell.
+
+    The values go to ``load_mesh`` through the command's context, so a command's own
+    parameters stay as they are.
+    """
+    kept = {"expose_value": False, "callback": _keep_drawing_option}
+    options = [
+        click.option("--flatten", type=Length(), default=f"{DEFAULT_FLATTEN}mm",
+                     show_default=True, help="Drawings: curves stay this close to their "
+                     "polylines; points closer than this merge.", **kept),
+        click.option("--layer", default=None, help="Drawings: read only this DXF layer or "
+                     "SVG (Inkscape) layer.", **kept),
+        click.option("--mesh", type=click.Choice(MESH_CHOICES), default="auto",
+                     show_default=True, help="Drawings: mesh the inside of the outline (auto: "
+                     "when there is a single outline; none: faces as drawn).", **kept),
+        click.option("--cell", type=Length(), default=None, help="Drawings: face size when "
+                     "meshing an outline [default: about 60 faces].", **kept),
+    ]
+    for option in reversed(options):
+        f = option(f)
+    return f
 
 
 def quiet() -> bool:
@@ -237,7 +314,8 @@ def say(message: str) -> None:
 
 
 def summary(text: str) -> None:
-    """What a command made, for people to read, on stdout, unless -q."""
+    """What a command made, for people to read, on stdout, unless -q (and for the kit page)."""
+    note(said=text)
     if not quiet():
         click.echo(text)
 
@@ -246,6 +324,8 @@ def flag_nonconvex(hierarchy) -> dict:
     """Warn on stderr about every produced level (1..N) with non-convex faces (even with -q:
     such a mesh is refused as input without --allow-nonconvex), and return the counts for
     --json: ``{"nonconvex_faces": total, "nonconvex_faces_by_level": {"5": 72, ...}}``."""
+    from ..analysis.convexity import nonconvex_levels, nonconvex_message
+
     rows = nonconvex_levels(hierarchy) if hierarchy[0].mesh.dim == 2 else []  # flat faces only
     for row in rows:
         click.echo(f"weave-cut: warning: {nonconvex_message(row)}; see weave-cut convexity",

@@ -6,7 +6,6 @@ import json
 
 import click
 
-from ..analysis import findings as fd
 from .common import CONTEXT, reports_errors
 
 
@@ -24,6 +23,8 @@ def findings_command(as_json: bool, fast: bool) -> None:
       weave-cut findings --fast
       weave-cut findings --json > findings.json
     """
+    from ..analysis import findings as fd
+
     rows = fd.findings(fast=fast)
     if as_json:
         click.echo(json.dumps(fd.as_json(rows), indent=2, ensure_ascii=False))

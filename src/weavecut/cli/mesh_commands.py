@@ -11,8 +11,6 @@ import numpy as np
 from .. import export, inputs
 from ..errors import MeshError
 from ..analysis.stats import level_stats
-from ..layout.mesh_figure import mesh_drawing
-from ..mesh_io import write_mesh
 from ..subdivision import SCHEMES, snub, subdivide
 from .common import (
     CONTEXT,
@@ -138,6 +136,9 @@ def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
       weave-cut subdivide my-mesh.obj --levels 2 --no-smooth -o refined.obj
       weave-cut subdivide dodecahedron --levels 2 --project sphere -o ball.obj
     """
+    from ..layout.mesh_figure import mesh_drawing
+    from ..mesh_io import write_mesh
+
     suffix = Path(output).suffix.lower()
     if suffix not in MESH_SUFFIXES and suffix.lstrip(".") not in export.formats():
         raise click.BadParameter(

@@ -6,29 +6,22 @@ import json
 
 import click
 import numpy as np
-import shapely
 
 from .. import export
 from ..errors import WeaveCutError
-from ..fileio import write_atomic
-from ..puzzle import files as pf
-from ..puzzle import workshop
-from ..puzzle.colouring import colour_puzzle, palette_names
-from ..puzzle.frame import fits, split_frame
-from ..puzzle.guides import colour_key, guide, printed
-from ..puzzle.pieces import build_puzzle
 from ..subdivision import subdivide
 from ..units import PAPER_SIZES
 from ..weave.colour import palette
 from ..fileio import make_folder, write_atomic
 from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_inputs,
-                     complete_preset, flag_nonconvex, load_mesh, provenance, reports_errors,
-                     summary)
+                     complete_preset, drawing_options, flag_nonconvex, html_option, load_mesh,
+                     provenance, reports_errors, summary)
 
 
 @click.command("puzzle", context_settings=CONTEXT)
 @click.argument("input_mesh", metavar="[INPUT]", default="pentagon",
                 shell_complete=complete_inputs)
+@drawing_options
 @click.option("-o", "--output", "out_dir", required=True,
               type=click.Path(file_okay=False), help="Folder for the files (created).")
 @click.option("--levels", "-n", type=click.IntRange(2, 7), default=4, show_default=True,
@@ -40,15 +33,16 @@ from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_i
               show_default=True, help="shared: one board, shared edges cut once (no kerf "
               "compensation possible); separate: kerf-offset pieces nested on sheets, the frame "
               "split into dovetailed parts when it is larger than a sheet.")
-@click.option("--material", default=workshop.DEFAULT_MATERIAL, show_default=True,
+@click.option("--material", default="poplar-3mm", show_default=True,
               shell_complete=complete_preset("materials"),
               help="Material preset (templates/materials): thickness, kerf, sheet, speed.")
 @click.option("--kerf", type=Length(inclusive=True), default=None,
               help="Beam width (default: the material's); 0 leaves it to the laser software.")
 @click.option("--sheet", type=PageSize(), default=None, help="Sheet WxH, e.g. 600x400mm "
               "(default: the material's).")
-@click.option("--laser", "laser_name", default=pf.DEFAULT_LASER, show_default=True,
-              shell_complete=complete_preset("laser"), help="Colour conventions (templates/laser): lightburn, epilog-uls, ponoko.")
+@click.option("--laser", "laser_name", default="lightburn", show_default=True,
+              shell_complete=complete_preset("laser"),
+              help="Colour conventions (templates/laser): lightburn, epilog-uls, ponoko.")
 @click.option("--frame", "frame_width", type=Length(), default="20mm", show_default=True,
               help="Frame width beyond the hexagon ring.")
 @click.option("--numbers", is_flag=True, help="Engrave piece numbers as single strokes "
@@ -63,6 +57,7 @@ from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_i
               "blue and pink.")
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
 @reports_errors
+@html_option
 def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, sheet, laser_name,
                    frame_width, numbers, speed, page, palette_name, as_json) -> None:
     """Write the jigsaw puzzle's workshop folder: cut files, painting guides, README.txt.
@@ -75,6 +70,15 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     Example:
       weave-cut puzzle -o build/puzzle --material poplar-3mm --numbers
     """
+    import shapely
+
+    from ..puzzle import files as pf
+    from ..puzzle import workshop
+    from ..puzzle.colouring import colour_puzzle, palette_names
+    from ..puzzle.frame import fits, split_frame
+    from ..puzzle.guides import colour_key, guide, printed
+    from ..puzzle.pieces import build_puzzle
+
     mat = workshop.material(material)
     kerf = mat["kerf"] if kerf is None else kerf
     sheet = mat["sheet"] if sheet is None else sheet

@@ -11,9 +11,6 @@ import numpy as np
 from ..errors import MeshError
 from ..weave.colour import palette, strand_colours
 from ..weave.report import weave_summaries
-from ..weave.schemes import scheme_weaves
-from ..layout.weave_figure import snub_under_points, weave_drawing
-from ..weave.ribbons import mean_step, ribbons
 from .common import (
     CONTEXT,
     Length,
@@ -21,8 +18,9 @@ from .common import (
     flag_nonconvex,
     input_argument,
     page_option,
-    reports_errors,
+    html_option,
     provenance,
+    reports_errors,
     write_drawing,
     write_png,
 )
@@ -57,6 +55,7 @@ MODELS = ("obj", "glb", "png")  # of a weave on a surface in space
               help="Picture: .svg, .pdf, .png or .dxf; of a surface (a woven ball): a 3-D "
                    "model, .obj or .glb, or .png views (--size is then its diameter).")
 @reports_errors
+@html_option
 def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allow_nonconvex,
                   project, palette_name, outline_level, middle_edges, crossings, style,
                   face_split, size, page, thickness, as_json, output) -> None:
@@ -72,6 +71,9 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
       weave-cut weave dodecahedron --levels 2 --project sphere --json
       weave-cut weave dodecahedron --levels 1 --size 150mm -o ball.glb
     """
+    from ..layout.weave_figure import snub_under_points, weave_drawing
+    from ..weave.schemes import scheme_weaves
+
     if output is None and not as_json:
         raise click.UsageError("give -o OUTPUT for a picture, or --json for the counts")
     suffix = Path(output).suffix.lower().lstrip(".") if output else ""
@@ -130,6 +132,7 @@ def write_model(weaves, colours, diameter: float, thickness: float, output: str,
     ``diameter`` (mm), the ribbons ``thickness`` over and under each other."""
     from ..export import model3d
     from ..fileio import write_atomic
+    from ..weave.ribbons import mean_step, ribbons
 
     weave = weaves[-1]
     width = RIBBON_WIDTH * mean_step(weave)

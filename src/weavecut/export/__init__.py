@@ -10,7 +10,7 @@ import importlib
 from pathlib import Path
 
 from ..errors import ExportError
-from ..fileio import write_atomic
+from ..fileio import note, write_atomic
 from ..text import clean_drawing
 
 FORMATS = ("dxf", "pdf", "png", "svg")  # each the SUFFIX of the module of that name
@@ -31,3 +31,4 @@ def write(drawing, path: str | Path, file_format: str | None = None) -> None:
     """Render ``drawing`` in the format of ``path``'s suffix and write it atomically."""
     fmt = file_format or Path(path).suffix
     write_atomic(path, render(drawing, fmt))
+    note(path, drawing)

@@ -1,46 +1,52 @@
-"""The strand book: an assembly sheet, then the strip pages of every module copy and extras.
+"""The strand book: an assembly sheet, a weaving page, then the strip pages.
 
-Page 1 shows the finished pattern in colour with every strand's ID and direction, what to
-print and where each copy's strips are. Then, per copy A, B, ... of the module, the same
-packed layout (so a stack of prints can be cut at once), coloured and labelled for that copy;
-then the strands that a rotation fixes, printed once.
+Two layouts (paper section 5.2):
+
+- ``mixed`` (the default): the strips of every module copy and the extras packed together, as
+  densely as the packer goes; every strip says its copy and number ("B7"); each copy has its own
+  shade family, so the copies can be told apart on the table and on the assembly sheet.
+- ``module`` (the paper's own way): the module's strips once, labelled by number only, in colours
+  that are the same for every copy; the maker prints these pages once per direction (k times) and
+  the assembly sheet says how each print is turned.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
-import shapely
 
+from ..errors import WeaveCutError
+from ..layout.drawing import Drawing, Sheet
+from ..layout.labels import MIN_CAP
 from ..weave.colour import Palette
 from ..weave.model import Weave
-from ..layout.drawing import Drawing, Fit, Layer, Sheet, Style, Text, polygons_from_shapely
-from .pages import (
-    GAP,
-    PageArea,
-    pack,
-    page_layers,
-    placed_strip,
-    placement,
-    split_strip,
-    strip_layers,
-)
+from .assembly import assembly_sheet, weaving_sheet
+from .packing import pack
+from .pages import GAP, PageArea, page_layers, split_strip, strip_layers
 from .strips import (
     ModulePlan,
-    arrow_polygon,
+    Strip,
+    affine,
     build_strips,
     copy_colours,
-    copy_letter,
-    ink_for,
-    model_tiles,
+    copy_family_colours,
+    label_strip,
     octagon_size,
     orbit_colours,
     plan_modules,
+    strip_width,
 )
-from .symmetry import rotate, tile_centres
 
-OVERLAP = 8.0  # mm of glue overlap where a long strip is split
+CURL = 0.45  # a strip wider than this share of the page (a curl) is cut into pieces
+MIN_STRIP = 8.0  # mm: narrower strips tear (paper section 5.2)
+WARN_STRIP = 12.0  # mm: below this, strips are fiddly
+LAYOUTS = ("mixed", "module")
+
+
+class SizeError(WeaveCutError, ValueError):
+    """The strips would be too thin to cut and weave, or their labels too small to read."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -52,93 +58,190 @@ class StrandBook:
     drawing : every page
     plan : the module plan (symmetry, copies, extras, labels)
     colours : (S,) strand colours
-    copy_pages : per copy, its page numbers (1-based); the module's pages are copy A's
-    extra_pages : page numbers of the strands printed once
-    strip_pages : strand label -> page numbers of its strip (pieces)
+    layout : "mixed" or "module"
+    pieces : every strip piece on its page (page coordinates; ``frame`` maps the weave's model
+        units onto the page), with its page number (1-based)
+    strip_pages : page numbers of the strip pages
+    extra_pages : page numbers of the other pages (assembly, weaving)
     scale : mm per model unit
+    area : the page and its printable box
+    strip_width : mm, the median strip width
+    tile_size : mm across a typical octagon
+    warnings : things the maker should know (thin strips)
     """
 
     drawing: Drawing
     plan: ModulePlan
     colours: tuple[str, ...]
-    copy_pages: tuple[tuple[int, ...], ...]
+    layout: str
+    pieces: tuple[tuple[int, Strip], ...]
+    strip_pages: tuple[int, ...]
     extra_pages: tuple[int, ...]
-    strip_pages: dict[str, tuple[int, ...]]
     scale: float
     area: PageArea
+    strip_width: float
+    tile_size: float
+    warnings: tuple[str, ...] = ()
+
+    @property
+    def ink(self) -> float:
+        """Share of the strip pages' printable area covered by strips."""
+        x0, y0, x1, y1 = self.area.box
+        covered = sum(p.outline.area for _, p in self.pieces)
+        return covered / max(len(self.strip_pages) * (x1 - x0) * (y1 - y0), 1e-12)
+
+    def pages_of(self, label: str) -> tuple[int, ...]:
+        """Pages holding (pieces of) the strip ``label``."""
+        return tuple(sorted({n for n, p in self.pieces if p.label.split(" ")[0] == label}))
+
+
+def tile_size_for(weave: Weave, width: float) -> float:
+    """The tile size (mm across an octagon) that makes the model ``width`` mm wide."""
+    return width / float(np.ptp(weave.mesh.vertices[:, 0])) * octagon_size(weave)
+
+
+def check_strip_width(weave: Weave, tile_size: float) -> tuple[float, tuple[str, ...]]:
+    """(strip width mm, warnings); raises SizeError below ``MIN_STRIP``."""
+    ratio = strip_width(weave) / octagon_size(weave)
+    width = tile_size * ratio
+    if width < MIN_STRIP - 1e-9:
+        need = math.ceil(MIN_STRIP / ratio * 2) / 2
+        size = math.ceil(tile_size_width(weave, need) / 10)
+        raise SizeError(f"strips would be {width:.1f} mm wide and tear (paper section 5.2): "
+                        f"use --tile-size {need:g}mm or more (--size {size}cm or more)")
+    if width < WARN_STRIP:
+        return width, (f"strips are {width:.1f} mm wide: thin strips tear easily; "
+                       f"{WARN_STRIP:g} mm or more is easier to weave",)
+    return width, ()
+
+
+def tile_size_width(weave: Weave, tile_size: float) -> float:
+    """The model's width (mm) at ``tile_size``."""
+    return tile_size / octagon_size(weave) * float(np.ptp(weave.mesh.vertices[:, 0]))
 
 
 def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (210.0, 297.0),
                 tile_size: float = 20.0, margin: float = 10.0, turn: float = 0.0,
-                title: str = "weave-cut strands") -> StrandBook:
+                title: str = "weave-cut strands", layout: str = "mixed") -> StrandBook:
     """Lay out every strand of ``weaves[-1]`` as printable strips.
 
     Parameters
     ----------
     weaves : snub weaves of levels 1..N (the last is printed; the one before gives the
-        braided-pair colours)
-    pal : palette; with shade families every copy of a module strand has the same colour,
-        a flat palette gives one colour per copy
+        braided-pair colours of the module layout)
+    pal : palette; shade families give every copy its family (mixed) or every module strand
+        its braided-pair shade (module); a flat palette gives one colour per copy
     page : (width, height) mm
     tile_size : mm across a typical octagon (the print's true scale)
     margin : mm of blank paper round the page
     turn : radians the pattern is turned on the assembly sheet (module strands head "down"
         in the turned frame)
+    layout : "mixed" (all copies packed together) or "module" (print the module once per
+        direction)
+
+    Raises
+    ------
+    SizeError when strips would be narrower than 8 mm or a label smaller than 2.5 mm
     """
+    if layout not in LAYOUTS:
+        raise ValueError(f"layout must be one of {LAYOUTS}, got {layout!r}")
     weave = weaves[-1]
     area = PageArea(page[0], page[1], margin)
     area.check()
+    width, warnings = check_strip_width(weave, tile_size)
     plan = plan_modules(weave, heading=-np.pi / 2 - turn)
-    colours = orbit_colours(weaves, plan, pal) if pal.shaded else copy_colours(plan, pal)
+    if not pal.shaded:
+        colours = copy_colours(plan, pal)
+    elif layout == "module":
+        colours = orbit_colours(weaves, plan, pal)
+    else:
+        colours = copy_family_colours(weave, plan, pal)
     scale = tile_size / octagon_size(weave)
-    k = plan.k
+    x0, y0, x1, y1 = area.box
+    pieces, kinds = labelled_pieces(weave, plan, colours, tile_size, layout, area)
+    small = min((t.size for p in pieces for t in p.texts), default=MIN_CAP)
+    if small < MIN_CAP - 1e-6:
+        need = smallest_tile_size(weave, plan, colours, tile_size, layout, area)
+        raise SizeError(f"some labels would be {small:.1f} mm tall at --tile-size {tile_size:.1f}mm"
+                        f"; labels need {MIN_CAP:g} mm: use --tile-size {need:g}mm or more "
+                        f"(--size {math.ceil(tile_size_width(weave, need) / 10)}cm or more)")
 
-    # module layout from copy A; every copy reuses it
-    def pieces(strands, copy):
-        strips = build_strips(weave, plan, colours, scale, strands, copy)
-        return [p for s in strips for p in split_strip(s, area.long, OVERLAP)]
-
-    module = pieces(plan.copies[0], 0)
-    module_bins = pack([p.outline for p in module], area.long, area.short, GAP)
-    extra = pieces(plan.extras, 0) if len(plan.extras) else []
-    extra_bins = pack([p.outline for p in extra], area.long, area.short, GAP)
-
-    jobs = []  # (kind, copy, pieces, bin)
-    for j in range(k):  # copies
-        strips = module if j == 0 else pieces(plan.copies[0], j)
-        jobs.extend(("copy", j, strips, b) for b in module_bins)
-    jobs.extend(("extra", -1, extra, b) for b in extra_bins)
-    total = len(jobs) + 1
-
-    sheets, copy_pages, extra_pages = [], [[] for _ in range(k)], []
-    strip_pages: dict[str, list[int]] = {}
-    for n, (kind, j, strips, b) in enumerate(jobs, start=2):
-        placed = []
-        for i, turned, u, v in b:
-            p = strips[i]
-            f, angle = placement(area, p.outline.bounds, turned, u, v)
-            placed.append(placed_strip(p, f, angle))
-            strip_pages.setdefault(p.label.split(" ")[0], []).append(n)
-        names = _runs(sorted({p.label.split(" ")[0] for p in placed}, key=_label_key))
-        if kind == "copy":
-            copy_pages[j].append(n)
-            sub = (f"Copy {copy_letter(j)} of {k}: the module turned by {j * 360 / k:g} deg "
-                   f"(all copies share this layout). Strips: {names}")
+    places = pack([p.outline for p in pieces], x1 - x0, y1 - y0, GAP, kinds=kinds)
+    n_strip = max(pl.page for pl in places) + 1 if places else 0
+    first = 3  # pages 1, 2: assembly and weaving
+    placed = tuple((first + pl.page, p.moved(affine(0.0, (x0, y0)) @ pl.matrix(), pl.angle))
+                   for p, pl in zip(pieces, places))
+    total = n_strip + first - 1
+    sheets = []
+    for n in range(first, first + n_strip):  # pages
+        on_page = [p for k, p in placed if k == n]
+        names_here = _runs(sorted({p.label.split(" ")[0] for p in on_page}, key=_label_key))
+        if layout == "module":
+            sub = (f"Module pages: print every one of them {plan.k} times, once per direction "
+                   f"(see page 1). Strips: {names_here}")
         else:
-            extra_pages.append(n)
-            sub = f"Printed once (fixed by a rotation). Strips: {names}"
-        sample = colours[placed[0].strand]
-        layers = strip_layers(placed) + page_layers(
-            area, title, sub, n, total, sample, glue=any(p.glue is not None for p in placed))
-        sheets.append(Sheet(area.width, area.height, tuple(layers),
-                            f"page {n}: copy {copy_letter(j)}" if kind == "copy"
-                            else f"page {n}: extras"))
-    book = StrandBook(Drawing((), title), plan, tuple(colours),
-                      tuple(tuple(c) for c in copy_pages), tuple(extra_pages),
-                      {key: tuple(v) for key, v in strip_pages.items()}, scale, area)
+            sub = f"Strips: {names_here}"
+        layers = strip_layers(on_page) + page_layers(
+            area, title, sub, n, total, colours[on_page[0].strand],
+            glue=any(p.glue is not None for p in on_page))
+        sheets.append(Sheet(area.width, area.height, tuple(layers), f"page {n}: strips"))
+    book = StrandBook(Drawing((), title), plan, tuple(colours), layout, placed,
+                      tuple(range(first, first + n_strip)), (1, 2), scale, area, width,
+                      tile_size, warnings)
     cover = assembly_sheet(weave, book, tile_size, turn, title, total)
-    return StrandBook(Drawing((cover, *sheets), title), plan, tuple(colours), book.copy_pages,
-                      book.extra_pages, book.strip_pages, scale, area)
+    weaving = weaving_sheet(weave, book, turn, title, total)
+    return StrandBook(Drawing((cover, weaving, *sheets), title), plan, tuple(colours), layout,
+                      placed, book.strip_pages, book.extra_pages, scale, area, width, tile_size,
+                      warnings)
+
+
+def _module_names(plan: ModulePlan) -> tuple[str, ...]:
+    """Strand IDs without the copy letter: the module number ("7"), extras keep "X1"."""
+    names = list(plan.labels)
+    for row in plan.copies.tolist():  # copies
+        for i, s in enumerate(row):
+            names[s] = str(i + 1)
+    return tuple(names)
+
+
+def labelled_pieces(weave: Weave, plan: ModulePlan, colours, tile_size: float, layout: str,
+                    area: PageArea) -> tuple[list[Strip], list[int]]:
+    """Every strip piece to print, labelled, and its kind (equal for congruent pieces)."""
+    scale = tile_size / octagon_size(weave)
+    x0, y0, x1, y1 = area.box
+    longest, widest = max(x1 - x0, y1 - y0), CURL * min(x1 - x0, y1 - y0)
+    m = plan.copies.shape[1]
+    pieces, kinds = [], []
+    names = None if layout == "mixed" else _module_names(plan)
+    for j in (range(plan.k) if layout == "mixed" else [0]):  # module copies
+        strips = build_strips(weave, plan, colours, scale, plan.copies[0], j, names)
+        for i, s in enumerate(strips):
+            parts = split_strip(s, longest, widest)
+            pieces += parts
+            kinds += [i * 64 + n for n in range(len(parts))]
+    if len(plan.extras):
+        for i, s in enumerate(build_strips(weave, plan, colours, scale, plan.extras, 0, names)):
+            parts = split_strip(s, longest, widest)
+            pieces += parts
+            kinds += [(m + i) * 64 + n for n in range(len(parts))]
+    return [label_strip(p, tile_size) for p in pieces], kinds
+
+
+def smallest_tile_size(weave: Weave, plan: ModulePlan, colours, tile_size: float, layout: str,
+                       area: PageArea) -> float:
+    """The smallest tile size (whole mm, above ``tile_size``) at which every label reaches
+    ``MIN_CAP``: grown by a quarter until it works, then bisected."""
+    def reads(t: float) -> bool:
+        pieces, _ = labelled_pieces(weave, plan, colours, t, layout, area)
+        return min((x.size for p in pieces for x in p.texts), default=MIN_CAP) >= MIN_CAP - 1e-6
+
+    low, high = math.floor(tile_size), math.ceil(tile_size * 1.25)
+    while not reads(high):  # a few sizes
+        low, high = high, math.ceil(high * 1.25)
+    while high - low > 1:
+        mid = (low + high) // 2
+        low, high = (low, mid) if reads(mid) else (mid, high)
+    return float(high)
 
 
 def _label_key(label: str):
@@ -161,73 +264,13 @@ def _runs(labels: list[str]) -> str:
     return ", ".join(out)
 
 
-def _ranges(pages) -> str:
-    pages = list(pages)
-    if not pages:
-        return "-"
-    return f"{pages[0]}" if len(pages) == 1 else f"{pages[0]}-{pages[-1]}"
-
-
-def assembly_sheet(weave: Weave, book: StrandBook, tile_size: float, turn: float, title: str,
-                   total: int) -> Sheet:
-    """Page 1: the finished pattern in colour with strand IDs and directions, and what to print."""
-    plan, area = book.plan, book.area
-    k, m = plan.k, plan.copies.shape[1]
-    x0, y0, x1, y1 = area.box
-    size_mm = np.ptp(weave.mesh.vertices, axis=0) * book.scale
-    lines = [
-        f"{weave.n_strands} strands = {k} copies (A-{copy_letter(k - 1)}) of a module of {m} "
-        f"strips" + (f" + {len(plan.extras)} extras printed once" if len(plan.extras) else "")
-        + f". Symmetry C{k}: copy j is the module turned by j x {360 / k:g} deg.",
-        "Print every page once at 100 % (no fit to page): "
-        + "; ".join(f"copy {copy_letter(j)} p. {_ranges(p)}" for j, p in enumerate(book.copy_pages))
-        + (f"; extras p. {_ranges(book.extra_pages)}" if book.extra_pages else "") + ".",
-        f"Finished model about {size_mm[0] / 10:.0f} x {size_mm[1] / 10:.0f} cm, octagons "
-        f"{tile_size:g} mm across. Weave each strand along its arrow;",
-        "where a strip is printed light it goes under the strand named there.",
-    ]
-    texts = [Text(x0, y1 - 3.0 - 4.2 * i, line, 2.5) for i, line in enumerate(lines)]
-    fig_top = y1 - 4.2 * len(lines) - 2.0
-
-    tiles = model_tiles(weave)
-    centre = weave.mesh.vertices.mean(axis=0)
-    turned = shapely.transform(tiles, lambda xy: rotate(xy, turn, centre))
-    bx0, by0, bx1, by1 = shapely.total_bounds(turned)
-    fit = Fit.into((bx0, by0, bx1, by1), x1 - x0, fig_top - y0, 0.0)
-    fit = Fit(fit.scale, (fit.offset[0] + x0, fit.offset[1] + y0))
-    on_sheet = shapely.transform(turned, fit)
-    colours = book.colours
-    over = weave.tile_over
-    fills = [colours[s] if s >= 0 else "#ffffff" for s in over.tolist()]
-    tile_mm = octagon_size(weave) * fit.scale
-    shapes: list = [polygons_from_shapely(list(on_sheet), Style("#333333", 0.1), fills)]
-    # IDs and arrows at every strand's first own tile (in printed direction)
-    centres = fit(rotate(tile_centres(weave), turn, centre))
-    label_size = float(np.clip(0.2 * tile_mm, 1.2, 3.5))
-    arrows: dict[str, list] = {}
-    for s in range(weave.n_strands):  # strands, not mesh elements
-        visits, own = weave.strand(s)
-        if plan.reversed[s]:
-            visits, own = visits[::-1], own[::-1]
-        i = int(np.flatnonzero(own)[0])
-        j = i + 1 if i + 1 < len(visits) else i - 1
-        d = centres[visits[j]] - centres[visits[i]]
-        d = d if j > i else -d
-        ink = ink_for(colours[s])
-        p = centres[visits[i]]
-        texts.append(Text(p[0], p[1] - label_size / 2, plan.labels[s], label_size, "middle",
-                          0.0, ink))
-        arrows.setdefault(ink, []).append(
-            arrow_polygon(p + d / max(np.hypot(*d), 1e-12) * 0.45 * tile_mm, d, 0.3 * tile_mm))
-    shapes += [polygons_from_shapely(a, Style(None, 0.0, ink)) for ink, a in sorted(arrows.items())]
-    scale_note = f"pattern drawn at {100 * fit.scale / book.scale:.0f} % of its printed size"
-    texts.append(Text(x1, y0 - 1.0 - 2.2, scale_note, 2.0, "end"))
-    layers = [Layer("pattern", "paint", tuple(shapes)), Layer("ids", "label", tuple(texts))]
-    layers += page_layers(area, title, "Assembly sheet: the finished pattern, strand IDs "
-                          "(copy letter + module number) and directions", 1, total,
-                          colours[int(plan.copies[0, 0])] if m else "#3e9fb0")
-    return Sheet(area.width, area.height, tuple(layers), "page 1: assembly")
-
+def page_index(book: StrandBook) -> str:
+    """"p. 3: A1-A4, B2; p. 4: ..." which page holds which strip."""
+    parts = []
+    for n in book.strip_pages:
+        labels = {p.label.split(" ")[0] for k, p in book.pieces if k == n}
+        parts.append(f"p. {n}: {_runs(sorted(labels, key=_label_key))}")
+    return "; ".join(parts)
 
 
 # The paper's two models (section 5.2): levels, how the assembly sheet is turned (radians),
@@ -242,3 +285,4 @@ DEFAULT = {"levels": 2, "turn": 0.0, "palette": "maritime-12"}
 def preset_for(input_name: str) -> dict:
     """Defaults for an input spec (``name`` or ``name:param``)."""
     return dict(PRESETS.get(input_name.partition(":")[0], DEFAULT))
+

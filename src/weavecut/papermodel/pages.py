@@ -1,29 +1,25 @@
-"""Pages for paper strips: the printable area, splitting long strips, shelf packing, and what
-every page carries (title, page number, a 100 mm scale bar, a legend).
-
-Strips come in their own frame (mm, long axis along x from 0). Packing works in a frame whose
-u axis runs along the longer side of the printable area; on a portrait page the strips are
-turned by +90 degrees (never mirrored: a mirrored strip would weave the other way round).
+"""Pages for paper strips: the printable area, splitting long strips, and what every page
+carries (title, page number, a 100 mm scale bar, a legend). ``packing`` places the strips.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 
 import numpy as np
 import shapely
-from numpy.typing import NDArray
 
 from ..layout.drawing import Layer, Polygons, Polylines, Style, Text, polygons_from_shapely
-from .strips import Strip, tint
+from ..layout.labels import MIN_CAP, text_width, wrap
+from .strips import Strip, affine, flat_angle, outline_of, tint
 
-HEADER = 13.0  # mm above the printable area for the title lines
-FOOTER = 15.0  # mm below it for the scale bar and the legend
-GAP = 3.0  # mm between strips, and between the area and header / footer
+HEADER = 10.0  # mm above the printable area for the title line and one line of subtitle
+FOOTER = 8.5  # mm below it for the scale bar and the legend
+GAP = 2.0  # mm between strips (at least), and between the area and header / footer
+SMALL = MIN_CAP  # cap height of the page furniture (mm)
 CUT = Style("#ff0000", 0.25)
 TILE_LINE = Style("#555555", 0.12)
-GLUE = "#9a9a9a"
+GLUE = "#c8c8c8"
 
 
 @dataclass(frozen=True)
@@ -37,7 +33,7 @@ class PageArea:
     @property
     def footer(self) -> float:
         """Footer height: the legend sits beside the scale bar on wide pages, above it else."""
-        return FOOTER if self.width - 2 * self.margin >= 190 else FOOTER + 10
+        return FOOTER if self.width - 2 * self.margin >= 190 else FOOTER + 6
 
     @property
     def box(self) -> tuple[float, float, float, float]:
@@ -65,178 +61,46 @@ class PageArea:
                              f"{self.margin:g} mm leaves no room for strips")
 
 
-def _shift(geoms, dx: float, dy: float = 0.0):
-    return shapely.transform(geoms, lambda xy: xy + (dx, dy))
+def _fits(geom, length: float, width: float) -> bool:
+    rect = np.asarray(shapely.minimum_rotated_rectangle(geom).exterior.coords)[:3]
+    sides = np.sort(np.hypot(*np.diff(rect, axis=0).T))
+    return bool(sides[1] <= length and sides[0] <= width)
 
 
-def split_strip(strip: Strip, max_length: float, overlap: float = 8.0) -> list[Strip]:
-    """``strip`` cut into pieces no longer than ``max_length`` mm that overlap by ``overlap``
-    mm to glue; pieces are labelled "A7 1/2", "A7 2/2" and the glue bands marked."""
-    if strip.length <= max_length:
+def split_strip(strip: Strip, max_length: float, max_width: float) -> list[Strip]:
+    """``strip`` (unlabelled) as it is if it fits a ``max_length`` x ``max_width`` rectangle,
+    else cut into runs of whole tiles that do, each laid flat. Consecutive pieces share one
+    tile: on the earlier piece it is the glue band, glued under the same tile of the next.
+    Pieces are named "A7 1/2", "A7 2/2"."""
+    if _fits(strip.outline, max_length, max_width):
         return [strip]
-    if max_length <= 2 * overlap:
-        raise ValueError(f"a strip piece must be longer than twice the glue overlap "
-                         f"({2 * overlap:g} mm); the page is too small for strip {strip.label}")
-    step = max_length - overlap
-    n = math.ceil((strip.length - overlap) / step)
+    tiles, n = strip.tiles, len(strip.tiles)
+    runs, a = [], 0
+    while True:  # runs of tiles
+        b = a + 1
+        while b + 1 < n and _fits(shapely.union_all(tiles[a:b + 2]), max_length, max_width):
+            b += 1
+        runs.append((a, min(b, n - 1)))
+        if b >= n - 1:
+            break
+        a = b
+    # as many runs, of equal length where they still fit (no short stub at the end)
+    ends = np.round(np.linspace(0, n - 1, len(runs) + 1)).astype(int)
+    even = list(zip(ends[:-1].tolist(), ends[1:].tolist()))
+    if all(_fits(shapely.union_all(tiles[a:b + 1]), max_length, max_width) for a, b in even):
+        runs = even
+    eps = 1e-6 * max(strip.length, 1.0)
     pieces = []
-    for i in range(n):  # pieces of one strip
-        a, b = i * step, min(i * step + max_length, strip.length)
-        window = shapely.box(a - 1e-9, -1e3, b + 1e-9, 1e3)
-        outline = shapely.intersection(strip.outline, window)
-        tiles = shapely.intersection(strip.tiles, window)
-        keep = ~shapely.is_empty(tiles) & (shapely.area(tiles) > 1e-9)
-        arrows = shapely.intersection(strip.arrows, window)
-        arrows = arrows[~shapely.is_empty(arrows)]
-        texts = [t for t in strip.texts if a + 1 <= t.x <= b - 1]
-        name = f"{strip.label} {i + 1}/{n}"
-        bands = []
-        size = 2.2
-        _, y0, _, y1 = strip.outline.bounds
-        if i + 1 < n:
-            bands.append(shapely.intersection(strip.outline, shapely.box(b - overlap, -1e3, b, 1e3)))
-            texts.append(Text(b - overlap / 2, (y0 + y1) / 2, f"glue {strip.label} {i + 2}/{n}",
-                              size, "middle", 90.0, "#000000"))
-        if i > 0:
-            texts.append(Text(a + overlap / 2, (y0 + y1) / 2, f"under {strip.label} {i}/{n}",
-                              size, "middle", 90.0, "#000000"))
-        texts.append(Text(a + overlap + 1.5 if i else a + 1.5, y0 + 1.0, name, size, "start",
-                          0.0, "#000000"))
-        glue = np.array(bands, dtype=object) if bands else None
-        piece = replace(strip, label=name, outline=outline, tiles=tiles[keep],
-                        fills=tuple(f for f, k in zip(strip.fills, keep.tolist()) if k),
-                        texts=tuple(texts), arrows=arrows, glue=glue)
-        pieces.append(_moved(piece, -a, 0.0))
+    for i, (a, b) in enumerate(runs):
+        part = slice(a, b + 1)
+        piece = replace(strip, label=f"{strip.label} {i + 1}/{len(runs)}",
+                        outline=outline_of(tiles[part], eps), tiles=tiles[part],
+                        fills=strip.fills[part], over=strip.over[part], names=strip.names[part],
+                        glue=tiles[b:b + 1] if i + 1 < len(runs) else None)
+        flat = piece.moved(affine(flat_angle(piece.outline)))
+        x0, y0 = flat.outline.bounds[:2]
+        pieces.append(flat.moved(affine(0.0, (-x0, -y0))))
     return pieces
-
-
-def _moved(strip: Strip, dx: float, dy: float) -> Strip:
-    return replace(strip, outline=_shift(strip.outline, dx, dy),
-                   tiles=_shift(strip.tiles, dx, dy), arrows=_shift(strip.arrows, dx, dy),
-                   glue=None if strip.glue is None else _shift(strip.glue, dx, dy),
-                   texts=tuple(replace(t, x=t.x + dx, y=t.y + dy) for t in strip.texts))
-
-
-def pack(outlines, long: float, short: float, gap: float = GAP, step: float = 1.0
-         ) -> list[list[tuple[int, bool, float, float]]]:
-    """Bottom-left packing of strip outlines (frame: x along the strip) into long x short bins.
-
-    Pieces go longest first. Each takes, on the first bin with room, the lowest v (then the
-    lowest u) at which it stays ``gap`` mm clear of every piece already there; u is tried at 0
-    and just past the end of every placed piece, v in ``step`` mm steps. So curved strips nest
-    into each other's bays instead of each taking its bounding box.
-
-    Pieces may be turned by 180 degrees (never mirrored) where that nests better.
-
-    Returns per bin a list of (piece index, turned, u, v): the piece's bounding box, turned
-    about its centre if ``turned``, goes with its lower-left corner to (u, v).
-    """
-    outlines = list(outlines)
-    bounds = shapely.bounds(np.asarray(outlines, dtype=object)).reshape(-1, 4)
-    sizes = bounds[:, 2:] - bounds[:, :2]
-    too_big = (sizes[:, 0] > long + 1e-9) | (sizes[:, 1] > short + 1e-9)
-    if too_big.any():
-        i = int(np.flatnonzero(too_big)[0])
-        raise ValueError(f"strip piece {i} ({sizes[i, 0]:.1f} x {sizes[i, 1]:.1f} mm) does not "
-                         f"fit a {long:.1f} x {short:.1f} mm printable area")
-    order = np.lexsort((np.arange(len(sizes)), -sizes[:, 1], -sizes[:, 0]))
-    bins: list[list[tuple[int, bool, float, float]]] = []
-    placed: list[list] = []  # per bin, placed outlines (bin frame)
-    free: list[float] = []
-    for i in order.tolist():  # strips, not mesh elements
-        shape = shapely.transform(outlines[i], lambda xy: xy - bounds[i, :2])
-        turned = shapely.transform(shape, lambda xy: sizes[i] - xy)  # the same, turned 180
-        area = shape.area
-        for b in range(len(bins) + 1):
-            if b == len(bins):
-                bins.append([])
-                placed.append([])
-                free.append(long * short)
-            if free[b] < area:
-                continue
-            spots = [(_lowest_spot(g, sizes[i], placed[b], long, short, gap, step), flip, g)
-                     for flip, g in enumerate((shape, turned))]
-            spots = [sp for sp in spots if sp[0] is not None]
-            if spots:
-                (u, v), flip, g = min(spots, key=lambda sp: (sp[0][1], sp[0][0], sp[1]))
-                bins[b].append((i, bool(flip), u, v))
-                placed[b].append(shapely.transform(g, lambda xy: xy + (u, v)))
-                free[b] -= area
-                break
-        else:  # pragma: no cover - a fresh bin always has room (checked above)
-            raise AssertionError("packing failed")
-    return bins
-
-
-def _lowest_spot(shape, size, placed, long: float, short: float, gap: float, step: float):
-    """(u, v) placing ``shape`` (lower-left at the origin) lowest in v, then in u."""
-    if not placed:
-        return (0.0, 0.0)
-    blocked = shapely.buffer(shapely.union_all(placed), gap, quad_segs=2)
-    shapely.prepare(blocked)
-    ends = shapely.bounds(np.asarray(placed, dtype=object))[:, 2] + gap
-    us = np.unique(np.round(np.r_[0.0, ends], 3))
-    us = us[us + size[0] <= long + 1e-9]
-    vs = np.arange(0.0, short - size[1] + 1e-9, step)
-    if len(us) == 0 or len(vs) == 0:
-        return None
-    parts = [np.asarray(p.exterior.coords)[:-1] for p in shapely.get_parts(shape)
-             if p.geom_type == "Polygon"]
-    coords = np.concatenate(parts)
-    part_of = np.repeat(np.arange(len(parts)), [len(p) for p in parts])
-    n, n_parts = len(coords), len(parts)
-    best = None
-    for u in us.tolist():  # candidate positions, not mesh elements
-        pts = coords[None] + np.column_stack([np.full(len(vs), u), vs])[:, None, :]
-        ring_id = (np.arange(len(vs))[:, None] * n_parts + part_of[None, :]).ravel()
-        rings = shapely.linearrings(pts.reshape(-1, 2), indices=ring_id)
-        hit = shapely.intersects(blocked, shapely.polygons(rings))
-        hit = hit.reshape(len(vs), n_parts).any(axis=1)
-        ok = np.flatnonzero(~hit)
-        if len(ok) and (best is None or vs[ok[0]] < best[1]):
-            best = (u, float(vs[ok[0]]))
-            if best[1] == 0.0:
-                break
-    return best
-
-
-def placement(area: PageArea, bounds, turned: bool, u: float, v: float):
-    """(transform, angle) taking a piece (frame ``bounds``), turned by 180 degrees about its
-    box centre if ``turned``, to packing position (u, v) and onto the page: turned by a
-    further +90 degrees on a portrait area (columns from the right)."""
-    x0, y0, x1, y1 = area.box
-    bx0, by0, bx1, by1 = bounds
-
-    def frame(xy):
-        xy = np.asarray(xy, dtype=float).reshape(-1, 2)
-        if turned:
-            return np.column_stack([bx1 - xy[:, 0] + u, by1 - xy[:, 1] + v])
-        return np.column_stack([xy[:, 0] - bx0 + u, xy[:, 1] - by0 + v])
-
-    spin = 180.0 if turned else 0.0
-    if area.portrait:
-        def f(xy):
-            p = frame(xy)
-            return np.column_stack([x1 - p[:, 1], y0 + p[:, 0]])
-        return f, 90.0 + spin
-
-    def g(xy):
-        p = frame(xy)
-        return np.column_stack([x0 + p[:, 0], y0 + p[:, 1]])
-    return g, spin
-
-
-def placed_strip(strip: Strip, f, angle: float) -> Strip:
-    """``strip`` moved onto the page by ``f`` (texts turned by ``angle`` degrees)."""
-    texts = []
-    for t in strip.texts:
-        x, y = f([[t.x, t.y]])[0]
-        texts.append(replace(t, x=float(x), y=float(y), angle=t.angle + angle))
-    return replace(strip, outline=shapely.transform(strip.outline, f),
-                   tiles=shapely.transform(strip.tiles, f),
-                   arrows=shapely.transform(strip.arrows, f),
-                   glue=None if strip.glue is None else shapely.transform(strip.glue, f),
-                   texts=tuple(texts))
 
 
 def _parts(geoms) -> list:
@@ -249,7 +113,7 @@ def strip_layers(strips: list[Strip]) -> list[Layer]:
     arrows, labels and the cut lines."""
     tiles, fills, arrows_by_ink, glue, texts, outlines = [], [], {}, [], [], []
     for s in strips:
-        for tile, fill in zip(s.tiles, s.fills):
+        for tile, fill in zip([*s.tiles, *s.plates], s.fills + s.plate_fills):
             for part in _parts([tile]):
                 tiles.append(part)
                 fills.append(fill)
@@ -261,7 +125,7 @@ def strip_layers(strips: list[Strip]) -> list[Layer]:
     layers = [Layer("strips", "paint", (polygons_from_shapely(tiles, TILE_LINE, fills),))]
     if glue:
         layers.append(Layer("glue", "paint", (polygons_from_shapely(
-            glue, Style("#555555", 0.15, GLUE, 0.45)),)))
+            glue, Style("#555555", 0.15, GLUE)),)))
     arrow_shapes = tuple(polygons_from_shapely(g, Style(None, 0.0, ink))
                          for ink, g in sorted(arrows_by_ink.items()) if g)
     layers.append(Layer("arrows", "paint", arrow_shapes))
@@ -280,44 +144,48 @@ def scale_bar(x: float, y: float, length: float = 100.0) -> tuple:
                     Style("#000000", 0.3))
     marks = Polylines(tick_lines, np.arange(0, len(tick_lines) + 1, 2, dtype=np.int64),
                       Style("#000000", 0.2))
-    caption = Text(x + length / 2, y + 2.8, f"{length:g} mm: check this at 100 % scale",
-                   2.2, "middle")
+    caption = Text(x + length / 2, y + 3.0, f"{length:g} mm: check this at 100 % scale",
+                   SMALL, "middle")
     return bar, marks, caption
 
 
 LEGEND = (
     ("own", "on top"),
-    ("light", "under: ID = strand on top"),
-    ("cut", "cut line"),
-    ("glue", "glue overlap"),
+    ("light", "under"),
+    ("cut", "cut"),
+    ("glue", "glue"),
 )
 
 
 def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: int,
                 sample: str = "#3e9fb0", glue: bool = False) -> list[Layer]:
-    """Title, page number, a 100 mm scale bar and a legend for one page."""
+    """Title, page number, a 100 mm scale bar and a legend for one page (all text at least
+    ``MIN_CAP`` tall, in the margins outside the printable box)."""
     w, h, m = area.width, area.height, area.margin
-    texts = [Text(m, h - m - 4.5, title, min(4.0, (w - 2 * m - 28) / (0.7 * max(len(title), 1)))),
-             Text(w - m, h - m - 4.5, f"page {number} / {total}", 3.2, "end"),
-             *(Text(m, h - m - 9.8 - 3.4 * i, line, 2.2)
-               for i, line in enumerate(_wrap(subtitle, (w - 2 * m) / 1.55, 2)))]
+    number_text = f"page {number} / {total}"
+    room = w - 2 * m - text_width(number_text, 3.2) - 4
+    title_size = max(MIN_CAP, min(4.0, 4.0 * room / max(text_width(title, 4.0), 1e-9)))
+    texts = [Text(m, h - m - 4.0, title, title_size),
+             Text(w - m, h - m - 4.0, number_text, 3.2, "end"),
+             Text(m, h - m - 8.5, _wrap(subtitle, w - 2 * m, 1)[0], SMALL)]
     bar, marks, caption = scale_bar(m, m + 1.5)
     shapes: list = [bar, marks, caption]
-    # legend: to the right of the bar on wide pages, above it otherwise
-    lx, ly = (m + 108.0, m + 1.0) if w - 2 * m >= 190 else (m, m + 7.5)
+    # legend: right of the bar on wide pages, above it otherwise; entries left to right
+    x, y = (m + 106.0, m + 0.5) if w - 2 * m >= 190 else (m, m + 7.0)
+    start = x
     swatches, fills, strokes = [], [], []
-    entries = [e for e in LEGEND if glue or e[0] != "glue"]
-    col_w = 28.0
-    for i, (kind, text) in enumerate(entries):
-        x = lx + (i % 2) * col_w
-        y = ly + (1 - i // 2) * 5.0
+    for kind, text in (e for e in LEGEND if glue or e[0] != "glue"):
+        step = 6.5 + text_width(text, SMALL) + 2.5
+        if x + step > w - m and x > start:
+            x, y = start, y + 5.0
         box = shapely.box(x, y, x + 5, y + 3)
         if kind == "cut":
             strokes.append(box)
         else:
             swatches.append(box)
             fills.append({"own": sample, "light": tint(sample), "glue": GLUE}[kind])
-        texts.append(Text(x + 6.5, y + 0.5, text, 2.2))
+        texts.append(Text(x + 6.5, y + 0.25, text, SMALL))
+        x += step
     if swatches:
         shapes.append(polygons_from_shapely(swatches, TILE_LINE, fills))
     if strokes:
@@ -325,21 +193,16 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
     return [Layer("page", "label", tuple(shapes) + tuple(texts))]
 
 
-def _wrap(text: str, chars: float, lines: int) -> list[str]:
-    """``text`` broken at spaces into at most ``lines`` lines of about ``chars`` characters."""
-    out, line = [], ""
-    for word in text.split(" "):
-        if line and len(line) + 1 + len(word) > chars:
-            out.append(line)
-            line = word
-        else:
-            line = f"{line} {word}" if line else word
-    out.append(line)
+def _wrap(text: str, width: float, lines: int) -> list[str]:
+    """``text`` broken at spaces into at most ``lines`` lines no wider than ``width`` mm (the
+    last line is shortened with an ellipsis if it must be)."""
+    out = wrap(text, width, SMALL)
     if len(out) > lines:
-        out = out[:lines - 1] + [" ".join(out[lines - 1:])]
+        last = " ".join(out[lines - 1:])
+        while text_width(last + " ...", SMALL) > width and " " in last:
+            last = last.rsplit(" ", 1)[0]
+        out = out[:lines - 1] + [last + " ..."]
     return out
-
-
 def occupied(layers: list[Layer]) -> list[shapely.Geometry]:
     """The cut outlines on a sheet's "cut" layer as shapely polygons (for checks)."""
     out = []

@@ -13,7 +13,7 @@ are laid out in millimetres, long axis along x, walking towards +x; ``pages`` pa
 from __future__ import annotations
 
 import string
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import shapely
@@ -21,7 +21,17 @@ from numpy.typing import NDArray
 
 from ..weave.colour import Palette, crossing_pairs, greedy_classes
 from ..weave.model import Weave
+from ..layout.contrast import text_colour_on
 from ..layout.drawing import Text
+from ..layout.labels import (
+    MIN_CAP,
+    centred_text,
+    inner_centres,
+    largest_fit,
+    text_box,
+    unit_box,
+    upright,
+)
 from .symmetry import Symmetry, rotate, rotation_group, strand_orbits, tile_centres
 from ..layout.weave_figure import tile_rings
 
@@ -165,6 +175,26 @@ def copy_colours(plan: ModulePlan, pal: Palette) -> list[str]:
     return out
 
 
+def copy_family_colours(weave: Weave, plan: ModulePlan, pal: Palette) -> list[str]:
+    """A colour per strand that tells the copies apart: with three or more copies, copy j takes
+    shade family j and its module strands the family's shades in turn (neighbours differ);
+    extras the next family. With fewer copies the copies are not what the eye must separate,
+    so crossing strands simply differ (greedy colouring over the flat palette)."""
+    fams = pal.families
+    if plan.k < 3:
+        cls = greedy_classes(weave.n_strands, crossing_pairs(weave), len(pal.flat))
+        return [pal.flat[c] for c in cls.tolist()]
+    out = [""] * len(plan.labels)
+    for j, row in enumerate(plan.copies.tolist()):  # copies
+        fam = fams[j % len(fams)]
+        for i, s in enumerate(row):
+            out[s] = fam[i % len(fam)]
+    fam = fams[plan.k % len(fams)]
+    for i, s in enumerate(plan.extras.tolist()):
+        out[s] = fam[i % len(fam)]
+    return out
+
+
 def tint(colour: str, share: float = LIGHT) -> str:
     """``colour`` mixed with white; ``share`` of the colour is kept."""
     rgb = np.array([int(colour[i:i + 2], 16) for i in (1, 3, 5)], dtype=float)
@@ -172,26 +202,25 @@ def tint(colour: str, share: float = LIGHT) -> str:
     return "#{:02x}{:02x}{:02x}".format(*mixed.tolist())
 
 
-def ink_for(colour: str) -> str:
-    """Black or white text, whichever reads better on ``colour``."""
-    r, g, b = (int(colour[i:i + 2], 16) / 255 for i in (1, 3, 5))
-    return "#000000" if 0.299 * r + 0.587 * g + 0.114 * b > 0.55 else "#ffffff"
-
-
 @dataclass(frozen=True, eq=False)
 class Strip:
-    """One strand as a piece of paper, in mm, long axis along x, walking towards +x.
+    """One strand (or a piece of it) as paper, in mm, long axis along x, walking towards +x.
 
     Parameters
     ----------
     strand : the strand
-    label : its ID
+    label : its ID (a piece of a split strip: "A7 1/2")
     outline : shapely Polygon, the cut line (union of every tile it visits)
     tiles : (n,) shapely Polygons, the visited tiles in walking order
     fills : (n,) fill per tile (own: strand colour, under: light)
-    texts : IDs on the strip (strand ID, and the strand on top over every under tile)
+    over : (n,) True where the strand is on top (its own tiles)
+    names : (n,) per tile, the ID of the strand on top there
+    frame : (3, 3) the affine map from the weave's model units to this strip's mm
+    texts : labels (filled in by :func:`label_strip`)
     arrows : (a,) shapely Polygons, direction arrows, filled with ``arrow_ink``
     glue : shapely Polygons where a piece of a split strip overlaps the next, or None
+    plates : label backgrounds in the fill of an under tile too small for its label, drawn
+        over the neighbouring tiles; ``plate_fills`` their fills
     """
 
     strand: int
@@ -199,10 +228,15 @@ class Strip:
     outline: shapely.Polygon
     tiles: NDArray[np.object_]
     fills: tuple[str, ...]
-    texts: tuple[Text, ...]
-    arrows: NDArray[np.object_]
+    over: NDArray[np.bool_]
+    names: tuple[str, ...]
+    frame: NDArray[np.float64]
+    texts: tuple[Text, ...] = ()
+    arrows: NDArray[np.object_] = field(default_factory=lambda: np.zeros(0, dtype=object))
     arrow_ink: str = "#000000"
     glue: NDArray[np.object_] | None = None
+    plates: NDArray[np.object_] = field(default_factory=lambda: np.zeros(0, dtype=object))
+    plate_fills: tuple[str, ...] = ()
 
     @property
     def length(self) -> float:
@@ -213,6 +247,30 @@ class Strip:
     def width(self) -> float:
         _, y0, _, y1 = self.outline.bounds
         return y1 - y0
+
+    def moved(self, matrix: NDArray[np.float64], angle: float = 0.0) -> Strip:
+        """The strip through the affine ``matrix`` (3, 3), a turn by ``angle`` degrees plus a
+        shift; its texts turn with it and are then set upright."""
+        def f(xy):
+            return xy @ matrix[:2, :2].T + matrix[:2, 2]
+
+        texts = []
+        for t in self.texts:
+            x, y = f(np.array([[t.x, t.y]]))[0]
+            texts.append(upright(replace(t, x=float(x), y=float(y), angle=t.angle + angle)))
+        return replace(self, outline=shapely.transform(self.outline, f),
+                       tiles=shapely.transform(self.tiles, f),
+                       arrows=shapely.transform(self.arrows, f),
+                       glue=None if self.glue is None else shapely.transform(self.glue, f),
+                       plates=shapely.transform(self.plates, f),
+                       texts=tuple(texts), frame=matrix @ self.frame)
+
+
+def affine(angle: float = 0.0, shift=(0.0, 0.0), scale: float = 1.0) -> NDArray[np.float64]:
+    """(3, 3) the map xy -> scale * turn(xy, ``angle`` degrees) + ``shift``."""
+    a = np.radians(angle)
+    c, s = np.cos(a) * scale, np.sin(a) * scale
+    return np.array([[c, -s, shift[0]], [s, c, shift[1]], [0.0, 0.0, 1.0]])
 
 
 def model_tiles(weave: Weave) -> NDArray[np.object_]:
@@ -233,6 +291,20 @@ def octagon_size(weave: Weave) -> float:
     return float(np.median(d))
 
 
+def strip_width(weave: Weave) -> float:
+    """Median width of the strips, model units: the short side of the smallest rectangle round
+    each octagon (a strip is as wide as the octagons it is made of)."""
+    coords, offsets = tile_rings(weave)
+    sizes = np.diff(offsets)
+    keep = sizes == 8 if (sizes == 8).any() else sizes == sizes.max()
+    ring_id = np.repeat(np.arange(len(sizes)), sizes)
+    polys = shapely.polygons(shapely.linearrings(coords, indices=ring_id))[keep]
+    rects = shapely.get_coordinates(shapely.get_exterior_ring(
+        shapely.minimum_rotated_rectangle(polys))).reshape(len(polys), -1, 2)
+    sides = np.hypot(*(rects[:, 1:3] - rects[:, 0:2]).transpose(2, 0, 1))
+    return float(np.median(sides.min(axis=0)))
+
+
 def arrow_polygon(tip, direction, length: float) -> shapely.Polygon:
     """A filled arrow of ``length`` mm ending at ``tip``, pointing along ``direction``."""
     d = np.asarray(direction, dtype=float)
@@ -246,76 +318,219 @@ def arrow_polygon(tip, direction, length: float) -> shapely.Polygon:
 
 
 def build_strips(weave: Weave, plan: ModulePlan, colours: list[str], scale: float,
-                 strands, copy: int = 0) -> list[Strip]:
-    """A Strip for every strand in ``strands``, ``scale`` mm per model unit.
+                 strands, copy: int = 0, labels: tuple[str, ...] | None = None) -> list[Strip]:
+    """An unlabelled Strip for every strand in ``strands``, ``scale`` mm per model unit.
 
     With ``copy`` j > 0 the strips keep the shape of ``strands`` but are coloured and labelled
     as their images under the turn by j * 2 pi / k (so every copy has the same layout).
+    ``labels`` replaces the plan's strand IDs (the paper's module prints: no copy letter).
     """
     tiles = model_tiles(weave)
     centres = tile_centres(weave)
     tile_mm = octagon_size(weave) * scale
     image = plan.symmetry.strand_powers()[copy]
-    labels = [plan.labels[t] for t in image.tolist()]
+    names = plan.labels if labels is None else labels
+    names = [names[t] for t in image.tolist()]
     cols = [colours[t] for t in image.tolist()]
+    c = plan.symmetry.centre
+    back = affine(0.0, c) @ affine(-np.degrees(copy * plan.symmetry.angle)) @ affine(0.0, -c)
     out = []
     for s in np.asarray(strands).tolist():  # strands, not mesh elements
         visits, over = weave.strand(s)
         if plan.reversed[s]:
             visits, over = visits[::-1], over[::-1]
-        strip = _strip(weave, s, visits, over, tiles, centres, labels, cols, scale, tile_mm)
-        out.append(replace(strip, strand=int(image[s])))
+        strip = _strip(weave, s, visits, over, tiles, centres, names, cols, scale, tile_mm)
+        out.append(replace(strip, strand=int(image[s]), frame=strip.frame @ back))
     return out
 
 
-def _strip(weave, s, visits, over, tiles, centres, labels, colours, scale, tile_mm) -> Strip:
-    shapes = shapely.transform(tiles[visits], lambda xy: xy * scale)
-    pts = centres[visits] * scale
+def outline_of(shapes, eps: float) -> shapely.Polygon:
+    """The cut line round ``shapes`` (tiles of one strip): their union without holes; tiles
+    that only touch at a corner are joined by growing them ``eps``."""
     outline = shapely.union_all(shapes)
     if outline.geom_type != "Polygon":  # tiles touching at a corner: keep one piece
-        outline = shapely.union_all(shapely.buffer(shapes, 1e-6 * tile_mm, join_style="mitre"))
-    # orient: long side of the minimum-area rectangle along x, walking towards +x
+        outline = shapely.union_all(shapely.buffer(shapes, eps, join_style="mitre"))
+    if outline.geom_type != "Polygon":
+        outline = max(shapely.get_parts(outline), key=lambda g: g.area)
+    return shapely.Polygon(outline.exterior)
+
+
+def flat_angle(outline) -> float:
+    """Degrees to turn ``outline`` so that its smallest rectangle's long side lies along x."""
     rect = np.asarray(shapely.minimum_rotated_rectangle(outline).exterior.coords)[:4]
     edges = np.diff(np.vstack([rect, rect[:1]]), axis=0)
     long = edges[np.argmax(np.hypot(edges[:, 0], edges[:, 1]))]
-    theta = -np.arctan2(long[1], long[0])
-    travel = rotate((pts[-1] - pts[0])[None], theta, (0.0, 0.0))[0]
-    if len(pts) > 1 and travel[0] < 0:
-        theta += np.pi
-    c, sn = np.cos(theta), np.sin(theta)
-    rot = np.array([[c, sn], [-sn, c]])  # row-vector form of the turn by theta
+    return float(-np.degrees(np.arctan2(long[1], long[0])))
 
-    def move(xy):
-        return xy @ rot
 
-    outline = shapely.transform(outline, move)
-    x0, y0 = outline.bounds[:2]
+def _strip(weave, s, visits, over, tiles, centres, labels, colours, scale, tile_mm) -> Strip:
+    # a twisted tile of an irregular mesh becomes the polygons it encloses
+    shapes = shapely.make_valid(tiles[visits], method="structure", keep_collapsed=False)
+    pts = centres[visits]
+    outline = outline_of(shapes, 1e-6 * tile_mm / scale)
+    theta = flat_angle(outline)  # long side along x, walking towards +x
+    travel = (pts[-1] - pts[0]) @ affine(theta)[:2, :2].T
+    turn = affine(theta + 180.0 if len(pts) > 1 and travel[0] < 0 else theta, scale=scale)
+    x0, y0 = shapely.transform(outline, lambda xy: xy @ turn[:2, :2].T).bounds[:2]
+    frame = affine(0.0, (-x0, -y0)) @ turn
 
     def place(xy):
-        return move(xy) - (x0, y0)
+        return xy @ frame[:2, :2].T + frame[:2, 2]
 
-    outline = shapely.transform(shapely.Polygon(outline.exterior), lambda xy: xy - (x0, y0))
-    shapes = shapely.transform(shapes, place)
-    pts = place(pts)
-    own_colour = colours[s]
     over_strand = weave.tile_over[visits]
-    fills = tuple(own_colour if o else tint(colours[t]) for o, t in
+    fills = tuple(colours[s] if o else tint(colours[t]) for o, t in
                   zip(over.tolist(), over_strand.tolist()))
-    size = float(np.clip(0.16 * tile_mm, 1.6, 3.2))
-    texts, arrows = [], []
-    for i in np.flatnonzero(~over).tolist():
-        texts.append(Text(pts[i][0], pts[i][1] - size / 2, labels[int(over_strand[i])], size,
-                          "middle", 0.0, "#333333"))
-    own = np.flatnonzero(over)
-    ink = ink_for(own_colour)
-    big = float(np.clip(0.2 * tile_mm, 2.0, 4.0))
-    for i in (own[[0, -1]] if len(own) > 1 else own[:1]).tolist():
-        j = i + 1 if i + 1 < len(pts) else i - 1
-        d = (pts[j] - pts[i]) * (1 if j > i else -1) if j >= 0 else np.array([1.0, 0.0])
-        d = d / max(np.hypot(*d), 1e-12)
-        p = pts[i]
-        texts.append(Text(p[0], p[1] + 0.04 * tile_mm, labels[s], big, "middle", 0.0, ink))
-        centre = p - (0.0, 0.2 * tile_mm)
-        arrows.append(arrow_polygon(centre + d * 0.14 * tile_mm, d, 0.28 * tile_mm))
-    return Strip(int(s), labels[s], outline, shapes, fills, tuple(texts),
-                 np.array(arrows, dtype=object), ink)
+    names = tuple(labels[t] for t in over_strand.tolist())
+    return Strip(int(s), labels[s], shapely.transform(outline, place),
+                 shapely.transform(shapes, place), fills, np.asarray(over, dtype=bool), names,
+                 frame, arrow_ink=text_colour_on(colours[s]))
+
+
+PAD = 0.3  # mm between a label and its tile's edge
+PLATE = 0.4  # mm a label's plate reaches beyond its text
+ANGLES = tuple(np.arange(0.0, 180.0, 15.0).tolist())  # label turns tried (strip frame)
+ID_SIZE = 6.0  # largest cap height of a strip's ID (mm)
+NAME_SIZE = 3.0  # largest cap height of the ID printed in an under tile (well below an ID)
+
+
+def label_strip(strip: Strip, tile_mm: float) -> Strip:
+    """``strip`` with its labels: its ID in its largest own tile (and in the other half of a
+    long strip), the ID of the strand on top in every under tile, and direction arrows in own
+    tiles that hold no ID. Every label is fitted into its tile (less ``PAD``) as large as it goes
+    up to a cap, or spread over the neighbouring tiles on a plate; a name at the strip's end
+    that still cannot reach ``MIN_CAP`` is left out, any other label is kept at the size that
+    fits (so the caller can name the tile size that works)."""
+    band = None if strip.glue is None else shapely.union_all(strip.glue)
+    regions = shapely.intersection(strip.tiles, strip.outline)
+    if band is not None:
+        regions = shapely.difference(regions, band)
+    regions = shapely.buffer(regions, -PAD, join_style="mitre")
+    centres = inner_centres(regions)
+    own = np.flatnonzero(strip.over & ~shapely.is_empty(regions))
+    under = np.flatnonzero(~strip.over & ~shapely.is_empty(regions))
+    # the strip's ID: largest own tile; a long strip also in the largest of its other half
+    id_tiles: list[int] = []
+    if len(own):
+        id_size, _ = _fit_text(regions[own], centres[own],
+                               [strip.label.partition(" ")[0]] * len(own), ID_SIZE)
+        rank = np.lexsort((np.arange(len(own)), -shapely.area(regions[own])))
+        first = rank[0] if id_size[rank[0]] >= MIN_CAP else int(np.argmax(id_size))
+        id_tiles = [int(own[first])]
+        if len(own) >= 6:
+            half = own > own[first] if own[first] < own[len(own) // 2] else own < own[first]
+            id_tiles += [int(own[r]) for r in rank.tolist() if half[r]
+                         and id_size[r] >= MIN_CAP][:1]
+    # IDs first (spread onto the neighbours if they must), a piece's number ("2/3") in another
+    # own tile, then the names round them
+    name, _, part = strip.label.partition(" ")
+    wanted = [(i, name, ID_SIZE) for i in id_tiles]
+    if part and id_tiles:
+        spare = [int(own[r]) for r in rank.tolist() if int(own[r]) not in id_tiles]
+        wanted.append((spare[0] if spare else id_tiles[0], part, NAME_SIZE))
+    texts, plates, plate_fills = _place(strip, wanted[:1], regions, centres, band)
+    if len(wanted) > 1:
+        more = _place(strip, wanted[1:], regions, centres, band,
+                      [*plates, *(text_box(t) for t in texts)])
+        texts += more[0]
+        plates = np.array([*plates, *more[1]], dtype=object)
+        plate_fills += more[2]
+    id_wanted = wanted
+    taken = [*plates, *(text_box(t) for t in texts)]
+    if taken:
+        regions = shapely.difference(regions, shapely.buffer(shapely.union_all(taken), PAD))
+        centres = inner_centres(regions)
+    wanted = [(int(i), strip.names[i], NAME_SIZE) for i in under
+              if strip.names[i] and not shapely.is_empty(regions[i])]
+    more, more_plates, more_fills = _place(strip, wanted, regions, centres, band, taken)
+    texts += more
+    plates = np.array([*plates, *more_plates], dtype=object)
+    plate_fills += more_fills
+    wanted = id_wanted + wanted
+    # a strip's end tucked under a border tile too small for the name: the assembly sheet
+    # shows that crossing, the strip leaves it out
+    ends = {0, len(strip.tiles) - 1}
+    texts = [t for t, w in zip(texts, wanted) if t.size >= MIN_CAP or w in id_wanted
+             or w[0] not in ends]
+    if len(plates):
+        regions = shapely.difference(regions, shapely.buffer(shapely.union_all(plates), PAD))
+    # arrows: the first and the last own tile without an ID, pointing the way the strand goes
+    arrows = []
+    free = [i for i in own.tolist() if i not in id_tiles and not shapely.is_empty(regions[i])]
+    ends = sorted({free[0], free[-1]}) if free else []
+    if ends:
+        pts = np.array([(c.x, c.y) for c in shapely.centroid(strip.tiles)])
+        dirs = [pts[min(i + 1, len(pts) - 1)] - pts[max(i - 1, 0)] for i in ends]
+        unit = [arrow_polygon((0.5, 0.0), (1.0, 0.0), 1.0) for _ in ends]
+        unit = [shapely.transform(u, lambda xy, d=d: xy @ turn_to(d).T) for u, d in zip(unit, dirs)]
+        length = largest_fit(regions[ends], unit, centres[ends], 2.0, 0.45 * tile_mm)
+        arrows = [shapely.transform(u, lambda xy, z=z, c=centres[i]: xy * z + c)
+                  for u, z, i in zip(unit, length.tolist(), ends) if np.isfinite(z)]
+    if band is not None:  # "glue" on the band, where it fits
+        zone = shapely.buffer(shapely.intersection(band, strip.outline), -PAD, join_style="mitre")
+        c = inner_centres([zone])
+        size, angle = _fit_text([zone], c, ["glue"], NAME_SIZE)
+        if size[0] >= MIN_CAP:
+            texts.append(centred_text(c[0], "glue", float(size[0]), float(angle[0])))
+    return replace(strip, texts=tuple(texts), arrows=np.array(arrows, dtype=object),
+                   plates=plates, plate_fills=plate_fills)
+
+
+def _place(strip: Strip, wanted, regions, centres, band, taken=()):
+    """(texts, plates, plate fills) for ``wanted`` (tile, text, largest size) labels: each
+    fitted into its tile; one that does not reach ``MIN_CAP`` there is spread over its
+    neighbouring tiles on a plate of its tile's fill, clear of ``taken`` and of the labels
+    placed before it."""
+    if not wanted:
+        return [], np.zeros(0, dtype=object), ()
+    idx = np.array([w[0] for w in wanted])
+    size, angle = _fit_text(regions[idx], centres[idx], [w[1] for w in wanted],
+                            np.array([w[2] for w in wanted]))
+    texts = [centred_text(centres[i], t, float(z), float(a), text_colour_on(strip.fills[i]))
+             for (i, t, _), z, a in zip(wanted, size, angle)]
+    plates, fills = [], []
+    n = len(strip.tiles)
+    for k in np.flatnonzero(size < MIN_CAP).tolist():  # the few cramped labels
+        i, text, _ = wanted[k]
+        wide = shapely.intersection(shapely.union_all(strip.tiles[max(i - 1, 0):i + 2]),
+                                    strip.outline)
+        blocked = [band, *taken, *plates, *(text_box(t) for j, t in enumerate(texts)
+                                            if j != k and t.size >= MIN_CAP)]
+        blocked = [g for g in blocked if g is not None]
+        if blocked:
+            wide = shapely.difference(wide, shapely.buffer(shapely.union_all(blocked), PAD))
+        wide = shapely.buffer(wide, -PAD - PLATE, join_style="mitre")
+        zone = shapely.intersection(wide, shapely.buffer(strip.tiles[i], 2 * MIN_CAP))
+        inner = inner_centres([zone])[0]
+        mid = shapely.get_coordinates(shapely.centroid(zone)).reshape(-1, 2)[:1]
+        spots = np.vstack([inner, mid, (inner + mid) / 2]) if len(mid) else inner[None]
+        z, a = _fit_text([wide] * len(spots), spots, [text] * len(spots), MIN_CAP)
+        best = int(np.argmax(z))
+        near, z, a = spots[best:best + 1], z[best:best + 1], a[best:best + 1]
+        if z[0] >= MIN_CAP - 1e-9:
+            texts[k] = centred_text(near[0], text, float(z[0]), float(a[0]),
+                                    text_colour_on(strip.fills[i]))
+            plates.append(shapely.buffer(text_box(texts[k]), PLATE, join_style="mitre"))
+            fills.append(strip.fills[i])
+    return texts, np.array(plates, dtype=object), tuple(fills)
+
+
+def turn_to(d) -> NDArray[np.float64]:
+    """(2, 2) the turn taking the x axis to the direction ``d``."""
+    d = np.asarray(d, dtype=float) / max(float(np.hypot(*d)), 1e-12)
+    return np.array([[d[0], -d[1]], [d[1], d[0]]])
+
+
+def _fit_text(regions, centres, texts, high: float):
+    """(size, angle) of the largest fit of every text in its region, along or across the strip
+    (cap heights below ``MIN_CAP`` are kept: the caller reports them)."""
+    n = len(texts)
+    if n == 0:
+        return np.zeros(0), np.zeros(0)
+    regions = np.asarray(regions, dtype=object)
+    reps = len(ANGLES)
+    shapes = [unit_box(t, a) for a in ANGLES for t in texts]
+    fits = largest_fit(np.tile(regions, reps), shapes, np.tile(np.asarray(centres), (reps, 1)),
+                       0.2, np.tile(np.broadcast_to(np.asarray(high, float), (n,)), reps), 10)
+    sizes = np.nan_to_num(fits.reshape(reps, n).T, nan=0.0)
+    pick = sizes.argmax(axis=1)
+    return sizes[np.arange(n), pick], np.asarray(ANGLES)[pick]

@@ -86,12 +86,14 @@ class Corners:
     def corner_ids(self, shift: int, out: NDArray, scale: int = 1, offset: int = 0) -> None:
         """``out[h] = scale * h' + offset``, h' = h (shift 0), its next (1) or previous (-1)
         corner."""
-        if self.k:
-            first = np.arange(0, self.mesh.n_corners, self.k, dtype=np.int32)
-            step = np.roll(np.arange(self.k, dtype=np.int32), -shift)
-            np.add((scale * first + offset)[:, None], scale * step, out=self.grid(out))
+        n = self.mesh.n_corners
+        if self.k:  # h + shift, but for the corner that wraps around its face
+            start = scale * shift + offset
+            out[...] = np.arange(start, start + scale * n, scale, dtype=out.dtype)
+            if shift:
+                out[self.k - 1 if shift == 1 else 0::self.k] -= scale * shift * self.k
         else:
-            ids = np.arange(self.mesh.n_corners, dtype=np.int32)
+            ids = np.arange(n, dtype=np.int32)
             np.add(scale * (ids if shift == 0 else self.neighbour(ids, shift)), offset, out=out)
 
     def neighbour(self, ids: NDArray[np.int32], shift: int) -> NDArray[np.int32]:

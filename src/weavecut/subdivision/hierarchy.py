@@ -38,7 +38,11 @@ class Level:
 Hierarchy = tuple[Level, ...]
 
 
-BYTES_PER_CORNER = 120  # measured peak of one snub step per child corner (benchmarks/bench_snub.py)
+# The memory guard's model, fitted to peak resident memory measured on this machine
+# (benchmarks/bench_memory.py prints estimate and measurement side by side):
+BASE_BYTES = 128 << 20      # the interpreter with weave-cut's imports (RSS of ``--version``)
+LEVEL_BYTES_PER_CORNER = 38  # a level kept in a hierarchy: mesh, topology, provenance, the
+                             # step's scratch while it is made and what commands add to it
 
 
 M_TRIM_THRESHOLD, M_MMAP_MAX = -1, -4  # glibc mallopt parameters (malloc.h)
@@ -88,25 +92,31 @@ def sizes(mesh: Mesh, levels: int, counts) -> list[tuple[int, int, int, int]]:
 
 def check_fits(mesh: Mesh, levels: int, counts, available: int | None = None) -> None:
     """Refuse, with the numbers, a subdivision whose levels would not fit in memory."""
+    table = sizes(mesh, levels, counts)
+    require([hierarchy_bytes(table[:t + 1]) for t in range(len(table))],
+            [f for _, _, f, _ in table], available)
+
+
+def hierarchy_bytes(table) -> int:
+    """Estimated peak bytes of a process holding all levels of ``table`` ((V, E, F, H) rows)."""
+    return BASE_BYTES + LEVEL_BYTES_PER_CORNER * sum(h for *_, h in table)
+
+
+def require(need: list[int], faces: list[int], available: int | None = None,
+            what: str = "") -> None:
+    """Raise TooLargeError unless ``need[-1]`` bytes are available; ``need[t]`` and
+    ``faces[t]`` are the estimated peak and the faces when stopping at level t (the message
+    names the deepest level that would fit)."""
     from ..errors import TooLargeError
 
-    table = sizes(mesh, levels, counts)
-    need = sum(BYTES_PER_CORNER * h for *_, h in table)
     have = available_memory() if available is None else available
-    if need > have:
-        last = table[-1]
-        raise TooLargeError(
-            f"level {levels} has {last[2]:,} faces and needs about {_gib(need)} of memory; "
-            f"{_gib(have)} is available (level {_deepest(table, have)} would fit)")
-
-
-def _deepest(table, have: int) -> int:
-    total = 0
-    for t, (*_, h) in enumerate(table):
-        total += BYTES_PER_CORNER * h
-        if total > have:
-            return max(t - 1, 0)
-    return len(table) - 1
+    if need[-1] <= have:
+        return
+    fits = [t for t, n in enumerate(need) if n <= have]
+    hint = f"level {fits[-1]} would fit" if fits else "no level fits"
+    raise TooLargeError(
+        f"level {len(need) - 1}{what} has {faces[-1]:,} faces and needs about "
+        f"{_gib(need[-1])} of memory; {_gib(have)} is available ({hint})")
 
 
 def _gib(n: float) -> str:

@@ -134,15 +134,16 @@ def _new_vertices(mesh: Mesh, right: bool, centre: str) -> NDArray[np.float64]:
     dx -= ux
     dy -= uy
     s = (-1.0 if right else 1.0) * np.sqrt(3.0)
-    z = vertices[n_v:n_v + 2 * n_e].reshape(n_e, 2, 2)
     sdx, sdy = s * dx, s * dy
-    t = np.empty(n_e)
-    for j, c, factor, sign in ((0, 0, 5, -1), (0, 1, 5, 1), (1, 0, 9, 1), (1, 1, 9, -1)):
-        base, along, across = (ux, dx, sdy) if c == 0 else (uy, dy, sdx)
-        np.multiply(factor, along, out=t)  # z_j = u + (factor d -+ s d_perp) / 14
-        (np.add if sign > 0 else np.subtract)(t, across, out=t)
-        t /= 14
-        np.add(base, t, out=z[:, j, c])
+    z = np.empty((4, n_e))  # z0 x, z0 y, z1 x, z1 y
+    for j, (base, along, across, factor, add) in enumerate((
+            (ux, dx, sdy, 5, False), (uy, dy, sdx, 5, True),
+            (ux, dx, sdy, 9, True), (uy, dy, sdx, 9, False))):
+        np.multiply(factor, along, out=z[j])  # u + (factor d -+ s d_perp) / 14
+        (np.add if add else np.subtract)(z[j], across, out=z[j])
+        z[j] /= 14
+        z[j] += base
+    _interleave(z, out=vertices[n_v:n_v + 2 * n_e].reshape(n_e, 4))
     centre_of = area_centroids if centre == "area" else face_centroids
     vertices[n_v + 2 * n_e:] = centre_of(mesh)
     return vertices
@@ -193,47 +194,56 @@ def _corner_vertices(mesh: Mesh, ring: Corners, right: bool):
     return x, y, old
 
 
+def _interleave(columns: NDArray, out: NDArray | None = None) -> NDArray:
+    """The (n, m) array whose column j is row j of ``columns`` (m, n): written row by row from
+    m sequential reads, which is faster than m strided passes over the output."""
+    if out is None:
+        out = np.empty(columns.shape[::-1], dtype=columns.dtype)
+    np.copyto(out, columns.T)
+    return out
+
+
 def _faces(mesh: Mesh, ring: Corners, x, y, old, right: bool) -> NDArray[np.int32]:
     """Operation 3: (H, 5) the pentagons P_h."""
     centre = mesh.n_vertices + 2 * mesh.topology.n_edges
-    faces = np.empty((mesh.n_corners, 5), dtype=np.int32)
+    cols = np.empty((5, mesh.n_corners), dtype=np.int32)
     if right:  # (a, y, x, c, x[prev])
-        faces[:, 0], faces[:, 1], faces[:, 2] = old, y, x
-        ring.face_values(centre, out=faces[:, 3])
-        ring.shifted(x, -1, out=faces[:, 4])
+        cols[0], cols[1], cols[2] = old, y, x
+        ring.face_values(centre, out=cols[3])
+        ring.shifted(x, -1, out=cols[4])
     else:  # (c, x, y, b, x[next])
-        ring.face_values(centre, out=faces[:, 0])
-        faces[:, 1], faces[:, 2], faces[:, 3] = x, y, old
-        ring.shifted(x, 1, out=faces[:, 4])
-    return faces
+        ring.face_values(centre, out=cols[0])
+        cols[1], cols[2], cols[3] = x, y, old
+        ring.shifted(x, 1, out=cols[4])
+    return _interleave(cols)
 
 
 def _half_edges(mesh: Mesh, ring: Corners, right: bool) -> tuple[NDArray[np.int32], NDArray]:
     """The child's half-edge -> edge map and sides, (5H,) each (see the module docstring)."""
     topo = mesh.topology
     spoke = 3 * topo.n_edges
-    parts = np.empty((mesh.n_corners, 5), dtype=np.int32)
-    sides = np.empty((mesh.n_corners, 5), dtype=np.int8)
+    parts = np.empty((5, mesh.n_corners), dtype=np.int32)
+    sides = np.empty((5, mesh.n_corners), dtype=np.int8)
     e3 = 3 * topo.half_edge_edge.astype(np.int32, copy=False)
     side2 = 2 * topo.half_edge_side
     near_start = e3 + side2  # the Z part at a, the start of h
     near_end = e3 - side2    # the Z part at b, its end
     near_end += 2
-    if right:  # (near_start, middle, spoke, spoke[prev], near_end[prev])
-        parts[:, 0] = near_start
-        ring.corner_ids(0, parts[:, 2], offset=spoke)
-        ring.corner_ids(-1, parts[:, 3], offset=spoke)
-        ring.shifted(near_end, -1, out=parts[:, 4])
-        fill_rows(sides, np.array([0, 0, 0, 1, 1], dtype=np.int8))
-    else:  # (spoke, middle, near_end, near_start[next], spoke[next])
-        ring.corner_ids(0, parts[:, 0], offset=spoke)
-        parts[:, 2] = near_end
-        ring.shifted(near_start, 1, out=parts[:, 3])
-        ring.corner_ids(1, parts[:, 4], offset=spoke)
-        fill_rows(sides, np.array([1, 0, 1, 0, 0], dtype=np.int8))
-    np.add(e3, MIDDLE, out=parts[:, 1])
-    sides[:, 1] = topo.half_edge_side
-    return parts.reshape(-1), sides.reshape(-1)
+    if right:  # (near_start, middle, spoke, spoke[prev], near_end[prev]), sides (0 s 0 1 1)
+        parts[0] = near_start
+        ring.corner_ids(0, parts[2], offset=spoke)
+        ring.corner_ids(-1, parts[3], offset=spoke)
+        ring.shifted(near_end, -1, out=parts[4])
+        sides[0], sides[2], sides[3], sides[4] = 0, 0, 1, 1
+    else:  # (spoke, middle, near_end, near_start[next], spoke[next]), sides (1 s 1 0 0)
+        ring.corner_ids(0, parts[0], offset=spoke)
+        parts[2] = near_end
+        ring.shifted(near_start, 1, out=parts[3])
+        ring.corner_ids(1, parts[4], offset=spoke)
+        sides[0], sides[2], sides[3], sides[4] = 1, 1, 0, 0
+    np.add(e3, MIDDLE, out=parts[1])
+    sides[1] = topo.half_edge_side
+    return _interleave(parts).reshape(-1), _interleave(sides).reshape(-1)
 
 
 def _edges(mesh: Mesh, ring: Corners, x: NDArray[np.int32]):
@@ -241,14 +251,15 @@ def _edges(mesh: Mesh, ring: Corners, x: NDArray[np.int32]):
     topo = mesh.topology
     n_v, n_e, n_h = mesh.n_vertices, topo.n_edges, mesh.n_corners
     edges = np.empty((3 * n_e + n_h, 2), dtype=np.int32)
-    z0 = n_v + 2 * np.arange(n_e, dtype=np.int32)
-    ez = edges[:3 * n_e].reshape(n_e, 3, 2)
-    ez[:, FIRST, 0], ez[:, FIRST, 1] = topo.edges[:, 0], z0
-    ez[:, MIDDLE, 0] = z0
-    z0 += 1
-    ez[:, MIDDLE, 1], ez[:, LAST, 0], ez[:, LAST, 1] = z0, topo.edges[:, 1], z0
-    edges[3 * n_e:, 0] = x
-    ring.face_values(n_v + 2 * n_e, out=edges[3 * n_e:, 1])
+    z = np.empty((6, n_e), dtype=np.int32)  # (FIRST, MIDDLE, LAST) x (u, w)
+    np.add(2 * np.arange(n_e, dtype=np.int32), n_v, out=z[1])
+    np.add(z[1], 1, out=z[3])
+    z[0], z[2], z[4], z[5] = topo.edges[:, 0], z[1], topo.edges[:, 1], z[3]
+    _interleave(z, out=edges[:3 * n_e].reshape(n_e, 6))
+    spokes = np.empty((2, n_h), dtype=np.int32)
+    spokes[0] = x
+    ring.face_values(n_v + 2 * n_e, out=spokes[1])
+    _interleave(spokes, out=edges[3 * n_e:])
     parent_edge = np.empty(len(edges), dtype=np.int32)
     parent_edge[:3 * n_e] = np.repeat(np.arange(n_e, dtype=np.int32), 3)
     ring.face_values(0, out=parent_edge[3 * n_e:])
@@ -269,28 +280,31 @@ def _edge_half_edges(mesh: Mesh, ring: Corners, right: bool) -> NDArray[np.int32
     """
     topo = mesh.topology
     n_e = topo.n_edges
-    h0, h1 = topo.edge_half_edges[:, 0] * 5, topo.edge_half_edges[:, 1] * 5
-    out = np.empty((3 * n_e + mesh.n_corners, 2), dtype=np.int32)
-    z = out[:3 * n_e].reshape(n_e, 3, 2)
-    np.add(h0, 1, out=z[:, MIDDLE, 0])
-    np.add(h1, 1, out=z[:, MIDDLE, 1])
-    spokes = out[3 * n_e:]
+    pair = topo.edge_half_edges
+    h0, h1 = pair[:, 0] * 5, pair[:, 1] * 5
+    z = np.empty((3, 2, n_e), dtype=np.int32)  # (FIRST, MIDDLE, LAST) x (u -> w, w -> u)
+    np.add(h0, 1, out=z[MIDDLE, 0])
+    np.add(h1, 1, out=z[MIDDLE, 1])
+    spokes = np.empty((2, mesh.n_corners), dtype=np.int32)
     if right:  # FIRST: (5 h0, 5 next(h1) + 4), LAST: (5 h1, 5 next(h0) + 4)
-        z[:, FIRST, 0], z[:, LAST, 0] = h0, h1
-        np.add(5 * ring.neighbour(topo.edge_half_edges[:, 1], 1), 4, out=z[:, FIRST, 1])
-        np.add(5 * ring.neighbour(topo.edge_half_edges[:, 0], 1), 4, out=z[:, LAST, 1])
-        ring.corner_ids(0, spokes[:, 0], scale=5, offset=2)
-        ring.corner_ids(1, spokes[:, 1], scale=5, offset=3)
+        z[FIRST, 0], z[LAST, 0] = h0, h1
+        np.add(5 * ring.neighbour(pair[:, 1], 1), 4, out=z[FIRST, 1])
+        np.add(5 * ring.neighbour(pair[:, 0], 1), 4, out=z[LAST, 1])
+        ring.corner_ids(0, spokes[0], scale=5, offset=2)
+        ring.corner_ids(1, spokes[1], scale=5, offset=3)
     else:  # FIRST: (5 prev(h0) + 3, 5 h1 + 2), LAST: (5 prev(h1) + 3, 5 h0 + 2)
-        np.add(5 * ring.neighbour(topo.edge_half_edges[:, 0], -1), 3, out=z[:, FIRST, 0])
-        np.add(5 * ring.neighbour(topo.edge_half_edges[:, 1], -1), 3, out=z[:, LAST, 0])
-        np.add(h1, 2, out=z[:, FIRST, 1])
-        np.add(h0, 2, out=z[:, LAST, 1])
-        ring.corner_ids(-1, spokes[:, 0], scale=5, offset=4)
-        ring.corner_ids(0, spokes[:, 1], scale=5)
+        np.add(5 * ring.neighbour(pair[:, 0], -1), 3, out=z[FIRST, 0])
+        np.add(5 * ring.neighbour(pair[:, 1], -1), 3, out=z[LAST, 0])
+        np.add(h1, 2, out=z[FIRST, 1])
+        np.add(h0, 2, out=z[LAST, 1])
+        ring.corner_ids(-1, spokes[0], scale=5, offset=4)
+        ring.corner_ids(0, spokes[1], scale=5)
     for col in (0, 1):  # outer edges: no half-edge on one side
-        e = np.flatnonzero(topo.edge_half_edges[:, col] < 0)
-        z[e, FIRST, col] = z[e, MIDDLE, col] = z[e, LAST, 1 - col] = -1
+        e = np.flatnonzero(pair[:, col] < 0)
+        z[FIRST, col, e] = z[MIDDLE, col, e] = z[LAST, 1 - col, e] = -1
+    out = np.empty((3 * n_e + mesh.n_corners, 2), dtype=np.int32)
+    _interleave(z.reshape(6, n_e), out=out[:3 * n_e].reshape(n_e, 6))
+    _interleave(spokes, out=out[3 * n_e:])
     return out
 
 

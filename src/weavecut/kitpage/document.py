@@ -1,0 +1,293 @@
+"""The kit page: one self-contained HTML5 file showing what a build or a command wrote.
+
+For every output a picture first, then its name, what it is for ("print at 100 % on A4",
+"cut: ..."), its size in mm, page count and figures; for every command its command line and
+summary. No script, no network: generated pictures are ``data:`` URIs, the outputs are linked
+by relative paths, the style sheet is inline (screen, phones down to 390 px, and print).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+from dataclasses import dataclass
+from html import escape
+from pathlib import Path
+from urllib.parse import quote
+
+import numpy as np
+
+from .. import __version__, presets
+from ..layout.drawing import Drawing, Polygons, Polylines
+from ..text import clean
+from ..units import PAPER_SIZES
+from . import previews
+
+# colours of the page: (text, background) pairs the tests hold to WCAG contrast >= 4.5
+INK, MUTED, LINK, PAPER, CARD = "#1a1a1a", "#52575c", "#0b57a4", "#ffffff", "#f3f4f5"
+PAIRS = [(INK, PAPER), (INK, CARD), (MUTED, PAPER), (MUTED, CARD), (LINK, PAPER), (LINK, CARD)]
+
+STYLE = f"""
+*{{box-sizing:border-box}}
+body{{margin:0 auto;max-width:80rem;padding:1rem;font:16px/1.45 system-ui,sans-serif;
+color:{INK};background:{PAPER}}}
+h1{{font-size:1.5rem;margin:0 0 .25rem}}
+h2{{font-size:1.2rem;margin:1.5rem 0 .25rem;overflow-wrap:anywhere}}
+h3{{font-size:1rem;margin:.5rem 0 .25rem;overflow-wrap:anywhere}}
+p,ul{{margin:.25rem 0}}
+a{{color:{LINK}}}
+code{{font-size:.85rem;overflow-wrap:anywhere;color:{MUTED}}}
+.said{{padding-left:1.2rem}}
+main{{display:grid;gap:0 1rem;grid-template-columns:repeat(auto-fill,minmax(min(100%,20rem),1fr))}}
+section.many{{grid-column:1/-1}}
+.cards{{display:grid;gap:1rem;grid-template-columns:repeat(auto-fill,minmax(min(100%,18rem),1fr));
+padding:0;list-style:none}}
+.card{{background:{CARD};border-radius:.5rem;padding:.75rem;break-inside:avoid}}
+.card.wide{{grid-column:1/-1}}
+.card img{{display:block;max-width:100%;max-height:24rem;height:auto;margin:0 auto;
+background:{PAPER};border:1px solid #d0d3d6}}
+.pages{{display:flex;flex-wrap:wrap;gap:.4rem}}
+.pages img{{width:6.5rem;margin:0}}
+.for{{font-weight:600}}
+.facts{{color:{MUTED};font-size:.9rem}}
+@media print{{body{{max-width:none;padding:0;font-size:11pt}}main{{display:block}}
+.cards{{grid-template-columns:repeat(2,1fr)}}.card{{background:none;border:1px solid #999}}
+a{{color:{INK};text-decoration:none}}}}
+""".replace("\n", "")
+
+DXF_FOR = "CAD file in mm (LibreCAD, LightBurn)"
+HAIRLINE = 0.011  # mm: laser presets draw cuts 0.01 mm wide (or 0), for a laser, not an eye
+
+
+@dataclass(frozen=True)
+class Run:
+    """One command and what it wrote: ``files`` maps each path to the Drawing it shows (None
+    for other files), in the order written; ``said`` is the summary the command printed."""
+
+    command: str
+    files: dict
+    said: tuple[str, ...] = ()
+
+    @classmethod
+    def of(cls, record, command: str) -> Run:
+        """A Run from a ``fileio.Record``."""
+        return cls(command, dict(record.files), tuple(record.said))
+
+
+def page(title: str, runs: list[Run], folder: Path) -> str:
+    """The kit page of ``runs`` as HTML, linking outputs relative to ``folder`` (where the page
+    is written). Same runs and files, same text."""
+    n = sum(len(r.files) for r in runs)
+    body = "".join(_run(k, r, Path(os.path.abspath(folder))) for k, r in enumerate(runs, 1))
+    return _document(title, f"{n} file{'s' * (n != 1)} from {len(runs)} "
+                     f"command{'s' * (len(runs) != 1)}, made by weave-cut {__version__}.", body)
+
+
+def index(title: str, pages: list[Path], folder: Path) -> str:
+    """A page linking other kit pages (``make run``'s ``build/index.html``)."""
+    items = "".join(f'<li><a href="{_href(p, folder)}">{_e(p.parent.name)}</a></li>'
+                    for p in pages)
+    return _document(title, f"{len(pages)} builds, one page each.",
+                     f'<h2>Builds</h2><ul class="said">{items}</ul>')
+
+
+def _document(title: str, lead: str, body: str) -> str:
+    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+            "<meta name=\"viewport\" content=\"width=device-width,initial-scale=1\">"
+            f"<title>{_e(title)}</title><style>{STYLE}</style></head>\n<body><header>"
+            f"<h1>{_e(title)}</h1><p>{_e(lead)}</p></header>\n<main>{body}</main></body></html>\n")
+
+
+def _run(k: int, run: Run, folder: Path) -> str:
+    figures = _run_figures(run)
+    said = [_unprefixed(line, run.files) for text in run.said for line in text.splitlines()
+            if line.strip() and not line.startswith("files: ")]  # the cards list the files
+    groups: dict[Path, list[Path]] = {}
+    for path in run.files:  # one card per file name stem: x.svg and x.dxf of one Drawing
+        groups.setdefault(path.with_suffix(""), []).append(path)
+    cards = [_card(paths, run.files, figures, folder) for paths in groups.values()]
+    words = run.command.split()  # "weave-cut COMMAND INPUT ...": the command and the input
+    heading = " ".join(Path(w).name for w in words[1:3] if not w.startswith("-")) or run.command
+    said_html = (f'<ul class="said">{"".join(f"<li>{_e(s)}</li>" for s in said)}</ul>'
+                 if said else "")
+    many = ' class="many"' if len(cards) > 1 or any(wide for _, wide in cards) else ""
+    return (f'<section{many} aria-labelledby="run-{k}"><h2 id="run-{k}">{_e(heading)}</h2>'
+            f"<p><code>{_e(run.command)}</code></p>{said_html}"
+            f'<ul class="cards">{"".join(html for html, _ in cards)}</ul></section>\n')
+
+
+def _unprefixed(line: str, files: dict) -> str:
+    """A summary line without its leading "OUTPUT: " (the card shows the file)."""
+    head, sep, rest = line.partition(": ")
+    return rest if sep and Path(os.path.abspath(head)) in files else line
+
+
+def _card(paths: list[Path], files: dict, figures: dict, folder: Path) -> tuple[str, bool]:
+    """A card of the files of one stem, and whether it is wide (a PDF of many pages)."""
+    suffixes = [p.suffix.lower() for p in paths]
+    pdf = [files[p] for p in paths if p.suffix.lower() == ".pdf"]
+    drawing = next((d for d in pdf + [files[p] for p in paths] if d is not None), None)
+    name = paths[0].with_suffix("").name
+    picture, pages = _picture(paths, files, folder)
+    made = ".pdf" in suffixes or "laser" in figures  # cut with scissors or a laser
+    facts = [*_sizes(drawing, pages), *_drawing_figures(drawing, made), _bytes(paths)]
+    links = " · ".join(f'<a href="{_href(p, folder)}">{_e(p.suffix.lstrip(".").upper() or p.name)}'
+                       "</a>" for p in paths)
+    wide = pages > 4
+    return (f'<li class="card{" wide" * wide}">{picture}<h3>{_e(name)}</h3>'
+            f'<p class="for">{_e(_purpose(suffixes, drawing, figures))}</p>'
+            f'<p class="facts">{_e(" · ".join(f for f in facts if f))}</p><p>{links}</p></li>',
+            wide)
+
+
+def _picture(paths: list[Path], files: dict, folder: Path) -> tuple[str, int]:
+    """The card's picture and the page count of its PDF (0 without one)."""
+    by = {p.suffix.lower(): p for p in paths}
+    if ".pdf" in by:
+        pdf = by[".pdf"]
+        thumbs, _ = previews.pdf_thumbnails(pdf, files[pdf])
+        imgs = "".join(_img(previews.data_uri(t, "image/png"),
+                            f"page {n} of {len(thumbs)} of {pdf.name}", previews.png_size(t))
+                       for n, t in enumerate(thumbs, 1))
+        return f'<a class="pages" href="{_href(pdf, folder)}">{imgs}</a>', len(thumbs)
+    for suffix in (".png", ".svg"):  # the file itself, unless its lines are too thin to see
+        path = by.get(suffix)
+        if path is not None and (suffix == ".png" or not _hairlines(files[path])):
+            return (f'<a href="{_href(path, folder)}">'
+                    f"{_img(_href(path, folder), _alt(path, files[path]))}</a>", 0)
+    drawing = next((files[p] for p in paths if files[p] is not None), None)
+    if drawing is None:
+        return "", 0
+    shown = by.get(".svg") or by.get(".dxf") or paths[0]
+    preview = previews.data_uri(previews.svg_preview(drawing), "image/svg+xml")
+    return f'<a href="{_href(shown, folder)}">{_img(preview, _alt(shown, drawing))}</a>', 0
+
+
+def _alt(path: Path, drawing: Drawing | None) -> str:
+    return f"{path.name}: {_title(drawing)}" if _title(drawing) else path.name
+
+
+def _title(drawing: Drawing | None) -> str:
+    """The drawing's title without "weave-cut " and without the folders of input paths."""
+    if drawing is None:
+        return ""
+    return re.sub(r"(?<!\S)/\S*/", "", drawing.title.removeprefix("weave-cut ")).strip()
+
+
+def _img(src: str, alt: str, size: tuple[int, int] | None = None) -> str:
+    wh = f' width="{size[0]}" height="{size[1]}"' if size else ""
+    return f'<img src="{src}" alt="{_e(alt)}"{wh}>'
+
+
+def _hairlines(drawing: Drawing | None) -> bool:
+    """Whether ``drawing`` has laser hairlines (too thin to see when it is shown small)."""
+    if drawing is None:
+        return False
+    return any(s.style.stroke and s.style.stroke_width < HAIRLINE for sheet in drawing.sheets
+               for layer in sheet.layers for s in layer.shapes
+               if isinstance(s, (Polygons, Polylines)))
+
+
+def _sizes(drawing: Drawing | None, pages: int) -> list[str]:
+    if drawing is None:
+        return []
+    sizes = sorted({(round(s.width), round(s.height)) for s in drawing.sheets})
+    n = len(drawing.sheets)
+    what = "pages" if pages else "sheets"
+    text = " or ".join(f"{w} × {h} mm" for w, h in sizes)
+    return [f"{n} {what} of {text}" if n > 1 else text]
+
+
+def _drawing_figures(drawing: Drawing | None, made: bool) -> list[str]:
+    """Cut length (if ``made``: printed or lasered to be cut out) and number of fill colours
+    of ``drawing`` (when it has them)."""
+    if drawing is None:
+        return []
+    shapes = [(layer.role, s) for sheet in drawing.sheets for layer in sheet.layers
+              for s in layer.shapes if layer.visible]
+    cut = sum(_length(s) for role, s in shapes if role == "cut") if made else 0.0
+    fills = {f for _, s in shapes if isinstance(s, Polygons)
+             for f in (s.fills or (s.style.fill,)) if f}
+    return ([f"cut {cut / 1000:.2f} m"] if cut else []) + (
+        [f"{len(fills)} colours"] if len(fills) > 1 else [])
+
+
+def _length(shape) -> float:
+    """Stroked length in mm of a Polylines (open) or Polygons (closed rings)."""
+    if isinstance(shape, Polylines):
+        offsets, closed = np.asarray(shape.offsets), False
+    elif isinstance(shape, Polygons):
+        offsets, closed = np.asarray(shape.ring_offsets), True
+    else:
+        return 0.0
+    c = shape.coords
+    starts, ends = offsets[:-1], offsets[1:]
+    step = np.hypot(*np.diff(c, axis=0).T)
+    step[ends[:-1][(ends[:-1] > 0) & (ends[:-1] <= len(step))] - 1] = 0.0  # into the next line
+    total = float(step.sum())
+    if closed:
+        full = ends > starts
+        total += float(np.hypot(*(c[ends[full] - 1] - c[starts[full]]).T).sum())
+    return total
+
+
+def _bytes(paths: list[Path]) -> str:
+    size = sum(p.stat().st_size for p in paths if p.is_file())
+    return f"{size / 1e6:.1f} MB" if size >= 1e6 else f"{max(1, round(size / 1e3))} kB"
+
+
+def _run_figures(run: Run) -> dict:
+    """The figures a command wrote as JSON (the puzzle's laser and speed), merged."""
+    figures = {}
+    for path in run.files:
+        if path.suffix.lower() == ".json" and path.is_file() and path.stat().st_size < 2**20:
+            try:
+                doc = json.loads(path.read_bytes())
+            except ValueError:
+                continue
+            figures.update(doc if isinstance(doc, dict) else {})
+    return figures
+
+
+def _purpose(suffixes: list[str], drawing: Drawing | None, figures: dict) -> str:
+    """What a card's files are for, in a few words."""
+    if ".pdf" in suffixes:
+        sheets = drawing.sheets if drawing is not None else ()
+        size = {tuple(sorted((round(s.width, 1), round(s.height, 1)))) for s in sheets}
+        names = [n for n, wh in PAPER_SIZES.items() if tuple(sorted(wh)) in size]
+        paper = names[0].upper() if len(size) == 1 and names else "its page size"
+        if names and names[0] == "letter":
+            paper = "US Letter"
+        return f"print at 100 % on {paper}"
+    roles = {layer.role for sheet in (drawing.sheets if drawing else ()) for layer in sheet.layers}
+    laser, speed = figures.get("laser"), figures.get("speed_mm_s")
+    if "cut" in roles and isinstance(laser, str):  # a laser file of the puzzle
+        at = f" at {speed:g} mm/s" if isinstance(speed, (int, float)) else ""
+        return f"cut: {_laser_description(laser)}{at}" + (" (SVG or DXF)" if ".dxf" in suffixes
+                                                           else "")
+    if ".dxf" in suffixes:
+        return DXF_FOR
+    if ".json" in suffixes:
+        return "figures for scripts (JSON)"
+    what = f"{_title(drawing)}: " if _title(drawing) else ""
+    if ".png" in suffixes:
+        return f"{what}picture for a screen"
+    if ".svg" in suffixes:
+        return f"{what}1:1 in mm, to view, print or edit"
+    return "text"
+
+
+def _laser_description(name: str) -> str:
+    try:
+        return str(presets.load("laser", name).get("description", name))
+    except presets.PresetError:
+        return name
+
+
+def _href(path: Path, folder: Path) -> str:
+    return quote(Path(os.path.relpath(path, folder)).as_posix())
+
+
+def _e(text: str) -> str:
+    return escape(clean(str(text)))

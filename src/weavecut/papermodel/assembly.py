@@ -1,0 +1,328 @@
+"""The two pages a maker reads before cutting: the assembly sheet and the weaving steps.
+
+The assembly sheet shows the finished pattern at the largest scale that fits, each strand's ID at
+both ends and every few tiles along it (inside its own tiles, sized to fit), and a label on a
+white box with a leader line where a tile is too small. The weaving page turns the paper's
+section 5.2 experience into numbered steps with small diagrams of the weave growing.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+import shapely.ops
+
+from ..layout.contrast import text_colour_on
+from ..layout.drawing import Fit, Layer, Polylines, Sheet, Style, Text, polygons_from_shapely
+from ..layout.labels import (
+    MIN_CAP,
+    centred_text,
+    largest_fit,
+    text_box,
+    text_width,
+    unit_box,
+    wrap,
+)
+from ..weave.model import Weave
+from .pages import GAP, page_layers
+from .strips import arrow_polygon, copy_letter, model_tiles, turn_to
+from .symmetry import rotate, tile_centres
+
+TEXT = 2.6  # cap height of running text on these pages (mm)
+LINE = 4.4  # line pitch (mm)
+ALONG = 6  # an extra ID every this many own tiles along a strand
+OUTLINE = Style("#333333", 0.1)
+
+
+def _paragraphs(items: list[str], x: float, top: float, width: float,
+                numbered: bool = False) -> tuple[list[Text], float]:
+    """Wrapped lines from ``top`` down; returns the texts and the y below the last line."""
+    texts, y = [], top
+    for n, item in enumerate(items, start=1):
+        head = f"{n}. " if numbered else ""
+        indent = text_width(head, TEXT) if numbered else 0.0
+        for i, line in enumerate(wrap(item, width - indent, TEXT)):
+            y -= LINE
+            if i == 0 and head:
+                texts.append(Text(x, y, head.strip(), TEXT))
+            texts.append(Text(x + indent, y, line, TEXT))
+        y -= 0.8
+    return texts, y
+
+
+def _pattern(weave: Weave, turn: float, box, colours, show=None):
+    """(tiles on the sheet, fit, paint shape) for the pattern fitted into ``box``; with ``show``
+    (S,) bool only those strands are coloured (the others white)."""
+    tiles = model_tiles(weave)
+    centre = weave.mesh.vertices.mean(axis=0)
+    turned = shapely.transform(tiles, lambda xy: rotate(xy, turn, centre))
+    x0, y0, x1, y1 = box
+    fit = Fit.into(shapely.total_bounds(turned), x1 - x0, y1 - y0, 0.0)
+    fit = Fit(fit.scale, (fit.offset[0] + x0, fit.offset[1] + y0))
+    on_sheet = shapely.transform(turned, fit)
+    over, under = weave.tile_over, weave.tile_under
+    if show is None:
+        show = np.ones(weave.n_strands, dtype=bool)
+    top = np.where((over >= 0) & show[np.maximum(over, 0)], over,
+                   np.where((under >= 0) & show[np.maximum(under, 0)], under, -1))
+    fills = [colours[s] if s >= 0 else "#ffffff" for s in top.tolist()]
+    centres = fit(rotate(tile_centres(weave), turn, centre))
+    return on_sheet, fit, centres, polygons_from_shapely(list(on_sheet), OUTLINE, fills), fills
+
+
+def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str,
+                   total: int) -> Sheet:
+    """Page 1: what to print, which page holds which strip, and the finished pattern with IDs."""
+    from .book import page_index
+
+    plan, area = book.plan, book.area
+    k, m = plan.k, plan.copies.shape[1]
+    x0, y0, x1, y1 = area.box
+    size_mm = np.ptp(weave.mesh.vertices, axis=0) * book.scale
+    strips = f"p. {book.strip_pages[0]}-{book.strip_pages[-1]}" if book.strip_pages else "-"
+    lines = [f"{weave.n_strands} strands: {k} copies (A-{copy_letter(k - 1)}) of a module of "
+             f"{m} strips" + (f" + {len(plan.extras)} extras (X)" if len(plan.extras) else "")
+             + f"; copy j is the module turned by j x {360 / k:g} deg. Finished model about "
+             f"{size_mm[0] / 10:.1f} x {size_mm[1] / 10:.1f} cm, octagons {tile_size:.1f} mm "
+             "across. Print at 100 % (no fit to page)."]
+    if book.layout == "module":
+        turns = "; ".join(f"print {j + 1} = copy {copy_letter(j)}: turned by {j * 360 / k:g} deg"
+                          for j in range(k))
+        lines.append(f"Print the strip pages ({strips}) {k} times, once per direction, and write "
+                     f"the copy letter on the back of each strip: {turns}.")
+    else:
+        lines.append(f"Print the strip pages once ({strips}). Where each strip is: "
+                     + page_index(book) + ".")
+    lines.append("Each strand's ID is printed at both ends and along it; arrows show the way "
+                 "its strip reads. Weaving steps: page 2.")
+    texts, bottom = _paragraphs(lines, x0, y1, x1 - x0)
+    box = (x0, y0, x1, bottom - GAP)
+    on_sheet, fit, centres, paint, fills = _pattern(weave, turn, box, book.colours)
+    ids, boxes, leaders, arrows = _strand_labels(weave, book, on_sheet, centres, fills, box)
+    note = f"pattern drawn at {100 * fit.scale / book.scale:.0f} % of its printed size"
+    texts.append(Text(x1, y0 - GAP - TEXT, note, TEXT, "end"))
+    shapes = [paint]
+    if boxes:
+        shapes.append(polygons_from_shapely(boxes, Style("#333333", 0.15, "#ffffff")))
+    if leaders:
+        coords = np.concatenate(leaders)
+        shapes.append(Polylines(coords, np.arange(0, len(coords) + 1, 2, dtype=np.int64),
+                                Style("#000000", 0.2)))
+    shapes += [polygons_from_shapely(a, Style(None, 0.0, ink)) for ink, a in sorted(arrows.items())]
+    layers = [Layer("pattern", "paint", tuple(shapes)), Layer("ids", "label", tuple(ids)),
+              Layer("notes", "label", tuple(texts))]
+    layers += page_layers(area, title, "Assembly sheet: the finished pattern with every "
+                          "strand's ID (copy letter + number)", 1, total,
+                          book.colours[int(plan.copies[0, 0])] if m else "#3e9fb0")
+    return Sheet(area.width, area.height, tuple(layers), "page 1: assembly")
+
+
+def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
+    """IDs at both ends of every strand and every ``ALONG`` own tiles, inside own tiles where
+    they fit; an end that has no room gets its ID on a white box with a leader line."""
+    plan = book.plan
+    regions = shapely.buffer(on_sheet, -0.4, join_style="mitre")
+    tile_mm = np.sqrt(np.median(shapely.area(on_sheet)))
+    wanted, order = [], []  # (tile, strand, end?) per candidate
+    for s in range(weave.n_strands):  # strands, not mesh elements
+        visits, own = weave.strand(s)
+        if plan.reversed[s]:
+            visits, own = visits[::-1], own[::-1]
+        mine = visits[own]
+        picks = {0: True, len(mine) - 1: True}
+        picks.update({i: False for i in range(ALONG, len(mine) - ALONG // 2, ALONG)})
+        for i, end in sorted(picks.items()):
+            wanted.append((int(mine[i]), s, end))
+            order.append(0 if end else 1)
+    tiles = np.array([w[0] for w in wanted], dtype=np.int64)
+    text = [plan.labels[w[1]] for w in wanted]
+    size = largest_fit(regions[tiles], [unit_box(t, 0.0) for t in text], centres[tiles],
+                       MIN_CAP, 3.5)
+    ids, taken, boxes, leaders = [], [], [], []
+    arrow_tiles: dict[int, tuple] = {}
+    missing = []
+    used = set()
+    for c in np.lexsort((np.arange(len(wanted)), order)).tolist():  # candidates
+        t, s, end = wanted[c]
+        if t in used:
+            continue
+        if np.isfinite(size[c]):
+            used.add(t)
+            label = centred_text(centres[t], text[c], float(size[c]), 0.0,
+                                 text_colour_on(fills[t]))
+            ids.append(label)
+            taken.append(text_box(label))
+        elif end:
+            missing.append((t, text[c]))
+    # arrows: the second own tile of every strand, when free
+    for s in range(weave.n_strands):  # strands, not mesh elements
+        visits, own = weave.strand(s)
+        if plan.reversed[s]:
+            visits, own = visits[::-1], own[::-1]
+        mine = visits[own]
+        free = [int(t) for t in mine[1:-1] if int(t) not in used]
+        if free:
+            t = free[0]
+            i = int(np.flatnonzero(visits == t)[0])
+            d = centres[visits[min(i + 1, len(visits) - 1)]] - centres[visits[max(i - 1, 0)]]
+            arrow_tiles[t] = d
+            used.add(t)
+    ts = list(arrow_tiles)
+    unit = [shapely.transform(arrow_polygon((0.5, 0.0), (1.0, 0.0), 1.0),
+                              lambda xy, d=arrow_tiles[t]: xy @ turn_to(d).T) for t in ts]
+    length = largest_fit(regions[ts], unit, centres[ts], 1.5, 0.6 * tile_mm) if ts else []
+    arrows: dict[str, list] = {}
+    for t, u, z in zip(ts, unit, list(length)):
+        if np.isfinite(z):
+            arrows.setdefault(text_colour_on(fills[t]), []).append(
+                shapely.transform(u, lambda xy, z=z, c=centres[t]: xy * z + c))
+    obstacles = taken + [a for v in arrows.values() for a in v]
+    frame = shapely.box(*box)
+    for t, label in missing:  # leader lines
+        spot = _free_spot(centres[t], label, obstacles, frame, tile_mm)
+        if spot is None:
+            continue
+        text_at, plate, leader = spot
+        ids.append(text_at)
+        boxes.append(plate)
+        obstacles += [plate, shapely.buffer(leader, 0.3)]
+        leaders.append(np.asarray(leader.coords))
+    return ids, boxes, leaders, arrows
+
+
+def _free_spot(at, label: str, obstacles, frame, tile_mm: float):
+    """(text, white plate, leader line) near ``at``: neither the plate nor its leader line
+    touches an obstacle; None if there is no such place."""
+    plate_pad = 0.8
+    w = text_width(label, MIN_CAP) + 2 * plate_pad
+    h = MIN_CAP * 1.3 + 2 * plate_pad
+    tree = shapely.STRtree(obstacles) if obstacles else None
+    for r in np.arange(1.0, 8.0, 0.75) * max(tile_mm, h):
+        for a in np.radians(np.arange(0, 360, 30) + 15):
+            c = np.asarray(at) + r * np.array([np.cos(a), np.sin(a)])
+            plate = shapely.box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
+            if not frame.contains(plate):
+                continue
+            near = shapely.ops.nearest_points(plate, shapely.Point(at))[0]
+            leader = shapely.LineString([(near.x, near.y), tuple(at)])
+            if tree is not None and (len(tree.query(plate, predicate="intersects"))
+                                     or len(tree.query(leader, predicate="intersects"))):
+                continue
+            return centred_text(c, label, MIN_CAP, 0.0, "#000000"), plate, leader
+    return None
+
+
+def weaving_steps(weave: Weave, book, turn: float) -> tuple[list[str], list[np.ndarray]]:
+    """(numbered steps, groups of strands in the order they are woven in)."""
+    plan = book.plan
+    k = plan.k
+    centres = tile_centres(weave)
+    centre = plan.symmetry.centre
+    glue = any(p.glue is not None for _, p in book.pieces)
+    ids = plan.labels
+    steps = ["You need: the printed pages, scissors or a craft knife, tape or paper clips, a glue "
+             "stick and a piece of cardboard a little larger than the model.",
+             "Cut out every strip along its red line. Sort the strips by ID: the ID printed in "
+             "the strip's own colour is its name on page 1; a small ID in a light part names the "
+             "strand that lies on top there."]
+    if glue:
+        steps.append("Some strips are printed in parts (\"A7 1/2\", \"A7 2/2\"): spread glue on "
+                     "the grey band of part 1 and stick it under the start of part 2 before "
+                     "weaving, so the IDs line up.")
+    if k == 4:
+        heads = plan.copies
+        warp = np.concatenate([heads[0], heads[2]])
+        weft = np.concatenate([heads[1], heads[3], plan.extras])
+        y = np.array([_mean_y(weave, centres, s, turn) for s in weft.tolist()])
+        weft = weft[np.argsort(-y, kind="stable")]
+        pairs = [weft[i:i + 2] for i in range(0, len(weft), 2)]
+        order = "; ".join("+".join(ids[s] for s in p) for p in pairs)
+        steps += [
+            "Lay page 1 in front of you: it is turned by 45 degrees, so the strands run up-down "
+            "(the warp: copies A and C) and left-right (the weft: copies B and D).",
+            "Warp: lay the A and C strips side by side on the cardboard, coloured side up, in the "
+            "order page 1 shows, arrows as on page 1. Tape the top end of each one down.",
+            "Weft: take the next two B or D strips from the top and weave them across the warp "
+            "together, one beside the other: where a weft strip is printed light it goes under "
+            "the strand named there, where it shows its own colour it lies on top. Push the "
+            "pair up against the strips above. Do not twist two strips round each other first "
+            "and add the rest later: that does not hold.",
+            f"Repeat step {len(steps) + 3} until every strip is in. Weft pairs from the top: "
+            f"{order}.",
+        ]
+        groups = [warp] + pairs
+    else:
+        dist = np.array([np.hypot(*(centres[weave.strand(s)[0]] - centre).T).min()
+                         for s in range(weave.n_strands)])
+        orbit_of = np.full(weave.n_strands, -1)
+        for i in range(plan.copies.shape[1]):  # module strands
+            orbit_of[plan.copies[:, i]] = i
+        orbit_of[plan.extras] = plan.copies.shape[1] + np.arange(len(plan.extras))
+        key = np.array([dist[orbit_of == o].min() for o in range(orbit_of.max() + 1)])
+        size = k if k >= 3 else 3
+        if k >= 3:
+            groups = [np.flatnonzero(orbit_of == o) for o in np.argsort(key, kind="stable")]
+        else:
+            flat = np.argsort(dist, kind="stable")
+            groups = [flat[i:i + size] for i in range(0, len(flat), size)]
+        order = "; ".join(f"{n}: " + ", ".join(ids[s] for s in g)
+                          for n, g in enumerate(groups, start=1))
+        steps += [
+            (f"This pattern has {k} directions and no right angles, so it is best woven by two "
+             "people: one holds the strands already joined while the other threads the next. "
+             if k >= 3 else "")
+            + "Work from the centre outwards on the cardboard, page 1 beside you.",
+            "Start with the strands of group 1 (they cross the centre): lay them as page 1 shows "
+            "and weave them through each other. Where a strip is printed light it goes under the "
+            "strand named there; where it shows its own colour it lies on top. Tape or clip every "
+            "crossing as you make it so the first strands cannot slide apart.",
+            "Add the next group: weave each new strand through every strand it crosses that is "
+            "already in, then tape its ends. Join every strand of a group to its neighbours "
+            "before starting the next, so the structure holds.",
+            f"Groups, centre outwards: {order}.",
+        ]
+    steps += ["Close the border: check every crossing against page 1, then put a dot of glue "
+              "under each strand end at the edge and press it onto the strip below it. Let it "
+              "dry, then remove the tape.",
+              "No glue anywhere else: a woven model holds by its crossings."]
+    return steps, groups
+
+
+def _mean_y(weave, centres, s, turn) -> float:
+    visits, _ = weave.strand(s)
+    return float(rotate(centres[visits], turn, weave.mesh.vertices.mean(axis=0))[:, 1].mean())
+
+
+def weaving_sheet(weave: Weave, book, turn: float, title: str, total: int) -> Sheet:
+    """Page 2: how to weave, as numbered steps, with diagrams of the weave growing."""
+    area = book.area
+    x0, y0, x1, y1 = area.box
+    steps, groups = weaving_steps(weave, book, turn)
+    texts, bottom = _paragraphs(steps, x0, y1, x1 - x0, numbered=True)
+    picks = sorted({0, 1, len(groups) // 2, len(groups) - 1}) if len(groups) > 1 else [0]
+    n = len(picks)
+    cols = 2 if n > 2 else n
+    rows = int(np.ceil(n / cols))
+    cell_w = (x1 - x0 - GAP * (cols - 1)) / cols
+    cell_h = (bottom - GAP - y0 - GAP * (rows - 1)) / rows
+    shapes = []
+    shown = np.zeros(weave.n_strands, dtype=bool)
+    done = 0
+    for p, g in enumerate(picks):
+        for grp in groups[done:g + 1]:
+            shown[grp] = True
+        done = g + 1
+        r, c = divmod(p, cols)
+        bx = x0 + c * (cell_w + GAP)
+        by = bottom - GAP - (r + 1) * cell_h - r * GAP
+        caption = (f"after group {g + 1}" if book.plan.k != 4 else
+                   ("warp laid" if g == 0 else f"after weft pair {g}"))
+        texts.append(Text(bx, by + cell_h - TEXT, caption, TEXT))
+        if cell_h - LINE > 10:
+            box = (bx, by, bx + cell_w, by + cell_h - LINE)
+            shapes.append(_pattern(weave, turn, box, book.colours, shown.copy())[3])
+    layers = [Layer("diagrams", "paint", tuple(shapes)), Layer("steps", "label", tuple(texts))]
+    layers += page_layers(area, title, "How to weave: numbered steps; the diagrams show the "
+                          "weave growing", 2, total)
+    return Sheet(area.width, area.height, tuple(layers), "page 2: weaving")
+

@@ -1,0 +1,101 @@
+"""Checks over the Drawing that a maker can read every label: the figures ``strands --json``
+reports and the tests hold.
+
+A text is readable when it is at least ``MIN_CAP`` tall, reads upright (angle in (-90, 90]),
+lies wholly on the one fill under its centre with nothing drawn over it, overlaps no other text,
+has a contrast of at least ``MIN_CONTRAST`` with that fill, and, on a strip page, lies inside a
+strip's cut outline (strip labels) or outside the printable box (page furniture).
+"""
+
+from __future__ import annotations
+
+import shapely
+
+from ..layout.contrast import MIN_CONTRAST, contrast_ratio
+from ..layout.drawing import Polygons, Sheet, Text
+from ..layout.labels import MIN_CAP, text_box
+
+PAPER = "#ffffff"
+SLACK = 1e-6  # mm
+
+
+def _painted(sheet: Sheet) -> tuple[list, list[str]]:
+    """Every filled polygon on the sheet in drawing order, with its fill."""
+    polys, fills = [], []
+    for layer in sheet.layers:
+        if not layer.visible:
+            continue
+        for shape in layer.shapes:
+            if isinstance(shape, Polygons):
+                style_fill = shape.style.fill
+                colours = shape.fills or (style_fill,) * shape.n_polygons
+                for g, c in zip(shape.to_shapely().tolist(), colours):
+                    if c is not None:
+                        polys.append(g)
+                        fills.append(c)
+    return polys, fills
+
+
+def text_checks(sheet: Sheet, box=None) -> list[dict]:
+    """One record per text: size, contrast, and the rules it breaks (empty when readable).
+
+    ``box`` is the printable box of a strip page: texts of the "labels" layer must then lie inside
+    a cut outline, every other text outside the box."""
+    polys, fills = _painted(sheet)
+    tree = shapely.STRtree(polys) if polys else None
+    cuts = [g for layer in sheet.layers if layer.role == "cut" for s in layer.shapes
+            if isinstance(s, Polygons) for g in s.to_shapely().tolist()]
+    texts = [(layer.name, t) for layer in sheet.layers for t in layer.shapes
+             if isinstance(t, Text)]
+    boxes = [text_box(t) for _, t in texts]
+    text_tree = shapely.STRtree(boxes) if boxes else None
+    out = []
+    for i, ((layer, t), b) in enumerate(zip(texts, boxes)):
+        broken = []
+        if t.size < MIN_CAP - 1e-9:
+            broken.append("small")
+        if not -90.0 < t.angle <= 90.0 + 1e-9:
+            broken.append("upside down")
+        centre = b.centroid
+        below, fill = -1, PAPER
+        hits = sorted(tree.query(b)) if tree is not None else []
+        for j in hits:
+            if polys[j].covers(centre):
+                below, fill = j, fills[j]
+        if below >= 0 and not polys[below].buffer(SLACK).covers(b):
+            broken.append("crosses its fill's edge")
+        if any(j > below and shapely.intersection(polys[j], b).area > SLACK for j in hits):
+            broken.append("under another shape")
+        others = [j for j in text_tree.query(b) if j != i] if text_tree is not None else []
+        if any(shapely.intersection(boxes[j], b).area > SLACK for j in others):
+            broken.append("overlaps a text")
+        contrast = contrast_ratio(t.fill, fill)
+        if contrast < MIN_CONTRAST:
+            broken.append("low contrast")
+        if box is not None:
+            inside = shapely.box(*box).buffer(SLACK)
+            if layer == "labels" and not any(c.buffer(SLACK).covers(b) for c in cuts):
+                broken.append("outside its strip")
+            if layer != "labels" and inside.intersection(b).area > SLACK:
+                broken.append("furniture on the strips")
+        out.append({"text": t.text, "size": t.size, "contrast": contrast, "broken": broken})
+    return out
+
+
+def report(book) -> dict:
+    """What ``strands --json`` reports: pages, ink, smallest label, contrast, violations."""
+    records = []
+    for n, sheet in enumerate(book.drawing.sheets, start=1):
+        records += text_checks(sheet, book.area.box if n in book.strip_pages else None)
+    return {
+        "pages": {"strip": len(book.strip_pages), "extra": len(book.extra_pages),
+                  "total": len(book.drawing.sheets)},
+        "ink_fraction": round(book.ink, 3),
+        "smallest_text_mm": round(min((r["size"] for r in records), default=0.0), 2),
+        "smallest_contrast": round(min((r["contrast"] for r in records), default=21.0), 2),
+        "label_violations": sum(bool(r["broken"]) for r in records),
+        "tile_size_mm": round(book.tile_size, 2),
+        "strip_width_mm": round(book.strip_width, 1),
+        "warnings": list(book.warnings),
+    }
+

@@ -1,0 +1,258 @@
+"""Dense pages: a raster polygon packer (turns in 15 degree steps, never mirrored).
+
+Every piece, turned by each allowed angle, becomes a mask on a grid of ``cell`` mm: the cells
+whose centre lies within ``gap / 2 + cell / sqrt(2)`` of the piece. Two pieces whose masks share
+no cell are at least ``gap`` apart (a point nearer than ``gap / 2`` to both would put its
+cell in both masks), and a piece lies inside the union of its mask's cells, so inside the page
+when its mask is. Where a mask fits on a page's occupancy grid is one FFT correlation per
+angle (the page's transform is kept and the masks' are cached, so each try is one inverse FFT).
+
+Congruent pieces (the k copies of a module strip, the same ``kind``) are nested into a stack
+first. Stacks go largest first, each on the first page with room (first fit), where its right
+edge is least, then lowest (columns from the left); a stack that fits no open page is halved
+before a page is opened. When the last page is nearly empty, the packing is redone with that
+page's pieces first, and the packing with the fewer pages kept.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from numpy.typing import NDArray
+from scipy.fft import irfft2, next_fast_len, rfft2
+
+ANGLE_STEP = 15.0  # degrees between the turns tried
+
+
+@dataclass(frozen=True)
+class Place:
+    """Where a piece went: ``page`` (0-based), turned by ``angle`` degrees about the origin of its
+    own frame, then moved by ``shift`` (mm, in the packing area's frame)."""
+
+    page: int
+    angle: float
+    shift: tuple[float, float]
+
+    def matrix(self) -> NDArray[np.float64]:
+        """(3, 3) the affine map from the piece's frame to the packing area."""
+        a = np.radians(self.angle)
+        c, s = np.cos(a), np.sin(a)
+        return np.array([[c, -s, self.shift[0]], [s, c, self.shift[1]], [0.0, 0.0, 1.0]])
+
+
+def _turned(shape, angle: float):
+    a = np.radians(angle)
+    c, s = np.cos(a), np.sin(a)
+    return shapely.transform(shape, lambda xy: xy @ np.array([[c, s], [-s, c]]))
+
+
+def _mask(shape, angle: float, gap: float, cell: float, width: float, height: float):
+    """(mask, origin) of ``shape`` turned by ``angle``: origin is where cell (0, 0) of the mask
+    starts in the turned frame; None when the turned piece cannot fit the area at all."""
+    turned = _turned(shape, angle)
+    reach = gap / 2 + cell * np.sqrt(0.5)
+    x0, y0, x1, y1 = turned.bounds
+    nx = int(np.ceil((x1 - x0 + 2 * reach) / cell))
+    ny = int(np.ceil((y1 - y0 + 2 * reach) / cell))
+    if nx > width // cell or ny > height // cell:
+        return None
+    origin = np.array([x0 - reach, y0 - reach])
+    xs = origin[0] + (np.arange(nx) + 0.5) * cell
+    ys = origin[1] + (np.arange(ny) + 0.5) * cell
+    gx, gy = np.meshgrid(xs, ys)
+    grown = shapely.buffer(turned, reach, quad_segs=4)
+    shapely.prepare(grown)
+    mask = shapely.contains_xy(grown, gx, gy)
+    return mask.astype(np.float64), origin
+
+
+def nest_offset(shape, gap: float, step: float = 0.25) -> NDArray[np.float64]:
+    """(dx, dy): the move that nests a copy of ``shape`` (long axis along x) ``gap`` mm clear of
+    it most tightly: for every slide dx along the axis the least clear dy across it, and of
+    those the one whose pair has the smallest convex hull (congruent wavy strips nest)."""
+    x0, y0, x1, y1 = shape.bounds
+    slide = min(x1 - x0, 30.0)
+    dxs = np.arange(-slide, slide + 1e-9, 1.0)
+    dys = np.arange(0.0, y1 - y0 + gap + step, step)
+    moves = np.array(np.meshgrid(dxs, dys)).reshape(2, -1).T
+    copies = shapely.transform(np.full(len(moves), shape, dtype=object),
+                               lambda xy: xy + np.repeat(moves, len(xy) // len(moves), axis=0))
+    clear = (shapely.distance(shape, copies) >= gap).reshape(len(dys), len(dxs))
+    lowest = np.argmax(clear, axis=0)  # per dx, the first clear dy
+    ok = clear[lowest, np.arange(len(dxs))]
+    cand = np.column_stack([dxs, dys[lowest]])[ok]
+    pairs = shapely.union(shape, copies.reshape(len(dys), len(dxs))[lowest, np.arange(len(dxs))][ok])
+    box = shapely.area(shapely.convex_hull(pairs))
+    return cand[np.lexsort((np.abs(cand[:, 0]), np.round(box, 3)))[0]]
+
+
+def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 1.0,
+         kinds=None, angle_step: float = ANGLE_STEP) -> list[Place]:
+    """Pack ``shapes`` (shapely polygons, mm) onto as few ``width`` x ``height`` areas as it can.
+
+    Congruent pieces (equal ``kinds``, the same polygon in their own frames) are first nested
+    into a stack, each copy moved by :func:`nest_offset` from the one before, and the stack is
+    packed as one piece; a stack that fits on no open page is halved before a page is opened.
+
+    Parameters
+    ----------
+    shapes : (n,) polygons in their own frames, long axis along x
+    width, height : the packing area (mm); the area's lower-left corner is the origin
+    gap : least distance between two pieces (mm)
+    cell : grid size (mm); smaller packs tighter and slower
+    kinds : (n,) ints, equal for congruent pieces
+    angle_step : turns tried are the multiples of this (degrees), never a mirror
+
+    Returns
+    -------
+    one Place per shape, in input order
+
+    Raises
+    ------
+    ValueError if a piece fits the area at no angle
+    """
+    shapes = np.asarray(shapes, dtype=object)
+    n = len(shapes)
+    kinds = np.arange(n) if kinds is None else np.asarray(kinds)
+    angles = np.arange(0.0, 360.0, angle_step).tolist()
+    nx, ny = int(width // cell), int(height // cell)
+    _, first, inverse = np.unique(kinds, return_index=True, return_inverse=True)
+    units = []  # (members, move between members)
+    for g in np.argsort(first, kind="stable").tolist():  # kinds of piece
+        members = np.flatnonzero(inverse == g).tolist()
+        move = nest_offset(shapes[members[0]], gap) if len(members) > 1 else np.zeros(2)
+        units.append((members, move))
+    masks: dict[tuple, list] = {}
+
+    def options(members, move):
+        key = (members[0], len(members))
+        if key not in masks:
+            stack = shapely.union_all([shapely.transform(shapes[members[0]],
+                                                         lambda xy, j=j: xy + j * move)
+                                       for j in range(len(members))])
+            half = [(a, _mask(stack, a, gap, cell, width, height)) for a in angles if a < 180]
+            # the turn by a + 180 is the turn by a read backwards (the grid is symmetric)
+            masks[key] = [(a, *m) for a, m in half if m is not None] + [
+                (a + 180.0, m[0][::-1, ::-1], -m[1] - np.array(m[0].shape[::-1]) * cell)
+                for a, m in half if m is not None]
+        return masks[key]
+
+    def area(unit):
+        return -sum(shapes[i].area for i in unit[0])
+
+    def rank(r):
+        return (max(p.page for p in r), _last_fill(r, shapes))
+
+    best = _fill(units, shapes, options, area, nx, ny, cell, set())
+    first: set = set()
+    for _ in range(REPAIRS):  # the last page's pieces go first next time
+        last = max(p.page for p in best)
+        if last == 0 or _last_fill(best, shapes) > REPAIR_BELOW * width * height:
+            break
+        first |= {i for i, p in enumerate(best) if p.page == last}
+        again = _fill(units, shapes, options, area, nx, ny, cell, first)
+        if rank(again) < rank(best):
+            best = again
+    return best
+
+
+REPAIRS = 2  # re-packings with the last page's pieces first ...
+REPAIR_BELOW = 0.15  # ... when the last page is this empty (a page may be saved)
+
+
+def _last_fill(places, shapes) -> float:
+    last = max(p.page for p in places)
+    return sum(s.area for p, s in zip(places, shapes) if p.page == last)
+
+
+def _fill(units, shapes, options, area, nx: int, ny: int, cell: float, first):
+    """Places for every piece: the units (stacks) largest first (those holding a piece in
+    ``first`` before all others), first fit."""
+    def order(u):
+        return (not first.intersection(u[0]), area(u), u[0][0])
+
+    queue = sorted(units, key=order)
+    pages: list[_Page] = []
+    spectra: dict = {}
+    full: set = set()
+    out: list[Place | None] = [None] * len(shapes)
+    while queue:  # stacks of pieces
+        members, move = queue.pop(0)
+        opts = options(members, move)
+        spot = None
+        key = (members[0], len(members))
+        for number, page in enumerate(pages):
+            if opts and (key, number) not in full and page.free >= opts[0][1].sum():
+                if (best := _best_spot(page, opts)) is not None:
+                    spot = number, best
+                    break
+                full.add((key, number))  # pages only fill up: no need to try again
+        if spot is None and (len(members) > 1 and (pages or not opts)):
+            half = (len(members) + 1) // 2
+            queue = sorted(queue + [(members[:half], move), (members[half:], move)], key=order)
+            continue
+        if spot is None:
+            if not opts:
+                x0, y0, x1, y1 = shapes[members[0]].bounds
+                raise ValueError(f"a strip of {x1 - x0:.0f} x {y1 - y0:.0f} mm fits the printable "
+                                 f"area at no angle")
+            pages.append(_Page(ny, nx, spectra))
+            spot = len(pages) - 1, _best_spot(pages[-1], opts)
+        number, ((iy, ix), angle, mask, origin) = spot
+        pages[number].add(mask, iy, ix)
+        shift = np.array([ix * cell - origin[0], iy * cell - origin[1]])
+        turn = Place(number, float(angle), (0.0, 0.0)).matrix()[:2, :2]
+        for j, i in enumerate(members):
+            at = shift + turn @ (j * move)
+            out[i] = Place(number, float(angle), (float(at[0]), float(at[1])))
+    return out
+
+
+def _best_spot(grid: "_Page", options):
+    """((iy, ix), angle, mask, origin) of the place on ``grid``, among the turns in ``options``,
+    with the least right edge, then the lowest (columns from the left); None if the piece fits
+    nowhere."""
+    best, best_key = None, None
+    for angle, mask, origin in options:  # the allowed turns
+        free = grid.correlate(mask) < 0.5
+        if not free.any():
+            continue
+        iy, ix = np.nonzero(free)
+        j = np.lexsort((iy, ix))[0]
+        key = (int(ix[j] + mask.shape[1]), int(iy[j]))
+        if best_key is None or key < best_key:
+            best, best_key = ((int(iy[j]), int(ix[j])), angle, mask, origin), key
+    return best
+
+
+class _Page:
+    """A page's occupancy grid and its Fourier transform, kept in step (one FFT per placed
+    piece, one inverse FFT per mask tried)."""
+
+    def __init__(self, ny: int, nx: int, spectra: dict):
+        self.cells = np.zeros((ny, nx), dtype=np.float32)
+        self.spectra = spectra  # mask spectra, shared by the pages of one packing
+        self.shape = (next_fast_len(ny), next_fast_len(nx))  # no wrap where it is read
+        self._fft = None
+
+    @property
+    def free(self) -> float:
+        return self.cells.size - self.cells.sum()
+
+    def add(self, mask, iy: int, ix: int) -> None:
+        self.cells[iy:iy + mask.shape[0], ix:ix + mask.shape[1]] += mask
+        self._fft = None
+
+    def correlate(self, mask):
+        """sum over (i, j) of cells[y + i, x + j] * mask[i, j] for every (y, x) where the mask
+        lies inside the page."""
+        if self._fft is None:
+            self._fft = rfft2(self.cells, self.shape)
+        key = id(mask)  # masks live as long as the packing
+        if key not in self.spectra:
+            self.spectra[key] = (mask, np.conj(rfft2(mask.astype(np.float32), self.shape)))
+        full = irfft2(self._fft * self.spectra[key][1], self.shape)
+        ny, nx = self.cells.shape
+        return full[:ny - mask.shape[0] + 1, :nx - mask.shape[1] + 1]

@@ -1,0 +1,44 @@
+"""Meshes from drawings: SVG and DXF outlines as faces, or one outline meshed inside.
+
+Modules: ``svg`` and ``dxf`` read closed outlines in mm, ``rings`` checks them, finds holes and
+welds faces, ``outline_mesh`` meshes an outline, ``drawing`` puts them together. They load on
+first use (svgelements, ezdxf's reader and scipy's spatial tools take a while to import).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+from ..mesh import Mesh
+
+SUFFIXES = (".svg", ".dxf")
+KINDS = ("hex", "quad", "tri", "voronoi")  # ways to mesh an outline (outline_mesh)
+MESH_CHOICES = ("auto", "none", *KINDS)
+DEFAULT_FLATTEN = 0.2  # mm
+DEFAULT_KIND = "hex"
+
+
+def read_drawing(path: str | Path, *, flatten: float = DEFAULT_FLATTEN, layer: str | None = None,
+                 mesh: str = "auto", cell: float | None = None,
+                 allow_nonconvex: bool = False,
+                 report: Callable[[str], None] | None = None) -> Mesh:
+    """Read an SVG or DXF drawing as a mesh in millimetres.
+
+    Parameters
+    ----------
+    path : ``.svg`` or ``.dxf`` file
+    flatten : largest distance (mm) between a curve and its polyline; points of neighbouring
+        faces closer than this are merged into one vertex
+    layer : read only this layer (DXF layer; SVG Inkscape layer or group, by label or id)
+    mesh : ``auto`` meshes a drawing of one outline (holes allowed) and keeps the faces of any
+        other drawing; ``none`` always keeps the faces as drawn; one of KINDS meshes the inside
+        of the whole drawing
+    cell : face size for meshing (mm); default: about 60 faces
+    allow_nonconvex : accept faces drawn non-convex (a meshed outline's faces are convex)
+    report : called with one line saying what was read (counts, merges, mesh quality)
+    """
+    from .drawing import read
+
+    return read(Path(path), flatten=flatten, layer=layer, mesh=mesh, cell=cell,
+                allow_nonconvex=allow_nonconvex, report=report)

@@ -1,0 +1,419 @@
+"""Mesh the inside of an outline with convex, near-regular faces of a given size.
+
+Kinds (``cell`` is the side of a square of the faces' target area):
+
+- ``quad`` and ``hex``: the Voronoi cells of a square or triangular lattice (squares and
+  regular hexagons), Lloyd-relaxed 15 times (every seed moved to the centroid of its cell
+  clipped to the outline): inner cells stay regular, the boundary cells grow to about full
+  size instead of leaving slivers.
+- ``voronoi``: a centroidal Voronoi tessellation (Du, Faber and Gunzburger, "Centroidal Voronoi
+  tessellations", SIAM Review 41, 1999): random seeds, Lloyd-relaxed 40 times, clipped.
+- ``tri``: a conforming Delaunay triangulation (scipy) of the relaxed seeds of ``hex`` (at the
+  triangles' spacing) and points along the outline; a boundary segment missing from the
+  triangulation is split at its middle until every one is an edge (the segment splitting of
+  Ruppert's algorithm), and the inner points are Laplace-smoothed.
+
+A clipped cell is convex unless the outline has a reflex corner inside it; such a cell is cut
+at that corner (``_convex_pieces``) until every piece is convex, and pieces under 0.6 ``cell``
+are merged into a neighbour or cut anew with it (``_merged_small``). Every outline vertex stays
+a vertex, so the boundary is the outline to the tolerance. The outline's edges are first cut to
+at most a cell's edge, where a cell edge meets the outline it moves onto the nearer outline
+vertex beside it, inner cell edges shorter than 0.15 ``cell`` collapse, and straight outline
+points of one face are dropped: short edges and 180-degree corners make sliver pentagons, which
+turn over after a few snub steps.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import shapely
+from scipy.spatial import Delaunay, cKDTree
+from shapely.ops import split
+
+from ..errors import MeshError
+from ..mesh import Mesh, corner_angles, signed_areas
+from ..validation import validate
+from . import KINDS
+from .rings import close_groups, split_t_junctions, weld
+
+DEFAULT_FACES = 60  # faces when no --cell is given
+# lattice spacing (times cell) that gives faces of area cell**2
+SPACING = {"quad": 1.0, "hex": math.sqrt(2 / math.sqrt(3)), "tri": math.sqrt(4 / math.sqrt(3))}
+# outline edges are cut to at most a cell's edge (times cell), and cells meet them at vertices
+EDGE = {"quad": 1.0, "hex": SPACING["hex"] / math.sqrt(3), "voronoi": 0.6}
+SHORT = 0.15  # inner cell edges shorter than this (times cell) collapse
+GENTLE = math.sin(math.radians(15))  # reflex turns below 15 degrees are bends of the outline
+MIN_SIZE = 0.6  # smaller pieces (times cell) merge into a neighbour
+
+
+def default_cell(region) -> float:
+    """The cell size that gives about DEFAULT_FACES faces."""
+    return math.sqrt(region.area / DEFAULT_FACES)
+
+
+def mesh_outline(region, kind: str = "hex", cell: float | None = None,
+                 tolerance: float = 0.2) -> Mesh:
+    """Mesh the inside of ``region`` (a shapely Polygon or MultiPolygon, holes allowed).
+
+    Parameters
+    ----------
+    region : the outline, in mm
+    kind : one of KINDS
+    cell : target face size in mm (faces of about cell**2 area); default: about 60 faces
+    tolerance : how far (mm) the boundary may stray from ``region`` to keep faces convex
+
+    Returns
+    -------
+    Mesh whose faces are convex and counter-clockwise and whose union is ``region``.
+    """
+    if kind not in KINDS:
+        raise MeshError(f"unknown mesh kind {kind!r}; choose one of {', '.join(KINDS)}")
+    cell = default_cell(region) if cell is None else cell
+    if region.area < 0.5 * cell ** 2:
+        raise MeshError(f"the outline ({region.area:.4g} mm²) is smaller than one cell "
+                        f"({cell:.4g} mm across); give a smaller --cell")
+    if region.area > 1e6 * cell ** 2:
+        raise MeshError(f"--cell {cell:.4g} mm would give about {region.area / cell**2:,.0f} "
+                        "faces; give a larger --cell")
+    if kind == "tri":
+        return _triangles(shapely.simplify(region, tolerance / 2), cell)
+    # no outline edge shorter than needed (Douglas-Peucker, half the tolerance), none longer
+    # than a cell's edge
+    region = _densified_region(shapely.simplify(region, tolerance / 2), EDGE[kind] * cell)
+    _, cells = _relaxed_cells(region, kind, cell)
+    pieces = _merged_small([q for c in shapely.get_parts(cells)
+                            for q in _convex_pieces(c, tolerance)], cell, tolerance)
+    rings = [np.asarray(shapely.orient_polygons(p).exterior.coords)[:-1] for p in pieces]
+    for snap, short in ((EDGE[kind], SHORT), (EDGE[kind], 0.0), (0.0, 0.0)):  # tidiest valid
+        tidy = _short_inner_edges_merged(_snapped(rings, region, snap * cell), region,
+                                         short * cell)
+        try:
+            mesh = split_t_junctions(weld(tidy, 1e-9 * cell)[0], 1e-9 * cell)
+            return validate(_without_straight_corners(mesh))
+        except MeshError as exc:
+            error = exc
+    raise MeshError(f"meshing the outline failed ({error}); try another --cell")
+
+
+def _without_straight_corners(mesh: Mesh) -> Mesh:
+    """``mesh`` without the outline points that only one face uses where the outline runs
+    straight (180 degree corners make degenerate pentagons in a snub step)."""
+    p = mesh.vertices[mesh.face_indices]
+    a = p - p[mesh.prev_half_edge]
+    b = p[mesh.next_half_edge] - p
+    sine = (a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]) / (np.hypot(*a.T) * np.hypot(*b.T))
+    alone = np.bincount(mesh.face_indices, minlength=mesh.n_vertices)[mesh.face_indices] == 1
+    keep = ~(alone & (np.abs(sine) < 1e-9) & ((a * b).sum(axis=1) > 0))
+    used, corners = np.unique(mesh.face_indices[keep], return_inverse=True)
+    sizes = np.bincount(mesh.half_edge_face[keep], minlength=mesh.n_faces)
+    return Mesh(mesh.vertices[used], np.concatenate([[0], np.cumsum(sizes)]), corners)
+
+
+def _short_inner_edges_merged(rings: list[np.ndarray], region, short: float) -> list[np.ndarray]:
+    """Inner cell corners closer than ``short`` to one another meet at their mean (a short
+    Voronoi edge would become a sliver pentagon after a snub step); outline points stay."""
+    sizes = [len(r) for r in rings]
+    points = np.concatenate(rings)
+    if short == 0:
+        return rings
+    inner = shapely.distance(region.boundary, shapely.points(points)) > 1e-9 * short
+    label = close_groups(points, short, movable=inner)
+    count = np.bincount(label)
+    mean = np.column_stack([np.bincount(label, weights=points[:, k]) for k in (0, 1)])
+    return np.split(mean[label] / count[label, None], np.cumsum(sizes)[:-1])
+
+
+def _densified_region(region, side: float):
+    """``region`` with every outline edge longer than ``side`` cut into equal parts."""
+    return shapely.union_all([
+        shapely.Polygon(_densified(np.asarray(p.exterior.coords)[:-1], side),
+                        [_densified(np.asarray(r.coords)[:-1], side) for r in p.interiors])
+        for p in shapely.get_parts(region)])
+
+
+def _snapped(rings: list[np.ndarray], region, reach: float) -> list[np.ndarray]:
+    """Move every point where a cell edge meets the outline onto the nearer of the outline
+    vertices beside it when that is nearer than ``reach``: no sliver edge, no sliver pentagon
+    after a few snub steps."""
+    sizes = [len(r) for r in rings]
+    points = np.concatenate(rings)
+    outline = shapely.get_coordinates(shapely.get_rings(region))
+    distance, nearest = cKDTree(outline).query(points)
+    if reach == 0:
+        return rings
+    target = outline[nearest]
+    start = np.repeat(np.cumsum(sizes) - sizes, sizes)
+    k = np.arange(len(points)) - start
+    before_index = start + (k - 1) % np.repeat(sizes, sizes)
+    after_index = start + (k + 1) % np.repeat(sizes, sizes)
+    before, after = points[before_index], points[after_index]
+    beside = (before == target).all(axis=1) | (after == target).all(axis=1)
+    _, same = np.unique(points, axis=0, return_inverse=True)  # one decision per point
+    same = same.reshape(-1)
+    beside = np.bincount(same, weights=beside)[same] > 0
+    on_outline = shapely.distance(region.boundary, shapely.points(points)) < 1e-9 * reach
+    snap = on_outline & beside & (distance < reach) & (distance > 0)
+    ring = np.repeat(np.arange(len(sizes)), sizes)
+    for _ in range(8):  # moves that bend a cell inward or pinch cells are taken back
+        moved = np.where(snap[:, None], target, points)
+        b, a = moved - moved[before_index], moved[after_index] - moved
+        reflex = (b[:, 0] * a[:, 1] - b[:, 1] * a[:, 0]
+                  < -1e-6 * np.hypot(*b.T) * np.hypot(*a.T))  # turning back > 1e-6 rad
+        _, vertex = np.unique(moved, axis=0, return_inverse=True)
+        vertex = vertex.reshape(-1)
+        runs = np.bincount(ring, weights=vertex != vertex[before_index], minlength=len(sizes))
+        distinct = np.bincount(np.unique(ring * len(moved) + vertex) // len(moved),
+                               minlength=len(sizes))
+        pinched = np.flatnonzero(distinct < runs)  # a ring through one point twice
+        undo = np.isin(ring, np.concatenate([ring[reflex], pinched])) & snap
+        undo |= np.isin(vertex, _bow_ties(vertex, vertex[after_index])) & snap
+        if not undo.any():
+            return np.split(moved, np.cumsum(sizes)[:-1])
+        snap &= ~np.isin(same, same[undo])
+    return np.split(points, np.cumsum(sizes)[:-1])
+
+
+def _bow_ties(tail: np.ndarray, head: np.ndarray) -> np.ndarray:
+    """Vertices that two boundary half-edges leave (cells meeting at a point only)."""
+    keep = tail != head
+    tail, head = tail[keep], head[keep]
+    n = max(tail.max(), head.max()) + 1
+    boundary = ~np.isin(tail * n + head, head * n + tail)
+    return np.flatnonzero(np.bincount(tail[boundary], minlength=n) > 1)
+
+
+def quality(mesh: Mesh, cell: float) -> dict[str, float]:
+    """Corner angles (degrees) and face sizes (square root of area, in units of ``cell``)."""
+    angles = np.degrees(corner_angles(mesh))
+    sizes = np.sqrt(signed_areas(mesh)) / cell
+    return {"faces": mesh.n_faces, "min_angle": float(angles.min()),
+            "max_angle": float(angles.max()), "min_size": float(sizes.min()),
+            "median_size": float(np.median(sizes)), "max_size": float(sizes.max())}
+
+
+def _lattice(kind: str, region, spacing: float) -> np.ndarray:
+    """(N, 2) lattice points (square or triangular) inside ``region``."""
+    x0, y0, x1, y1 = region.bounds
+    if kind == "quad":
+        a, b = np.array([spacing, 0.0]), np.array([0.0, spacing])
+    else:
+        a, b = np.array([spacing, 0.0]), spacing * np.array([0.5, math.sqrt(3) / 2])
+    n = int(math.ceil(2 * max(x1 - x0, y1 - y0) / spacing)) + 2
+    i, j = np.meshgrid(np.arange(-n, n + 1), np.arange(-n, n + 1))
+    # the lower left corner of the bounding box is a cell corner (a box fits whole cells)
+    points = i.reshape(-1, 1) * a + j.reshape(-1, 1) * b + (a + b) / 2 + (x0, y0)
+    return points[shapely.contains_xy(region, *points.T)]
+
+
+def _relaxed_cells(region, kind: str, cell: float) -> tuple[np.ndarray, np.ndarray]:
+    """(N, 2) relaxed seeds and their Voronoi cells clipped to ``region`` (a shapely array)."""
+    if kind == "voronoi":
+        rng = np.random.default_rng(0)
+        x0, y0, x1, y1 = region.bounds
+        n = max(3, round((x1 - x0) * (y1 - y0) / cell ** 2))
+        seeds = rng.uniform((x0, y0), (x1, y1), size=(n, 2))
+        seeds = seeds[shapely.contains_xy(region, *seeds.T)]
+        rounds = 40
+    else:
+        seeds = _lattice(kind, region, SPACING[kind] * cell)
+        rounds = 15
+    if len(seeds) < 2:
+        return seeds, np.array([region])
+    for _ in range(rounds):
+        cells = shapely.intersection(_voronoi_cells(seeds), region)
+        keep = ~shapely.is_empty(cells)
+        seeds = shapely.get_coordinates(shapely.centroid(cells[keep]))
+    return seeds, shapely.intersection(_voronoi_cells(seeds), region)
+
+
+def _voronoi_cells(seeds: np.ndarray) -> np.ndarray:
+    """(N,) convex Voronoi cell of every seed (bounded by a far ring of extra points).
+
+    A cell is the convex hull of the circumcentres of the Delaunay triangles around its seed,
+    which stays valid where GEOS's Voronoi diagram fails on co-circular seeds (a lattice).
+    """
+    centre = seeds.mean(axis=0)
+    reach = 10 * (np.ptp(seeds, axis=0).max() + 1.0)
+    angles = np.linspace(0, 2 * np.pi, 32, endpoint=False)
+    points = np.vstack([seeds, centre + reach * np.column_stack([np.cos(angles), np.sin(angles)])])
+    triangles = Delaunay(points).simplices
+    a, b, c = (points[triangles[:, k]] for k in range(3))
+    d = 2 * ((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))
+    bb, cc = ((b - a) ** 2).sum(axis=1), ((c - a) ** 2).sum(axis=1)
+    offsets = np.column_stack([(c[:, 1] - a[:, 1]) * bb - (b[:, 1] - a[:, 1]) * cc,
+                               (b[:, 0] - a[:, 0]) * cc - (c[:, 0] - a[:, 0]) * bb])
+    centres = a + offsets / d[:, None]
+    owner = triangles.reshape(-1)
+    order = np.argsort(owner, kind="stable")
+    corners = np.repeat(np.arange(len(triangles)), 3)[order]
+    hulls = shapely.multipoints(centres[corners], indices=owner[order])
+    return shapely.convex_hull(hulls)[: len(seeds)]
+
+
+def _convex_pieces(polygon, tolerance: float) -> list:
+    """``polygon`` cut at its reflex corners until every piece is convex.
+
+    A reflex bend under 15 degrees less than ``tolerance`` deep (a gentle S-bend) is dropped
+    instead, which moves the boundary by less than the tolerance. At a real reflex corner r the
+    cut runs to another corner of the cell or along one of 9 rays spread over the corner's
+    angle: of the cuts that leave both pieces convex at r, the one whose smaller piece is
+    largest.
+    """
+    if polygon.is_empty or polygon.area == 0:
+        return []
+    if polygon.interiors:  # a hole inside one cell: cut through the hole first
+        x, y = np.asarray(polygon.interiors[0].coords)[0]
+        x0, y0, x1, y1 = polygon.bounds
+        halves = shapely.get_parts(split(polygon, shapely.LineString([(x, y0), (x, y1)])))
+        return [q for p in halves for q in _convex_pieces(p, tolerance)]
+    ring = np.asarray(shapely.orient_polygons(polygon).exterior.coords)[:-1]
+    before, after = ring - np.roll(ring, 1, axis=0), np.roll(ring, -1, axis=0) - ring
+    turn = before[:, 0] * after[:, 1] - before[:, 1] * after[:, 0]
+    lengths = np.hypot(*before.T) * np.hypot(*after.T)
+    reflex = np.flatnonzero(turn < -1e-6 * lengths)  # turning back by more than 1e-6 rad
+    if len(reflex) == 0:
+        return [polygon]
+    depth = -turn[reflex] / np.hypot(*(before + after)[reflex].T)
+    depth[-turn[reflex] > GENTLE * lengths[reflex]] = np.inf  # a corner, not a bend
+    if depth.min() <= tolerance:
+        return _convex_pieces(shapely.Polygon(np.delete(ring, reflex[np.argmin(depth)], axis=0)),
+                              tolerance)
+    k = reflex[0]
+    # cut to another corner, or along one of 9 rays spread over the reflex angle
+    a0 = math.atan2(after[k, 1], after[k, 0])
+    a1 = math.atan2(-before[k, 1], -before[k, 0])
+    fan = a0 + np.linspace(0.1, 0.9, 9) * np.mod(a1 - a0, 2 * np.pi)
+    rays = ring[k] + 4 * polygon.length * np.column_stack([np.cos(fan), np.sin(fan)])
+    ends = np.vstack([np.delete(ring, [k - 1, k, (k + 1) % len(ring)], axis=0), rays])
+    d = ends - ring[k]
+    in_cone = ((after[k, 0] * d[:, 1] - after[k, 1] * d[:, 0] >= 0)
+               & (before[k, 0] * d[:, 1] - before[k, 1] * d[:, 0] >= 0))
+    best, best_area = None, 0.0
+    for end in ends[in_cone]:
+        parts = shapely.get_parts(split(polygon, shapely.LineString([ring[k], end])))
+        smaller = shapely.area(parts).min() if len(parts) > 1 else 0.0
+        if smaller > best_area:
+            best, best_area = parts, smaller
+    if best is None:
+        raise MeshError("could not cut a cell at a reflex corner of the outline; try "
+                        "another --cell")
+    return [q for p in best for q in _convex_pieces(p, tolerance)]
+
+
+def _merged_small(pieces: list, cell: float, tolerance: float) -> list:
+    """Pieces smaller than MIN_SIZE * cell (side of the square of equal area), smallest first,
+    merged into the neighbour with the longest shared edge whose union stays convex, or else
+    cut anew together with one or two neighbours if that leaves larger pieces."""
+    pieces = list(pieces)
+    while True:
+        areas = shapely.area(pieces)
+        for i in np.argsort(areas, kind="stable"):
+            if areas[i] >= (MIN_SIZE * cell) ** 2:
+                return pieces
+            neighbours = shapely.STRtree(pieces).query(pieces[i], predicate="intersects")
+            neighbours = neighbours[neighbours != i]
+            unions = shapely.union(pieces[i], np.take(pieces, neighbours))
+            shared = shapely.length(shapely.intersection(
+                pieces[i].boundary, shapely.boundary(np.take(pieces, neighbours))))
+            convex = ((shapely.area(shapely.convex_hull(unions)) - shapely.area(unions)
+                       <= 1e-9 * shapely.area(unions)) & (shapely.get_type_id(unions) == 3))
+            if (shared * convex).max(initial=0) > 0:
+                k = int(np.argmax(shared * convex))
+                pieces[neighbours[k]] = unions[k]
+                del pieces[i]
+                break
+            # else cut the piece anew with one neighbour, or with the two it shares most with
+            groups = [[j] for j in neighbours[shared > 0]]
+            groups.append(list(neighbours[np.argsort(-shared)[:2]]))
+            together = [shapely.union_all(np.take(pieces, [i, *g])) for g in groups]
+            recuts = [_convex_pieces(u, tolerance) if u.geom_type == "Polygon" else []
+                      for u in together]
+            gains = [shapely.area(r).min() if len(r) > 1 else 0.0 for r in recuts]
+            if max(gains, default=0.0) > 1.2 * areas[i]:
+                k = int(np.argmax(gains))
+                pieces = [p for n, p in enumerate(pieces) if n not in (i, *groups[k])]
+                pieces += recuts[k]
+                break
+        else:
+            return pieces
+
+
+def _triangles(region, cell: float) -> Mesh:
+    """A conforming, smoothed Delaunay triangulation of ``region`` with sides near SPACING."""
+    side = SPACING["tri"] * cell
+    rings = [np.asarray(r.coords)[:-1] for p in shapely.get_parts(region)
+             for r in (p.exterior, *p.interiors)]
+    rings = [_densified(r, side) for r in rings]
+    inner, _ = _relaxed_cells(region, "hex", cell * SPACING["tri"] / SPACING["hex"])
+    inner = inner[shapely.distance(region.boundary, shapely.points(inner)) > 0.35 * side]
+    for smoothing in (True, False):
+        rings, triangles = _conforming(region, rings, inner)
+        if not smoothing:
+            break
+        inner = _smoothed(np.concatenate([*rings, inner]), triangles, len(inner))
+    points = np.concatenate([*rings, inner])
+    used, faces = np.unique(triangles, return_inverse=True)
+    return Mesh(points[used], np.arange(0, 3 * len(triangles) + 1, 3), faces.reshape(-1))
+
+
+def _densified(ring: np.ndarray, side: float) -> np.ndarray:
+    """``ring`` with every edge longer than ``side`` cut into equal parts no longer than it."""
+    edges = np.roll(ring, -1, axis=0) - ring
+    parts = np.maximum(1, np.ceil(np.hypot(*edges.T) / side)).astype(int)
+    start = np.repeat(ring, parts, axis=0)
+    step = np.repeat(edges / parts[:, None], parts, axis=0)
+    k = np.arange(parts.sum()) - np.repeat(np.cumsum(parts) - parts, parts)
+    return start + k[:, None] * step
+
+
+def _conforming(region, rings, inner):
+    """Delaunay triangles inside ``region``, splitting boundary segments until all are edges."""
+    for _ in range(30):
+        points = np.concatenate([*rings, inner])
+        simplices = Delaunay(points).simplices
+        centres = points[simplices].mean(axis=1)
+        triangles = simplices[shapely.contains_xy(region, *centres.T)]
+        edges = np.sort(np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]],
+                                        triangles[:, [2, 0]]]), axis=1)
+        keys = set((edges[:, 0] * len(points) + edges[:, 1]).tolist())
+        start, missing = 0, []
+        for r in rings:
+            a = start + np.arange(len(r))
+            b = start + (np.arange(len(r)) + 1) % len(r)
+            seg = np.sort(np.column_stack([a, b]), axis=1)
+            missing.append(~np.isin(seg[:, 0] * len(points) + seg[:, 1], list(keys)))
+            start += len(r)
+        if not any(m.any() for m in missing):
+            p = points[triangles]
+            area = ((p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1])
+                    - (p[:, 1, 1] - p[:, 0, 1]) * (p[:, 2, 0] - p[:, 0, 0]))
+            triangles[area < 0] = triangles[area < 0][:, [0, 2, 1]]
+            return rings, triangles
+        rings = [_with_midpoints(r, m) for r, m in zip(rings, missing)]
+    raise MeshError("could not triangulate the outline so that it follows every boundary "
+                    "segment; try a smaller --cell")
+
+
+def _with_midpoints(ring: np.ndarray, split: np.ndarray) -> np.ndarray:
+    middles = (ring + np.roll(ring, -1, axis=0)) / 2
+    both = np.stack([ring, middles], axis=1).reshape(-1, 2)
+    keep = np.stack([np.ones(len(ring), bool), split], axis=1).reshape(-1)
+    return both[keep]
+
+
+def _smoothed(points: np.ndarray, triangles: np.ndarray, n_inner: int, rounds: int = 5):
+    """The last ``n_inner`` points, each moved (5 times) to the mean of its neighbours."""
+    edges = np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]], triangles[:, [2, 0]]])
+    edges = np.unique(np.sort(edges, axis=1), axis=0)
+    edges = np.concatenate([edges, edges[:, ::-1]])
+    n = len(points)
+    count = np.bincount(edges[:, 0], minlength=n)
+    moving = np.arange(n - n_inner, n)
+    points = points.copy()
+    for _ in range(rounds):
+        mean = np.column_stack([np.bincount(edges[:, 0], weights=points[edges[:, 1], k],
+                                            minlength=n) for k in (0, 1)])
+        points[moving] = mean[moving] / np.maximum(count[moving], 1)[:, None]
+    return points[moving]

@@ -1,0 +1,145 @@
+"""A headless Chromium driven through the Chrome DevTools protocol (websocket-client): open a
+local page at a given width, screenshot it, and report what a reader would meet — images that
+did not load, console errors, links, a page wider than the screen.
+
+Uses the system's ``chromium`` (Debian's package; ``.ci/run`` installs it); nothing is
+downloaded.
+"""
+
+from __future__ import annotations
+
+import base64
+import itertools
+import json
+import re
+import subprocess
+import tempfile
+import threading
+import time
+import urllib.request
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import websocket
+
+FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+         "--disable-background-networking", "--disable-component-update", "--disable-sync",
+         "--hide-scrollbars", "--remote-debugging-port=0"]
+
+REPORT = """JSON.stringify({
+  images: [...document.images].map(i => ({alt: i.alt, loaded: i.complete && i.naturalWidth > 0,
+                                          src: i.src.slice(0, 80)})),
+  links: [...document.links].map(a => a.href),
+  scrollWidth: document.documentElement.scrollWidth, innerWidth: window.innerWidth,
+  height: document.documentElement.scrollHeight})"""
+
+
+@dataclass
+class Visit:
+    """What one page showed at one width."""
+
+    images: list[dict]
+    links: list[str]
+    scroll_width: int
+    inner_width: int
+    screenshot: bytes
+    errors: list[str] = field(default_factory=list)
+
+
+class Chromium:
+    """One headless browser with one tab; use as a context manager."""
+
+    def __init__(self, program: str, timeout: float = 60.0) -> None:
+        self.profile = tempfile.TemporaryDirectory(prefix="weavecut-chromium-",
+                                                   ignore_cleanup_errors=True)
+        self.proc = subprocess.Popen([program, *FLAGS, f"--user-data-dir={self.profile.name}",
+                                      "about:blank"], stdout=subprocess.DEVNULL,
+                                     stderr=subprocess.PIPE, text=True)
+        self.timeout = timeout
+        port = self._port()
+        with urllib.request.urlopen(f"http://127.0.0.1:{port}/json/list", timeout=10) as r:
+            tab = next(t for t in json.load(r) if t["type"] == "page")
+        self.ws = websocket.create_connection(tab["webSocketDebuggerUrl"], timeout=timeout,
+                                              suppress_origin=True)
+        self.ids = itertools.count(1)
+        self.events: list[dict] = []
+        for domain in ("Page", "Runtime", "Log"):
+            self.call(f"{domain}.enable")
+
+    def _port(self) -> int:
+        """The DevTools port chromium reports on stderr (the rest of stderr is drained, so a
+        chatty browser never blocks on a full pipe)."""
+        for line in self.proc.stderr:
+            found = re.search(r"DevTools listening on ws://[^:]+:(\d+)/", line)
+            if found:
+                threading.Thread(target=self.proc.stderr.read, daemon=True).start()
+                return int(found.group(1))
+        raise RuntimeError("chromium ended before it listened for DevTools")
+
+    def call(self, method: str, **params) -> dict:
+        """Send a command and wait for its answer (events that arrive meanwhile are kept)."""
+        n = next(self.ids)
+        self.ws.send(json.dumps({"id": n, "method": method, "params": params}))
+        while True:
+            msg = json.loads(self.ws.recv())
+            if msg.get("id") == n:
+                if "error" in msg:
+                    raise RuntimeError(f"{method}: {msg['error']}")
+                return msg["result"]
+            self.events.append(msg)
+
+    def wait_for(self, event: str) -> None:
+        end = time.monotonic() + self.timeout
+        while not any(e.get("method") == event for e in self.events):
+            if time.monotonic() > end:
+                raise TimeoutError(f"no {event} within {self.timeout} s")
+            self.events.append(json.loads(self.ws.recv()))
+
+    def visit(self, page: Path, width: int, height: int = 900) -> Visit:
+        """Open ``page`` ``width`` CSS pixels wide; a full-height screenshot and a report."""
+        self.call("Emulation.setDeviceMetricsOverride", width=width, height=height,
+                  deviceScaleFactor=1, mobile=width < 600)
+        self.events.clear()
+        self.call("Page.navigate", url=page.resolve().as_uri())
+        self.wait_for("Page.loadEventFired")
+        report = json.loads(self.call("Runtime.evaluate", expression=REPORT,
+                                      returnByValue=True)["result"]["value"])
+        self.call("Emulation.setDeviceMetricsOverride", width=width, height=report["height"],
+                  deviceScaleFactor=1, mobile=width < 600)
+        shot = base64.b64decode(self.call("Page.captureScreenshot", format="png")["data"])
+        return Visit(report["images"], report["links"], report["scrollWidth"],
+                     report["innerWidth"], shot, self.errors())
+
+    def errors(self) -> list[str]:
+        """Console errors, uncaught exceptions and failed loads since the last navigation."""
+        out = []
+        for e in self.events:
+            p = e.get("params", {})
+            if e.get("method") == "Runtime.consoleAPICalled" and p["type"] == "error":
+                out.append(" ".join(str(a.get("value")) for a in p["args"]))
+            elif e.get("method") == "Runtime.exceptionThrown":
+                out.append(p["exceptionDetails"]["text"])
+            elif e.get("method") == "Log.entryAdded" and p["entry"]["level"] == "error":
+                out.append(p["entry"]["text"])
+        return out
+
+    def print_pdf(self) -> bytes:
+        """The open page printed to PDF on A4 (its print style sheet)."""
+        data = self.call("Page.printToPDF", paperWidth=8.27, paperHeight=11.69)["data"]
+        return base64.b64decode(data)
+
+    def __enter__(self) -> Chromium:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        try:
+            self.ws.close()
+        finally:
+            self.proc.terminate()
+            try:
+                self.proc.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+            self.proc.stderr.close()
+            self.profile.cleanup()

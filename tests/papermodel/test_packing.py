@@ -1,0 +1,60 @@
+"""The raster polygon packer: pieces never overlap, stay inside, turn by 15 degree steps and are
+never mirrored; congruent pieces nest."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from weavecut.papermodel.packing import nest_offset, pack
+
+
+def wavy(length: float, width: float = 6.0, amplitude: float = 4.0) -> shapely.Polygon:
+    """A zig-zag band along x, like a strip of octagons."""
+    x = np.linspace(0.0, length, 9)
+    y = amplitude * (np.arange(9) % 2)
+    line = shapely.LineString(np.column_stack([x, y]))
+    return shapely.buffer(line, width / 2, cap_style="flat", join_style="mitre")
+
+
+pieces = st.lists(st.tuples(st.floats(10, 120), st.floats(3, 12), st.floats(0, 8)),
+                  min_size=1, max_size=12)
+
+
+@settings(max_examples=15, deadline=None)
+@given(pieces)
+def test_packed_pieces_are_apart_inside_and_turned_not_mirrored(spec):
+    shapes = [wavy(a, b, c) for a, b, c in spec]
+    width, height, gap = 150.0, 130.0, 2.0
+    places = pack(shapes, width, height, gap)
+    moved = []
+    for s, p in zip(shapes, places):
+        m = p.matrix()
+        assert np.linalg.det(m[:2, :2]) > 0.999  # a turn, never a mirror
+        assert math.isclose(p.angle % 15.0, 0.0, abs_tol=1e-9)
+        g = shapely.transform(s, lambda xy: xy @ m[:2, :2].T + m[:2, 2])
+        assert shapely.box(-1e-6, -1e-6, width + 1e-6, height + 1e-6).contains(g)
+        assert abs(g.area - s.area) < 1e-6 * s.area
+        moved.append((p.page, g))
+    for i, (pi, gi) in enumerate(moved):
+        for pj, gj in moved[i + 1:]:
+            if pi == pj:
+                assert gi.distance(gj) >= gap - 1e-9
+
+
+def test_congruent_strips_nest_and_share_a_page_densely():
+    strip = wavy(100.0)
+    dx, dy = nest_offset(strip, 2.0)
+    assert strip.distance(shapely.transform(strip, lambda xy: xy + (dx, dy))) >= 2.0 - 1e-9
+    # nested copies are closer than stacked bounding boxes would be
+    assert dy < strip.bounds[3] - strip.bounds[1]
+    places = pack([strip] * 8, 190.0, 240.0, 2.0, kinds=[0] * 8)
+    assert {p.page for p in places} == {0}
+    hull = shapely.convex_hull(shapely.union_all([
+        shapely.transform(strip, lambda xy, m=p.matrix(): xy @ m[:2, :2].T + m[:2, 2])
+        for p in places]))
+    assert 8 * strip.area / hull.area > 0.6

@@ -1,0 +1,248 @@
+"""The kit page (weavecut.kitpage): strict HTML5 (html5lib), alt text and heading order,
+contrast, links to files that exist, PDF thumbnails per page (pdftoppm or weave-cut's own PNG
+writer), what each file is for, the same bytes twice; written by build, refused where it would
+replace a file weave-cut did not write, and by --html."""
+
+from __future__ import annotations
+
+import io
+import json
+import re
+from pathlib import Path
+from urllib.parse import unquote
+
+import html5lib
+import numpy as np
+import pytest
+import shapely
+from click.testing import CliRunner
+from PIL import Image
+
+from weavecut import export, kitpage
+from weavecut.cli import cli
+from weavecut.cli.build_command import MANIFEST, PAGE
+from weavecut.fileio import recording, write_atomic
+from weavecut.kitpage import document as kp
+from weavecut.kitpage import previews
+from weavecut.layout.contrast import MIN_CONTRAST, contrast_ratio
+from weavecut.layout.drawing import (Drawing, Layer, Sheet, Style, polygons_from_rings,
+                                     polylines_from_lines)
+
+from .test_readback import program
+
+SQUARE = [(10, 10), (60, 10), (60, 60), (10, 60)]
+
+
+def drawing(sheets: int = 1, hairline: bool = False, role: str = "paint") -> Drawing:
+    style = Style("#ff0000", 0.0) if hairline else Style("#000000", 0.5, "#1b4f72")
+    layer = Layer("shapes", role, (polygons_from_rings([SQUARE], style),))
+    return Drawing(tuple(Sheet(210.0, 297.0, (layer,), f"page {n}") for n in range(sheets)),
+                   "test")
+
+
+def run_of(folder: Path) -> kitpage.Run:
+    """One run writing every kind of output into ``folder``."""
+    with recording() as record:
+        export.write(drawing(), folder / "picture.svg")
+        export.write(drawing(hairline=True, role="cut"), folder / "cut.svg")
+        export.write(drawing(hairline=True, role="cut"), folder / "cut.dxf")
+        export.write(drawing(3), folder / "pages.pdf")
+        export.write(drawing(), folder / "raster.png")
+        write_atomic(folder / "summary.json", b'{"laser": "lightburn", "speed_mm_s": 20}\n')
+    return kitpage.Run.of(record, "weave-cut test --o <x&y>")
+
+
+def parse(text: str):
+    """The page as an element tree; html5lib in strict mode raises on any parse error."""
+    return html5lib.HTMLParser(strict=True, namespaceHTMLElements=False).parse(text)
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("kit")
+    runs = [run_of(folder)]
+    kitpage.write(folder / "index.html", "test & <kit>", runs)
+    return folder, runs, (folder / "index.html").read_text(encoding="utf-8")
+
+
+def test_page_is_strict_html5_with_escaped_text(built):
+    _, _, text = built
+    assert text.startswith("<!DOCTYPE html>\n")
+    tree = parse(text)
+    assert tree.find("head/title").text == "test & <kit>"
+    assert "weave-cut test --o <x&y>" in "".join(tree.find(".//code").itertext())
+
+
+def test_the_parser_is_strict():
+    """Plant the bug: a page without a doctype or with a stray end tag is refused."""
+    with pytest.raises(html5lib.html5parser.ParseError):
+        parse("<html><head><title>x</title></head><body></body></html>")
+    with pytest.raises(html5lib.html5parser.ParseError):
+        parse("<!DOCTYPE html><html><head><title>x</title></head><body></p></body></html>")
+
+
+def test_every_image_has_alt_text_and_headings_are_in_order(built):
+    tree = parse(built[2])
+    images = tree.findall(".//img")
+    assert len(images) == 1 + 1 + 3 + 1  # picture.svg, cut (svg+dxf: one card), 3 pages, png
+    assert all(img.get("alt", "").strip() for img in images)
+    levels = [int(el.tag[1]) for el in tree.iter() if re.fullmatch(r"h[1-6]", str(el.tag))]
+    assert levels[0] == 1 and levels.count(1) == 1
+    assert all(b <= a + 1 for a, b in zip(levels, levels[1:])), levels
+
+
+def test_colours_have_contrast():
+    """Every text colour of the style sheet is one of PAIRS, and every pair reads (WCAG AA)."""
+    assert all(contrast_ratio(fg, bg) >= MIN_CONTRAST for fg, bg in kp.PAIRS)
+    used = set(re.findall(r"(?<![-\w])color:(#[0-9a-f]{6})", kp.STYLE))
+    assert used and used <= {fg for fg, _ in kp.PAIRS}
+    backgrounds = set(re.findall(r"background:(#[0-9a-f]{6})", kp.STYLE))
+    assert backgrounds <= {bg for _, bg in kp.PAIRS}
+
+
+def test_links_and_pictures_point_to_the_files(built):
+    folder, runs, text = built
+    tree = parse(text)
+    refs = [a.get("href") for a in tree.iter("a")] + [i.get("src") for i in tree.iter("img")]
+    local = {unquote(r) for r in refs if not r.startswith("data:")}
+    assert local == {p.name for p in runs[0].files}  # every output linked, nothing else
+    assert all((folder / r).is_file() for r in local)
+
+
+def test_a_pdf_shows_every_page_with_pdftoppm_or_without(built, monkeypatch):
+    folder, runs, _ = built
+    program("pdftoppm")
+    pdf = folder / "pages.pdf"
+    shown, by = previews.pdf_thumbnails(pdf, runs[0].files[pdf])
+    monkeypatch.setattr(previews.shutil, "which", lambda name: None)
+    drawn, by_us = previews.pdf_thumbnails(pdf, runs[0].files[pdf])
+    assert (by, by_us) == ("pdftoppm", "weave-cut")
+    for thumbs in (shown, drawn):
+        assert len(thumbs) == 3
+        for t in thumbs:
+            w, h = Image.open(io.BytesIO(t)).size
+            assert h == previews.THUMB_PX and abs(w / h - 210 / 297) < 0.01
+
+
+def test_what_each_file_is_for(built):
+    text = built[2]
+    assert "print at 100 % on A4" in text
+    assert "cut: LightBurn: cut red, score blue, engrave black at 20 mm/s (SVG or DXF)" in text
+    assert "3 pages of 210 × 297 mm" in text
+
+
+def test_hairlines_are_thickened_in_previews_only():
+    d = drawing(hairline=True, role="cut")
+    seen = previews.visible(d).sheets[0].layers[0].shapes[0].style.stroke_width
+    assert seen == pytest.approx(210 / previews.PREVIEW_PX)
+    assert d.sheets[0].layers[0].shapes[0].style.stroke_width == 0.0
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_cut_length_matches_shapely(seed):
+    rng = np.random.default_rng(seed)
+    rings = [rng.uniform(0, 100, (rng.integers(3, 8), 2)) for _ in range(rng.integers(1, 6))]
+    lines = [rng.uniform(0, 100, (rng.integers(2, 8), 2)) for _ in range(rng.integers(1, 6))]
+    expected = (sum(shapely.LinearRing(r).length for r in rings)
+                + sum(shapely.LineString(line).length for line in lines))
+    got = kp._length(polygons_from_rings(rings)) + kp._length(polylines_from_lines(lines))
+    assert got == pytest.approx(expected)
+
+
+def test_same_runs_same_bytes(built):
+    folder, runs, text = built
+    assert kp.page("test & <kit>", runs, folder) == text
+
+
+def cli_run(*args):
+    return CliRunner().invoke(cli, [str(a) for a in args])
+
+
+RECIPE = """[recipe]
+name = "little"
+[[job]]
+command = "weave"
+input = "square-grid"
+levels = 1
+output = "weave.svg"
+[[job]]
+command = "stats"
+input = "square-grid"
+levels = 1
+json = true
+output = "stats.json"
+"""
+
+
+def test_build_writes_its_page_into_the_manifest(tmp_path):
+    (tmp_path / "r.toml").write_text(RECIPE)
+    out = tmp_path / "out"
+    assert cli_run("build", tmp_path / "r.toml", "-o", out).exit_code == 0
+    text = (out / PAGE).read_text(encoding="utf-8")
+    tree = parse(text)
+    assert tree.find("body//h1").text == "little"
+    assert [h.text for h in tree.iter("h2")] == ["weave square-grid", "stats square-grid"]
+    hrefs = {a.get("href") for a in tree.iter("a")}
+    assert {"weave.svg", "stats.json"} <= hrefs
+    assert PAGE in json.loads((out / MANIFEST).read_text())["files"]
+    first = (out / PAGE).read_bytes()
+    assert cli_run("build", tmp_path / "r.toml", "-o", out).exit_code == 0  # ours: replaced
+    assert (out / PAGE).read_bytes() == first
+
+
+def test_build_does_not_replace_a_page_it_did_not_write(tmp_path):
+    (tmp_path / "r.toml").write_text(RECIPE)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / PAGE).write_text("mine")
+    result = cli_run("build", tmp_path / "r.toml", "-o", out)
+    assert result.exit_code == 1 and "did not write it" in result.output
+    assert (out / PAGE).read_text() == "mine" and not (out / "weave.svg").exists()
+    assert cli_run("build", tmp_path / "r.toml", "-o", out, "--force").exit_code == 0
+
+
+@pytest.mark.parametrize("job, message", [
+    ('output = "index.html"', "page of the build"),
+    ('output = "w.svg"\nhtml = "/tmp/elsewhere.html"', "unknown key 'html'"),
+])
+def test_a_recipe_cannot_write_pages(tmp_path, job, message):
+    (tmp_path / "r.toml").write_text(
+        f'[[job]]\ncommand = "weave"\ninput = "square-grid"\nlevels = 1\n{job}\n')
+    result = cli_run("build", tmp_path / "r.toml", "-o", tmp_path / "out")
+    assert result.exit_code == 1 and message in result.output, result.output
+
+
+def test_html_option_writes_the_page_of_one_command(tmp_path):
+    out = tmp_path / "w.svg"
+    assert cli_run("weave", "square-grid", "--levels", "1", "-o", out).exit_code == 0
+    assert not list(tmp_path.glob("*.html"))
+    result = cli_run("weave", "square-grid", "--levels", "1", "-o", out, "--html",
+                     tmp_path / "w.html")
+    assert result.exit_code == 0, result.output
+    tree = parse((tmp_path / "w.html").read_text(encoding="utf-8"))
+    assert [a.get("href") for a in tree.iter("a")] == ["w.svg", "w.svg"]
+    result = cli_run("weave", "square-grid", "--levels", "1", "-o", out, "--html", out)
+    assert result.exit_code == 2 and "replace an output" in result.output
+
+
+def test_the_index_links_every_page(built, tmp_path):
+    folder = built[0]
+    kitpage.write_index(tmp_path / "index.html", "builds", [folder / "index.html"])
+    tree = parse((tmp_path / "index.html").read_text(encoding="utf-8"))
+    (href,) = [a.get("href") for a in tree.iter("a")]
+    assert (tmp_path / unquote(href)).resolve() == (folder / "index.html").resolve()
+
+
+@pytest.mark.parametrize("args", [
+    ["puzzle", "--levels", "2", "--size", "20cm", "-o", "{out}"],
+    ["strands", "square-grid", "-o", "{out}/strands.pdf"],
+])
+def test_every_file_a_command_wrote_is_on_its_page(tmp_path, args):
+    out = tmp_path / "kit"
+    out.mkdir()
+    result = cli_run(*[a.format(out=out) for a in args], "--html", out / "page.html")
+    assert result.exit_code == 0, result.output
+    tree = parse((out / "page.html").read_text(encoding="utf-8"))
+    linked = {unquote(a.get("href")) for a in tree.iter("a")}
+    assert linked == {p.name for p in out.iterdir()} - {"page.html"}
+    assert all(img.get("alt") for img in tree.iter("img"))

@@ -1,0 +1,85 @@
+"""The kit page in a real browser: headless Chromium (Debian's package, driven over the
+DevTools protocol by tests/browser.py) opens the page of a small build with every kind of
+output at 1280 and 390 px: every image loads, nothing is logged as an error, every link
+reaches a file, nothing is wider than a phone, and the page prints."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from urllib.parse import unquote, urlparse
+
+import pytest
+from click.testing import CliRunner
+
+from weavecut.cli import cli
+
+from .test_readback import program
+
+RECIPE = """[recipe]
+name = "every kind"
+[[job]]
+command = "puzzle"
+levels = 2
+size = "20cm"
+numbers = true
+output = "puzzle"
+[[job]]
+command = "strands"
+input = "square-grid"
+output = "strands.pdf"
+[[job]]
+command = "weave"
+input = "pentagon"
+levels = 2
+output = "weave.png"
+[[job]]
+command = "subdivide"
+input = "pentagon"
+levels = 2
+output = "pentagon.dxf"
+"""
+
+
+@pytest.fixture(scope="module")
+def browser():
+    pytest.importorskip("websocket", reason="websocket-client is a test dependency")
+    from .browser import Chromium
+
+    with Chromium(program("chromium")) as chromium:
+        yield chromium
+
+
+@pytest.fixture(scope="module")
+def page(tmp_path_factory) -> Path:
+    root = tmp_path_factory.mktemp("kit")
+    (root / "r.toml").write_text(RECIPE)
+    result = CliRunner().invoke(cli, ["build", str(root / "r.toml"), "-o", str(root / "out")])
+    assert result.exit_code == 0, result.output
+    return root / "out" / "index.html"
+
+
+@pytest.mark.parametrize("width", [1280, 390])
+def test_the_page_in_chromium(browser, page, width):
+    visit = browser.visit(page, width)
+    (page.parent / f"screenshot-{width}.png").write_bytes(visit.screenshot)
+    assert visit.errors == []
+    assert len(visit.images) >= 10  # guides, cut sheets, PDF pages, the PNG, the DXF preview
+    assert [i for i in visit.images if not i["loaded"]] == []
+    files = [Path(unquote(urlparse(href).path)) for href in visit.links]
+    assert files and all(f.is_file() and f.is_relative_to(page.parent) for f in files)
+    assert visit.scroll_width <= visit.inner_width == width  # no sideways scrolling
+
+
+def test_a_broken_picture_is_seen(browser, page, tmp_path):
+    """Plant the bug: a picture whose file is missing fails the checks above."""
+    broken = tmp_path / "broken.html"
+    broken.write_text(page.read_text(encoding="utf-8").replace('src="weave.png"', 'src="gone.png"'))
+    visit = browser.visit(broken, 1280)
+    assert [i for i in visit.images if not i["loaded"]]
+    assert any("ERR_FILE_NOT_FOUND" in e for e in visit.errors)
+
+
+def test_the_page_prints(browser, page):
+    browser.visit(page, 1280)
+    pdf = browser.print_pdf()
+    assert pdf.startswith(b"%PDF-") and pdf.count(b"/Type /Page\n") + pdf.count(b"/Type/Page")

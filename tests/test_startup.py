@@ -1,0 +1,41 @@
+"""A CLI that answers at once: ``--help`` of the group and of every command loads none of the
+heavy libraries, and a command loads its own module only. (How long that takes is measured
+by benchmarks/bench_startup.py, not here.)"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+HEAVY = ("shapely", "scipy", "ezdxf", "reportlab", "PIL", "svgwrite")
+COMMANDS = ("inputs", "subdivide", "stats", "weave", "puzzle", "strands", "fractal", "levels",
+            "convexity", "figure", "findings", "build")
+
+
+def loaded_after(*args: str) -> set[str]:
+    """The modules a fresh interpreter holds after ``weave-cut ARGS``."""
+    code = ("import sys, json, contextlib, io\n"
+            "from weavecut.cli import main\n"
+            "with contextlib.redirect_stdout(io.StringIO()), contextlib.suppress(SystemExit):\n"
+            f"    main({list(args)!r})\n"
+            "print(json.dumps(sorted(sys.modules)))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout
+    return set(json.loads(out))
+
+
+@pytest.mark.parametrize("args", [["--help"], *([c, "--help"] for c in COMMANDS)],
+                         ids=lambda a: " ".join(a))
+def test_help_loads_no_heavy_library(args):
+    heavy = {m.split(".")[0] for m in loaded_after(*args)} & set(HEAVY)
+    assert not heavy
+
+
+def test_a_command_loads_its_own_module_only():
+    modules = loaded_after("weave", "--help")
+    assert "weavecut.cli.weave_command" in modules
+    assert not {"weavecut.cli.puzzle_command", "weavecut.cli.strands_command",
+                "weavecut.cli.analysis_commands"} & modules
