@@ -19,7 +19,7 @@ class Refused(Exception):
 
 
 def read(data: bytes) -> tuple[np.ndarray, list[list[int]], str]:
-    """(vertices (V, 2), 0-based faces, remark) or raise Refused(message)."""
+    """(vertices (V, 2) or (V, 3), 0-based faces, remark) or raise Refused(message)."""
     try:
         return _read(data)
     except MeshError as exc:  # the structure check, shared with the reader
@@ -90,10 +90,8 @@ def _plane(p: np.ndarray, lines: list[int]) -> tuple[np.ndarray, str]:
         v, axis, name = np.column_stack([x, 0.0 - z]), 1, "xz-plane as (x, -z), seen from +y"
     elif len(set(x.tolist())) == 1:
         v, axis, name = np.column_stack([y, z]), 0, "yz-plane as (y, z), seen from +x"
-    else:
-        i = next(i for i, c in enumerate(z.tolist()) if c != 0)
-        raise Refused(f"line {lines[i]}: vertex has z = {float(z[i])!r} while x and y vary too; "
-                      "weave-cut reads flat meshes, in a plane where x, y or z is constant")
+    else:  # a surface in space
+        return p, ""
     if axis == 2 and (not len(p) or z[0] == 0):
         return v, ""
     return v, f"all vertices have {'xyz'[axis]} = {float(p[0, axis])!r}; read in the {name}"

@@ -43,8 +43,6 @@ def test_random_meshes_round_trip(tmp_path_factory, mesh):
 
 
 @pytest.mark.parametrize("text, message", [
-    ("v 0 0 0\nv 1 0 0\nv 0 1 1\nf 1 2 3\n", "z = 1.0"),
-    ("v 0 0 0\nv 1 0 0\nv 0 1 -1\nf 1 2 3\n", "line 3: vertex has z = -1.0"),
     ("v 0 0\nv 1 0\nv 0 1\nf 1 2 4\n", "line 4: face index 4 refers to no vertex"),
     ("v 0 0\nv 1 x\n", "line 2: vertex coordinates must be numbers"),
     ("v 0 0\nv 1 0\nv 0 1\n", "no faces"),
@@ -209,12 +207,10 @@ def test_flat_meshes_in_every_axis_aligned_plane(tmp_path, plane, note):
     assert mesh.n_faces == 1 and signed_areas(mesh)[0] == 1.0
 
 
-def test_a_mesh_that_is_not_flat_is_refused(tmp_path):
+def test_a_mesh_that_is_not_flat_is_read_as_a_surface(tmp_path):
     path = tmp_path / "tilted.obj"
     path.write_text("v 0 0 0\nv 1 0 0\nv 0 1 1\nf 1 2 3\n")
-    with pytest.raises(MeshFileError, match=r"tilted.obj: line 3: vertex has z = 1.0 while x "
-                                            "and y vary too"):
-        read_mesh(path)
+    np.testing.assert_array_equal(read_mesh(path).vertices, [[0, 0, 0], [1, 0, 0], [0, 1, 1]])
 
 
 # -- messages count as the file does -----------------------------------------------------------

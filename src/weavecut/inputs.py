@@ -139,6 +139,75 @@ def hex_grid(param: str | None = None) -> Mesh:
     return mesh.moved(mesh.vertices - mesh.vertices.mean(axis=0))
 
 
+def _convex_solid(points) -> Mesh:
+    """The convex polyhedron with ``points`` as corners, scaled to unit circumradius: the
+    convex hull's coplanar triangles merged into faces, counter-clockwise seen from outside."""
+    from scipy.spatial import ConvexHull  # loaded when a solid is asked for
+    points = np.asarray(points, dtype=np.float64)
+    points /= np.linalg.norm(points, axis=1)[:, None]
+    hull = ConvexHull(points)
+    planes, face = np.unique(np.round(hull.equations, 9), axis=0, return_inverse=True)
+    face = face.reshape(-1)
+    corner_face = np.repeat(face, 3)
+    pairs = np.unique(np.column_stack([corner_face, hull.simplices.reshape(-1)]), axis=0)
+    f, v = pairs.T
+    normal = planes[f, :3]
+    centre = np.add.reduceat(points[v], np.flatnonzero(np.r_[True, f[1:] != f[:-1]]))
+    centre = centre[f] / np.bincount(f)[f][:, None]
+    ref = points[v][np.r_[0, np.flatnonzero(f[1:] != f[:-1]) + 1]][f] - centre
+    # angle around the outward normal from the face's first corner: counter-clockwise outside
+    angle = np.arctan2(np.einsum("ij,ij->i", np.cross(ref, points[v] - centre), normal),
+                       np.einsum("ij,ij->i", ref, points[v] - centre))
+    order = np.lexsort((angle, f))
+    sizes = np.bincount(f)
+    return Mesh(points, np.concatenate([[0], np.cumsum(sizes)]), v[order])
+
+
+PHI = (1 + math.sqrt(5)) / 2
+_CUBE = np.array([(x, y, z) for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)], dtype=float)
+_CYCLIC = [lambda a, b: (0, a, b), lambda a, b: (a, b, 0), lambda a, b: (b, 0, a)]
+_ICOSAHEDRON = np.array([c(a, b) for c in _CYCLIC for a in (-1, 1) for b in (-PHI, PHI)])
+
+
+def tetrahedron(param: str | None = None) -> Mesh:
+    return _convex_solid(_CUBE[[0, 3, 5, 6]])
+
+
+def cube(param: str | None = None) -> Mesh:
+    return _convex_solid(_CUBE)
+
+
+def octahedron(param: str | None = None) -> Mesh:
+    return _convex_solid(np.vstack([np.eye(3), -np.eye(3)]))
+
+
+def icosahedron(param: str | None = None) -> Mesh:
+    return _convex_solid(_ICOSAHEDRON)
+
+
+def dodecahedron(param: str | None = None) -> Mesh:
+    rest = [c(a, b) for c in _CYCLIC for a in (-1 / PHI, 1 / PHI) for b in (-PHI, PHI)]
+    return _convex_solid(np.vstack([_CUBE, rest]))
+
+
+def icosphere(param: str | None = None) -> Mesh:
+    """The icosahedron with every triangle split into four N times, vertices on the sphere."""
+    n = _count(param, 2, "icosphere", lo=0, hi=7)
+    mesh = icosahedron()
+    vertices, tris = mesh.vertices, mesh.face_indices.reshape(-1, 3).astype(np.int64)
+    for _ in range(n):
+        edges = np.sort(np.stack([tris, np.roll(tris, -1, axis=1)], axis=2), axis=2)
+        keys, mid = np.unique(edges.reshape(-1, 2), axis=0, return_inverse=True)
+        mid = mid.reshape(-1, 3) + len(vertices)  # mid[:, i]: middle of edge (t_i, t_i+1)
+        middles = vertices[keys].mean(axis=1)
+        vertices = np.vstack([vertices, middles / np.linalg.norm(middles, axis=1)[:, None]])
+        a, b, c = tris.T
+        ab, bc, ca = mid.T
+        tris = np.concatenate([np.column_stack(t) for t in
+                               ((a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca))])
+    return Mesh(vertices, np.arange(0, tris.size + 1, 3), tris.ravel())
+
+
 INPUTS: dict[str, Input] = {
     "pentagon": Input(pentagon, "regular pentagon, circumradius 1", ""),
     "ngon": Input(ngon, "regular N-gon, circumradius 1 (ngon:N)", "N"),
@@ -149,7 +218,21 @@ INPUTS: dict[str, Input] = {
                              "a regular pentagon with a pentagon on each edge (paper model)", ""),
     "triangle-grid": Input(triangle_grid, "W x H rhombi of equilateral triangles", "WxH"),
     "hex-grid": Input(hex_grid, "W x H regular hexagons in offset rows", "WxH"),
+    "tetrahedron": Input(tetrahedron, "regular tetrahedron, circumradius 1 (a closed surface)",
+                         ""),
+    "cube": Input(cube, "cube, circumradius 1 (a closed surface)", ""),
+    "octahedron": Input(octahedron, "regular octahedron, circumradius 1 (a closed surface)", ""),
+    "dodecahedron": Input(dodecahedron, "regular dodecahedron, circumradius 1 (a closed surface)",
+                          ""),
+    "icosahedron": Input(icosahedron, "regular icosahedron, circumradius 1 (a closed surface)",
+                         ""),
+    "icosphere": Input(icosphere, "icosahedron split N times (default 2) onto the unit sphere",
+                       "N"),
 }
+
+
+SURFACES = ("tetrahedron", "cube", "octahedron", "dodecahedron", "icosahedron", "icosphere")
+FLAT = tuple(name for name in INPUTS if name not in SURFACES)
 
 
 def get(spec: str) -> Mesh:

@@ -1,4 +1,8 @@
-"""The planar mesh: vertices plus ragged counter-clockwise faces, with topology derived once.
+"""The mesh: vertices plus ragged counter-clockwise faces, with topology derived once.
+
+A mesh is planar (vertices (V, 2)) or a surface in space (vertices (V, 3), faces
+counter-clockwise seen from outside). Topology code never looks at coordinates; geometry code
+takes the dimension from the array, so the planar scheme is the 3-D scheme on z = 0.
 
 Face ``f`` is ``face_indices[face_offsets[f]:face_offsets[f + 1]]``. Corner ``h`` of the mesh
 (an index into ``face_indices``) is also half-edge ``h``: it runs from ``face_indices[h]`` to
@@ -50,11 +54,11 @@ ZERO_BASED = Numbering()
 
 @dataclass(frozen=True, eq=False)
 class Mesh:
-    """Planar mesh with faces of any degree.
+    """Planar mesh or surface with faces of any degree.
 
     Parameters
     ----------
-    vertices : (V, 2) float64
+    vertices : (V, 2) or (V, 3) float64
     face_offsets : (F + 1,) int64, starting at 0 and ending at H
     face_indices : (H,) int32, vertex of every corner
     """
@@ -92,7 +96,9 @@ class Mesh:
             raise MeshError("face vertex indices must be integers in range") from None
         if len(flat) and np.abs(flat).max() >= 2**31:
             raise MeshError(f"vertex index {flat[np.abs(flat).argmax()]} is out of range")
-        vertices = np.asarray(vertices, dtype=np.float64).reshape(-1, 2)
+        vertices = np.asarray(vertices, dtype=np.float64)
+        if vertices.ndim != 2:  # an empty list
+            vertices = vertices.reshape(-1, 2)
         return cls(vertices, offsets, flat)
 
     @classmethod
@@ -114,6 +120,11 @@ class Mesh:
     @property
     def n_vertices(self) -> int:
         return len(self.vertices)
+
+    @property
+    def dim(self) -> int:
+        """2 for a planar mesh, 3 for a surface in space."""
+        return self.vertices.shape[1]
 
     @property
     def n_faces(self) -> int:
@@ -197,8 +208,8 @@ def check_structure(mesh: Mesh, numbering: Numbering = ZERO_BASED) -> None:
     """Raise MeshError for bad shapes, indices, short faces, repeated corners or coordinates."""
     n = numbering
     v, off, idx = mesh.vertices, mesh.face_offsets, mesh.face_indices
-    if v.ndim != 2 or v.shape[1] != 2:
-        raise MeshError(f"vertices must have shape (V, 2), got {v.shape}")
+    if v.ndim != 2 or v.shape[1] not in (2, 3):
+        raise MeshError(f"vertices must have shape (V, 2) or (V, 3), got {v.shape}")
     if len(v) >= 2**31:
         raise MeshError(f"{len(v)} vertices is more than weave-cut indexes ({2**31 - 1})")
     bad = np.flatnonzero(~np.isfinite(v).all(axis=1))
@@ -264,7 +275,7 @@ class Topology:
             faces = mesh.half_edge_face[he_edge == e].tolist()
             raise NonManifoldError(
                 f"{n.edge(*edges[e])} runs the same way in {n.face(faces[0])} and "
-                f"{n.face(faces[1])}"
+                f"{n.face(faces[1])} (the two faces are inconsistently oriented)"
             )
         topo = cls(edges, he_edge, side)
         _check_vertex_fans(mesh, topo, n)
@@ -325,9 +336,9 @@ def vertex_degrees(mesh: Mesh) -> NDArray[np.int64]:
 
 
 def face_centroids(mesh: Mesh) -> NDArray[np.float64]:
-    """(F, 2) vertex mean of every face (the paper's "barycentre")."""
+    """(F, D) vertex mean of every face (the paper's "barycentre")."""
     dense = mesh.dense_faces()
-    if dense is not None:  # sum columns of complex points: far faster than mean(axis=1)
+    if dense is not None and mesh.dim == 2:  # summing complex columns: far faster than mean
         points = np.take(mesh.vertices.view(np.complex128).ravel(), dense)
         total = points[:, 0].copy()
         for k in range(1, dense.shape[1]):
@@ -379,7 +390,8 @@ def corner_angles(mesh: Mesh) -> NDArray[np.float64]:
 def edge_lengths(mesh: Mesh) -> NDArray[np.float64]:
     """(E,) length of every edge."""
     e = mesh.topology.edges
-    return np.hypot(*(mesh.vertices[e[:, 1]] - mesh.vertices[e[:, 0]]).T)
+    d = mesh.vertices[e[:, 1]] - mesh.vertices[e[:, 0]]
+    return np.hypot(*d.T) if mesh.dim == 2 else np.linalg.norm(d, axis=1)
 
 
 def mirrored(mesh: Mesh) -> Mesh:

@@ -3,7 +3,7 @@
 JSON format (version 1)::
 
     {"format": "weave-cut-mesh", "version": 1,
-     "vertices": [[x, y], ...],          # floats
+     "vertices": [[x, y], ...],          # floats; [x, y, z] for a surface in space
      "faces": [[i, j, k, ...], ...]}     # 0-based vertex indices, counter-clockwise
 
 Both round-trip exactly: floats are written with ``repr`` (shortest exact form).
@@ -83,7 +83,8 @@ def write_mesh(mesh: Mesh, path: str | Path, metadata: dict[str, str] | None = N
 def obj_text(mesh: Mesh, metadata: dict[str, str] | None = None) -> str:
     lines = ["# weave-cut mesh", f"# {mesh.n_vertices} vertices, {mesh.n_faces} faces"]
     lines += [f"# {k}: {v}".replace("\n", " ") for k, v in (metadata or {}).items()]
-    lines += [f"v {x!r} {y!r} 0" for x, y in mesh.vertices.tolist()]
+    lines += [f"v {x!r} {y!r} {z[0]!r}" if z else f"v {x!r} {y!r} 0"
+              for x, y, *z in mesh.vertices.tolist()]
     lines += ["f " + " ".join(str(i + 1) for i in face) for face in mesh.faces()]
     return "\n".join(lines) + "\n"
 
@@ -402,7 +403,8 @@ _PLANES = ((2, "xy-plane as (x, y)", lambda x, y, z: (x, y)),
 
 
 def _in_plane(points: np.ndarray, lines: np.ndarray) -> tuple[np.ndarray, str]:
-    """(V, 2) coordinates in the axis-aligned plane the vertices lie in, and a remark.
+    """(V, 2) coordinates in the axis-aligned plane the vertices lie in, and a remark; (V, 3)
+    coordinates, and no remark, for a surface in space.
 
     A plane z = c is read as (x, y); y = c (Blender's ground plane, as its OBJ export
     writes it) as (x, -z), and x = c as (y, z): each seen from the positive axis, so
@@ -416,10 +418,7 @@ def _in_plane(points: np.ndarray, lines: np.ndarray) -> tuple[np.ndarray, str]:
                 return vertices, ""
             return vertices, (f"all vertices have {'xyz'[axis]} = {float(c[0])!r}; "
                               f"read in the {plane}")
-    i = int(np.flatnonzero(points[:, 2])[0])
-    raise MeshFileError(f"line {lines[i]}: vertex has z = {float(points[i, 2])!r} while x and y "
-                        "vary too; weave-cut reads flat meshes, in a plane where x, y or z is "
-                        "constant")
+    return points, ""  # a surface in space
 
 
 # -- JSON -----------------------------------------------------------------------------------
@@ -443,17 +442,20 @@ def _parse_json(text: str) -> Mesh:
     if len(faces) > MAX_FACES or len(vertices) > MAX_VERTICES:
         raise MeshFileError(f"{len(faces):,} faces and {len(vertices):,} vertices; weave-cut "
                             f"reads at most {MAX_FACES:,} faces and {MAX_VERTICES:,} vertices")
+    dim = len(vertices[0]) if vertices and isinstance(vertices[0], list) else 2
     for i, v in enumerate(vertices):
-        if (not isinstance(v, list) or len(v) != 2
+        if (not isinstance(v, list) or len(v) != dim or dim not in (2, 3)
                 or not all(isinstance(c, (int, float)) and not isinstance(c, bool) for c in v)):
-            raise MeshFileError(f"vertex {i} must be [x, y] numbers, got {v!r}"[:120])
+            like = f"{'[x, y, z]' if dim == 3 else '[x, y]'} numbers like vertex 0"
+            want = "[x, y] or [x, y, z]" if i == 0 else like
+            raise MeshFileError(f"vertex {i} must be {want}, got {v!r}"[:120])
     for i, f in enumerate(faces):
         if not isinstance(f, list) or not all(type(j) is int for j in f):
             raise MeshFileError(f"face {i} must be a list of vertex indices, got {f!r}"[:120])
     if not faces:
         raise MeshFileError("the mesh has no faces")
     try:
-        points = np.array(vertices, dtype=float).reshape(-1, 2)
+        points = np.array(vertices, dtype=float).reshape(-1, dim)
     except OverflowError:
         raise MeshFileError("a vertex coordinate is too large for a float") from None
     return Mesh.from_faces(points, faces)

@@ -1,5 +1,8 @@
 """Geometric checks on input meshes: orientation, degenerate, non-convex and overlapping faces.
 
+A surface in space (vertices (V, 3)) is checked as an oriented 2-manifold only: no zero-area
+face, no non-manifold edge or vertex, consistent orientation (outwards on a closed surface).
+
 The Mesh constructor already refuses bad indices, short faces, repeated corners and
 non-finite coordinates; ``Topology.build`` refuses non-manifold edges and bow-tie vertices.
 Every check is vectorised over corners; shapely (GEOS) decides only the faces that simple
@@ -15,6 +18,7 @@ from scipy.spatial import cKDTree
 
 from .errors import MeshError
 from .mesh import ZERO_BASED, Mesh, Numbering, Topology, outer_vertices
+from .surface import signed_volume, vector_areas
 
 AREA_EPS = 1e-12
 MAX_COORDINATE = 1e9
@@ -58,6 +62,8 @@ def validate(mesh: Mesh, *, allow_nonconvex: bool = False,
     if huge.any():
         raise MeshError(f"{n.vertex(np.flatnonzero(huge)[0])} has a coordinate beyond "
                         f"{MAX_COORDINATE:g}; scale the mesh down")
+    if mesh.dim == 3:
+        return _validate_surface(mesh, n)
     corners = _Corners(mesh)
     areas = 0.5 * np.add.reduceat(corners.cross_next, mesh.face_offsets[:-1])
     scale = max(float(np.ptp(mesh.vertices, axis=0).max()), 1e-300) ** 2
@@ -83,6 +89,19 @@ def validate(mesh: Mesh, *, allow_nonconvex: bool = False,
                             "faces (deep levels of some inputs have a few non-convex faces, see "
                             "weave-cut convexity); pass --allow-nonconvex to use the mesh anyway")
     _check_overlaps(mesh, corners, scale, n)
+    return mesh
+
+
+def _validate_surface(mesh: Mesh, n: Numbering) -> Mesh:
+    """``mesh``, a surface in space, turned outwards if closed and inside-out; or MeshError."""
+    scale = max(float(np.ptp(mesh.vertices, axis=0).max()), 1e-300) ** 2
+    flat = np.linalg.norm(vector_areas(mesh), axis=1) <= AREA_EPS * scale
+    if flat.any():
+        raise MeshError(f"{n.face(np.flatnonzero(flat)[0])} has zero area")
+    if "topology" not in mesh.__dict__:  # non-manifold and inconsistently oriented edges raise
+        mesh.__dict__["topology"] = Topology.build(mesh, n)
+    if not mesh.topology.boundary_edges.any() and signed_volume(mesh) < 0:
+        mesh = mesh.reversed()
     return mesh
 
 

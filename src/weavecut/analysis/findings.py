@@ -53,7 +53,7 @@ def _levels_text(levels) -> str:
 def counts() -> Finding:
     """Eq. (2), the degrees of new vertices and the boundary length, on every built-in input."""
     failures, inner_degrees, outer_degrees, deviation = [], set(), set(), 0.0
-    for name in inputs.INPUTS:  # a loop over inputs and levels
+    for name in inputs.FLAT:  # a loop over inputs and levels
         h = subdivide(inputs.get(name), COUNT_LEVELS)
         for parent, child in zip(h, h[1:]):
             p, c = parent.mesh, child.mesh
@@ -77,7 +77,7 @@ def counts() -> Finding:
             else f"fails at {', '.join(failures)}")
     return Finding(
         "counts", "Eq. (1)/(2) and degrees",
-        f"Eq. (2) {held} at levels 0–{COUNT_LEVELS} of all {len(inputs.INPUTS)} built-in "
+        f"Eq. (2) {held} at levels 0–{COUNT_LEVELS} of all {len(inputs.FLAT)} flat built-in "
         f"inputs; input vertices keep their degree; vertices born in step 2 or later have "
         f"degree {_set(inner_degrees)} inside and {_set(outer_degrees)} on the boundary; the "
         f"boundary is (3/√7)^t times as long at level t (largest relative deviation "

@@ -33,7 +33,8 @@ snub_options = level_options(6, with_scheme=False)
 
 
 def _hierarchy(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex):
-    return run_scheme(input_mesh, levels, "snub", no_smooth, chirality, centre, allow_nonconvex)
+    return run_scheme(input_mesh, levels, "snub", no_smooth, chirality, centre, allow_nonconvex,
+                      flat=f"weave-cut {click.get_current_context().info_name}")
 
 
 def _suffix_check(output: str | None, allowed: tuple[str, ...]) -> None:
@@ -220,7 +221,7 @@ def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonco
                                  param_hint="'--size'")
     if not levels < lv.UNSET:
         raise click.BadParameter(f"at most {lv.UNSET - 1}", param_hint="'--levels'")
-    mesh = load_mesh(input_mesh, allow_nonconvex)
+    mesh = load_mesh(input_mesh, allow_nonconvex, flat="weave-cut levels")
     options = {"smooth": not no_smooth, "centre": centre, "chirality": chirality}
     grid = lv.Grid.fit(lv.default_window(mesh) if window is None else window, size)
     if tiles is not None:

@@ -147,20 +147,25 @@ def html_option(f):
                         "what each file is for).")(wrapper)
 
 
-def load_mesh(spec: str, allow_nonconvex: bool = False) -> Mesh:
+def load_mesh(spec: str, allow_nonconvex: bool = False, flat: str | None = None) -> Mesh:
     """A built-in input by name, or a mesh file or drawing, validated; no output may replace
     the file. A drawing (.svg, .dxf) is read with the options of ``drawing_options``, which
-    the running command keeps in its context."""
+    the running command keeps in its context. With ``flat`` (what needs a flat mesh) a
+    surface in space is refused."""
     from ..mesh_io import read_valid_mesh
     from ..validation import validate
 
-    if inputs.is_builtin(spec) or not Path(spec).suffix:
-        if not Path(spec).exists():
-            return validate(inputs.get(spec), allow_nonconvex=allow_nonconvex)
-    protect(spec)
-    ctx = click.get_current_context(silent=True)
-    drawing = ctx.meta.get(DRAWING_KEY, {}) if ctx else {}
-    return read_valid_mesh(spec, allow_nonconvex=allow_nonconvex, note=say, **drawing)
+    if (inputs.is_builtin(spec) or not Path(spec).suffix) and not Path(spec).exists():
+        mesh = validate(inputs.get(spec), allow_nonconvex=allow_nonconvex)
+    else:
+        protect(spec)
+        ctx = click.get_current_context(silent=True)
+        drawing = ctx.meta.get(DRAWING_KEY, {}) if ctx else {}
+        mesh = read_valid_mesh(spec, allow_nonconvex=allow_nonconvex, note=say, **drawing)
+    if flat and mesh.dim == 3:
+        raise MeshError(f"{spec} is a surface in space (x, y, z vertices); {flat} needs a flat "
+                        "mesh so far")
+    return mesh
 
 
 THINNEST = 1e-3  # isoperimetric quotient 4 pi A / P^2 of the thinnest face a layout accepts
@@ -170,6 +175,9 @@ def check_layout(mesh: Mesh, what: str, connected: bool = False) -> Mesh:
     """``mesh`` if ``what`` (the puzzle, the paper model) can lay it out: no sliver face (its
     strips and pieces would be thinner than floating point keeps apart) and, if
     ``connected``, one piece; otherwise a MeshError naming the face or the parts."""
+    if mesh.dim == 3:
+        raise MeshError(f"the mesh is a surface in space (x, y, z vertices); {what} needs a "
+                        "flat mesh so far")
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
 
@@ -318,7 +326,7 @@ def flag_nonconvex(hierarchy) -> dict:
     --json: ``{"nonconvex_faces": total, "nonconvex_faces_by_level": {"5": 72, ...}}``."""
     from ..analysis.convexity import nonconvex_levels, nonconvex_message
 
-    rows = nonconvex_levels(hierarchy)
+    rows = nonconvex_levels(hierarchy) if hierarchy[0].mesh.dim == 2 else []  # flat faces only
     for row in rows:
         click.echo(f"weave-cut: warning: {nonconvex_message(row)}; see weave-cut convexity",
                    err=True)

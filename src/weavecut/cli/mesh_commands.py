@@ -9,6 +9,7 @@ import click
 import numpy as np
 
 from .. import export, inputs
+from ..errors import MeshError
 from ..analysis.stats import level_stats
 from ..subdivision import SCHEMES, snub, subdivide
 from .common import (
@@ -55,17 +56,27 @@ def level_options(default_levels: int = 1, with_scheme: bool = True):
 
 
 scheme_options = level_options()
+project_option = click.option(
+    "--project", type=click.Choice(snub.PROJECTIONS), default=None,
+    help="Snub on a surface: move every new vertex onto the input's circumsphere.")
 
 
 def run_scheme(input_mesh: str, levels: int, scheme: str, no_smooth: bool, chirality: str,
-               centre: str, allow_nonconvex: bool):
-    """Load INPUT and subdivide it; the snub options apply to the snub scheme only."""
-    mesh = load_mesh(input_mesh, allow_nonconvex)
+               centre: str, allow_nonconvex: bool, project: str | None = None,
+               flat: str | None = None):
+    """Load INPUT and subdivide it; the snub options apply to the snub scheme only, which alone
+    runs on surfaces in space so far; ``flat`` (what needs a flat mesh) refuses surfaces."""
+    mesh = load_mesh(input_mesh, allow_nonconvex, flat)
     options = {}
     if scheme == "snub":
-        options = {"smooth": not no_smooth, "chirality": chirality, "centre": centre}
-    elif no_smooth or chirality != "left" or centre != "vertex":
-        raise click.UsageError("--no-smooth, --chirality and --centre apply to --scheme snub")
+        options = {"smooth": not no_smooth, "chirality": chirality, "centre": centre,
+                   "project": project}
+    elif no_smooth or chirality != "left" or centre != "vertex" or project:
+        raise click.UsageError("--no-smooth, --chirality, --centre and --project apply to "
+                               "--scheme snub")
+    if mesh.dim == 3 and scheme != "snub":
+        raise MeshError(f"{input_mesh} is a surface in space; only --scheme snub subdivides "
+                        "surfaces so far")
     with progress(range(levels), f"{scheme} levels") as steps, np.errstate(all="ignore"):
         hierarchy = subdivide(mesh, levels, scheme, steps=steps, **options)
     check_levels(hierarchy, f"{scheme} of {input_mesh}")
@@ -100,6 +111,7 @@ def inputs_command(as_json: bool) -> None:
 @click.command("subdivide", context_settings=CONTEXT)
 @input_argument
 @scheme_options
+@project_option
 @click.option("--size", type=Length(), default="200mm", show_default=True,
               help="Longer side of the drawing, without margins.")
 @click.option("--earlier-levels", is_flag=True,
@@ -110,7 +122,7 @@ def inputs_command(as_json: bool) -> None:
               help="Output file: .svg, .dxf, .pdf, .png (drawings) or .obj, .json (the mesh).")
 @reports_errors
 def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
-                      allow_nonconvex, size, earlier_levels, page, output) -> None:
+                      allow_nonconvex, project, size, earlier_levels, page, output) -> None:
     """Subdivide INPUT (a built-in name or an .obj/.json file) and write the result.
 
     A drawing is cut-ready: the last level's edges each once, joined into trails, inner cuts
@@ -122,6 +134,7 @@ def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
       weave-cut subdivide tiling-8-4 --levels 3 -o tiling.dxf
       weave-cut subdivide pentagon --levels 3 --earlier-levels -o levels.svg
       weave-cut subdivide my-mesh.obj --levels 2 --no-smooth -o refined.obj
+      weave-cut subdivide dodecahedron --levels 2 --project sphere -o ball.obj
     """
     from ..layout.mesh_figure import mesh_drawing
     from ..mesh_io import write_mesh
@@ -132,7 +145,8 @@ def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
             f"unknown format {suffix!r}; use {', '.join(MESH_SUFFIXES)} or "
             f"{', '.join('.' + f for f in export.formats())}", param_hint="'-o'")
     hierarchy = run_scheme(input_mesh, levels, scheme, no_smooth, chirality, centre,
-                           allow_nonconvex)
+                           allow_nonconvex, project,
+                           flat=None if suffix in MESH_SUFFIXES else f"a {suffix} drawing")
     flag_nonconvex(hierarchy)
     if suffix in MESH_SUFFIXES:
         write_mesh(hierarchy[-1].mesh, output, provenance())
@@ -158,7 +172,7 @@ def stats_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
       weave-cut stats square-grid:3x3 --levels 3 --json
     """
     hierarchy = run_scheme(input_mesh, levels, scheme, no_smooth, chirality, centre,
-                           allow_nonconvex)
+                           allow_nonconvex, flat="weave-cut stats")
     rows = [level_stats(lv.mesh, t) for t, lv in enumerate(hierarchy)]
     if as_json:
         click.echo(json.dumps({"input": input_mesh, "levels": rows}, indent=2))

@@ -6,6 +6,7 @@ import json
 from pathlib import Path
 
 import click
+import numpy as np
 
 from ..errors import MeshError
 from ..weave.colour import palette, strand_colours
@@ -17,18 +18,22 @@ from .common import (
     flag_nonconvex,
     input_argument,
     page_option,
+    html_option,
+    provenance,
     reports_errors,
     write_drawing,
+    write_png,
 )
-from .common import html_option
-from .mesh_commands import run_scheme, scheme_options
+from .mesh_commands import project_option, run_scheme, scheme_options
 
 DRAWINGS = ("svg", "pdf", "png", "dxf")
+MODELS = ("obj", "glb", "png")  # of a weave on a surface in space
 
 
 @click.command("weave", context_settings=CONTEXT)
 @input_argument
 @scheme_options
+@project_option
 @click.option("--palette", "palette_name", default="maritime-12", show_default=True,
               shell_complete=complete_preset("palettes"), help="Palette preset (templates/palettes) or a .toml file.")
 @click.option("--outline-level", type=click.IntRange(1, 40), default=None,
@@ -42,14 +47,18 @@ DRAWINGS = ("svg", "pdf", "png", "dxf")
 @click.option("--size", type=Length(), default="200mm", show_default=True,
               help="Longer side of the picture, without margins.")
 @page_option
+@click.option("--thickness", type=Length(), default="0.5mm", show_default=True,
+              help="Paper thickness: how far a surface's ribbons rise over and sink under "
+                   "each other in a 3-D model.")
 @click.option("--json", "as_json", is_flag=True, help="Print the counts per level as JSON.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), default=None,
-              help="Picture: .svg, .pdf, .png or .dxf.")
+              help="Picture: .svg, .pdf, .png or .dxf; of a surface (a woven ball): a 3-D "
+                   "model, .obj or .glb, or .png views (--size is then its diameter).")
 @reports_errors
 @html_option
 def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allow_nonconvex,
-                  palette_name, outline_level, middle_edges, crossings, style, face_split, size,
-                  page, as_json, output) -> None:
+                  project, palette_name, outline_level, middle_edges, crossings, style,
+                  face_split, size, page, thickness, as_json, output) -> None:
     """Weave INPUT after N subdivision steps: strands, over/under crossings and lineage.
 
     \b
@@ -59,22 +68,31 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
       weave-cut weave square-grid --levels 2 --page letter -o square-weave.pdf
       weave-cut weave square-grid:3x3 --levels 2 --json
       weave-cut weave triangle-grid --scheme loop --levels 2 --style ribbons -o loop.svg
+      weave-cut weave dodecahedron --levels 2 --project sphere --json
+      weave-cut weave dodecahedron --levels 1 --size 150mm -o ball.glb
     """
     from ..layout.weave_figure import snub_under_points, weave_drawing
     from ..weave.schemes import scheme_weaves
 
     if output is None and not as_json:
         raise click.UsageError("give -o OUTPUT for a picture, or --json for the counts")
-    if output and Path(output).suffix.lower().lstrip(".") not in DRAWINGS:
+    suffix = Path(output).suffix.lower().lstrip(".") if output else ""
+    if output and suffix not in DRAWINGS + MODELS:
         raise click.BadParameter(f"unknown format {Path(output).suffix!r}; use "
-                                 + ", ".join("." + d for d in DRAWINGS), param_hint="'-o'")
+                                 + ", ".join("." + d for d in DRAWINGS + MODELS[:2]),
+                                 param_hint="'-o'")
     if levels < 1 and scheme == "snub":
         raise click.BadParameter("the snub weave needs --levels 1 or more", param_hint="'--levels'")
     if outline_level is not None and outline_level >= levels:
         raise click.BadParameter(f"must be below --levels {levels}", param_hint="'--outline-level'")
     pal = palette(palette_name)
     hierarchy = run_scheme(input_mesh, levels, scheme, no_smooth, chirality, centre,
-                           allow_nonconvex)
+                           allow_nonconvex, project,
+                           flat=suffix not in MODELS and output and f"a .{suffix} drawing")
+    surface = hierarchy[0].mesh.dim == 3
+    if suffix in MODELS and not surface and suffix != "png":
+        raise MeshError(f"{input_mesh} is flat; a .{suffix} woven model needs a surface in space "
+                        "(draw a flat weave as .svg, .pdf, .png or .dxf)")
     nonconvex = flag_nonconvex(hierarchy)
     what = f"the {scheme} weave of {input_mesh} at level {levels}"
     try:
@@ -89,7 +107,10 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
         first = levels - len(weaves) + 1
         click.echo(json.dumps({"input": input_mesh, "scheme": scheme, **nonconvex, "levels": [
             {"level": first + i, **s} for i, s in enumerate(weave_summaries(weaves))]}, indent=2))
-    if output:
+    if output and surface:
+        write_model(weaves, strand_colours(weaves, pal), size, thickness, output,
+                    f"{input_mesh}, {scheme} weave, level {levels}")
+    elif output:
         snub = scheme == "snub" and not face_split
         outline = None
         if outline_level is not None:
@@ -100,3 +121,34 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
             under_points=snub_under_points(weaves[-1]) if snub else None,
             title=f"{input_mesh}, {scheme} weave, level {levels}")
         write_drawing(drawing, output, page)
+
+
+RIBBON_WIDTH = 0.55  # of the mean distance between the centres of consecutive tiles
+
+
+def write_model(weaves, colours, diameter: float, thickness: float, output: str,
+                title: str) -> None:
+    """The last weave, on a surface, as ribbons in space (.obj, .glb) or PNG views, scaled to
+    ``diameter`` (mm), the ribbons ``thickness`` over and under each other."""
+    from ..export import model3d
+    from ..fileio import write_atomic
+    from ..weave.ribbons import mean_step, ribbons
+
+    weave = weaves[-1]
+    width = RIBBON_WIDTH * mean_step(weave)
+    flat = ribbons(weave, width, 0.0).vertices  # the ribbons' own size sets the scale
+    centre = flat.mean(axis=0)
+    scale = diameter / (2 * np.linalg.norm(flat - centre, axis=1).max())  # mm per unit
+    model = ribbons(weave, width, thickness / 2 / scale)
+    rgb = np.array([[int(c[i:i + 2], 16) for i in (1, 3, 5)] for c in colours], dtype=np.uint8)
+    vertex_rgb = np.zeros((len(model.vertices), 3), dtype=np.uint8)
+    vertex_rgb[model.triangles] = rgb[model.strand][:, None]
+    args = ((model.vertices - centre) * scale, model.triangles, vertex_rgb)
+    suffix = Path(output).suffix.lower()
+    if suffix == ".png":
+        write_png(model3d.png_bytes(*args), output, title)
+    elif suffix == ".glb":
+        write_atomic(output, model3d.glb_bytes(*args))
+    else:
+        write_atomic(output, model3d.obj_bytes(*args, comments=[title, *(
+            f"{k}: {v}" for k, v in provenance().items())]))

@@ -18,6 +18,13 @@ faces: one per parent half-edge (face h comes from half-edge h), edges: ``3e + p
 parts (FIRST = (u, z0), MIDDLE = (z0, z1), LAST = (w, z1)) and ``3E + h`` for the spoke (x_h, c_f).
 Counts (paper eq. 2): V' = V + 2E + F, E' = 3E + H, F' = H.
 
+On a surface in space (vertices (V, 3)) the same topology code runs; only the Z vertices
+differ: ``i d`` becomes ``n x d`` scaled to ``|d|``, with ``n`` the normal of the plane the
+triplet lies in (:func:`weavecut.surface.edge_normals`: the mean of the normals of the faces
+beside the edge). Centres are vertex means and the smoothing, being linear, runs on the
+(x, y) and (z, 0) columns as on two planar meshes. On z = 0 this is the planar step; the
+planar hot path is untouched.
+
 The step writes each output array once, in place, and reads the parent only through its corner
 arithmetic (:class:`Corners`), so it runs close to the speed of writing its output. The
 numbers are those of the plain definition, bit for bit: every sum adds the same terms in the
@@ -31,7 +38,9 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from ..errors import MeshError
 from ..mesh import Mesh, Topology, area_centroids, face_centroids, outer_vertices
+from ..surface import circumsphere, edge_normals, onto_sphere
 from ._common import Corners, fill_rows
 from .hierarchy import Level
 
@@ -40,6 +49,7 @@ EDGE_PARTS = {"first": FIRST, "middle": MIDDLE, "last": LAST, "spoke": SPOKE}
 ALPHA = float(np.arctan(np.sqrt(3.0) / 5.0))  # 19.1066 degrees
 CENTRES = ("vertex", "area")
 CHIRALITIES = ("left", "right")
+PROJECTIONS = ("sphere",)
 
 
 def counts(n_vertices: int, n_edges: int, n_faces: int, n_corners: int) -> tuple[int, ...]:
@@ -54,7 +64,7 @@ def counts(n_vertices: int, n_edges: int, n_faces: int, n_corners: int) -> tuple
 
 
 def step(mesh: Mesh, *, smooth: bool = True, centre: str = "vertex",
-         chirality: str = "left") -> Level:
+         chirality: str = "left", project: str | None = None) -> Level:
     """One pentagon snub step: Z-triplets, centres, joins and (optionally) smoothing.
 
     Parameters
@@ -63,6 +73,8 @@ def step(mesh: Mesh, *, smooth: bool = True, centre: str = "vertex",
     smooth : apply operation 4 (move inner vertices to the mean centre of their faces)
     centre : "vertex" (vertex mean, the paper's figures) or "area" (area centroid)
     chirality : "left" or "right"
+    project : None, or "sphere": move every vertex of the result onto the circumsphere of
+        ``mesh`` (whose vertices must lie on a sphere)
 
     Returns
     -------
@@ -72,11 +84,18 @@ def step(mesh: Mesh, *, smooth: bool = True, centre: str = "vertex",
         raise ValueError(f"centre must be one of {CENTRES}, got {centre!r}")
     if chirality not in CHIRALITIES:
         raise ValueError(f"chirality must be one of {CHIRALITIES}, got {chirality!r}")
+    if project not in (None, *PROJECTIONS):
+        raise ValueError(f"project must be None or one of {PROJECTIONS}, got {project!r}")
+    if mesh.dim == 3 and centre == "area":
+        raise MeshError("--centre area needs a planar mesh; a surface uses vertex means")
+    sphere = circumsphere(mesh.vertices) if project else None
     right = chirality == "right"
     ring = Corners(mesh)
-    vertices = _new_vertices(mesh, right, centre)
+    vertices = (_new_vertices if mesh.dim == 2 else _new_surface_vertices)(mesh, right, centre)
     x, y, old = _corner_vertices(mesh, ring, right)
-    if smooth:  # first, while the vertices are the only output: it needs the most scratch
+    if smooth and mesh.dim == 3:
+        _smooth_surface(mesh, ring, vertices, x, y, old, right)
+    elif smooth:  # first, while the vertices are the only output: it needs the most scratch
         if centre == "area":
             faces = _faces(mesh, ring, x, y, old, right).reshape(-1)
             offsets = np.arange(0, len(faces) + 1, 5, dtype=np.int64)
@@ -87,6 +106,8 @@ def step(mesh: Mesh, *, smooth: bool = True, centre: str = "vertex",
             centres = _vertex_centres(mesh, ring, vertices, x, y, old, right)
         _smooth(mesh, ring, vertices, centres, old, right)
         del centres
+    if sphere is not None:
+        onto_sphere(vertices, *sphere)
     faces = _faces(mesh, ring, x, y, old, right)
     del y, old
     edges, parent_edge, edge_part, boundary = _edges(mesh, ring, x)
@@ -126,6 +147,33 @@ def _new_vertices(mesh: Mesh, right: bool, centre: str) -> NDArray[np.float64]:
     centre_of = area_centroids if centre == "area" else face_centroids
     vertices[n_v + 2 * n_e:] = centre_of(mesh)
     return vertices
+
+
+def _new_surface_vertices(mesh: Mesh, right: bool, centre: str) -> NDArray[np.float64]:
+    """:func:`_new_vertices` on a surface in space, (V + 2E + F, 3): the Z-triplet of edge
+    (u, w) in the plane of its edge normal n, with ``t = n x d`` scaled to ``|d|`` for
+    ``i d``."""
+    topo = mesh.topology
+    n_v, n_e = mesh.n_vertices, topo.n_edges
+    u, w = mesh.vertices[topo.edges[:, 0]], mesh.vertices[topo.edges[:, 1]]
+    d = w - u
+    t = np.cross(edge_normals(mesh), d)
+    t *= ((-1.0 if right else 1.0) * np.sqrt(3.0) * np.linalg.norm(d, axis=1)
+          / np.linalg.norm(t, axis=1))[:, None]
+    z = np.stack([u + (5 * d + t) / 14, u + (9 * d - t) / 14], axis=1)
+    return np.concatenate([mesh.vertices, z.reshape(-1, 3), face_centroids(mesh)])
+
+
+def _smooth_surface(mesh: Mesh, ring: Corners, vertices, x, y, old, right: bool) -> None:
+    """Operation 4 on a surface, in place: the planar smoothing on the (x, y) and the (z, 0)
+    columns (it is linear in the coordinates)."""
+    planes = (np.ascontiguousarray(vertices[:, :2]),
+              np.column_stack([vertices[:, 2], np.zeros(len(vertices))]))
+    for plane in planes:
+        _smooth(mesh, ring, plane, _vertex_centres(mesh, ring, plane, x, y, old, right), old,
+                right)
+    vertices[:, :2] = planes[0]
+    vertices[:, 2] = planes[1][:, 0]
 
 
 def _corner_vertices(mesh: Mesh, ring: Corners, right: bool):

@@ -12,7 +12,7 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import NDArray
 
-from ..mesh import Mesh
+from ..mesh import Mesh, face_centroids
 
 
 @dataclass(frozen=True, eq=False)
@@ -76,6 +76,27 @@ class Weave:
         out[self.tile_faces] = np.repeat(np.arange(self.n_tiles, dtype=np.int32),
                                          np.diff(self.tile_offsets))
         return out
+
+    @cached_property
+    def tile_centres(self) -> NDArray[np.float64]:
+        """(T, D) mean of the vertex means of every tile's faces."""
+        if not self.n_tiles:
+            return np.zeros((0, self.mesh.dim))
+        sums = np.add.reduceat(face_centroids(self.mesh)[self.tile_faces],
+                               self.tile_offsets[:-1], axis=0)
+        return sums / np.diff(self.tile_offsets)[:, None]
+
+    def strand_lengths(self) -> NDArray[np.float64]:
+        """(S,) length of every strand's centre line: the polyline through the centres of the
+        tiles it visits, in walking order, closed for a loop (mesh units)."""
+        if not self.n_strands:
+            return np.zeros(0)
+        points = self.tile_centres[self.strand_visits]
+        step = np.linalg.norm(np.roll(points, -1, axis=0) - points, axis=1)
+        start, end = self.strand_offsets[:-1], self.strand_offsets[1:] - 1
+        closing = np.linalg.norm(points[start] - points[end], axis=1)
+        step[end] = np.where(self.strand_closed, closing, 0.0)  # the last visit: back or none
+        return np.add.reduceat(step, start)
 
     def strand(self, s: int) -> tuple[NDArray[np.int32], NDArray[np.bool_]]:
         """Tiles visited by strand ``s`` and whether it is on top at each."""

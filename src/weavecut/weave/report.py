@@ -4,6 +4,10 @@ The paper says every strand splits into two interwoven strands at the next level
 summary measures how exactly that holds: children per parent, long children (three or more own
 tiles) per long parent, how many sibling pairs cross each other, and short fragments.
 
+A strand's length is that of its centre line through the centres of the tiles it visits
+(mesh units): ``strand_length`` gives the spread; when every strand is a closed loop (a
+woven ball) ``strand_lengths`` lists them all, strand by strand.
+
 Which parent a child strand has is decided by :func:`weave.snub_weave.lineage`: every pentagon
 of the child's own tiles votes for the parent strands that own or pass under the parent tile
 its parent face lies in, and the most votes win (ties: the lower parent number). A short
@@ -27,6 +31,14 @@ LONG = 3  # own tiles that make a strand "long"
 def _hist(values) -> dict[str, int]:
     counts = np.bincount(np.asarray(values, dtype=np.int64))
     return {str(k): int(counts[k]) for k in np.flatnonzero(counts)}
+
+
+def _spread(values) -> dict[str, float]:
+    """Smallest, mean and largest of ``values`` and their total, to 6 decimals."""
+    if not len(values):
+        return {"min": 0.0, "mean": 0.0, "max": 0.0, "total": 0.0}
+    return {k: round(float(f(values)), 6) for k, f in
+            (("min", np.min), ("mean", np.mean), ("max", np.max), ("total", np.sum))}
 
 
 def own_tiles(weave: Weave) -> np.ndarray:
@@ -55,7 +67,10 @@ def weave_summary(weave: Weave, parent: Weave | None = None) -> dict:
         "strand_length_histogram": _hist(own),
         "self_crossings": int(((weave.tile_over == weave.tile_under)
                                & (weave.tile_under >= 0)).sum()),
+        "strand_length": _spread(weave.strand_lengths()),
     }
+    if weave.n_strands and weave.strand_closed.all():  # a ball: few loops, each listed
+        out["strand_lengths"] = [round(float(x), 6) for x in weave.strand_lengths()]
     if weave.parent_strand is not None and parent is not None:
         out["lineage"] = lineage_summary(weave, parent)
     return out
