@@ -9,7 +9,7 @@ from click.testing import CliRunner
 from tests.svg_readback import assert_svg_shows
 from weavecut import export
 from weavecut.cli import cli
-from weavecut.figures import gallery, schemes, subdivision, weaving as weave_figures
+from weavecut.figures import gallery, jigsaw, schemes, subdivision, weaving as weave_figures
 from weavecut.layout.drawing import Drawing
 
 
@@ -23,7 +23,7 @@ def test_weave_figures_render(name):
 def test_gallery_has_every_figure_once():
     """No figure is lost to a name clash between the modules, none is listed under two names,
     and ``figure --list`` names each once, in the gallery's order."""
-    parts = [subdivision.FIGURES, weave_figures.FIGURES, schemes.FIGURES]
+    parts = [subdivision.FIGURES, weave_figures.FIGURES, schemes.FIGURES, jigsaw.FIGURES]
     assert len(gallery.FIGURES) == sum(len(p) for p in parts)
     for part in parts:
         assert all(gallery.FIGURES[name] == entry for name, entry in part.items())

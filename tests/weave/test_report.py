@@ -76,6 +76,7 @@ def _recount(weave, parent_weave=None) -> dict:
                                     for walk in walks),
         "strand_length_histogram": hist(own),
         "self_crossings": sum(top.get(t) == below.get(t) for t in below),
+        "strand_length": _length_spread(weave, walks),
     }
     if parent_weave is None:
         return out
@@ -105,6 +106,32 @@ def _recount(weave, parent_weave=None) -> dict:
         "orphans": parent.count(-1),
     }
     return out
+
+
+def _length_spread(weave, walks) -> dict:
+    """Centre-line lengths by loops: a tile's centre is the mean of its faces' vertex means;
+    a strand's line runs through its tiles' centres in walking order (back to the start for a
+    loop). Compared to 1e-6, the rounding of the summary."""
+    mesh = weave.mesh
+    offsets, faces = mesh.face_offsets.tolist(), mesh.face_indices.tolist()
+
+    def face_mean(f):
+        corners = [mesh.vertices[v] for v in faces[offsets[f]:offsets[f + 1]]]
+        return sum(corners) / len(corners)
+
+    centres = []
+    for t in range(weave.n_tiles):
+        tile = weave.tile_faces[weave.tile_offsets[t]:weave.tile_offsets[t + 1]].tolist()
+        centres.append(sum(face_mean(f) for f in tile) / len(tile))
+    lengths = []
+    for s, walk in enumerate(walks):
+        points = [centres[t] for t, _ in walk]
+        if weave.strand_closed[s]:
+            points.append(points[0])
+        lengths.append(sum(float(np.sqrt(((b - a) ** 2).sum()))
+                           for a, b in zip(points, points[1:])))
+    return pytest.approx({"min": min(lengths), "mean": sum(lengths) / len(lengths),
+                          "max": max(lengths), "total": sum(lengths)}, abs=2e-6)
 
 
 @pytest.mark.parametrize("name,levels", [("pentagon", 4), ("square-grid:2x2", 3),
