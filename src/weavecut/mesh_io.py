@@ -100,7 +100,8 @@ def _read(path: Path, note: Note | None, drawing_options: dict) -> tuple[Mesh, N
     if suffix in readers.SUFFIXES:
         return readers.read_drawing(path, report=note, **drawing_options), ZERO_BASED
     if suffix not in SUFFIXES:
-        raise MeshFileError(f"{path}: unknown mesh format {path.suffix!r}; use .obj or .json")
+        raise MeshFileError(f"{path}: unknown mesh format {path.suffix!r}; use .obj or .json, "
+                            "or a drawing (.svg, .dxf)")
     raw = _read_regular_file(path, MAX_BYTES[suffix])
     try:
         text = raw.decode("utf-8")
