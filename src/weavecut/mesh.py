@@ -387,6 +387,13 @@ def corner_angles(mesh: Mesh) -> NDArray[np.float64]:
     return np.mod(np.arctan2(cross, dot), 2 * np.pi)
 
 
+def face_perimeters(mesh: Mesh) -> NDArray[np.float64]:
+    """(F,) perimeter of every face."""
+    p = mesh.vertices[mesh.face_indices]
+    step = np.linalg.norm(p[mesh.next_half_edge] - p, axis=1)
+    return np.add.reduceat(step, mesh.face_offsets[:-1])
+
+
 def edge_lengths(mesh: Mesh) -> NDArray[np.float64]:
     """(E,) length of every edge."""
     e = mesh.topology.edges

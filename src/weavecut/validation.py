@@ -14,10 +14,13 @@ from __future__ import annotations
 import numpy as np
 import shapely
 from numpy.typing import NDArray
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 from .errors import MeshError
-from .mesh import ZERO_BASED, Mesh, Numbering, Topology, outer_vertices
+from .mesh import (ZERO_BASED, Mesh, Numbering, Topology, face_perimeters, outer_vertices,
+                   signed_areas)
 from .surface import signed_volume, vector_areas
 
 AREA_EPS = 1e-12
@@ -187,3 +190,30 @@ def _check_boundary_vertices_outside(mesh: Mesh, corners: _Corners, boundary, n:
         first = np.lexsort((face[inside], point[inside]))[0]
         raise MeshError(f"{n.vertex(point[inside][first])} lies inside "
                         f"{n.face(face[inside][first])} (faces overlap)")
+
+
+THINNEST = 1e-3  # isoperimetric quotient 4 pi A / P^2 of the thinnest face a layout accepts
+
+
+def check_layout(mesh: Mesh, what: str, connected: bool = False) -> Mesh:
+    """``mesh`` if ``what`` (the puzzle, the paper model) can lay it out: no sliver face (its
+    strips and pieces would be thinner than floating point keeps apart) and, if
+    ``connected``, one piece; otherwise a MeshError naming the face or the parts."""
+    if mesh.dim == 3:
+        raise MeshError(f"the mesh is a surface in space (x, y, z vertices); {what} needs a "
+                        "flat mesh so far")
+    quotient = 4 * np.pi * np.abs(signed_areas(mesh)) / face_perimeters(mesh) ** 2
+    worst = int(np.argmin(quotient))
+    if quotient[worst] < THINNEST:
+        raise MeshError(f"face {worst + 1} is a sliver (area {quotient[worst]:.1e} of a circle "
+                        f"with its perimeter); {what} needs faces at least {THINNEST:g} of that")
+    if connected:
+        twin = mesh.topology.twin
+        inner = twin >= 0
+        face = mesh.half_edge_face
+        graph = coo_matrix((np.ones(inner.sum()), (face[inner], face[twin[inner]])),
+                           shape=(mesh.n_faces, mesh.n_faces))
+        parts = connected_components(graph, directed=False)[0]
+        if parts > 1:
+            raise MeshError(f"the mesh has {parts} separate parts; {what} needs one piece")
+    return mesh

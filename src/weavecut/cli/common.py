@@ -21,7 +21,7 @@ import numpy as np
 from .. import __version__, inputs, units
 from ..errors import MeshError, WeaveCutError
 from ..fileio import note, protect, recording
-from ..mesh import Mesh, signed_areas
+from ..mesh import Mesh
 from ..readers import DEFAULT_FLATTEN, MESH_CHOICES
 from ..text import clean
 
@@ -166,43 +166,6 @@ def load_mesh(spec: str, allow_nonconvex: bool = False, flat: str | None = None)
         raise MeshError(f"{spec} is a surface in space (x, y, z vertices); {flat} needs a flat "
                         "mesh so far")
     return mesh
-
-
-THINNEST = 1e-3  # isoperimetric quotient 4 pi A / P^2 of the thinnest face a layout accepts
-
-
-def check_layout(mesh: Mesh, what: str, connected: bool = False) -> Mesh:
-    """``mesh`` if ``what`` (the puzzle, the paper model) can lay it out: no sliver face (its
-    strips and pieces would be thinner than floating point keeps apart) and, if
-    ``connected``, one piece; otherwise a MeshError naming the face or the parts."""
-    if mesh.dim == 3:
-        raise MeshError(f"the mesh is a surface in space (x, y, z vertices); {what} needs a "
-                        "flat mesh so far")
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
-    quotient = 4 * np.pi * np.abs(signed_areas(mesh)) / face_perimeters(mesh) ** 2
-    worst = int(np.argmin(quotient))
-    if quotient[worst] < THINNEST:
-        raise MeshError(f"face {worst + 1} is a sliver (area {quotient[worst]:.1e} of a circle "
-                        f"with its perimeter); {what} needs faces at least {THINNEST:g} of that")
-    if connected:
-        twin = mesh.topology.twin
-        inner = twin >= 0
-        face = mesh.half_edge_face
-        graph = coo_matrix((np.ones(inner.sum()), (face[inner], face[twin[inner]])),
-                           shape=(mesh.n_faces, mesh.n_faces))
-        parts = connected_components(graph, directed=False)[0]
-        if parts > 1:
-            raise MeshError(f"the mesh has {parts} separate parts; {what} needs one piece")
-    return mesh
-
-
-def face_perimeters(mesh: Mesh):
-    """(F,) perimeter of every face."""
-    p = mesh.vertices[mesh.face_indices]
-    step = np.hypot(*(p[mesh.next_half_edge] - p).T)
-    return np.add.reduceat(step, mesh.face_offsets[:-1])
 
 
 def check_levels(levels, what: str) -> None:

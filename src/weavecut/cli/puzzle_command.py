@@ -13,7 +13,7 @@ from ..subdivision import subdivide
 from ..units import PAPER_SIZES
 from ..weave.colour import palette
 from ..fileio import make_folder, write_atomic
-from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_inputs,
+from .common import (CONTEXT, Finite, Length, PageSize, complete_inputs,
                      complete_preset, drawing_options, flag_nonconvex, html_option, load_mesh,
                      provenance, reports_errors, summary)
 
@@ -85,6 +85,8 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     speed = mat["cut_speed"] if speed is None else speed
     las = pf.laser(laser_name)
     pal = palette(palette_name)
+    from ..validation import check_layout
+
     mesh = check_layout(load_mesh(input_mesh), "the puzzle", connected=True)
     puzzle = build_puzzle(subdivide(mesh, levels), size, frame_width)
     pf.check_kerf(puzzle, kerf)

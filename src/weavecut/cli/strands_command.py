@@ -12,7 +12,7 @@ import click
 from .. import export
 from ..subdivision import snub, subdivide
 from ..weave.colour import palette
-from .common import (CONTEXT, Finite, Length, PageSize, check_layout, complete_preset,
+from .common import (CONTEXT, Finite, Length, PageSize, complete_preset,
                      flag_nonconvex, input_argument, load_mesh, provenance, reports_errors,
                      html_option, summary)
 
@@ -84,6 +84,8 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
     levels = preset["levels"] if levels is None else levels
     turn = preset["turn"] if turn is None else math.radians(turn)
     pal = palette(palette_name or preset["palette"])
+    from ..validation import check_layout
+
     hierarchy = subdivide(check_layout(load_mesh(input_mesh), "the paper model"), levels,
                           chirality=chirality)
     weaves = snub_weaves(hierarchy)
