@@ -157,7 +157,6 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
     else:
         colours = copy_family_colours(weave, plan, pal)
     scale = tile_size / octagon_size(weave)
-    x0, y0, x1, y1 = area.box
     pieces, kinds = labelled_pieces(weave, plan, colours, tile_size, layout, area)
     small = min((t.size for p in pieces for t in p.texts), default=MIN_CAP)
     if small < MIN_CAP - 1e-6:
@@ -166,9 +165,34 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
                         f"; labels need {MIN_CAP:g} mm: use --tile-size {need:g}mm or more "
                         f"(--size {math.ceil(tile_size_width(weave, need) / 10)}cm or more)")
 
+    if layout == "module":
+        def subtitle(names):
+            return (f"Module pages: print every one of them {plan.k} times, once per direction "
+                    f"(see page 1). Strips: {names}")
+    else:
+        def subtitle(names):
+            return f"Strips: {names}"
+    first = 3  # pages 1, 2: assembly and weaving
+    placed, sheets = strip_sheets(pieces, kinds, area, title, subtitle, colours, first)
+    total = len(sheets) + first - 1
+    book = StrandBook(Drawing((), title), plan, tuple(colours), layout, placed,
+                      tuple(range(first, first + len(sheets))), (1, 2), scale, area, width,
+                      tile_size, warnings)
+    cover = assembly_sheet(weave, book, tile_size, turn, title, total)
+    weaving = weaving_sheet(weave, book, turn, title, total)
+    return StrandBook(Drawing((cover, weaving, *sheets), title), plan, tuple(colours), layout,
+                      placed, book.strip_pages, book.extra_pages, scale, area, width, tile_size,
+                      warnings)
+
+
+def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitle, colours,
+                 first: int) -> tuple[tuple[tuple[int, Strip], ...], list[Sheet]]:
+    """(placed, sheets): ``pieces`` packed onto pages numbered from ``first`` on, each page
+    with its strips, title, ``subtitle(names of its strips)``, scale bar and legend; placed
+    holds (page number, piece on the page)."""
+    x0, y0, x1, y1 = area.box
     places = pack([p.outline for p in pieces], x1 - x0, y1 - y0, GAP, kinds=kinds)
     n_strip = max(pl.page for pl in places) + 1 if places else 0
-    first = 3  # pages 1, 2: assembly and weaving
     placed = tuple((first + pl.page, p.moved(affine(0.0, (x0, y0)) @ pl.matrix(), pl.angle))
                    for p, pl in zip(pieces, places))
     total = n_strip + first - 1
@@ -176,23 +200,12 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
     for n in range(first, first + n_strip):  # pages
         on_page = [p for k, p in placed if k == n]
         names_here = _runs(sorted({p.label.split(" ")[0] for p in on_page}, key=_label_key))
-        if layout == "module":
-            sub = (f"Module pages: print every one of them {plan.k} times, once per direction "
-                   f"(see page 1). Strips: {names_here}")
-        else:
-            sub = f"Strips: {names_here}"
         layers = strip_layers(on_page) + page_layers(
-            area, title, sub, n, total, colours[on_page[0].strand],
-            glue=any(p.glue is not None for p in on_page))
+            area, title, subtitle(names_here), n, total, colours[on_page[0].strand],
+            glue=any(p.glue is not None for p in on_page),
+            folds=any(len(p.folds) for p in on_page))
         sheets.append(Sheet(area.width, area.height, tuple(layers), f"page {n}: strips"))
-    book = StrandBook(Drawing((), title), plan, tuple(colours), layout, placed,
-                      tuple(range(first, first + n_strip)), (1, 2), scale, area, width,
-                      tile_size, warnings)
-    cover = assembly_sheet(weave, book, tile_size, turn, title, total)
-    weaving = weaving_sheet(weave, book, turn, title, total)
-    return StrandBook(Drawing((cover, weaving, *sheets), title), plan, tuple(colours), layout,
-                      placed, book.strip_pages, book.extra_pages, scale, area, width, tile_size,
-                      warnings)
+    return placed, sheets
 
 
 def _module_names(plan: ModulePlan) -> tuple[str, ...]:

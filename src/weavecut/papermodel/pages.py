@@ -9,7 +9,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 import shapely
 
-from ..layout.drawing import Layer, Polygons, Polylines, Style, Text, polygons_from_shapely
+from ..layout.drawing import (Layer, Polygons, Polylines, Style, Text, polygons_from_shapely,
+                              polylines_from_lines)
 from ..layout.labels import MIN_CAP, text_width, wrap
 from .strips import Strip, affine, flat_angle, outline_of, tint
 
@@ -20,6 +21,7 @@ SMALL = MIN_CAP  # cap height of the page furniture (mm)
 CUT = Style("#ff0000", 0.25)
 TILE_LINE = Style("#555555", 0.12)
 GLUE = "#c8c8c8"
+FOLD = Style("#333333", 0.3)  # dashed fold lines of strips unfolded from a surface
 
 
 @dataclass(frozen=True)
@@ -110,7 +112,7 @@ def _parts(geoms) -> list:
 
 def strip_layers(strips: list[Strip]) -> list[Layer]:
     """Layers for strips already on the page: tiles (fills and thin outlines), glue bands,
-    arrows, labels and the cut lines."""
+    fold lines, arrows, labels and the cut lines."""
     tiles, fills, arrows_by_ink, glue, texts, outlines = [], [], {}, [], [], []
     for s in strips:
         for tile, fill in zip([*s.tiles, *s.plates], s.fills + s.plate_fills):
@@ -126,6 +128,11 @@ def strip_layers(strips: list[Strip]) -> list[Layer]:
     if glue:
         layers.append(Layer("glue", "paint", (polygons_from_shapely(
             glue, Style("#555555", 0.15, GLUE)),)))
+    folds = shapely.get_parts(np.concatenate([np.zeros(0, dtype=object),
+                                             *(np.asarray(s.folds, dtype=object) for s in strips)]))
+    if len(folds):
+        layers.append(Layer("folds", "score", (polylines_from_lines(
+            [np.asarray(f.coords) for f in folds], FOLD),)))
     arrow_shapes = tuple(polygons_from_shapely(g, Style(None, 0.0, ink))
                          for ink, g in sorted(arrows_by_ink.items()) if g)
     layers.append(Layer("arrows", "paint", arrow_shapes))
@@ -154,13 +161,15 @@ LEGEND = (
     ("light", "under"),
     ("cut", "cut"),
     ("glue", "glue"),
+    ("fold", "fold"),
 )
 
 
 def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: int,
-                sample: str = "#3e9fb0", glue: bool = False) -> list[Layer]:
+                sample: str = "#3e9fb0", glue: bool = False, folds: bool = False) -> list[Layer]:
     """Title, page number, a 100 mm scale bar and a legend for one page (all text at least
-    ``MIN_CAP`` tall, in the margins outside the printable box)."""
+    ``MIN_CAP`` tall, in the margins outside the printable box); ``glue`` and ``folds`` add
+    their entries."""
     w, h, m = area.width, area.height, area.margin
     number_text = f"page {number} / {total}"
     room = w - 2 * m - text_width(number_text, 3.2) - 4
@@ -173,14 +182,17 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
     # legend: right of the bar on wide pages, above it otherwise; entries left to right
     x, y = (m + 106.0, m + 0.5) if w - 2 * m >= 190 else (m, m + 7.0)
     start = x
-    swatches, fills, strokes = [], [], []
-    for kind, text in (e for e in LEGEND if glue or e[0] != "glue"):
+    swatches, fills, strokes, dashes = [], [], [], []
+    shown = {"glue": glue, "fold": folds}
+    for kind, text in (e for e in LEGEND if shown.get(e[0], True)):
         step = 6.5 + text_width(text, SMALL) + 2.5
         if x + step > w - m and x > start:
             x, y = start, y + 5.0
         box = shapely.box(x, y, x + 5, y + 3)
         if kind == "cut":
             strokes.append(box)
+        elif kind == "fold":
+            dashes += [np.array([[x + a, y + 1.5], [x + a + 1.5, y + 1.5]]) for a in (0, 1.75, 3.5)]
         else:
             swatches.append(box)
             fills.append({"own": sample, "light": tint(sample), "glue": GLUE}[kind])
@@ -190,6 +202,8 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
         shapes.append(polygons_from_shapely(swatches, TILE_LINE, fills))
     if strokes:
         shapes.append(polygons_from_shapely(strokes, CUT))
+    if dashes:
+        shapes.append(polylines_from_lines(dashes, FOLD))
     return [Layer("page", "label", tuple(shapes) + tuple(texts))]
 
 

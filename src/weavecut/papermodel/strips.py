@@ -221,6 +221,9 @@ class Strip:
     glue : shapely Polygons where a piece of a split strip overlaps the next, or None
     plates : label backgrounds in the fill of an under tile too small for its label, drawn
         over the neighbouring tiles; ``plate_fills`` their fills
+    folds : fold lines (shapely lines, drawn dashed) of a strip unfolded from a surface
+    tab : the text on the glue band ("glue", or "glue 2" where numbered tabs pair up)
+    mark : text for the first tile, where the glue band of the piece before goes ("2"), or ""
     """
 
     strand: int
@@ -237,6 +240,9 @@ class Strip:
     glue: NDArray[np.object_] | None = None
     plates: NDArray[np.object_] = field(default_factory=lambda: np.zeros(0, dtype=object))
     plate_fills: tuple[str, ...] = ()
+    folds: NDArray[np.object_] = field(default_factory=lambda: np.zeros(0, dtype=object))
+    tab: str = "glue"
+    mark: str = ""
 
     @property
     def length(self) -> float:
@@ -263,6 +269,7 @@ class Strip:
                        arrows=shapely.transform(self.arrows, f),
                        glue=None if self.glue is None else shapely.transform(self.glue, f),
                        plates=shapely.transform(self.plates, f),
+                       folds=shapely.transform(self.folds, f),
                        texts=tuple(texts), frame=matrix @ self.frame)
 
 
@@ -427,6 +434,8 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
     if part and id_tiles:
         spare = [int(own[r]) for r in rank.tolist() if int(own[r]) not in id_tiles]
         wanted.append((spare[0] if spare else id_tiles[0], part, NAME_SIZE))
+    if strip.mark:
+        wanted.append((0, strip.mark, NAME_SIZE))
     texts, plates, plate_fills = _place(strip, wanted[:1], regions, centres, band)
     if len(wanted) > 1:
         more = _place(strip, wanted[1:], regions, centres, band,
@@ -468,9 +477,9 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
     if band is not None:  # "glue" on the band, where it fits
         zone = shapely.buffer(shapely.intersection(band, strip.outline), -PAD, join_style="mitre")
         c = inner_centres([zone])
-        size, angle = _fit_text([zone], c, ["glue"], NAME_SIZE)
+        size, angle = _fit_text([zone], c, [strip.tab], NAME_SIZE)
         if size[0] >= MIN_CAP:
-            texts.append(centred_text(c[0], "glue", float(size[0]), float(angle[0])))
+            texts.append(centred_text(c[0], strip.tab, float(size[0]), float(angle[0])))
     return replace(strip, texts=tuple(texts), arrows=np.array(arrows, dtype=object),
                    plates=plates, plate_fills=plate_fills)
 
