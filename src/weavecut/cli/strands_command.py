@@ -8,6 +8,7 @@ import re
 from pathlib import Path
 
 import click
+import numpy as np
 
 from .. import export
 from ..subdivision import snub, subdivide
@@ -15,6 +16,7 @@ from ..weave.colour import palette
 from .common import (CONTEXT, Finite, Length, PageSize, complete_preset,
                      flag_nonconvex, input_argument, load_mesh, provenance, reports_errors,
                      html_option, summary)
+from .mesh_commands import project_option
 
 FORMATS = ("pdf", "svg")
 
@@ -38,7 +40,8 @@ class PrintLength(Length):
               help="Distance across an octagon, with a unit: the print's true scale "
                    "[default: 20mm]. Strips under 8 mm wide are refused (they tear).")
 @click.option("--size", "model_size", type=PrintLength(), default=None,
-              help="Width of the finished model, with a unit (e.g. 23cm); sets the tile size.")
+              help="Width of the finished model, with a unit (e.g. 23cm); sets the tile size. "
+                   "A ball's diameter [default: octagons 40 mm across].")
 @click.option("--layout", type=click.Choice(("mixed", "module")), default="mixed", show_default=True,
               help="mixed: every copy's strips packed densely together; module: the paper's "
                    "way, the module's pages printed once per direction.")
@@ -53,6 +56,7 @@ class PrintLength(Length):
                    "down in it [default: 45 for square-grid, else 0].")
 @click.option("--chirality", type=click.Choice(snub.CHIRALITIES), default="left",
               show_default=True, help="Side the first Z edge turns to.")
+@project_option
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
               help="Output: .pdf (one page per sheet) or .svg (a layer per page).")
 @click.option("--json", "as_json", is_flag=True,
@@ -60,7 +64,7 @@ class PrintLength(Length):
 @reports_errors
 @html_option
 def strands_command(input_mesh, levels, page, tile_size, model_size, layout, margin,
-                    palette_name, turn, chirality, output, as_json) -> None:
+                    palette_name, turn, chirality, project, output, as_json) -> None:
     """Printable paper strips for weaving INPUT by hand: an assembly sheet, a page of weaving
     steps, then one strip per strand, grouped into modules by the pattern's rotational symmetry.
 
@@ -69,6 +73,7 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
       weave-cut strands square-grid --size 27cm -o square.pdf
       weave-cut strands pentagon-flower --size 23cm -o pentagon.pdf
       weave-cut strands square-grid --layout module --page letter -o square-module.pdf
+      weave-cut strands dodecahedron --levels 1 --project sphere --size 12cm -o ball.pdf
     """
     from ..papermodel.book import preset_for, strand_book, tile_size_for
     from ..papermodel.checks import report
@@ -82,12 +87,21 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
         raise click.BadParameter("give --tile-size or --size, not both", param_hint="'--size'")
     preset = preset_for(input_mesh)
     levels = preset["levels"] if levels is None else levels
-    turn = preset["turn"] if turn is None else math.radians(turn)
     pal = palette(palette_name or preset["palette"])
     from ..validation import check_layout
 
-    hierarchy = subdivide(check_layout(load_mesh(input_mesh), "the paper model"), levels,
-                          chirality=chirality)
+    mesh = load_mesh(input_mesh)
+    if mesh.dim == 3:
+        if layout != "mixed" or turn is not None:
+            raise click.UsageError("--layout and --turn are for flat models; a ball prints "
+                                   "every strip once")
+        return ball(mesh, input_mesh, levels, page, tile_size, model_size, margin, pal,
+                    chirality, project, output, as_json)
+    if project:
+        raise click.BadParameter(f"{input_mesh} is flat; --project sphere is for surfaces "
+                                 "in space", param_hint="'--project'")
+    turn = preset["turn"] if turn is None else math.radians(turn)
+    hierarchy = subdivide(check_layout(mesh, "the paper model"), levels, chirality=chirality)
     weaves = snub_weaves(hierarchy)
     nonconvex = flag_nonconvex(hierarchy)
     if model_size is not None:
@@ -114,3 +128,38 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
                 f"strips, {100 * book.ink:.0f} % ink); C{plan.k}, {plan.k} copies of "
                 f"a {plan.copies.shape[1]}-strip module"
                 + (f" + {len(plan.extras)} extras" if len(plan.extras) else ""))
+
+
+BALL_TILE = 40.0  # mm across an octagon: a ball's default size
+
+
+def ball(mesh, input_mesh, levels, page, tile_size, diameter, margin, pal, chirality, project,
+         output, as_json) -> None:
+    """``strands`` of a surface in space: a woven ball's strips, ``diameter`` mm across."""
+    from ..papermodel.ball import ball_book, diameter_for
+    from ..papermodel.checks import report
+    from ..weave.snub_weave import snub_weaves
+
+    hierarchy = subdivide(mesh, levels, chirality=chirality, project=project)
+    weaves = snub_weaves(hierarchy)
+    weave = weaves[-1]
+    if diameter is None:
+        diameter = diameter_for(weave, tile_size or BALL_TILE)
+    book = ball_book(weaves, pal, page, diameter, margin,
+                     title=f"weave-cut strands: {input_mesh}, level {levels}"
+                           + (f", projected to the {project}" if project else ""))
+    for warning in book.warnings:
+        click.echo(f"weave-cut: warning: {warning}", err=True)
+    export.write(book.drawing.with_metadata(**provenance()), output)
+    if as_json:
+        click.echo(json.dumps({"input": input_mesh, "levels": levels, "project": project,
+                               "output": output, **report(book), **book.flattening(),
+                               "strands": int(weave.n_strands),
+                               "strand_lengths_mm": np.round(weave.strand_lengths()
+                                                             * book.scale, 1).tolist()},
+                              indent=2))
+    else:
+        summary(f"{output}: {len(book.drawing.sheets)} pages ({len(book.strip_pages)} of "
+                f"strips, {100 * book.ink:.0f} % ink); {weave.n_strands} strips in "
+                f"{len(book.pieces)} pieces, a ball {diameter / 10:.1f} cm across; unfolded "
+                f"edges change by at most {100 * book.stretch:.2f} %")

@@ -259,7 +259,11 @@ def smallest_tile_size(weave: Weave, plan: ModulePlan, colours, tile_size: float
 
 def _label_key(label: str):
     head = label.rstrip("0123456789")
-    return (head, int(label[len(head):] or 0))
+    return (head, int(label[len(head):] or -1))  # -1: a letter alone (a ball's strand "A")
+
+
+def _key_text(key) -> str:
+    return key[0] + (str(key[1]) if key[1] >= 0 else "")
 
 
 def _runs(labels: list[str]) -> str:
@@ -271,8 +275,8 @@ def _runs(labels: list[str]) -> str:
             prev = key
             continue
         if start is not None:
-            out.append(f"{start[0]}{start[1]}" if start == prev
-                       else f"{start[0]}{start[1]}-{prev[0]}{prev[1]}")
+            out.append(_key_text(start) if start == prev
+                       else f"{_key_text(start)}-{_key_text(prev)}")
         start = prev = key
     return ", ".join(out)
 

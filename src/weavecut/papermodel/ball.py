@@ -1,0 +1,326 @@
+"""The paper model of a woven ball: every strand of a weave on a closed surface unfolded into
+strips (:mod:`.unfold`), packed onto pages as the flat models' strips are, after an assembly
+sheet with views of the ball from six sides and a page of weaving steps.
+
+Strands are named by letters (A, B, ...); a strip cut into pieces names them "A 1/2", "A 2/2".
+Every piece ends with a glue band "glue j" that goes under the tile marked "j" (the first tile
+of the next piece, or of the first piece where the loop closes).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+
+from ..layout.contrast import text_colour_on
+from ..layout.drawing import Drawing, Layer, Sheet, Style, Text, polygons_from_shapely
+from ..layout.labels import MIN_CAP, centred_text, inner_centres, largest_fit, unit_box
+from ..layout.weave_figure import tile_rings
+from ..surface import face_normals
+from ..weave.colour import Palette, strand_colours
+from ..weave.model import Weave
+from .assembly import TEXT, _paragraphs
+from .book import CURL, MIN_STRIP, WARN_STRIP, SizeError, StrandBook, page_index, strip_sheets
+from .pages import GAP, PageArea, _fits, page_layers
+from .strips import Strip, affine, copy_letter, flat_angle, label_strip, outline_of, tint
+from .unfold import OVERLAP, Unfolding, UnfoldError, dashed, flatten, unfold
+
+MIN_FOLD = math.radians(1.0)  # joints flatter than this are not drawn as folds
+OUTLINE = Style("#333333", 0.1)
+# (name, towards the viewer, up): six views, every tile seen head-on in one of them
+VIEWS = (("front", (0, 0, 1), (0, 1, 0)), ("right", (1, 0, 0), (0, 1, 0)),
+         ("back", (0, 0, -1), (0, 1, 0)), ("left", (-1, 0, 0), (0, 1, 0)),
+         ("top", (0, 1, 0), (0, 0, -1)), ("bottom", (0, -1, 0), (0, 0, 1)))
+
+
+@dataclass(frozen=True, eq=False)
+class BallBook(StrandBook):
+    """A :class:`StrandBook` of a ball (``plan`` is None) plus what flattening cost.
+
+    Parameters
+    ----------
+    unfoldings : (S,) every strand's unfolding (mesh units)
+    diameter : mm across the finished ball
+    non_planarity : (T,) every tile's largest pentagon non-planarity (share of its diameter)
+    """
+
+    unfoldings: tuple[Unfolding, ...] = ()
+    diameter: float = 0.0
+    non_planarity: np.ndarray | None = None
+
+    @property
+    def stretch(self) -> float:
+        """Largest change of an unfolded edge's length against its length in space (share)."""
+        return max(float(np.abs(u.stretch).max()) for u in self.unfoldings)
+
+    def flattening(self) -> dict:
+        """The figures ``strands --json`` reports for a ball."""
+        return {"diameter_mm": round(self.diameter, 1),
+                "largest_edge_change_pct": round(100 * self.stretch, 3),
+                "largest_non_planarity_pct": round(100 * float(self.non_planarity.max()), 3),
+                "tile_non_planarity_pct": np.round(100 * self.non_planarity, 3).tolist(),
+                "pieces": len(self.pieces)}
+
+
+def radius(weave: Weave) -> float:
+    """Largest distance of a vertex from the vertices' mean (mesh units)."""
+    v = weave.mesh.vertices
+    return float(np.linalg.norm(v - v.mean(axis=0), axis=1).max())
+
+
+def tile_size_of(weave: Weave) -> float:
+    """Median distance across an octagon (farthest corners, in space), mesh units."""
+    coords, offsets = tile_rings(weave)
+    octs = coords.reshape(-1, 8, 3)
+    return float(np.median(np.linalg.norm(octs[:, :, None] - octs[:, None], axis=-1)
+                           .max(axis=(1, 2))))
+
+
+def diameter_for(weave: Weave, tile_size: float) -> float:
+    """The ball's diameter (mm) at which octagons are ``tile_size`` mm across."""
+    return tile_size / tile_size_of(weave) * 2 * radius(weave)
+
+
+def piece_runs(tiles, length: float, width: float) -> list[tuple[int, int]]:
+    """Runs (first, last) of whole tiles, consecutive runs sharing a tile, such that each run
+    fits a ``length`` x ``width`` rectangle and no two tiles of a run overlap (but neighbours,
+    which share an edge); as few runs as greedy extension gives, then evened out if the
+    even runs still fit."""
+    tiles = np.asarray(tiles, dtype=object)
+    m = len(tiles)
+
+    def ok(a: int, b: int) -> bool:
+        part = tiles[a:b + 1]
+        if not _fits(shapely.union_all(part), length, width):
+            return False
+        i, j = shapely.STRtree(part).query(part, predicate="intersects")
+        far = j > i + 1
+        overlap = shapely.area(shapely.intersection(part[i[far]], part[j[far]]))
+        return bool((overlap <= OVERLAP * shapely.area(part[i[far]])).all())
+
+    if m == 1:
+        return [(0, 0)]
+    runs, a = [], 0
+    while True:  # runs
+        b = a + 1
+        if not ok(a, b):
+            raise UnfoldError("two tiles of a strip do not fit the page: make the ball smaller "
+                              "or the page larger")
+        while b + 1 < m and ok(a, b + 1):
+            b += 1
+        runs.append((a, b))
+        if b >= m - 1:
+            return _even(runs, m, ok)
+        a = b
+
+
+def _even(runs, m: int, ok) -> list[tuple[int, int]]:
+    ends = np.round(np.linspace(0, m - 1, len(runs) + 1)).astype(int).tolist()
+    even = list(zip(ends[:-1], ends[1:]))
+    return even if all(b > a and ok(a, b) for a, b in even) else runs
+
+
+def strand_pieces(weave: Weave, u: Unfolding, colours, labels, scale: float,
+                  area: PageArea) -> list[Strip]:
+    """Strand ``u.strand``'s strip in pieces (mm, unlabelled), each laid flat, long axis
+    along x, walking towards +x."""
+    s = u.strand
+    tiles = shapely.transform(u.tile_polygons(), lambda xy: xy * scale)
+    x0, y0, x1, y1 = area.box
+    runs = piece_runs(tiles, max(x1 - x0, y1 - y0), CURL * min(x1 - x0, y1 - y0))
+    top = weave.tile_over[u.tiles]
+    fills = tuple(colours[s] if o else tint(colours[t]) for o, t in zip(u.over, top.tolist()))
+    names = tuple(labels[t] for t in top.tolist())
+    fold = np.abs(u.fold_angles) >= MIN_FOLD
+    lines = dashed(u.folds * scale)
+    closed = bool(weave.strand_closed[s])
+    n = len(runs)
+    eps = 1e-6 * scale
+    out = []
+    for i, (a, b) in enumerate(runs):  # pieces of one strand
+        band = closed or i + 1 < n
+        inside = fold & (u.face_visit[:-1] >= a) & (u.face_visit[1:] <= b)
+        piece = Strip(s, labels[s] if n == 1 else f"{labels[s]} {i + 1}/{n}",
+                      outline_of(tiles[a:b + 1], eps), tiles[a:b + 1], fills[a:b + 1],
+                      u.over[a:b + 1], names[a:b + 1], np.eye(3),
+                      arrow_ink=text_colour_on(colours[s]),
+                      glue=tiles[b:b + 1] if band else None, folds=lines[inside],
+                      tab=f"glue {i + 1}", mark=str(i) if i else (str(n) if closed else ""))
+        flat = piece.moved(affine(flat_angle(piece.outline)))
+        ends = shapely.get_coordinates(shapely.centroid(flat.tiles[[0, -1]]))
+        if ends[1, 0] < ends[0, 0]:
+            flat = flat.moved(affine(180.0))
+        bx, by = flat.outline.bounds[:2]
+        out.append(flat.moved(affine(0.0, (-bx, -by))))
+    return out
+
+
+def ball_book(weaves: list[Weave], pal: Palette, page=(210.0, 297.0), diameter: float = 150.0,
+              margin: float = 10.0, title: str = "weave-cut strands") -> BallBook:
+    """Every strand of ``weaves[-1]`` (a snub weave on a closed surface) as printable strips,
+    the ball ``diameter`` mm across.
+
+    Raises
+    ------
+    SizeError when strips would be narrower than 8 mm or a label smaller than 2.5 mm;
+    UnfoldError when a strip cannot be unfolded onto the page
+    """
+    weave = weaves[-1]
+    area = PageArea(page[0], page[1], margin)
+    area.check()
+    scale = diameter / (2 * radius(weave))
+    tile_mm = tile_size_of(weave) * scale
+    colours = strand_colours(weaves, pal)
+    labels = tuple(copy_letter(i) for i in range(weave.n_strands))
+    flat = flatten(weave)
+    unfoldings = tuple(unfold(weave, s, flat) for s in range(weave.n_strands))
+    pieces = [p for u in unfoldings
+              for p in strand_pieces(weave, u, colours, labels, scale, area)]
+    widths = shapely.minimum_rotated_rectangle(np.concatenate([p.tiles for p in pieces]))
+    rect = shapely.get_coordinates(shapely.get_exterior_ring(widths)).reshape(-1, 5, 2)
+    sides = np.linalg.norm(rect[:, 1:3] - rect[:, 0:2], axis=-1)
+    width = float(np.median(sides.min(axis=1)))
+    if width < MIN_STRIP - 1e-9:
+        raise SizeError(f"strips would be {width:.1f} mm wide and tear (paper section 5.2): "
+                        f"use --size {math.ceil(diameter * MIN_STRIP / width / 10)}cm or more")
+    warnings = () if width >= WARN_STRIP else (
+        f"strips are {width:.1f} mm wide: thin strips tear easily; {WARN_STRIP:g} mm or more "
+        "is easier to weave",)
+    pieces = [label_strip(p, tile_mm) for p in pieces]
+    small = min((t.size for p in pieces for t in p.texts), default=MIN_CAP)
+    if small < MIN_CAP - 1e-6:
+        raise SizeError(f"some labels would be {small:.1f} mm tall on a {diameter / 10:g} cm "
+                        f"ball; labels need {MIN_CAP:g} mm: use --size "
+                        f"{math.ceil(diameter * MIN_CAP / small / 10)}cm or more")
+    kinds = _kinds(pieces)
+    first = 3  # pages 1, 2: assembly and weaving
+    placed, sheets = strip_sheets(pieces, kinds, area, title,
+                                  lambda names: f"Strips: {names}", colours, first)
+    total = len(sheets) + first - 1
+    tile_planes = flat.non_planarity[weave.tile_faces].reshape(-1, 2).max(axis=1)
+    book = BallBook(Drawing((), title), None, tuple(colours), "ball", placed,
+                    tuple(range(first, first + len(sheets))), (1, 2), scale, area, width,
+                    tile_mm, warnings, unfoldings, diameter, tile_planes)
+    cover = assembly_sheet(weave, book, labels, title, total)
+    weaving = weaving_sheet(weave, book, labels, title, total)
+    return BallBook(Drawing((cover, weaving, *sheets), title), None, tuple(colours), "ball",
+                    placed, book.strip_pages, book.extra_pages, scale, area, width, tile_mm,
+                    warnings, unfoldings, diameter, tile_planes)
+
+
+def _kinds(pieces: list[Strip]) -> list[int]:
+    """Equal numbers for pieces whose outlines agree to 0.01 mm (congruent pieces, which the
+    packer nests)."""
+    keys = [np.round(shapely.get_coordinates(p.outline), 2).tobytes() for p in pieces]
+    index: dict[bytes, int] = {}
+    return [index.setdefault(k, len(index)) for k in keys]
+
+
+def _views(weave: Weave, colours, labels, box, show=None):
+    """(painted tiles, fills, IDs, captions): the ball seen from the six ``VIEWS`` in a 3 x 2
+    grid inside ``box``, every tile facing the viewer in the colour of the strand on top (with
+    ``show`` (S,) bool: only those strands; a shown strand passing under a hidden one light,
+    the rest white)."""
+    coords, offsets = tile_rings(weave)
+    rings = coords.reshape(-1, 8, 3)
+    centre = weave.mesh.vertices.mean(axis=0)
+    normals = np.add.reduceat(face_normals(weave.mesh)[weave.tile_faces], weave.tile_offsets[:-1])
+    normals /= np.linalg.norm(normals, axis=1)[:, None]
+    top, under = weave.tile_over, weave.tile_under
+    shown = np.ones(weave.n_strands, bool) if show is None else np.asarray(show)
+    fill = np.where(shown[top], np.asarray(colours, dtype=object)[top],
+                    np.where(shown[under], [tint(c) for c in np.asarray(colours)[under]],
+                             "#ffffff"))
+    x0, y0, x1, y1 = box
+    cell = min((x1 - x0) / 3, (y1 - y0 - 2 * (TEXT + 2)) / 2)
+    scale = (cell - 2 * GAP) / (2 * radius(weave))
+    polys, fills, ids, captions = [], [], [], []
+    for k, (name, toward, up) in enumerate(VIEWS):  # six views
+        d, u = np.array(toward, float), np.array(up, float)
+        r = np.cross(u, d)
+        cx = x0 + (k % 3 + 0.5) * (x1 - x0) / 3
+        cy = y1 - (k // 3) * (cell + TEXT + 2) - cell / 2
+        facing = normals @ d
+        keep = np.flatnonzero(facing > 0.05)
+        keep = keep[np.argsort((rings[keep] - centre).mean(axis=1) @ d)]  # far ones first
+        xy = np.stack([(rings[keep] - centre) @ r, (rings[keep] - centre) @ u], axis=-1)
+        shapes = shapely.polygons(xy * scale + [cx, cy])
+        polys += shapes.tolist()
+        fills += fill[keep].tolist()
+        # the strand on top named in every tile that faces the viewer well
+        good = (facing[keep] > 0.5) & shown[top[keep]]
+        regions = shapely.buffer(shapes[good], -0.4, join_style="mitre")
+        at = inner_centres(regions)
+        text = [labels[t] for t in top[keep][good].tolist()]
+        size = largest_fit(regions, [unit_box(t, 0.0) for t in text], at, MIN_CAP, 5.0)
+        ids += [centred_text(c, t, float(z), 0.0, text_colour_on(f))
+                for c, t, z, f in zip(at, text, size, fill[keep][good].tolist())
+                if np.isfinite(z)]
+        captions.append(Text(cx, cy - cell / 2 - TEXT - 0.5, name, TEXT, "middle"))
+    return polys, fills, ids, captions
+
+
+def _view_layers(weave, book, labels, box, show=None) -> list[Layer]:
+    polys, fills, ids, captions = _views(weave, book.colours, labels, box, show)
+    return [Layer("views", "paint", (polygons_from_shapely(polys, OUTLINE, fills),)),
+            Layer("ids", "label", tuple(ids)), Layer("captions", "label", tuple(captions))]
+
+
+def assembly_sheet(weave: Weave, book: BallBook, labels, title: str, total: int) -> Sheet:
+    """Page 1: what to print, where each strip is, and the ball from six sides."""
+    area = book.area
+    x0, y0, x1, y1 = area.box
+    n = weave.n_strands
+    lengths = weave.strand_lengths() * book.scale
+    strips = f"p. {book.strip_pages[0]}-{book.strip_pages[-1]}" if book.strip_pages else "-"
+    lines = [f"{n} strands, each a closed loop: {n} strips ({labels[0]}-{labels[-1]}) in "
+             f"{len(book.pieces)} pieces. Finished ball {book.diameter / 10:.1f} cm across, "
+             f"octagons {book.tile_size:.1f} mm across. Print the strip pages ({strips}) once, "
+             "at 100 % (no fit to page).",
+             "Where each strip is: " + page_index(book) + ".",
+             "Strand lengths (centre line): " + ", ".join(
+                 f"{lab} {x / 10:.1f} cm" for lab, x in zip(labels, lengths.tolist())) + ".",
+             f"Unfolding bends every pentagon flat: corners up to "
+             f"{100 * float(book.non_planarity.max()):.1f} % of its size off its plane, edges "
+             f"longer or shorter by at most {100 * book.stretch:.2f} %.",
+             "The views show each tile in the colour of the strand on top there, with its "
+             "ID. Weaving steps: page 2."]
+    texts, bottom = _paragraphs(lines, x0, y1, x1 - x0)
+    layers = _view_layers(weave, book, labels, (x0, y0, x1, bottom - GAP))
+    layers.append(Layer("notes", "label", tuple(texts)))
+    layers += page_layers(area, title, "Assembly sheet: the woven ball from six sides, every "
+                          "tile with the ID of the strand on top", 1, total, book.colours[0])
+    return Sheet(area.width, area.height, tuple(layers), "page 1: assembly")
+
+
+def weaving_sheet(weave: Weave, book: BallBook, labels, title: str, total: int) -> Sheet:
+    """Page 2: numbered weaving steps, and the ball as the first strands go in."""
+    area = book.area
+    x0, y0, x1, y1 = area.box
+    half = max(1, weave.n_strands // 2)
+    steps = [
+        "Cut out every strip along its red outline, the narrow V-shaped notches between "
+        "tiles too: they let the strip curve round the ball.",
+        "Crease every dashed line with the coloured side outwards (mountain folds): each "
+        "octagon folds along its middle, and the strip bends where tiles meet.",
+        "A strip in pieces: glue the grey band 'glue j' of each piece under the tile marked "
+        "'j' of the next, coloured sides out, outlines matching.",
+        "A strip's own tiles (its colour) lie on top; a light tile names the strip on top "
+        "of it there: slide it under that strip.",
+        f"Start with {labels[0]} and the strips crossing it; add the others one at a time, "
+        "over and under as printed, as the views below and on page 1 show.",
+        "Close every loop last: glue its band 'glue j' under its own tile marked 'j'.",
+    ]
+    texts, bottom = _paragraphs(steps, x0, y1, x1 - x0, numbered=True)
+    more, bottom = _paragraphs([f"The views show strips {labels[0]}-{labels[half - 1]} in "
+                                "place (light where they pass under strips still to come)."],
+                               x0, bottom - GAP, x1 - x0)
+    show = np.arange(weave.n_strands) < half
+    layers = _view_layers(weave, book, labels, (x0, y0, x1, bottom - GAP), show)
+    texts += more
+    layers.append(Layer("steps", "label", tuple(texts)))
+    layers += page_layers(area, title, "Weaving steps", 2, total, book.colours[0])
+    return Sheet(area.width, area.height, tuple(layers), "page 2: weaving")
