@@ -21,7 +21,6 @@ def run(*args):
     ("subdivide", "cube", "-o", "{tmp}/x.svg"),
     ("subdivide", "{tmp}/ball.obj", "-o", "{tmp}/x.pdf"),
     ("weave", "dodecahedron", "-o", "{tmp}/x.svg"),
-    ("strands", "cube", "-o", "{tmp}/x.pdf"),
     ("puzzle", "cube", "-o", "{tmp}/puzzle"),
     ("stats", "icosahedron"),
     ("convexity", "icosahedron"),
