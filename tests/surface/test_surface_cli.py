@@ -22,7 +22,6 @@ def run(*args):
     ("subdivide", "{tmp}/ball.obj", "-o", "{tmp}/x.pdf"),
     ("weave", "dodecahedron", "-o", "{tmp}/x.svg"),
     ("puzzle", "cube", "-o", "{tmp}/puzzle"),
-    ("stats", "icosahedron"),
     ("convexity", "icosahedron"),
     ("subdivide", "cube", "--scheme", "loop", "-o", "{tmp}/x.obj"),
 ])
@@ -50,3 +49,30 @@ def test_project_sphere_refuses_a_flat_input(tmp_path):
     result = run("subdivide", "pentagon", "--project", "sphere", "-o", tmp_path / "x.obj")
     assert result.exit_code == 1
     assert "needs a surface in space" in result.output
+
+
+@pytest.mark.parametrize("name, angle", [("tetrahedron", 60.0), ("cube", 90.0),
+                                         ("octahedron", 60.0), ("dodecahedron", 108.0),
+                                         ("icosahedron", 60.0)])
+def test_stats_on_a_solid_count_per_eq2_and_keep_euler_2(name, angle):
+    result = run("stats", name, "--levels", "2", "--project", "sphere", "--json")
+    assert result.exit_code == 0, result.output
+    rows = json.loads(result.output)["levels"]
+    # the solid's own faces are regular: the angles in space, not a projection of them
+    assert rows[0]["min_angle_deg"] == pytest.approx(angle)
+    assert rows[0]["max_angle_deg"] == pytest.approx(angle)
+    for before, row in zip(rows, rows[1:]):
+        assert row["euler_characteristic"] == 2 and row["boundary_edges"] == 0
+        corners = sum(int(k) * n for k, n in before["face_degrees"].items())
+        assert (row["vertices"], row["edges"], row["faces"]) == (
+            before["vertices"] + 2 * before["edges"] + before["faces"],
+            3 * before["edges"] + corners, corners)
+        assert row["eq2_holds"] and row["nonconvex_faces"] == 0
+        assert row["closed_strands"] == row["strands"] == len(row["strand_lengths"])
+        assert 0 < min(row["strand_lengths"])
+
+
+def test_stats_text_names_euler_and_the_loops():
+    result = run("stats", "dodecahedron", "--levels", "1")
+    assert result.exit_code == 0, result.output
+    assert "level 1: V - E + F = 2; eq. (2) holds; 6 strands (6 closed)" in result.output

@@ -37,6 +37,20 @@ def _dense_angles(vertices: NDArray[np.float64], faces: NDArray[np.int32]) -> ND
     return np.mod(np.arctan2(cross, dot), 2 * np.pi)
 
 
+def surface_angles(mesh: Mesh) -> NDArray[np.float64]:
+    """(H,) interior angle at every corner of a surface in space, in (0, 2 pi): measured in the
+    plane of the corner's two edges, reflex where the corner turns against the face's normal."""
+    from ..surface import face_normals
+
+    p = mesh.vertices[mesh.face_indices]
+    a = p[mesh.prev_half_edge] - p
+    b = p[mesh.next_half_edge] - p
+    cross = np.cross(b, a)
+    side = np.einsum("hk,hk->h", cross, face_normals(mesh)[mesh.half_edge_face])
+    angle = np.arctan2(np.linalg.norm(cross, axis=1), np.einsum("hk,hk->h", a, b))
+    return np.where(side < 0, 2 * np.pi - angle, angle)
+
+
 def angle_summary(mesh: Mesh) -> tuple[float, float, int]:
     """(smallest, largest interior angle in radians, number of non-convex faces) in one pass.
 
@@ -44,6 +58,11 @@ def angle_summary(mesh: Mesh) -> tuple[float, float, int]:
     index arrays and little memory; the numbers equal ``corner_angles`` and
     :func:`nonconvex_faces`.
     """
+    if mesh.dim == 3:
+        angles = surface_angles(mesh)
+        reflex = np.bincount(mesh.half_edge_face[angles > np.pi + REFLEX_EPS],
+                             minlength=mesh.n_faces) > 0
+        return float(angles.min()), float(angles.max()), int(reflex.sum())
     dense = mesh.dense_faces()
     if dense is None:
         angles = corner_angles(mesh)
@@ -84,3 +103,29 @@ def level_stats(mesh: Mesh, level: int) -> dict:
         "boundary_edges": int(boundary.sum()),
         "boundary_length": round(boundary_length(mesh), 6),
     }
+
+
+def surface_stats(hierarchy) -> list[dict]:
+    """What ``stats`` adds for a surface in space, per level: the Euler characteristic
+    V - E + F, the counts paper eq. (2) predicts from the level before (|V'| = |V| + 2|E| + |F|,
+    |E'| = 3|E| + sum n_f, |F'| = sum n_f) and whether they hold, and the snub weave's strands:
+    how many, how many closed, and every loop's centre-line length (mesh units)."""
+    from ..weave.snub_weave import snub_weaves
+
+    weaves = snub_weaves(hierarchy) if len(hierarchy) > 1 else []
+    rows = []
+    for t, level in enumerate(hierarchy):  # levels
+        mesh = level.mesh
+        v, e, f = mesh.n_vertices, mesh.topology.n_edges, mesh.n_faces
+        row: dict = {"euler_characteristic": v - e + f}
+        if t:
+            before = hierarchy[t - 1].mesh
+            corners = int(before.face_sizes.sum())
+            eq2 = {"vertices": before.n_vertices + 2 * before.topology.n_edges + before.n_faces,
+                   "edges": 3 * before.topology.n_edges + corners, "faces": corners}
+            weave = weaves[t - 1]
+            row.update(eq2=eq2, eq2_holds=eq2 == {"vertices": v, "edges": e, "faces": f},
+                       strands=weave.n_strands, closed_strands=int(weave.strand_closed.sum()),
+                       strand_lengths=[round(float(x), 6) for x in weave.strand_lengths()])
+        rows.append(row)
+    return rows

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from collections import Counter
 from pathlib import Path
 
 import click
@@ -10,7 +11,7 @@ import numpy as np
 
 from .. import export, inputs
 from ..errors import MeshError
-from ..analysis.stats import level_stats
+from ..analysis.stats import level_stats, surface_stats
 from ..subdivision import SCHEMES, snub, subdivide
 from .common import (
     CONTEXT,
@@ -160,20 +161,25 @@ def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
 @click.command("stats", context_settings=CONTEXT)
 @input_argument
 @scheme_options
+@project_option
 @click.option("--json", "as_json", is_flag=True, help="Print JSON (a stable shape for scripts).")
 @reports_errors
 def stats_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allow_nonconvex,
-                  as_json) -> None:
-    """Counts, degree histograms, angles and boundary of every level.
+                  project, as_json) -> None:
+    """Counts, degree histograms, angles and boundary of every level; on a surface in space
+    also V - E + F, the counts of paper eq. (2), and the strands with their lengths.
 
     \b
     Examples:
       weave-cut stats pentagon --levels 6
       weave-cut stats square-grid:3x3 --levels 3 --json
+      weave-cut stats dodecahedron --levels 2 --project sphere
     """
     hierarchy = run_scheme(input_mesh, levels, scheme, no_smooth, chirality, centre,
-                           allow_nonconvex, flat="weave-cut stats")
+                           allow_nonconvex, project)
     rows = [level_stats(lv.mesh, t) for t, lv in enumerate(hierarchy)]
+    if hierarchy[0].mesh.dim == 3:
+        rows = [{**r, **more} for r, more in zip(rows, surface_stats(hierarchy))]
     if as_json:
         click.echo(json.dumps({"input": input_mesh, "levels": rows}, indent=2))
         return
@@ -188,6 +194,15 @@ def stats_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
         click.echo(f"level {r['level']}: inner degrees {_fmt(r['inner_vertex_degrees'])}; "
                    f"outer degrees {_fmt(r['outer_vertex_degrees'])}; "
                    f"faces {_fmt(r['face_degrees'])}")
+    for r in rows:
+        if "euler_characteristic" in r:
+            line = f"level {r['level']}: V - E + F = {r['euler_characteristic']}"
+            if "strands" in r:
+                lengths = Counter(f"{x:.4g}" for x in r["strand_lengths"])
+                line += (f"; eq. (2) {'holds' if r['eq2_holds'] else 'FAILS'}; "
+                         f"{r['strands']} strands ({r['closed_strands']} closed), lengths "
+                         + ", ".join(f"{k} x{n}" for k, n in lengths.items()))
+            click.echo(line)
 
 
 def _fmt(hist: dict[str, int]) -> str:
