@@ -32,9 +32,10 @@ def ball_weaves(name: str, levels: int, project: str | None = "sphere"):
     return snub_weaves(subdivide(get(name), levels, project=project))
 
 
-@pytest.fixture(scope="module", params=["dodecahedron", "cube"])
+@pytest.fixture(scope="module", params=[("dodecahedron", 1), ("cube", 1), ("cube", 2)],
+                ids=lambda p: f"{p[0]}-{p[1]}")
 def book(request):
-    weaves = ball_weaves(request.param, 1)
+    weaves = ball_weaves(*request.param)
     return weaves[-1], ball_book(weaves, palette("maritime-12"), (210.0, 297.0),
                                  diameter_for(weaves[-1], 40.0))
 

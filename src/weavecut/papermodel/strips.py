@@ -417,22 +417,24 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
     under = np.flatnonzero(~strip.over & ~shapely.is_empty(regions))
     # the strip's ID: largest own tile; a long strip also in the largest of its other half
     id_tiles: list[int] = []
-    if len(own):
-        id_size, _ = _fit_text(regions[own], centres[own],
-                               [strip.label.partition(" ")[0]] * len(own), ID_SIZE)
-        rank = np.lexsort((np.arange(len(own)), -shapely.area(regions[own])))
+    # the first tile of a piece with a mark keeps its room for the mark
+    cand = own[own != 0] if strip.mark and (own != 0).any() else own
+    if len(cand):
+        id_size, _ = _fit_text(regions[cand], centres[cand],
+                               [strip.label.partition(" ")[0]] * len(cand), ID_SIZE)
+        rank = np.lexsort((np.arange(len(cand)), -shapely.area(regions[cand])))
         first = rank[0] if id_size[rank[0]] >= MIN_CAP else int(np.argmax(id_size))
-        id_tiles = [int(own[first])]
-        if len(own) >= 6:
-            half = own > own[first] if own[first] < own[len(own) // 2] else own < own[first]
-            id_tiles += [int(own[r]) for r in rank.tolist() if half[r]
+        id_tiles = [int(cand[first])]
+        if len(cand) >= 6:
+            half = cand > cand[first] if cand[first] < cand[len(cand) // 2] else cand < cand[first]
+            id_tiles += [int(cand[r]) for r in rank.tolist() if half[r]
                          and id_size[r] >= MIN_CAP][:1]
     # IDs first (spread onto the neighbours if they must), a piece's number ("2/3") in another
     # own tile, then the names round them
     name, _, part = strip.label.partition(" ")
     wanted = [(i, name, ID_SIZE) for i in id_tiles]
     if part and id_tiles:
-        spare = [int(own[r]) for r in rank.tolist() if int(own[r]) not in id_tiles]
+        spare = [int(cand[r]) for r in rank.tolist() if int(cand[r]) not in id_tiles]
         wanted.append((spare[0] if spare else id_tiles[0], part, NAME_SIZE))
     if strip.mark:
         wanted.append((0, strip.mark, NAME_SIZE))
