@@ -29,6 +29,7 @@ from .strips import Strip, affine, copy_letter, flat_angle, label_strip, outline
 from .unfold import OVERLAP, Unfolding, UnfoldError, dashed, flatten, unfold
 
 MIN_FOLD = math.radians(1.0)  # joints flatter than this are not drawn as folds
+VALLEY = (0.5, 1.0)  # mm dash and gap of a valley fold (a mountain fold: unfold.DASH)
 OUTLINE = Style("#333333", 0.1)
 # (name, towards the viewer, up): six views, every tile seen head-on in one of them
 VIEWS = (("front", (0, 0, 1), (0, 1, 0)), ("right", (1, 0, 0), (0, 1, 0)),
@@ -135,7 +136,9 @@ def strand_pieces(weave: Weave, u: Unfolding, colours, labels, scale: float,
     fills = tuple(colours[s] if o else tint(colours[t]) for o, t in zip(u.over, top.tolist()))
     names = tuple(labels[t] for t in top.tolist())
     fold = np.abs(u.fold_angles) >= MIN_FOLD
-    lines = dashed(u.folds * scale)
+    # mountain folds (the printed side bulges out) dashed, valley folds dotted
+    lines = np.where(u.fold_angles > 0, dashed(u.folds * scale),
+                     dashed(u.folds * scale, *VALLEY))
     closed = bool(weave.strand_closed[s])
     n = len(runs)
     eps = 1e-6 * scale
@@ -301,11 +304,14 @@ def weaving_sheet(weave: Weave, book: BallBook, labels, title: str, total: int) 
     area = book.area
     x0, y0, x1, y1 = area.box
     half = max(1, weave.n_strands // 2)
+    valleys = any(((u.fold_angles < -MIN_FOLD)).any() for u in book.unfoldings)
     steps = [
         "Cut out every strip along its red outline, the narrow V-shaped notches between "
         "tiles too: they let the strip curve round the ball.",
         "Crease every dashed line with the coloured side outwards (mountain folds): each "
-        "octagon folds along its middle, and the strip bends where tiles meet.",
+        "octagon folds along its middle, and the strip bends where tiles meet."
+        + (" Dotted lines fold the other way (valley folds: the coloured side inwards)."
+           if valleys else ""),
         "A strip in pieces: glue the grey band 'glue j' of each piece under the tile marked "
         "'j' of the next, coloured sides out, outlines matching.",
         "A strip's own tiles (its colour) lie on top; a light tile names the strip on top "

@@ -435,7 +435,10 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
     wanted = [(i, name, ID_SIZE) for i in id_tiles]
     if part and id_tiles:
         spare = [int(cand[r]) for r in rank.tolist() if int(cand[r]) not in id_tiles]
-        wanted.append((spare[0] if spare else id_tiles[0], part, NAME_SIZE))
+        if spare:
+            wanted.append((spare[0], part, NAME_SIZE))
+        else:  # one own tile: it says both ("B 2/3")
+            wanted[0] = (id_tiles[0], strip.label, ID_SIZE)
     if strip.mark:
         wanted.append((0, strip.mark, NAME_SIZE))
     texts, plates, plate_fills = _place(strip, wanted[:1], regions, centres, band)
