@@ -220,3 +220,14 @@ def test_cli_refuses_flat_options_for_a_ball(tmp_path):
     result = run("strands", "cube", "--layout", "module", "-o", tmp_path / "x.pdf")
     assert result.exit_code == 2 and "ball" in result.output
     assert not list(tmp_path.iterdir())
+
+
+def test_an_open_surface_is_refused_in_one_line(tmp_path):
+    (tmp_path / "box.obj").write_text(
+        "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\nv -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\n"
+        "f 1 4 3 2\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n")
+    result = run("strands", tmp_path / "box.obj", "--levels", "1", "-o", tmp_path / "x.pdf")
+    assert result.exit_code == 1
+    errors = [ln for ln in result.output.splitlines() if ln.startswith("Error")]
+    assert len(errors) == 1 and "closed surface" in errors[0], result.output
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["box.obj"]

@@ -67,6 +67,8 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
                     palette_name, turn, chirality, project, output, as_json) -> None:
     """Printable paper strips for weaving INPUT by hand: an assembly sheet, a page of weaving
     steps, then one strip per strand, grouped into modules by the pattern's rotational symmetry.
+    A closed surface in space gives a woven ball: every loop one strip, unfolded pentagon by
+    pentagon with fold lines and numbered glue bands, and views of the ball on page 1.
 
     \b
     Examples:
@@ -136,18 +138,17 @@ BALL_TILE = 40.0  # mm across an octagon: a ball's default size
 def ball(mesh, input_mesh, levels, page, tile_size, diameter, margin, pal, chirality, project,
          output, as_json) -> None:
     """``strands`` of a surface in space: a woven ball's strips, ``diameter`` mm across."""
-    from ..papermodel.ball import ball_book, diameter_for
+    from ..papermodel.ball import ball_book
     from ..papermodel.checks import report
     from ..weave.snub_weave import snub_weaves
 
     hierarchy = subdivide(mesh, levels, chirality=chirality, project=project)
     weaves = snub_weaves(hierarchy)
     weave = weaves[-1]
-    if diameter is None:
-        diameter = diameter_for(weave, tile_size or BALL_TILE)
     book = ball_book(weaves, pal, page, diameter, margin,
                      title=f"weave-cut strands: {input_mesh}, level {levels}"
-                           + (f", projected to the {project}" if project else ""))
+                           + (f", projected to the {project}" if project else ""),
+                     tile_size=tile_size or BALL_TILE)
     for warning in book.warnings:
         click.echo(f"weave-cut: warning: {warning}", err=True)
     export.write(book.drawing.with_metadata(**provenance()), output)
@@ -161,5 +162,6 @@ def ball(mesh, input_mesh, levels, page, tile_size, diameter, margin, pal, chira
     else:
         summary(f"{output}: {len(book.drawing.sheets)} pages ({len(book.strip_pages)} of "
                 f"strips, {100 * book.ink:.0f} % ink); {weave.n_strands} strips in "
-                f"{len(book.pieces)} pieces, a ball {diameter / 10:.1f} cm across; unfolded "
-                f"edges change by at most {100 * book.stretch:.2f} %")
+                f"{len(book.pieces)} pieces, a ball {book.diameter / 10:.1f} cm across; "
+                f"unfolded edges change by at most {100 * book.stretch:.2f} %, pentagons are at most "
+                f"{100 * float(book.non_planarity.max()):.1f} % off their planes")

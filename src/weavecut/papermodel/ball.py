@@ -161,19 +161,24 @@ def strand_pieces(weave: Weave, u: Unfolding, colours, labels, scale: float,
     return out
 
 
-def ball_book(weaves: list[Weave], pal: Palette, page=(210.0, 297.0), diameter: float = 150.0,
-              margin: float = 10.0, title: str = "weave-cut strands") -> BallBook:
+def ball_book(weaves: list[Weave], pal: Palette, page=(210.0, 297.0),
+              diameter: float | None = None, margin: float = 10.0,
+              title: str = "weave-cut strands", tile_size: float = 40.0) -> BallBook:
     """Every strand of ``weaves[-1]`` (a snub weave on a closed surface) as printable strips,
-    the ball ``diameter`` mm across.
+    the ball ``diameter`` mm across (None: octagons ``tile_size`` mm across).
 
     Raises
     ------
     SizeError when strips would be narrower than 8 mm or a label smaller than 2.5 mm;
-    UnfoldError when a strip cannot be unfolded onto the page
+    UnfoldError for a surface with a boundary, or a strip that cannot be unfolded onto the page
     """
     weave = weaves[-1]
+    if (np.diff(weave.tile_offsets) != 2).any() or not weave.strand_closed.all():
+        raise UnfoldError("the strips of a surface in space need a closed surface (every "
+                          "strand a loop, every tile an octagon); this one has a boundary")
     area = PageArea(page[0], page[1], margin)
     area.check()
+    diameter = diameter_for(weave, tile_size) if diameter is None else diameter
     scale = diameter / (2 * radius(weave))
     tile_mm = tile_size_of(weave) * scale
     colours = strand_colours(weaves, pal)
