@@ -73,6 +73,12 @@ IMAGES = {
         ("figure", "scheme-weaves", "-o", "{out}/s.svg"), "s.svg", 800),
     "docs/square-grid-paper-model.png": Image(
         ("strands", "square-grid", "-o", "{out}/s.svg"), "s.svg", 360),
+    "docs/ball-assembly.png": Image(
+        ("strands", "dodecahedron", "-n", "1", "--project", "sphere", "--size", "12cm",
+         "-o", "{out}/b.svg"), "b.svg", 360),
+    "docs/ball-strips.png": Image(
+        ("strands", "dodecahedron", "-n", "1", "--project", "sphere", "--size", "12cm",
+         "-o", "{out}/b.svg"), "b.svg", 360, sheet=2),
     "docs/puzzle-front.png": Image(
         ("puzzle", "--mode", "shared", "-o", "{out}"), "puzzle-front-guide.svg", 520),
     "docs/puzzle-back.png": Image(
