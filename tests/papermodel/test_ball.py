@@ -231,3 +231,15 @@ def test_an_open_surface_is_refused_in_one_line(tmp_path):
     errors = [ln for ln in result.output.splitlines() if ln.startswith("Error")]
     assert len(errors) == 1 and "closed surface" in errors[0], result.output
     assert sorted(p.name for p in tmp_path.iterdir()) == ["box.obj"]
+
+
+def test_folds_on_a_convex_ball_are_mountain_folds_by_the_angle_between_the_faces():
+    weave = ball_weaves("cube", 1)[-1]
+    u = unfold(weave, 0)
+    assert (u.fold_angles > 0).all()
+    # the octagon's middle fold: the angle between the best-fit planes of its two pentagons,
+    # from an independent SVD of each pentagon's corners
+    p = corners_3d(weave, u)[:2]
+    normals = [np.linalg.svd(q - q.mean(axis=0))[2][2] for q in p]
+    angle = np.arccos(abs(normals[0] @ normals[1]))
+    assert u.face_visit[0] == u.face_visit[1] and u.fold_angles[0] == pytest.approx(angle)
