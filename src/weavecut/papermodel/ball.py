@@ -24,7 +24,7 @@ from ..weave.colour import Palette, strand_colours
 from ..weave.model import Weave
 from .assembly import TEXT, _paragraphs
 from .book import CURL, MIN_STRIP, WARN_STRIP, SizeError, StrandBook, page_index, strip_sheets
-from .pages import GAP, PageArea, _fits, page_layers
+from .pages import FOLD, GAP, PageArea, _fits, page_layers
 from .strips import Strip, affine, copy_letter, flat_angle, label_strip, outline_of, tint
 from .unfold import OVERLAP, Unfolding, UnfoldError, dashed, flatten, unfold
 
@@ -136,6 +136,9 @@ def strand_pieces(weave: Weave, u: Unfolding, colours, labels, scale: float,
     fills = tuple(colours[s] if o else tint(colours[t]) for o, t in zip(u.over, top.tolist()))
     names = tuple(labels[t] for t in top.tolist())
     fold = np.abs(u.fold_angles) >= MIN_FOLD
+    # a fold across an own tile in the ink that reads on the strand's colour, else dark
+    across_own = (u.face_visit[:-1] == u.face_visit[1:]) & u.over[u.face_visit[:-1]]
+    inks = np.where(across_own, text_colour_on(colours[s]), FOLD.stroke)
     # mountain folds (the printed side bulges out) dashed, valley folds dotted
     lines = np.where(u.fold_angles > 0, dashed(u.folds * scale),
                      dashed(u.folds * scale, *VALLEY))
@@ -151,6 +154,7 @@ def strand_pieces(weave: Weave, u: Unfolding, colours, labels, scale: float,
                       u.over[a:b + 1], names[a:b + 1], np.eye(3),
                       arrow_ink=text_colour_on(colours[s]),
                       glue=tiles[b:b + 1] if band else None, folds=lines[inside],
+                      fold_inks=tuple(inks[inside].tolist()),
                       tab=f"glue {i + 1}", mark=str(i) if i else (str(n) if closed else ""))
         flat = piece.moved(affine(flat_angle(piece.outline)))
         ends = shapely.get_coordinates(shapely.centroid(flat.tiles[[0, -1]]))

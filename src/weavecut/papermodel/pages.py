@@ -128,11 +128,14 @@ def strip_layers(strips: list[Strip]) -> list[Layer]:
     if glue:
         layers.append(Layer("glue", "paint", (polygons_from_shapely(
             glue, Style("#555555", 0.15, GLUE)),)))
-    folds = shapely.get_parts(np.concatenate([np.zeros(0, dtype=object),
-                                             *(np.asarray(s.folds, dtype=object) for s in strips)]))
-    if len(folds):
-        layers.append(Layer("folds", "score", (polylines_from_lines(
-            [np.asarray(f.coords) for f in folds], FOLD),)))
+    folds_by_ink: dict[str, list] = {}
+    for s in strips:
+        for fold, ink in zip(s.folds, s.fold_inks):
+            folds_by_ink.setdefault(ink, []).extend(shapely.get_parts(fold))
+    if folds_by_ink:
+        layers.append(Layer("folds", "score", tuple(polylines_from_lines(
+            [np.asarray(f.coords) for f in lines], replace(FOLD, stroke=ink))
+            for ink, lines in sorted(folds_by_ink.items()))))
     arrow_shapes = tuple(polygons_from_shapely(g, Style(None, 0.0, ink))
                          for ink, g in sorted(arrows_by_ink.items()) if g)
     layers.append(Layer("arrows", "paint", arrow_shapes))

@@ -221,7 +221,8 @@ class Strip:
     glue : shapely Polygons where a piece of a split strip overlaps the next, or None
     plates : label backgrounds in the fill of an under tile too small for its label, drawn
         over the neighbouring tiles; ``plate_fills`` their fills
-    folds : fold lines (shapely lines, drawn dashed) of a strip unfolded from a surface
+    folds : fold lines (shapely lines, drawn dashed) of a strip unfolded from a surface;
+        ``fold_inks`` their colours (dark on light tiles, light on dark ones)
     tab : the text on the glue band ("glue", or "glue 2" where numbered tabs pair up)
     mark : text for the first tile, where the glue band of the piece before goes ("2"), or ""
     """
@@ -241,6 +242,7 @@ class Strip:
     plates: NDArray[np.object_] = field(default_factory=lambda: np.zeros(0, dtype=object))
     plate_fills: tuple[str, ...] = ()
     folds: NDArray[np.object_] = field(default_factory=lambda: np.zeros(0, dtype=object))
+    fold_inks: tuple[str, ...] = ()
     tab: str = "glue"
     mark: str = ""
 
