@@ -16,6 +16,7 @@ from click.testing import CliRunner
 from weavecut import export, inputs
 from weavecut.cli import cli
 from weavecut.layout.colour_difference import colour_difference, srgb_to_lab
+from weavecut.layout.labels import text_box
 from weavecut.puzzle import files as pf
 from weavecut.puzzle.colouring import colour_puzzle, palette_names
 from weavecut.puzzle.frame import fits, split_frame
@@ -204,7 +205,7 @@ def test_colour_key_areas_add_up_to_the_painted_area(paper):
         key = colour_key(puzzle, colouring, side)
         text = " ".join(s.text for sheet in key.sheets for layer in sheet.layers
                         for s in layer.shapes if hasattr(s, "text"))
-        listed = [float(x) for x in re.findall(r"(\d+\.\d) cm\^2", text)]  # one per paint
+        listed = [float(x) for x in re.findall(r"(\d+\.\d) cm²", text)]  # one per paint
         g = guide(puzzle, colouring, side)
         paint = next(layer for layer in g.sheets[0].layers if layer.name == "paint")
         painted_cm2 = shapely.area(paint.shapes[0].to_shapely()).sum() / 100
@@ -282,3 +283,15 @@ def test_the_two_long_children_of_a_strand_are_a_light_and_a_dark_shade(paper):
         a, b = (colouring.front_strands[s] for s in long[parents == p].tolist())
         assert _hue_family(a) == _hue_family(b)
         assert abs(srgb_to_lab(a)[0] - srgb_to_lab(b)[0]) >= 20
+
+
+def test_colour_key_text_stays_inside_the_page_margins(paper):
+    puzzle, colouring = paper
+    margin = 15.0
+    for side in ("front", "back"):
+        for sheet in colour_key(puzzle, colouring, side, margin=margin).sheets:
+            inside = shapely.box(margin - 0.01, margin - 0.01, sheet.width - margin + 0.01,
+                                 sheet.height - margin + 0.01)
+            texts = [s for layer in sheet.layers for s in layer.shapes if hasattr(s, "text")]
+            outside = [t.text for t in texts if not inside.contains(text_box(t))]
+            assert not outside, outside[:3]

@@ -15,6 +15,7 @@ from PIL import Image, ImageDraw, ImageFont
 
 from ..errors import ExportError
 from ..layout.drawing import Drawing, Polylines, Text
+from ..layout.labels import CAP_RATIO, text_width
 
 SUFFIX = "png"
 DPI = 150
@@ -71,8 +72,7 @@ def _sheet(sheet, dpi: float) -> Image.Image:
             continue
         for shape in layer.shapes:
             if isinstance(shape, Text):
-                size = max(1, round(shape.size / 0.72 * px))
-                font = ImageFont.load_default(size=size)
+                font = _font(shape.text, shape.size, px)
                 anchor = {"start": "ls", "middle": "ms", "end": "rs"}[shape.anchor]
                 (x, y), = to_px([(shape.x, shape.y)])
                 if shape.angle:
@@ -105,6 +105,25 @@ def _sheet(sheet, dpi: float) -> Image.Image:
                         draw.line(pts + pts[:1], fill=shape.style.stroke, width=width,
                                   joint="curve")
     return img.resize((max(1, w // SUPERSAMPLE), max(1, h // SUPERSAMPLE)), Image.LANCZOS)
+
+
+def _font(text: str, size: float, px: float) -> ImageFont.FreeTypeFont:
+    """The SVG writer's DejaVu Sans where the system has it (else Pillow's own font, which
+    lacks signs like the superscript two), at cap height ``size`` mm, made smaller where it
+    would run wider than the width the layout reserved for ``text``."""
+    em = size / CAP_RATIO * px
+    font = _face(em)
+    natural = font.getlength(text)
+    room = text_width(text, size) * px
+    return font if natural <= room else _face(em * room / natural)
+
+
+def _face(em: float) -> ImageFont.FreeTypeFont:
+    size = max(1, int(em))
+    try:
+        return ImageFont.truetype("DejaVuSans.ttf", size)
+    except OSError:
+        return ImageFont.load_default(size=size)
 
 
 def _rotated_text(img, xy, text, font, fill, angle, anchor) -> None:

@@ -11,7 +11,6 @@ paint with its swatch, name, hex code, the pieces that carry it and the area it 
 
 from __future__ import annotations
 
-import textwrap
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -21,6 +20,7 @@ from numpy.typing import NDArray
 from ..layout.contrast import BLACK, WHITE, contrast_ratio
 from ..layout.drawing import (Drawing, Layer, Polylines, Sheet, Style, Text,
                               polygons_from_rings, polygons_from_shapely)
+from ..layout.labels import text_width, wrap
 from ..layout.tiling import tile
 from .colouring import UNPAINTED, Colouring
 from .files import Labels, placement
@@ -225,36 +225,37 @@ def printed(guide_drawing: Drawing, key: Drawing, page: tuple[float, float]) -> 
 
 def colour_key(puzzle: Puzzle, colouring: Colouring, side: str,
                page: tuple[float, float] = (210.0, 297.0), margin: float = 15.0) -> Drawing:
-    """Every paint of one side: swatch, name, hex code, pieces and area (cm^2), on as many
+    """Every paint of one side: swatch, name, hex code, pieces and area (cm²), on as many
     ``page``s as it takes."""
     paint = painted(puzzle, colouring, side)
     areas = paint.areas()
     order = [c for c in colouring.names if c in areas] + sorted(set(areas) - set(
         colouring.names))
     size, line = 3.0, 4.2
-    chars = max(20, int((page[0] - 2 * margin - 45) / (0.55 * size)))
+    room = page[0] - 2 * margin - 30  # right of the swatches
     rows = []
     for colour in order:
         numbers = " ".join(str(k) for k in paint.pieces(colour).tolist())
-        wrapped = _wrap(f"pieces: {numbers}", chars)
+        wrapped = wrap(f"pieces: {numbers}", room, size)
         rows.append((colour, wrapped, max(14.0, line * (len(wrapped) + 1) + 3)))
     total = sum(areas.values())
     sheets, shapes, y = [], [], None
-    heading = (f"Colour key, {side}: {len(order)} paints, {total / 100:.0f} cm^2 painted "
+    heading = (f"Colour key, {side}: {len(order)} paints, {total / 100:.0f} cm² painted "
                f"({'level ' + str(puzzle.levels - (side == 'front')) + ' weave'})")
     for colour, wrapped, height in rows:
         if y is None or y - height < margin:
             if shapes:
                 sheets.append(shapes)
             y = page[1] - margin
-            shapes = [Text(margin, y - 6, heading, 5.0)]
+            shapes = [Text(margin, y - 6, heading,
+                           min(5.0, 5.0 * (page[0] - 2 * margin) / text_width(heading, 5.0)))]
             y -= 14
         swatch = np.array([(margin, y - 12), (margin + 25, y - 12), (margin + 25, y),
                            (margin, y)])
         shapes.append(polygons_from_rings([swatch], Style("#000000", 0.3), [colour]))
         x = margin + 30
         name = colouring.names.get(colour, colour)
-        shapes.append(Text(x, y - 4, f"{name}   {colour}   {areas[colour] / 100:.1f} cm^2",
+        shapes.append(Text(x, y - 4, f"{name}   {colour}   {areas[colour] / 100:.1f} cm²",
                            3.5))
         for k, text in enumerate(wrapped):
             shapes.append(Text(x, y - 4 - line * (k + 1), text, size, fill="#333333"))
@@ -265,6 +266,3 @@ def colour_key(puzzle: Puzzle, colouring: Colouring, side: str,
                  f"{side} colour key {k + 1}") for k, s in enumerate(sheets)]
     return Drawing(tuple(out), f"weave-cut puzzle: {side} colour key")
 
-
-def _wrap(text: str, width: int) -> list[str]:
-    return textwrap.wrap(text, width) or [""]
