@@ -37,9 +37,16 @@ VIEWS = (("front", (0, 0, 1), (0, 1, 0)), ("right", (1, 0, 0), (0, 1, 0)),
          ("top", (0, 1, 0), (0, 0, -1)), ("bottom", (0, -1, 0), (0, 0, 1)))
 
 
+@dataclass(frozen=True)
+class BallPlan:
+    """What a ball's book says of its strands: their IDs, by strand (a ball has no modules)."""
+
+    labels: tuple[str, ...]
+
+
 @dataclass(frozen=True, eq=False)
 class BallBook(StrandBook):
-    """A :class:`StrandBook` of a ball (``plan`` is None) plus what flattening cost.
+    """A :class:`StrandBook` of a ball (``plan`` a :class:`BallPlan`) plus what flattening cost.
 
     Parameters
     ----------
@@ -213,12 +220,12 @@ def ball_book(weaves: list[Weave], pal: Palette, page=(210.0, 297.0),
                                   lambda names: f"Strips: {names}", colours, first)
     total = len(sheets) + first - 1
     tile_planes = flat.non_planarity[weave.tile_faces].reshape(-1, 2).max(axis=1)
-    book = BallBook(Drawing((), title), None, tuple(colours), "ball", placed,
+    book = BallBook(Drawing((), title), BallPlan(labels), tuple(colours), "ball", placed,
                     tuple(range(first, first + len(sheets))), (1, 2), scale, area, width,
                     tile_mm, warnings, unfoldings, diameter, tile_planes)
     cover = assembly_sheet(weave, book, labels, title, total)
     weaving = weaving_sheet(weave, book, labels, title, total)
-    return BallBook(Drawing((cover, weaving, *sheets), title), None, tuple(colours), "ball",
+    return BallBook(Drawing((cover, weaving, *sheets), title), book.plan, tuple(colours), "ball",
                     placed, book.strip_pages, book.extra_pages, scale, area, width, tile_mm,
                     warnings, unfoldings, diameter, tile_planes)
 
