@@ -126,6 +126,7 @@ def piece_runs(tiles, length: float, width: float) -> list[tuple[int, int]]:
 
 
 def _even(runs, m: int, ok) -> list[tuple[int, int]]:
+    """As many runs as ``runs`` over ``m`` tiles, of equal length if those pass ``ok``."""
     ends = np.round(np.linspace(0, m - 1, len(runs) + 1)).astype(int).tolist()
     even = list(zip(ends[:-1], ends[1:]))
     return even if all(b > a and ok(a, b) for a, b in even) else runs
