@@ -239,37 +239,35 @@ def _kinds(pieces: list[Strip]) -> list[int]:
     return [index.setdefault(k, len(index)) for k in keys]
 
 
-def _views(weave: Weave, colours, labels, box, show=None):
-    """(painted tiles, fills, IDs, captions): the ball seen from the six ``VIEWS`` in a 3 x 2
-    grid inside ``box``, every tile facing the viewer in the colour of the strand on top (with
-    ``show`` (S,) bool: only those strands; a shown strand passing under a hidden one light,
-    the rest white)."""
-    coords, offsets = tile_rings(weave)
-    rings = coords.reshape(-1, 8, 3)
-    centre = weave.mesh.vertices.mean(axis=0)
+def _views(weave: Weave, colours, labels, box, cells):
+    """(painted tiles, fills, IDs, captions): views of the ball in a 3 x 2 grid inside
+    ``box``, one per cell (caption, towards the viewer, up, shown (S,) bool): every tile that
+    faces the viewer in the colour of the strand on top if that strand is shown, light where a
+    shown strand passes under a hidden one, white elsewhere."""
+    coords, _ = tile_rings(weave)
+    rings = coords.reshape(-1, 8, 3) - weave.mesh.vertices.mean(axis=0)
     normals = np.add.reduceat(face_normals(weave.mesh)[weave.tile_faces], weave.tile_offsets[:-1])
     normals /= np.linalg.norm(normals, axis=1)[:, None]
     top, under = weave.tile_over, weave.tile_under
-    shown = np.ones(weave.n_strands, bool) if show is None else np.asarray(show)
-    fill = np.where(shown[top], np.asarray(colours, dtype=object)[top],
-                    np.where(shown[under], [tint(c) for c in np.asarray(colours)[under]],
-                             "#ffffff"))
+    own = np.asarray(colours, dtype=object)[top]
+    light = np.array([tint(c) for c in np.asarray(colours)[under]], dtype=object)
     x0, y0, x1, y1 = box
     cell = min((x1 - x0) / 3, (y1 - y0 - 2 * (TEXT + 2)) / 2)
     scale = (cell - 2 * GAP) / (2 * radius(weave))
     polys, fills, ids, captions = [], [], [], []
-    for k, (name, toward, up) in enumerate(VIEWS):  # six views
+    for k, (name, toward, up, shown) in enumerate(cells):  # six views
         d, u = np.array(toward, float), np.array(up, float)
         r = np.cross(u, d)
         cx = x0 + (k % 3 + 0.5) * (x1 - x0) / 3
         cy = y1 - (k // 3) * (cell + TEXT + 2) - cell / 2
         facing = normals @ d
         keep = np.flatnonzero(facing > 0.05)
-        keep = keep[np.argsort((rings[keep] - centre).mean(axis=1) @ d)]  # far ones first
-        xy = np.stack([(rings[keep] - centre) @ r, (rings[keep] - centre) @ u], axis=-1)
-        shapes = shapely.polygons(xy * scale + [cx, cy])
+        keep = keep[np.argsort(rings[keep].mean(axis=1) @ d)]  # far ones first
+        shapes = shapely.polygons(np.stack([rings[keep] @ r, rings[keep] @ u], axis=-1)
+                                  * scale + [cx, cy])
+        fill = np.where(shown[top], own, np.where(shown[under], light, "#ffffff"))[keep]
         polys += shapes.tolist()
-        fills += fill[keep].tolist()
+        fills += fill.tolist()
         # the strand on top named in every tile that faces the viewer well
         good = (facing[keep] > 0.5) & shown[top[keep]]
         regions = shapely.buffer(shapes[good], -0.4, join_style="mitre")
@@ -277,14 +275,13 @@ def _views(weave: Weave, colours, labels, box, show=None):
         text = [labels[t] for t in top[keep][good].tolist()]
         size = largest_fit(regions, [unit_box(t, 0.0) for t in text], at, MIN_CAP, 5.0)
         ids += [centred_text(c, t, float(z), 0.0, text_colour_on(f))
-                for c, t, z, f in zip(at, text, size, fill[keep][good].tolist())
-                if np.isfinite(z)]
+                for c, t, z, f in zip(at, text, size, fill[good].tolist()) if np.isfinite(z)]
         captions.append(Text(cx, cy - cell / 2 - TEXT - 0.5, name, TEXT, "middle"))
     return polys, fills, ids, captions
 
 
-def _view_layers(weave, book, labels, box, show=None) -> list[Layer]:
-    polys, fills, ids, captions = _views(weave, book.colours, labels, box, show)
+def _view_layers(weave, book, labels, box, cells) -> list[Layer]:
+    polys, fills, ids, captions = _views(weave, book.colours, labels, box, cells)
     return [Layer("views", "paint", (polygons_from_shapely(polys, OUTLINE, fills),)),
             Layer("ids", "label", tuple(ids)), Layer("captions", "label", tuple(captions))]
 
@@ -309,7 +306,9 @@ def assembly_sheet(weave: Weave, book: BallBook, labels, title: str, total: int)
              "The views show each tile in the colour of the strand on top there, with its "
              "ID. Weaving steps: page 2."]
     texts, bottom = _paragraphs(lines, x0, y1, x1 - x0)
-    layers = _view_layers(weave, book, labels, (x0, y0, x1, bottom - GAP))
+    every = np.ones(n, dtype=bool)
+    layers = _view_layers(weave, book, labels, (x0, y0, x1, bottom - GAP),
+                          [(*v, every) for v in VIEWS])
     layers.append(Layer("notes", "label", tuple(texts)))
     layers += page_layers(area, title, "Assembly sheet: the woven ball from six sides, every "
                           "tile with the ID of the strand on top", 1, total, book.colours[0])
@@ -317,11 +316,12 @@ def assembly_sheet(weave: Weave, book: BallBook, labels, title: str, total: int)
 
 
 def weaving_sheet(weave: Weave, book: BallBook, labels, title: str, total: int) -> Sheet:
-    """Page 2: numbered weaving steps, and the ball as the first strands go in."""
+    """Page 2: numbered weaving steps, and the ball growing: front and back after a third,
+    two thirds and all of the strips are in."""
     area = book.area
     x0, y0, x1, y1 = area.box
-    half = max(1, weave.n_strands // 2)
-    valleys = any(((u.fold_angles < -MIN_FOLD)).any() for u in book.unfoldings)
+    n = weave.n_strands
+    valleys = any((u.fold_angles < -MIN_FOLD).any() for u in book.unfoldings)
     steps = [
         "Cut out every strip along its red outline, the narrow V-shaped notches between "
         "tiles too: they let the strip curve round the ball.",
@@ -333,17 +333,18 @@ def weaving_sheet(weave: Weave, book: BallBook, labels, title: str, total: int) 
         "'j' of the next, coloured sides out, outlines matching.",
         "A strip's own tiles (its colour) lie on top; a light tile names the strip on top "
         "of it there: slide it under that strip.",
-        f"Start with {labels[0]} and the strips crossing it; add the others one at a time, "
-        "over and under as printed, as the views below and on page 1 show.",
+        f"Start with {labels[0]}; add the others in order, one at a time, over and under as "
+        "printed, as the views below (front above, back below) and page 1 show.",
         "Close every loop last: glue its band 'glue j' under its own tile marked 'j'.",
     ]
     texts, bottom = _paragraphs(steps, x0, y1, x1 - x0, numbered=True)
-    more, bottom = _paragraphs([f"The views show strips {labels[0]}-{labels[half - 1]} in "
-                                "place (light where they pass under strips still to come)."],
-                               x0, bottom - GAP, x1 - x0)
-    show = np.arange(weave.n_strands) < half
-    layers = _view_layers(weave, book, labels, (x0, y0, x1, bottom - GAP), show)
-    texts += more
+    stages = sorted({max(1, math.ceil(k * n / 3)) for k in (1, 2, 3)})
+    cells = []
+    for side in VIEWS[0], VIEWS[2]:  # front, back
+        for m in stages:
+            name = f"{labels[0]}-{labels[m - 1]}" if m > 1 else labels[0]
+            cells.append((f"{name}, {side[0]}", side[1], side[2], np.arange(n) < m))
+    layers = _view_layers(weave, book, labels, (x0, y0, x1, bottom - GAP), cells)
     layers.append(Layer("steps", "label", tuple(texts)))
     layers += page_layers(area, title, "Weaving steps", 2, total, book.colours[0])
     return Sheet(area.width, area.height, tuple(layers), "page 2: weaving")
