@@ -5,7 +5,8 @@ onto the material's sheets, one sheet set per colour. The cut layer holds each s
 (grown by half the kerf, so the strip comes out true to size), cut after the engraving; the
 engrave layer holds, in single strokes, what the printed strip shows: the strip's ID in its own
 tile, the ID of the strand on top in every under tile (the under-crossing marks) and the
-direction arrows' outlines. Every engraved line keeps ``ENGRAVE_MARGIN`` inside its strip.
+direction arrows' outlines, and the glue band's edge on a piece of a split strip. Every engraved
+line keeps ``ENGRAVE_MARGIN`` inside its strip.
 """
 
 from __future__ import annotations
@@ -83,11 +84,17 @@ def engraved_labels(strip: Strip, margin: float = ENGRAVE_MARGIN
     return coords, offsets, float(heights[keep].min()) if keep.any() else np.inf
 
 
-def _arrow_rings(strip: Strip, margin: float) -> list[NDArray[np.float64]]:
-    """The direction arrows' outlines that lie ``margin`` inside the strip."""
+def marks(strip: Strip, margin: float = ENGRAVE_MARGIN) -> list[NDArray[np.float64]]:
+    """What is engraved besides the labels, ``margin`` inside the strip: the direction arrows'
+    outlines and, on a piece of a split strip, the edge of its glue band."""
     inner = shapely.buffer(strip.outline, -margin, join_style="mitre")
-    return [np.asarray(a.exterior.coords) for a in shapely.get_parts(strip.arrows).tolist()
-            if a.geom_type == "Polygon" and inner.covers(a)]
+    out = [np.asarray(a.exterior.coords) for a in shapely.get_parts(strip.arrows).tolist()
+           if a.geom_type == "Polygon" and inner.covers(a)]
+    if strip.glue is not None:
+        edge = shapely.intersection(shapely.union_all(strip.glue).boundary, inner)
+        out += [np.asarray(g.coords) for g in shapely.get_parts(edge).tolist()
+                if g.geom_type == "LineString" and g.length > 1e-6]
+    return out
 
 
 def colour_groups(pieces: list[Strip], colours) -> dict[str, list[Strip]]:
@@ -127,7 +134,7 @@ def card_sheets(pieces: list[Strip], colours, las: Laser, kerf: float,
             labels = [engraved_labels(m) for m in here]
             smallest = min([smallest] + [h for _, _, h in labels])
             lines = [c[a:b] for c, o, _ in labels for a, b in zip(o[:-1], o[1:])]
-            lines += [r for m in here for r in _arrow_rings(m, ENGRAVE_MARGIN)]
+            lines += [r for m in here for r in marks(m)]
             cuts = nesting.offset(np.array([m.outline for m in here], dtype=object), kerf)
             report = report + cut_report(cuts)
             n = len(drawings) + 1
