@@ -271,8 +271,8 @@ def test_strands_cutter_and_laser_card_commands(tmp_path):
     assert res.exit_code == 0, res.output
     info = json.loads(res.output)
     assert info["sheet_mm"] == pytest.approx([304.8, 304.8])
-    assert (tmp_path / "card" / "assembly.pdf").is_file()
-    assert len(list((tmp_path / "card").glob("sheet-*.dxf"))) == info["sheets"]
+    assert (tmp_path / "card" / "strands-assembly.pdf").is_file()
+    assert len(list((tmp_path / "card").glob("strands-card-*.dxf"))) == info["sheets"]
     for args, message in ((["--cutter", "nope"], "unknown cutter"),
                           (["--cutter", "cricut", "--laser-card"], "not both"),
                           (["--material", "card-300gsm"], "--laser-card")):

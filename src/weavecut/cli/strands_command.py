@@ -59,7 +59,8 @@ class PrintLength(Length):
                    "marks and write a cut file per strip page beside -o (PAGE-cut.svg, .dxf).")
 @click.option("--laser-card", is_flag=True,
               help="Laser-cut the strips from coloured card instead: -o is a folder of cut "
-                   "sheets (SVG, DXF), one set per strand colour, and assembly.pdf.")
+                   "sheets (strands-card-*.svg, .dxf), one set per strand colour, and "
+                   "strands-assembly.pdf.")
 @click.option("--material", default=None, shell_complete=complete_preset("materials"),
               help="With --laser-card: the card (templates/materials) [default: card-300gsm, "
                    "A4 sheets; card-300gsm-letter, card-300gsm-12in].")
@@ -185,7 +186,7 @@ def _print_and_cut(book, machine, output: str) -> dict:
 
 def _laser_card(book, mat: dict, laser_name: str, out_dir: str, title: str,
                 as_json: bool) -> None:
-    """Write the card sheets (one SVG and one DXF each) and assembly.pdf into ``out_dir``."""
+    """Write the card sheets (one SVG and one DXF each) and strands-assembly.pdf into ``out_dir``."""
     from ..layout.drawing import Drawing
     from ..layout.lasersetup import laser
     from ..papermodel.lasercard import card_colour_sheet, card_sheets
@@ -197,10 +198,10 @@ def _laser_card(book, mat: dict, laser_name: str, out_dir: str, title: str,
     sheets, files = book.drawing.sheets, []
     colours = card_colour_sheet(cut, (sheets[0].width, sheets[0].height), title)
     assembly = Drawing((sheets[0], sheets[1], colours), title).with_metadata(**provenance())
-    export.write(assembly, folder / "assembly.pdf")
+    export.write(assembly, folder / "strands-assembly.pdf")
     for n, (drawing, colour) in enumerate(zip(cut.sheets, cut.colours), start=1):
         for suffix in (".svg", ".dxf"):
-            path = folder / f"sheet-{n:02d}-{colour.lstrip('#')}{suffix}"
+            path = folder / f"strands-card-{n:02d}-{colour.lstrip('#')}{suffix}"
             export.write(drawing.with_metadata(**provenance()), path)
             files.append(str(path))
     n_colours = len(set(cut.colours))
@@ -213,5 +214,5 @@ def _laser_card(book, mat: dict, laser_name: str, out_dir: str, title: str,
     else:
         summary(f"{out_dir}: {len(cut.sheets)} sheets of {mat['name']} in {n_colours} card "
                 f"colours, {len(book.pieces)} strip pieces, {cut.report.length / 1000:.1f} m of cuts, "
-                f"smallest feature {cut.report.min_feature:.1f} mm; assembly.pdf says which "
+                f"smallest feature {cut.report.min_feature:.1f} mm; strands-assembly.pdf says which "
                 "colour each strand is")
