@@ -18,7 +18,8 @@ import shapely
 from click.testing import CliRunner
 
 from weavecut import export, inputs, presets
-from weavecut.layout.drawing import Polygons
+from weavecut.layout.drawing import Polygons, Text
+from weavecut.layout.labels import text_box
 from weavecut.layout.lasersetup import laser
 from weavecut.papermodel import lasercard, printcut
 from weavecut.papermodel.book import strand_book
@@ -141,8 +142,6 @@ def test_marks_lie_where_the_preset_says(name):
         gap = min(shapely.distance(m, s) for m in marks for s in strips)
         assert gap >= v["clearance"] - 1e-9
         # and clear of the page's furniture: no text box touches a mark
-        from weavecut.layout.drawing import Text
-        from weavecut.layout.labels import text_box
         texts = [text_box(s) for layer in sheet.layers for s in layer.shapes
                  if isinstance(s, Text)]
         assert not any(m.intersects(b) for m in marks for b in texts)
@@ -244,6 +243,22 @@ def test_engraved_text_lies_inside_its_strip_with_a_margin(tmp_path):
             assert len(coords) and shapely.buffer(p.outline, -0.999).covers(
                 shapely.MultiPoint(coords))
     assert cut.smallest_label >= lasercard.MIN_ENGRAVED
+
+
+def test_the_card_colour_page_names_every_strands_card():
+    book, cut = card()
+    page = lasercard.card_colour_sheet(cut, A4, "test")
+    texts = [t.text for layer in page.layers for t in layer.shapes if isinstance(t, Text)]
+    heads = [k for k, t in enumerate(texts) if t.startswith("card #")]
+    assert len(heads) == len(set(book.colours))
+    named = {}
+    for k in heads:  # "card #rrggbb: sheets 1, 2" then "strands A1, A2, ..."
+        colour = texts[k].split(":")[0].removeprefix("card ")
+        for label in texts[k + 1].removeprefix("strands ").split(", "):
+            assert label not in named
+            named[label] = colour
+    strips = {p.label.split(" ")[0]: book.colours[p.strand] for _, p in book.pieces}
+    assert named == strips
 
 
 def test_engraving_comes_before_the_cut():
