@@ -239,9 +239,15 @@ def test_engraved_text_lies_inside_its_strip_with_a_margin(tmp_path):
         for line in lines:
             assert any(inner[j].covers(line) for j in tree.query(line))
         # every strip carries its ID, and the IDs of the strands on top where it goes under
-        for p, (coords, _) in zip(pieces, cut.texts[n]):
+        for p, (coords, offsets, owner) in zip(pieces, cut.texts[n]):
             assert len(coords) and shapely.buffer(p.outline, -0.999).covers(
                 shapely.MultiPoint(coords))
+            # one label per printed one, and no two labels of a strip touch
+            assert len(set(owner.tolist())) == len(p.texts)
+            point_owner = np.repeat(owner, np.diff(offsets))
+            hulls = [shapely.MultiPoint(coords[point_owner == k]).convex_hull
+                     for k in range(len(p.texts))]
+            assert not any(a.intersects(b) for i, a in enumerate(hulls) for b in hulls[i + 1:])
     assert cut.smallest_label >= lasercard.MIN_ENGRAVED
 
 

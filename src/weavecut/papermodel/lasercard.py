@@ -36,7 +36,6 @@ from .printcut import CutReport, cut_layer, cut_report, ordered_outlines
 from .strips import Strip, affine
 
 ENGRAVE_MARGIN = 1.0  # mm between an engraved line and its strip's edge (card scorches there)
-LABEL_REACH = 1.0  # mm an engraved label may grow beyond the printed label's box
 MIN_ENGRAVED = 1.5  # mm: a smaller label is left out
 SHEET_MARGIN = 5.0  # mm of card round every sheet (where the laser bed's stops hold it)
 
@@ -50,7 +49,8 @@ class CardCut:
     sheets : one Drawing per sheet (engrave layer, then the cut layer)
     colours : (N,) the card colour of every sheet
     pieces : (N,) per sheet, the strips on it, moved to their places (true outlines)
-    texts : (N,) per sheet, per strip, the engraved labels' strokes as (coords, offsets)
+    texts : (N,) per sheet, per strip, the engraved labels' strokes as (coords, offsets, the
+        label of every polyline)
     report : cut length, outlines, duplicates, smallest feature over every sheet
     smallest_label : mm, the smallest engraved label
     """
@@ -64,24 +64,22 @@ class CardCut:
 
 
 def engraved_labels(strip: Strip, margin: float = ENGRAVE_MARGIN
-                    ) -> tuple[NDArray[np.float64], NDArray[np.int64], float]:
+                    ) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.int64], float]:
     """Single-stroke labels of ``strip`` where the printed ones are, each as large as fits (up
-    to the printed size) in its printed box grown by ``LABEL_REACH``, ``margin`` inside the
-    strip. Returns (coords, offsets, smallest height)."""
+    to the printed size) in its printed box (printed boxes do not overlap), ``margin`` inside
+    the strip. Returns (coords, offsets, the label of every polyline, smallest height)."""
     texts = [t for t in strip.texts if isinstance(t, Text)]
     if not texts:
-        return np.zeros((0, 2)), np.zeros(1, dtype=np.int64), np.inf
+        return np.zeros((0, 2)), np.zeros(1, dtype=np.int64), np.zeros(0, dtype=np.int64), np.inf
     inner = shapely.buffer(strip.outline, -margin, join_style="mitre")
-    boxes = shapely.buffer(np.array([text_box(t) for t in texts], dtype=object), LABEL_REACH,
-                           join_style="mitre")
-    regions = shapely.intersection(boxes, inner)
+    regions = shapely.intersection(np.array([text_box(t) for t in texts], dtype=object), inner)
     heights, centres, angles = strokefont.fit_labels(
         regions, [t.text for t in texts], 0.0, max(t.size for t in texts))
     heights = np.minimum(heights, [t.size for t in texts])
     keep = heights >= MIN_ENGRAVED
-    coords, offsets, _ = strokefont.labels([t.text for t, k in zip(texts, keep) if k],
-                                           centres[keep], heights[keep], angles[keep])
-    return coords, offsets, float(heights[keep].min()) if keep.any() else np.inf
+    coords, offsets, owner = strokefont.labels([t.text for t, k in zip(texts, keep) if k],
+                                               centres[keep], heights[keep], angles[keep])
+    return coords, offsets, owner, float(heights[keep].min()) if keep.any() else np.inf
 
 
 def marks(strip: Strip, margin: float = ENGRAVE_MARGIN) -> list[NDArray[np.float64]]:
@@ -132,8 +130,8 @@ def card_sheets(pieces: list[Strip], colours, las: Laser, kerf: float,
         for s in range(max(pl.page for pl in places) + 1):  # this colour's sheets
             here = [m for m, pl in zip(moved, places) if pl.page == s]
             labels = [engraved_labels(m) for m in here]
-            smallest = min([smallest] + [h for _, _, h in labels])
-            lines = [c[a:b] for c, o, _ in labels for a, b in zip(o[:-1], o[1:])]
+            smallest = min([smallest] + [h for *_, h in labels])
+            lines = [c[a:b] for c, o, *_ in labels for a, b in zip(o[:-1], o[1:])]
             lines += [r for m in here for r in marks(m)]
             cuts = nesting.offset(np.array([m.outline for m in here], dtype=object), kerf)
             report = report + cut_report(cuts)
@@ -145,7 +143,7 @@ def card_sheets(pieces: list[Strip], colours, las: Laser, kerf: float,
                                     (("card", colour),)))
             sheet_colours.append(colour)
             placed_all.append(tuple(here))
-            texts_all.append(tuple((c, o) for c, o, _ in labels))
+            texts_all.append(tuple((c, o, w) for c, o, w, _ in labels))
     return CardCut(tuple(drawings), tuple(sheet_colours), tuple(placed_all), tuple(texts_all),
                    report, float(smallest))
 
