@@ -283,6 +283,7 @@ def test_strands_cutter_and_laser_card_commands(tmp_path):
     res = runner.invoke(main, ["strands", "square-grid:2x2", "--tile-size", "20mm",
                                "--cutter", "silhouette", "--json", "-o", str(out)])
     assert res.exit_code == 0, res.output
+    assert json.loads(res.output)["label_violations"] == 0  # the marks cover no text
     info = json.loads(res.output)["cutter"]
     assert info["closed_simple"] and info["duplicate_segments"] == 0
     assert sorted(Path(f).name for f in info["cut_files"]) == ["sq-p03-cut.dxf", "sq-p03-cut.svg"]

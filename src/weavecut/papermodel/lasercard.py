@@ -21,7 +21,6 @@ from ..layout import nesting, strokefont
 from ..layout.drawing import (
     Drawing,
     Layer,
-    Polylines,
     Sheet,
     Style,
     Text,
@@ -175,9 +174,3 @@ def _listed(labels: list[str], most: int = 24) -> str:
     more = f" and {len(labels) - most} more" if len(labels) > most else ""
     return ", ".join(labels[:most]) + more
 
-
-def engraved_lines(drawing: Drawing) -> list[NDArray[np.float64]]:
-    """Every engraved polyline of a sheet's Drawing (for checks)."""
-    return [line for sheet in drawing.sheets for layer in sheet.layers
-            if layer.role == "engrave" for shape in layer.shapes if isinstance(shape, Polylines)
-            for line in shape.lines()]
