@@ -186,15 +186,15 @@ def _print_and_cut(book, machine, output: str) -> dict:
 
 def _laser_card(book, mat: dict, laser_name: str, out_dir: str, title: str,
                 as_json: bool) -> None:
-    """Write the card sheets (one SVG and one DXF each) and strands-assembly.pdf into ``out_dir``."""
+    """Write the card sheets (an SVG and a DXF each) and strands-assembly.pdf into ``out_dir``."""
+    from ..fileio import make_folder
     from ..layout.drawing import Drawing
     from ..layout.lasersetup import laser
     from ..papermodel.lasercard import card_colour_sheet, card_sheets
 
     cut = card_sheets([p for _, p in book.pieces], book.colours, laser(laser_name), mat["kerf"],
                       mat["sheet"], title)
-    folder = Path(out_dir)
-    folder.mkdir(parents=True, exist_ok=True)
+    folder = make_folder(out_dir)
     sheets, files = book.drawing.sheets, []
     colours = card_colour_sheet(cut, (sheets[0].width, sheets[0].height), title)
     assembly = Drawing((sheets[0], sheets[1], colours), title).with_metadata(**provenance())
@@ -205,14 +205,17 @@ def _laser_card(book, mat: dict, laser_name: str, out_dir: str, title: str,
             export.write(drawing.with_metadata(**provenance()), path)
             files.append(str(path))
     n_colours = len(set(cut.colours))
+    minutes = cut.report.length / mat["cut_speed"] / 60  # cutting only, at the material's speed
     if as_json:
         click.echo(json.dumps({"output": out_dir, "material": mat["name"],
                                "sheet_mm": list(mat["sheet"]), "sheets": len(cut.sheets),
                                "card_colours": n_colours, "strips": len(book.pieces),
                                "smallest_label_mm": round(cut.smallest_label, 2),
-                               "files": files, **cut.report.as_dict()}, indent=2))
+                               "cut_minutes": round(minutes, 1), "files": files,
+                               **cut.report.as_dict()}, indent=2))
     else:
         summary(f"{out_dir}: {len(cut.sheets)} sheets of {mat['name']} in {n_colours} card "
-                f"colours, {len(book.pieces)} strip pieces, {cut.report.length / 1000:.1f} m of cuts, "
-                f"smallest feature {cut.report.min_feature:.1f} mm; strands-assembly.pdf says which "
-                "colour each strand is")
+                f"colours, {len(book.pieces)} strip pieces, {cut.report.length / 1000:.1f} m of "
+                f"cuts (about {minutes:.0f} min), smallest feature "
+                f"{cut.report.min_feature:.1f} mm; strands-assembly.pdf says which colour each "
+                "strand is")

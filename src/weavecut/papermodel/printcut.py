@@ -93,7 +93,8 @@ class Cutter:
             return shapely.box(min(x, x + dx), min(y, y + dy), max(x, x + dx), max(y, y + dy))
 
         def corner(x, y, sx, sy):  # an L with its outer corner at (x, y), arms towards (sx, sy)
-            return shapely.union(rect(x, y, sx * n, sy * t), rect(x, y, sx * t, sy * n)).normalize()
+            arms = shapely.union(rect(x, y, sx * n, sy * t), rect(x, y, sx * t, sy * n))
+            return arms.normalize()
 
         def square(x, y, sx, sy):
             return rect(x, y, sx * n, sy * n)
