@@ -302,8 +302,8 @@ SCHEMAS: dict[str, Table] = {
                       "thickness": Length(0, 20, open_lo=True), "clearance": Length(0, 100),
                       "max_width": Length(0, 10_000, open_lo=True),
                       "max_height": Length(0, 10_000, open_lo=True),
-                      "blade_offset": Length(0, 5)},
-                     ("marks", "inset", "length", "thickness", "clearance", "blade_offset")),
+                      "min_feature": Length(0, 100)},
+                     ("marks", "inset", "length", "thickness", "clearance", "min_feature")),
 }
 
 

@@ -161,7 +161,7 @@ def test_cut_geometry_is_ready_to_cut():
     _, book = cut_book("silhouette")
     report = printcut.cut_report([p.outline for _, p in book.pieces])
     assert report.simple and report.duplicates == 0 and report.n_outlines == len(book.pieces)
-    assert report.min_feature >= printcut.MIN_FEATURE
+    assert report.min_feature >= preset_values("silhouette")["min_feature"]
     assert report.length == pytest.approx(sum(p.outline.length for _, p in book.pieces))
 
 
@@ -186,7 +186,7 @@ def test_cut_order_starts_near_the_cutters_home():
 def test_a_cutter_preset_is_checked(tmp_path):
     bad = tmp_path / "bad.toml"
     bad.write_text('marks = "square-and-corners"\ninset = "2mm"\nlength = "5mm"\n'
-                   'thickness = "0.5mm"\nclearance = "2mm"\nblade_offset = "0.25mm"\n')
+                   'thickness = "0.5mm"\nclearance = "2mm"\nmin_feature = "1mm"\n')
     with pytest.raises(printcut.CutterError, match="home printers"):
         printcut.cutter(str(bad)).check(*A4)
     bad.write_text(bad.read_text().replace("square-and-corners", "circles"))
@@ -295,6 +295,12 @@ def test_strands_cutter_and_laser_card_commands(tmp_path):
     assert info["sheet_mm"] == pytest.approx([304.8, 304.8])
     assert (tmp_path / "card" / "strands-assembly.pdf").is_file()
     assert len(list((tmp_path / "card").glob("strands-card-*.dxf"))) == info["sheets"]
+    fine = tmp_path / "fine.toml"  # a cutter that wants features of 50 mm is warned
+    fine.write_text(presets.find("cutters", "silhouette").read_text().replace(
+        'min_feature = "1mm"', 'min_feature = "50mm"'))
+    res = runner.invoke(main, ["strands", "square-grid:2x2", "--tile-size", "20mm", "--cutter",
+                               str(fine), "-o", str(tmp_path / "fine.pdf")])
+    assert res.exit_code == 0 and "drag knife tears below 50 mm" in res.output
     for args, message in ((["--cutter", "nope"], "unknown cutter"),
                           (["--cutter", "cricut", "--laser-card"], "not both"),
                           (["--material", "card-300gsm"], "--laser-card")):

@@ -165,7 +165,7 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
 def _print_and_cut(book, machine, output: str) -> dict:
     """Write the strip pages with the cutter's marks to ``output`` and a cut file per strip
     page beside it (SVG and DXF); return the --json figures."""
-    from ..papermodel.printcut import MIN_FEATURE, cut_files, cut_report, with_marks
+    from ..papermodel.printcut import cut_files, cut_report, with_marks
 
     marked = with_marks(book, machine)
     export.write(marked.drawing.with_metadata(**provenance()), output)
@@ -177,9 +177,9 @@ def _print_and_cut(book, machine, output: str) -> dict:
             path = base.with_name(f"{base.stem}-p{n:02d}-cut{suffix}")
             export.write(drawing.with_metadata(**provenance()), path)
             files.append(str(path))
-    if report.min_feature < MIN_FEATURE:
+    if report.min_feature < machine.min_feature:
         click.echo(f"weave-cut: warning: features down to {report.min_feature:.2f} mm: a drag "
-                   f"knife tears below {MIN_FEATURE:g} mm", err=True)
+                   f"knife tears below {machine.min_feature:g} mm", err=True)
     return {"cutter": {"name": machine.name, "marks": machine.marks, "cut_files": files,
                        **report.as_dict()}}
 

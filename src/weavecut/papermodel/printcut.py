@@ -9,7 +9,8 @@ outline lies exactly on its printed outline.
 A cutter preset (``templates/cutters``) gives the marks as plain values: their kind, ``inset``
 from the page's edges, ``length`` (the square's side, an L's arm, the frame's line) and
 ``thickness``, the ``clearance`` strips keep from them, the largest area the cutter reads
-(``max_width`` x ``max_height``, centred on the page) and the drag knife's ``blade_offset``.
+(``max_width`` x ``max_height``, centred on the page) and the smallest feature its drag knife
+cuts cleanly (``min_feature``).
 Strips are packed inside the marks, ``clearance`` clear of them, and inside that area.
 """
 
@@ -30,7 +31,6 @@ from .pages import CUT
 
 PRINTER_EDGE = 6.35  # mm (1/4 in): the widest unprintable edge of common home printers
 MARK_INK = Style(None, 0.0, "#000000")
-MIN_FEATURE = 1.0  # mm: narrower necks and shorter notches tear under a drag knife
 
 
 class CutterError(WeaveCutError, ValueError):
@@ -52,7 +52,7 @@ class Cutter:
     thickness : an L's (or the frame's) line width
     clearance : blank paper between the marks and any strip
     max_size : (width, height) of the largest area the cutter reads, centred, or None
-    blade_offset : the drag knife's offset (for the feature-size check)
+    min_feature : the narrowest neck or notch the drag knife cuts cleanly in paper
     """
 
     name: str
@@ -62,7 +62,7 @@ class Cutter:
     thickness: float
     clearance: float
     max_size: tuple[float, float] | None = None
-    blade_offset: float = 0.25
+    min_feature: float = 1.0
 
     @property
     def reach(self) -> float:
@@ -124,7 +124,7 @@ def cutter(name: str) -> Cutter:
         size = (to_mm(doc.get("max_width", "10000mm")), to_mm(doc.get("max_height", "10000mm")))
     return Cutter(str(doc.get("name", name)), doc["marks"], to_mm(doc["inset"]),
                   to_mm(doc["length"]), to_mm(doc["thickness"]), to_mm(doc["clearance"]), size,
-                  to_mm(doc["blade_offset"]))
+                  to_mm(doc["min_feature"]))
 
 
 def with_marks(book, machine: Cutter):
