@@ -199,6 +199,18 @@ class Sheet:
 
 
 @dataclass(frozen=True)
+class Choice:
+    """One of a few strings."""
+
+    choices: tuple[str, ...]
+
+    def problem(self, value) -> str | None:
+        if value not in self.choices:
+            return f"{value!r} is not one of {', '.join(self.choices)}"
+        return None
+
+
+@dataclass(frozen=True)
 class Colour:
     """A '#rrggbb' colour."""
 
@@ -285,6 +297,13 @@ SCHEMAS: dict[str, Table] = {
                    ("cut", "score", "engrave")),
     "pages": Table({**_ABOUT, "width": Length(0, 10_000, open_lo=True),
                     "height": Length(0, 10_000, open_lo=True)}, ("width", "height")),
+    "cutters": Table({**_ABOUT, "marks": Choice(("square-and-corners", "corners", "frame")),
+                      "inset": Length(0, 100), "length": Length(0, 100, open_lo=True),
+                      "thickness": Length(0, 20, open_lo=True), "clearance": Length(0, 100),
+                      "max_width": Length(0, 10_000, open_lo=True),
+                      "max_height": Length(0, 10_000, open_lo=True),
+                      "min_feature": Length(0, 100)},
+                     ("marks", "inset", "length", "thickness", "clearance", "min_feature")),
 }
 
 

@@ -302,8 +302,8 @@ class Planner:
         except OSError:
             return []
         option = self.options(job.command).get("output")
-        folder = not job.prints and not getattr(option.type, "file_okay", True)
-        if folder and stat.S_ISDIR(st.st_mode):
+        folder = not job.prints and getattr(option.type, "dir_okay", False)
+        if folder and stat.S_ISDIR(st.st_mode):  # a folder output (puzzle, strands --laser-card)
             return sorted(p for p in job.output.glob(f"{job.command.name}-*"))
         return [job.output]
 

@@ -57,14 +57,30 @@ class PrintLength(Length):
 @click.option("--chirality", type=click.Choice(snub.CHIRALITIES), default="left",
               show_default=True, help="Side the first Z edge turns to.")
 @project_option
-@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
-              help="Output: .pdf (one page per sheet) or .svg (a layer per page).")
+@click.option("--cutter", "cutter_name", default=None, shell_complete=complete_preset("cutters"),
+              help="Print-and-cut: lay the strips out for this cutter (templates/cutters: "
+                   "silhouette, cricut, scanncut, or a .toml file), print its registration "
+                   "marks and write a cut file per strip page beside -o (PAGE-cut.svg, .dxf).")
+@click.option("--laser-card", is_flag=True,
+              help="Laser-cut the strips from coloured card instead: -o is a folder of cut "
+                   "sheets (strands-card-*.svg, .dxf), one set per strand colour, and "
+                   "strands-assembly.pdf.")
+@click.option("--material", default=None, shell_complete=complete_preset("materials"),
+              help="With --laser-card: the card (templates/materials) [default: card-300gsm, "
+                   "A4 sheets; card-300gsm-letter, card-300gsm-12in].")
+@click.option("--laser", "laser_name", default="lightburn", show_default=True,
+              shell_complete=complete_preset("laser"),
+              help="With --laser-card: colour conventions (templates/laser).")
+@click.option("-o", "--output", type=click.Path(), required=True,
+              help="Output: .pdf (one page per sheet) or .svg (a layer per page); a folder "
+                   "with --laser-card.")
 @click.option("--json", "as_json", is_flag=True,
               help="Print the plan and the page checks (ink, smallest label) as JSON.")
 @reports_errors
 @html_option
 def strands_command(input_mesh, levels, page, tile_size, model_size, layout, margin,
-                    palette_name, turn, chirality, project, output, as_json) -> None:
+                    palette_name, turn, chirality, project, cutter_name, laser_card, material,
+                    laser_name, output, as_json) -> None:
     """Printable paper strips for weaving INPUT by hand: an assembly sheet, a page of weaving
     steps, then one strip per strand, grouped into modules by the pattern's rotational symmetry.
     A closed surface in space gives a woven ball: every loop one strip, unfolded pentagon by
@@ -76,15 +92,22 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
       weave-cut strands pentagon-flower --size 23cm -o pentagon.pdf
       weave-cut strands square-grid --layout module --page letter -o square-module.pdf
       weave-cut strands dodecahedron --levels 1 --project sphere --size 12cm -o ball.pdf
+      weave-cut strands square-grid --size 27cm --cutter silhouette -o square-cut.pdf
+      weave-cut strands square-grid --size 27cm --laser-card --palette maritime-4 -o card/
     """
     from ..papermodel.book import preset_for, strand_book, tile_size_for
     from ..papermodel.checks import report
     from ..weave.snub_weave import snub_weaves
 
     fmt = Path(output).suffix.lower().lstrip(".")
-    if fmt not in FORMATS:
+    if fmt not in FORMATS and not laser_card:
         raise click.BadParameter(f"unknown format {Path(output).suffix!r}; use .pdf or .svg",
                                  param_hint="'-o'")
+    if cutter_name is not None and laser_card:
+        raise click.BadParameter("give --cutter (print and cut) or --laser-card, not both",
+                                 param_hint="'--cutter'")
+    if material is not None and not laser_card:
+        raise click.BadParameter("--material goes with --laser-card", param_hint="'--material'")
     if tile_size is not None and model_size is not None:
         raise click.BadParameter("give --tile-size or --size, not both", param_hint="'--size'")
     preset = preset_for(input_mesh)
@@ -97,6 +120,9 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
         if layout != "mixed" or turn is not None:
             raise click.UsageError("--layout and --turn are for flat models; a ball prints "
                                    "every strip once")
+        if cutter_name is not None or laser_card:
+            raise click.UsageError("--cutter and --laser-card are for flat models so far; "
+                                   "print a ball's strips and cut them by hand")
         return ball(mesh, input_mesh, levels, page, tile_size, model_size, margin, pal,
                     chirality, project, output, as_json)
     if project:
@@ -108,15 +134,34 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
     nonconvex = flag_nonconvex(hierarchy)
     if model_size is not None:
         tile_size = tile_size_for(weaves[-1], model_size)
+    limit, machine, mat = None, None, None
+    if cutter_name is not None:
+        from ..papermodel.printcut import cutter
+
+        machine = cutter(cutter_name)
+        machine.check(*page)
+        margin, limit = max(margin, machine.margin), machine.limit(*page)
+    if laser_card:
+        from ..layout.lasersetup import material as card
+        from ..papermodel.lasercard import SHEET_MARGIN
+
+        mat = card(material or "card-300gsm")
+        page, margin = mat["sheet"], SHEET_MARGIN
+    title = f"weave-cut strands: {input_mesh}, level {levels}"
     try:
-        book = strand_book(weaves, pal, page, tile_size or 20.0, margin, turn,
-                           title=f"weave-cut strands: {input_mesh}, level {levels}",
-                           layout=layout)
+        book = strand_book(weaves, pal, page, tile_size or 20.0, margin, turn, title=title,
+                           layout=layout, limit=limit)
     except ValueError as exc:
         raise click.ClickException(str(exc)) from exc
     for warning in book.warnings:
         click.echo(f"weave-cut: warning: {warning}", err=True)
-    export.write(book.drawing.with_metadata(**provenance()), output)
+    if mat is not None:
+        return _laser_card(book, mat, laser_name, output, title, as_json)
+    extra = {}
+    if machine is not None:
+        extra = _print_and_cut(book, machine, output)
+    else:
+        export.write(book.drawing.with_metadata(**provenance()), output)
     plan = book.plan
     if as_json:
         click.echo(json.dumps({"input": input_mesh, "levels": levels, "output": output,
@@ -124,12 +169,16 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
                                "rotation_order": plan.k, "copies": plan.k,
                                "module_strips": int(plan.copies.shape[1]),
                                "extra_strips": len(plan.extras),
-                               "strands": int(weaves[-1].n_strands), **nonconvex}, indent=2))
+                               "strands": int(weaves[-1].n_strands), **nonconvex, **extra},
+                              indent=2))
     else:
         summary(f"{output}: {len(book.drawing.sheets)} pages ({len(book.strip_pages)} of "
                 f"strips, {100 * book.ink:.0f} % ink); C{plan.k}, {plan.k} copies of "
                 f"a {plan.copies.shape[1]}-strip module"
-                + (f" + {len(plan.extras)} extras" if len(plan.extras) else ""))
+                + (f" + {len(plan.extras)} extras" if len(plan.extras) else "")
+                + (f"; {len(book.strip_pages)} cut files for {machine.name}, "
+                   f"{extra['cutter']['cut_length_mm'] / 1000:.1f} m of cuts, smallest "
+                   f"feature {extra['cutter']['min_feature_mm']:.1f} mm" if extra else ""))
 
 
 BALL_TILE = 40.0  # mm across an octagon: a ball's default size
@@ -165,3 +214,62 @@ def ball(mesh, input_mesh, levels, page, tile_size, diameter, margin, pal, chira
                 f"{len(book.pieces)} pieces, a ball {book.diameter / 10:.1f} cm across; "
                 f"unfolded edges change by at most {100 * book.stretch:.2f} %, pentagons are at most "
                 f"{100 * float(book.non_planarity.max()):.1f} % off their planes")
+
+
+def _print_and_cut(book, machine, output: str) -> dict:
+    """Write the strip pages with the cutter's marks to ``output`` and a cut file per strip
+    page beside it (SVG and DXF); return the --json figures."""
+    from ..papermodel.printcut import cut_files, cut_report, with_marks
+
+    marked = with_marks(book, machine)
+    export.write(marked.drawing.with_metadata(**provenance()), output)
+    base = Path(output)
+    files, report = [], cut_report([])
+    for n, drawing in cut_files(marked):
+        report = report + cut_report([p.outline for k, p in book.pieces if k == n])
+        for suffix in (".svg", ".dxf"):
+            path = base.with_name(f"{base.stem}-p{n:02d}-cut{suffix}")
+            export.write(drawing.with_metadata(**provenance()), path)
+            files.append(str(path))
+    if report.min_feature < machine.min_feature:
+        click.echo(f"weave-cut: warning: features down to {report.min_feature:.2f} mm: a drag "
+                   f"knife tears below {machine.min_feature:g} mm", err=True)
+    return {"cutter": {"name": machine.name, "marks": machine.marks, "cut_files": files,
+                       **report.as_dict()}}
+
+
+def _laser_card(book, mat: dict, laser_name: str, out_dir: str, title: str,
+                as_json: bool) -> None:
+    """Write the card sheets (an SVG and a DXF each) and strands-assembly.pdf into ``out_dir``."""
+    from ..fileio import make_folder
+    from ..layout.drawing import Drawing
+    from ..layout.lasersetup import laser
+    from ..papermodel.lasercard import card_colour_sheet, card_sheets
+
+    cut = card_sheets([p for _, p in book.pieces], book.colours, laser(laser_name), mat["kerf"],
+                      mat["sheet"], title)
+    folder = make_folder(out_dir)
+    sheets, files = book.drawing.sheets, []
+    colours = card_colour_sheet(cut, (sheets[0].width, sheets[0].height), title)
+    assembly = Drawing((sheets[0], sheets[1], colours), title).with_metadata(**provenance())
+    export.write(assembly, folder / "strands-assembly.pdf")
+    for n, (drawing, colour) in enumerate(zip(cut.sheets, cut.colours), start=1):
+        for suffix in (".svg", ".dxf"):
+            path = folder / f"strands-card-{n:02d}-{colour.lstrip('#')}{suffix}"
+            export.write(drawing.with_metadata(**provenance()), path)
+            files.append(str(path))
+    n_colours = len(set(cut.colours))
+    minutes = cut.report.length / mat["cut_speed"] / 60  # cutting only, at the material's speed
+    if as_json:
+        click.echo(json.dumps({"output": out_dir, "material": mat["name"],
+                               "sheet_mm": list(mat["sheet"]), "sheets": len(cut.sheets),
+                               "card_colours": n_colours, "strips": len(book.pieces),
+                               "smallest_label_mm": round(cut.smallest_label, 2),
+                               "cut_minutes": round(minutes, 1), "files": files,
+                               **cut.report.as_dict()}, indent=2))
+    else:
+        summary(f"{out_dir}: {len(cut.sheets)} sheets of {mat['name']} in {n_colours} card "
+                f"colours, {len(book.pieces)} strip pieces, {cut.report.length / 1000:.1f} m of "
+                f"cuts (about {minutes:.0f} min), smallest feature "
+                f"{cut.report.min_feature:.1f} mm; strands-assembly.pdf says which colour each "
+                "strand is")

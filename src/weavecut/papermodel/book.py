@@ -122,7 +122,8 @@ def tile_size_width(weave: Weave, tile_size: float) -> float:
 
 def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (210.0, 297.0),
                 tile_size: float = 20.0, margin: float = 10.0, turn: float = 0.0,
-                title: str = "weave-cut strands", layout: str = "mixed") -> StrandBook:
+                title: str = "weave-cut strands", layout: str = "mixed",
+                limit: tuple[float, float, float, float] | None = None) -> StrandBook:
     """Lay out every strand of ``weaves[-1]`` as printable strips.
 
     Parameters
@@ -138,6 +139,8 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         in the turned frame)
     layout : "mixed" (all copies packed together) or "module" (print the module once per
         direction)
+    limit : (x0, y0, x1, y1) mm, the part of the page strips may use besides the margins (the
+        area a print-and-cut machine reads), or None
 
     Raises
     ------
@@ -146,7 +149,7 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
     if layout not in LAYOUTS:
         raise ValueError(f"layout must be one of {LAYOUTS}, got {layout!r}")
     weave = weaves[-1]
-    area = PageArea(page[0], page[1], margin)
+    area = PageArea(page[0], page[1], margin, limit)
     area.check()
     width, warnings = check_strip_width(weave, tile_size)
     plan = plan_modules(weave, heading=-np.pi / 2 - turn)

@@ -26,11 +26,13 @@ FOLD = Style("#333333", 0.3)  # dashed fold lines of strips unfolded from a surf
 
 @dataclass(frozen=True)
 class PageArea:
-    """A page and the rectangle strips may use, all in mm."""
+    """A page and the rectangle strips may use, all in mm; ``limit`` (x0, y0, x1, y1), when
+    given, bounds that rectangle further (the area a cutter reads)."""
 
     width: float
     height: float
     margin: float
+    limit: tuple[float, float, float, float] | None = None
 
     @property
     def footer(self) -> float:
@@ -40,7 +42,11 @@ class PageArea:
     @property
     def box(self) -> tuple[float, float, float, float]:
         m = self.margin
-        return (m, m + self.footer + GAP, self.width - m, self.height - m - HEADER - GAP)
+        box = (m, m + self.footer + GAP, self.width - m, self.height - m - HEADER - GAP)
+        if self.limit is None:
+            return box
+        return (*np.maximum(box[:2], self.limit[:2]).tolist(),
+                *np.minimum(box[2:], self.limit[2:]).tolist())
 
     @property
     def portrait(self) -> bool:

@@ -8,41 +8,22 @@ as the flipped board shows it).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 import shapely
 from numpy.typing import NDArray
 
-from .. import presets
 from ..layout import cutpaths, nesting
 from ..layout import strokefont
+from ..layout.lasersetup import DEFAULT_LASER, Laser, laser  # noqa: F401 (the puzzle's API)
 from ..layout.drawing import Drawing, Layer, Polygons, Polylines, Sheet, Style
 from ..errors import WeaveCutError
 from .pieces import Puzzle
 
-DEFAULT_LASER = "lightburn"
 TRAVEL_SPEED = 300.0  # mm/s head moves between cuts, for the time estimate
 MIN_DIGITS = 3.0  # mm, the smallest engraved digits that read well
 MIN_ENGRAVED = 1.5  # mm, smaller numbers are not engraved at all
-
-
-@dataclass(frozen=True)
-class Laser:
-    """Colours and stroke widths a laser program expects per role (``templates/laser``)."""
-
-    name: str
-    styles: dict = field(default_factory=dict)
-
-    def style(self, role: str) -> Style:
-        entry = self.styles.get(role, {})
-        return Style(entry.get("colour", "#000000"), float(entry.get("width", 0.01)))
-
-
-def laser(name: str = DEFAULT_LASER) -> Laser:
-    doc = presets.load("laser", name)
-    return Laser(str(doc.get("name", name)),
-                 {k: v for k, v in doc.items() if isinstance(v, dict)})
 
 
 @dataclass(frozen=True)

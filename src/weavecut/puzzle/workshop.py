@@ -8,28 +8,13 @@ import textwrap
 import numpy as np
 import shapely
 
-from .. import presets
-from ..units import page_size, to_mm
+from ..layout.lasersetup import material  # noqa: F401 (the puzzle's API)
 from .colouring import Colouring
 from .files import TRAVEL_SPEED, CutResult
 from .pieces import KIND_NAMES, OCTAGON, Puzzle, build_puzzle, diameter
 
-DEFAULT_MATERIAL = "poplar-3mm"
 MIN_ACROSS = 15.0  # mm: a piece smaller than this is fiddly to hold and easy to lose
 MIN_WIDTH_X_THICKNESS = 3.0  # a piece narrower than 3x the material thickness breaks
-
-
-def material(name: str = DEFAULT_MATERIAL) -> dict:
-    """A material preset (``templates/materials``) with lengths in mm: thickness, kerf,
-    sheet (width, height) and cut_speed (mm/s)."""
-    doc = presets.load("materials", name)
-    try:
-        return {"name": str(doc.get("name", name)),
-                "description": str(doc.get("description", name)),
-                "thickness": to_mm(doc["thickness"]), "kerf": to_mm(doc["kerf"]),
-                "sheet": page_size(doc["sheet"]), "cut_speed": float(doc["cut_speed"])}
-    except (KeyError, ValueError) as exc:
-        raise presets.PresetError(f"material {name!r}: bad or missing {exc}") from exc
 
 
 def piece_sizes(puzzle: Puzzle) -> tuple[np.ndarray, np.ndarray]:

@@ -1,0 +1,309 @@
+"""Strips cut by machine (issue 20): print-and-cut pages with registration marks and their cut
+files, and strips laser-cut from coloured card. The files are read back with ezdxf and an XML
+parser; the mark geometry is rebuilt from the preset's TOML values, not from the code's."""
+
+from __future__ import annotations
+
+import json
+import re
+import tomllib
+import xml.etree.ElementTree as ET
+from functools import lru_cache
+from pathlib import Path
+
+import ezdxf
+import numpy as np
+import pytest
+import shapely
+from click.testing import CliRunner
+
+from weavecut import export, inputs, presets
+from weavecut.layout.drawing import Polygons, Text
+from weavecut.layout.labels import text_box
+from weavecut.layout.lasersetup import laser
+from weavecut.papermodel import lasercard, printcut
+from weavecut.papermodel.book import strand_book
+from weavecut.subdivision import subdivide
+from weavecut.units import to_mm
+from weavecut.weave.colour import palette
+from weavecut.weave.snub_weave import snub_weaves
+
+A4 = (210.0, 297.0)
+CUTTERS = ("silhouette", "cricut", "scanncut")
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+@lru_cache(maxsize=None)
+def weaves():
+    return tuple(snub_weaves(subdivide(inputs.get("square-grid:2x2"), 2)))
+
+
+@lru_cache(maxsize=None)
+def cut_book(name: str):
+    machine = printcut.cutter(name)
+    book = strand_book(list(weaves()), palette("maritime-4"), A4, 20.0, machine.margin,
+                       limit=machine.limit(*A4))
+    return machine, printcut.with_marks(book, machine)
+
+
+def preset_values(name: str) -> dict:
+    """The preset's values in mm, read from its TOML file by tomllib (not by weave-cut)."""
+    doc = tomllib.loads(presets.find("cutters", name).read_text())
+    return {k: (to_mm(v) if k not in ("name", "description", "marks") else v)
+            for k, v in doc.items()}
+
+
+def layer_polygons(sheet, name: str) -> list:
+    return [g for layer in sheet.layers if layer.name == name for s in layer.shapes
+            if isinstance(s, Polygons) for g in s.to_shapely().tolist()]
+
+
+def svg_rings(path: Path) -> list[np.ndarray]:
+    """Closed rings of every path in the SVG, in the page's frame (y up, mm)."""
+    root = ET.parse(path).getroot()
+    height = float(root.get("viewBox").split()[3])
+    rings = []
+    for p in root.iter(f"{SVG}path"):
+        for sub in p.get("d").split("M")[1:]:
+            xy = np.array(re.findall(r"-?[\d.]+(?:e-?\d+)?", sub), dtype=float).reshape(-1, 2)
+            rings.append(np.column_stack([xy[:, 0], height - xy[:, 1]]))
+    return rings
+
+
+def dxf_rings(path: Path, layer: str) -> list[np.ndarray]:
+    doc = ezdxf.readfile(path)
+    return [np.array([(x, y) for x, y, *_ in e.get_points()])
+            for e in doc.modelspace().query(f'LWPOLYLINE[layer=="{layer}"]')]
+
+
+def assert_coincide(printed: list, cut_rings: list[np.ndarray], tol: float = 0.01) -> None:
+    """Every printed outline has exactly one cut outline within ``tol`` mm (Hausdorff), and
+    there are as many cut outlines as printed ones."""
+    cut = np.array([shapely.Polygon(r) for r in cut_rings], dtype=object)
+    assert len(cut) == len(printed)
+    far = np.array([[shapely.hausdorff_distance(p, c) for c in cut] for p in printed])
+    assert (np.sort(far, axis=1)[:, 0] < tol).all()
+    assert sorted(np.argmin(far, axis=1).tolist()) == list(range(len(cut)))
+
+
+# --- print and cut -------------------------------------------------------------------------
+
+@pytest.mark.parametrize("name", CUTTERS)
+@pytest.mark.parametrize("fmt", ["svg", "dxf"])
+def test_cut_file_is_registered_to_the_printed_page(name, fmt, tmp_path):
+    _, book = cut_book(name)
+    files = printcut.cut_files(book)
+    assert [n for n, _ in files] == list(book.strip_pages)
+    for n, drawing in files:
+        page = book.drawing.sheets[n - 1]
+        assert (drawing.sheets[0].width, drawing.sheets[0].height) == (page.width, page.height)
+        path = tmp_path / f"p{n}.{fmt}"
+        export.write(drawing, path)
+        rings = svg_rings(path) if fmt == "svg" else dxf_rings(path, "cut")
+        # the page transform is the identity: the cut file has the page's size and frame
+        assert_coincide(layer_polygons(page, "cut"), rings)
+
+
+@pytest.mark.parametrize("name", CUTTERS)
+def test_marks_lie_where_the_preset_says(name):
+    v = preset_values(name)
+    machine, book = cut_book(name)
+    w, h = A4
+    i, n, t = v["inset"], v["length"], v["thickness"]
+    for number in book.strip_pages:
+        sheet = book.drawing.sheets[number - 1]
+        marks = layer_polygons(sheet, "registration")
+        if v["marks"] == "frame":
+            assert len(marks) == 1
+            assert np.allclose(marks[0].bounds, (i, i, w - i, h - i))
+            assert marks[0].area == pytest.approx(2 * t * (w - 2 * i + h - 2 * i) - 4 * t * t)
+        else:
+            # (page corner the mark sits in, its kind): Type 1 has the square top-left
+            kinds = {(0, 1): "square" if v["marks"] == "square-and-corners" else "L",
+                     (1, 1): "L", (0, 0): "L"}
+            if v["marks"] == "corners":
+                kinds[(1, 0)] = "L"
+            assert len(marks) == len(kinds)
+            for (cx, cy), kind in kinds.items():
+                x = (i, i + n) if cx == 0 else (w - i - n, w - i)
+                y = (i, i + n) if cy == 0 else (h - i - n, h - i)
+                mine = [m for m in marks if np.allclose(m.bounds, (x[0], y[0], x[1], y[1]))]
+                assert len(mine) == 1
+                m = mine[0]
+                assert m.area == pytest.approx(n * n if kind == "square" else 2 * n * t - t * t)
+                outer = shapely.Point(x[cx], y[cy])  # the L's corner faces the page's corner
+                inner = shapely.Point(x[1 - cx], y[1 - cy])
+                assert m.covers(outer) and m.covers(inner) == (kind == "square")
+        # inside the printable margin, clear of every strip by the clearance
+        printable = shapely.box(printcut.PRINTER_EDGE, printcut.PRINTER_EDGE,
+                                w - printcut.PRINTER_EDGE, h - printcut.PRINTER_EDGE)
+        assert all(printable.covers(m) for m in marks)
+        strips = [p.outline for k, p in book.pieces if k == number]
+        gap = min(shapely.distance(m, s) for m in marks for s in strips)
+        assert gap >= v["clearance"] - 1e-9
+        # and clear of the page's furniture: no text box touches a mark
+        texts = [text_box(s) for layer in sheet.layers for s in layer.shapes
+                 if isinstance(s, Text)]
+        assert not any(m.intersects(b) for m in marks for b in texts)
+
+
+def test_strips_stay_inside_the_area_the_cutter_reads():
+    v = preset_values("cricut")
+    _, book = cut_book("cricut")
+    w, h = A4
+    area = shapely.box((w - v["max_width"]) / 2, (h - v["max_height"]) / 2,
+                       (w + v["max_width"]) / 2, (h + v["max_height"]) / 2)
+    assert v["max_width"] == pytest.approx(6.75 * 25.4)
+    assert all(area.covers(p.outline) for _, p in book.pieces)
+
+
+def test_cut_geometry_is_ready_to_cut():
+    _, book = cut_book("silhouette")
+    report = printcut.cut_report([p.outline for _, p in book.pieces])
+    assert report.simple and report.duplicates == 0 and report.n_outlines == len(book.pieces)
+    assert report.min_feature >= preset_values("silhouette")["min_feature"]
+    assert report.length == pytest.approx(sum(p.outline.length for _, p in book.pieces))
+
+
+def test_cut_report_finds_what_a_knife_trips_on():
+    a, b = shapely.box(0, 0, 10, 10), shapely.box(10, 0, 20, 10)  # one shared side
+    assert printcut.cut_report([a, b]).duplicates == 1
+    assert printcut.cut_report([a, shapely.box(12, 0, 20, 10)]).duplicates == 0
+    bowtie = shapely.Polygon([(0, 0), (10, 10), (10, 0), (0, 10)])
+    assert not printcut.cut_report([bowtie]).simple
+    holed = shapely.box(0, 0, 10, 10).difference(shapely.box(4, 4, 6, 6))
+    assert not printcut.cut_report([holed]).simple
+    assert printcut.cut_report([shapely.box(0, 0, 30, 0.8)]).min_feature == pytest.approx(0.8)
+
+
+def test_cut_order_starts_near_the_cutters_home():
+    outlines = [shapely.box(x, y, x + 5, y + 5) for x in (10, 100) for y in (10, 200)]
+    rings = printcut.ordered_outlines(outlines, (0.0, 297.0))
+    assert shapely.Point(rings[0][0]).distance(shapely.box(10, 200, 15, 205)) < 1e-9
+    assert all(np.allclose(r[0], r[-1]) for r in rings)
+
+
+def test_a_cutter_preset_is_checked(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text('marks = "square-and-corners"\ninset = "2mm"\nlength = "5mm"\n'
+                   'thickness = "0.5mm"\nclearance = "2mm"\nmin_feature = "1mm"\n')
+    with pytest.raises(printcut.CutterError, match="home printers"):
+        printcut.cutter(str(bad)).check(*A4)
+    bad.write_text(bad.read_text().replace("square-and-corners", "circles"))
+    with pytest.raises(presets.PresetError, match="circles"):
+        printcut.cutter(str(bad))
+
+
+# --- laser from coloured card --------------------------------------------------------------
+
+@lru_cache(maxsize=None)
+def card(sheet=A4, kerf=0.1):
+    book = strand_book(list(weaves()), palette("maritime-4"), sheet, 20.0,
+                       lasercard.SHEET_MARGIN)
+    return book, lasercard.card_sheets([p for _, p in book.pieces], book.colours, laser(),
+                                       kerf, sheet)
+
+
+def test_every_strip_once_on_a_sheet_of_its_colour(tmp_path):
+    book, cut = card()
+    seen = []
+    for n, (drawing, colour, pieces) in enumerate(zip(cut.sheets, cut.colours, cut.pieces)):
+        assert dict(drawing.metadata)["card"] == colour
+        assert {book.colours[p.strand] for p in pieces} == {colour}
+        seen += [p.label for p in pieces]
+        path = tmp_path / f"sheet{n}.dxf"
+        export.write(drawing, path)
+        rings = dxf_rings(path, "cut")
+        kerf = [shapely.buffer(p.outline, 0.05, join_style="mitre", mitre_limit=8.0)
+                for p in pieces]
+        assert_coincide(kerf, rings)
+        polys = [shapely.Polygon(r) for r in rings]
+        sheet = shapely.box(0, 0, *A4)
+        assert all(sheet.contains(p) for p in polys)
+        for i, a in enumerate(polys):  # no two strips overlap (a cut needs the gap)
+            assert all(a.distance(b) >= 0.1 - 1e-6 for b in polys[i + 1:])
+    assert sorted(seen) == sorted(p.label for _, p in book.pieces)
+    assert len(set(cut.colours)) == len(set(book.colours))
+
+
+def test_engraved_text_lies_inside_its_strip_with_a_margin(tmp_path):
+    _, cut = card()
+    for n, (drawing, pieces) in enumerate(zip(cut.sheets, cut.pieces)):
+        path = tmp_path / f"sheet{n}.dxf"
+        export.write(drawing, path)
+        lines = [shapely.LineString(r) for r in dxf_rings(path, "engrave") if len(r) > 1]
+        assert lines
+        inner = [shapely.buffer(p.outline, -lasercard.ENGRAVE_MARGIN + 1e-3,
+                                join_style="mitre") for p in pieces]
+        tree = shapely.STRtree(inner)
+        for line in lines:
+            assert any(inner[j].covers(line) for j in tree.query(line))
+        # every strip carries its ID, and the IDs of the strands on top where it goes under
+        for p, (coords, offsets, owner) in zip(pieces, cut.texts[n]):
+            assert len(coords) and shapely.buffer(p.outline, -0.999).covers(
+                shapely.MultiPoint(coords))
+            # one label per printed one, and no two labels of a strip touch
+            assert len(set(owner.tolist())) == len(p.texts)
+            point_owner = np.repeat(owner, np.diff(offsets))
+            hulls = [shapely.MultiPoint(coords[point_owner == k]).convex_hull
+                     for k in range(len(p.texts))]
+            assert not any(a.intersects(b) for i, a in enumerate(hulls) for b in hulls[i + 1:])
+    assert cut.smallest_label >= lasercard.MIN_ENGRAVED
+
+
+def test_the_card_colour_page_names_every_strands_card():
+    book, cut = card()
+    page = lasercard.card_colour_sheet(cut, A4, "test")
+    texts = [t.text for layer in page.layers for t in layer.shapes if isinstance(t, Text)]
+    heads = [k for k, t in enumerate(texts) if t.startswith("card #")]
+    assert len(heads) == len(set(book.colours))
+    named = {}
+    for k in heads:  # "card #rrggbb: sheets 1, 2" then "strands A1, A2, ..."
+        colour = texts[k].split(":")[0].removeprefix("card ")
+        for label in texts[k + 1].removeprefix("strands ").split(", "):
+            assert label not in named
+            named[label] = colour
+    strips = {p.label.split(" ")[0]: book.colours[p.strand] for _, p in book.pieces}
+    assert named == strips
+
+
+def test_engraving_comes_before_the_cut():
+    _, cut = card()
+    roles = [layer.role for layer in cut.sheets[0].sheets[0].layers]
+    assert roles == ["engrave", "cut"]
+
+
+# --- the command ---------------------------------------------------------------------------
+
+def test_strands_cutter_and_laser_card_commands(tmp_path):
+    from weavecut.cli import cli as main
+
+    runner = CliRunner()
+    out = tmp_path / "sq.pdf"
+    res = runner.invoke(main, ["strands", "square-grid:2x2", "--tile-size", "20mm",
+                               "--cutter", "silhouette", "--json", "-o", str(out)])
+    assert res.exit_code == 0, res.output
+    assert json.loads(res.output)["label_violations"] == 0  # the marks cover no text
+    info = json.loads(res.output)["cutter"]
+    assert info["closed_simple"] and info["duplicate_segments"] == 0
+    assert sorted(Path(f).name for f in info["cut_files"]) == ["sq-p03-cut.dxf", "sq-p03-cut.svg"]
+    res = runner.invoke(main, ["strands", "square-grid:2x2", "--tile-size", "20mm",
+                               "--laser-card", "--material", "card-300gsm-12in", "--json",
+                               "-o", str(tmp_path / "card")])
+    assert res.exit_code == 0, res.output
+    info = json.loads(res.output)
+    assert info["sheet_mm"] == pytest.approx([304.8, 304.8])
+    assert (tmp_path / "card" / "strands-assembly.pdf").is_file()
+    assert len(list((tmp_path / "card").glob("strands-card-*.dxf"))) == info["sheets"]
+    fine = tmp_path / "fine.toml"  # a cutter that wants features of 50 mm is warned
+    fine.write_text(presets.find("cutters", "silhouette").read_text().replace(
+        'min_feature = "1mm"', 'min_feature = "50mm"'))
+    res = runner.invoke(main, ["strands", "square-grid:2x2", "--tile-size", "20mm", "--cutter",
+                               str(fine), "-o", str(tmp_path / "fine.pdf")])
+    assert res.exit_code == 0 and "drag knife tears below 50 mm" in res.output
+    for args, message in ((["--cutter", "nope"], "unknown cutter"),
+                          (["--cutter", "cricut", "--laser-card"], "not both"),
+                          (["--material", "card-300gsm"], "--laser-card")):
+        res = runner.invoke(main, ["strands", "square-grid:2x2", *args, "-o",
+                                   str(tmp_path / "x.pdf")])
+        assert res.exit_code != 0 and message in res.output and "Traceback" not in res.output
