@@ -141,14 +141,13 @@ def _two_opt(paths: list[NDArray], start: NDArray, passes: int) -> list[NDArray]
     n = len(paths)
     if n < 3:
         return paths
-    heads = np.array([p[0] for p in paths])
-    tails = np.array([p[-1] for p in paths])
+    s = np.array([p[0] for p in paths])  # where each path starts and ends, in travel order
+    e = np.array([p[-1] for p in paths])
     order = np.arange(n)
     flipped = np.zeros(n, dtype=bool)
     for _ in range(passes):
         improved = False
-        for i in range(n - 1):  # segment [i, j]; previous end is tail[i-1] (or start)
-            s, e = _ends(heads, tails, order, flipped)
+        for i in range(n - 1):  # segment [i, j]; previous end is e[i-1] (or start)
             prev = start if i == 0 else e[i - 1]
             j = np.arange(i + 1, n)
             nxt_start = np.vstack([s[i + 1:], [np.nan, np.nan]])[1:]  # s[j + 1]
@@ -159,19 +158,14 @@ def _two_opt(paths: list[NDArray], start: NDArray, passes: int) -> list[NDArray]
             gain = old - new
             k = int(np.argmax(gain))
             if gain[k] > 1e-9:
-                jj = int(j[k])
-                order[i:jj + 1] = order[i:jj + 1][::-1].copy()
-                flipped[i:jj + 1] = ~flipped[i:jj + 1][::-1]
+                run = slice(i, int(j[k]) + 1)  # reversed: each path's ends swap too
+                order[run] = order[run][::-1].copy()
+                flipped[run] = ~flipped[run][::-1]
+                s[run], e[run] = e[run][::-1].copy(), s[run][::-1].copy()
                 improved = True
         if not improved:
             break
     return [paths[o][::-1] if f else paths[o] for o, f in zip(order.tolist(), flipped.tolist())]
-
-
-def _ends(heads, tails, order, flipped):
-    s = np.where(flipped[:, None], tails[order], heads[order])
-    e = np.where(flipped[:, None], heads[order], tails[order])
-    return s, e
 
 
 def travel_length(paths: list[NDArray], start=(0.0, 0.0)) -> float:
