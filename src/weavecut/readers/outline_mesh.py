@@ -86,7 +86,8 @@ def mesh_outline(region, kind: str = "hex", cell: float | None = None,
         return _triangles(shapely.simplify(region, tolerance / 2), cell)
     # no outline edge shorter than needed (Douglas-Peucker, half the tolerance), none longer
     # than a cell's edge
-    region = _densified_region(shapely.simplify(region, tolerance / 2), EDGE[kind] * cell)
+    region = _densified_region(region if runs else shapely.simplify(region, tolerance / 2),
+                               EDGE[kind] * cell)
     _, cells = _relaxed_cells(region, kind, cell)
     pieces = _merged_small([q for c in shapely.get_parts(cells)
                             for q in _convex_pieces(c, tolerance)], cell, tolerance)
