@@ -26,8 +26,8 @@ HEART = Path(__file__).parents[2] / "templates" / "recipes" / "heart.svg"
 
 @pytest.fixture(scope="module")
 def heart():
-    """The heart-puzzle recipe's puzzle (cell 33 mm, level 2, 30 cm wide, 15 mm frame)."""
-    mesh = read_drawing(HEART, cell=33.0, runs=True)
+    """The heart-puzzle recipe's puzzle (cell 39 mm, level 2, 30 cm wide, 15 mm frame)."""
+    mesh = read_drawing(HEART, cell=39.0, runs=True)
     return build_puzzle(subdivide(mesh, 2), 300.0, 15.0, "width")
 
 
