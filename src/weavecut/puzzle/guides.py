@@ -37,8 +37,9 @@ def piece_halves(puzzle: Puzzle) -> NDArray[np.object_]:
 
     An octagon is split along the straight line between its two corners that are level-(t-1)
     vertices: the parent edge its Z-triplet replaced, so the paint shows the coarser weave
-    ("split diagonally, which shows the replaced edge", paper section 6). An enneagon is one
-    half: its pentagon, twice (its hexagon is unpainted)."""
+    ("split diagonally, which shows the replaced edge", paper section 6); where that line
+    leaves the piece, along its two pentagons. An enneagon is one half: its pentagon, twice
+    (its hexagon is unpainted)."""
     vertices, faces, f0, f1 = _piece_faces(puzzle)
     p0 = shapely.polygons(puzzle.to_mm(vertices[faces[f0]]))
     p1 = shapely.polygons(puzzle.to_mm(vertices[faces[f1]]))
@@ -53,9 +54,12 @@ def piece_halves(puzzle: Puzzle) -> NDArray[np.object_]:
         return np.sign(a[:, 0] * d[:, 1] - a[:, 1] * d[:, 0])
 
     swap = side(cut0) != side(p0[octagon])
+    # where the chord leaves the piece (an octagon bent hard at a sharp tip), its two
+    # pentagons are its halves
+    inside = shapely.is_valid(cut0) & shapely.is_valid(cut1)
     half0, half1 = p0.copy(), p1.copy()
-    half0[octagon] = np.where(swap, cut1, cut0)
-    half1[octagon] = np.where(swap, cut0, cut1)
+    half0[octagon] = np.where(inside, np.where(swap, cut1, cut0), half0[octagon])
+    half1[octagon] = np.where(inside, np.where(swap, cut0, cut1), half1[octagon])
     # a cut through a corner leaves near-duplicate corners (1e-13 mm apart) that turn into a
     # self-intersection once moved onto a sheet: drop them
     return shapely.simplify(np.column_stack([half0, half1]), 1e-7)

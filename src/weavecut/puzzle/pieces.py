@@ -17,7 +17,8 @@ Decisions (documented here and in the README):
   meet, are part of the frame** (the wedge between the last cell of one side and the first of
   the next). Cells that would overlap the mesh or an earlier cell are dropped (claimed cells
   first); on the pentagon none overlap.
-- **The frame** is the input outline offset outward (mitred) to ``frame_width`` beyond the ring's
+- **The frame** is the input outline offset outward (mitred; bevelled at corners under 60
+  degrees) to ``frame_width`` beyond the ring's
   outermost point, minus the union of the pieces (the hole). ``size`` is the frame's diagonal
   (the largest distance between two corners of its outer outline): "the diagonal of the
   surrounding pentagon measures 50 cm" (paper, section 6), or with ``measure="width"`` (every
@@ -54,7 +55,8 @@ from ..weave.snub_weave import snub_weaves
 from ..layout.weave_figure import tile_rings
 
 OCTAGON, ENNEAGON = 0, 1
-MEASURES = ("diagonal", "width")  # what --size measures of the frame's outer outline
+MEASURES = ("diagonal", "width")
+MITRE_LIMIT = 2.0  # the frame's corners: mitre length / offset, beyond which they are bevelled  # what --size measures of the frame's outer outline
 KIND_NAMES = ("octagon", "enneagon")
 _SIN60, _COS60 = np.sqrt(3.0) / 2.0, 0.5
 
@@ -227,16 +229,18 @@ def _check_cuttable(mesh: Mesh) -> None:
     where = mesh.vertices[mesh.dense_faces()[np.flatnonzero(~simple)[0]]].mean(axis=0)
     raise WeaveCutError(f"{int((~simple).sum())} pentagons of the last level turn over (the "
                         f"first near ({where[0]:.4g}, {where[1]:.4g}) in input units), so they "
-                        "cannot be cut; use fewer --levels, or mesh the drawing with a larger "
-                        "--cell")
+                        "cannot be cut (sharp corners and slim faces do this); use fewer "
+                        "--levels, or mesh a drawing with another --cell or --mesh tri")
 
 
 def _frame_outline(outline: shapely.Polygon, depth: float, frame_width: float,
                    scale: float) -> shapely.Polygon:
-    """The outline at ``scale`` offset (mitred) by the ring's depth plus the frame width."""
+    """The outline at ``scale`` offset by the ring's depth plus the frame width: mitred, and
+    bevelled where a mitre would reach more than twice that far (corners under 60 degrees, a
+    star's tips; the pentagon's and a square's corners keep their mitres)."""
     scaled = shapely.transform(outline, lambda xy: xy * scale)
     return shapely.buffer(scaled, depth * scale + frame_width, join_style="mitre",
-                          mitre_limit=10.0)
+                          mitre_limit=MITRE_LIMIT)
 
 
 def frame_scale(outline: shapely.Polygon, depth: float, frame_width: float,
