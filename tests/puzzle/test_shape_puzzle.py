@@ -18,7 +18,7 @@ from weavecut.errors import WeaveCutError
 from weavecut.puzzle.guides import piece_halves
 from weavecut.puzzle.pieces import build_puzzle, extent
 from weavecut.readers import read_drawing
-from weavecut.readers.outline_mesh import _even_runs
+from weavecut.readers.outline_mesh import _even_runs, mesh_outline
 from weavecut.subdivision import subdivide
 
 HEART = Path(__file__).parents[2] / "templates" / "recipes" / "heart.svg"
@@ -127,6 +127,33 @@ def test_even_runs_keep_corners_and_have_one_length(points, dent, side):
     stretch = np.cumsum(is_corner.any(axis=1))  # which stretch between corners each run is in
     for k in np.unique(stretch):
         assert np.ptp(step[stretch == k]) < 1e-9
+
+
+@settings(max_examples=8, deadline=None)
+@given(st.integers(4, 8), st.floats(0.55, 1.0), st.floats(0.0, 0.3), st.integers(0, 2**16))
+def test_puzzles_of_random_stars_tile_their_hole(points, dent, wobble, seed):
+    """Stars and polygons with curved-looking sides, meshed with runs: a puzzle is either
+    refused in one line (a level that turns over) or its pieces tile the hole exactly and the
+    frame is ``size`` wide."""
+    rng = np.random.default_rng(seed)
+    angle = np.linspace(0, 2 * np.pi, 4 * points, endpoint=False)
+    radius = np.where(np.arange(4 * points) % 4 == 2, dent, 1.0)  # straight-ish or dented
+    radius = 50.0 * radius * (1 + wobble * rng.uniform(-0.5, 0.5, len(angle)))
+    region = shapely.Polygon(np.column_stack([radius * np.cos(angle), radius * np.sin(angle)]))
+    try:
+        mesh = mesh_outline(region, "hex", 30.0, runs=True)
+        puzzle = build_puzzle(subdivide(mesh, 2), 250.0, 10.0, "width")
+    except WeaveCutError as exc:
+        assert "\n" not in str(exc)
+        return
+    pieces = puzzle.pieces
+    assert shapely.is_valid(pieces).all()
+    assert puzzle.hole.geom_type == "Polygon" and not puzzle.hole.interiors
+    assert shapely.area(pieces).sum() == pytest.approx(puzzle.hole.area, rel=1e-9)
+    a, b = shapely.STRtree(pieces).query(pieces, predicate="intersects")
+    overlap = shapely.area(shapely.intersection(pieces[a[a < b]], pieces[b[a < b]]))
+    assert overlap.max(initial=0.0) < 1e-9 * puzzle.hole.area
+    assert extent(puzzle.outer, "width") == pytest.approx(250.0, abs=0.01)
 
 
 def test_puzzle_help_says_size_is_the_width():
