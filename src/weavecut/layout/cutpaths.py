@@ -173,5 +173,5 @@ def travel_length(paths: list[NDArray], start=(0.0, 0.0)) -> float:
     if not paths:
         return 0.0
     s = np.array([p[0] for p in paths])
-    e = np.vstack([[start], [p[-1] for p in paths[:-1]]])
+    e = np.array([start] + [p[-1] for p in paths[:-1]], dtype=float)  # one path: start only
     return float(np.hypot(*(s - e).T).sum())
