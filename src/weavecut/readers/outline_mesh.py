@@ -300,9 +300,10 @@ def _convex_pieces(polygon, tolerance: float) -> list:
     """
     if polygon.is_empty or polygon.area == 0:
         return []
-    if polygon.interiors:  # a hole inside one cell: cut through the hole first
-        x, y = np.asarray(polygon.interiors[0].coords)[0]
-        x0, y0, x1, y1 = polygon.bounds
+    if polygon.interiors:  # a hole inside one cell: cut across the middle of the hole first
+        hx0, _, hx1, _ = shapely.Polygon(polygon.interiors[0]).bounds
+        _, y0, _, y1 = polygon.bounds
+        x = (hx0 + hx1) / 2  # strictly inside the hole's span: the line crosses the hole
         halves = shapely.get_parts(split(polygon, shapely.LineString([(x, y0), (x, y1)])))
         return [q for p in halves for q in _convex_pieces(p, tolerance)]
     ring = np.asarray(shapely.orient_polygons(polygon).exterior.coords)[:-1]
