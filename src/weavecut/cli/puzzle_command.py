@@ -69,11 +69,12 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     puzzle-summary.json, README.txt (what goes where, the order of work).
     \b
     A drawing (.svg, .dxf) of one outline is meshed inside with its curves redrawn as
-    straight runs of one length, so the hexagon ring along them keeps one size.
+    straight runs of one length, so the hexagon ring along them keeps one size; --cell and
+    --levels set how many pieces it makes (a few faces and two or three levels).
     \b
     Examples:
       weave-cut puzzle -o build/puzzle --material poplar-3mm --numbers
-      weave-cut puzzle heart.svg --cell 30mm --levels 3 --size 30cm -o heart
+      weave-cut puzzle heart.svg --cell 39mm --levels 2 --size 30cm -o heart
     """
     import shapely
 
