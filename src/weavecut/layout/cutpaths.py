@@ -104,6 +104,9 @@ def is_closed(path: NDArray) -> bool:
     return len(path) > 2 and bool(np.allclose(path[0], path[-1]))
 
 
+TWO_OPT_WINDOW = 500  # longest run of paths 2-opt reverses
+
+
 def order_paths(paths: list[NDArray], start=(0.0, 0.0), passes: int = 30
                 ) -> tuple[list[NDArray], tuple[float, float]]:
     """Paths reordered (and reversed or rotated) to shorten the travel between them.
@@ -136,8 +139,11 @@ def order_paths(paths: list[NDArray], start=(0.0, 0.0), passes: int = 30
     return chosen, tuple(float(c) for c in chosen[-1][-1])
 
 
-def _two_opt(paths: list[NDArray], start: NDArray, passes: int) -> list[NDArray]:
-    """Reverse runs of paths (each path reversed too) while that shortens the travel."""
+def _two_opt(paths: list[NDArray], start: NDArray, passes: int,
+             window: int = TWO_OPT_WINDOW) -> list[NDArray]:
+    """Reverse runs of paths (each path reversed too) while that shortens the travel; runs are
+    at most ``window`` paths long (every run on a sheet of fewer paths), so a pass over a
+    large sheet costs n x window instead of n**2."""
     n = len(paths)
     if n < 3:
         return paths
@@ -149,8 +155,8 @@ def _two_opt(paths: list[NDArray], start: NDArray, passes: int) -> list[NDArray]
         improved = False
         for i in range(n - 1):  # segment [i, j]; previous end is e[i-1] (or start)
             prev = start if i == 0 else e[i - 1]
-            j = np.arange(i + 1, n)
-            nxt_start = np.vstack([s[i + 1:], [np.nan, np.nan]])[1:]  # s[j + 1]
+            j = np.arange(i + 1, min(n, i + 1 + window))
+            nxt_start = np.vstack([s[i + 1:], [np.nan, np.nan]])[1:len(j) + 1]  # s[j + 1]
             old = np.hypot(*(prev - s[i])) + np.where(
                 j < n - 1, np.hypot(*(e[j] - nxt_start).T), 0.0)
             new = np.hypot(*(prev - e[j]).T) + np.where(
