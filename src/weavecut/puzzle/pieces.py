@@ -142,7 +142,7 @@ def build_puzzle(hierarchy: tuple[Level, ...], size: float = 500.0,
     if measure not in MEASURES:
         raise WeaveCutError(f"unknown size measure {measure!r}; choose one of "
                             f"{', '.join(MEASURES)}")
-    _check_cuttable(hierarchy[-1].mesh)
+    _check_cuttable(hierarchy[-1].mesh, fewer=levels > 2)
     weaves = snub_weaves(hierarchy)
     mesh = hierarchy[0].mesh
     v0 = mesh.vertices
@@ -220,8 +220,9 @@ def extent(polygon: shapely.Polygon, measure: str = "diagonal") -> float:
     return diameter(polygon)
 
 
-def _check_cuttable(mesh: Mesh) -> None:
-    """Refuse a level with faces that turn over (a pentagon crossing itself cannot be cut)."""
+def _check_cuttable(mesh: Mesh, fewer: bool = True) -> None:
+    """Refuse a level with faces that turn over (a pentagon crossing itself cannot be cut);
+    the message suggests fewer levels where there can be fewer."""
     rings = shapely.linearrings(mesh.vertices[mesh.face_indices], indices=mesh.half_edge_face)
     simple = shapely.is_simple(rings)
     if simple.all():
@@ -229,8 +230,9 @@ def _check_cuttable(mesh: Mesh) -> None:
     where = mesh.vertices[mesh.dense_faces()[np.flatnonzero(~simple)[0]]].mean(axis=0)
     raise WeaveCutError(f"{int((~simple).sum())} pentagons of the last level turn over (the "
                         f"first near ({where[0]:.4g}, {where[1]:.4g}) in input units), so they "
-                        "cannot be cut (sharp corners and slim faces do this); use fewer "
-                        "--levels, or mesh a drawing with another --cell or --mesh tri")
+                        "cannot be cut (sharp corners and slim faces do this); "
+                        f"{'use fewer --levels, or ' if fewer else ''}mesh a drawing with "
+                        "another --cell or --mesh tri")
 
 
 def _frame_outline(outline: shapely.Polygon, depth: float, frame_width: float,
