@@ -55,8 +55,8 @@ from ..weave.snub_weave import snub_weaves
 from ..layout.weave_figure import tile_rings
 
 OCTAGON, ENNEAGON = 0, 1
-MEASURES = ("diagonal", "width")
-MITRE_LIMIT = 2.0  # the frame's corners: mitre length / offset, beyond which they are bevelled  # what --size measures of the frame's outer outline
+MEASURES = ("diagonal", "width")  # what --size measures of the frame's outer outline
+MITRE_LIMIT = 2.0  # the frame's corners: mitre length / offset, beyond which they are bevelled
 KIND_NAMES = ("octagon", "enneagon")
 _SIN60, _COS60 = np.sqrt(3.0) / 2.0, 0.5
 
