@@ -34,7 +34,7 @@ $(OUT)/index.html: $(BUILT)
 
 # a recipe is rebuilt when it or the package changed; each recipe has its own folder, which
 # belongs to make (--force: replace files a weave-cut without a manifest left there)
-$(OUT)/%/.built: templates/recipes/%.toml $(STAMP) $(SRC)
+$(OUT)/%/.built: templates/recipes/%.toml $(STAMP) $(SRC) $(wildcard templates/recipes/*.svg)
 	$(WC) -q build $< -o $(OUT)/$* --force > /dev/null
 	touch $@
 

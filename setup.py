@@ -13,4 +13,4 @@ TEMPLATES = ["weavecut.templates",
 
 setup(packages=find_packages("src") + TEMPLATES,
       package_dir={"": "src", "weavecut.templates": "templates"},
-      package_data={"weavecut.templates": ["*/*.toml"]})
+      package_data={"weavecut.templates": ["*/*.toml", "recipes/*.svg"]})

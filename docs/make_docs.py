@@ -43,6 +43,10 @@ class Image:
     sheet: int = 0
 
 
+HEART_PUZZLE = ("puzzle", "templates/recipes/heart.svg", "--cell", "39mm", "-n", "2", "--size",
+                "30cm", "--frame", "15mm", "--material", "birch-plywood-3mm", "--numbers",
+                "--mode", "shared", "-o", "{out}")  # the heart-puzzle recipe
+
 IMAGES = {
     "docs/pentagon-level4.png": Image(
         ("subdivide", "pentagon", "-n", "4", "--earlier-levels", "-o", "{out}/p.svg"),
@@ -88,6 +92,9 @@ IMAGES = {
     "docs/puzzle-split-sheet.png": Image(
         ("puzzle", "--mode", "separate", "--sheet", "600x400mm", "--numbers", "-o", "{out}"),
         "puzzle-separate-sheet-1.dxf", 520),
+    "examples/previews/heart-puzzle-front.png": Image(
+        HEART_PUZZLE, "puzzle-front-guide.svg", 400),
+    "examples/previews/heart-puzzle-cut.png": Image(HEART_PUZZLE, "puzzle-shared-cut.dxf", 400),
     "docs/puzzle-closeup.png": Image(
         ("figure", "jigsaw-closeup", "-o", "{out}/j.svg"), "j.svg", 640),
 }

@@ -66,6 +66,7 @@ def layer(label: str, body: str, transform: str = "", hidden: bool = False) -> s
     ("4in", "0 0 4 4", 25.4),               # inches
     ("400", "0 0 400 400", 25.4 / 96),      # bare numbers are CSS pixels
     ("20cm", "0 0 200 200", 1.0),
+    ("288pt", "0 0 4 4", 25.4),             # points, 72 per inch
 ])
 def test_a_square_is_its_size_in_every_unit(tmp_path, width, viewbox, unit_mm):
     side = float(viewbox.split()[2]) / 4
@@ -74,9 +75,9 @@ def test_a_square_is_its_size_in_every_unit(tmp_path, width, viewbox, unit_mm):
     mesh = read_drawing(svg(tmp_path, body, width=width, height=width, viewbox=viewbox),
                         mesh="none")
     assert mesh.n_faces == 1 and mesh.n_vertices == 4
-    # svgelements turns mm into inches with 0.0393701 (5.4 ppm above 1/25.4): 0.3 um in 50 mm
-    assert abs(signed_areas(mesh)).sum() == pytest.approx((side * unit_mm) ** 2, rel=2e-5)
-    assert np.ptp(mesh.vertices, axis=0) == pytest.approx([side * unit_mm] * 2, rel=1e-5)
+    # exact: the reader undoes svgelements' 0.0393701 inch per mm (5.4 ppm above 1 / 25.4)
+    assert abs(signed_areas(mesh)).sum() == pytest.approx((side * unit_mm) ** 2, rel=1e-12)
+    assert np.ptp(mesh.vertices, axis=0) == pytest.approx([side * unit_mm] * 2, rel=1e-12)
 
 
 def test_inkscape_drawing_with_layers_transforms_and_a_hidden_layer(tmp_path):

@@ -13,7 +13,7 @@ from ..subdivision import subdivide
 from ..units import PAPER_SIZES
 from ..weave.colour import palette
 from ..fileio import make_folder, write_atomic
-from .common import (CONTEXT, Finite, Length, PageSize, complete_inputs,
+from .common import (CONTEXT, DRAWING_KEY, Finite, Length, PageSize, complete_inputs,
                      complete_preset, drawing_options, flag_nonconvex, html_option, load_mesh,
                      provenance, reports_errors, summary)
 
@@ -27,8 +27,9 @@ from .common import (CONTEXT, Finite, Length, PageSize, complete_inputs,
 @click.option("--levels", "-n", type=click.IntRange(2, 7), default=4, show_default=True,
               help="Refinement level t of the pieces (the front shows t-1).")
 @click.option("--size", type=Length(), default="50cm", show_default=True,
-              help="Diagonal of the frame, the surrounding pentagon (the paper's 50 cm): its "
-              "largest corner-to-corner distance.")
+              help="Width of the finished puzzle (the frame's outer outline); for the "
+              "pentagon its diagonal, the largest corner-to-corner distance (the paper's "
+              "50 cm).")
 @click.option("--mode", type=click.Choice(["shared", "separate", "both"]), default="both",
               show_default=True, help="shared: one board, shared edges cut once (no kerf "
               "compensation possible); separate: kerf-offset pieces nested on sheets, the frame "
@@ -67,8 +68,13 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     puzzle-{front,back}-guide.svg (1:1) and -PAGE.pdf (colour key, then tiled pages),
     puzzle-summary.json, README.txt (what goes where, the order of work).
     \b
-    Example:
+    A drawing (.svg, .dxf) of one outline is meshed inside with its curves redrawn as
+    straight runs of one length, so the hexagon ring along them keeps one size; --cell and
+    --levels set how many pieces it makes (a few faces and two or three levels).
+    \b
+    Examples:
       weave-cut puzzle -o build/puzzle --material poplar-3mm --numbers
+      weave-cut puzzle heart.svg --cell 39mm --levels 2 --size 30cm -o heart
     """
     import shapely
 
@@ -87,8 +93,11 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     pal = palette(palette_name)
     from ..validation import check_layout
 
+    # a drawn outline is meshed with straight runs of one length, so the ring keeps one size
+    click.get_current_context().meta.setdefault(DRAWING_KEY, {})["runs"] = True
     mesh = check_layout(load_mesh(input_mesh), "the puzzle", connected=True)
-    puzzle = build_puzzle(subdivide(mesh, levels), size, frame_width)
+    puzzle = build_puzzle(subdivide(mesh, levels), size, frame_width,
+                          "diagonal" if input_mesh == "pentagon" else "width")
     pf.check_kerf(puzzle, kerf)
     warnings = workshop.size_warnings(puzzle, mat["thickness"])
     colouring = colour_puzzle(puzzle, pal, palette_names(palette_name, pal))

@@ -104,6 +104,9 @@ def is_closed(path: NDArray) -> bool:
     return len(path) > 2 and bool(np.allclose(path[0], path[-1]))
 
 
+TWO_OPT_WINDOW = 500  # longest run of paths 2-opt reverses
+
+
 def order_paths(paths: list[NDArray], start=(0.0, 0.0), passes: int = 30
                 ) -> tuple[list[NDArray], tuple[float, float]]:
     """Paths reordered (and reversed or rotated) to shorten the travel between them.
@@ -136,22 +139,24 @@ def order_paths(paths: list[NDArray], start=(0.0, 0.0), passes: int = 30
     return chosen, tuple(float(c) for c in chosen[-1][-1])
 
 
-def _two_opt(paths: list[NDArray], start: NDArray, passes: int) -> list[NDArray]:
-    """Reverse runs of paths (each path reversed too) while that shortens the travel."""
+def _two_opt(paths: list[NDArray], start: NDArray, passes: int,
+             window: int = TWO_OPT_WINDOW) -> list[NDArray]:
+    """Reverse runs of paths (each path reversed too) while that shortens the travel; runs are
+    at most ``window`` paths long (every run on a sheet of fewer paths), so a pass over a
+    large sheet costs n x window instead of n**2."""
     n = len(paths)
     if n < 3:
         return paths
-    heads = np.array([p[0] for p in paths])
-    tails = np.array([p[-1] for p in paths])
+    s = np.array([p[0] for p in paths])  # where each path starts and ends, in travel order
+    e = np.array([p[-1] for p in paths])
     order = np.arange(n)
     flipped = np.zeros(n, dtype=bool)
     for _ in range(passes):
         improved = False
-        for i in range(n - 1):  # segment [i, j]; previous end is tail[i-1] (or start)
-            s, e = _ends(heads, tails, order, flipped)
+        for i in range(n - 1):  # segment [i, j]; previous end is e[i-1] (or start)
             prev = start if i == 0 else e[i - 1]
-            j = np.arange(i + 1, n)
-            nxt_start = np.vstack([s[i + 1:], [np.nan, np.nan]])[1:]  # s[j + 1]
+            j = np.arange(i + 1, min(n, i + 1 + window))
+            nxt_start = np.vstack([s[i + 1:], [np.nan, np.nan]])[1:len(j) + 1]  # s[j + 1]
             old = np.hypot(*(prev - s[i])) + np.where(
                 j < n - 1, np.hypot(*(e[j] - nxt_start).T), 0.0)
             new = np.hypot(*(prev - e[j]).T) + np.where(
@@ -159,19 +164,14 @@ def _two_opt(paths: list[NDArray], start: NDArray, passes: int) -> list[NDArray]
             gain = old - new
             k = int(np.argmax(gain))
             if gain[k] > 1e-9:
-                jj = int(j[k])
-                order[i:jj + 1] = order[i:jj + 1][::-1].copy()
-                flipped[i:jj + 1] = ~flipped[i:jj + 1][::-1]
+                run = slice(i, int(j[k]) + 1)  # reversed: each path's ends swap too
+                order[run] = order[run][::-1].copy()
+                flipped[run] = ~flipped[run][::-1]
+                s[run], e[run] = e[run][::-1].copy(), s[run][::-1].copy()
                 improved = True
         if not improved:
             break
     return [paths[o][::-1] if f else paths[o] for o, f in zip(order.tolist(), flipped.tolist())]
-
-
-def _ends(heads, tails, order, flipped):
-    s = np.where(flipped[:, None], tails[order], heads[order])
-    e = np.where(flipped[:, None], heads[order], tails[order])
-    return s, e
 
 
 def travel_length(paths: list[NDArray], start=(0.0, 0.0)) -> float:
@@ -179,5 +179,5 @@ def travel_length(paths: list[NDArray], start=(0.0, 0.0)) -> float:
     if not paths:
         return 0.0
     s = np.array([p[0] for p in paths])
-    e = np.vstack([[start], [p[-1] for p in paths[:-1]]])
+    e = np.array([start] + [p[-1] for p in paths[:-1]], dtype=float)  # one path: start only
     return float(np.hypot(*(s - e).T).sum())

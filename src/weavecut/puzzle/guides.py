@@ -37,28 +37,61 @@ def piece_halves(puzzle: Puzzle) -> NDArray[np.object_]:
 
     An octagon is split along the straight line between its two corners that are level-(t-1)
     vertices: the parent edge its Z-triplet replaced, so the paint shows the coarser weave
-    ("split diagonally, which shows the replaced edge", paper section 6). An enneagon is one
-    half: its pentagon, twice (its hexagon is unpainted)."""
+    ("split diagonally, which shows the replaced edge", paper section 6); where that line
+    leaves the piece, along its two pentagons. An enneagon is one half: its pentagon, twice
+    (its hexagon is unpainted)."""
     vertices, faces, f0, f1 = _piece_faces(puzzle)
     p0 = shapely.polygons(puzzle.to_mm(vertices[faces[f0]]))
     p1 = shapely.polygons(puzzle.to_mm(vertices[faces[f1]]))
     octagon = f0 != f1
     u, w = split_ends(puzzle)
-    # a long quad on f0's side of the line u-w, and the piece cut by it
-    d = w - u
-    n = np.column_stack([-d[:, 1], d[:, 0]])
-    c0 = shapely.get_coordinates(shapely.centroid(p0))
-    n *= np.sign(((c0 - u) * n).sum(axis=1))[:, None]
-    far = 10.0 * np.hypot(*d.T)[:, None] / np.maximum(np.hypot(*n.T)[:, None], 1e-12)
-    ext = d * 10.0
-    quad = np.stack([u - ext, w + ext, w + ext + n * far, u - ext + n * far], axis=1)
-    side0 = shapely.polygons(quad)
-    whole = shapely.union(p0, p1)
-    half0 = np.where(octagon, shapely.intersection(whole, side0), p0)
-    half1 = np.where(octagon, shapely.difference(whole, side0), p1)
+    cut0, cut1 = _cut_along(shapely.union(p0[octagon], p1[octagon]), u[octagon], w[octagon])
+    # the half on f0's side of the line u-w first
+    d = (w - u)[octagon]
+
+    def side(polygons):
+        a = shapely.get_coordinates(shapely.centroid(polygons)) - u[octagon]
+        return np.sign(a[:, 0] * d[:, 1] - a[:, 1] * d[:, 0])
+
+    swap = side(cut0) != side(p0[octagon])
+    # where the chord leaves the piece (an octagon bent hard at a sharp tip), its two
+    # pentagons are its halves
+    inside = shapely.is_valid(cut0) & shapely.is_valid(cut1)
+    half0, half1 = p0.copy(), p1.copy()
+    half0[octagon] = np.where(inside, np.where(swap, cut1, cut0), half0[octagon])
+    half1[octagon] = np.where(inside, np.where(swap, cut0, cut1), half1[octagon])
     # a cut through a corner leaves near-duplicate corners (1e-13 mm apart) that turn into a
     # self-intersection once moved onto a sheet: drop them
     return shapely.simplify(np.column_stack([half0, half1]), 1e-7)
+
+
+def _cut_along(polygons, u, w):
+    """(N,) polygons cut along the chord between their corners ``u`` and ``w`` ((N, 2) each):
+    the corners from u to w and those from w to u, counter-clockwise, as two polygons (exact:
+    they share the chord and tile the polygon, even where it is not convex)."""
+    rings = shapely.get_exterior_ring(shapely.orient_polygons(polygons))
+    xy, index = shapely.get_coordinates(rings, return_index=True)
+    counts = np.bincount(index, minlength=len(polygons))
+    start = np.cumsum(counts) - counts
+    keep = np.arange(len(xy)) != (start + counts - 1)[index]  # the closing repeat
+    xy, index = xy[keep], index[keep]
+    n = (counts - 1)[index]
+    first = np.cumsum(counts - 1) - (counts - 1)
+    k = np.arange(len(xy)) - first[index]  # corner number in its ring
+
+    def corner(p):  # the corner nearest to p, per polygon
+        order = np.lexsort((np.hypot(*(xy - p[index]).T), index))
+        return k[order[first]]
+
+    iu, iw = corner(u)[index], corner(w)[index]
+    out = []
+    for a, b in ((iu, iw), (iw, iu)):
+        step = (k - a) % n
+        part = step <= (b - a) % n
+        order = np.lexsort((step[part], index[part]))
+        out.append(shapely.polygons(shapely.linearrings(xy[part][order],
+                                                        indices=index[part][order])))
+    return out
 
 
 def split_ends(puzzle: Puzzle) -> tuple[NDArray[np.float64], NDArray[np.float64]]:

@@ -17,10 +17,20 @@ Decisions (documented here and in the README):
   meet, are part of the frame** (the wedge between the last cell of one side and the first of
   the next). Cells that would overlap the mesh or an earlier cell are dropped (claimed cells
   first); on the pentagon none overlap.
-- **The frame** is the input outline offset outward (mitred) to ``frame_width`` beyond the ring's
+- **The frame** is the input outline offset outward (mitred; bevelled at corners under 60
+  degrees) to ``frame_width`` beyond the ring's
   outermost point, minus the union of the pieces (the hole). ``size`` is the frame's diagonal
   (the largest distance between two corners of its outer outline): "the diagonal of the
-  surrounding pentagon measures 50 cm" (paper, section 6). The model is scaled to make it so.
+  surrounding pentagon measures 50 cm" (paper, section 6), or with ``measure="width"`` (every
+  other shape: a heart, a star) the finished piece's width. The model is scaled to make it so.
+- **Straight runs.** The ring follows every edge of the input's outline: its snub levels turn
+  by +-60 degrees along each edge, so each edge carries one row of hexagons, and the corners
+  between edges are left to the frame. A drawn curve is therefore first redrawn as runs of
+  one length (``readers``' ``runs``, what the puzzle command asks for), so the ring keeps one
+  size all round; where a shallow corner makes the cells of neighbouring runs overlap, the
+  later cell stays in the frame.
+- **Pieces must be cuttable.** A level whose pentagons turn over (self-intersect, as at a
+  star's sharp tips after a few steps) is refused with where it happens.
 
 Colours are in ``colouring``, cut files in ``files``, painting guides in ``guides``.
 """
@@ -45,6 +55,8 @@ from ..weave.snub_weave import snub_weaves
 from ..layout.weave_figure import tile_rings
 
 OCTAGON, ENNEAGON = 0, 1
+MEASURES = ("diagonal", "width")  # what --size measures of the frame's outer outline
+MITRE_LIMIT = 2.0  # the frame's corners: mitre length / offset, beyond which they are bevelled
 KIND_NAMES = ("octagon", "enneagon")
 _SIN60, _COS60 = np.sqrt(3.0) / 2.0, 0.5
 
@@ -65,6 +77,7 @@ class Puzzle:
     scale : mm per model unit
     centre : the input's vertex mean (model units), at the origin in mm
     frame_width : mm of frame beyond the ring
+    measure : what ``size`` measured, "diagonal" or "width" (see ``extent``)
     """
 
     pieces: NDArray[np.object_]
@@ -78,6 +91,7 @@ class Puzzle:
     scale: float
     centre: tuple[float, float]
     frame_width: float
+    measure: str = "diagonal"
 
     @property
     def levels(self) -> int:
@@ -108,7 +122,7 @@ class Puzzle:
 
 
 def build_puzzle(hierarchy: tuple[Level, ...], size: float = 500.0,
-                 frame_width: float = 20.0) -> Puzzle:
+                 frame_width: float = 20.0, measure: str = "diagonal") -> Puzzle:
     """Cut the last level of a snub ``hierarchy`` into puzzle pieces inside a frame.
 
     Parameters
@@ -116,14 +130,19 @@ def build_puzzle(hierarchy: tuple[Level, ...], size: float = 500.0,
     hierarchy : snub levels 0..t, t >= 2 (the front shows level t-1, whose colours need the
         level t-2 strands); the command builds it (``subdivide(mesh, t)``)
     size : mm, the diagonal of the frame's outer outline (its largest vertex distance): 50 cm
-        in the paper, where the surrounding pentagon is the frame
+        in the paper, where the surrounding pentagon is the frame; or its width (``measure``)
     frame_width : mm of frame beyond the ring's outermost point
+    measure : "diagonal" (the paper's pentagon) or "width" (any other shape)
     """
     levels = len(hierarchy) - 1
     if levels < 2:
         raise WeaveCutError(f"a puzzle needs --levels >= 2 (front shows level t-1), got {levels}")
     if not (size > 0 and frame_width > 0):
         raise WeaveCutError("size and frame width must be positive")
+    if measure not in MEASURES:
+        raise WeaveCutError(f"unknown size measure {measure!r}; choose one of "
+                            f"{', '.join(MEASURES)}")
+    _check_cuttable(hierarchy[-1].mesh, fewer=levels > 2)
     weaves = snub_weaves(hierarchy)
     mesh = hierarchy[0].mesh
     v0 = mesh.vertices
@@ -168,7 +187,7 @@ def build_puzzle(hierarchy: tuple[Level, ...], size: float = 500.0,
     snapped = _snap(np.concatenate(parts), tol=1e-6 * diagonal)
     outline = _outline(mesh, to_model)
     depth = float(np.max(shapely.distance(shapely.points(snapped), outline)))
-    scale = frame_scale(outline, depth, frame_width, size)
+    scale = frame_scale(outline, depth, frame_width, size, measure)
     snapped = snapped * scale
     bounds = np.cumsum([0] + [len(p) for p in parts])
     octagon_xy, ennea, plain, hexes, ring_cells = (
@@ -184,7 +203,7 @@ def build_puzzle(hierarchy: tuple[Level, ...], size: float = 500.0,
     ring = shapely.polygons(ring_cells) if len(ring_cells) else np.empty(0, dtype=object)
     outer = _frame_outline(outline, depth, frame_width, scale)
     return Puzzle(pieces, kinds, tiles, hex_polys, ring, outer, tuple(hierarchy), weaves, scale,
-                  centre, frame_width)
+                  centre, frame_width, measure)
 
 
 def diameter(polygon: shapely.Polygon) -> float:
@@ -193,30 +212,55 @@ def diameter(polygon: shapely.Polygon) -> float:
     return float(np.max(np.linalg.norm(xy[:, None] - xy[None], axis=2)))
 
 
+def extent(polygon: shapely.Polygon, measure: str = "diagonal") -> float:
+    """What ``size`` measures: the polygon's ``diameter``, or its width (x extent)."""
+    if measure == "width":
+        x0, _, x1, _ = polygon.bounds
+        return float(x1 - x0)
+    return diameter(polygon)
+
+
+def _check_cuttable(mesh: Mesh, fewer: bool = True) -> None:
+    """Refuse a level with faces that turn over (a pentagon crossing itself cannot be cut);
+    the message suggests fewer levels where there can be fewer."""
+    rings = shapely.linearrings(mesh.vertices[mesh.face_indices], indices=mesh.half_edge_face)
+    simple = shapely.is_simple(rings)
+    if simple.all():
+        return
+    where = mesh.vertices[mesh.dense_faces()[np.flatnonzero(~simple)[0]]].mean(axis=0)
+    raise WeaveCutError(f"{int((~simple).sum())} pentagons of the last level turn over (the "
+                        f"first near ({where[0]:.4g}, {where[1]:.4g}) in input units), so they "
+                        "cannot be cut (sharp corners and slim faces do this); "
+                        f"{'use fewer --levels, or ' if fewer else ''}mesh a drawing with "
+                        "another --cell or --mesh tri")
+
+
 def _frame_outline(outline: shapely.Polygon, depth: float, frame_width: float,
                    scale: float) -> shapely.Polygon:
-    """The outline at ``scale`` offset (mitred) by the ring's depth plus the frame width."""
+    """The outline at ``scale`` offset by the ring's depth plus the frame width: mitred, and
+    bevelled where a mitre would reach more than twice that far (corners under 60 degrees, a
+    star's tips; the pentagon's and a square's corners keep their mitres)."""
     scaled = shapely.transform(outline, lambda xy: xy * scale)
     return shapely.buffer(scaled, depth * scale + frame_width, join_style="mitre",
-                          mitre_limit=10.0)
+                          mitre_limit=MITRE_LIMIT)
 
 
 def frame_scale(outline: shapely.Polygon, depth: float, frame_width: float,
-                size: float) -> float:
-    """mm per model unit that makes the frame's diagonal ``size`` mm.
+                size: float, measure: str = "diagonal") -> float:
+    """mm per model unit that makes the frame's diagonal (or width: ``measure``) ``size`` mm.
 
     The frame is the (centred) input outline scaled, then offset by the scaled ring depth plus
-    the fixed frame width; its diagonal grows monotonically with the scale, so a bracketing root
-    search finds it to far below 0.01 mm."""
+    the fixed frame width; its diagonal and width grow monotonically with the scale, so a
+    bracketing root search finds it to far below 0.01 mm."""
     from scipy.optimize import brentq
 
     def excess(scale: float) -> float:
-        return diameter(_frame_outline(outline, depth, frame_width, scale)) - size
+        return extent(_frame_outline(outline, depth, frame_width, scale), measure) - size
 
-    high = size / diameter(outline)  # the outline alone already spans ``size``
+    high = size / extent(outline, measure)  # the outline alone already spans ``size``
     low = high * 1e-9
     if excess(low) >= 0:
-        raise WeaveCutError(f"a frame of {size:g} mm diagonal leaves no room for the pieces "
+        raise WeaveCutError(f"a frame of {size:g} mm {measure} leaves no room for the pieces "
                             f"inside a {frame_width:g} mm frame; use a larger --size or a "
                             "narrower --frame")
     return float(brentq(excess, low, high, xtol=1e-12 * high, rtol=1e-14))

@@ -11,7 +11,7 @@ import shapely
 from ..layout.lasersetup import material  # noqa: F401 (the puzzle's API)
 from .colouring import Colouring
 from .files import TRAVEL_SPEED, CutResult
-from .pieces import KIND_NAMES, OCTAGON, Puzzle, build_puzzle, diameter
+from .pieces import KIND_NAMES, OCTAGON, Puzzle, build_puzzle, diameter, extent
 
 MIN_ACROSS = 15.0  # mm: a piece smaller than this is fiddly to hold and easy to lose
 MIN_WIDTH_X_THICKNESS = 3.0  # a piece narrower than 3x the material thickness breaks
@@ -57,10 +57,10 @@ def size_warnings(puzzle: Puzzle, thickness: float) -> list[str]:
 def largest_good_level(puzzle: Puzzle, thickness: float) -> int | None:
     """The largest level below the puzzle's whose pieces, at the same frame size, are all at
     least MIN_ACROSS across and MIN_WIDTH_X_THICKNESS x ``thickness`` wide (None: none)."""
-    size = diameter(puzzle.outer)
+    size = extent(puzzle.outer, puzzle.measure)
     frame_width = puzzle.frame_width
     for level in range(puzzle.levels - 1, 1, -1):  # each lower level is ~4x smaller to build
-        smaller = build_puzzle(puzzle.hierarchy[:level + 1], size, frame_width)
+        smaller = build_puzzle(puzzle.hierarchy[:level + 1], size, frame_width, puzzle.measure)
         across, width = piece_sizes(smaller)
         if across.min() >= MIN_ACROSS and width.min() >= MIN_WIDTH_X_THICKNESS * thickness:
             return level

@@ -20,7 +20,7 @@ DEFAULT_KIND = "hex"
 
 
 def read_drawing(path: str | Path, *, flatten: float = DEFAULT_FLATTEN, layer: str | None = None,
-                 mesh: str = "auto", cell: float | None = None,
+                 mesh: str = "auto", cell: float | None = None, runs: bool = False,
                  allow_nonconvex: bool = False,
                  report: Callable[[str], None] | None = None) -> Mesh:
     """Read an SVG or DXF drawing as a mesh in millimetres.
@@ -35,10 +35,12 @@ def read_drawing(path: str | Path, *, flatten: float = DEFAULT_FLATTEN, layer: s
         other drawing; ``none`` always keeps the faces as drawn; one of KINDS meshes the inside
         of the whole drawing
     cell : face size for meshing (mm); default: about 60 faces
+    runs : when meshing, first redraw the outline as straight runs of one length, about a
+        cell edge, between its corners (``outline_mesh._even_runs``; the puzzle's ring)
     allow_nonconvex : accept faces drawn non-convex (a meshed outline's faces are convex)
     report : called with one line saying what was read (counts, merges, mesh quality)
     """
     from .drawing import read
 
-    return read(Path(path), flatten=flatten, layer=layer, mesh=mesh, cell=cell,
+    return read(Path(path), flatten=flatten, layer=layer, mesh=mesh, cell=cell, runs=runs,
                 allow_nonconvex=allow_nonconvex, report=report)

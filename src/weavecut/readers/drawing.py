@@ -22,7 +22,8 @@ MAX_BYTES = 64 * 2**20  # an untrusted drawing is read whole into memory
 
 
 def read(path: Path, *, flatten: float = DEFAULT_FLATTEN, layer: str | None = None,
-         mesh: str = "auto", cell: float | None = None, allow_nonconvex: bool = False,
+         mesh: str = "auto", cell: float | None = None, runs: bool = False,
+         allow_nonconvex: bool = False,
          report: Callable[[str], None] | None = None) -> Mesh:
     """``weavecut.readers.read_drawing``, which documents the parameters."""
     if not path.is_file():
@@ -49,7 +50,7 @@ def read(path: Path, *, flatten: float = DEFAULT_FLATTEN, layer: str | None = No
         else:
             region = _region(rings, parent)
             cell = outline_mesh.default_cell(region) if cell is None else cell
-            result = outline_mesh.mesh_outline(region, kind, cell, flatten)
+            result = outline_mesh.mesh_outline(region, kind, cell, flatten, runs)
             q = outline_mesh.quality(result, cell)
             line = (f"{path.name}: {len(outer)} outline(s), {len(rings) - len(outer)} hole(s), "
                     f"{region.area:.0f} mm², meshed {kind} with cell {cell:.3g} mm: "

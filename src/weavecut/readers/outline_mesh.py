@@ -46,6 +46,7 @@ EDGE = {"quad": 1.0, "hex": SPACING["hex"] / math.sqrt(3), "voronoi": 0.6}
 SHORT = 0.15  # inner cell edges shorter than this (times cell) collapse
 GENTLE = math.sin(math.radians(15))  # reflex turns below 15 degrees are bends of the outline
 MIN_SIZE = 0.6  # smaller pieces (times cell) merge into a neighbour
+CORNER = 30.0  # degrees: where the outline turns by more, ``runs`` keeps a corner
 
 
 def default_cell(region) -> float:
@@ -54,7 +55,7 @@ def default_cell(region) -> float:
 
 
 def mesh_outline(region, kind: str = "hex", cell: float | None = None,
-                 tolerance: float = 0.2) -> Mesh:
+                 tolerance: float = 0.2, runs: bool = False) -> Mesh:
     """Mesh the inside of ``region`` (a shapely Polygon or MultiPolygon, holes allowed).
 
     Parameters
@@ -63,6 +64,8 @@ def mesh_outline(region, kind: str = "hex", cell: float | None = None,
     kind : one of KINDS
     cell : target face size in mm (faces of about cell**2 area); default: about 60 faces
     tolerance : how far (mm) the boundary may stray from ``region`` to keep faces convex
+    runs : first redraw the outline as straight runs of one length (``_even_runs``), so the
+        snub levels' boundary, and a puzzle's hexagon ring on it, keep one size all round
 
     Returns
     -------
@@ -77,11 +80,14 @@ def mesh_outline(region, kind: str = "hex", cell: float | None = None,
     if region.area > 1e6 * cell ** 2:
         raise MeshError(f"--cell {cell:.4g} mm would give about {region.area / cell**2:,.0f} "
                         "faces; give a larger --cell")
+    if runs:
+        region = _rings_mapped(region, lambda ring: _even_runs(ring, EDGE.get(kind, 0.6) * cell))
     if kind == "tri":
         return _triangles(shapely.simplify(region, tolerance / 2), cell)
     # no outline edge shorter than needed (Douglas-Peucker, half the tolerance), none longer
     # than a cell's edge
-    region = _densified_region(shapely.simplify(region, tolerance / 2), EDGE[kind] * cell)
+    region = _densified_region(region if runs else shapely.simplify(region, tolerance / 2),
+                               EDGE[kind] * cell)
     _, cells = _relaxed_cells(region, kind, cell)
     pieces = _merged_small([q for c in shapely.get_parts(cells)
                             for q in _convex_pieces(c, tolerance)], cell, tolerance)
@@ -127,10 +133,41 @@ def _short_inner_edges_merged(rings: list[np.ndarray], region, short: float) -> 
 
 def _densified_region(region, side: float):
     """``region`` with every outline edge longer than ``side`` cut into equal parts."""
+    return _rings_mapped(region, lambda ring: _densified(ring, side))
+
+
+def _rings_mapped(region, change):
+    """``region`` with ``change`` applied to every ring ((N, 2) corners, not closed)."""
     return shapely.union_all([
-        shapely.Polygon(_densified(np.asarray(p.exterior.coords)[:-1], side),
-                        [_densified(np.asarray(r.coords)[:-1], side) for r in p.interiors])
+        shapely.Polygon(change(np.asarray(p.exterior.coords)[:-1]),
+                        [change(np.asarray(r.coords)[:-1]) for r in p.interiors])
         for p in shapely.get_parts(region)])
+
+
+def _even_runs(ring: np.ndarray, side: float, corner: float = CORNER) -> np.ndarray:
+    """``ring`` redrawn as straight runs of one length between its corners.
+
+    A corner is a point where the outline turns by more than ``corner`` degrees (a heart's
+    tip and notch); between two corners (or once round a ring without any) the outline is cut
+    into the fewest equal lengths, measured along it, no longer than ``side``, and the points
+    there are joined by straight runs. A curve flattened into many short segments becomes
+    runs of about one cell edge; a drawn polygon keeps its corners."""
+    edge = np.roll(ring, -1, axis=0) - ring
+    length = np.hypot(*edge.T)
+    before = np.roll(edge, 1, axis=0)
+    turn = np.degrees(np.abs(np.arctan2(before[:, 0] * edge[:, 1] - before[:, 1] * edge[:, 0],
+                                        (before * edge).sum(axis=1))))
+    corners = np.flatnonzero(turn > corner)
+    if not len(corners):
+        corners = np.array([0])
+    along = np.concatenate([[0.0], np.cumsum(length)])  # arc length at every point, closed
+    closed = np.concatenate([ring, ring[:1]])
+    ends = np.append(along[corners], along[corners[0]] + along[-1])
+    parts = np.maximum(1, np.ceil(np.diff(ends) / side)).astype(int)
+    k = np.arange(parts.sum()) - np.repeat(np.cumsum(parts) - parts, parts)
+    at = (np.repeat(ends[:-1], parts) + k * np.repeat(np.diff(ends) / parts, parts)) % along[-1]
+    return np.column_stack([np.interp(at, along, closed[:, 0]),
+                            np.interp(at, along, closed[:, 1])])
 
 
 def _snapped(rings: list[np.ndarray], region, reach: float) -> list[np.ndarray]:
@@ -263,9 +300,10 @@ def _convex_pieces(polygon, tolerance: float) -> list:
     """
     if polygon.is_empty or polygon.area == 0:
         return []
-    if polygon.interiors:  # a hole inside one cell: cut through the hole first
-        x, y = np.asarray(polygon.interiors[0].coords)[0]
-        x0, y0, x1, y1 = polygon.bounds
+    if polygon.interiors:  # a hole inside one cell: cut across the middle of the hole first
+        hx0, _, hx1, _ = shapely.Polygon(polygon.interiors[0]).bounds
+        _, y0, _, y1 = polygon.bounds
+        x = (hx0 + hx1) / 2  # strictly inside the hole's span: the line crosses the hole
         halves = shapely.get_parts(split(polygon, shapely.LineString([(x, y0), (x, y1)])))
         return [q for p in halves for q in _convex_pieces(p, tolerance)]
     ring = np.asarray(shapely.orient_polygons(polygon).exterior.coords)[:-1]

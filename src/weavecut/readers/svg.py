@@ -51,15 +51,26 @@ def read_rings(path: Path, flatten: float,
                             f"{', '.join(_layer_names(document)) or 'none'}")
     rings, pieces = [], []
     tolerance = flatten / MM_PER_PX
+    to_mm = np.array([MM_PER_PX, -MM_PER_PX]) * _unit_fix(document)
     for label, shape in shapes:
         for k, subpath in enumerate(abs(se.Path(shape)).as_subpaths()):  # transform applied
             points, closed = _flattened(subpath, tolerance)
             if len(points) < 2:
                 continue
             name = label if k == 0 else f"{label} (subpath {k + 1})"
-            ring = Ring(name, points * np.array([MM_PER_PX, -MM_PER_PX]))
+            ring = Ring(name, points * to_mm)
             (rings if closed else pieces).append(ring)
     return rings, pieces
+
+
+def _unit_fix(document) -> float:
+    """svgelements turns mm into px with 0.0393701 inch per mm, not 1 / 25.4, so a document
+    sized in mm or cm over a viewBox (Inkscape's) comes out 5.4e-7 too large: this factor
+    undoes that, and a 50 mm square stays 50 mm to the last digit."""
+    width = str(document.values.get("width", "")).strip().lower()
+    if document.viewbox is not None and width.endswith(("mm", "cm", "q")):
+        return 1.0 / (25.4 * 0.0393701)
+    return 1.0
 
 
 def _shapes(group, layer: str | None, inside: bool = False) -> Iterator[tuple[str, se.Shape]]:

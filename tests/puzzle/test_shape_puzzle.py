@@ -1,0 +1,162 @@
+"""The puzzle on drawn shapes: the heart's pieces tile the frame's hole, the frame is an offset of
+the outline, --size is the finished width, hexagons are regular and sit on the boundary, runs
+of a redrawn curve have one length, and a level that turns over is refused in one line."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+from click.testing import CliRunner
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from weavecut.cli import cli
+from weavecut.errors import WeaveCutError
+from weavecut.puzzle.guides import piece_halves
+from weavecut.puzzle.pieces import build_puzzle, extent
+from weavecut.readers import read_drawing
+from weavecut.readers.outline_mesh import _even_runs, mesh_outline
+from weavecut.subdivision import subdivide
+
+HEART = Path(__file__).parents[2] / "templates" / "recipes" / "heart.svg"
+
+
+@pytest.fixture(scope="module")
+def heart():
+    """The heart-puzzle recipe's puzzle (cell 39 mm, level 2, 30 cm wide, 15 mm frame)."""
+    mesh = read_drawing(HEART, cell=39.0, runs=True)
+    return build_puzzle(subdivide(mesh, 2), 300.0, 15.0, "width")
+
+
+def test_heart_pieces_tile_the_hole(heart):
+    pieces = heart.pieces
+    assert shapely.is_valid(pieces).all()
+    hole = heart.hole
+    assert hole.geom_type == "Polygon" and not hole.interiors  # one hole, no gaps inside
+    assert shapely.area(pieces).sum() == pytest.approx(hole.area, rel=1e-9)
+    a, b = shapely.STRtree(pieces).query(pieces, predicate="intersects")
+    a, b = a[a < b], b[a < b]
+    overlap = shapely.area(shapely.intersection(pieces[a], pieces[b]))
+    assert overlap.max() < 1e-9 * hole.area
+    assert heart.frame.is_valid
+    assert heart.frame.area + hole.area == pytest.approx(heart.outer.area, rel=1e-9)
+
+
+def test_heart_size_is_the_finished_width(heart):
+    x0, _, x1, _ = heart.outer.bounds
+    assert x1 - x0 == pytest.approx(300.0, abs=0.01)
+    assert extent(heart.outer, "width") == pytest.approx(300.0, abs=0.01)
+
+
+def test_heart_frame_is_an_offset_of_the_outline(heart):
+    """Every point of the frame's edge is the same distance from the (scaled, straightened)
+    outline, up to the mitre at convex corners, and the ring's outermost point keeps exactly
+    the frame width to it."""
+    mesh = heart.hierarchy[0].mesh
+    outline = shapely.Polygon(shapely.union_all(shapely.polygons(shapely.linearrings(
+        heart.to_mm(mesh.vertices[mesh.face_indices]), indices=mesh.half_edge_face))).exterior)
+    edge = heart.outer.exterior
+    offset = shapely.distance(edge, outline.exterior)  # the nearest approach
+    round_offset = outline.buffer(offset, quad_segs=64)
+    assert round_offset.difference(heart.outer).area < 1e-6 * heart.outer.area
+    # a mitred offset only adds corners: Hausdorff distance to the round one within the mitre
+    assert shapely.hausdorff_distance(edge, round_offset.exterior) < 3.0 * offset
+    ring = shapely.union_all(np.concatenate([heart.pieces, heart.ring]))
+    assert shapely.distance(ring, edge) == pytest.approx(heart.frame_width, abs=1e-6)
+
+
+def test_heart_hexagons_are_regular_and_on_the_boundary(heart):
+    hexes = np.array([h for h in heart.hexagons if h is not None] + list(heart.ring),
+                     dtype=object)
+    xy = shapely.get_coordinates(hexes).reshape(len(hexes), 7, 2)[:, :6]
+    sides = np.hypot(*(np.roll(xy, -1, axis=1) - xy).transpose(2, 0, 1))
+    assert np.allclose(sides, sides[:, :1], rtol=1e-6)  # equal sides
+    across = np.hypot(*(xy[:, 3] - xy[:, 0]).T)
+    assert np.allclose(across, 2 * sides[:, 0], rtol=1e-6)  # regular: opposite corners 2 s
+    # each shares a whole side with the pieces' boundary and overlaps no piece
+    inner = shapely.union_all(heart.pieces[heart.kinds == 0])
+    touching = shapely.length(shapely.intersection(shapely.get_exterior_ring(hexes),
+                                                   shapely.union_all(heart.pieces).boundary))
+    assert (touching >= sides[:, 0] * (1 - 1e-6)).all()
+    assert (shapely.area(shapely.intersection(hexes, inner)) < 1e-9).all()
+
+
+def test_heart_halves_tile_every_piece(heart):
+    halves = piece_halves(heart)
+    assert (shapely.get_type_id(halves) == 3).all()  # polygons, never multipolygons
+    area = shapely.area(halves)
+    octagon = heart.kinds == 0
+    assert np.allclose(area[octagon].sum(axis=1), shapely.area(heart.pieces[octagon]),
+                       rtol=1e-6)
+
+
+def test_a_level_whose_pentagons_turn_over_is_refused():
+    mesh = read_drawing(HEART, cell=22.0, runs=True)  # two steps turn one pentagon over
+    with pytest.raises(WeaveCutError, match=r"^1 pentagons of the last level turn over [^\n]*"
+                       r"; mesh a drawing with another --cell or --mesh tri$"):
+        build_puzzle(subdivide(mesh, 2), 300.0, 15.0, "width")
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(3, 9), st.floats(0.3, 0.9), st.floats(0.05, 0.4))
+def test_even_runs_keep_corners_and_have_one_length(points, dent, side):
+    """A star outline drawn with six extra points on each arm: the runs start and end on the
+    outline, every corner turning more than 30 degrees stays, and between two such corners the
+    runs cut the outline into equal lengths no longer than ``side``."""
+    angle = np.linspace(0, 2 * np.pi, 2 * points, endpoint=False)
+    radius = np.where(np.arange(2 * points) % 2 == 0, 1.0, dent)
+    corners = np.column_stack([radius * np.cos(angle), radius * np.sin(angle)])
+    t = np.linspace(0, 1, 7, endpoint=False)[:, None, None]
+    ring = (corners + t * (np.roll(corners, -1, axis=0) - corners)).transpose(1, 0, 2)
+    ring = ring.reshape(-1, 2)
+    out = _even_runs(ring, side)
+    outline = shapely.LinearRing(ring)
+    assert shapely.distance(outline, shapely.points(out)).max() < 1e-9
+    edge = np.roll(corners, -1, axis=0) - corners
+    before = np.roll(edge, 1, axis=0)
+    turns = np.degrees(np.abs(np.arctan2(before[:, 0] * edge[:, 1] - before[:, 1] * edge[:, 0],
+                                         (before * edge).sum(axis=1))))
+    sharp = corners[turns > 30.0]
+    is_corner = (np.hypot(*(out[:, None] - sharp[None]).transpose(2, 0, 1)) < 1e-9)
+    assert is_corner.any(axis=0).all()  # every sharp corner kept
+    at = shapely.line_locate_point(outline, shapely.points(out))  # arc length along the ring
+    step = np.diff(np.append(at, at[0] + outline.length)) % outline.length
+    assert step.max() <= side * (1 + 1e-9)
+    stretch = np.cumsum(is_corner.any(axis=1))  # which stretch between corners each run is in
+    for k in np.unique(stretch):
+        assert np.ptp(step[stretch == k]) < 1e-9
+
+
+@settings(max_examples=8, deadline=None)
+@given(st.integers(4, 8), st.floats(0.55, 1.0), st.floats(0.0, 0.3), st.integers(0, 2**16))
+def test_puzzles_of_random_stars_tile_their_hole(points, dent, wobble, seed):
+    """Stars and polygons with curved-looking sides, meshed with runs: a puzzle is either
+    refused in one line (a level that turns over) or its pieces tile the hole exactly and the
+    frame is ``size`` wide."""
+    rng = np.random.default_rng(seed)
+    angle = np.linspace(0, 2 * np.pi, 4 * points, endpoint=False)
+    radius = np.where(np.arange(4 * points) % 4 == 2, dent, 1.0)  # straight-ish or dented
+    radius = 50.0 * radius * (1 + wobble * rng.uniform(-0.5, 0.5, len(angle)))
+    region = shapely.Polygon(np.column_stack([radius * np.cos(angle), radius * np.sin(angle)]))
+    try:
+        mesh = mesh_outline(region, "hex", 30.0, runs=True)
+        puzzle = build_puzzle(subdivide(mesh, 2), 250.0, 10.0, "width")
+    except WeaveCutError as exc:
+        assert "\n" not in str(exc)
+        return
+    pieces = puzzle.pieces
+    assert shapely.is_valid(pieces).all()
+    assert puzzle.hole.geom_type == "Polygon" and not puzzle.hole.interiors
+    assert shapely.area(pieces).sum() == pytest.approx(puzzle.hole.area, rel=1e-9)
+    a, b = shapely.STRtree(pieces).query(pieces, predicate="intersects")
+    overlap = shapely.area(shapely.intersection(pieces[a[a < b]], pieces[b[a < b]]))
+    assert overlap.max(initial=0.0) < 1e-9 * puzzle.hole.area
+    assert extent(puzzle.outer, "width") == pytest.approx(250.0, abs=0.01)
+
+
+def test_puzzle_help_says_size_is_the_width():
+    text = CliRunner().invoke(cli, ["puzzle", "--help"]).output
+    assert "Width of the finished puzzle" in " ".join(text.split())
