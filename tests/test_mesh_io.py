@@ -7,6 +7,9 @@ import os
 import re
 import subprocess
 import sys
+from unittest.mock import patch
+from decimal import ROUND_CEILING, ROUND_FLOOR, Context, Decimal
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -15,7 +18,7 @@ from hypothesis import strategies as st
 
 from tests import obj_reference
 from tests.strategies import any_mesh
-from weavecut import inputs
+from weavecut import inputs, mesh_io
 from weavecut.errors import MeshError, MeshFileError
 from weavecut.mesh import signed_areas
 from weavecut.mesh_io import MAX_BYTES, obj_text, read_mesh, read_valid_mesh, write_mesh
@@ -158,6 +161,51 @@ def test_mixed_degrees_slashes_and_big_files_agree_with_the_oracle(tmp_path):
     back = read_mesh(path)
     assert back.faces() == mesh.faces() == obj_reference.read(path.read_bytes())[1]
     np.testing.assert_array_equal(back.vertices, mesh.vertices)
+
+
+@st.composite
+def decimals(draw):
+    """Plain decimals as OBJ writers print them, and ones a hair from halfway between two
+    doubles (where rounding twice, once to long double, would go wrong)."""
+    if draw(st.booleans()):
+        whole = draw(st.text("0123456789", max_size=20))
+        part = draw(st.one_of(st.none(), st.text("0123456789", max_size=20)))
+        sign = draw(st.sampled_from(["", "-", "+"]))
+        return sign + whole + ("" if part is None else "." + part) or "."
+    x = draw(st.integers(2**52, 2**53 - 1)) * 2.0 ** draw(st.integers(-60, 0))
+    halfway = Fraction(x) + Fraction(float(np.spacing(x))) / 2
+    digits = draw(st.integers(16, 19))
+    near = Context(prec=digits, rounding=draw(st.sampled_from([ROUND_FLOOR, ROUND_CEILING])))
+    exact = Decimal(halfway.numerator) / Decimal(halfway.denominator)
+    return format(near.create_decimal(exact), "f")
+
+
+def parses(token: str) -> bool:
+    try:
+        float(token)
+        return True
+    except ValueError:
+        return False
+
+
+@settings(max_examples=200)
+@given(st.lists(decimals(), min_size=3, max_size=40), st.sampled_from([8, 64, 2**18]),
+       st.booleans())
+def test_decimals_are_read_as_python_reads_them(tmp_path_factory, tokens, chunk, x87):
+    # pieces of `chunk` bytes: lines and the vertices before a face cross the pieces' ends;
+    # without x87 long doubles (as on ARM) numpy converts the decimals of over 2**53
+    path = tmp_path_factory.mktemp("obj") / "m.obj"
+    path.write_text("".join(f"v {t} 0 0\n" for t in tokens) + "f 1 2 3\nf -1 -2 -3\n")
+    bad = [i for i, t in enumerate(tokens) if not parses(t)]
+    with patch.object(mesh_io, "CHUNK", chunk), patch.object(mesh_io, "_X87", x87 and mesh_io._X87):
+        if bad:
+            with pytest.raises(MeshFileError, match=f"line {bad[0] + 1}: vertex coordinates"):
+                read_mesh(path)
+            return
+        mesh = read_mesh(path)
+    assert mesh.vertices[:, 0].tolist() == [float(t) for t in tokens]
+    assert [str(x) for x in mesh.vertices[:, 0]] == [repr(float(t)) for t in tokens]  # -0.0
+    assert mesh.faces() == [[0, 1, 2], [len(tokens) - 1, len(tokens) - 2, len(tokens) - 3]]
 
 
 # -- flat meshes in any axis-aligned plane ----------------------------------------------------

@@ -19,9 +19,10 @@ from __future__ import annotations
 
 import json
 import os
-import re
 import stat
+import sys
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -104,11 +105,11 @@ def _read(path: Path, note: Note | None, drawing_options: dict) -> tuple[Mesh, N
                             "or a drawing (.svg, .dxf)")
     raw = _read_regular_file(path, MAX_BYTES[suffix])
     try:
-        text = raw.decode("utf-8")
+        text = "" if suffix == ".obj" and raw.isascii() else raw.decode("utf-8")
     except UnicodeDecodeError:
         raise MeshFileError(f"{path}: not a text file (not UTF-8)") from None
     try:
-        if suffix == ".obj":
+        if suffix == ".obj":  # parsed as bytes; the decoding only checks the encoding
             mesh, numbering, remark = _parse_obj(raw)
             if remark and note:
                 note(f"{path}: {remark}")
@@ -159,9 +160,15 @@ _IGNORED = (b"vt", b"vn", b"vp", b"o", b"g", b"s", b"usemtl", b"mtllib", b"l")
 _CONTROLS = np.array([c if c in (10, 13) or c > 31 else 32 if c in (9, 11, 12) else 127
                       for c in range(256)], dtype=np.uint8)  # see _normalise_controls
 MAX_TOKEN = 40  # longer numbers are parsed one by one
+CHUNK = 2**18  # bytes of whole lines parsed at once: their scratch arrays stay in the cache
 _ZEROS = np.uint64(0x3030303030303030)  # "00000000"
 _HIGH_NIBBLES = np.uint64(0xF0F0F0F0F0F0F0F0)
 _LOW_BYTES = np.array([(1 << 8 * k) - 1 for k in range(9)], dtype=np.uint64)
+MAX_DIGITS = 19  # a decimal of up to 19 digits is an exact uint64 (10**19 < 2**64)
+_POWERS = np.array([10**k for k in range(MAX_DIGITS + 1)], dtype=np.uint64)
+_POWERS_F8, _POWERS_LD = _POWERS.astype(np.float64), _POWERS.astype(np.longdouble)
+# long double is the x87 80-bit number (64-bit significand first, little-endian) on x86
+_X87 = np.finfo(np.longdouble).nmant == 63 and sys.byteorder == "little"
 
 
 def _key(tag: bytes) -> np.uint64:
@@ -172,11 +179,12 @@ class _Tokens:
     """The whitespace-separated tokens of an OBJ text, as byte offsets, grouped into lines.
 
     Comments and carriage returns are removed first, so line ``n`` is the n-th line of the
-    file. Only non-empty lines are kept: ``line`` (1-based number), ``first`` (its first
-    token, the statement) and ``count`` (tokens on it, the statement included).
+    text, counted on from ``lines_before``. Only non-empty lines are kept: ``line`` (1-based
+    number), ``first`` (its first token, the statement) and ``count`` (tokens on it, the
+    statement included); ``n_lines`` counts the text's line ends.
     """
 
-    def __init__(self, data: bytes) -> None:
+    def __init__(self, data: bytes, lines_before: int = 0) -> None:
         pad = b" " * MAX_TOKEN  # room for windows of bytes before and after every token
         self.buf = np.frombuffer(bytearray().join([pad, data, b"\n", pad]), dtype=np.uint8)
         text = self.buf[:-MAX_TOKEN]
@@ -184,6 +192,7 @@ class _Tokens:
         if np.count_nonzero(text < 32) > len(line_end):
             _normalise_controls(text)
             line_end = np.flatnonzero(text == 10)
+        self.n_lines = len(line_end) - 1
         if b"#" in data:
             _blank_comments(text, line_end)
         gap = text <= 32  # space or newline: the only bytes below 33 left
@@ -193,7 +202,7 @@ class _Tokens:
         first = np.searchsorted(self.start, line_start)
         used = first < len(self.start)
         used[used] = self.start[first[used]] < line_end[used]
-        self.line = np.flatnonzero(used) + 1
+        self.line = np.flatnonzero(used) + 1 + lines_before
         self.first = first[used]
         self.count = np.diff(self.first, append=len(self.start))
 
@@ -216,8 +225,53 @@ class _Tokens:
 
     def floats(self, tokens) -> tuple[np.ndarray, int | None]:
         """The tokens as float64 (Python's float syntax) and the position of the first one
-        that is no number (or None)."""
-        start, length = self.start[tokens], self.end[tokens] - self.start[tokens]
+        that is no number (or None): plain decimals here, the others by numpy."""
+        start, end = self.start[tokens], self.end[tokens]
+        values, plain = self._decimals(start, end)
+        other = np.flatnonzero(~plain)
+        if not len(other):
+            return values, None
+        values[other], bad = self._any_floats(start[other], end[other])
+        return values, None if bad is None else int(other[bad])
+
+    def _decimals(self, start, end) -> tuple[np.ndarray, np.ndarray]:
+        """Correctly rounded values of the tokens that are plain decimals, ``[+-]digits[.digits]``
+        with 1 to 19 digits, and the mask of those converted (the other values are arbitrary).
+
+        The digits make an integer m < 10**19 < 2**64 and the value is m / 10**k. Up to 2**53
+        both are exact doubles and one division rounds correctly; above, the quotient is
+        taken in x87 long double (64-bit significand) and rounded again to double, which is
+        correct unless the long double lies halfway between two doubles (those few are
+        left out, as is every m > 2**53 where long double is no x87 number).
+        """
+        first = self.buf[start]
+        negative = first == ord("-")
+        start = start + (negative | (first == ord("+")))
+        dots = np.flatnonzero(self.buf == ord("."))
+        dot = dots[np.minimum(np.searchsorted(dots, start), len(dots) - 1)] if len(dots) else end
+        dot = np.where((dot >= start) & (dot < end), dot, end)
+        n_whole, n_part = dot - start, np.maximum(end - dot - 1, 0)
+        whole, plain = self._digits(dot, np.minimum(n_whole, MAX_DIGITS))
+        part, part_ok = self._digits(end, np.minimum(n_part, MAX_DIGITS))
+        plain &= part_ok & (n_whole + n_part > 0) & (n_whole + n_part <= MAX_DIGITS)
+        n_part = np.minimum(n_part, MAX_DIGITS)
+        m = whole * _POWERS[n_part] + part  # wraps around only for tokens left out
+        values = m.astype(np.float64) / _POWERS_F8[n_part]
+        big = np.flatnonzero(m > 2**53)
+        if len(big) and _X87:
+            wide = m[big].astype(np.longdouble) / _POWERS_LD[n_part[big]]
+            values[big] = wide.astype(np.float64)
+            significand = np.ndarray(len(wide), np.uint64, wide, strides=(wide.itemsize,))
+            plain[big] &= significand & np.uint64(0x7FF) != 0x400  # not halfway
+        else:
+            plain[big] = False
+        np.negative(values, out=values, where=negative)
+        return values, plain
+
+    def _any_floats(self, start, end) -> tuple[np.ndarray, int | None]:
+        """The tokens as float64 by numpy's conversion (Python's syntax: exponents, ``nan``,
+        ``1_0``) and the position of the first that is no number (or None)."""
+        length = end - start
         width = int(min(length.max(initial=1), MAX_TOKEN))
         strings = self._items(width, f"S{width}")[start]
         window = strings.view(np.uint8).reshape(-1, width)
@@ -233,7 +287,7 @@ class _Tokens:
             bad = [first_bad]
         for i in long.tolist():
             try:
-                values[i] = float(self.buf[start[i]:start[i] + length[i]].tobytes())
+                values[i] = float(self.buf[start[i]:end[i]].tobytes())
             except ValueError:
                 bad.append(i)
         return values, min(bad, default=None)
@@ -244,11 +298,7 @@ class _Tokens:
         first = self.buf[start]
         sign = (end > start) & ((first == ord("+")) | (first == ord("-")))
         length = end - start - sign
-        values, ok = self._eight_digits(end, np.minimum(length, 8))
-        if length.max(initial=0) > 8:
-            high, high_ok = self._eight_digits(end - 8, np.clip(length - 8, 0, 8))
-            values += high * np.uint64(10**8)
-            ok &= high_ok
+        values, ok = self._digits(end, np.minimum(length, 16))
         values = values.astype(np.int64)
         bad = (length == 0) | ~ok
         long = np.flatnonzero(length > 16)
@@ -262,6 +312,18 @@ class _Tokens:
         too_long = np.zeros(len(start), dtype=bool)
         too_long[long] = ~bad[long]
         return np.where(sign & (first == ord("-")), -values, values), bad, too_long
+
+    def _digits(self, end, length) -> tuple[np.ndarray, np.ndarray]:
+        """The number (uint64) of the ``length`` (0..19) digits before each ``end``, and
+        whether they are all digits."""
+        value, ok = self._eight_digits(end, np.minimum(length, 8))
+        for k in (8, 16):
+            if length.max(initial=0) > k:
+                high, high_ok = self._eight_digits(end - k, np.clip(length - k, 0, 8))
+                high *= _POWERS[k]
+                value += high
+                ok &= high_ok
+        return value, ok
 
     def _eight_digits(self, end, length) -> tuple[np.ndarray, np.ndarray]:
         """The number of the ``length`` (0..8) digits before each ``end``, and whether they
@@ -314,9 +376,60 @@ def _first_unconvertible(strings: np.ndarray) -> int:
     return lo
 
 
+def _line_chunks(data: bytes):
+    """``data`` in pieces of about ``CHUNK`` bytes that end at line feeds."""
+    a = 0
+    while a < len(data):
+        b = data.find(b"\n", a + CHUNK - 1) + 1 or len(data)
+        yield data[a:b]
+        a = b
+
+
+@dataclass
+class _Part:
+    """The ``v`` and ``f`` statements of a piece of an OBJ file."""
+
+    v_line: np.ndarray
+    points: np.ndarray  # (V, 3)
+    f_line: np.ndarray
+    sizes: np.ndarray
+    corners: np.ndarray  # 0-based
+    wrong_index: str  # the first face index that refers to no vertex, or ""
+
+
 def _parse_obj(data: bytes) -> tuple[Mesh, Numbering, str]:
-    """Mesh, 1-based numbering with face lines, and a remark about the plane ("" if none)."""
-    tok = _Tokens(data)
+    """Mesh, 1-based numbering with face lines, and a remark about the plane ("" if none).
+
+    The text is parsed a piece at a time; a bad line raises at once (lines come in order), a
+    face index that refers to no vertex once every line is known good.
+    """
+    parts, n_lines, n_vertices, n_faces = [], 0, 0, 0
+    for chunk in _line_chunks(data):
+        tok = _Tokens(chunk, n_lines)
+        parts.append(_obj_part(tok, n_vertices))
+        n_lines += tok.n_lines
+        n_vertices += len(parts[-1].v_line)
+        n_faces += len(parts[-1].f_line)
+        if n_faces > MAX_FACES or n_vertices > MAX_VERTICES:
+            raise MeshFileError(f"more than {MAX_FACES:,} faces or {MAX_VERTICES:,} vertices "
+                                f"by line {n_lines:,}; weave-cut reads at most that")
+    if not n_faces:
+        raise MeshFileError("no faces ('f' lines) found")
+    wrong = [p.wrong_index for p in parts if p.wrong_index]
+    if wrong:
+        raise MeshFileError(wrong[0])
+    join = lambda name: np.concatenate([getattr(p, name) for p in parts])  # noqa: E731
+    vertices, remark = _in_plane(join("points"), join("v_line"))
+    mesh = Mesh.trusted(vertices, np.concatenate([[0], np.cumsum(join("sizes"))]),
+                        join("corners"))
+    numbering = Numbering(first=1, face_lines=join("f_line"))
+    check_structure(mesh, numbering)
+    return mesh, numbering, remark
+
+
+def _obj_part(tok: _Tokens, n_vertices: int) -> _Part:
+    """The statements of one piece, whose text follows ``n_vertices`` vertices; raises
+    MeshFileError at its first bad line."""
     tags = tok.keys(tok.first)
     is_v, is_f = tags == _key(b"v"), tags == _key(b"f")
     errors: list[tuple[int, int, str]] = []  # (line, rank on the line, message)
@@ -326,30 +439,21 @@ def _parse_obj(data: bytes) -> tuple[Mesh, Numbering, str]:
         errors.append((tok.line[i], 0, f"line {tok.line[i]}: unknown OBJ statement "
                                        f"{tok.text(tok.first[i])!r}"[:200]))
     v_line, f_line = tok.line[is_v], tok.line[is_f]
-    if len(f_line) > MAX_FACES or len(v_line) > MAX_VERTICES:
-        raise MeshFileError(f"{len(f_line):,} faces and {len(v_line):,} vertices; weave-cut "
-                            f"reads at most {MAX_FACES:,} faces and {MAX_VERTICES:,} vertices")
     points = _obj_vertices(tok, tok.first[is_v], tok.count[is_v] - 1, v_line, errors)
     sizes = tok.count[is_f] - 1
     indices = _obj_faces(tok, tok.first[is_f], sizes, f_line, errors)
     if errors:
         raise MeshFileError(min(errors)[2])
-    if not len(f_line):
-        raise MeshFileError("no faces ('f' lines) found")
-    seen = np.repeat(np.searchsorted(v_line, f_line), sizes)  # vertices defined before
-    bad = (indices == 0) | (np.abs(indices) > seen)
-    if bad.any():
-        k = int(np.flatnonzero(bad)[0])
+    seen = np.repeat(n_vertices + np.searchsorted(v_line, f_line), sizes)  # defined before
+    bad = np.flatnonzero((indices == 0) | (np.abs(indices) > seen))
+    wrong = ""
+    if len(bad):
+        k = bad[0]
         f = int(np.searchsorted(np.cumsum(sizes), k, side="right"))
-        raise MeshFileError(f"line {f_line[f]}: face index {indices[k]} refers to no vertex "
-                            f"({seen[k]} defined so far)")
-    vertices, remark = _in_plane(points, v_line)
-    offsets = np.concatenate([[0], np.cumsum(sizes)])
+        wrong = (f"line {f_line[f]}: face index {indices[k]} refers to no vertex "
+                 f"({seen[k]} defined so far)")
     corners = np.where(indices > 0, indices - 1, seen + indices).astype(np.int32)
-    mesh = Mesh.trusted(vertices, offsets, corners)
-    numbering = Numbering(first=1, face_lines=f_line)
-    check_structure(mesh, numbering)
-    return mesh, numbering, remark
+    return _Part(v_line, points, f_line, sizes, corners, wrong)
 
 
 def _obj_vertices(tok: _Tokens, first, n_numbers, lines, errors) -> np.ndarray:
