@@ -21,6 +21,7 @@ import json
 import os
 import stat
 import sys
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -236,7 +237,8 @@ class _Tokens:
 
     def _decimals(self, start, end) -> tuple[np.ndarray, np.ndarray]:
         """Correctly rounded values of the tokens that are plain decimals, ``[+-]digits[.digits]``
-        with 1 to 19 digits, and the mask of those converted (the other values are arbitrary).
+        with 1 to 19 digits, at most 7 before the point, and the mask of those converted (the
+        other values are arbitrary).
 
         The digits make an integer m < 10**19 < 2**64 and the value is m / 10**k. Up to 2**53
         both are exact doubles and one division rounds correctly; above, the quotient is
@@ -247,13 +249,13 @@ class _Tokens:
         first = self.buf[start]
         negative = first == ord("-")
         start = start + (negative | (first == ord("+")))
-        dots = np.flatnonzero(self.buf == ord("."))
-        dot = dots[np.minimum(np.searchsorted(dots, start), len(dots) - 1)] if len(dots) else end
-        dot = np.where((dot >= start) & (dot < end), dot, end)
-        n_whole, n_part = dot - start, np.maximum(end - dot - 1, 0)
-        whole, plain = self._digits(dot, np.minimum(n_whole, MAX_DIGITS))
+        head = self._items(8, "<u8")[start]  # the first 8 bytes, where the point must be
+        length = end - start
+        n_whole = np.minimum(_first_byte(head, ord(".")), length)  # 8: no point in the head
+        n_part = np.maximum(length - n_whole - 1, 0)
+        whole, plain = _swar_digits(_right_aligned(head, n_whole))
         part, part_ok = self._digits(end, np.minimum(n_part, MAX_DIGITS))
-        plain &= part_ok & (n_whole + n_part > 0) & (n_whole + n_part <= MAX_DIGITS)
+        plain &= part_ok & (n_whole < 8) & (0 < n_whole + n_part) & (n_whole + n_part <= MAX_DIGITS)
         n_part = np.minimum(n_part, MAX_DIGITS)
         m = whole * _POWERS[n_part] + part  # wraps around only for tokens left out
         values = m.astype(np.float64) / _POWERS_F8[n_part]
@@ -262,7 +264,7 @@ class _Tokens:
             wide = m[big].astype(np.longdouble) / _POWERS_LD[n_part[big]]
             values[big] = wide.astype(np.float64)
             significand = np.ndarray(len(wide), np.uint64, wide, strides=(wide.itemsize,))
-            plain[big] &= significand & np.uint64(0x7FF) != 0x400  # not halfway
+            plain[big] &= (significand & np.uint64(0x7FF)) != 0x400  # not halfway
         else:
             plain[big] = False
         np.negative(values, out=values, where=negative)
@@ -318,32 +320,53 @@ class _Tokens:
         whether they are all digits."""
         value, ok = self._eight_digits(end, np.minimum(length, 8))
         for k in (8, 16):
-            if length.max(initial=0) > k:
-                high, high_ok = self._eight_digits(end - k, np.clip(length - k, 0, 8))
-                high *= _POWERS[k]
-                value += high
-                ok &= high_ok
+            longer = np.flatnonzero(length > k)
+            if not len(longer):
+                break
+            high, high_ok = self._eight_digits(end[longer] - k, np.minimum(length[longer] - k, 8))
+            value[longer] += high * _POWERS[k]
+            ok[longer] &= high_ok
         return value, ok
 
     def _eight_digits(self, end, length) -> tuple[np.ndarray, np.ndarray]:
         """The number of the ``length`` (0..8) digits before each ``end``, and whether they
-        are all digits: eight bytes at a time in a uint64 (SWAR)."""
-        d = self._items(8, "<u8")[end - 8]
-        pad = _LOW_BYTES[8 - length]  # the bytes before the number become "0"
-        d |= pad
-        d ^= pad & ~_ZEROS
-        scratch = np.bitwise_and(d, _HIGH_NIBBLES, out=pad)
-        ok = scratch == _ZEROS
-        np.add(d, np.uint64(0x0606060606060606), out=scratch)
-        scratch &= _HIGH_NIBBLES
-        ok &= scratch == _ZEROS
-        d -= _ZEROS  # a digit 0..9 in each byte, the first digit in the lowest byte
-        for shift, mask in ((8, 0x00FF00FF00FF00FF), (16, 0x0000FFFF0000FFFF), (32, 0xFFFFFFFF)):
-            np.right_shift(d, np.uint64(shift), out=scratch)  # pairs of digits, then fours
-            d *= np.uint64(10 ** (shift // 8))
-            d += scratch
-            d &= np.uint64(mask)
-        return d, ok
+        are all digits."""
+        return _swar_digits(_right_aligned(self._items(8, "<u8")[end - 8], length, ends=True))
+
+
+def _right_aligned(words, length, ends: bool = False) -> np.ndarray:
+    """In place: the eight bytes of ``words`` with the ``length`` bytes of a number at their
+    end (``ends``) or start moved to the end, the bytes before it "0"."""
+    if not ends:
+        words <<= (8 * (8 - length)).astype(np.uint64)  # shifts of 64 give 0
+    pad = _LOW_BYTES[8 - length]
+    words |= pad
+    words ^= pad & ~_ZEROS
+    return words
+
+
+def _swar_digits(d) -> tuple[np.ndarray, np.ndarray]:
+    """In place: the numbers that the eight ASCII digits in each uint64 spell (the first in
+    the lowest byte), and whether they are all digits (SWAR: eight bytes at a time)."""
+    ok = (d & _HIGH_NIBBLES) == _ZEROS
+    ok &= ((d + np.uint64(0x0606060606060606)) & _HIGH_NIBBLES) == _ZEROS
+    d &= np.uint64(0x0F0F0F0F0F0F0F0F)  # a digit 0..9 in each byte
+    for shift, mask, scale in ((8, 0x00FF00FF00FF00FF, 2561), (16, 0x0000FFFF0000FFFF, 6553601),
+                               (32, 0xFFFFFFFF, 42949672960001)):
+        d *= np.uint64(scale)  # pairs of digits, then fours, then eight: 10 * a + b ...
+        d >>= np.uint64(shift)
+        d &= np.uint64(mask)
+    return d, ok
+
+
+def _first_byte(words, byte: int) -> np.ndarray:
+    """Position (0..7) of the first ``byte`` in each uint64's eight bytes, 8 if none."""
+    x = words ^ np.uint64(byte * 0x0101010101010101)
+    found = ~(((x & np.uint64(0x7F7F7F7F7F7F7F7F)) + np.uint64(0x7F7F7F7F7F7F7F7F)) | x)
+    found &= np.uint64(0x8080808080808080)  # the high bit of each byte that was ``byte``
+    lowest = (found & (~found + np.uint64(1))) >> np.uint64(7)  # 1 << 8 * position, or 0
+    lowest *= np.uint64(0x0807060504030201)  # its top byte: 8 - position
+    return 8 - (lowest >> np.uint64(56)).astype(np.int64)
 
 
 def _normalise_controls(text: np.ndarray) -> None:
@@ -481,6 +504,9 @@ def _obj_vertices(tok: _Tokens, first, n_numbers, lines, errors) -> np.ndarray:
 def _obj_faces(tok: _Tokens, first, sizes, lines, errors) -> np.ndarray:
     """Vertex indices of the ``f`` lines as written (``i/t/n`` gives i); appends line errors
     (an index of more than 16 digits is too large)."""
+    plain = _plain_indices(tok, first, sizes) if len(first) else None
+    if plain is not None:
+        return plain
     token = np.repeat(first + 1 - np.cumsum(sizes) + sizes, sizes) + np.arange(sizes.sum())
     start, end = tok.start[token], tok.end[token]
     slash = np.flatnonzero(tok.buf == ord("/"))
@@ -499,6 +525,25 @@ def _obj_faces(tok: _Tokens, first, sizes, lines, errors) -> np.ndarray:
         number = number if len(number) <= 40 else number[:37] + "..."
         errors.append((lines[i], 1, f"line {lines[i]}: face index {number} is too large"))
     return values
+
+
+def _plain_indices(tok: _Tokens, first, sizes) -> np.ndarray | None:
+    """The indices of ``f`` lines that follow one another and hold nothing but whole numbers
+    of up to 16 bytes, read by numpy's C parser; None for any other lines (it stops at the
+    first byte that continues no number and is no space, and warns)."""
+    t0, t1 = first[0], first[-1] + sizes[-1] + 1
+    if t1 - t0 != len(first) + sizes.sum() or (tok.end[t0:t1] - tok.start[t0:t1]).max() > 16:
+        return None
+    a = tok.start[t0]
+    text = tok.buf[a:tok.end[t1 - 1]].copy()
+    text[tok.start[first] - a] = ord(" ")  # the statements
+    with warnings.catch_warnings():  # numpy 2.4 raises where a number ends in other bytes,
+        warnings.simplefilter("error")  # older versions warn (and may split "1-2": counted)
+        try:
+            values = np.fromstring(text.tobytes(), dtype=np.int64, sep=" ")
+        except (DeprecationWarning, ValueError):
+            return None
+    return values if len(values) == sizes.sum() else None
 
 
 # the axis each plane is constant in, its name, and (u, v) seen from the positive axis
