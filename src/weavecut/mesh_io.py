@@ -9,10 +9,11 @@ JSON format (version 1)::
 Both round-trip exactly: floats are written with ``repr`` (shortest exact form).
 
 Reading is bounded: only regular files (a FIFO, device or directory is refused before it is
-read), at most ``MAX_BYTES`` of the format (1 GiB OBJ, 512 MiB JSON: reading takes 10 to 16
-times the size in memory), ``MAX_FACES`` faces and ``MAX_VERTICES`` vertices; JSON nesting and
-number sizes are bounded too. An OBJ is parsed with numpy over the whole file; messages about it
-count faces and vertices from 1 and give the line, as OBJ users count.
+read), at most ``MAX_BYTES`` of the format (1 GiB OBJ, 512 MiB JSON: reading takes 3 to 4, and
+10 to 16, times the size in memory), ``MAX_FACES`` faces and ``MAX_VERTICES`` vertices; JSON
+nesting and number sizes are bounded too. An OBJ is parsed with numpy, ``CHUNK`` bytes of whole
+lines at a time (so the scratch arrays stay in the processor's cache); messages about it count
+faces and vertices from 1 and give the line, as OBJ users count.
 """
 
 from __future__ import annotations
@@ -38,7 +39,8 @@ JSON_FORMAT = "weave-cut-mesh"
 SUFFIXES = (".obj", ".json")
 MAX_FACES = 2**24  # 16.8 million, 1.7 times the pentagon's level 10
 MAX_VERTICES = 2**25
-# Reading takes 10 to 16 times the file's size in memory, so these keep it under about 10 GiB.
+# Reading takes 3 to 4 (OBJ) and 10 to 16 (JSON) times the file's size in memory, so these keep
+# it under about 5 GiB.
 # weave-cut writes 46 (quads) to 96 (snub pentagons) bytes per face in OBJ, 44 in JSON,
 # Blender ~130 with UVs and normals: 8 to 23 million faces, more than any level is useful.
 MAX_BYTES = {".obj": 2**30, ".json": 2**29}
@@ -143,7 +145,7 @@ def _read_regular_file(path: Path, limit: int) -> bytes:
         if info.st_size > limit:
             raise MeshFileError(f"{path}: {info.st_size:,} bytes is more than the "
                                 f"{limit >> 20:,} MiB weave-cut reads from a {path.suffix.lower()}"
-                                " file (reading takes 10 to 16 times the size in memory)")
+                                " file")
         with os.fdopen(os.dup(fd), "rb") as f:
             data = f.read(info.st_size + 1)  # one byte more tells whether it grew
     except OSError as exc:
@@ -453,10 +455,12 @@ def _parse_obj(data: bytes) -> tuple[Mesh, Numbering, str]:
 def _obj_part(tok: _Tokens, n_vertices: int) -> _Part:
     """The statements of one piece, whose text follows ``n_vertices`` vertices; raises
     MeshFileError at its first bad line."""
-    tags = tok.keys(tok.first)
-    is_v, is_f = tags == _key(b"v"), tags == _key(b"f")
+    single = tok.end[tok.first] - tok.start[tok.first] == 1
+    tag = tok.buf[tok.start[tok.first]]
+    is_v, is_f = single & (tag == ord("v")), single & (tag == ord("f"))
     errors: list[tuple[int, int, str]] = []  # (line, rank on the line, message)
-    unknown = np.flatnonzero(~(is_v | is_f | np.isin(tags, [_key(t) for t in _IGNORED])))
+    other = np.flatnonzero(~(is_v | is_f))
+    unknown = other[~np.isin(tok.keys(tok.first[other]), [_key(t) for t in _IGNORED])]
     if len(unknown):
         i = unknown[0]
         errors.append((tok.line[i], 0, f"line {tok.line[i]}: unknown OBJ statement "
