@@ -33,7 +33,6 @@ from . import readers
 from .errors import MeshError, MeshFileError
 from .fileio import write_atomic
 from .mesh import ZERO_BASED, Mesh, Numbering, check_structure
-from .validation import validate
 
 JSON_FORMAT = "weave-cut-mesh"
 SUFFIXES = (".obj", ".json")
@@ -62,6 +61,8 @@ def read_valid_mesh(path: str | Path, *, allow_nonconvex: bool = False,
                     note: Note | None = None, **drawing_options) -> Mesh:
     """Read a mesh file and validate it; errors name the file and count as the file does
     (faces and vertices from 1, with line numbers, in an OBJ)."""
+    from .validation import validate  # shapely and scipy: only where a file is validated
+
     path = Path(path)
     mesh, numbering = _read(path, note, {**drawing_options, "allow_nonconvex": allow_nonconvex})
     try:
