@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from tests import meshes
 from tests.strategies import jittered_grids
@@ -31,6 +32,36 @@ def test_arrays_are_private_and_read_only():
 ])
 def test_structure_errors_name_the_element(vertices, faces, message):
     with pytest.raises(MeshError, match=message):
+        Mesh.from_faces(vertices, faces)
+
+
+@st.composite
+def faces_with_repeats(draw):
+    """Faces of 3 to 20 distinct corners, some with one corner copied onto another."""
+    degree = draw(st.sampled_from([None, 3, 5, 17]))  # None: mixed degrees
+    faces = []
+    for _ in range(draw(st.integers(1, 6))):
+        size = degree or draw(st.integers(3, 20))
+        face = draw(st.lists(st.integers(0, 24), min_size=size, max_size=size, unique=True))
+        if draw(st.booleans()):
+            i, j = draw(st.lists(st.integers(0, size - 1), min_size=2, max_size=2, unique=True))
+            face[j] = face[i]
+        faces.append(face)
+    return faces
+
+
+@settings(max_examples=200)
+@given(faces_with_repeats())
+def test_the_first_face_with_a_repeated_vertex_is_named(faces):
+    # tables by degree for faces of up to MAX_COMPARED (16) corners, a sort beyond
+    repeating = [f for f, face in enumerate(faces) if len(set(face)) < len(face)]
+    vertices = np.zeros((25, 2))
+    if not repeating:
+        Mesh.from_faces(vertices, faces)
+        return
+    face = faces[repeating[0]]
+    twice = min(i for i in face if face.count(i) > 1)
+    with pytest.raises(MeshError, match=f"^face {repeating[0]} visits vertex {twice} more than"):
         Mesh.from_faces(vertices, faces)
 
 

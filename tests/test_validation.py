@@ -10,9 +10,21 @@ from hypothesis import strategies as st
 
 from tests import meshes
 from tests.strategies import valid_meshes
+from weavecut import inputs
 from weavecut.errors import MeshError
 from weavecut.mesh import Mesh, signed_areas
 from weavecut.validation import validate
+
+
+@pytest.mark.parametrize("spec", [
+    *inputs.INPUTS, "ngon:3", "ngon:10000", "triangulated-ngon:3", "triangulated-ngon:300",
+    "square-grid:1x1", "square-grid:1x7", "tiling-8-4:1x1", "tiling-8-4:2x1", "tiling-8-4:7x5",
+    "triangle-grid:1x1", "triangle-grid:9x4", "hex-grid:1x1", "hex-grid:1x2", "hex-grid:8x5",
+    "icosphere:0", "icosphere:4"])
+def test_builtin_inputs_are_valid_as_built(spec):
+    # the command line uses them without validating them
+    mesh = inputs.get(spec)
+    assert validate(mesh) is mesh
 
 
 def test_clockwise_mesh_is_reoriented():

@@ -204,6 +204,9 @@ class Mesh:
         return Mesh(self.vertices, self.face_offsets, self.face_indices[order])
 
 
+MAX_COMPARED = 16  # faces of more corners are checked for repeats by sorting
+
+
 def check_structure(mesh: Mesh, numbering: Numbering = ZERO_BASED) -> None:
     """Raise MeshError for bad shapes, indices, short faces, repeated corners or coordinates."""
     n = numbering
@@ -226,13 +229,38 @@ def check_structure(mesh: Mesh, numbering: Numbering = ZERO_BASED) -> None:
         f = int(np.searchsorted(off, h, side="right") - 1)
         raise MeshError(f"{n.face(f)} uses vertex {n.number(idx[h])}, out of range "
                         f"{n.number(0)}..{n.number(len(v) - 1)}")
-    # a vertex repeated within a face: sort (face, vertex) pairs, look for equal neighbours
-    face = np.repeat(np.arange(len(sizes), dtype=np.int64), sizes)
-    key = np.sort(face * max(len(v), 1) + idx)
-    dup = np.flatnonzero(key[1:] == key[:-1])
-    if len(dup):
-        f, vtx = divmod(int(key[dup[0]]), max(len(v), 1))
+    f = _first_repeating_face(off, idx, sizes)
+    if f is not None:
+        corners = np.sort(idx[off[f]:off[f + 1]])
+        vtx = corners[np.flatnonzero(corners[1:] == corners[:-1])[0]]
         raise MeshError(f"{n.face(f)} visits {n.vertex(vtx)} more than once")
+
+
+def _first_repeating_face(off, idx, sizes) -> int | None:
+    """The first face that visits a vertex twice, or None: the faces of each degree up to
+    ``MAX_COMPARED`` as a table whose columns are compared with their shifts, larger faces
+    by sorting (face, vertex) keys."""
+    repeating = []
+    degrees = np.flatnonzero(np.bincount(np.minimum(sizes, MAX_COMPARED + 1)))
+    for k in degrees[degrees <= MAX_COMPARED].tolist():
+        faces = np.flatnonzero(sizes == k) if len(degrees) > 1 else None
+        table = idx.reshape(-1, k) if faces is None else idx[off[faces, None] + np.arange(k)]
+        same = np.zeros(len(table), dtype=bool)
+        for shift in range(1, k):
+            same |= (table[:, shift:] == table[:, :-shift]).any(axis=1)
+        if same.any():
+            first = int(np.flatnonzero(same)[0])
+            repeating.append(first if faces is None else int(faces[first]))
+    large = np.flatnonzero(sizes > MAX_COMPARED)
+    if len(large):
+        n_v = max(int(idx.max()) + 1, 1)
+        ks = sizes[large]
+        corner = np.repeat(off[large] - np.cumsum(ks) + ks, ks) + np.arange(ks.sum())
+        key = np.sort(np.repeat(large, ks) * n_v + idx[corner])
+        dup = np.flatnonzero(key[1:] == key[:-1])
+        if len(dup):
+            repeating.append(int(key[dup[0]] // n_v))
+    return min(repeating, default=None)
 
 
 @dataclass(frozen=True, eq=False)

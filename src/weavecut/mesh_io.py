@@ -9,19 +9,22 @@ JSON format (version 1)::
 Both round-trip exactly: floats are written with ``repr`` (shortest exact form).
 
 Reading is bounded: only regular files (a FIFO, device or directory is refused before it is
-read), at most ``MAX_BYTES`` of the format (1 GiB OBJ, 512 MiB JSON: reading takes 10 to 16
-times the size in memory), ``MAX_FACES`` faces and ``MAX_VERTICES`` vertices; JSON nesting and
-number sizes are bounded too. An OBJ is parsed with numpy over the whole file; messages about it
-count faces and vertices from 1 and give the line, as OBJ users count.
+read), at most ``MAX_BYTES`` of the format (1 GiB OBJ, 512 MiB JSON: reading takes 3 to 4, and
+10 to 16, times the size in memory), ``MAX_FACES`` faces and ``MAX_VERTICES`` vertices; JSON
+nesting and number sizes are bounded too. An OBJ is parsed with numpy, ``CHUNK`` bytes of whole
+lines at a time (so the scratch arrays stay in the processor's cache); messages about it count
+faces and vertices from 1 and give the line, as OBJ users count.
 """
 
 from __future__ import annotations
 
 import json
 import os
-import re
 import stat
+import sys
+import warnings
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -30,13 +33,13 @@ from . import readers
 from .errors import MeshError, MeshFileError
 from .fileio import write_atomic
 from .mesh import ZERO_BASED, Mesh, Numbering, check_structure
-from .validation import validate
 
 JSON_FORMAT = "weave-cut-mesh"
 SUFFIXES = (".obj", ".json")
 MAX_FACES = 2**24  # 16.8 million, 1.7 times the pentagon's level 10
 MAX_VERTICES = 2**25
-# Reading takes 10 to 16 times the file's size in memory, so these keep it under about 10 GiB.
+# Reading takes 3 to 4 (OBJ) and 10 to 16 (JSON) times the file's size in memory, so these keep
+# it under about 5 GiB.
 # weave-cut writes 46 (quads) to 96 (snub pentagons) bytes per face in OBJ, 44 in JSON,
 # Blender ~130 with UVs and normals: 8 to 23 million faces, more than any level is useful.
 MAX_BYTES = {".obj": 2**30, ".json": 2**29}
@@ -58,6 +61,8 @@ def read_valid_mesh(path: str | Path, *, allow_nonconvex: bool = False,
                     note: Note | None = None, **drawing_options) -> Mesh:
     """Read a mesh file and validate it; errors name the file and count as the file does
     (faces and vertices from 1, with line numbers, in an OBJ)."""
+    from .validation import validate  # shapely and scipy: only where a file is validated
+
     path = Path(path)
     mesh, numbering = _read(path, note, {**drawing_options, "allow_nonconvex": allow_nonconvex})
     try:
@@ -104,11 +109,11 @@ def _read(path: Path, note: Note | None, drawing_options: dict) -> tuple[Mesh, N
                             "or a drawing (.svg, .dxf)")
     raw = _read_regular_file(path, MAX_BYTES[suffix])
     try:
-        text = raw.decode("utf-8")
+        text = "" if suffix == ".obj" and raw.isascii() else raw.decode("utf-8")
     except UnicodeDecodeError:
         raise MeshFileError(f"{path}: not a text file (not UTF-8)") from None
     try:
-        if suffix == ".obj":
+        if suffix == ".obj":  # parsed as bytes; the decoding only checks the encoding
             mesh, numbering, remark = _parse_obj(raw)
             if remark and note:
                 note(f"{path}: {remark}")
@@ -141,7 +146,7 @@ def _read_regular_file(path: Path, limit: int) -> bytes:
         if info.st_size > limit:
             raise MeshFileError(f"{path}: {info.st_size:,} bytes is more than the "
                                 f"{limit >> 20:,} MiB weave-cut reads from a {path.suffix.lower()}"
-                                " file (reading takes 10 to 16 times the size in memory)")
+                                " file")
         with os.fdopen(os.dup(fd), "rb") as f:
             data = f.read(info.st_size + 1)  # one byte more tells whether it grew
     except OSError as exc:
@@ -159,9 +164,15 @@ _IGNORED = (b"vt", b"vn", b"vp", b"o", b"g", b"s", b"usemtl", b"mtllib", b"l")
 _CONTROLS = np.array([c if c in (10, 13) or c > 31 else 32 if c in (9, 11, 12) else 127
                       for c in range(256)], dtype=np.uint8)  # see _normalise_controls
 MAX_TOKEN = 40  # longer numbers are parsed one by one
+CHUNK = 2**18  # bytes of whole lines parsed at once: their scratch arrays stay in the cache
 _ZEROS = np.uint64(0x3030303030303030)  # "00000000"
 _HIGH_NIBBLES = np.uint64(0xF0F0F0F0F0F0F0F0)
 _LOW_BYTES = np.array([(1 << 8 * k) - 1 for k in range(9)], dtype=np.uint64)
+MAX_DIGITS = 19  # a decimal of up to 19 digits is an exact uint64 (10**19 < 2**64)
+_POWERS = np.array([10**k for k in range(MAX_DIGITS + 1)], dtype=np.uint64)
+_POWERS_F8, _POWERS_LD = _POWERS.astype(np.float64), _POWERS.astype(np.longdouble)
+# long double is the x87 80-bit number (64-bit significand first, little-endian) on x86
+_X87 = np.finfo(np.longdouble).nmant == 63 and sys.byteorder == "little"
 
 
 def _key(tag: bytes) -> np.uint64:
@@ -172,11 +183,12 @@ class _Tokens:
     """The whitespace-separated tokens of an OBJ text, as byte offsets, grouped into lines.
 
     Comments and carriage returns are removed first, so line ``n`` is the n-th line of the
-    file. Only non-empty lines are kept: ``line`` (1-based number), ``first`` (its first
-    token, the statement) and ``count`` (tokens on it, the statement included).
+    text, counted on from ``lines_before``. Only non-empty lines are kept: ``line`` (1-based
+    number), ``first`` (its first token, the statement) and ``count`` (tokens on it, the
+    statement included); ``n_lines`` counts the text's line ends.
     """
 
-    def __init__(self, data: bytes) -> None:
+    def __init__(self, data: bytes, lines_before: int = 0) -> None:
         pad = b" " * MAX_TOKEN  # room for windows of bytes before and after every token
         self.buf = np.frombuffer(bytearray().join([pad, data, b"\n", pad]), dtype=np.uint8)
         text = self.buf[:-MAX_TOKEN]
@@ -184,6 +196,7 @@ class _Tokens:
         if np.count_nonzero(text < 32) > len(line_end):
             _normalise_controls(text)
             line_end = np.flatnonzero(text == 10)
+        self.n_lines = len(line_end) - 1
         if b"#" in data:
             _blank_comments(text, line_end)
         gap = text <= 32  # space or newline: the only bytes below 33 left
@@ -193,7 +206,7 @@ class _Tokens:
         first = np.searchsorted(self.start, line_start)
         used = first < len(self.start)
         used[used] = self.start[first[used]] < line_end[used]
-        self.line = np.flatnonzero(used) + 1
+        self.line = np.flatnonzero(used) + 1 + lines_before
         self.first = first[used]
         self.count = np.diff(self.first, append=len(self.start))
 
@@ -216,8 +229,54 @@ class _Tokens:
 
     def floats(self, tokens) -> tuple[np.ndarray, int | None]:
         """The tokens as float64 (Python's float syntax) and the position of the first one
-        that is no number (or None)."""
-        start, length = self.start[tokens], self.end[tokens] - self.start[tokens]
+        that is no number (or None): plain decimals here, the others by numpy."""
+        start, end = self.start[tokens], self.end[tokens]
+        values, plain = self._decimals(start, end)
+        other = np.flatnonzero(~plain)
+        if not len(other):
+            return values, None
+        values[other], bad = self._any_floats(start[other], end[other])
+        return values, None if bad is None else int(other[bad])
+
+    def _decimals(self, start, end) -> tuple[np.ndarray, np.ndarray]:
+        """Correctly rounded values of the tokens that are plain decimals, ``[+-]digits[.digits]``
+        with 1 to 19 digits, at most 7 before the point, and the mask of those converted (the
+        other values are arbitrary).
+
+        The digits make an integer m < 10**19 < 2**64 and the value is m / 10**k. Up to 2**53
+        both are exact doubles and one division rounds correctly; above, the quotient is
+        taken in x87 long double (64-bit significand) and rounded again to double, which is
+        correct unless the long double lies halfway between two doubles (those few are
+        left out, as is every m > 2**53 where long double is no x87 number).
+        """
+        first = self.buf[start]
+        negative = first == ord("-")
+        start = start + (negative | (first == ord("+")))
+        head = self._items(8, "<u8")[start]  # the first 8 bytes, where the point must be
+        length = end - start
+        n_whole = np.minimum(_first_byte(head, ord(".")), length)  # 8: no point in the head
+        n_part = np.maximum(length - n_whole - 1, 0)
+        whole, plain = _swar_digits(_right_aligned(head, n_whole))
+        part, part_ok = self._digits(end, np.minimum(n_part, MAX_DIGITS))
+        plain &= part_ok & (n_whole < 8) & (0 < n_whole + n_part) & (n_whole + n_part <= MAX_DIGITS)
+        n_part = np.minimum(n_part, MAX_DIGITS)
+        m = whole * _POWERS[n_part] + part  # wraps around only for tokens left out
+        values = m.astype(np.float64) / _POWERS_F8[n_part]
+        big = np.flatnonzero(m > 2**53)
+        if len(big) and _X87:
+            wide = m[big].astype(np.longdouble) / _POWERS_LD[n_part[big]]
+            values[big] = wide.astype(np.float64)
+            significand = np.ndarray(len(wide), np.uint64, wide, strides=(wide.itemsize,))
+            plain[big] &= (significand & np.uint64(0x7FF)) != 0x400  # not halfway
+        else:
+            plain[big] = False
+        np.negative(values, out=values, where=negative)
+        return values, plain
+
+    def _any_floats(self, start, end) -> tuple[np.ndarray, int | None]:
+        """The tokens as float64 by numpy's conversion (Python's syntax: exponents, ``nan``,
+        ``1_0``) and the position of the first that is no number (or None)."""
+        length = end - start
         width = int(min(length.max(initial=1), MAX_TOKEN))
         strings = self._items(width, f"S{width}")[start]
         window = strings.view(np.uint8).reshape(-1, width)
@@ -233,7 +292,7 @@ class _Tokens:
             bad = [first_bad]
         for i in long.tolist():
             try:
-                values[i] = float(self.buf[start[i]:start[i] + length[i]].tobytes())
+                values[i] = float(self.buf[start[i]:end[i]].tobytes())
             except ValueError:
                 bad.append(i)
         return values, min(bad, default=None)
@@ -244,11 +303,7 @@ class _Tokens:
         first = self.buf[start]
         sign = (end > start) & ((first == ord("+")) | (first == ord("-")))
         length = end - start - sign
-        values, ok = self._eight_digits(end, np.minimum(length, 8))
-        if length.max(initial=0) > 8:
-            high, high_ok = self._eight_digits(end - 8, np.clip(length - 8, 0, 8))
-            values += high * np.uint64(10**8)
-            ok &= high_ok
+        values, ok = self._digits(end, np.minimum(length, 16))
         values = values.astype(np.int64)
         bad = (length == 0) | ~ok
         long = np.flatnonzero(length > 16)
@@ -263,25 +318,58 @@ class _Tokens:
         too_long[long] = ~bad[long]
         return np.where(sign & (first == ord("-")), -values, values), bad, too_long
 
+    def _digits(self, end, length) -> tuple[np.ndarray, np.ndarray]:
+        """The number (uint64) of the ``length`` (0..19) digits before each ``end``, and
+        whether they are all digits."""
+        value, ok = self._eight_digits(end, np.minimum(length, 8))
+        for k in (8, 16):
+            longer = np.flatnonzero(length > k)
+            if not len(longer):
+                break
+            high, high_ok = self._eight_digits(end[longer] - k, np.minimum(length[longer] - k, 8))
+            value[longer] += high * _POWERS[k]
+            ok[longer] &= high_ok
+        return value, ok
+
     def _eight_digits(self, end, length) -> tuple[np.ndarray, np.ndarray]:
         """The number of the ``length`` (0..8) digits before each ``end``, and whether they
-        are all digits: eight bytes at a time in a uint64 (SWAR)."""
-        d = self._items(8, "<u8")[end - 8]
-        pad = _LOW_BYTES[8 - length]  # the bytes before the number become "0"
-        d |= pad
-        d ^= pad & ~_ZEROS
-        scratch = np.bitwise_and(d, _HIGH_NIBBLES, out=pad)
-        ok = scratch == _ZEROS
-        np.add(d, np.uint64(0x0606060606060606), out=scratch)
-        scratch &= _HIGH_NIBBLES
-        ok &= scratch == _ZEROS
-        d -= _ZEROS  # a digit 0..9 in each byte, the first digit in the lowest byte
-        for shift, mask in ((8, 0x00FF00FF00FF00FF), (16, 0x0000FFFF0000FFFF), (32, 0xFFFFFFFF)):
-            np.right_shift(d, np.uint64(shift), out=scratch)  # pairs of digits, then fours
-            d *= np.uint64(10 ** (shift // 8))
-            d += scratch
-            d &= np.uint64(mask)
-        return d, ok
+        are all digits."""
+        return _swar_digits(_right_aligned(self._items(8, "<u8")[end - 8], length, ends=True))
+
+
+def _right_aligned(words, length, ends: bool = False) -> np.ndarray:
+    """In place: the eight bytes of ``words`` with the ``length`` bytes of a number at their
+    end (``ends``) or start moved to the end, the bytes before it "0"."""
+    if not ends:
+        words <<= (8 * (8 - length)).astype(np.uint64)  # shifts of 64 give 0
+    pad = _LOW_BYTES[8 - length]
+    words |= pad
+    words ^= pad & ~_ZEROS
+    return words
+
+
+def _swar_digits(d) -> tuple[np.ndarray, np.ndarray]:
+    """In place: the numbers that the eight ASCII digits in each uint64 spell (the first in
+    the lowest byte), and whether they are all digits (SWAR: eight bytes at a time)."""
+    ok = (d & _HIGH_NIBBLES) == _ZEROS
+    ok &= ((d + np.uint64(0x0606060606060606)) & _HIGH_NIBBLES) == _ZEROS
+    d &= np.uint64(0x0F0F0F0F0F0F0F0F)  # a digit 0..9 in each byte
+    for shift, mask, scale in ((8, 0x00FF00FF00FF00FF, 2561), (16, 0x0000FFFF0000FFFF, 6553601),
+                               (32, 0xFFFFFFFF, 42949672960001)):
+        d *= np.uint64(scale)  # pairs of digits, then fours, then eight: 10 * a + b ...
+        d >>= np.uint64(shift)
+        d &= np.uint64(mask)
+    return d, ok
+
+
+def _first_byte(words, byte: int) -> np.ndarray:
+    """Position (0..7) of the first ``byte`` in each uint64's eight bytes, 8 if none."""
+    x = words ^ np.uint64(byte * 0x0101010101010101)
+    found = ~(((x & np.uint64(0x7F7F7F7F7F7F7F7F)) + np.uint64(0x7F7F7F7F7F7F7F7F)) | x)
+    found &= np.uint64(0x8080808080808080)  # the high bit of each byte that was ``byte``
+    lowest = (found & (~found + np.uint64(1))) >> np.uint64(7)  # 1 << 8 * position, or 0
+    lowest *= np.uint64(0x0807060504030201)  # its top byte: 8 - position
+    return 8 - (lowest >> np.uint64(56)).astype(np.int64)
 
 
 def _normalise_controls(text: np.ndarray) -> None:
@@ -314,42 +402,86 @@ def _first_unconvertible(strings: np.ndarray) -> int:
     return lo
 
 
+def _line_chunks(data: bytes):
+    """``data`` in pieces of about ``CHUNK`` bytes that end at line feeds."""
+    a = 0
+    while a < len(data):
+        b = data.find(b"\n", a + CHUNK - 1) + 1 or len(data)
+        yield data[a:b]
+        a = b
+
+
+@dataclass
+class _Part:
+    """The ``v`` and ``f`` statements of a piece of an OBJ file."""
+
+    v_line: np.ndarray
+    points: np.ndarray  # (V, 3)
+    f_line: np.ndarray
+    sizes: np.ndarray
+    corners: np.ndarray  # 0-based
+    wrong_index: str  # the first face index that refers to no vertex, or ""
+
+
 def _parse_obj(data: bytes) -> tuple[Mesh, Numbering, str]:
-    """Mesh, 1-based numbering with face lines, and a remark about the plane ("" if none)."""
-    tok = _Tokens(data)
-    tags = tok.keys(tok.first)
-    is_v, is_f = tags == _key(b"v"), tags == _key(b"f")
+    """Mesh, 1-based numbering with face lines, and a remark about the plane ("" if none).
+
+    The text is parsed a piece at a time; a bad line raises at once (lines come in order), a
+    face index that refers to no vertex once every line is known good.
+    """
+    parts, n_lines, n_vertices, n_faces = [], 0, 0, 0
+    for chunk in _line_chunks(data):
+        tok = _Tokens(chunk, n_lines)
+        parts.append(_obj_part(tok, n_vertices))
+        n_lines += tok.n_lines
+        n_vertices += len(parts[-1].v_line)
+        n_faces += len(parts[-1].f_line)
+        if n_faces > MAX_FACES or n_vertices > MAX_VERTICES:
+            raise MeshFileError(f"more than {MAX_FACES:,} faces or {MAX_VERTICES:,} vertices "
+                                f"by line {n_lines:,}; weave-cut reads at most that")
+    if not n_faces:
+        raise MeshFileError("no faces ('f' lines) found")
+    wrong = [p.wrong_index for p in parts if p.wrong_index]
+    if wrong:
+        raise MeshFileError(wrong[0])
+    join = lambda name: np.concatenate([getattr(p, name) for p in parts])  # noqa: E731
+    vertices, remark = _in_plane(join("points"), join("v_line"))
+    mesh = Mesh.trusted(vertices, np.concatenate([[0], np.cumsum(join("sizes"))]),
+                        join("corners"))
+    numbering = Numbering(first=1, face_lines=join("f_line"))
+    check_structure(mesh, numbering)
+    return mesh, numbering, remark
+
+
+def _obj_part(tok: _Tokens, n_vertices: int) -> _Part:
+    """The statements of one piece, whose text follows ``n_vertices`` vertices; raises
+    MeshFileError at its first bad line."""
+    single = tok.end[tok.first] - tok.start[tok.first] == 1
+    tag = tok.buf[tok.start[tok.first]]
+    is_v, is_f = single & (tag == ord("v")), single & (tag == ord("f"))
     errors: list[tuple[int, int, str]] = []  # (line, rank on the line, message)
-    unknown = np.flatnonzero(~(is_v | is_f | np.isin(tags, [_key(t) for t in _IGNORED])))
+    other = np.flatnonzero(~(is_v | is_f))
+    unknown = other[~np.isin(tok.keys(tok.first[other]), [_key(t) for t in _IGNORED])]
     if len(unknown):
         i = unknown[0]
         errors.append((tok.line[i], 0, f"line {tok.line[i]}: unknown OBJ statement "
                                        f"{tok.text(tok.first[i])!r}"[:200]))
     v_line, f_line = tok.line[is_v], tok.line[is_f]
-    if len(f_line) > MAX_FACES or len(v_line) > MAX_VERTICES:
-        raise MeshFileError(f"{len(f_line):,} faces and {len(v_line):,} vertices; weave-cut "
-                            f"reads at most {MAX_FACES:,} faces and {MAX_VERTICES:,} vertices")
     points = _obj_vertices(tok, tok.first[is_v], tok.count[is_v] - 1, v_line, errors)
     sizes = tok.count[is_f] - 1
     indices = _obj_faces(tok, tok.first[is_f], sizes, f_line, errors)
     if errors:
         raise MeshFileError(min(errors)[2])
-    if not len(f_line):
-        raise MeshFileError("no faces ('f' lines) found")
-    seen = np.repeat(np.searchsorted(v_line, f_line), sizes)  # vertices defined before
-    bad = (indices == 0) | (np.abs(indices) > seen)
-    if bad.any():
-        k = int(np.flatnonzero(bad)[0])
+    seen = np.repeat(n_vertices + np.searchsorted(v_line, f_line), sizes)  # defined before
+    bad = np.flatnonzero((indices == 0) | (np.abs(indices) > seen))
+    wrong = ""
+    if len(bad):
+        k = bad[0]
         f = int(np.searchsorted(np.cumsum(sizes), k, side="right"))
-        raise MeshFileError(f"line {f_line[f]}: face index {indices[k]} refers to no vertex "
-                            f"({seen[k]} defined so far)")
-    vertices, remark = _in_plane(points, v_line)
-    offsets = np.concatenate([[0], np.cumsum(sizes)])
+        wrong = (f"line {f_line[f]}: face index {indices[k]} refers to no vertex "
+                 f"({seen[k]} defined so far)")
     corners = np.where(indices > 0, indices - 1, seen + indices).astype(np.int32)
-    mesh = Mesh.trusted(vertices, offsets, corners)
-    numbering = Numbering(first=1, face_lines=f_line)
-    check_structure(mesh, numbering)
-    return mesh, numbering, remark
+    return _Part(v_line, points, f_line, sizes, corners, wrong)
 
 
 def _obj_vertices(tok: _Tokens, first, n_numbers, lines, errors) -> np.ndarray:
@@ -377,6 +509,9 @@ def _obj_vertices(tok: _Tokens, first, n_numbers, lines, errors) -> np.ndarray:
 def _obj_faces(tok: _Tokens, first, sizes, lines, errors) -> np.ndarray:
     """Vertex indices of the ``f`` lines as written (``i/t/n`` gives i); appends line errors
     (an index of more than 16 digits is too large)."""
+    plain = _plain_indices(tok, first, sizes) if len(first) else None
+    if plain is not None:
+        return plain
     token = np.repeat(first + 1 - np.cumsum(sizes) + sizes, sizes) + np.arange(sizes.sum())
     start, end = tok.start[token], tok.end[token]
     slash = np.flatnonzero(tok.buf == ord("/"))
@@ -395,6 +530,25 @@ def _obj_faces(tok: _Tokens, first, sizes, lines, errors) -> np.ndarray:
         number = number if len(number) <= 40 else number[:37] + "..."
         errors.append((lines[i], 1, f"line {lines[i]}: face index {number} is too large"))
     return values
+
+
+def _plain_indices(tok: _Tokens, first, sizes) -> np.ndarray | None:
+    """The indices of ``f`` lines that follow one another and hold nothing but whole numbers
+    of up to 16 bytes, read by numpy's C parser; None for any other lines (it stops at the
+    first byte that continues no number and is no space, and warns)."""
+    t0, t1 = first[0], first[-1] + sizes[-1] + 1
+    if t1 - t0 != len(first) + sizes.sum() or (tok.end[t0:t1] - tok.start[t0:t1]).max() > 16:
+        return None
+    a = tok.start[t0]
+    text = tok.buf[a:tok.end[t1 - 1]].copy()
+    text[tok.start[first] - a] = ord(" ")  # the statements
+    with warnings.catch_warnings():  # numpy 2.4 raises where a number ends in other bytes,
+        warnings.simplefilter("error")  # older versions warn (and may split "1-2": counted)
+        try:
+            values = np.fromstring(text.tobytes(), dtype=np.int64, sep=" ")
+        except (DeprecationWarning, ValueError):
+            return None
+    return values if len(values) == sizes.sum() else None
 
 
 # the axis each plane is constant in, its name, and (u, v) seen from the positive axis

@@ -151,13 +151,13 @@ def load_mesh(spec: str, allow_nonconvex: bool = False, flat: str | None = None)
     """A built-in input by name, or a mesh file or drawing, validated; no output may replace
     the file. A drawing (.svg, .dxf) is read with the options of ``drawing_options``, which
     the running command keeps in its context. With ``flat`` (what needs a flat mesh) a
-    surface in space is refused."""
-    from ..mesh_io import read_valid_mesh
-    from ..validation import validate
-
+    surface in space is refused. Built-in inputs are valid as built (a test validates each),
+    so they skip the validation and its imports."""
     if (inputs.is_builtin(spec) or not Path(spec).suffix) and not Path(spec).exists():
-        mesh = validate(inputs.get(spec), allow_nonconvex=allow_nonconvex)
+        mesh = inputs.get(spec)
     else:
+        from ..mesh_io import read_valid_mesh
+
         protect(spec)
         ctx = click.get_current_context(silent=True)
         drawing = ctx.meta.get(DRAWING_KEY, {}) if ctx else {}
