@@ -166,8 +166,8 @@ def _polygons(mesh: Mesh, faces: NDArray[np.int64]) -> NDArray[np.object_]:
 
 
 def _check_boundary_vertices_outside(mesh: Mesh, corners: _Corners, boundary, n: Numbering):
-    """No boundary vertex lies inside a face: a k-d tree of the boundary vertices finds those
-    in each face's circumscribing circle (centred on the vertex mean), GEOS decides them."""
+    """No boundary vertex lies inside a face: a k-d tree of the boundary vertices finds the faces
+    whose circumscribing circle (centred on the vertex mean) holds one, GEOS decides those."""
     starts = mesh.face_offsets[:-1]
     k = mesh.face_sizes
     cx = np.add.reduceat(corners.x, starts) / k
@@ -180,16 +180,14 @@ def _check_boundary_vertices_outside(mesh: Mesh, corners: _Corners, boundary, n:
     near = np.flatnonzero(nearest <= radius)
     if not len(near):
         return
-    hits = tree.query_ball_point(centres[near], radius[near])
-    counts = np.fromiter(map(len, hits), dtype=np.int64, count=len(hits))
-    point = boundary[np.concatenate(hits).astype(np.int64)]
-    face = np.repeat(near, counts)
-    inside = shapely.within(shapely.points(mesh.vertices[point]),
-                            np.repeat(_polygons(mesh, near), counts))
-    if inside.any():
-        first = np.lexsort((face[inside], point[inside]))[0]
-        raise MeshError(f"{n.vertex(point[inside][first])} lies inside "
-                        f"{n.face(face[inside][first])} (faces overlap)")
+    # boxes first (a thin face's circle holds many boundary vertices, its box few), then GEOS
+    points = shapely.STRtree(shapely.points(mesh.vertices[boundary]))
+    which, hit = points.query(_polygons(mesh, near), predicate="contains_properly")
+    if len(hit):
+        face, point = near[which], boundary[hit]
+        first = np.lexsort((face, point))[0]
+        raise MeshError(f"{n.vertex(point[first])} lies inside {n.face(face[first])} "
+                        "(faces overlap)")
 
 
 THINNEST = 1e-3  # isoperimetric quotient 4 pi A / P^2 of the thinnest face a layout accepts
