@@ -409,3 +409,19 @@ def test_an_id_on_a_leader_plate_must_point_at_its_strand(target):
     record = sheet_checks(bad_book, 1)[before]
     assert record["text"] == a.text
     assert ("outside its strand" in record["broken"]) == (target == "other")
+
+
+def test_the_first_refusal_names_the_size_that_passes_every_check():
+    """A hexagon at level 1: strips hold from 12 mm tiles, labels read from 14 mm. Tiles of 5 mm
+    are refused for the strips, and the message already names the size where the labels read too:
+    that size builds, a mm less is refused for the labels."""
+    from weavecut.papermodel.book import SizeError, strip_need
+    ws = snub_weaves(subdivide(hexagon(), 1))
+    pal = palette("maritime-12")
+    with pytest.raises(SizeError, match="tear") as thin:
+        strand_book(ws, pal, tile_size=5.0)
+    need = float(re.search(r"--tile-size ([\d.]+)mm", str(thin.value)).group(1))
+    assert need > strip_need(ws[-1])
+    assert report(strand_book(ws, pal, tile_size=need))["label_violations"] == 0
+    with pytest.raises(SizeError, match="labels"):
+        strand_book(ws, pal, tile_size=need - 1)
