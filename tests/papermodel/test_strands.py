@@ -425,3 +425,27 @@ def test_the_first_refusal_names_the_size_that_passes_every_check():
     assert report(strand_book(ws, pal, tile_size=need))["label_violations"] == 0
     with pytest.raises(SizeError, match="labels"):
         strand_book(ws, pal, tile_size=need - 1)
+
+
+def test_a_split_strips_part_number_keeps_clear_of_its_id():
+    """The house at 40 cm: strip A10 is printed in two parts and its part number ("1/2") is
+    wanted where its ID already is; it must move (onto a plate over the neighbours) rather than
+    print over the ID (it did before)."""
+    from weavecut.layout.labels import text_box
+    from weavecut.papermodel.book import labelled_pieces, tile_size_for
+    from weavecut.papermodel.pages import PageArea
+    from pathlib import Path
+    from weavecut.mesh_io import read_valid_mesh
+    house = Path(__file__).resolve().parents[2] / "examples" / "house.obj"
+    ws = snub_weaves(subdivide(read_valid_mesh(house), 2))
+    w = ws[-1]
+    plan = plan_modules(w, heading=-np.pi / 2)
+    pieces, _ = labelled_pieces(w, plan, copy_colours(plan, palette("maritime-4")),
+                                tile_size_for(w, 400.0), "mixed", PageArea(210.0, 297.0, 10.0))
+    split = [p for p in pieces if " " in p.label]
+    assert split
+    for p in split:
+        boxes = [text_box(t) for t in p.texts]
+        for i, a in enumerate(boxes):
+            for b in boxes[i + 1:]:
+                assert shapely.intersection(a, b).area < 1e-6, (p.label, p.texts)
