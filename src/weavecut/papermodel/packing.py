@@ -223,9 +223,12 @@ def _fill(units, shapes, kinds, options, area, nx: int, ny: int, cell: float, fi
 def _best_spot(grid: "_Page", options):
     """((iy, ix), angle, mask, origin) of the place on ``grid``, among the turns in ``options``,
     with the least right edge, then the lowest (columns from the left); None if the piece fits
-    nowhere."""
+    nowhere. The turns go narrowest first, so the turns that cannot beat the best right edge
+    found (they are wider than it) are left untried."""
     best, best_key = None, None
     for angle, mask, origin in options:  # the allowed turns
+        if best_key is not None and best_key < (mask.shape[1], 0):
+            break
         free = grid.correlate(mask) < 0.5
         if not free.any():
             continue
@@ -238,15 +241,16 @@ def _best_spot(grid: "_Page", options):
 
 
 class _Options(list):
-    """The turns (angle, mask, origin) of ``shape`` (a piece or stack), with what every turn
-    needs of a page: ``cells`` free cells, and a free disc of ``radius`` cells. The cells within
+    """The turns (angle, mask, origin) of ``shape`` (a piece or stack), narrowest first, with
+    what every turn needs of a page: ``cells`` free cells, and a free disc of ``radius`` cells.
+    The cells within
     ``reach`` of the piece are in its mask, so the centres within ``r + reach`` of the centre of
     its largest inscribed circle (radius ``r``) are, and the mask's cell nearest that centre is at
     least ``(r + reach) / cell - sqrt(1 / 2)`` cells from any cell outside the mask, at any
     turn."""
 
     def __init__(self, turns, shape, reach: float, cell: float):
-        super().__init__(turns)
+        super().__init__(sorted(turns, key=lambda t: (t[1].shape[1], t[0])))  # narrowest first
         self.cells = float(turns[0][1].sum()) if turns else 0.0
         with np.errstate(all="ignore"):  # GEOS on subnormal coordinates
             r = float(shapely.length(shapely.maximum_inscribed_circle(shape, 0.1 * cell)))
