@@ -74,3 +74,22 @@ def test_a_piece_goes_into_the_hole_it_fits(turn):
     x0, y0, x1, y1 = frame.bounds
     places = pack([frame, strip], x1 - x0 + 3.0, y1 - y0 + 3.0, 2.0)
     assert [p.page for p in places] == [0, 0]
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(1, 9), st.integers(1, 9), st.integers(0, 12), st.integers(0, 12),
+       st.integers(0, 2), st.integers(0, 2))
+def test_the_block_test_never_refuses_a_place_that_fits(h, w, y, x, dh, dw):
+    """A page taken everywhere but a free window (``dh``, ``dw`` cells larger than the mask, at
+    any offset, odd or even): wherever the mask fits cell by cell (checked by brute force), the
+    quick test on 2 x 2 blocks must not say it fits nowhere."""
+    from scipy.signal import correlate2d
+    from weavecut.papermodel.packing import _core, _Page
+    page = _Page(24, 24, {})
+    page.cells[:] = 1.0
+    page.cells[y:y + h + dh, x:x + w + dw] = 0.0
+    mask = np.ones((h, w))
+    mask[0, 0] = 0.0 if h > 1 and w > 1 else 1.0  # not a plain rectangle
+    fits = (correlate2d(page.cells, mask, mode="valid") < 0.5).any()
+    assert fits  # the window holds it
+    assert page.could_fit(_core(mask))

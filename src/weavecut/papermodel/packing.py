@@ -226,9 +226,11 @@ def _best_spot(grid: "_Page", options):
     nowhere. The turns go narrowest first, so the turns that cannot beat the best right edge
     found (they are wider than it) are left untried."""
     best, best_key = None, None
-    for angle, mask, origin in options:  # the allowed turns
+    for (angle, mask, origin), core in zip(options, options.cores):  # the allowed turns
         if best_key is not None and best_key < (mask.shape[1], 0):
             break
+        if not grid.could_fit(core):
+            continue
         free = grid.correlate(mask) < 0.5
         if not free.any():
             continue
@@ -251,11 +253,30 @@ class _Options(list):
 
     def __init__(self, turns, shape, reach: float, cell: float):
         super().__init__(sorted(turns, key=lambda t: (t[1].shape[1], t[0])))  # narrowest first
+        self.cores = [_core(m) for _, m, _ in self]
         self.cells = float(turns[0][1].sum()) if turns else 0.0
         with np.errstate(all="ignore"):  # GEOS on subnormal coordinates
             r = float(shapely.length(shapely.maximum_inscribed_circle(shape, 0.1 * cell)))
         r = min(np.nan_to_num(r), np.sqrt(shape.area / np.pi))  # no circle beats the area
         self.radius = (r + reach) / cell - np.sqrt(0.5)
+
+
+def _core(mask):
+    """The 2 x 2 blocks of cells that hold a cell of ``mask`` wherever it sits on the grid of
+    blocks (at each of the four parities of its place), trimmed to their bounding box; None if
+    there are none."""
+    my, mx = mask.shape
+    h, w = (my + 2) // 2, (mx + 2) // 2
+    core = np.ones((h, w), dtype=bool)
+    for py in (0, 1):  # the parities of the place
+        for px in (0, 1):
+            grid = np.zeros((2 * h, 2 * w), dtype=bool)
+            grid[py:py + my, px:px + mx] = mask > 0.5
+            core &= grid.reshape(h, 2, w, 2).any(axis=(1, 3))
+    rows, cols = np.flatnonzero(core.any(axis=1)), np.flatnonzero(core.any(axis=0))
+    if not len(rows):
+        return None
+    return core[rows[0]:rows[-1] + 1, cols[0]:cols[-1] + 1].astype(np.float64)
 
 
 def _inscribed(mask) -> float:
@@ -271,7 +292,7 @@ class _Page:
         self.cells = np.zeros((ny, nx), dtype=np.float32)
         self.spectra = spectra  # mask spectra, shared by the pages of one packing
         self.shape = (next_fast_len(ny), next_fast_len(nx))  # no wrap where it is read
-        self._fft = self._room = None
+        self._fft = self._room = self._blocks = None
 
     def may_hold(self, options: _Options) -> bool:
         """False when no turn in ``options`` can fit anywhere: too few free cells, or no free
@@ -282,9 +303,24 @@ class _Page:
             self._room = _inscribed(self.cells < 0.5)
         return self._room >= options.radius - 1e-9
 
+    def could_fit(self, core) -> bool:
+        """False when a mask whose :func:`_core` is ``core`` fits nowhere, found on the grid of
+        2 x 2 blocks (a quarter of the work): a block is taken when all its cells are, and a
+        mask that fits leaves every block of its core with a free cell."""
+        if core is None:
+            return True
+        if self._blocks is None:
+            ny, nx = self.cells.shape
+            taken = np.pad(self.cells >= 0.5, ((0, ny % 2), (0, nx % 2)), constant_values=True)
+            blocks = _Page(*(np.array(taken.shape) // 2), self.spectra)
+            blocks.cells = taken.reshape(len(taken) // 2, 2, -1, 2).all(axis=(1, 3)).astype(
+                np.float32)
+            self._blocks = blocks
+        return bool((self._blocks.correlate(core) < 0.5).any())
+
     def add(self, mask, iy: int, ix: int) -> None:
         self.cells[iy:iy + mask.shape[0], ix:ix + mask.shape[1]] += mask
-        self._fft = self._room = None
+        self._fft = self._room = self._blocks = None
 
     def correlate(self, mask):
         """sum over (i, j) of cells[y + i, x + j] * mask[i, j] for every (y, x) where the mask
