@@ -6,8 +6,10 @@ no cell are at least ``gap`` apart (a point nearer than ``gap / 2`` to both woul
 cell in both masks), and a piece grown by ``gap / 2`` lies inside the union of its mask's cells,
 so a mask may reach ``gap / 2`` beyond the packing area. Where a mask fits on a page's occupancy
 grid is one FFT correlation per angle (the page's transform is kept and the masks' are cached,
-so each try is one inverse FFT); pages are skipped without one when they have too few free
-cells or no free disc as large as the piece's.
+so each try is one inverse FFT). Cheaper tests that never refuse a place that fits come first:
+a page with too few free cells or no free disc as large as the piece's is skipped, a turn that
+fits nowhere on the page's 2 x 2 blocks is skipped, and turns go narrowest first, so those
+wider than the best right edge found are not tried.
 
 Congruent pieces (the k copies of a module strip, the same ``kind``) are nested into a stack
 first. Stacks go largest first, each on the first page with room (first fit), where its right
