@@ -7,6 +7,8 @@ import math
 
 import numpy as np
 import shapely
+import pytest
+import shapely.affinity
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -58,3 +60,36 @@ def test_congruent_strips_nest_and_share_a_page_densely():
         shapely.transform(strip, lambda xy, m=p.matrix(): xy @ m[:2, :2].T + m[:2, 2])
         for p in places]))
     assert 8 * strip.area / hull.area > 0.6
+
+
+@pytest.mark.parametrize("turn", [0.0, 30.0])
+def test_a_piece_goes_into_the_hole_it_fits(turn):
+    """A frame filling most of the page holds a hole a little larger than a strip (turned by
+    ``turn``): the strip goes into the hole, so one page holds both (a page must not be passed
+    over as full while it still has room; the quick page tests only skip pages that cannot hold
+    the piece)."""
+    strip = shapely.affinity.rotate(shapely.box(0.0, 0.0, 40.0, 8.0), turn, origin="centroid")
+    hole = shapely.buffer(strip, 4.5, join_style="mitre")
+    frame = shapely.box(*shapely.buffer(hole, 12.0).bounds).difference(hole)
+    x0, y0, x1, y1 = frame.bounds
+    places = pack([frame, strip], x1 - x0 + 3.0, y1 - y0 + 3.0, 2.0)
+    assert [p.page for p in places] == [0, 0]
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.integers(1, 9), st.integers(1, 9), st.integers(0, 12), st.integers(0, 12),
+       st.integers(0, 2), st.integers(0, 2))
+def test_the_block_test_never_refuses_a_place_that_fits(h, w, y, x, dh, dw):
+    """A page taken everywhere but a free window (``dh``, ``dw`` cells larger than the mask, at
+    any offset, odd or even): wherever the mask fits cell by cell (checked by brute force), the
+    quick test on 2 x 2 blocks must not say it fits nowhere."""
+    from scipy.signal import correlate2d
+    from weavecut.papermodel.packing import _core, _Page
+    page = _Page(24, 24, {})
+    page.cells[:] = 1.0
+    page.cells[y:y + h + dh, x:x + w + dw] = 0.0
+    mask = np.ones((h, w))
+    mask[0, 0] = 0.0 if h > 1 and w > 1 else 1.0  # not a plain rectangle
+    fits = (correlate2d(page.cells, mask, mode="valid") < 0.5).any()
+    assert fits  # the window holds it
+    assert page.could_fit(_core(mask))

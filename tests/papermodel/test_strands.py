@@ -8,13 +8,14 @@ from functools import lru_cache
 import numpy as np
 import pytest
 import shapely
+import shapely.ops
 from click.testing import CliRunner
 
 from weavecut import export, inputs
 from weavecut.layout.drawing import Polylines
 from weavecut.papermodel.pages import GAP, occupied
 from weavecut.papermodel.book import strand_book
-from weavecut.papermodel.checks import report, text_checks
+from weavecut.papermodel.checks import report, sheet_checks, text_checks
 from weavecut.papermodel.strips import build_strips, copy_colours, model_tiles, plan_modules
 from weavecut.papermodel.symmetry import rotate, rotation_group, strand_orbits, tile_centres
 from weavecut.mesh import Mesh
@@ -208,8 +209,8 @@ def test_every_label_is_readable(name):
     """Upright, >= 2.5 mm, inside its strip's cut line, on one fill with contrast >= 4.5, no
     overlaps (checked over the Drawing by text_checks, an oracle apart from the placement)."""
     book = BOOKS[name]()
-    for n, sheet in enumerate(book.drawing.sheets, start=1):
-        records = text_checks(sheet, book.area.box if n in book.strip_pages else None)
+    for n in range(1, len(book.drawing.sheets) + 1):
+        records = sheet_checks(book, n)
         assert records
         bad = [r for r in records if r["broken"]]
         assert not bad, bad[:5]
@@ -345,3 +346,106 @@ def test_size_sets_the_finished_width(tmp_path):
     w = weaves("square-grid:2x2", 2)[-1]
     from weavecut.papermodel.book import tile_size_width
     assert tile_size_width(w, rep["tile_size_mm"]) == pytest.approx(140.0, rel=1e-3)
+
+
+def test_assembly_ids_lie_on_their_strands_and_on_the_sheet():
+    """Plant the bugs on page 1: two IDs swapped (each now lies on another strand's colour) and
+    one moved into the margin; the checks name each, and the book as drawn has none."""
+    from dataclasses import replace as moved
+    from weavecut.layout.drawing import Layer, Sheet
+    book = small_book()
+    assert not [r for r in sheet_checks(book, 1) if r["broken"]]
+    colour = dict(zip(book.plan.labels, book.colours))
+    sheet = book.drawing.sheets[0]
+    ids = next(layer for layer in sheet.layers if layer.name == "ids").shapes
+    a = ids[0]
+    b = next(t for t in ids if colour[t.text] != colour[a.text])
+    c = next(t for t in ids if t.text not in (a.text, b.text))
+    margin = moved(c, x=book.area.margin / 2, y=book.area.height / 2)
+    planted = {id(a): moved(a, text=b.text), id(b): moved(b, text=a.text), id(c): margin}
+    texts = tuple(planted.get(id(t), t) for t in ids)
+    layers = tuple(Layer("ids", "label", texts) if layer.name == "ids" else layer
+                   for layer in sheet.layers)
+    bad_book = moved(book, drawing=moved(book.drawing, sheets=(
+        Sheet(sheet.width, sheet.height, layers),) + book.drawing.sheets[1:]))
+    broken: dict = {}
+    for r in sheet_checks(bad_book, 1):
+        broken.setdefault(r["text"], set()).update(r["broken"])
+    assert "outside its strand" in broken[a.text] and "outside its strand" in broken[b.text]
+    assert "off the sheet" in broken[margin.text]
+    assert report(bad_book)["label_violations"] >= 3
+
+
+@pytest.mark.parametrize("target", ["own", "other"])
+def test_an_id_on_a_leader_plate_must_point_at_its_strand(target):
+    """An ID moved onto a white plate beside the pattern passes when the plate's leader line ends
+    on its strand, and is caught when the line ends on a strand of another colour."""
+    from dataclasses import replace as moved
+    from weavecut.layout.drawing import Layer, Sheet, Style, Text, polygons_from_shapely
+    from weavecut.layout.labels import text_box
+    book = small_book()
+    colour = dict(zip(book.plan.labels, book.colours))
+    sheet = book.drawing.sheets[0]
+    ids = next(layer for layer in sheet.layers if layer.name == "ids").shapes
+    a = ids[0]
+    b = next(t for t in ids if colour[t.text] != colour[a.text])
+    end = text_box(a if target == "own" else b).centroid
+    label = moved(a, x=a.x + 12.0, y=a.y + 12.0, fill="#000000")
+    plate = shapely.buffer(text_box(label), 0.8, join_style="mitre")
+    near = shapely.ops.nearest_points(plate, end)[0]
+    extra = Layer("leader", "paint", (
+        polygons_from_shapely([plate], Style("#333333", 0.15, "#ffffff")),
+        Polylines(np.array([[near.x, near.y], [end.x, end.y]]), np.array([0, 2]))))
+    layers = []
+    for layer in sheet.layers:
+        if layer.name == "ids":
+            layers += [extra, Layer("ids", "label", (label,) + ids[1:])]
+        else:
+            layers.append(layer)
+    before = sum(isinstance(t, Text) for layer in layers[:layers.index(extra) + 1]
+                 for t in layer.shapes)
+    bad_book = moved(book, drawing=moved(book.drawing, sheets=(
+        Sheet(sheet.width, sheet.height, tuple(layers)),) + book.drawing.sheets[1:]))
+    record = sheet_checks(bad_book, 1)[before]
+    assert record["text"] == a.text
+    assert ("outside its strand" in record["broken"]) == (target == "other")
+
+
+def test_the_first_refusal_names_the_size_that_passes_every_check():
+    """A hexagon at level 1: strips hold from 12 mm tiles, labels read from 14 mm. Tiles of 5 mm
+    are refused for the strips, and the message already names the size where the labels read too:
+    that size builds, a mm less is refused for the labels."""
+    from weavecut.papermodel.book import SizeError, strip_need
+    ws = snub_weaves(subdivide(hexagon(), 1))
+    pal = palette("maritime-12")
+    with pytest.raises(SizeError, match="tear") as thin:
+        strand_book(ws, pal, tile_size=5.0)
+    need = float(re.search(r"--tile-size ([\d.]+)mm", str(thin.value)).group(1))
+    assert need > strip_need(ws[-1])
+    assert report(strand_book(ws, pal, tile_size=need))["label_violations"] == 0
+    with pytest.raises(SizeError, match="labels"):
+        strand_book(ws, pal, tile_size=need - 1)
+
+
+def test_a_split_strips_part_number_keeps_clear_of_its_id():
+    """The house at 40 cm: strip A10 is printed in two parts and its part number ("1/2") is
+    wanted where its ID already is; it must move (onto a plate over the neighbours) rather than
+    print over the ID (it did before)."""
+    from weavecut.layout.labels import text_box
+    from weavecut.papermodel.book import labelled_pieces, tile_size_for
+    from weavecut.papermodel.pages import PageArea
+    from pathlib import Path
+    from weavecut.mesh_io import read_valid_mesh
+    house = Path(__file__).resolve().parents[2] / "examples" / "house.obj"
+    ws = snub_weaves(subdivide(read_valid_mesh(house), 2))
+    w = ws[-1]
+    plan = plan_modules(w, heading=-np.pi / 2)
+    pieces, _ = labelled_pieces(w, plan, copy_colours(plan, palette("maritime-4")),
+                                tile_size_for(w, 400.0), "mixed", PageArea(210.0, 297.0, 10.0))
+    split = [p for p in pieces if " " in p.label]
+    assert split
+    for p in split:
+        boxes = [text_box(t) for t in p.texts]
+        for i, a in enumerate(boxes):
+            for b in boxes[i + 1:]:
+                assert shapely.intersection(a, b).area < 1e-6, (p.label, p.texts)

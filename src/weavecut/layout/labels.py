@@ -14,6 +14,8 @@ box in either format.
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 import shapely
 from reportlab.pdfbase.pdfmetrics import stringWidth
@@ -54,8 +56,10 @@ def text_box(t: Text) -> shapely.Polygon:
     return shapely.Polygon(_turn(corners, t.angle, (t.x, t.y)))
 
 
+@lru_cache(maxsize=4096)
 def unit_box(text: str, angle: float) -> shapely.Polygon:
-    """``text``'s box at cap height 1, centred on the origin, turned by ``angle`` degrees."""
+    """``text``'s box at cap height 1, centred on the origin, turned by ``angle`` degrees (kept:
+    labels ask for the same few boxes many times)."""
     x0, y0, x1, y1 = _box_in_frame(text, 1.0, "middle")
     mid = (y0 + y1) / 2
     corners = np.array([[x0, y0 - mid], [x1, y0 - mid], [x1, y1 - mid], [x0, y1 - mid]])

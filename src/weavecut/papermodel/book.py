@@ -100,19 +100,33 @@ def tile_size_for(weave: Weave, width: float) -> float:
     return width / float(np.ptp(weave.mesh.vertices[:, 0])) * octagon_size(weave)
 
 
-def check_strip_width(weave: Weave, tile_size: float) -> tuple[float, tuple[str, ...]]:
-    """(strip width mm, warnings); raises SizeError below ``MIN_STRIP``."""
-    ratio = strip_width(weave) / octagon_size(weave)
-    width = tile_size * ratio
+def strip_need(weave: Weave) -> float:
+    """The smallest tile size (mm, in half mm) whose strips are ``MIN_STRIP`` wide."""
+    return math.ceil(MIN_STRIP / (strip_width(weave) / octagon_size(weave)) * 2) / 2
+
+
+def check_strip_width(weave: Weave, tile_size: float,
+                      passes=None) -> tuple[float, tuple[str, ...]]:
+    """(strip width mm, warnings); raises SizeError below ``MIN_STRIP``, naming the smallest tile
+    size whose strips are wide enough, or ``passes(that size)`` (the size where the other checks
+    pass too)."""
+    width = tile_size * strip_width(weave) / octagon_size(weave)
     if width < MIN_STRIP - 1e-9:
-        need = math.ceil(MIN_STRIP / ratio * 2) / 2
-        size = math.ceil(tile_size_width(weave, need) / 10)
+        hold = strip_need(weave)
+        need = hold if passes is None else passes(hold)
+        why = "" if need == hold else (f"; strips hold from {hold:g}mm, labels reach "
+                                        f"{MIN_CAP:g} mm from {need:g}mm")
         raise SizeError(f"strips would be {width:.1f} mm wide and tear (paper section 5.2): "
-                        f"use --tile-size {need:g}mm or more (--size {size}cm or more)")
+                        f"{_use(weave, need)}{why}")
     if width < WARN_STRIP:
         return width, (f"strips are {width:.1f} mm wide: thin strips tear easily; "
                        f"{WARN_STRIP:g} mm or more is easier to weave",)
     return width, ()
+
+
+def _use(weave: Weave, need: float) -> str:
+    return (f"use --tile-size {need:g}mm or more "
+            f"(--size {math.ceil(tile_size_width(weave, need) / 10)}cm or more)")
 
 
 def tile_size_width(weave: Weave, tile_size: float) -> float:
@@ -151,7 +165,6 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
     weave = weaves[-1]
     area = PageArea(page[0], page[1], margin, limit)
     area.check()
-    width, warnings = check_strip_width(weave, tile_size)
     plan = plan_modules(weave, heading=-np.pi / 2 - turn)
     if not pal.shaded:
         colours = copy_colours(plan, pal)
@@ -159,14 +172,15 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         colours = orbit_colours(weaves, plan, pal)
     else:
         colours = copy_family_colours(weave, plan, pal)
+    width, warnings = check_strip_width(weave, tile_size, lambda t: smallest_tile_size(
+        weave, plan, colours, t, layout, area))
     scale = tile_size / octagon_size(weave)
     pieces, kinds = labelled_pieces(weave, plan, colours, tile_size, layout, area)
-    small = min((t.size for p in pieces for t in p.texts), default=MIN_CAP)
-    if small < MIN_CAP - 1e-6:
+    if not _reads(pieces):
+        small = min(t.size for p in pieces for t in p.texts)
         need = smallest_tile_size(weave, plan, colours, tile_size, layout, area)
         raise SizeError(f"some labels would be {small:.1f} mm tall at --tile-size {tile_size:.1f}mm"
-                        f"; labels need {MIN_CAP:g} mm: use --tile-size {need:g}mm or more "
-                        f"(--size {math.ceil(tile_size_width(weave, need) / 10)}cm or more)")
+                        f"; labels need {MIN_CAP:g} mm: {_use(weave, need)}")
 
     if layout == "module":
         def subtitle(names):
@@ -243,15 +257,20 @@ def labelled_pieces(weave: Weave, plan: ModulePlan, colours, tile_size: float, l
     return [label_strip(p, tile_size) for p in pieces], kinds
 
 
-def smallest_tile_size(weave: Weave, plan: ModulePlan, colours, tile_size: float, layout: str,
+def _reads(pieces: list[Strip]) -> bool:
+    return min((x.size for p in pieces for x in p.texts), default=MIN_CAP) >= MIN_CAP - 1e-6
+
+
+def smallest_tile_size(weave: Weave, plan: ModulePlan, colours, start: float, layout: str,
                        area: PageArea) -> float:
-    """The smallest tile size (whole mm, above ``tile_size``) at which every label reaches
+    """The smallest tile size, ``start`` or a whole mm above it, at which every label reaches
     ``MIN_CAP``: grown by a quarter until it works, then bisected."""
     def reads(t: float) -> bool:
-        pieces, _ = labelled_pieces(weave, plan, colours, t, layout, area)
-        return min((x.size for p in pieces for x in p.texts), default=MIN_CAP) >= MIN_CAP - 1e-6
+        return _reads(labelled_pieces(weave, plan, colours, t, layout, area)[0])
 
-    low, high = math.floor(tile_size), math.ceil(tile_size * 1.25)
+    if reads(start):
+        return start
+    low, high = math.floor(start), math.ceil(start * 1.25)
     while not reads(high):  # a few sizes
         low, high = high, math.ceil(high * 1.25)
     while high - low > 1:

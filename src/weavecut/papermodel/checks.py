@@ -3,8 +3,10 @@ reports and the tests hold.
 
 A text is readable when it is at least ``MIN_CAP`` tall, reads upright (angle in (-90, 90]),
 lies wholly on the one fill under its centre with nothing drawn over it, overlaps no other text,
-has a contrast of at least ``MIN_CONTRAST`` with that fill, and, on a strip page, lies inside a
-strip's cut outline (strip labels) or outside the printable box (page furniture).
+has a contrast of at least ``MIN_CONTRAST`` with that fill, lies on the sheet inside its
+margins, and, on a strip page, lies inside a strip's cut outline (strip labels) or outside the
+printable box (page furniture). On the assembly sheet every strand ID lies on its strand's fill,
+or on a white plate whose leader line ends on that fill.
 """
 
 from __future__ import annotations
@@ -12,7 +14,7 @@ from __future__ import annotations
 import shapely
 
 from ..layout.contrast import MIN_CONTRAST, contrast_ratio
-from ..layout.drawing import Polygons, Sheet, Text
+from ..layout.drawing import Polygons, Polylines, Sheet, Text
 from ..layout.labels import MIN_CAP, text_box
 
 PAPER = "#ffffff"
@@ -36,11 +38,20 @@ def _painted(sheet: Sheet) -> tuple[list, list[str]]:
     return polys, fills
 
 
-def text_checks(sheet: Sheet, box=None) -> list[dict]:
+def _fill_at(polys, fills, tree, point) -> str:
+    """The fill drawn last at ``point`` (the paper's where nothing is)."""
+    hits = [j for j in sorted(tree.query(point)) if polys[j].covers(point)] if tree else []
+    return fills[hits[-1]] if hits else PAPER
+
+
+def text_checks(sheet: Sheet, box=None, inner=None, strands=None) -> list[dict]:
     """One record per text: size, contrast, and the rules it breaks (empty when readable).
 
     ``box`` is the printable box of a strip page: texts of the "labels" layer must then lie inside
-    a cut outline, every other text outside the box."""
+    a cut outline, every other text outside the box. ``inner`` (x0, y0, x1, y1): the sheet inside
+    its margins, where every text must lie. ``strands`` maps a strand's ID to its fill: a text of
+    the "ids" layer (the assembly sheet) naming a strand must lie on that fill, or on a white
+    plate whose leader line ends on it."""
     polys, fills = _painted(sheet)
     tree = shapely.STRtree(polys) if polys else None
     cuts = [g for layer in sheet.layers if layer.role == "cut" for s in layer.shapes
@@ -49,6 +60,8 @@ def text_checks(sheet: Sheet, box=None) -> list[dict]:
              if isinstance(t, Text)]
     boxes = [text_box(t) for _, t in texts]
     text_tree = shapely.STRtree(boxes) if boxes else None
+    leaders = [(line[0], line[-1]) for layer in sheet.layers for s in layer.shapes
+               if isinstance(s, Polylines) for line in s.lines() if len(line) == 2]
     out = []
     for i, ((layer, t), b) in enumerate(zip(texts, boxes)):
         broken = []
@@ -72,6 +85,15 @@ def text_checks(sheet: Sheet, box=None) -> list[dict]:
         contrast = contrast_ratio(t.fill, fill)
         if contrast < MIN_CONTRAST:
             broken.append("low contrast")
+        if inner is not None and not shapely.box(*inner).buffer(SLACK).covers(b):
+            broken.append("off the sheet")
+        if strands is not None and layer == "ids" and t.text in strands:
+            want = strands[t.text]
+            on = fill == want or (below >= 0 and fill == PAPER and any(
+                _fill_at(polys, fills, tree, shapely.Point(far)) == want
+                for near, far in leaders if polys[below].distance(shapely.Point(near)) < 1e-6))
+            if not on:
+                broken.append("outside its strand")
         if box is not None:
             inside = shapely.box(*box).buffer(SLACK)
             if layer == "labels" and not any(c.buffer(SLACK).covers(b) for c in cuts):
@@ -82,11 +104,21 @@ def text_checks(sheet: Sheet, box=None) -> list[dict]:
     return out
 
 
+def sheet_checks(book, n: int) -> list[dict]:
+    """:func:`text_checks` of page ``n`` (1-based) of a strand book, with the rules that page
+    has: on a strip page its printable box, on the assembly sheet (page 1) the strands' fills."""
+    area = book.area
+    inner = (area.margin, area.margin, area.width - area.margin, area.height - area.margin)
+    strands = dict(zip(book.plan.labels, book.colours)) if n == 1 else None
+    return text_checks(book.drawing.sheets[n - 1], area.box if n in book.strip_pages else None,
+                       inner, strands)
+
+
 def report(book) -> dict:
     """What ``strands --json`` reports: pages, ink, smallest label, contrast, violations."""
     records = []
     for n, sheet in enumerate(book.drawing.sheets, start=1):
-        records += text_checks(sheet, book.area.box if n in book.strip_pages else None)
+        records += sheet_checks(book, n)
     return {
         "pages": {"strip": len(book.strip_pages), "extra": len(book.extra_pages),
                   "total": len(book.drawing.sheets)},

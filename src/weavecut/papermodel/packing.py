@@ -3,9 +3,13 @@
 Every piece, turned by each allowed angle, becomes a mask on a grid of ``cell`` mm: the cells
 whose centre lies within ``gap / 2 + cell / sqrt(2)`` of the piece. Two pieces whose masks share
 no cell are at least ``gap`` apart (a point nearer than ``gap / 2`` to both would put its
-cell in both masks), and a piece lies inside the union of its mask's cells, so inside the page
-when its mask is. Where a mask fits on a page's occupancy grid is one FFT correlation per
-angle (the page's transform is kept and the masks' are cached, so each try is one inverse FFT).
+cell in both masks), and a piece grown by ``gap / 2`` lies inside the union of its mask's cells,
+so a mask may reach ``gap / 2`` beyond the packing area. Where a mask fits on a page's occupancy
+grid is one FFT correlation per angle (the page's transform is kept and the masks' are cached,
+so each try is one inverse FFT). Cheaper tests that never refuse a place that fits come first:
+a page with too few free cells or no free disc as large as the piece's is skipped, a turn that
+fits nowhere on the page's 2 x 2 blocks is skipped, and turns go narrowest first, so those
+wider than the best right edge found are not tried.
 
 Congruent pieces (the k copies of a module strip, the same ``kind``) are nested into a stack
 first. Stacks go largest first, each on the first page with room (first fit), where its right
@@ -22,6 +26,7 @@ import numpy as np
 import shapely
 from numpy.typing import NDArray
 from scipy.fft import irfft2, next_fast_len, rfft2
+from scipy.ndimage import distance_transform_edt
 
 ANGLE_STEP = 15.0  # degrees between the turns tried
 
@@ -62,7 +67,7 @@ def _mask(shape, angle: float, gap: float, cell: float, width: float, height: fl
     xs = origin[0] + (np.arange(nx) + 0.5) * cell
     ys = origin[1] + (np.arange(ny) + 0.5) * cell
     gx, gy = np.meshgrid(xs, ys)
-    grown = shapely.buffer(turned, reach, quad_segs=4)
+    grown = shapely.buffer(turned, reach / np.cos(np.pi / 16), quad_segs=4)  # holds the disc
     shapely.prepare(grown)
     mask = shapely.contains_xy(grown, gx, gy)
     return mask.astype(np.float64), origin
@@ -70,25 +75,29 @@ def _mask(shape, angle: float, gap: float, cell: float, width: float, height: fl
 
 def nest_offset(shape, gap: float, step: float = 0.25) -> NDArray[np.float64]:
     """(dx, dy): the move that nests a copy of ``shape`` (long axis along x) ``gap`` mm clear of
-    it most tightly: for every slide dx along the axis the least clear dy across it, and of
-    those the one whose pair has the smallest convex hull (congruent wavy strips nest)."""
+    it most tightly: for every slide dx along the axis a clear dy across it, bisected to within
+    ``step`` of one that is not, and of those the one whose pair has the smallest convex hull
+    (congruent wavy strips nest)."""
     x0, y0, x1, y1 = shape.bounds
     slide = min(x1 - x0, 30.0)
     dxs = np.arange(-slide, slide + 1e-9, 1.0)
-    dys = np.arange(0.0, y1 - y0 + gap + step, step)
-    moves = np.array(np.meshgrid(dxs, dys)).reshape(2, -1).T
-    copies = shapely.transform(np.full(len(moves), shape, dtype=object),
-                               lambda xy: xy + np.repeat(moves, len(xy) // len(moves), axis=0))
-    clear = (shapely.distance(shape, copies) >= gap).reshape(len(dys), len(dxs))
-    lowest = np.argmax(clear, axis=0)  # per dx, the first clear dy
-    ok = clear[lowest, np.arange(len(dxs))]
-    cand = np.column_stack([dxs, dys[lowest]])[ok]
-    pairs = shapely.union(shape, copies.reshape(len(dys), len(dxs))[lowest, np.arange(len(dxs))][ok])
-    box = shapely.area(shapely.convex_hull(pairs))
-    return cand[np.lexsort((np.abs(cand[:, 0]), np.round(box, 3)))[0]]
+    low, high = np.zeros_like(dxs), np.full_like(dxs, y1 - y0 + gap)  # overlapping, clear
+
+    def copies(dys):
+        moves = np.column_stack([dxs, dys])
+        return shapely.transform(np.full(len(dxs), shape, dtype=object),
+                                 lambda xy: xy + np.repeat(moves, len(xy) // len(moves), axis=0))
+
+    while (high - low > step).any():  # a few halvings, every slide at once
+        mid = (low + high) / 2
+        clear = shapely.distance(shape, copies(mid)) >= gap
+        low, high = np.where(clear, low, mid), np.where(clear, mid, high)
+    box = shapely.area(shapely.convex_hull(shapely.union(shape, copies(high))))
+    best = np.lexsort((np.abs(dxs), np.round(box, 3)))[0]
+    return np.array([dxs[best], high[best]])
 
 
-def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 1.0,
+def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 0.75,
          kinds=None, angle_step: float = ANGLE_STEP) -> list[Place]:
     """Pack ``shapes`` (shapely polygons, mm) onto as few ``width`` x ``height`` areas as it can.
 
@@ -117,6 +126,8 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 1.
     n = len(shapes)
     kinds = np.arange(n) if kinds is None else np.asarray(kinds)
     angles = np.arange(0.0, 360.0, angle_step).tolist()
+    # a mask reaches gap / 2 beyond its piece: it may reach as far beyond the area's edge
+    width, height = width + gap, height + gap
     nx, ny = int(width // cell), int(height // cell)
     _, first, inverse = np.unique(kinds, return_index=True, return_inverse=True)
     units = []  # (members, move between members)
@@ -127,16 +138,17 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 1.
     masks: dict[tuple, list] = {}
 
     def options(members, move):
-        key = (members[0], len(members))
+        key = (int(kinds[members[0]]), len(members))
         if key not in masks:
             stack = shapely.union_all([shapely.transform(shapes[members[0]],
                                                          lambda xy, j=j: xy + j * move)
                                        for j in range(len(members))])
             half = [(a, _mask(stack, a, gap, cell, width, height)) for a in angles if a < 180]
             # the turn by a + 180 is the turn by a read backwards (the grid is symmetric)
-            masks[key] = [(a, *m) for a, m in half if m is not None] + [
+            turns = [(a, *m) for a, m in half if m is not None] + [
                 (a + 180.0, m[0][::-1, ::-1], -m[1] - np.array(m[0].shape[::-1]) * cell)
                 for a, m in half if m is not None]
+            masks[key] = _Options(turns, stack, gap / 2 + cell * np.sqrt(0.5), cell)
         return masks[key]
 
     def area(unit):
@@ -145,17 +157,17 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 1.
     def rank(r):
         return (max(p.page for p in r), _last_fill(r, shapes))
 
-    best = _fill(units, shapes, options, area, nx, ny, cell, set())
+    best = _fill(units, shapes, kinds, options, area, nx, ny, cell, set())
     first: set = set()
     for _ in range(REPAIRS):  # the last page's pieces go first next time
         last = max(p.page for p in best)
         if last == 0 or _last_fill(best, shapes) > REPAIR_BELOW * width * height:
             break
         first |= {i for i, p in enumerate(best) if p.page == last}
-        again = _fill(units, shapes, options, area, nx, ny, cell, first)
+        again = _fill(units, shapes, kinds, options, area, nx, ny, cell, first)
         if rank(again) < rank(best):
             best = again
-    return best
+    return [Place(p.page, p.angle, (p.shift[0] - gap / 2, p.shift[1] - gap / 2)) for p in best]
 
 
 REPAIRS = 2  # re-packings with the last page's pieces first ...
@@ -167,7 +179,7 @@ def _last_fill(places, shapes) -> float:
     return sum(s.area for p, s in zip(places, shapes) if p.page == last)
 
 
-def _fill(units, shapes, options, area, nx: int, ny: int, cell: float, first):
+def _fill(units, shapes, kinds, options, area, nx: int, ny: int, cell: float, first):
     """Places for every piece: the units (stacks) largest first (those holding a piece in
     ``first`` before all others), first fit."""
     def order(u):
@@ -182,9 +194,9 @@ def _fill(units, shapes, options, area, nx: int, ny: int, cell: float, first):
         members, move = queue.pop(0)
         opts = options(members, move)
         spot = None
-        key = (members[0], len(members))
+        key = (int(kinds[members[0]]), len(members))
         for number, page in enumerate(pages):
-            if opts and (key, number) not in full and page.free >= opts[0][1].sum():
+            if opts and (key, number) not in full and page.may_hold(opts):
                 if (best := _best_spot(page, opts)) is not None:
                     spot = number, best
                     break
@@ -213,9 +225,14 @@ def _fill(units, shapes, options, area, nx: int, ny: int, cell: float, first):
 def _best_spot(grid: "_Page", options):
     """((iy, ix), angle, mask, origin) of the place on ``grid``, among the turns in ``options``,
     with the least right edge, then the lowest (columns from the left); None if the piece fits
-    nowhere."""
+    nowhere. The turns go narrowest first, so the turns that cannot beat the best right edge
+    found (they are wider than it) are left untried."""
     best, best_key = None, None
-    for angle, mask, origin in options:  # the allowed turns
+    for (angle, mask, origin), core in zip(options, options.cores):  # the allowed turns
+        if best_key is not None and best_key < (mask.shape[1], 0):
+            break
+        if not grid.could_fit(core):
+            continue
         free = grid.correlate(mask) < 0.5
         if not free.any():
             continue
@@ -227,6 +244,48 @@ def _best_spot(grid: "_Page", options):
     return best
 
 
+class _Options(list):
+    """The turns (angle, mask, origin) of ``shape`` (a piece or stack), narrowest first, with
+    what every turn needs of a page: ``cells`` free cells, and a free disc of ``radius`` cells.
+    The cells within
+    ``reach`` of the piece are in its mask, so the centres within ``r + reach`` of the centre of
+    its largest inscribed circle (radius ``r``) are, and the mask's cell nearest that centre is at
+    least ``(r + reach) / cell - sqrt(1 / 2)`` cells from any cell outside the mask, at any
+    turn."""
+
+    def __init__(self, turns, shape, reach: float, cell: float):
+        super().__init__(sorted(turns, key=lambda t: (t[1].shape[1], t[0])))  # narrowest first
+        self.cores = [_core(m) for _, m, _ in self]
+        self.cells = float(turns[0][1].sum()) if turns else 0.0
+        with np.errstate(all="ignore"):  # GEOS on subnormal coordinates
+            r = float(shapely.length(shapely.maximum_inscribed_circle(shape, 0.1 * cell)))
+        r = min(np.nan_to_num(r), np.sqrt(shape.area / np.pi))  # no circle beats the area
+        self.radius = (r + reach) / cell - np.sqrt(0.5)
+
+
+def _core(mask):
+    """The 2 x 2 blocks of cells that hold a cell of ``mask`` wherever it sits on the grid of
+    blocks (at each of the four parities of its place), trimmed to their bounding box; None if
+    there are none."""
+    my, mx = mask.shape
+    h, w = (my + 2) // 2, (mx + 2) // 2
+    core = np.ones((h, w), dtype=bool)
+    for py in (0, 1):  # the parities of the place
+        for px in (0, 1):
+            grid = np.zeros((2 * h, 2 * w), dtype=bool)
+            grid[py:py + my, px:px + mx] = mask > 0.5
+            core &= grid.reshape(h, 2, w, 2).any(axis=(1, 3))
+    rows, cols = np.flatnonzero(core.any(axis=1)), np.flatnonzero(core.any(axis=0))
+    if not len(rows):
+        return None
+    return core[rows[0]:rows[-1] + 1, cols[0]:cols[-1] + 1].astype(np.float64)
+
+
+def _inscribed(mask) -> float:
+    """The largest distance (cells) from a cell of ``mask`` to the nearest cell outside it."""
+    return float(distance_transform_edt(np.pad(mask, 1)).max())
+
+
 class _Page:
     """A page's occupancy grid and its Fourier transform, kept in step (one FFT per placed
     piece, one inverse FFT per mask tried)."""
@@ -235,15 +294,35 @@ class _Page:
         self.cells = np.zeros((ny, nx), dtype=np.float32)
         self.spectra = spectra  # mask spectra, shared by the pages of one packing
         self.shape = (next_fast_len(ny), next_fast_len(nx))  # no wrap where it is read
-        self._fft = None
+        self._fft = self._room = self._blocks = None
 
-    @property
-    def free(self) -> float:
-        return self.cells.size - self.cells.sum()
+    def may_hold(self, options: _Options) -> bool:
+        """False when no turn in ``options`` can fit anywhere: too few free cells, or no free
+        disc as large as the one every turn holds (a mask that fits leaves its disc free)."""
+        if self.cells.size - self.cells.sum() < options.cells:
+            return False
+        if self._room is None:
+            self._room = _inscribed(self.cells < 0.5)
+        return self._room >= options.radius - 1e-9
+
+    def could_fit(self, core) -> bool:
+        """False when a mask whose :func:`_core` is ``core`` fits nowhere, found on the grid of
+        2 x 2 blocks (a quarter of the work): a block is taken when all its cells are, and a
+        mask that fits leaves every block of its core with a free cell."""
+        if core is None:
+            return True
+        if self._blocks is None:
+            ny, nx = self.cells.shape
+            taken = np.pad(self.cells >= 0.5, ((0, ny % 2), (0, nx % 2)), constant_values=True)
+            blocks = _Page(*(np.array(taken.shape) // 2), self.spectra)
+            blocks.cells = taken.reshape(len(taken) // 2, 2, -1, 2).all(axis=(1, 3)).astype(
+                np.float32)
+            self._blocks = blocks
+        return bool((self._blocks.correlate(core) < 0.5).any())
 
     def add(self, mask, iy: int, ix: int) -> None:
         self.cells[iy:iy + mask.shape[0], ix:ix + mask.shape[1]] += mask
-        self._fft = None
+        self._fft = self._room = self._blocks = None
 
     def correlate(self, mask):
         """sum over (i, j) of cells[y + i, x + j] * mask[i, j] for every (y, x) where the mask

@@ -493,9 +493,9 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
 
 def _place(strip: Strip, wanted, regions, centres, band, taken=()):
     """(texts, plates, plate fills) for ``wanted`` (tile, text, largest size) labels: each
-    fitted into its tile; one that does not reach ``MIN_CAP`` there is spread over its
-    neighbouring tiles on a plate of its tile's fill, clear of ``taken`` and of the labels
-    placed before it."""
+    fitted into its tile; one that does not reach ``MIN_CAP`` there, or lies on something in
+    ``taken``, is spread over its neighbouring tiles on a plate of its tile's fill, clear of
+    ``taken`` and of the labels placed before it."""
     if not wanted:
         return [], np.zeros(0, dtype=object), ()
     idx = np.array([w[0] for w in wanted])
@@ -505,7 +505,9 @@ def _place(strip: Strip, wanted, regions, centres, band, taken=()):
              for (i, t, _), z, a in zip(wanted, size, angle)]
     plates, fills = [], []
     n = len(strip.tiles)
-    for k in np.flatnonzero(size < MIN_CAP).tolist():  # the few cramped labels
+    clash = shapely.intersects(np.array([text_box(t) for t in texts], dtype=object)[:, None],
+                               np.array([*taken, None], dtype=object)[None, :]).any(axis=1)
+    for k in np.flatnonzero((size < MIN_CAP) | clash).tolist():  # the few cramped labels
         i, text, _ = wanted[k]
         wide = shapely.intersection(shapely.union_all(strip.tiles[max(i - 1, 0):i + 2]),
                                     strip.outline)
