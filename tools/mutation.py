@@ -22,6 +22,7 @@ import subprocess
 import sys
 import time
 import tomllib
+from fnmatch import fnmatch
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -158,6 +159,10 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--report", action="store_true",
                         help="run nothing: report what each package's cache holds (after a "
                              "run was stopped, say)")
+    parser.add_argument("--only", action="append", default=[], metavar="PATTERN",
+                        help="test only the mutants whose names match PATTERN (fnmatch, "
+                             "repeatable), e.g. 'weavecut.puzzle.colouring*': a slice of a "
+                             "package too large for one run")
     parser.add_argument("--max-children", type=int, default=2,
                         help="parallel test processes (default 2: this machine's cores)")
     args = parser.parse_args(argv)
@@ -176,17 +181,18 @@ def main(argv: list[str]) -> int:
     previous = OUT / "report.json"
     results = json.loads(previous.read_text())["raw"] if previous.exists() else {}
     for name in names:
-        only = []
+        only = list(args.only)
         if args.survivors:
             if name not in results:
                 print(f"mutation: no earlier run of {name} to take survivors from",
                       file=sys.stderr)
                 return 2
             only = [m for m, s in results[name]["status"].items()
-                    if s in ("survived", "no tests")]
+                    if s in ("survived", "no tests")
+                    and (not args.only or any(fnmatch(m, p) for p in args.only))]
         print(f"mutation: {name}" + (f" ({len(only)} survivors)" if args.survivors else ""),
               flush=True)
-        if args.survivors and not only:
+        if (args.survivors or args.only) and not only:
             continue
         if args.report:
             results[name] = {**results.get(name, {}), **collect(name)}
