@@ -216,3 +216,21 @@ def test_border_fragments_take_a_colour_of_their_parents_family(spec, levels):
 def _face_strand(puzzle, face: int) -> int:
     parent = puzzle.weaves[-2]
     return _top(parent, int(parent.face_tile[puzzle.hierarchy[-1].parent_face[face]]))
+
+
+def test_family_names_come_from_the_preset_or_are_numbered(tmp_path):
+    pal = palette("puzzle")
+    assert palette_names("puzzle", pal) == ["green", "blue", "pink"]
+    path = tmp_path / "two.toml"
+    path.write_text('family_names = ["sea"]\nfamilies = [["#06426e", "#2eaed0"], '
+                    '["#730a35", "#b36d7e"], ["#323d0d", "#2aad78"]]\n', encoding="utf-8")
+    own = palette(str(path))
+    assert palette_names(str(path), own) == ["sea", "family 2", "family 3"]
+    # a palette that is no preset (built in code) has numbered families
+    assert palette_names("no-such-palette", own) == ["family 1", "family 2", "family 3"]
+    # without names the paints are called by family number and shade
+    puzzle = case("pentagon", 3)[0]
+    names = colour_puzzle(puzzle, pal).names
+    for colour, name in names.items():
+        f = next(i for i, fam in enumerate(pal.families) if colour in fam)
+        assert name == f"family {f + 1} {pal.families[f].index(colour) + 1}"
