@@ -302,7 +302,7 @@ def strip_width(weave: Weave) -> float:
     rects = shapely.get_coordinates(shapely.get_exterior_ring(
         shapely.minimum_rotated_rectangle(polys))).reshape(len(polys), -1, 2)
     sides = np.hypot(*(rects[:, 1:3] - rects[:, 0:2]).transpose(2, 0, 1))
-    return float(np.median(sides.min(axis=0)))
+    return float(np.median(sides.min(axis=1)))
 
 
 def arrow_polygon(tip, direction, length: float) -> shapely.Polygon:
