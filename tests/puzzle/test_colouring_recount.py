@@ -234,3 +234,67 @@ def test_family_names_come_from_the_preset_or_are_numbered(tmp_path):
     for colour, name in names.items():
         f = next(i for i, fam in enumerate(pal.families) if colour in fam)
         assert name == f"family {f + 1} {pal.families[f].index(colour) + 1}"
+
+
+def _strand_touching(puzzle) -> set:
+    """Pairs of level t-1 strands whose painted faces share an edge."""
+    strand_of = [_face_strand(puzzle, f) for f in range(puzzle.weaves[-1].mesh.n_faces)]
+    pairs = set()
+    for a, b in edge_faces(puzzle.weaves[-1].mesh).tolist():
+        if a >= 0 and b >= 0:
+            sa, sb = strand_of[a], strand_of[b]
+            if sa != sb and min(sa, sb) >= 0:
+                pairs.add((min(sa, sb), max(sa, sb)))
+    return pairs
+
+
+def _paired(front, main) -> set:
+    """The two longest strands (most tiles on top) of every group of two or more siblings."""
+    over = {s: int(front.visit_over[front.strand_offsets[s]:front.strand_offsets[s + 1]].sum())
+            for s in main}
+    groups: dict[int, list[int]] = {}
+    for s in main:
+        p = int(front.parent_strand[s]) if front.parent_strand is not None else -1
+        groups.setdefault(p if p >= 0 else -1 - s, []).append(s)
+    return {s for members in groups.values() if len(members) >= 2
+            for s in sorted(members, key=lambda s: (-over[s], s))[:2]}
+
+
+@pytest.mark.parametrize("spec, levels", CASES[:3])
+def test_no_swap_of_shades_on_the_worst_touching_pairs_improves_the_colouring(spec, levels):
+    """The local search's promise, checked by trying its moves: the fewest touching strands
+    sharing a colour, then the ten smallest differences as large as they go. No swap of two
+    single strands' shades in one family, and no light/dark flip of a sibling pair, that
+    involves a strand of the worst touching pairs raises that score."""
+    puzzle, pal, colouring = case(spec, levels)
+    front = puzzle.weaves[-2]
+    main = _main_strands(front)
+    pairs = [p for p in sorted(_strand_touching(puzzle)) if p[0] in main and p[1] in main]
+    family = {c: i for i, fam in enumerate(pal.families) for c in fam}
+    colour = {s: colouring.front_strands[s] for s in main}
+
+    def score(col):
+        d = [float(colour_difference(col[a], col[b])) for a, b in pairs]
+        return (-sum(x == 0 for x in d), tuple(sorted(round(x, 6) for x in d if x > 0)[:10]))
+
+    best = score(colour)
+    d = sorted(float(colour_difference(colour[a], colour[b])) for a, b in pairs)
+    cut = d[min(11, len(d) - 1)]
+    worst = {s for a, b in pairs if float(colour_difference(colour[a], colour[b])) < cut
+             for s in (a, b)}
+    paired = _paired(front, main)
+    tried = 0
+    for k in sorted(worst):
+        if k in paired:
+            mates = [m for m in paired if m != k and front.parent_strand[m]
+                     == front.parent_strand[k] and family[colour[m]] == family[colour[k]]]
+            others = mates[:1]
+        else:
+            others = [o for o in main if o != k and o not in paired
+                      and family[colour[o]] == family[colour[k]]]
+        for o in others:
+            trial = dict(colour)
+            trial[k], trial[o] = colour[o], colour[k]
+            assert not score(trial) > best, (k, o)
+            tried += 1
+    assert tried > 0
