@@ -25,9 +25,14 @@ CASES = [("pentagon", 3), ("pentagon", 4), ("square-grid:2x2", 3), ("pentagon", 
 
 
 @lru_cache(maxsize=None)
+def _puzzle(spec: str, levels: int):
+    return build_puzzle(subdivide(inputs.get(spec), levels), size=300.0)
+
+
 def case(spec: str, levels: int):
-    puzzle = build_puzzle(subdivide(inputs.get(spec), levels), size=300.0)
-    pal = palette("puzzle")
+    """The puzzle (built once) and its paint, coloured in every test: mutmut maps a test to
+    the functions it calls itself, so a colouring cached across tests would hide them."""
+    puzzle, pal = _puzzle(spec, levels), palette("puzzle")
     return puzzle, pal, colour_puzzle(puzzle, pal, palette_names("puzzle", pal))
 
 

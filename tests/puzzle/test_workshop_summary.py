@@ -28,12 +28,19 @@ def hierarchy():
 
 @pytest.fixture(scope="module")
 def small(hierarchy):
-    """A level-3 puzzle, its colouring and both cuts (speed 7 mm/s, not a default)."""
+    """A level-3 puzzle, its colouring and both cuts."""
     puzzle = build_puzzle(hierarchy[:4], size=300.0)
     colouring = colour_puzzle(puzzle, palette("puzzle"))
     results = {"shared": pf.shared_cut(puzzle, pf.laser()),
                "separate": pf.separate_cut(puzzle, pf.laser(), 0.2, (400.0, 300.0))}
-    return puzzle, colouring, results, workshop.summary(puzzle, results, 7.0, colouring)
+    return puzzle, colouring, results
+
+
+def _summary(small) -> dict:
+    """The summary at 7 mm/s (not a default), made in every test: mutmut maps a test to the
+    functions it calls itself, not to what a shared fixture called."""
+    puzzle, colouring, results = small
+    return workshop.summary(puzzle, results, 7.0, colouring)
 
 
 def test_material_reads_the_preset_in_mm(tmp_path):
@@ -52,7 +59,7 @@ def test_material_reads_the_preset_in_mm(tmp_path):
 
 
 def test_summary_counts_pieces_by_their_corners(small):
-    puzzle, _, _, info = small
+    puzzle, info = small[0], _summary(small)
     corners = shapely.get_num_coordinates(puzzle.pieces) - 1
     assert info["pieces_by_type"] == {"octagon": int((corners == 8).sum()),
                                       "enneagon": int((corners == 9).sum())}
@@ -61,7 +68,7 @@ def test_summary_counts_pieces_by_their_corners(small):
 
 
 def test_summary_sizes_are_measured_corner_to_corner(small):
-    puzzle, _, _, info = small
+    puzzle, info = small[0], _summary(small)
     across = [max(np.hypot(*(np.subtract(a, b))) for a, b in itertools.combinations(
         np.asarray(p.exterior.coords)[:-1], 2)) for p in puzzle.pieces]
     assert info["piece_across_mm"] == [round(min(across), 1), round(max(across), 1)]
@@ -85,7 +92,7 @@ def test_summary_sizes_are_measured_corner_to_corner(small):
 
 
 def test_summary_modes_time_is_cut_over_speed_plus_travel(small):
-    _, _, results, info = small
+    results, info = small[2], _summary(small)
     assert info["speed_mm_s"] == 7.0 and set(info["modes"]) == {"shared", "separate"}
     for mode, r in results.items():
         m = info["modes"][mode]
@@ -97,7 +104,8 @@ def test_summary_modes_time_is_cut_over_speed_plus_travel(small):
 
 
 def test_summary_paints_are_recounted_from_the_colouring(small):
-    puzzle, colouring, _, info = small
+    puzzle, colouring, _ = small
+    info = _summary(small)
     front = {c for pair in colouring.front.tolist() for c in pair} - {UNPAINTED}
     back = set(colouring.back.tolist()) - {UNPAINTED}
     assert (info["front_colours"], info["back_colours"]) == (len(front), len(back))
@@ -110,7 +118,7 @@ def test_summary_paints_are_recounted_from_the_colouring(small):
 
 def _info(small) -> dict:
     """The summary as the command completes it, with a split frame and a warning."""
-    info = dict(small[3])
+    info = _summary(small)
     info.update(material="birch, 3 mm", kerf_mm=0.17, sheet_mm=[400.0, 300.0], frame_parts=3,
                 warnings=["pieces 7, 9 are too small for 3 mm digits"],
                 files=["README.txt", "puzzle-back-guide-a4.pdf", "puzzle-shared-cut.dxf"])
@@ -143,7 +151,7 @@ def test_summary_text_states_every_figure(small):
                                      "puzzle-shared-cut.dxf")
     # a frame in one piece says nothing of parts; without material or files: pieces, frame,
     # paints and the modes
-    bare = workshop.summary_text({**small[3], "frame_parts": 1})
+    bare = workshop.summary_text({**_summary(small), "frame_parts": 1})
     assert "dovetailed" not in bare and "material" not in bare and "files" not in bare
     assert len(bare.splitlines()) == 3 + len(info["modes"])
 
