@@ -261,3 +261,35 @@ def test_orbit_colours_are_the_same_for_every_copy_and_differ_where_strands_cros
                 assert len({fam[c] for c in cs}) == 1
                 shades = pal.families[fam[cs[0]]]
                 assert cs == [shades[i % len(shades)] for i in range(len(cs))]
+
+
+@pytest.mark.parametrize("spec, levels", SPECS)
+def test_plan_names_copies_numbers_across_and_turns_every_copy_with_its_module(spec, levels):
+    w = weaves(spec, levels)[-1]
+    heading = -np.pi / 2
+    plan = plan_modules(w, heading)
+    for j, row in enumerate(plan.copies.tolist()):
+        assert [plan.labels[s] for s in row] == [f"{copy_letter(j)}{i + 1}"
+                                                 for i in range(len(row))]
+    assert [plan.labels[s] for s in plan.extras.tolist()] == [
+        f"X{i + 1}" for i in range(len(plan.extras))]
+    centres = tile_centres(w)
+
+    def printed(s):  # start-to-end direction as printed
+        visits, _ = w.strand(s)
+        visits = visits[::-1] if plan.reversed[s] else visits
+        return centres[visits[-1]] - centres[visits[0]]
+
+    # numbered left to right across the heading (heading down: left is -x)
+    mids = [centres[w.strand(s)[0]].mean(axis=0)[0] for s in plan.copies[0].tolist()]
+    assert np.all(np.diff(np.round(mids, 6)) >= 0)
+    sym = plan.symmetry
+    for j in range(plan.k):
+        c, s_ = np.cos(j * sym.angle), np.sin(j * sym.angle)
+        for a, b in zip(plan.copies[0].tolist(), plan.copies[j].tolist()):
+            da = printed(a)
+            np.testing.assert_allclose(printed(b), [c * da[0] - s_ * da[1],
+                                                    s_ * da[0] + c * da[1]], atol=1e-6)
+        for a in plan.copies[0].tolist():  # module strands head near the heading
+            d = printed(a)
+            assert np.cos(np.arctan2(d[1], d[0]) - heading) >= np.cos(np.pi / plan.k) - 1e-9

@@ -99,6 +99,10 @@ def plan_modules(weave: Weave, heading: float = -np.pi / 2,
     best = gap.reshape(len(seeds), -1).argmin(axis=1)
     jbest, flip = np.divmod(best, 2)
     reps = powers[jbest, seeds]
+    # the turn may carry a strand onto its image walking the other way: flip the image so that
+    # it heads where the chosen candidate does
+    want = base[seeds] + jbest * sym.angle + np.pi * flip
+    flip = _angle_gap(base[reps], want) > np.pi / 2
     # order across the heading: x in a frame where the heading points down
     mid = np.array([centres[weave.strand_visits[a:b]].mean(axis=0) for a, b in
                     zip(weave.strand_offsets[reps].tolist(), weave.strand_offsets[reps + 1].tolist())]
