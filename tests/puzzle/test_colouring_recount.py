@@ -15,7 +15,7 @@ import shapely
 from weavecut import inputs
 from weavecut.layout.colour_difference import colour_difference
 from weavecut.mesh import edge_faces
-from weavecut.puzzle.colouring import UNPAINTED, colour_puzzle, palette_names
+from weavecut.puzzle.colouring import UNPAINTED, colour_puzzle, on_top_of_octagon, palette_names
 from weavecut.puzzle.guides import piece_halves
 from weavecut.puzzle.pieces import build_puzzle
 from weavecut.subdivision import subdivide
@@ -303,3 +303,10 @@ def test_no_swap_of_shades_on_the_worst_touching_pairs_improves_the_colouring(sp
             assert not score(trial) > best, (k, o)
             tried += 1
     assert tried > 0
+
+
+@pytest.mark.parametrize("spec, levels", CASES[:3])
+def test_on_top_of_octagon_is_a_mask_of_the_strands_with_an_octagon(spec, levels):
+    front = _puzzle(spec, levels).weaves[-2]
+    mask = on_top_of_octagon(front)
+    assert np.arange(front.n_strands)[mask].tolist() == _main_strands(front)
