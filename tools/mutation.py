@@ -6,7 +6,8 @@ equivalent and leave the denominator.
 
 Each package runs in its own copy of the tracked tree under ``build/mutation/<package>/``,
 where mutmut's cache stays between runs: a second run tests only the mutants of functions that
-changed, ``--survivors`` re-tests only last run's survivors (after new tests were written),
+changed, ``--survivors`` re-tests only last run's survivors (after new tests were written;
+it maps the tests to the functions they reach anew),
 and ``--report`` runs nothing and reports what the caches hold (after a stopped run). Why
 mutmut: it is maintained, pytest-native, and runs only the tests that reach a mutated function
 (cosmic-ray needs a session database and a separate baseline per module for the same result).
@@ -75,11 +76,15 @@ def configure(work: Path, mutate: list[str], tests: list[str], deselect: str = "
     (work / "pyproject.toml").write_text(text, encoding="utf-8")
 
 
-def run_package(name: str, children: int, only: list[str]) -> dict:
-    """Run mutmut on one package (only the mutants named in ``only``, if any)."""
+def run_package(name: str, children: int, only: list[str], fresh: bool = False) -> dict:
+    """Run mutmut on one package (only the mutants named in ``only``, if any); ``fresh``
+    maps tests to functions anew (mutmut maps only tests it has not seen, so a test that
+    changed would keep its old reach)."""
     mutate, tests = PACKAGES[name]
     work = OUT / name
     tracked_tree(work)
+    if fresh:
+        (work / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
     configure(work, mutate, tests, DESELECT.get(name, ""))
     start = time.monotonic()
     run = subprocess.run([*MUTMUT, "run", "--max-children", str(children), *only], cwd=work,
@@ -197,7 +202,7 @@ def main(argv: list[str]) -> int:
         if args.report:
             results[name] = {**results.get(name, {}), **collect(name)}
             continue
-        results[name] = run_package(name, args.max_children, only)
+        results[name] = run_package(name, args.max_children, only, fresh=args.survivors)
     report = summarise({n: results[n] for n in PACKAGES if n in results}, equivalents)
     previous.write_text(json.dumps({"report": report, "raw": results}, indent=1))
     (OUT / "report.md").write_text(markdown(report))
