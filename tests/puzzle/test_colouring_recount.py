@@ -137,7 +137,9 @@ def test_strands_with_an_octagon_have_own_colours_in_their_grandparents_family(s
     colours = [colouring.front_strands[s] for s in main]
     assert len(set(colours)) == len(main) <= len(pal.flat)
     family = {c: i for i, fam in enumerate(pal.families) for c in fam}
-    if levels < 3:
+    if levels < 3:  # no grandparents: every strand is a family group of its own, balanced
+        counts = np.bincount([family[c] for c in colours], minlength=len(pal.families))
+        assert counts.max() - counts.min() <= 1
         return
     lineage = front.parent_strand
     by_parent: dict[int, set] = {}
