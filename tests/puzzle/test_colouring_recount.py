@@ -204,11 +204,12 @@ def test_border_fragments_take_a_colour_of_their_parents_family(spec, levels):
         assert colour != UNPAINTED
         p = int(front.parent_strand[s])
         siblings = [m for m in main if front.parent_strand[m] == p]
-        if p < 0 or not siblings:
-            continue
-        fam = family[colouring.front_strands[siblings[0]]]
-        candidates = {colouring.front_strands[m] for m in main
-                      if family[colouring.front_strands[m]] == fam}
+        if p >= 0 and siblings:
+            fam = family[colouring.front_strands[siblings[0]]]
+            candidates = {colouring.front_strands[m] for m in main
+                          if family[colouring.front_strands[m]] == fam}
+        else:  # no sibling with an octagon: any colour a strand with an octagon wears
+            candidates = {colouring.front_strands[m] for m in main}
         assert colour in candidates
         near = [colouring.front_strands[n] for n in touching.get(s, ())
                 if n in main or (n < s and n in fragments)]
