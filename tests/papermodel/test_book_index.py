@@ -45,12 +45,14 @@ def grid():
     return snub_weaves(subdivide(inputs.get("square-grid:2x2"), 2))[-1]
 
 
-def test_tile_size_and_model_width_convert_both_ways(grid):
-    width = float(np.ptp(grid.mesh.vertices[:, 0]))
+def test_tile_size_and_model_width_convert_both_ways():
+    wide = snub_weaves(subdivide(inputs.get("square-grid:3x2"), 2))[-1]  # wider than high
+    width = float(np.ptp(wide.mesh.vertices[:, 0]))
+    assert width > float(np.ptp(wide.mesh.vertices[:, 1])) * 1.2
     for tile in (12.0, 20.0, 31.5):
-        model = tile_size_width(grid, tile)
-        assert model == pytest.approx(tile / octagon_size(grid) * width, rel=1e-12)
-        assert tile_size_for(grid, model) == pytest.approx(tile, rel=1e-12)
+        model = tile_size_width(wide, tile)
+        assert model == pytest.approx(tile / octagon_size(wide) * width, rel=1e-12)
+        assert tile_size_for(wide, model) == pytest.approx(tile, rel=1e-12)
 
 
 def test_strips_under_8_mm_are_refused_and_under_12_mm_warned(grid):

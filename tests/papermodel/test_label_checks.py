@@ -41,12 +41,15 @@ def test_a_readable_label_breaks_nothing_and_reports_its_size_and_contrast():
                       "broken": []}
     assert text_checks(_sheet(centred_text((100.0, 100.0), "A7", 2.5, 90.0, "#ffffff")),
                        BOX)[0]["broken"] == []  # at the limits: 2.5 mm, a quarter turn
+    within = centred_text((100.0, 100.0), "A7", 2.5 - 1e-9, 0.0, "#ffffff")  # (rounding)
+    assert text_checks(_sheet(within), BOX)[0]["broken"] == []
 
 
 @pytest.mark.parametrize("text, rule", [
     (centred_text((100.0, 100.0), "A7", 2.4, 0.0, "#ffffff"), "small"),
     (centred_text((100.0, 100.0), "A7", 4.0, 180.0, "#ffffff"), "upside down"),
     (centred_text((100.0, 100.0), "A7", 4.0, -90.0, "#ffffff"), "upside down"),
+    (centred_text((100.0, 100.0), "A7", 4.0, 90.5, "#ffffff"), "upside down"),
     (centred_text((100.0, 100.0), "A7", 4.0, 0.0, "#304070"), "low contrast"),
 ])
 def test_each_rule_is_caught_alone(text, rule):
@@ -64,6 +67,11 @@ def test_a_label_across_its_fills_edge():
 def test_a_label_off_its_strip_and_furniture_on_the_strips():
     off = centred_text((30.0, 100.0), "A7", 4.0, 0.0, "#000000")  # on paper, inside the box
     assert _broken(_sheet(off)) == [["outside its strip"]]
+    # paint is no cut line: a label on a painted square that no strip outlines is off strips
+    patch = Layer("patch", "paint", (polygons_from_rings([_square(15, 15, 45, 45)],
+                                                         Style(None, 0.0), [DARK]),))
+    on_patch = centred_text((30.0, 30.0), "A7", 4.0, 0.0, "#ffffff")
+    assert _broken(_sheet(on_patch, extra=(patch,))) == [["outside its strip"]]
     furniture = Layer("page", "label", (Text(100.0, 20.0, "page 3", 4.0),
                                         Text(100.0, 195.0, "title", 4.0)))
     records = text_checks(_sheet(extra=(furniture,)), BOX)
@@ -91,6 +99,10 @@ def test_hidden_layers_and_unfilled_shapes_are_not_a_fill():
     """A text on a hidden or unfilled square lies on white paper: white ink is then too pale."""
     white = centred_text((100.0, 100.0), "A7", 4.0, 0.0, "#ffffff")
     assert "low contrast" in _broken(_sheet(white, hidden=True))[0]
+    # a hidden layer hides itself only: a fill drawn after it still counts
+    later = Layer("later", "paint", (polygons_from_rings([_square(60, 60, 140, 140)],
+                                                         Style(None, 0.0), [DARK]),))
+    assert _broken(_sheet(white, extra=(later,), hidden=True)) == [[]]
     outline = polygons_from_rings([_square(50, 50, 150, 150)], Style("#000000", 0.2))
     sheet = Sheet(200.0, 200.0, (Layer("paint", "paint", (outline,)),
                                  Layer("labels", "label", (white,))))
@@ -123,12 +135,12 @@ class _Book:
 
 def test_report_recounts_pages_sizes_contrast_and_violations():
     good = centred_text((100.0, 100.0), "A7", 5.0, 0.0, "#ffffff")
-    small = centred_text((80.0, 80.0), "B1", 2.0, 0.0, "#ffffff")
+    small = centred_text((80.0, 80.0), "B1", 2.456, 0.0, "#ffffff")
     off = centred_text((30.0, 100.0), "C3", 3.0, 0.0, "#000000")  # a fine label off a strip
     book = _Book([_sheet(off), _sheet(good, small)], (2,))
     rep = report(book)
     assert rep == {"pages": {"strip": 1, "extra": 1, "total": 2}, "ink_fraction": 0.412,
-                   "smallest_text_mm": 2.0,
+                   "smallest_text_mm": 2.46,
                    "smallest_contrast": round(contrast_ratio("#ffffff", DARK), 2),
                    "label_violations": 1, "tile_size_mm": 21.46, "strip_width_mm": 9.9,
                    "warnings": ["thin"]}
