@@ -193,7 +193,7 @@ def main(argv: list[str]) -> int:
                       file=sys.stderr)
                 return 2
             only = [m for m, s in results[name]["status"].items()
-                    if s in ("survived", "no tests")
+                    if s in ("survived", "no tests") and m not in equivalents
                     and (not args.only or any(fnmatch(m, p) for p in args.only))]
         print(f"mutation: {name}" + (f" ({len(only)} survivors)" if args.survivors else ""),
               flush=True)
