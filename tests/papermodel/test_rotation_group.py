@@ -10,6 +10,7 @@ from functools import lru_cache
 import numpy as np
 import pytest
 
+from tests.meshes import hexagon
 from weavecut import inputs
 from weavecut.mesh import Mesh
 from weavecut.papermodel.symmetry import rotate, rotation_group, strand_orbits, tile_centres
@@ -17,15 +18,12 @@ from weavecut.subdivision import subdivide
 from weavecut.weave.snub_weave import snub_weaves
 
 
-def hexagon() -> Mesh:
-    ring = [(np.cos(a), np.sin(a)) for a in np.arange(6) * np.pi / 3]
-    return Mesh.from_faces([(0.0, 0.0), *ring], [[0, i + 1, (i + 1) % 6 + 1] for i in range(6)])
-
-
 @lru_cache(maxsize=None)
 def weave(spec: str, levels: int):
-    mesh = hexagon() if spec == "hexagon" else inputs.get(spec)
-    return snub_weaves(subdivide(mesh, levels))[-1]
+    """The snub weave of an input or of the six-triangle hexagon (the weave package is not
+    mutated with this one, so its result may be shared)."""
+    return snub_weaves(subdivide(hexagon() if spec == "hexagon" else inputs.get(spec),
+                                 levels))[-1]
 
 
 CASES = {("square-grid:2x2", 2): 4, ("pentagon", 2): 5, ("hexagon", 2): 6,

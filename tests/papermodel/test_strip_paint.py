@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 import shapely
 
+from tests.meshes import hexagon
 from weavecut import inputs
-from weavecut.mesh import Mesh
 from weavecut.papermodel.strips import (
     Strip,
     affine,
@@ -36,15 +36,10 @@ from weavecut.weave.colour import crossing_pairs, palette
 from weavecut.weave.snub_weave import snub_weaves
 
 
-def hexagon() -> Mesh:
-    ring = [(np.cos(a), np.sin(a)) for a in np.arange(6) * np.pi / 3]
-    return Mesh.from_faces([(0.0, 0.0), *ring], [[0, i + 1, (i + 1) % 6 + 1] for i in range(6)])
-
-
 @lru_cache(maxsize=None)
 def weaves(spec: str, levels: int):
-    mesh = hexagon() if spec == "hexagon" else inputs.get(spec)
-    return tuple(snub_weaves(subdivide(mesh, levels)))
+    return tuple(snub_weaves(subdivide(hexagon() if spec == "hexagon" else inputs.get(spec),
+                                       levels)))
 
 
 SPECS = [("square-grid:2x2", 2), ("hexagon", 2), ("square-grid:3x2", 2)]
