@@ -16,7 +16,7 @@ from weavecut import inputs, presets
 from weavecut.puzzle import files as pf
 from weavecut.puzzle import workshop
 from weavecut.puzzle.colouring import UNPAINTED, colour_puzzle
-from weavecut.puzzle.pieces import OCTAGON, build_puzzle
+from weavecut.puzzle.pieces import OCTAGON, build_puzzle, diameter
 from weavecut.subdivision import subdivide
 from weavecut.weave.colour import palette
 
@@ -54,6 +54,11 @@ def test_material_reads_the_preset_in_mm(tmp_path):
                     "cut_speed = 12\n", encoding="utf-8")
     own = workshop.material(str(path))
     assert own["name"] == own["description"] == str(path)
+    named = tmp_path / "named.toml"
+    named.write_text('name = "my birch"\ndescription = "birch, 4 mm"\n' + path.read_text(),
+                     encoding="utf-8")
+    assert (workshop.material(str(named))["name"],
+            workshop.material(str(named))["description"]) == ("my birch", "birch, 4 mm")
     assert (own["thickness"], own["kerf"], own["sheet"], own["cut_speed"]) == (
         4.0, 0.2, (300.0, 200.0), 12.0)
 
@@ -88,6 +93,7 @@ def test_summary_sizes_are_measured_corner_to_corner(small):
         reach = (hull[:-1] @ normal.T).max(axis=0) - (hull[:-1] @ normal.T).min(axis=0)
         widths.append(reach.min())
     assert round(min(widths), 1) - 0.05 <= info["piece_width_min_mm"] <= min(across)
+    assert info["piece_width_min_mm"] == round(info["piece_width_min_mm"], 1)
     assert info["piece_width_min_mm"] == pytest.approx(min(widths), abs=0.5)
 
 
@@ -151,9 +157,13 @@ def test_summary_text_states_every_figure(small):
                                      "puzzle-shared-cut.dxf")
     # a frame in one piece says nothing of parts; without material or files: pieces, frame,
     # paints and the modes
-    bare = workshop.summary_text({**_summary(small), "frame_parts": 1})
-    assert "dovetailed" not in bare and "material" not in bare and "files" not in bare
+    bare = workshop.summary_text(_summary(small))
+    assert bare.splitlines()[1] == f"frame: 300 mm diagonal, {w:g} x {h:g} mm"
+    assert "material" not in bare and "files" not in bare
     assert len(bare.splitlines()) == 3 + len(info["modes"])
+    assert workshop.summary_text({**_summary(small), "frame_parts": 1}) == bare
+    two = workshop.summary_text({**_summary(small), "frame_parts": 2})
+    assert two.splitlines()[1].endswith(" mm, in 2 dovetailed parts")
 
 
 def test_readme_names_the_files_layers_and_figures(small):
@@ -214,10 +224,16 @@ def test_largest_good_level_builds_and_measures_each_lower_level(hierarchy, size
 
 def test_a_piece_exactly_at_a_limit_is_good(hierarchy, monkeypatch):
     """"at least MIN_ACROSS across and MIN_WIDTH_X_THICKNESS x thickness wide": the limits
-    themselves pass."""
+    themselves pass (measured on level 2 as it is rebuilt: at the frame's measured size)."""
     puzzle = build_puzzle(hierarchy[:4], 300.0)
-    across, width = workshop.piece_sizes(build_puzzle(hierarchy[:3], 300.0))
+    lower = build_puzzle(hierarchy[:3], diameter(puzzle.outer), puzzle.frame_width)
+    across, width = workshop.piece_sizes(lower)
     monkeypatch.setattr(workshop, "MIN_ACROSS", float(across.min()))
     monkeypatch.setattr(workshop, "MIN_WIDTH_X_THICKNESS", float(width.min()))
     assert workshop.largest_good_level(puzzle, 1.0) == 2
-    assert workshop.size_warnings(build_puzzle(hierarchy[:3], 300.0), 1.0) == []
+    assert workshop.size_warnings(lower, 1.0) == []
+
+
+def test_the_frame_diagonal_is_given_to_the_hundredth(hierarchy):
+    puzzle = build_puzzle(hierarchy[:3], 250.123)
+    assert workshop.summary(puzzle, {}, 7.0)["frame_diagonal_mm"] == 250.12
