@@ -11,6 +11,12 @@ def square() -> Mesh:
     return Mesh.from_faces([(0, 0), (1, 0), (1, 1), (0, 1)], [[0, 1, 2, 3]])
 
 
+def hexagon() -> Mesh:
+    """A hexagon of six triangles round a centre vertex (C6 after the snub step)."""
+    ring = [(np.cos(a), np.sin(a)) for a in np.arange(6) * np.pi / 3]
+    return Mesh.from_faces([(0.0, 0.0), *ring], [[0, i + 1, (i + 1) % 6 + 1] for i in range(6)])
+
+
 def two_squares() -> Mesh:
     return Mesh.from_faces([(0, 0), (1, 0), (2, 0), (2, 1), (1, 1), (0, 1)],
                            [[0, 1, 4, 5], [1, 2, 3, 4]])

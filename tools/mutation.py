@@ -6,7 +6,8 @@ equivalent and leave the denominator.
 
 Each package runs in its own copy of the tracked tree under ``build/mutation/<package>/``,
 where mutmut's cache stays between runs: a second run tests only the mutants of functions that
-changed, ``--survivors`` re-tests only last run's survivors (after new tests were written),
+changed, ``--survivors`` re-tests only last run's survivors (after new tests were written;
+it maps the tests to the functions they reach anew),
 and ``--report`` runs nothing and reports what the caches hold (after a stopped run). Why
 mutmut: it is maintained, pytest-native, and runs only the tests that reach a mutated function
 (cosmic-ray needs a session database and a separate baseline per module for the same result).
@@ -22,6 +23,7 @@ import subprocess
 import sys
 import time
 import tomllib
+from fnmatch import fnmatch
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -74,11 +76,15 @@ def configure(work: Path, mutate: list[str], tests: list[str], deselect: str = "
     (work / "pyproject.toml").write_text(text, encoding="utf-8")
 
 
-def run_package(name: str, children: int, only: list[str]) -> dict:
-    """Run mutmut on one package (only the mutants named in ``only``, if any)."""
+def run_package(name: str, children: int, only: list[str], fresh: bool = False) -> dict:
+    """Run mutmut on one package (only the mutants named in ``only``, if any); ``fresh``
+    maps tests to functions anew (mutmut maps only tests it has not seen, so a test that
+    changed would keep its old reach)."""
     mutate, tests = PACKAGES[name]
     work = OUT / name
     tracked_tree(work)
+    if fresh:
+        (work / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
     configure(work, mutate, tests, DESELECT.get(name, ""))
     start = time.monotonic()
     run = subprocess.run([*MUTMUT, "run", "--max-children", str(children), *only], cwd=work,
@@ -158,6 +164,10 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--report", action="store_true",
                         help="run nothing: report what each package's cache holds (after a "
                              "run was stopped, say)")
+    parser.add_argument("--only", action="append", default=[], metavar="PATTERN",
+                        help="test only the mutants whose names match PATTERN (fnmatch, "
+                             "repeatable), e.g. 'weavecut.puzzle.colouring*': a slice of a "
+                             "package too large for one run")
     parser.add_argument("--max-children", type=int, default=2,
                         help="parallel test processes (default 2: this machine's cores)")
     args = parser.parse_args(argv)
@@ -176,22 +186,23 @@ def main(argv: list[str]) -> int:
     previous = OUT / "report.json"
     results = json.loads(previous.read_text())["raw"] if previous.exists() else {}
     for name in names:
-        only = []
+        only = list(args.only)
         if args.survivors:
             if name not in results:
                 print(f"mutation: no earlier run of {name} to take survivors from",
                       file=sys.stderr)
                 return 2
             only = [m for m, s in results[name]["status"].items()
-                    if s in ("survived", "no tests")]
+                    if s in ("survived", "no tests") and m not in equivalents
+                    and (not args.only or any(fnmatch(m, p) for p in args.only))]
         print(f"mutation: {name}" + (f" ({len(only)} survivors)" if args.survivors else ""),
               flush=True)
-        if args.survivors and not only:
+        if (args.survivors or args.only) and not only:
             continue
         if args.report:
             results[name] = {**results.get(name, {}), **collect(name)}
             continue
-        results[name] = run_package(name, args.max_children, only)
+        results[name] = run_package(name, args.max_children, only, fresh=args.survivors)
     report = summarise({n: results[n] for n in PACKAGES if n in results}, equivalents)
     previous.write_text(json.dumps({"report": report, "raw": results}, indent=1))
     (OUT / "report.md").write_text(markdown(report))

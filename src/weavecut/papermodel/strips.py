@@ -99,6 +99,10 @@ def plan_modules(weave: Weave, heading: float = -np.pi / 2,
     best = gap.reshape(len(seeds), -1).argmin(axis=1)
     jbest, flip = np.divmod(best, 2)
     reps = powers[jbest, seeds]
+    # the turn may carry a strand onto its image walking the other way: flip the image so that
+    # it heads where the chosen candidate does
+    want = base[seeds] + jbest * sym.angle + np.pi * flip
+    flip = _angle_gap(base[reps], want) > np.pi / 2
     # order across the heading: x in a frame where the heading points down
     mid = np.array([centres[weave.strand_visits[a:b]].mean(axis=0) for a, b in
                     zip(weave.strand_offsets[reps].tolist(), weave.strand_offsets[reps + 1].tolist())]
@@ -311,7 +315,7 @@ def strip_width(weave: Weave) -> float:
     rects = shapely.get_coordinates(shapely.get_exterior_ring(
         shapely.minimum_rotated_rectangle(polys))).reshape(len(polys), -1, 2)
     sides = np.hypot(*(rects[:, 1:3] - rects[:, 0:2]).transpose(2, 0, 1))
-    return float(np.median(sides.min(axis=0)))
+    return float(np.median(sides.min(axis=1)))
 
 
 def arrow_polygon(tip, direction, length: float) -> shapely.Polygon:

@@ -43,15 +43,6 @@ def _lines(paths: list[NDArray], style: Style) -> Polylines:
     return Polylines(coords, offsets, style)
 
 
-def _ring_paths(polys) -> list[NDArray]:
-    """Closed exterior and hole rings as closed polylines (first point repeated)."""
-    out = []
-    for poly in polys:
-        out.append(np.asarray(poly.exterior.coords))
-        out.extend(np.asarray(r.coords) for r in poly.interiors)
-    return out
-
-
 def placement(puzzle: Puzzle, margin: float = 10.0) -> tuple[float, float, NDArray]:
     """Sheet width, height and the shift that puts the frame ``margin`` mm from the corner."""
     x0, y0, x1, y1 = puzzle.outer.bounds

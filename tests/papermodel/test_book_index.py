@@ -1,0 +1,92 @@
+"""The strand book's small promises: the page index names runs of strips ("A1-A4, B2"), the
+size figures convert between tile size, model width and strip width, thin strips warn or are
+refused, module prints drop the copy letter, and the paper's presets."""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from weavecut import inputs
+from weavecut.papermodel.book import (
+    MIN_STRIP,
+    WARN_STRIP,
+    SizeError,
+    check_strip_width,
+    page_index,
+    preset_for,
+    tile_size_for,
+    tile_size_width,
+)
+from weavecut.papermodel.strips import octagon_size, plan_modules, strip_width
+from weavecut.subdivision import subdivide
+from weavecut.weave.snub_weave import snub_weaves
+
+
+def _book(pages: dict[int, list[str]]):
+    pieces = tuple((n, SimpleNamespace(label=label)) for n, labels in pages.items()
+                   for label in labels)
+    return SimpleNamespace(strip_pages=tuple(pages), pieces=pieces)
+
+
+def test_page_index_joins_consecutive_strips_into_runs():
+    book = _book({3: ["A2", "A1", "A3", "A4", "B2", "X1", "A10 1/2"],
+                  4: ["A10 2/2", "B9", "B10", "B11", "C1", "X2", "X3"]})
+    assert page_index(book) == "p. 3: A1-A4, A10, B2, X1; p. 4: A10, B9-B11, C1, X2-X3"
+    assert page_index(_book({5: ["AA1", "AA2", "Z3"]})) == "p. 5: AA1-AA2, Z3"
+    assert page_index(_book({})) == ""
+
+
+@pytest.fixture(scope="module")
+def grid():
+    return snub_weaves(subdivide(inputs.get("square-grid:2x2"), 2))[-1]
+
+
+def test_tile_size_and_model_width_convert_both_ways():
+    wide = snub_weaves(subdivide(inputs.get("square-grid:3x2"), 2))[-1]  # wider than high
+    width = float(np.ptp(wide.mesh.vertices[:, 0]))
+    assert width > float(np.ptp(wide.mesh.vertices[:, 1])) * 1.2
+    for tile in (12.0, 20.0, 31.5):
+        model = tile_size_width(wide, tile)
+        assert model == pytest.approx(tile / octagon_size(wide) * width, rel=1e-12)
+        assert tile_size_for(wide, model) == pytest.approx(tile, rel=1e-12)
+
+
+def test_strips_under_8_mm_are_refused_and_under_12_mm_warned(grid):
+    ratio = strip_width(grid) / octagon_size(grid)
+    ok = WARN_STRIP / ratio * 1.01
+    assert check_strip_width(grid, ok) == (pytest.approx(ok * ratio), ())
+    thin = (MIN_STRIP + WARN_STRIP) / 2 / ratio
+    width, warnings = check_strip_width(grid, thin)
+    assert width == pytest.approx(10.0)
+    assert warnings == ("strips are 10.0 mm wide: thin strips tear easily; 12 mm or more is "
+                        "easier to weave",)
+    exact = MIN_STRIP / ratio  # 8 mm itself is allowed
+    assert check_strip_width(grid, exact)[0] == pytest.approx(MIN_STRIP)
+    need = math.ceil(MIN_STRIP / ratio * 2) / 2
+    size = math.ceil(tile_size_width(grid, need) / 10)
+    with pytest.raises(SizeError) as err:
+        check_strip_width(grid, 6.0 / ratio)
+    assert str(err.value) == (f"strips would be 6.0 mm wide and tear (paper section 5.2): "
+                              f"use --tile-size {need:g}mm or more (--size {size}cm or more)")
+    assert check_strip_width(grid, need)[0] >= MIN_STRIP
+
+
+def test_presets_are_the_papers_two_models_and_a_default():
+    assert preset_for("square-grid") == {"levels": 2, "turn": np.pi / 4,
+                                         "palette": "maritime-12"}
+    assert preset_for("square-grid:3x3") == preset_for("square-grid")
+    assert preset_for("pentagon-flower")["levels"] == 3
+    assert preset_for("pentagon-flower")["turn"] == 0.0
+    other = preset_for("hex-grid:2")
+    assert other == {"levels": 2, "turn": 0.0, "palette": "maritime-12"}
+    other["levels"] = 9  # a copy: the defaults stay
+    assert preset_for("hex-grid")["levels"] == 2
+
+
+def test_plan_of_the_grid_has_four_copies_of_six(grid):
+    plan = plan_modules(grid)
+    assert plan.copies.shape == (4, 6) and not len(plan.extras)
