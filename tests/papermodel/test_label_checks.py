@@ -117,6 +117,11 @@ def test_hidden_layers_and_unfilled_shapes_are_not_a_fill():
 
 class _Area:
     box = BOX
+    width, height, margin = 200.0, 200.0, BOX[0]
+
+
+class _Plan:
+    labels = ()  # no strand IDs on the assembly sheet here
 
 
 class _Book:
@@ -127,6 +132,7 @@ class _Book:
         self.strip_pages = strip_pages
         self.extra_pages = (1,)
         self.area = _Area()
+        self.plan, self.colours = _Plan(), ()
         self.ink = ink
         self.tile_size = 21.456
         self.strip_width = 9.87
