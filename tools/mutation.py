@@ -37,7 +37,8 @@ DESELECT = {"mesh-core": "not interrupt and not hash_seeds"}
 # package -> (files to mutate, tests that guard them)
 PACKAGES: dict[str, tuple[list[str], list[str]]] = {
     "subdivision": (["src/weavecut/subdivision/*"], ["tests/subdivision"]),
-    "weave": (["src/weavecut/weave/*"], ["tests/weave"]),
+    "weave": (["src/weavecut/weave/*"], ["tests/weave", "tests/surface/test_surface_weave.py",
+                                         "tests/surface/test_woven_model.py"]),
     "mesh-core": (["src/weavecut/mesh.py", "src/weavecut/mesh_io.py",
                    "src/weavecut/validation.py"],
                   ["tests/test_mesh.py", "tests/test_mesh_io.py", "tests/test_validation.py",
@@ -49,7 +50,9 @@ PACKAGES: dict[str, tuple[list[str], list[str]]] = {
 
 
 def tracked_tree(dest: Path) -> None:
-    """Copy the files git tracks (and untracked, unignored ones) into ``dest``."""
+    """Copy the files git tracks (and untracked, unignored ones) into ``dest``; a changed file
+    gets a fresh mtime (``shutil.copy``, not ``copy2``), which is how mutmut notices it must
+    mutate it again (it keeps the results of the functions whose hash did not change)."""
     files = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard"],
                            cwd=ROOT, check=True, capture_output=True, text=True).stdout.split()
     for name in files:
@@ -58,7 +61,7 @@ def tracked_tree(dest: Path) -> None:
             target = dest / name
             target.parent.mkdir(parents=True, exist_ok=True)
             if not target.exists() or target.read_bytes() != src.read_bytes():
-                shutil.copy2(src, target)
+                shutil.copy(src, target)
 
 
 def configure(work: Path, mutate: list[str], tests: list[str], deselect: str = "") -> None:
