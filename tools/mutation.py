@@ -45,7 +45,9 @@ PACKAGES: dict[str, tuple[list[str], list[str]]] = {
                    "tests/test_fuzz.py", "tests/subdivision/test_snub.py"]),
     "puzzle": (["src/weavecut/puzzle/*"], ["tests/puzzle"]),
     "papermodel": (["src/weavecut/papermodel/*"], ["tests/papermodel"]),
-    "export": (["src/weavecut/export/*"], ["tests/export", "tests/test_cli.py"]),
+    "export": (["src/weavecut/export/*"], ["tests/export", "tests/test_cli.py",
+                                           "tests/surface/test_woven_model.py"]),
+    "readers": (["src/weavecut/readers/*"], ["tests/readers"]),
 }
 
 

@@ -1,0 +1,109 @@
+"""The colour rules in numbers worked out by hand: shades of a colour by rank, sibling ranks
+with orphans among the strands, palette families of a lone weave and of orphan strands, and the
+triangle colouring's refusals word for word."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from weavecut import inputs
+from weavecut.errors import MeshError
+from weavecut.subdivision import subdivide
+from weavecut.weave.colour import (
+    crossing_pairs, greedy_classes, palette, shade, sibling_rank, strand_families,
+)
+from weavecut.weave.snub_weave import snub_weaves
+from weavecut.weave.triangles import triangle_weave
+from weavecut.weave.two_colouring import triangle_three_colouring
+
+from .test_triangle_weaves import split_quads
+
+
+@pytest.mark.parametrize("rank, expected", [
+    # darker (towards 0) on even ranks, lighter (towards 255) on odd ones, by 0.2, 0.35, ...
+    (0, "#6a6633"),   # 0x85 * 0.8 = 106.4, 0x7f * 0.8 = 101.6, 0x40 * 0.8 = 51.2
+    (1, "#9d9966"),   # 133 + 122 * 0.2 = 157.4, 127 + 128 * 0.2 = 152.6, 64 + 191 * 0.2 = 102.2
+    (2, "#56532a"),   # 0.35: 133 * 0.65 = 86.45, 127 * 0.65 = 82.55, 64 * 0.65 = 41.6
+    (3, "#b0ac83"),   # 133 + 122 * 0.35 = 175.7, 127 + 128 * 0.35 = 171.8, 64 + 191 * 0.35 = 130.85
+    (9, "#e7e5d9"),   # 0.2 + 0.15 * 4 = 0.8: 133 + 122 * 0.8 = 230.6, 229.4, 216.8
+    (12, "#14130a"),  # 0.2 + 0.15 * 6 = 1.1, capped at 0.85: 19.95, 19.05, 9.6
+])
+def test_shades_by_rank(rank, expected):
+    assert shade("#857f40", rank) == expected
+
+
+def test_shade_hex_digits_are_lower_case():
+    assert shade("#ffffff", 0) == "#cccccc" and shade("#000000", 1) == "#333333"
+
+
+def test_sibling_ranks_with_orphans():
+    """Children of strand 1 (strands 0, 2), of strand 0 (3, 5, equally long), orphans 1 and 4:
+    longest first, ties by strand id; an orphan is always first of its own."""
+    parent = np.array([1, -1, 1, 0, -1, 0])
+    lengths = np.array([5, 9, 7, 2, 3, 2])
+    assert sibling_rank(parent, lengths).tolist() == [1, 0, 0, 0, 0, 1]
+    # orphans long enough to come first in any group they were wrongly put in
+    assert sibling_rank(np.array([-1, 0, 0, -1]), np.array([9, 1, 2, 9])).tolist() == \
+        [0, 1, 0, 0]
+
+
+def test_families_of_a_lone_weave_are_its_greedy_classes():
+    weaves = snub_weaves(subdivide(inputs.get("square-grid:3x3"), 2))
+    pal = palette("okabe-ito")
+    lone = weaves[:1]
+    expected = greedy_classes(lone[0].n_strands, crossing_pairs(lone[0]), len(pal.families))
+    np.testing.assert_array_equal(strand_families(lone, pal), expected)
+
+
+def test_orphan_strands_take_a_family_by_their_id():
+    """Strands following no parent (none on the bundled inputs; two made here) take family
+    ``id % families``, the others their parent's."""
+    weaves = snub_weaves(subdivide(inputs.get("square-grid:3x3"), 3))
+    ps = weaves[-1].parent_strand.copy()
+    orphans = np.array([3, 14])
+    ps[orphans] = -1
+    weaves[-1] = replace(weaves[-1], parent_strand=ps)
+    pal = palette("maritime-12")
+    families = strand_families(weaves, pal)
+    assert families.dtype.kind == "i"
+    np.testing.assert_array_equal(families[orphans], orphans % len(pal.families))
+    parents = strand_families(weaves[:-1], pal)
+    np.testing.assert_array_equal(families[ps >= 0], parents[ps[ps >= 0]])
+
+
+def test_triangle_weave_takes_a_colouring_of_zeros_and_ones():
+    mesh, _ = split_quads(2, 2)
+    c1 = triangle_three_colouring(mesh)
+    as_bool, as_int = triangle_weave(mesh, c1), triangle_weave(mesh, c1.astype(np.int64))
+    np.testing.assert_array_equal(as_int.strand_visits, as_bool.strand_visits)
+    np.testing.assert_array_equal(as_int.visit_over, as_bool.visit_over)
+
+
+def test_triangle_weave_refuses_a_bad_colouring_naming_the_first_face():
+    mesh, _ = split_quads(2, 1)
+    c1 = triangle_three_colouring(mesh)
+    last = mesh.faces()[-1]
+    c1[last] = [True, True, False]  # two c1 corners in the last face (and its neighbours)
+    bad = [f for f, corners in enumerate(mesh.faces()) if c1[corners].sum() != 1]
+    assert bad[0] >= 1
+    message = (f"face {bad[0]} is not a triangle with exactly one c1 corner "
+               f"({len(bad)} such faces)")
+    with pytest.raises(MeshError, match=f"^{re.escape(message)}$"):
+        triangle_weave(mesh, c1)
+    with pytest.raises(MeshError, match="^face 0 is not a triangle with exactly one c1 corner "
+                                        rf"\({mesh.n_faces} such faces\)$"):
+        triangle_weave(mesh, np.zeros(mesh.n_vertices, dtype=bool))
+
+
+@pytest.mark.parametrize("name, message", [
+    ("triangulated-ngon:5", "the triangles have no colouring with one c1 corner each "
+                            "(an inner vertex of odd degree)"),
+    ("square-grid:2x2", "a triangle weave needs a mesh of triangles only"),
+])
+def test_triangle_three_colouring_refusals_word_for_word(name, message):
+    with pytest.raises(MeshError, match=f"^{re.escape(message)}$"):
+        triangle_three_colouring(inputs.get(name))
