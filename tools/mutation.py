@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import json
+import os
 import shutil
 import subprocess
 import sys
@@ -33,6 +34,11 @@ MUTMUT = [sys.executable, "-m", "mutmut"]
 # through the subprocesses (mutmut maps tests to what they call in-process), but the
 # in-process warm-up they start with would make them run for nearly every mesh-core mutant
 DESELECT = {"mesh-core": "not interrupt and not hash_seeds"}
+
+# mutmut stops a mutant after (expected time + 1 s) x this x 2 CPU seconds, or half that in
+# wall time; on a shared, loaded machine a test takes ten times its CPU time in wall time, so
+# mutmut's default (15) reported mutants whose tests passed as timeouts (counted as killed)
+TIMEOUT_MULTIPLIER = 60
 
 # package -> (files to mutate, tests that guard them)
 PACKAGES: dict[str, tuple[list[str], list[str]]] = {
@@ -75,7 +81,8 @@ def configure(work: Path, mutate: list[str], tests: list[str], deselect: str = "
              f"pytest_add_cli_args_test_selection = [{quoted(json.dumps(t) for t in tests)}]\n"
              "pytest_add_cli_args = [\"-p\", \"no:cacheprovider\", \"-x\", \"-q\""
              + (f", \"-k\", {json.dumps(deselect)}" if deselect else "") + "]\n"
-             "also_copy = [\"templates/\", \"examples/\", \"benchmarks/\"]\n")
+             "also_copy = [\"templates/\", \"examples/\", \"benchmarks/\"]\n"
+             f"timeout_multiplier = {TIMEOUT_MULTIPLIER}\n")
     (work / "pyproject.toml").write_text(text, encoding="utf-8")
 
 
@@ -87,7 +94,8 @@ def run_package(name: str, children: int, only: list[str]) -> dict:
     configure(work, mutate, tests, DESELECT.get(name, ""))
     start = time.monotonic()
     run = subprocess.run([*MUTMUT, "run", "--max-children", str(children), *only], cwd=work,
-                         capture_output=True, text=True)
+                         capture_output=True, text=True,
+                         env={**os.environ, "HYPOTHESIS_PROFILE": "mutation"})
     if run.returncode:  # e.g. the tests fail without any mutant: show why, then stop
         print(run.stdout[-3000:], run.stderr[-3000:], sep="\n", file=sys.stderr)
         raise SystemExit(f"mutation: mutmut failed on {name} (status {run.returncode}); "

@@ -110,14 +110,14 @@ def check(weave, quads, c1):
     assert library_strands(weave) == walked_strands(quads, c1)
 
 
-@settings(max_examples=15, deadline=None)
+@settings(deadline=None)
 @given(mesh=jittered_quad_grids())
 def test_quad_weave_walks_like_the_oracle(mesh):
     c1 = disc_two_colouring(mesh)
     check(quad_weave(mesh, c1), [tuple(f) for f in mesh.faces()], c1)
 
 
-@settings(max_examples=15, deadline=None)
+@settings(deadline=None)
 @given(mesh=any_meshes())
 def test_catmull_clark_weave_walks_like_the_oracle(mesh):
     level = catmull_clark.step(mesh)
@@ -152,7 +152,7 @@ def test_sqrt3_weave_walks_like_the_oracle(name):
     check(sqrt3_weave(level, n), quads, c1)
 
 
-@settings(max_examples=15, deadline=None)
+@settings(deadline=None)
 @given(mesh=any_meshes())
 def test_face_split_weave_walks_like_the_oracle(mesh):
     n = mesh.n_vertices
