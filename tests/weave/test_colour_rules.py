@@ -17,8 +17,9 @@ from weavecut.weave.colour import (
 )
 from weavecut.weave.snub_weave import snub_weaves
 from weavecut.weave.triangles import triangle_weave
-from weavecut.weave.two_colouring import triangle_three_colouring
+from weavecut.weave.two_colouring import disc_two_colouring, triangle_three_colouring
 
+from ..subdivision.classic_meshes import quad_grid
 from .test_triangle_weaves import _three_colouring_oracle, split_quads
 
 
@@ -91,3 +92,15 @@ def test_three_colouring_of_a_mesh_ending_in_a_lone_triangle():
     c1 = triangle_three_colouring(mesh)
     np.testing.assert_array_equal(c1, _three_colouring_oracle(mesh))
     assert c1[n] and not c1[n + 1:].any()  # the lone triangle's first corner is c1
+
+
+def test_disc_colouring_starts_c1_at_the_lowest_vertex_of_every_part():
+    """Two grids side by side: in each, the colour is the parity of the grid distance (BFS
+    layers) from its lowest vertex, which is c1."""
+    one = quad_grid(2, 2)
+    n = one.n_vertices
+    mesh = Mesh.from_faces(np.vstack([one.vertices, one.vertices + [10, 0]]),
+                           one.faces() + [[v + n for v in f] for f in one.faces()])
+    c1 = disc_two_colouring(mesh)
+    i, j = np.divmod(np.arange(n), 3)  # vertex (i, j) of a 2 x 2 grid is 3 j + i
+    np.testing.assert_array_equal(c1, np.tile((i + j) % 2 == 0, 2))

@@ -14,8 +14,9 @@ from weavecut.mesh import Mesh
 from weavecut.subdivision import subdivide
 from weavecut.weave.snub_weave import snub_weave
 from weavecut.weave.triangles import triangle_weave
-from weavecut.weave.two_colouring import triangle_three_colouring
+from weavecut.weave.two_colouring import disc_two_colouring, triangle_three_colouring
 
+from ..subdivision.classic_meshes import tri_grid
 from .test_triangle_weaves import split_quads
 
 
@@ -67,3 +68,15 @@ def test_snub_weave_names_the_first_pentagon_whose_tip_is_at_no_middle_edge(turn
     bad = [p for p, f in enumerate(faces) if f[4] not in ends]
     refused(lambda: snub_weave(mesh),
             f"pentagon {bad[0]} has no middle edge at its tip: not a snub level")
+
+
+def test_disc_colouring_names_the_first_edge_within_one_colour():
+    """Two triangles: BFS layers from vertex 0 give 0 c1 and 1, 2, 3 c2; edges (1, 3) and
+    (2, 3) join c2 to c2 ((0, 3), the diagonal, is the other way)."""
+    mesh = tri_grid(1, 1)
+    edges = [tuple(e) for e in mesh.topology.edges.tolist()]
+    bad = [e for e in edges if e in {(1, 3), (2, 3)}]
+    assert len(bad) == 2
+    refused(lambda: disc_two_colouring(mesh),
+            f"not two-colourable: edge {bad[0]} joins two vertices of one colour "
+            "(2 such edges)")
