@@ -104,3 +104,11 @@ def test_disc_colouring_starts_c1_at_the_lowest_vertex_of_every_part():
     c1 = disc_two_colouring(mesh)
     i, j = np.divmod(np.arange(n), 3)  # vertex (i, j) of a 2 x 2 grid is 3 j + i
     np.testing.assert_array_equal(c1, np.tile((i + j) % 2 == 0, 2))
+
+
+def test_disc_colouring_reaches_vertices_only_a_lower_number_leads_to():
+    """Two quads numbered so that vertex 2 is next to 3 and 5 only: the layers are found
+    walking edges both ways (0: c1; 1, 4: c2; 5, 3: c1; 2: c2)."""
+    mesh = Mesh.from_faces([(0, 0), (1, 0), (2, 1), (2, 0), (0, 1), (1, 1)],
+                           [[0, 1, 5, 4], [1, 3, 2, 5]])
+    assert disc_two_colouring(mesh).tolist() == [True, False, False, True, False, True]
