@@ -174,3 +174,41 @@ def test_a_quad_grid_has_its_rows_and_columns_as_strands():
     strands = library_strands(quad_weave(mesh, disc_two_colouring(mesh)))
     assert sorted(len(seq) for _, seq in strands) == [3, 3, 3, 3, 4, 4, 4]
     assert not any(closed for closed, _ in strands)
+
+
+def glue_turned(mesh: Mesh, c1) -> Mesh:
+    """The mesh with every triangle renumbered to start at its glue edge (c2-c2), and a
+    triangle whose glue edge runs from the higher vertex to the lower one moved first, so
+    that half-edge 0 is the falling half of an inner glue edge."""
+    turned = []
+    for f in mesh.faces():
+        i = next(i for i in range(3) if not c1[f[i]] and not c1[f[(i + 1) % 3]])
+        turned.append(f[i:] + f[:i])
+    inner = {(f[i], f[(i + 1) % 3]) for f in turned for i in range(3)}
+    first = next(k for k, f in enumerate(turned) if f[0] > f[1] and (f[1], f[0]) in inner)
+    turned.insert(0, turned.pop(first))
+    return Mesh.from_faces(mesh.vertices, turned)
+
+
+@pytest.mark.parametrize("turn", [False, True])
+def test_glued_tiles_list_the_face_left_of_the_rising_glue_half_edge_first(turn):
+    """Tile k is the k-th glue edge; its first face has the glue edge from the lower vertex
+    to the higher one, the second face the other way."""
+    mesh = split_quads(3, 2)[0]
+    c1 = triangle_three_colouring(mesh)
+    if turn:
+        mesh = glue_turned(mesh, c1)
+    weave = triangle_weave(mesh, c1)
+    faces = mesh.faces()
+
+    def runs(f, a, b):
+        return any(f[i] == a and f[(i + 1) % 3] == b for i in range(3))
+
+    tiles = weave.tile_faces.reshape(-1, 2).tolist()
+    assert len(tiles) == len(glued_quads(mesh, lambda a, b: not c1[a] and not c1[b]))
+    for first, second in tiles:
+        shared = sorted(set(faces[first]) & set(faces[second]))
+        assert not c1[shared].any()
+        lo, hi = shared
+        assert runs(faces[first], lo, hi) and runs(faces[second], hi, lo)
+    check(weave, glued_quads(mesh, lambda a, b: not c1[a] and not c1[b]), c1)
