@@ -26,7 +26,7 @@ from weavecut.weave.two_colouring import (
     triangle_three_colouring,
 )
 
-from ..subdivision.classic_meshes import any_meshes, jittered_quad_grids, quad_grid
+from ..subdivision.classic_meshes import any_meshes, jittered_quad_grids, polygon, quad_grid
 from .test_triangle_weaves import split_quads
 
 
@@ -108,6 +108,10 @@ def glued_quads(mesh: Mesh, glue) -> list[tuple[int, int, int, int]]:
 
 def check(weave, quads, c1):
     assert library_strands(weave) == walked_strands(quads, c1)
+    # the array types the Weave documents
+    assert [a.dtype for a in (weave.tile_offsets, weave.tile_faces, weave.strand_offsets,
+                              weave.strand_visits, weave.visit_over, weave.strand_closed)] == \
+        [np.int64, np.int32, np.int64, np.int32, np.bool_, np.bool_]
 
 
 @settings(deadline=None)
@@ -115,6 +119,7 @@ def check(weave, quads, c1):
 def test_quad_weave_walks_like_the_oracle(mesh):
     c1 = disc_two_colouring(mesh)
     check(quad_weave(mesh, c1), [tuple(f) for f in mesh.faces()], c1)
+    check(quad_weave(mesh, c1.astype(np.int64)), [tuple(f) for f in mesh.faces()], c1)
 
 
 @settings(deadline=None)
@@ -122,6 +127,7 @@ def test_quad_weave_walks_like_the_oracle(mesh):
 def test_catmull_clark_weave_walks_like_the_oracle(mesh):
     level = catmull_clark.step(mesh)
     c1 = catmull_clark_colouring(level)
+    assert c1.dtype == bool
     # edge points are c1: numbered after the old vertices, before the face points
     n_v, n_e = mesh.n_vertices, mesh.topology.n_edges
     np.testing.assert_array_equal(np.flatnonzero(c1), np.arange(n_v, n_v + n_e))
@@ -212,3 +218,9 @@ def test_glued_tiles_list_the_face_left_of_the_rising_glue_half_edge_first(turn)
         lo, hi = shared
         assert runs(faces[first], lo, hi) and runs(faces[second], hi, lo)
     check(weave, glued_quads(mesh, lambda a, b: not c1[a] and not c1[b]), c1)
+
+
+def test_a_weave_without_tiles_has_no_strands():
+    weave = face_split_weave(polygon(5))  # one face: no inner edge, no quad
+    assert weave.n_tiles == weave.n_strands == 0
+    assert weave.strand_closed.shape == (0,) and weave.strand_closed.dtype == bool

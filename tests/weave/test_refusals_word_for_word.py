@@ -12,11 +12,12 @@ from weavecut import inputs
 from weavecut.errors import MeshError
 from weavecut.mesh import Mesh
 from weavecut.subdivision import subdivide
+from weavecut.weave.quad import quad_weave, twins_by_key
 from weavecut.weave.snub_weave import snub_weave
 from weavecut.weave.triangles import triangle_weave
 from weavecut.weave.two_colouring import disc_two_colouring, triangle_three_colouring
 
-from ..subdivision.classic_meshes import tri_grid
+from ..subdivision.classic_meshes import quad_grid, tri_grid
 from .test_triangle_weaves import split_quads
 
 
@@ -80,3 +81,11 @@ def test_disc_colouring_names_the_first_edge_within_one_colour():
     refused(lambda: disc_two_colouring(mesh),
             f"not two-colourable: edge {bad[0]} joins two vertices of one colour "
             "(2 such edges)")
+
+
+def test_quad_weave_refusals():
+    refused(lambda: quad_weave(inputs.get("triangle-grid:2x2"), np.zeros(9, dtype=bool)),
+            "the quad weave needs a mesh of quads only")
+    mesh = quad_grid(2, 1)
+    refused(lambda: quad_weave(mesh, np.zeros(6, dtype=bool), twins_by_key(mesh)),
+            "not two-colourable: a quad has two neighbouring corners of one colour")

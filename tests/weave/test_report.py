@@ -12,6 +12,7 @@ from click.testing import CliRunner
 from weavecut import inputs
 from weavecut.cli import cli
 from weavecut.subdivision import subdivide
+from weavecut.weave.colour import crossing_pairs
 from weavecut.weave.face_split import face_split_weave
 from weavecut.weave.quad import quad_weave
 from weavecut.weave.report import (
@@ -160,10 +161,13 @@ def test_summary_recount_on_a_made_up_lineage():
     later levels lack) given made-up parents: orphans, siblings, the last parent number."""
     weave = snub_weaves(subdivide(inputs.get("square-grid:3x3"), 1))[0]
     assert weave.n_strands == 12 and (own_tiles(weave) == LONG).sum() == 4
-    parents = np.array([0, 0, 1, 1, 1, -1, 2, 3, 3, 11, 11, -1], dtype=np.int32)
+    # strands 0 and 5 (three own tiles each) cross and are siblings
+    assert [0, 5] in crossing_pairs(weave).tolist() and own_tiles(weave)[[0, 5]].tolist() == [3, 3]
+    parents = np.array([0, 0, 1, 1, -1, 0, 2, 3, 3, 11, 11, -1], dtype=np.int32)
     child = replace(weave, parent_strand=parents)
     row = weave_summary(child, weave)
     assert row == _recount(child, weave)
+    assert row["lineage"]["long_sibling_pairs_that_cross"] == 1
     assert all(v == round(v, 6) for v in row["strand_length"].values())  # 6 decimals
     with pytest.raises(ValueError, match="^parent strand 12 is beyond the 12 parents$"):
         lineage_summary(replace(weave, parent_strand=parents.clip(0) + 1), weave)
