@@ -13,7 +13,7 @@ from weavecut import inputs
 from weavecut.mesh import Mesh
 from weavecut.subdivision import subdivide
 from weavecut.weave.colour import (
-    crossing_pairs, greedy_classes, palette, shade, sibling_rank, strand_families,
+    crossing_pairs, greedy_classes, palette, shade, sibling_rank, strand_colours, strand_families,
 )
 from weavecut.weave.snub_weave import snub_weaves
 from weavecut.weave.triangles import triangle_weave
@@ -112,3 +112,34 @@ def test_disc_colouring_reaches_vertices_only_a_lower_number_leads_to():
     mesh = Mesh.from_faces([(0, 0), (1, 0), (2, 1), (2, 0), (0, 1), (1, 1)],
                            [[0, 1, 5, 4], [1, 3, 2, 5]])
     assert disc_two_colouring(mesh).tolist() == [True, False, False, True, False, True]
+
+
+@pytest.mark.parametrize("name", ["maritime-12", "okabe-ito"])
+def test_strand_colours_of_children_and_orphans_by_the_rules(name):
+    """Three levels, two strands of each later level made orphans: a child takes its family's
+    shade by sibling rank at the first split (when the family has shades), else a shade of
+    its parent's colour; an orphan takes family ``id % families`` and shades its first
+    colour."""
+    weaves = snub_weaves(subdivide(inputs.get("square-grid:3x3"), 3))
+    for k in (1, 2):
+        ps = weaves[k].parent_strand.copy()
+        ps[[0, 7]] = -1
+        weaves[k] = replace(weaves[k], parent_strand=ps)
+    pal = palette(name)
+    families = pal.families
+    family = greedy_classes(weaves[0].n_strands, crossing_pairs(weaves[0]), len(families))
+    colours = [families[f][0] for f in family.tolist()]
+    for depth, weave in enumerate(weaves[1:], start=1):
+        own = [int(weave.strand(s)[1].sum()) for s in range(weave.n_strands)]
+        rank = sibling_rank(weave.parent_strand, np.array(own)).tolist()
+        new_family, new_colours = [], []
+        for s, p in enumerate(weave.parent_strand.tolist()):
+            f = int(family[p]) if p >= 0 else s % len(families)
+            if depth == 1 and len(families[f]) > 1:
+                colour = families[f][rank[s] % len(families[f])]
+            else:
+                colour = shade(colours[p] if p >= 0 else families[f][0], rank[s])
+            new_family.append(f)
+            new_colours.append(colour)
+        family, colours = np.array(new_family), new_colours
+        assert strand_colours(weaves[:depth + 1], pal) == colours
