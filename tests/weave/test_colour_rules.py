@@ -143,3 +143,24 @@ def test_strand_colours_of_children_and_orphans_by_the_rules(name):
             new_colours.append(colour)
         family, colours = np.array(new_family), new_colours
         assert strand_colours(weaves[:depth + 1], pal) == colours
+
+
+def test_greedy_classes_by_hand():
+    """Most neighbours first (ties: lower id), then the least used free class (ties: lower)."""
+    path = np.array([[0, 1], [1, 2], [2, 3]])
+    # order 1, 2, 0, 3: 1 -> 0; 2 -> 1; 0 -> 2 (1 and 2 free, 2 unused); 3 -> 0 (all used once)
+    assert greedy_classes(4, path, 3).tolist() == [2, 0, 1, 0]
+    # no neighbours: classes in turn, each used as often as the others
+    assert greedy_classes(6, np.zeros((0, 2), dtype=np.int64), 3).tolist() == [0, 1, 2, 0, 1, 2]
+    # a triangle with two classes: the last node has none free and takes the least used
+    triangle = np.array([[0, 1], [1, 2], [0, 2]])
+    assert greedy_classes(3, triangle, 2).tolist() == [0, 1, 0]
+
+
+def test_a_run_whose_first_weave_has_a_lineage_is_coloured_from_its_first_weave():
+    weaves = snub_weaves(subdivide(inputs.get("square-grid:3x3"), 3))[1:]
+    assert weaves[0].parent_strand is not None
+    first = greedy_classes(weaves[0].n_strands, crossing_pairs(weaves[0]), 8)
+    np.testing.assert_array_equal(strand_families(weaves[:1], palette("okabe-ito")), first)
+    assert strand_colours(weaves, palette("okabe-ito")) != strand_colours(weaves[1:],
+                                                                          palette("okabe-ito"))
