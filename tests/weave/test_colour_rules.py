@@ -13,7 +13,8 @@ from weavecut import inputs
 from weavecut.mesh import Mesh
 from weavecut.subdivision import subdivide
 from weavecut.weave.colour import (
-    crossing_pairs, greedy_classes, palette, shade, sibling_rank, strand_colours, strand_families,
+    Palette, crossing_pairs, greedy_classes, palette, shade, sibling_rank, strand_colours,
+    strand_families,
 )
 from weavecut.weave.snub_weave import snub_weaves
 from weavecut.weave.triangles import triangle_weave
@@ -164,3 +165,13 @@ def test_a_run_whose_first_weave_has_a_lineage_is_coloured_from_its_first_weave(
     np.testing.assert_array_equal(strand_families(weaves[:1], palette("okabe-ito")), first)
     assert strand_colours(weaves, palette("okabe-ito")) != strand_colours(weaves[1:],
                                                                           palette("okabe-ito"))
+
+
+def test_a_palette_is_named_by_its_file_or_by_where_it_was_found(tmp_path):
+    assert palette("okabe-ito").name == "okabe-ito"
+    named = tmp_path / "named.toml"
+    named.write_text('name = "sea"\ncolours = ["#123456", "#abcdef"]\n')
+    assert palette(str(named)).name == "sea"
+    bare = tmp_path / "bare.toml"
+    bare.write_text('colours = ["#123456"]\n')
+    assert palette(str(bare)) == Palette(str(bare), (("#123456",),))
