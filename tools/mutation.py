@@ -18,6 +18,7 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import json
+import os
 import shutil
 import subprocess
 import sys
@@ -36,22 +37,32 @@ MUTMUT = [sys.executable, "-m", "mutmut"]
 # in-process warm-up they start with would make them run for nearly every mesh-core mutant
 DESELECT = {"mesh-core": "not interrupt and not hash_seeds"}
 
+# mutmut stops a mutant after (expected time + 1 s) x this x 2 CPU seconds, or half that in
+# wall time; on a shared, loaded machine a test takes ten times its CPU time in wall time, so
+# mutmut's default (15) reported mutants whose tests passed as timeouts (counted as killed)
+TIMEOUT_MULTIPLIER = 60
+
 # package -> (files to mutate, tests that guard them)
 PACKAGES: dict[str, tuple[list[str], list[str]]] = {
     "subdivision": (["src/weavecut/subdivision/*"], ["tests/subdivision"]),
-    "weave": (["src/weavecut/weave/*"], ["tests/weave"]),
+    "weave": (["src/weavecut/weave/*"], ["tests/weave", "tests/surface/test_surface_weave.py",
+                                         "tests/surface/test_woven_model.py"]),
     "mesh-core": (["src/weavecut/mesh.py", "src/weavecut/mesh_io.py",
                    "src/weavecut/validation.py"],
                   ["tests/test_mesh.py", "tests/test_mesh_io.py", "tests/test_validation.py",
                    "tests/test_fuzz.py", "tests/subdivision/test_snub.py"]),
     "puzzle": (["src/weavecut/puzzle/*"], ["tests/puzzle"]),
     "papermodel": (["src/weavecut/papermodel/*"], ["tests/papermodel"]),
-    "export": (["src/weavecut/export/*"], ["tests/export", "tests/test_cli.py"]),
+    "export": (["src/weavecut/export/*"], ["tests/export", "tests/test_cli.py",
+                                           "tests/surface/test_woven_model.py"]),
+    "readers": (["src/weavecut/readers/*"], ["tests/readers"]),
 }
 
 
 def tracked_tree(dest: Path) -> None:
-    """Copy the files git tracks (and untracked, unignored ones) into ``dest``."""
+    """Copy the files git tracks (and untracked, unignored ones) into ``dest``; a changed file
+    gets a fresh mtime (``shutil.copy``, not ``copy2``), which is how mutmut notices it must
+    mutate it again (it keeps the results of the functions whose hash did not change)."""
     files = subprocess.run(["git", "ls-files", "--cached", "--others", "--exclude-standard"],
                            cwd=ROOT, check=True, capture_output=True, text=True).stdout.split()
     for name in files:
@@ -60,7 +71,7 @@ def tracked_tree(dest: Path) -> None:
             target = dest / name
             target.parent.mkdir(parents=True, exist_ok=True)
             if not target.exists() or target.read_bytes() != src.read_bytes():
-                shutil.copy2(src, target)
+                shutil.copy(src, target)
 
 
 def configure(work: Path, mutate: list[str], tests: list[str], deselect: str = "") -> None:
@@ -72,7 +83,8 @@ def configure(work: Path, mutate: list[str], tests: list[str], deselect: str = "
              f"pytest_add_cli_args_test_selection = [{quoted(json.dumps(t) for t in tests)}]\n"
              "pytest_add_cli_args = [\"-p\", \"no:cacheprovider\", \"-x\", \"-q\""
              + (f", \"-k\", {json.dumps(deselect)}" if deselect else "") + "]\n"
-             "also_copy = [\"templates/\", \"examples/\", \"benchmarks/\"]\n")
+             "also_copy = [\"templates/\", \"examples/\", \"benchmarks/\"]\n"
+             f"timeout_multiplier = {TIMEOUT_MULTIPLIER}\n")
     (work / "pyproject.toml").write_text(text, encoding="utf-8")
 
 
@@ -88,7 +100,8 @@ def run_package(name: str, children: int, only: list[str], fresh: bool = False) 
     configure(work, mutate, tests, DESELECT.get(name, ""))
     start = time.monotonic()
     run = subprocess.run([*MUTMUT, "run", "--max-children", str(children), *only], cwd=work,
-                         capture_output=True, text=True)
+                         capture_output=True, text=True,
+                         env={**os.environ, "HYPOTHESIS_PROFILE": "mutation"})
     if run.returncode:  # e.g. the tests fail without any mutant: show why, then stop
         print(run.stdout[-3000:], run.stderr[-3000:], sep="\n", file=sys.stderr)
         raise SystemExit(f"mutation: mutmut failed on {name} (status {run.returncode}); "

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -11,8 +12,15 @@ from click.testing import CliRunner
 from weavecut import inputs
 from weavecut.cli import cli
 from weavecut.subdivision import subdivide
-from weavecut.weave.report import lineage_summary, weave_summaries
+from weavecut.weave.colour import crossing_pairs
+from weavecut.weave.face_split import face_split_weave
+from weavecut.weave.quad import quad_weave
+from weavecut.weave.report import (
+    LONG, lineage_summary, own_tiles, weave_summaries, weave_summary,
+)
 from weavecut.weave.snub_weave import snub_weaves
+
+from ..subdivision.classic_meshes import polygon, quad_grid
 
 
 @pytest.mark.parametrize("name,levels", [("pentagon", 4), ("triangulated-ngon:24", 3),
@@ -146,3 +154,40 @@ def test_summary_equals_a_loop_recount(name, levels):
     last = rows[-1]
     assert last["octagons"] and last["lineage"]["sibling_pairs_that_cross"]
     assert last["strands_with_octagon"] and last["lineage"]["short_fragments"]
+
+
+def test_summary_recount_on_a_made_up_lineage():
+    """Level 1 of the 3 x 3 grid (strands of exactly three own tiles, the LONG bound, which
+    later levels lack) given made-up parents: orphans, siblings, the last parent number."""
+    weave = snub_weaves(subdivide(inputs.get("square-grid:3x3"), 1))[0]
+    assert weave.n_strands == 12 and (own_tiles(weave) == LONG).sum() == 4
+    # strands 0 and 5 (three own tiles each) cross and are siblings
+    assert [0, 5] in crossing_pairs(weave).tolist() and own_tiles(weave)[[0, 5]].tolist() == [3, 3]
+    parents = np.array([0, 0, 1, 1, -1, 0, 2, 3, 3, 11, 11, -1], dtype=np.int32)
+    child = replace(weave, parent_strand=parents)
+    row = weave_summary(child, weave)
+    assert row == _recount(child, weave)
+    assert row["lineage"]["long_sibling_pairs_that_cross"] == 1
+    assert all(v == round(v, 6) for v in row["strand_length"].values())  # 6 decimals
+    with pytest.raises(ValueError, match="^parent strand 12 is beyond the 12 parents$"):
+        lineage_summary(replace(weave, parent_strand=parents.clip(0) + 1), weave)
+
+
+def test_summaries_of_a_run_give_the_first_weave_no_parent():
+    weaves = snub_weaves(subdivide(inputs.get("pentagon"), 3))[1:]  # starts with a lineage
+    rows = weave_summaries(weaves)
+    assert "lineage" not in rows[0] and "lineage" in rows[1]
+
+
+def test_own_tiles_counts_strands_that_are_never_on_top():
+    """Two quads side by side: one of the one-quad strands is only ever below."""
+    mesh = quad_grid(2, 1)
+    weave = quad_weave(mesh, np.array([True, False, True, False, True, False]))
+    by_loop = [int(weave.strand(s)[1].sum()) for s in range(weave.n_strands)]
+    assert 0 in by_loop and own_tiles(weave).tolist() == by_loop
+
+
+def test_an_empty_weave_has_a_zero_length_spread():
+    weave = face_split_weave(polygon(5))  # no inner edge: no tile, no strand
+    assert weave_summary(weave)["strand_length"] == {"min": 0.0, "mean": 0.0, "max": 0.0,
+                                                     "total": 0.0}
