@@ -17,6 +17,7 @@ Strips are packed inside the marks, ``clearance`` clear of them, and inside that
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from pathlib import Path
 
 import numpy as np
 import shapely
@@ -201,6 +202,20 @@ def cut_layer(rings: list[NDArray[np.float64]], style: Style = CUT, name: str = 
     coords = np.concatenate(rings) if rings else np.zeros((0, 2))
     offsets = np.r_[0, np.cumsum([len(r) for r in rings])].astype(np.int64)
     return Layer(name, "cut", (Polygons(coords, offsets, style),))
+
+
+CUT_SUFFIXES = (".svg", ".dxf")
+
+
+def cut_file_paths(output: Path, n: int) -> list[Path]:
+    """The cut files of strip page ``n`` of the PDF ``output``: PAGE-pNN-cut.svg and .dxf."""
+    return [output.with_name(f"{output.stem}-p{n:02d}-cut{s}") for s in CUT_SUFFIXES]
+
+
+def existing_cut_files(output: Path) -> list[Path]:
+    """The cut files of any page of ``output`` that exist beside it."""
+    pattern = f"{output.stem}-p[0-9][0-9]*-cut"
+    return sorted(p for s in CUT_SUFFIXES for p in output.parent.glob(pattern + s))
 
 
 def cut_files(book) -> list[tuple[int, Drawing]]:
