@@ -220,7 +220,8 @@ def existing_cut_files(output: Path) -> list[Path]:
 
 def cut_files(book) -> list[tuple[int, Drawing]]:
     """(page number, cut Drawing) for every strip page: the page's size, the strips' outlines
-    at their printed place, cut from the top-left corner (where cutters start) onwards."""
+    at their printed place, cut from the top-left corner (where cutters start) onwards; the
+    metadata item ``printed_page`` names the page (the kit page draws the cuts over it)."""
     out = []
     for n in book.strip_pages:
         page = book.drawing.sheets[n - 1]
@@ -228,5 +229,5 @@ def cut_files(book) -> list[tuple[int, Drawing]]:
         rings = ordered_outlines(outlines, (0.0, page.height))
         sheet = Sheet(page.width, page.height, (cut_layer(rings),), f"page {n}: cut")
         out.append((n, Drawing((sheet,), f"{book.drawing.title}: cut file of page {n}",
-                               book.drawing.metadata)))
+                               (*book.drawing.metadata, ("printed_page", str(n))))))
     return out
