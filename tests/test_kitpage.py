@@ -5,9 +5,11 @@ replace a file weave-cut did not write, and by --html."""
 
 from __future__ import annotations
 
+import base64
 import io
 import json
 import re
+from dataclasses import replace
 from pathlib import Path
 from urllib.parse import unquote
 
@@ -24,7 +26,7 @@ from weavecut.cli.build_command import MANIFEST, PAGE
 from weavecut.fileio import recording, write_atomic
 from weavecut.kitpage import document as kp
 from weavecut.kitpage import previews
-from weavecut.layout.contrast import MIN_CONTRAST, contrast_ratio
+from weavecut.layout.contrast import MIN_CONTRAST, contrast_ratio, rgb
 from weavecut.layout.drawing import (Drawing, Layer, Sheet, Style, polygons_from_rings,
                                      polylines_from_lines)
 
@@ -154,6 +156,71 @@ def test_same_runs_same_bytes(built):
     assert kp.page("test & <kit>", runs, folder) == text
 
 
+def pixels(data: bytes) -> np.ndarray:
+    return np.asarray(Image.open(io.BytesIO(data)).convert("RGB"))
+
+
+def near_outline(image: np.ndarray, ring, sheet_height: float, px: float) -> np.ndarray:
+    """(H, W) whether each pixel centre lies within ``px`` pixels of ``ring`` (mm, y up)."""
+    scale = image.shape[0] / sheet_height
+    y, x = np.mgrid[: image.shape[0], : image.shape[1]] + 0.5
+    centres = shapely.points(x / scale, sheet_height - y / scale)
+    return (shapely.distance(centres, shapely.LinearRing(ring)) <= px / scale).reshape(x.shape)
+
+
+def cut_file_pictures(tmp_path, metadata, pages: int = 1) -> tuple[dict, Drawing, str]:
+    """The kit page of a printed PDF and a cut file of the square with ``metadata``: the
+    pictures by alt text, the printed drawing, the page."""
+    printed = drawing(pages)
+    cut = replace(drawing(hairline=True, role="cut"), metadata=metadata)
+    with recording() as record:
+        export.write(printed, tmp_path / "strips.pdf")
+        export.write(cut, tmp_path / "strips-p01-cut.svg")
+        export.write(cut, tmp_path / "strips-p01-cut.dxf")
+    text = kp.page("cuts", [kitpage.Run.of(record, "weave-cut strands")], tmp_path)
+    pictures = {img.get("alt"): img.get("src") for img in parse(text).iter("img")}
+    return pictures, printed, text
+
+
+def png_of(src: str) -> bytes:
+    return base64.b64decode(src.removeprefix("data:image/png;base64,"))
+
+
+def test_a_print_and_cut_file_is_shown_over_its_printed_page(tmp_path):
+    pictures, printed, text = cut_file_pictures(tmp_path, (("printed_page", "1"),))
+    over = pixels(png_of(pictures["strips-p01-cut.svg: page 1 as printed"]))
+    plain = pixels(previews.sheet_png(printed.sheets[0], previews.CUT_PX))
+    assert over.shape == plain.shape and over.shape[0] == previews.CUT_PX
+    changed = (np.abs(over.astype(int) - plain) > 8).any(axis=2)  # beyond smoothing noise
+    red = near_colour(over, previews.CUT_OVER)
+    assert red.sum() > 4 * 50 * over.shape[0] / 297  # both pixels of every side's length
+    assert not (changed & ~near_outline(over, SQUARE, 297, 2.5)).any()  # nothing else moved
+    assert red[near_outline(over, SQUARE, 297, 0.5)].mean() > 0.9  # the cut over the outline
+    assert "the desktop cutter cuts this on page 1 as printed (SVG or DXF)" in text
+
+
+def test_a_card_sheet_is_shown_on_its_card_colour(tmp_path):
+    pictures, _, text = cut_file_pictures(tmp_path, (("card", "#0b3c5d"),))
+    card = pixels(png_of(pictures["strips-p01-cut.svg: card #0b3c5d"]))
+    lines = near_outline(card, SQUARE, 297, 0.5)
+    assert near_colour(card[~near_outline(card, SQUARE, 297, 2.5)], "#0b3c5d", 8).all()
+    assert near_colour(card[lines], "#ffffff").mean() > 0.9  # white cuts read on dark card
+    assert "laser-cut from card #0b3c5d (SVG or DXF)" in text
+
+
+@pytest.mark.parametrize("metadata", [(("printed_page", "4"),), (("card", "navy\"/>"),)])
+def test_a_cut_file_without_its_page_or_colour_gets_the_plain_preview(tmp_path, metadata):
+    pictures, _, _ = cut_file_pictures(tmp_path, metadata, pages=3)
+    cut = [src for alt, src in pictures.items() if alt.startswith("strips-p01-cut")]
+    assert len(cut) == 1 and cut[0].startswith("data:image/svg+xml")
+
+
+def near_colour(image: np.ndarray, colour: str, tolerance: int = 60) -> np.ndarray:
+    """Whether each pixel is ``colour`` within ``tolerance`` per channel (lines are smoothed)."""
+    want = np.round(255 * np.array(rgb(colour)))
+    return (np.abs(image.astype(float) - want) <= tolerance).all(axis=-1)
+
+
 def cli_run(*args):
     return CliRunner().invoke(cli, [str(a) for a in args])
 
@@ -236,6 +303,8 @@ def test_the_index_links_every_page(built, tmp_path):
 @pytest.mark.parametrize("args", [
     ["puzzle", "--levels", "2", "--size", "20cm", "-o", "{out}"],
     ["strands", "square-grid", "-o", "{out}/strands.pdf"],
+    ["strands", "square-grid:2x2", "--tile-size", "20mm", "--cutter", "silhouette", "-o",
+     "{out}/strands.pdf"],
 ])
 def test_every_file_a_command_wrote_is_on_its_page(tmp_path, args):
     out = tmp_path / "kit"

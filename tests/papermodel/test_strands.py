@@ -231,6 +231,48 @@ def test_the_checks_catch_a_bad_label():
     assert {"small", "upside down", "low contrast", "outside its strip"} <= set(broken)
 
 
+@pytest.mark.parametrize("page, margin", [((210.0, 297.0), 10.0), ((210.0, 297.0), 18.0),
+                                          ((215.9, 279.4), 23.0), ((150.0, 200.0), 10.0)])
+def test_page_furniture_keeps_its_texts_apart(page, margin):
+    """Title, subtitle, page number, scale-bar caption and legend keep FURNITURE_GAP (1 mm)
+    between their boxes on wide pages and narrow ones (A4 inside a cutter's marks): measured
+    pairwise with shapely, and held by the page checks."""
+    from weavecut.layout.labels import text_box
+    from weavecut.papermodel.pages import FURNITURE_GAP
+
+    book = strand_book(weaves("square-grid:2x2", 2), palette("maritime-12"), page, 20.0,
+                       margin, title="weave-cut strands: square-grid:2x2, level 2 (gjpqy)")
+    for n in book.strip_pages:
+        sheet = book.drawing.sheets[n - 1]
+        boxes = [text_box(t) for layer in sheet.layers if layer.name == "page"
+                 for t in layer.shapes if hasattr(t, "text")]
+        assert len(boxes) >= 7  # title, subtitle, number, caption, three legend entries
+        gaps = shapely.distance(*np.broadcast_arrays(np.array(boxes)[:, None], np.array(boxes)))
+        assert gaps[~np.eye(len(boxes), dtype=bool)].min() >= FURNITURE_GAP - 1e-9
+        assert not [r for r in sheet_checks(book, n) if r["broken"]]
+
+
+def test_the_checks_catch_touching_page_furniture():
+    """A legend text planted 0.5 mm above the scale bar's caption is reported."""
+    from dataclasses import replace
+
+    from weavecut.layout.drawing import Layer, Sheet, Text
+    from weavecut.layout.labels import text_box
+    book = small_book()
+    n = book.strip_pages[0]
+    sheet = book.drawing.sheets[n - 1]
+    caption = next(t for layer in sheet.layers for t in layer.shapes
+                   if isinstance(t, Text) and t.text.startswith("100 mm"))
+    top = text_box(caption).bounds[3]
+    near = Text(caption.x, top + 0.5 + 0.05 * caption.size, "cut", caption.size, "middle")
+    planted = Sheet(sheet.width, sheet.height, sheet.layers + (Layer("page", "label", (near,)),))
+    broken = {r["text"]: r["broken"] for r in text_checks(planted, book.area.box)}
+    assert "touches a text" in broken["cut"] and "overlaps a text" not in broken["cut"]
+    away = replace(near, y=near.y + 1.0)
+    planted = Sheet(sheet.width, sheet.height, sheet.layers + (Layer("page", "label", (away,)),))
+    assert "touches a text" not in text_checks(planted, book.area.box)[-1]["broken"]
+
+
 @pytest.mark.parametrize("name", BOOKS)
 def test_virtual_assembly_reproduces_the_weave(name):
     """Every printed piece, put back by the inverse of its page transform, covers exactly the

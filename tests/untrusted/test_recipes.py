@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from weavecut.cli.build_command import MANIFEST
+from weavecut.cli.build_command import MANIFEST, file_hash
 
 from .helpers import files_under, refused, run
 
@@ -157,6 +157,29 @@ def test_folder_outputs_check_the_files_the_command_writes(tmp_path):
     assert run("build", recipe, "-o", out).exit_code == 0
     assert {n for n in json.loads((out / MANIFEST).read_text())["files"]} >= {
         "puzzle-summary.json", "puzzle-shared-cut.svg"}
+
+
+def test_every_file_a_job_writes_is_in_the_manifest_and_stale_ones_go(tmp_path):
+    out = tmp_path / "out"
+    cut = 'output = "sq.pdf"\ncutter = "silhouette"\ntile-size = "{}"'
+    recipe = write_recipe(tmp_path, cut.format("40mm"), "strands", "square-grid:2x2")
+    assert run("build", recipe, "-o", out).exit_code == 0
+    manifest = json.loads((out / MANIFEST).read_text())
+    pages = ["sq.pdf", *(f"sq-p{n:02d}-cut.{s}" for n in (3, 4, 5) for s in ("dxf", "svg"))]
+    assert manifest["outputs"] == {"sq.pdf": sorted(pages)}
+    assert set(manifest["files"]) == {*pages, "index.html"}
+    assert all(manifest["files"][p] == file_hash(out / p) for p in pages)
+    recipe = write_recipe(tmp_path, cut.format("20mm"), "strands", "square-grid:2x2")
+    assert run("build", recipe, "-o", out).exit_code == 0  # one strip page now
+    left = {p.name for p in out.iterdir()}
+    assert left == {"sq.pdf", "sq-p03-cut.dxf", "sq-p03-cut.svg", "index.html", MANIFEST}
+    assert set(json.loads((out / MANIFEST).read_text())["files"]) == left - {MANIFEST}
+    (out / "sq-p07-cut.svg").write_text("<svg/>")  # a file weave-cut did not write, in the way
+    refused(run("build", recipe, "-o", out), "sq-p07-cut.svg", "--force")
+    (out / "sq-p07-cut.svg").unlink()
+    (out / "sq-p03-cut.dxf").write_text("edited")  # no longer what weave-cut wrote
+    refused(run("build", recipe, "-o", out), "sq-p03-cut.dxf", "--force")
+    assert (out / "sq-p03-cut.dxf").read_text() == "edited"
 
 
 def test_an_output_is_never_an_input(tmp_path):

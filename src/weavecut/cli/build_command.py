@@ -20,7 +20,12 @@ problem is one line naming the recipe, the job and the key:
 - the output: a relative path inside ``-o DIR`` (no ``..``, not absolute, not through a
   symlink out of it), never an input, a device or a FIFO, and never an existing file that
   weave-cut did not write there (recorded with its hash in ``.weave-cut-manifest.json``) unless
-  ``--force``.
+  ``--force``. That holds for every file a job may write: a folder output's ``COMMAND-*``
+  files, the files a command says it writes beside its output (``strands --cutter``'s cut
+  files) and the files the job wrote last time.
+
+The manifest records every file each job wrote, by the job's output; a file a job wrote last
+time and not this time (a cut file of a page the model no longer has) is removed.
 
 After the last job, ``DIR/index.html`` shows every output (the kit page, ``weavecut.kitpage``).
 """
@@ -121,7 +126,8 @@ class Planner:
         self.group, self.root, self.recipe = group, root, recipe
         self.out_dir, self.shown_dir, self.force = out_dir, shown_dir, force
         self.readable = (recipe.resolve().parent, *(d.resolve() for d in allow_read))
-        self.ours = read_manifest(out_dir)
+        self.ours, self.wrote = read_manifest(out_dir)
+        self.written: set[str] = set()  # by the jobs run so far
 
     def commands(self) -> dict[str, click.Command]:
         return {n: c for n, c in self.group.commands.items() if n != "build"}
@@ -296,16 +302,23 @@ class Planner:
                               "replace it")
 
     def replaced(self, job: Job) -> list[Path]:
-        """Existing files job's output would replace (a folder output: its COMMAND-* files)."""
+        """Existing files ``job`` may replace or remove: its output (a folder output: its
+        COMMAND-* files), the files its command writes beside the output (the command's
+        ``beside(values, output)``), and the files it wrote last time."""
+        last = [self.out_dir / p for p in self.wrote.get(self.rel(job.output), ())]
+        beside = getattr(job.command, "beside", None)
+        found = beside(job.values, job.output) if beside and not job.prints else []
         try:
             st = os.lstat(job.output)
         except OSError:
-            return []
+            st = None
         option = self.options(job.command).get("output")
         folder = not job.prints and getattr(option.type, "dir_okay", False)
-        if folder and stat.S_ISDIR(st.st_mode):  # a folder output (puzzle, strands --laser-card)
-            return sorted(p for p in job.output.glob(f"{job.command.name}-*"))
-        return [job.output]
+        if st is not None and folder and stat.S_ISDIR(st.st_mode):  # puzzle, --laser-card
+            found += job.output.glob(f"{job.command.name}-*")
+        elif st is not None:
+            found.append(job.output)
+        return sorted({p for p in [*found, *last] if os.path.lexists(p)})
 
     def rel(self, path: Path) -> str:
         return path.resolve().relative_to(self.out_dir.resolve()).as_posix()
@@ -328,15 +341,23 @@ class Planner:
                     write_atomic(job.output, printed.getvalue().encode("utf-8"))
         except click.ClickException as exc:  # no usage line of the nested command
             raise RecipeError(f"{job.where}: {exc.format_message()}") from exc
-        self.remember(job)
+        self.remember(job, record.files)
         return kitpage.Run.of(record, job.command_line())
 
-    def remember(self, job: Job) -> None:
-        """Record the files ``job`` wrote in the manifest."""
-        if job.output is not None:
-            written = self.replaced(job)
-            record_manifest(self.out_dir, {self.rel(p): file_hash(p) for p in written
-                                           if p.is_file()})
+    def remember(self, job: Job, written) -> None:
+        """Record the files ``job`` wrote in the manifest, and remove the files it wrote last
+        time and not now (checked to be weave-cut's before the first job ran)."""
+        if job.output is None:
+            return
+        inside = self.out_dir.resolve()
+        now = sorted({self.rel(p) for p in written if Path(p).resolve().is_relative_to(inside)})
+        self.written.update(now)
+        stale = [p for p in self.wrote.get(self.rel(job.output), ()) if p not in self.written]
+        for rel in stale:  # unless edited since (then --force let it be; it is no longer ours)
+            if file_hash(self.out_dir / rel) == self.ours.get(rel):
+                os.unlink(self.out_dir / rel)
+        record_manifest(self.out_dir, {p: file_hash(self.out_dir / p) for p in now},
+                        {self.rel(job.output): now}, stale)
 
 
 def file_hash(path: Path) -> str | None:
@@ -350,32 +371,41 @@ def file_hash(path: Path) -> str | None:
         return None
 
 
-def read_manifest(out_dir: Path) -> dict[str, str]:
-    """The files weave-cut wrote into ``out_dir`` (relative path -> SHA-256)."""
+def read_manifest(out_dir: Path) -> tuple[dict[str, str], dict[str, list[str]]]:
+    """The files weave-cut wrote into ``out_dir`` (relative path -> SHA-256), and the files
+    each job wrote (its output's relative path -> relative paths; none in a version 1
+    manifest)."""
     path = out_dir / MANIFEST
     if not path.exists():
-        return {}
+        return {}, {}
     try:
         if os.lstat(path).st_size > 16 * 2**20 or not path.is_file():
             raise ValueError("not a small regular file")
         doc = json.loads(path.read_bytes())
-        files = doc["files"]
+        files, outputs = doc["files"], doc.get("outputs", {})
         if doc.get("format") != "weave-cut-manifest" or not all(
-                isinstance(k, str) and isinstance(v, str) for k, v in files.items()):
+                isinstance(k, str) and isinstance(v, str) for k, v in files.items()) or not all(
+                isinstance(k, str) and isinstance(v, list) and all(p in files for p in v)
+                for k, v in outputs.items()):
             raise ValueError("not a weave-cut manifest")
     except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
         raise RecipeError(f"{path}: unreadable manifest ({exc}); remove it and build with "
                           "--force") from exc
-    return files
+    return files, outputs
 
 
-def record_manifest(out_dir: Path, entries: dict[str, str]) -> None:
-    """Add ``entries`` to the manifest of ``out_dir`` (locked against concurrent builds)."""
+def record_manifest(out_dir: Path, entries: dict[str, str],
+                    outputs: dict[str, list[str]] | None = None, gone=()) -> None:
+    """Add ``entries`` (and the files each output's job wrote, ``outputs``) to the manifest of
+    ``out_dir``, dropping the removed files ``gone`` (locked against concurrent builds)."""
     fd = os.open(out_dir, os.O_RDONLY)
     try:
         fcntl.flock(fd, fcntl.LOCK_EX)
-        files = {**read_manifest(out_dir), **entries}
-        doc = {"format": "weave-cut-manifest", "version": 1, "files": dict(sorted(files.items()))}
+        files, wrote = read_manifest(out_dir)
+        files = {k: v for k, v in {**files, **entries}.items() if k not in gone}
+        wrote = {**wrote, **(outputs or {})}
+        doc = {"format": "weave-cut-manifest", "version": 2, "files": dict(sorted(files.items())),
+               "outputs": {k: sorted(v) for k, v in sorted(wrote.items())}}
         write_atomic(out_dir / MANIFEST, (json.dumps(doc, indent=1) + "\n").encode())
     finally:
         os.close(fd)

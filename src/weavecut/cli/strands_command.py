@@ -181,6 +181,18 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
                    f"feature {extra['cutter']['min_feature_mm']:.1f} mm" if extra else ""))
 
 
+def _beside(values: dict, output: Path) -> list[Path]:
+    """The existing files a run with ``values`` writes beside ``output`` (its cut files):
+    ``build`` checks them before the first job runs."""
+    if values.get("cutter_name") is None:
+        return []
+    from ..papermodel.printcut import existing_cut_files
+
+    return existing_cut_files(output)
+
+
+strands_command.beside = _beside
+
 BALL_TILE = 40.0  # mm across an octagon: a ball's default size
 
 
@@ -219,7 +231,7 @@ def ball(mesh, input_mesh, levels, page, tile_size, diameter, margin, pal, chira
 def _print_and_cut(book, machine, output: str) -> dict:
     """Write the strip pages with the cutter's marks to ``output`` and a cut file per strip
     page beside it (SVG and DXF); return the --json figures."""
-    from ..papermodel.printcut import cut_files, cut_report, with_marks
+    from ..papermodel.printcut import cut_file_paths, cut_files, cut_report, with_marks
 
     marked = with_marks(book, machine)
     export.write(marked.drawing.with_metadata(**provenance()), output)
@@ -227,8 +239,7 @@ def _print_and_cut(book, machine, output: str) -> dict:
     files, report = [], cut_report([])
     for n, drawing in cut_files(marked):
         report = report + cut_report([p.outline for k, p in book.pieces if k == n])
-        for suffix in (".svg", ".dxf"):
-            path = base.with_name(f"{base.stem}-p{n:02d}-cut{suffix}")
+        for path in cut_file_paths(base, n):
             export.write(drawing.with_metadata(**provenance()), path)
             files.append(str(path))
     if report.min_feature < machine.min_feature:

@@ -130,7 +130,7 @@ def _card(paths: list[Path], files: dict, figures: dict, folder: Path) -> tuple[
     drawing = next((d for d in pdf + [files[p] for p in paths] if d is not None), None)
     name = paths[0].with_suffix("").name
     picture, pages = _picture(paths, files, folder)
-    made = ".pdf" in suffixes or "laser" in figures  # cut with scissors or a laser
+    made = ".pdf" in suffixes or "laser" in figures or bool(_cut_for(drawing))  # to be cut out
     facts = [*_sizes(drawing, pages), *_drawing_figures(drawing, made), _bytes(paths)]
     links = " · ".join(f'<a href="{_href(p, folder)}">{_e(p.suffix.lstrip(".").upper() or p.name)}'
                        "</a>" for p in paths)
@@ -151,17 +151,51 @@ def _picture(paths: list[Path], files: dict, folder: Path) -> tuple[str, int]:
                             f"page {n} of {len(thumbs)} of {pdf.name}", previews.png_size(t))
                        for n, t in enumerate(thumbs, 1))
         return f'<a class="pages" href="{_href(pdf, folder)}">{imgs}</a>', len(thumbs)
+    drawing = next((files[p] for p in paths if files[p] is not None), None)
+    cut = _cut_png(drawing, files)
+    if cut is not None:  # a cut file, shown as the cut comes out
+        shown = by.get(".svg") or by.get(".dxf") or paths[0]
+        img = _img(previews.data_uri(cut, "image/png"), f"{shown.name}: {_cut_for(drawing)}",
+                   previews.png_size(cut))
+        return f'<a href="{_href(shown, folder)}">{img}</a>', 0
     for suffix in (".png", ".svg"):  # the file itself, unless its lines are too thin to see
         path = by.get(suffix)
         if path is not None and (suffix == ".png" or not _hairlines(files[path])):
             return (f'<a href="{_href(path, folder)}">'
                     f"{_img(_href(path, folder), _alt(path, files[path]))}</a>", 0)
-    drawing = next((files[p] for p in paths if files[p] is not None), None)
     if drawing is None:
         return "", 0
     shown = by.get(".svg") or by.get(".dxf") or paths[0]
     preview = previews.data_uri(previews.svg_preview(drawing), "image/svg+xml")
     return f'<a href="{_href(shown, folder)}">{_img(preview, _alt(shown, drawing))}</a>', 0
+
+
+def _cut_for(drawing: Drawing | None) -> str:
+    """What a cut file cuts, from its metadata: "page N as printed" (print and cut) or "card
+    #rrggbb" (a laser sheet of coloured card); "" for any other drawing."""
+    meta = dict(drawing.metadata) if drawing is not None and len(drawing.sheets) == 1 else {}
+    if re.fullmatch(r"#[0-9a-fA-F]{6}", str(meta.get("card", ""))):
+        return f"card {meta['card']}"
+    if str(meta.get("printed_page", "")).isdigit():
+        return f"page {int(meta['printed_page'])} as printed"
+    return ""
+
+
+def _cut_png(drawing: Drawing | None, files: dict) -> bytes | None:
+    """A cut file's picture: its cuts over the printed page it belongs to (the page of that
+    number and size in a PDF the same command wrote), or its lines on its card's colour."""
+    what = _cut_for(drawing)
+    if what.startswith("card"):
+        return previews.card_png(drawing.sheets[0], what.removeprefix("card "))
+    if not what:
+        return None
+    n, cut = int(dict(drawing.metadata)["printed_page"]), drawing.sheets[0]
+    for path, pdf in files.items():
+        if path.suffix.lower() == ".pdf" and pdf is not None and n <= len(pdf.sheets):
+            page = pdf.sheets[n - 1]
+            if np.allclose((page.width, page.height), (cut.width, cut.height)):
+                return previews.overlay_png(page, cut)
+    return None
 
 
 def _alt(path: Path, drawing: Drawing | None) -> str:
@@ -262,6 +296,11 @@ def _purpose(suffixes: list[str], drawing: Drawing | None, figures: dict) -> str
         return f"print at 100 % on {paper}"
     roles = {layer.role for sheet in (drawing.sheets if drawing else ()) for layer in sheet.layers}
     laser, speed = figures.get("laser"), figures.get("speed_mm_s")
+    what = _cut_for(drawing)
+    if what.startswith("card"):
+        return f"laser-cut from {what} (SVG or DXF)"
+    if what:
+        return f"the desktop cutter cuts this on {what} (SVG or DXF)"
     if "cut" in roles and isinstance(laser, str):  # a laser file of the puzzle
         at = f" at {speed:g} mm/s" if isinstance(speed, (int, float)) else ""
         return f"cut: {_laser_description(laser)}{at}" + (" (SVG or DXF)" if ".dxf" in suffixes

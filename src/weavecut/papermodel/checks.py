@@ -5,7 +5,8 @@ A text is readable when it is at least ``MIN_CAP`` tall, reads upright (angle in
 lies wholly on the one fill under its centre with nothing drawn over it, overlaps no other text,
 has a contrast of at least ``MIN_CONTRAST`` with that fill, lies on the sheet inside its
 margins, and, on a strip page, lies inside a strip's cut outline (strip labels) or outside the
-printable box (page furniture). On the assembly sheet every strand ID lies on its strand's fill,
+printable box (page furniture, whose texts keep ``FURNITURE_GAP`` clear of each other). On
+the assembly sheet every strand ID lies on its strand's fill,
 or on a white plate whose leader line ends on that fill.
 """
 
@@ -16,6 +17,7 @@ import shapely
 from ..layout.contrast import MIN_CONTRAST, contrast_ratio
 from ..layout.drawing import Polygons, Polylines, Sheet, Text
 from ..layout.labels import MIN_CAP, text_box
+from .pages import FURNITURE_GAP
 
 PAPER = "#ffffff"
 SLACK = 1e-6  # mm
@@ -48,7 +50,8 @@ def text_checks(sheet: Sheet, box=None, inner=None, strands=None) -> list[dict]:
     """One record per text: size, contrast, and the rules it breaks (empty when readable).
 
     ``box`` is the printable box of a strip page: texts of the "labels" layer must then lie inside
-    a cut outline, every other text outside the box. ``inner`` (x0, y0, x1, y1): the sheet inside
+    a cut outline, every other text (the page furniture) outside the box and ``FURNITURE_GAP``
+    clear of the others. ``inner`` (x0, y0, x1, y1): the sheet inside
     its margins, where every text must lie. ``strands`` maps a strand's ID to its fill: a text of
     the "ids" layer (the assembly sheet) naming a strand must lie on that fill, or on a white
     plate whose leader line ends on it."""
@@ -94,6 +97,10 @@ def text_checks(sheet: Sheet, box=None, inner=None, strands=None) -> list[dict]:
                 for near, far in leaders if polys[below].distance(shapely.Point(near)) < 1e-6))
             if not on:
                 broken.append("outside its strand")
+        if box is not None and layer != "labels" and any(
+                texts[j][0] != "labels" and boxes[j].distance(b) < FURNITURE_GAP - SLACK
+                for j in text_tree.query(b.buffer(FURNITURE_GAP)) if j != i):
+            broken.append("touches a text")
         if box is not None:
             inside = shapely.box(*box).buffer(SLACK)
             if layer == "labels" and not any(c.buffer(SLACK).covers(b) for c in cuts):

@@ -11,12 +11,13 @@ import shapely
 
 from ..layout.drawing import (Layer, Polygons, Polylines, Style, Text, polygons_from_shapely,
                               polylines_from_lines)
-from ..layout.labels import MIN_CAP, text_width, wrap
+from ..layout.labels import DESCENT, MIN_CAP, text_box, text_width, wrap
 from .strips import Strip, affine, flat_angle, outline_of, tint
 
 HEADER = 10.0  # mm above the printable area for the title line and one line of subtitle
 FOOTER = 8.5  # mm below it for the scale bar and the legend
 GAP = 2.0  # mm between strips (at least), and between the area and header / footer
+FURNITURE_GAP = 1.0  # mm at least between the boxes of two texts of the page furniture
 SMALL = MIN_CAP  # cap height of the page furniture (mm)
 CUT = Style("#ff0000", 0.25)
 TILE_LINE = Style("#555555", 0.12)
@@ -165,6 +166,7 @@ def scale_bar(x: float, y: float, length: float = 100.0) -> tuple:
     return bar, marks, caption
 
 
+LEGEND_BASE = 0.25  # mm from a legend swatch's bottom edge up to its text's baseline
 LEGEND = (
     ("own", "on top"),
     ("light", "under"),
@@ -183,13 +185,16 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
     number_text = f"page {number} / {total}"
     room = w - 2 * m - text_width(number_text, 3.2) - 4
     title_size = max(MIN_CAP, min(4.0, 4.0 * room / max(text_width(title, 4.0), 1e-9)))
-    texts = [Text(m, h - m - 4.0, title, title_size),
-             Text(w - m, h - m - 4.0, number_text, 3.2, "end"),
-             Text(m, h - m - 8.5, _wrap(subtitle, w - 2 * m, 1)[0], SMALL)]
+    head = Text(m, h - m - 4.0, title, title_size)
+    below = min(h - m - 8.5, text_box(head).bounds[1] - FURNITURE_GAP - SMALL)  # the subtitle
+    texts = [head, Text(w - m, h - m - 4.0, number_text, 3.2, "end"),
+             Text(m, below, _wrap(subtitle, w - 2 * m, 1)[0], SMALL)]
     bar, marks, caption = scale_bar(m, m + 1.5)
     shapes: list = [bar, marks, caption]
-    # legend: right of the bar on wide pages, above it otherwise; entries left to right
-    x, y = (m + 106.0, m + 0.5) if w - 2 * m >= 190 else (m, m + 7.0)
+    # legend: right of the bar on wide pages, above its caption otherwise (FURNITURE_GAP clear
+    # of the caption's box, under a text with descenders); entries left to right
+    above = text_box(caption).bounds[3] + FURNITURE_GAP + DESCENT * SMALL - LEGEND_BASE
+    x, y = (m + 106.0, m + 0.5) if w - 2 * m >= 190 else (m, above)
     start = x
     swatches, fills, strokes, dashes = [], [], [], []
     shown = {"glue": glue, "fold": folds}
@@ -205,7 +210,7 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
         else:
             swatches.append(box)
             fills.append({"own": sample, "light": tint(sample), "glue": GLUE}[kind])
-        texts.append(Text(x + 6.5, y + 0.25, text, SMALL))
+        texts.append(Text(x + 6.5, y + LEGEND_BASE, text, SMALL))
         x += step
     if swatches:
         shapes.append(polygons_from_shapely(swatches, TILE_LINE, fills))

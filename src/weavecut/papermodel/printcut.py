@@ -17,6 +17,7 @@ Strips are packed inside the marks, ``clearance`` clear of them, and inside that
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from pathlib import Path
 
 import numpy as np
 import shapely
@@ -203,9 +204,24 @@ def cut_layer(rings: list[NDArray[np.float64]], style: Style = CUT, name: str = 
     return Layer(name, "cut", (Polygons(coords, offsets, style),))
 
 
+CUT_SUFFIXES = (".svg", ".dxf")
+
+
+def cut_file_paths(output: Path, n: int) -> list[Path]:
+    """The cut files of strip page ``n`` of the PDF ``output``: PAGE-pNN-cut.svg and .dxf."""
+    return [output.with_name(f"{output.stem}-p{n:02d}-cut{s}") for s in CUT_SUFFIXES]
+
+
+def existing_cut_files(output: Path) -> list[Path]:
+    """The cut files of any page of ``output`` that exist beside it."""
+    pattern = f"{output.stem}-p[0-9][0-9]*-cut"
+    return sorted(p for s in CUT_SUFFIXES for p in output.parent.glob(pattern + s))
+
+
 def cut_files(book) -> list[tuple[int, Drawing]]:
     """(page number, cut Drawing) for every strip page: the page's size, the strips' outlines
-    at their printed place, cut from the top-left corner (where cutters start) onwards."""
+    at their printed place, cut from the top-left corner (where cutters start) onwards; the
+    metadata item ``printed_page`` names the page (the kit page draws the cuts over it)."""
     out = []
     for n in book.strip_pages:
         page = book.drawing.sheets[n - 1]
@@ -213,5 +229,5 @@ def cut_files(book) -> list[tuple[int, Drawing]]:
         rings = ordered_outlines(outlines, (0.0, page.height))
         sheet = Sheet(page.width, page.height, (cut_layer(rings),), f"page {n}: cut")
         out.append((n, Drawing((sheet,), f"{book.drawing.title}: cut file of page {n}",
-                               book.drawing.metadata)))
+                               (*book.drawing.metadata, ("printed_page", str(n))))))
     return out
