@@ -371,7 +371,7 @@ def _smooth(parent: Mesh, ring: Corners, vertices, centres, old, right: bool) ->
         face_sum = centres.reshape(-1, ring.k).sum(axis=1)
     else:
         face_sum = np.add.reduceat(centres, parent.face_offsets[:-1])
-    _divide(face_sum, parent.face_sizes)
+    _divide(face_sum, ring.k or parent.face_sizes)
     flat[n_v + 2 * n_e:] = face_sum
     inner = ~outer_vertices(parent)
     scale = 1.0 / np.bincount(old, minlength=n_v)[inner]  # as _divide: times the reciprocal
