@@ -72,9 +72,13 @@ class Corners:
             np.add(plus[to], src[frm], out=out[to])
             out[ends] = wrapped
 
-    def per_corner(self, values: NDArray) -> NDArray:
-        """(H, ...) the value of every corner's face."""
-        return np.repeat(values, self.k or self.mesh.face_sizes, axis=0)
+    def plus_face_values(self, src: NDArray, values: NDArray, out: NDArray) -> None:
+        """``out[h] = src[h] + values[face of h]`` (``out`` may be ``src``). With one degree k
+        the (F,) values are broadcast over the (F, k) grid, with no per-corner copy."""
+        if self.k:
+            np.add(self.grid(src), values[:, None], out=self.grid(out))
+        else:
+            np.add(src, np.repeat(values, self.mesh.face_sizes), out=out)
 
     def face_values(self, offset: int, out: NDArray) -> None:
         """``out[h] = offset + (face of h)``."""

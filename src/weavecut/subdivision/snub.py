@@ -223,7 +223,7 @@ def _half_edges(mesh: Mesh, ring: Corners, right: bool) -> tuple[NDArray[np.int3
     topo = mesh.topology
     spoke = 3 * topo.n_edges
     parts = np.empty((5, mesh.n_corners), dtype=np.int32)
-    sides = np.empty((5, mesh.n_corners), dtype=np.int8)
+    sides = np.empty((mesh.n_corners, 5), dtype=np.int8)  # one row per P_h, written directly
     e3 = 3 * topo.half_edge_edge.astype(np.int32, copy=False)
     side2 = 2 * topo.half_edge_side
     near_start = e3 + side2  # the Z part at a, the start of h
@@ -234,16 +234,16 @@ def _half_edges(mesh: Mesh, ring: Corners, right: bool) -> tuple[NDArray[np.int3
         ring.corner_ids(0, parts[2], offset=spoke)
         ring.corner_ids(-1, parts[3], offset=spoke)
         ring.shifted(near_end, -1, out=parts[4])
-        sides[0], sides[2], sides[3], sides[4] = 0, 0, 1, 1
+        fill_rows(sides, np.array([0, 0, 0, 1, 1], np.int8))
     else:  # (spoke, middle, near_end, near_start[next], spoke[next]), sides (1 s 1 0 0)
         ring.corner_ids(0, parts[0], offset=spoke)
         parts[2] = near_end
         ring.shifted(near_start, 1, out=parts[3])
         ring.corner_ids(1, parts[4], offset=spoke)
-        sides[0], sides[2], sides[3], sides[4] = 1, 1, 0, 0
+        fill_rows(sides, np.array([1, 0, 1, 0, 0], np.int8))
     np.add(e3, MIDDLE, out=parts[1])
-    sides[1] = topo.half_edge_side
-    return _interleave(parts).reshape(-1), _interleave(sides).reshape(-1)
+    sides[:, 1] = topo.half_edge_side
+    return _interleave(parts).reshape(-1), sides.reshape(-1)
 
 
 def _edges(mesh: Mesh, ring: Corners, x: NDArray[np.int32]):
@@ -261,13 +261,13 @@ def _edges(mesh: Mesh, ring: Corners, x: NDArray[np.int32]):
     ring.face_values(n_v + 2 * n_e, out=spokes[1])
     _interleave(spokes, out=edges[3 * n_e:])
     parent_edge = np.empty(len(edges), dtype=np.int32)
-    parent_edge[:3 * n_e] = np.repeat(np.arange(n_e, dtype=np.int32), 3)
+    parent_edge[:3 * n_e].reshape(n_e, 3)[...] = np.arange(n_e, dtype=np.int32)[:, None]
     ring.face_values(0, out=parent_edge[3 * n_e:])
     edge_part = np.empty(len(edges), dtype=np.int8)
     fill_rows(edge_part[:3 * n_e].reshape(n_e, 3), np.array([FIRST, MIDDLE, LAST], np.int8))
     edge_part[3 * n_e:] = SPOKE
     boundary = np.zeros(len(edges), dtype=bool)
-    boundary[:3 * n_e] = np.repeat(topo.boundary_edges, 3)
+    boundary[:3 * n_e].reshape(n_e, 3)[...] = topo.boundary_edges[:, None]
     return edges, parent_edge, edge_part, boundary
 
 
@@ -324,17 +324,17 @@ def _vertex_centres(mesh: Mesh, ring: Corners, vertices, x, y, old, right: bool)
     x along the face).
     """
     points = vertices.view(np.complex128).ravel()
-    centre = ring.per_corner(points[mesh.n_vertices + 2 * mesh.topology.n_edges:])
+    centre = points[mesh.n_vertices + 2 * mesh.topology.n_edges:]
     xs = np.take(points, x, mode="clip")
     scratch = np.take(points, y, mode="clip")
     if right:  # a + y + x + c + x[prev]
         out = np.take(points, old, mode="clip")
         out += scratch
         out += xs
-        out += centre
-    else:  # c + x + y + b + x[next]
-        out = centre
-        out += xs
+        ring.plus_face_values(out, centre, out=out)
+    else:  # c + x + y + b + x[next] (c + x is x + c: a sum of two rounds the same both ways)
+        out = np.empty_like(xs)
+        ring.plus_face_values(xs, centre, out=out)
         out += scratch
         out += np.take(points, old, out=scratch, mode="clip")
     ring.shifted(xs, -1 if right else 1, out=out, plus=out)
@@ -371,7 +371,7 @@ def _smooth(parent: Mesh, ring: Corners, vertices, centres, old, right: bool) ->
         face_sum = centres.reshape(-1, ring.k).sum(axis=1)
     else:
         face_sum = np.add.reduceat(centres, parent.face_offsets[:-1])
-    _divide(face_sum, parent.face_sizes)
+    _divide(face_sum, ring.k or parent.face_sizes)
     flat[n_v + 2 * n_e:] = face_sum
     inner = ~outer_vertices(parent)
     scale = 1.0 / np.bincount(old, minlength=n_v)[inner]  # as _divide: times the reciprocal
