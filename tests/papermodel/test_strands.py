@@ -520,7 +520,10 @@ def test_a_label_tab_holds_the_id_outside_every_tile():
     m0, u0, n0 = frame(p.flap_edge, np.asarray(p.flap.centroid.coords[0]))
     shared = shapely.intersection(p.tiles[0].exterior, p.tiles[1].exterior)
     m1, u1, n1 = frame(shared, np.asarray(p.tiles[1].centroid.coords[0]))
-    u1 *= np.sign(np.cross(u0, n0) * np.cross(u1, n1))  # a turn, not a mirror
+    def cross(a, b):
+        return a[0] * b[1] - a[1] * b[0]
+
+    u1 *= np.sign(cross(u0, n0) * cross(u1, n1))  # a turn, not a mirror
     turn = np.column_stack([u1, n1]) @ np.column_stack([u0, n0]).T
 
     def move(g):
