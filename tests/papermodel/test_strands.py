@@ -386,6 +386,7 @@ def test_size_sets_the_finished_width(tmp_path):
     rep = json.loads(result.output)
     assert rep["pages"]["extra"] == 2 and rep["pages"]["strip"] >= 1
     assert rep["label_violations"] == 0 and rep["smallest_text_mm"] >= 2.5
+    assert rep["label_tabs"] == 0  # square grid tiles hold their IDs
     assert 0 < rep["ink_fraction"] <= 1 and rep["smallest_contrast"] >= 4.5
     w = weaves("square-grid:2x2", 2)[-1]
     from weavecut.papermodel.book import tile_size_width
@@ -455,20 +456,32 @@ def test_an_id_on_a_leader_plate_must_point_at_its_strand(target):
     assert ("outside its strand" in record["broken"]) == (target == "other")
 
 
-def test_the_first_refusal_names_the_size_that_passes_every_check():
-    """The 2 x 2 square grid at level 2: its labels need larger tiles than its strips. Tiles of
-    5 mm are refused for the strips, and the message already names the size where the labels
-    read too: that size builds, a mm less is refused for the labels."""
+@pytest.mark.parametrize("tabs", [True, False])
+def test_the_first_refusal_names_the_size_that_passes_every_check(tabs, monkeypatch):
+    """The square grid 2 x 2 at level 2: strips hold from 12 mm tiles, where four end strips are
+    too small for their IDs and carry them on tabs; where tabs do not help (none fits), labels
+    read only from a larger size. Tiles of 5 mm are refused for the strips, and the message
+    already names the size where the labels read too: that size builds with no label violation,
+    and half a mm less (with tabs) or a mm less (without) is refused."""
+    from weavecut.papermodel import strips
     from weavecut.papermodel.book import SizeError, strip_need
-    ws = weaves("square-grid:2x2", 2)
+    if not tabs:
+        monkeypatch.setattr(strips, "label_flap", lambda strip, text: None)
+    ws = list(weaves("square-grid:2x2", 2))
     pal = palette("maritime-12")
     with pytest.raises(SizeError, match="tear") as thin:
         strand_book(ws, pal, tile_size=5.0)
     need = float(re.search(r"--tile-size ([\d.]+)mm", str(thin.value)).group(1))
-    assert need > strip_need(ws[-1])
-    assert report(strand_book(ws, pal, tile_size=need))["label_violations"] == 0
-    with pytest.raises(SizeError, match="labels"):
-        strand_book(ws, pal, tile_size=need - 1)
+    rep = report(strand_book(ws, pal, tile_size=need))
+    assert rep["label_violations"] == 0 and rep["smallest_text_mm"] >= 2.5
+    if tabs:
+        assert need == strip_need(ws[-1]) and rep["label_tabs"] > 0
+        with pytest.raises(SizeError, match="tear"):
+            strand_book(ws, pal, tile_size=need - 0.5)
+    else:
+        assert need > strip_need(ws[-1]) and rep["label_tabs"] == 0
+        with pytest.raises(SizeError, match="labels"):
+            strand_book(ws, pal, tile_size=need - 1)
 
 
 def test_a_split_strips_part_number_keeps_clear_of_its_id():
@@ -493,3 +506,94 @@ def test_a_split_strips_part_number_keeps_clear_of_its_id():
         for i, a in enumerate(boxes):
             for b in boxes[i + 1:]:
                 assert shapely.intersection(a, b).area < 1e-6, (p.label, p.texts)
+
+
+@lru_cache(maxsize=None)
+def pentagon_book():
+    """The pentagon flower at the paper's 23 cm, where 70 border strips are too small for IDs."""
+    from weavecut.papermodel.book import tile_size_for
+    ws = list(weaves("pentagon-flower", 3))
+    return strand_book(ws, palette("maritime-12"), tile_size=tile_size_for(ws[-1], 230.0))
+
+
+def tab_problems(piece) -> list[str]:
+    """What is wrong with ``piece``'s label tab, checked from its geometry alone: the ID must lie
+    on the tab, the tab outside every tile of the strip, on an edge of an end tile that no other
+    tile shares, and inside the strip's cut line."""
+    from weavecut.layout.labels import text_box
+    flap, tiles = piece.flap, piece.tiles
+    eps = 1e-6 * max(piece.length, 1.0)
+    out = []
+    ids = [t for t in piece.texts if t.text == piece.label.split(" ")[0]]
+    if not any(flap.buffer(1e-6).covers(text_box(t)) for t in ids):
+        out.append("ID not on the tab")
+    if shapely.intersection(flap, shapely.union_all(tiles)).area > 1e-6:
+        out.append("tab over the strip")
+    mid = piece.flap_edge.interpolate(0.5, normalized=True)
+    on = np.flatnonzero(shapely.distance(shapely.get_exterior_ring(tiles), mid) < eps)
+    if not {0, len(tiles) - 1} & set(on.tolist()):
+        out.append("not at an end tile")
+    if len(on) > 1:
+        out.append("on a shared edge")
+    if not piece.cut.buffer(1e-6).covers(flap) or piece.cut.geom_type != "Polygon":
+        out.append("tab outside the cut line")
+    return out
+
+
+def test_a_label_tab_holds_the_id_outside_every_tile():
+    """At 23 cm the pentagon flower's 70 two-tile border strips (14 per copy) carry their IDs on
+    tabs; each tab passes the geometric oracle. Plant the bug: the same tab on the edge the two
+    tiles share lies over the strip and on a shared edge, and the oracle says so."""
+    from dataclasses import replace as moved
+    from weavecut.layout.labels import centred_text, text_box
+    book = pentagon_book()
+    tabbed = [p for _, p in book.pieces if p.flap is not None]
+    assert len(tabbed) == 70 and all(len(p.tiles) == 2 for p in tabbed)
+    assert {p.label[1:] for p in tabbed if p.label[0] == "A"} == {
+        "1", "6", "10", "13", "14", "17", "21", "22", "23", "24", "25", "30", "33", "36"}
+    for p in tabbed:
+        assert not tab_problems(p), (p.label, tab_problems(p))
+    p = tabbed[0]  # turn and move the tab (with its ID) onto the edge the two tiles share
+
+    def frame(edge, towards):
+        a, b = np.asarray(shapely.get_coordinates(edge))[[0, -1]]
+        u = (b - a) / np.hypot(*(b - a))
+        n = np.array([-u[1], u[0]])
+        return (a + b) / 2, u, n * np.sign(n @ (towards - (a + b) / 2))
+
+    m0, u0, n0 = frame(p.flap_edge, np.asarray(p.flap.centroid.coords[0]))
+    shared = shapely.intersection(p.tiles[0].exterior, p.tiles[1].exterior)
+    m1, u1, n1 = frame(shared, np.asarray(p.tiles[1].centroid.coords[0]))
+    def cross(a, b):
+        return a[0] * b[1] - a[1] * b[0]
+
+    u1 *= np.sign(cross(u0, n0) * cross(u1, n1))  # a turn, not a mirror
+    turn = np.column_stack([u1, n1]) @ np.column_stack([u0, n0]).T
+
+    def move(g):
+        return shapely.transform(g, lambda xy: (xy - m0) @ turn.T + m1)
+
+    label = next(t for t in p.texts if t.text == p.label)
+    c = move(text_box(label).centroid)
+    angle = label.angle + np.degrees(np.arctan2(turn[1, 0], turn[0, 0]))
+    planted = moved(p, flap=move(p.flap), flap_edge=move(p.flap_edge), texts=tuple(
+        centred_text((c.x, c.y), t.text, t.size, angle) if t is label else t for t in p.texts))
+    assert not tab_problems(moved(planted, flap_edge=p.flap_edge, flap=p.flap, texts=p.texts))
+    assert "ID not on the tab" not in tab_problems(planted)
+    assert {"tab over the strip", "on a shared edge"} <= set(tab_problems(planted))
+
+
+def test_the_pentagon_flower_reads_at_the_papers_23_cm():
+    """Every label at least 2.5 mm, none broken (the page checks treat a tab as part of its
+    strip), the tabs on the pages the packer gave them, each on one page with its strip."""
+    book = pentagon_book()
+    rep = report(book)
+    assert rep["label_violations"] == 0 and rep["smallest_text_mm"] >= 2.5
+    assert rep["label_tabs"] == 70 and rep["pages"]["strip"] <= 5
+    for n in book.strip_pages:
+        cuts = occupied(book.drawing.sheets[n - 1].layers)
+        flaps = [p.flap for k, p in book.pieces if k == n and p.flap is not None]
+        assert all(any(c.buffer(1e-6).covers(f) for c in cuts) for f in flaps)
+    steps = " ".join(t.text for layer in book.drawing.sheets[1].layers if layer.name == "steps"
+                     for t in layer.shapes)
+    assert "tab" in steps and "dashed" in steps

@@ -238,7 +238,7 @@ def _print_and_cut(book, machine, output: str) -> dict:
     base = Path(output)
     files, report = [], cut_report([])
     for n, drawing in cut_files(marked):
-        report = report + cut_report([p.outline for k, p in book.pieces if k == n])
+        report = report + cut_report([p.cut for k, p in book.pieces if k == n])
         for path in cut_file_paths(base, n):
             export.write(drawing.with_metadata(**provenance()), path)
             files.append(str(path))

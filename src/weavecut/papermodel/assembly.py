@@ -225,6 +225,10 @@ def weaving_steps(weave: Weave, book, turn: float) -> tuple[list[str], list[np.n
              "Cut out every strip along its red line. Sort the strips by ID: the ID printed in "
              "the strip's own colour is its name on page 1; a small ID in a light part names the "
              "strand that lies on top there."]
+    if any(p.flap is not None for _, p in book.pieces):
+        steps.append("Strips too small for their ID carry it on a small tab at one end: cut the "
+                     "tab out with the strip and cut it off along its dashed line once the strip "
+                     "is woven in.")
     if glue:
         steps.append("Some strips are printed in parts (\"A7 1/2\", \"A7 2/2\"): spread glue on "
                      "the grey band of part 1 and stick it under the start of part 2 before "

@@ -87,7 +87,7 @@ class StrandBook:
     def ink(self) -> float:
         """Share of the strip pages' printable area covered by strips."""
         x0, y0, x1, y1 = self.area.box
-        covered = sum(p.outline.area for _, p in self.pieces)
+        covered = sum(p.cut.area for _, p in self.pieces)
         return covered / max(len(self.strip_pages) * (x1 - x0) * (y1 - y0), 1e-12)
 
     def pages_of(self, label: str) -> tuple[int, ...]:
@@ -208,7 +208,7 @@ def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitl
     with its strips, title, ``subtitle(names of its strips)``, scale bar and legend; placed
     holds (page number, piece on the page)."""
     x0, y0, x1, y1 = area.box
-    places = pack([p.outline for p in pieces], x1 - x0, y1 - y0, GAP, kinds=kinds)
+    places = pack([p.cut for p in pieces], x1 - x0, y1 - y0, GAP, kinds=kinds)
     n_strip = max(pl.page for pl in places) + 1 if places else 0
     placed = tuple((first + pl.page, p.moved(affine(0.0, (x0, y0)) @ pl.matrix(), pl.angle))
                    for p, pl in zip(pieces, places))
@@ -220,7 +220,8 @@ def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitl
         layers = strip_layers(on_page) + page_layers(
             area, title, subtitle(names_here), n, total, colours[on_page[0].strand],
             glue=any(p.glue is not None for p in on_page),
-            folds=any(len(p.folds) for p in on_page))
+            folds=any(len(p.folds) for p in on_page),
+            tabs=any(p.flap is not None for p in on_page))
         sheets.append(Sheet(area.width, area.height, tuple(layers), f"page {n}: strips"))
     return placed, sheets
 

@@ -122,7 +122,8 @@ def sheet_checks(book, n: int) -> list[dict]:
 
 
 def report(book) -> dict:
-    """What ``strands --json`` reports: pages, ink, smallest label, contrast, violations."""
+    """What ``strands --json`` reports: pages, ink, smallest label, contrast, violations, label
+    tabs."""
     records = []
     for n, sheet in enumerate(book.drawing.sheets, start=1):
         records += sheet_checks(book, n)
@@ -133,6 +134,7 @@ def report(book) -> dict:
         "smallest_text_mm": round(min((r["size"] for r in records), default=0.0), 2),
         "smallest_contrast": round(min((r["contrast"] for r in records), default=21.0), 2),
         "label_violations": sum(bool(r["broken"]) for r in records),
+        "label_tabs": sum(p.flap is not None for _, p in book.pieces),
         "tile_size_mm": round(book.tile_size, 2),
         "strip_width_mm": round(book.strip_width, 1),
         "warnings": list(book.warnings),

@@ -11,8 +11,10 @@ import shapely
 
 from ..layout.drawing import (Layer, Polygons, Polylines, Style, Text, polygons_from_shapely,
                               polylines_from_lines)
+from ..layout.contrast import text_colour_on
 from ..layout.labels import DESCENT, MIN_CAP, text_box, text_width, wrap
 from .strips import Strip, affine, flat_angle, outline_of, tint
+from .unfold import dashed
 
 HEADER = 10.0  # mm above the printable area for the title line and one line of subtitle
 FOOTER = 8.5  # mm below it for the scale bar and the legend
@@ -23,6 +25,8 @@ CUT = Style("#ff0000", 0.25)
 TILE_LINE = Style("#555555", 0.12)
 GLUE = "#c8c8c8"
 FOLD = Style("#333333", 0.3)  # dashed fold lines of strips unfolded from a surface
+FLAP_LINE = Style("#333333", 0.3)  # dashed line where a label tab is cut off after weaving
+FLAP_DASH = (0.6, 0.4)  # mm dash and gap
 
 
 @dataclass(frozen=True)
@@ -122,7 +126,9 @@ def strip_layers(strips: list[Strip]) -> list[Layer]:
     fold lines, arrows, labels and the cut lines."""
     tiles, fills, arrows_by_ink, glue, texts, outlines = [], [], {}, [], [], []
     for s in strips:
-        for tile, fill in zip([*s.tiles, *s.plates], s.fills + s.plate_fills):
+        flap = () if s.flap is None else (s.flap,)
+        for tile, fill in zip([*s.tiles, *flap, *s.plates],
+                              s.fills + (s.flap_fill,) * len(flap) + s.plate_fills):
             for part in _parts([tile]):
                 tiles.append(part)
                 fills.append(fill)
@@ -130,7 +136,7 @@ def strip_layers(strips: list[Strip]) -> list[Layer]:
         if s.glue is not None:
             glue.extend(_parts(s.glue))
         texts.extend(s.texts)
-        outlines.extend(_parts([s.outline]))
+        outlines.extend(_parts([s.cut]))
     layers = [Layer("strips", "paint", (polygons_from_shapely(tiles, TILE_LINE, fills),))]
     if glue:
         layers.append(Layer("glue", "paint", (polygons_from_shapely(
@@ -143,6 +149,16 @@ def strip_layers(strips: list[Strip]) -> list[Layer]:
         layers.append(Layer("folds", "score", tuple(polylines_from_lines(
             [np.asarray(f.coords) for f in lines], replace(FOLD, stroke=ink))
             for ink, lines in sorted(folds_by_ink.items()))))
+    tabs = [s for s in strips if s.flap_edge is not None]
+    if tabs:  # "cut off after weaving", in the ink that reads on the tab
+        coords = shapely.get_coordinates([s.flap_edge for s in tabs]).reshape(-1, 2, 2)
+        dashes = dashed(coords[..., 0] + 1j * coords[..., 1], *FLAP_DASH)
+        by_ink: dict[str, list] = {}
+        for s, d in zip(tabs, dashes):
+            by_ink.setdefault(text_colour_on(s.flap_fill), []).extend(shapely.get_parts(d))
+        layers.append(Layer("tabs", "paint", tuple(polylines_from_lines(
+            [np.asarray(d.coords) for d in lines], replace(FLAP_LINE, stroke=ink))
+            for ink, lines in sorted(by_ink.items()))))
     arrow_shapes = tuple(polygons_from_shapely(g, Style(None, 0.0, ink))
                          for ink, g in sorted(arrows_by_ink.items()) if g)
     layers.append(Layer("arrows", "paint", arrow_shapes))
@@ -173,14 +189,16 @@ LEGEND = (
     ("cut", "cut"),
     ("glue", "glue"),
     ("fold", "fold"),
+    ("tab", "tab: cut off after weaving"),
 )
 
 
 def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: int,
-                sample: str = "#3e9fb0", glue: bool = False, folds: bool = False) -> list[Layer]:
+                sample: str = "#3e9fb0", glue: bool = False, folds: bool = False,
+                tabs: bool = False) -> list[Layer]:
     """Title, page number, a 100 mm scale bar and a legend for one page (all text at least
-    ``MIN_CAP`` tall, in the margins outside the printable box); ``glue`` and ``folds`` add
-    their entries."""
+    ``MIN_CAP`` tall, in the margins outside the printable box); ``glue``, ``folds`` and ``tabs``
+    add their entries."""
     w, h, m = area.width, area.height, area.margin
     number_text = f"page {number} / {total}"
     room = w - 2 * m - text_width(number_text, 3.2) - 4
@@ -197,7 +215,7 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
     x, y = (m + 106.0, m + 0.5) if w - 2 * m >= 190 else (m, above)
     start = x
     swatches, fills, strokes, dashes = [], [], [], []
-    shown = {"glue": glue, "fold": folds}
+    shown = {"glue": glue, "fold": folds, "tab": tabs}
     for kind, text in (e for e in LEGEND if shown.get(e[0], True)):
         step = 6.5 + text_width(text, SMALL) + 2.5
         if x + step > w - m and x > start:
@@ -205,7 +223,7 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
         box = shapely.box(x, y, x + 5, y + 3)
         if kind == "cut":
             strokes.append(box)
-        elif kind == "fold":
+        elif kind in ("fold", "tab"):
             dashes += [np.array([[x + a, y + 1.5], [x + a + 1.5, y + 1.5]]) for a in (0, 1.75, 3.5)]
         else:
             swatches.append(box)

@@ -225,7 +225,7 @@ def cut_files(book) -> list[tuple[int, Drawing]]:
     out = []
     for n in book.strip_pages:
         page = book.drawing.sheets[n - 1]
-        outlines = [p.outline for k, p in book.pieces if k == n]
+        outlines = [p.cut for k, p in book.pieces if k == n]
         rings = ordered_outlines(outlines, (0.0, page.height))
         sheet = Sheet(page.width, page.height, (cut_layer(rings),), f"page {n}: cut")
         out.append((n, Drawing((sheet,), f"{book.drawing.title}: cut file of page {n}",

@@ -229,6 +229,9 @@ class Strip:
         ``fold_inks`` their colours (dark on light tiles, light on dark ones)
     tab : the text on the glue band ("glue", or "glue 2" where numbered tabs pair up)
     mark : text for the first tile, where the glue band of the piece before goes ("2"), or ""
+    flap : a label tab holding the ID where no own tile can (cut with the strip, cut off after
+        weaving), or None; ``flap_edge`` the line where it meets its tile (drawn dashed),
+        ``flap_fill`` its fill
     """
 
     strand: int
@@ -249,6 +252,16 @@ class Strip:
     fold_inks: tuple[str, ...] = ()
     tab: str = "glue"
     mark: str = ""
+    flap: shapely.Polygon | None = None
+    flap_edge: shapely.LineString | None = None
+    flap_fill: str = "#ffffff"
+
+    @property
+    def cut(self) -> shapely.Polygon:
+        """The cut line: the outline and the label tab, if any."""
+        if self.flap is None:
+            return self.outline
+        return outline_of(np.array([self.outline, self.flap]), 1e-6 * max(self.length, 1.0))
 
     @property
     def length(self) -> float:
@@ -276,6 +289,9 @@ class Strip:
                        glue=None if self.glue is None else shapely.transform(self.glue, f),
                        plates=shapely.transform(self.plates, f),
                        folds=shapely.transform(self.folds, f),
+                       flap=None if self.flap is None else shapely.transform(self.flap, f),
+                       flap_edge=None if self.flap_edge is None
+                       else shapely.transform(self.flap_edge, f),
                        texts=tuple(texts), frame=matrix @ self.frame)
 
 
@@ -410,9 +426,10 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
     """``strip`` with its labels: its ID in its largest own tile (and in the other half of a
     long strip), the ID of the strand on top in every under tile, and direction arrows in own
     tiles that hold no ID. Every label is fitted into its tile (less ``PAD``) as large as it goes
-    up to a cap, or spread over the neighbouring tiles on a plate; a name at the strip's end
-    that still cannot reach ``MIN_CAP`` is left out, any other label is kept at the size that
-    fits (so the caller can name the tile size that works)."""
+    up to a cap, or spread over the neighbouring tiles on a plate; a name that still cannot
+    reach ``MIN_CAP`` is left out (the assembly sheet shows that crossing); an ID no own tile
+    holds goes on a label tab (:func:`label_flap`), or is kept at the size that fits (so the
+    caller can name the tile size that works)."""
     band = None if strip.glue is None else shapely.union_all(strip.glue)
     regions = shapely.intersection(strip.tiles, strip.outline)
     if band is not None:
@@ -466,11 +483,9 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
     plates = np.array([*plates, *more_plates], dtype=object)
     plate_fills += more_fills
     wanted = id_wanted + wanted
-    # a strip's end tucked under a border tile too small for the name: the assembly sheet
-    # shows that crossing, the strip leaves it out
-    ends = {0, len(strip.tiles) - 1}
-    texts = [t for t, w in zip(texts, wanted) if t.size >= MIN_CAP or w in id_wanted
-             or w[0] not in ends]
+    # an under tile too small for the name (a border tile at 23 cm): the assembly sheet shows
+    # that crossing, the strip leaves it out
+    texts = [t for t, w in zip(texts, wanted) if t.size >= MIN_CAP or w in id_wanted]
     if len(plates):
         regions = shapely.difference(regions, shapely.buffer(shapely.union_all(plates), PAD))
     # arrows: the first and the last own tile without an ID, pointing the way the strand goes
@@ -485,6 +500,10 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
         length = largest_fit(regions[ends], unit, centres[ends], 2.0, 0.45 * tile_mm)
         arrows = [shapely.transform(u, lambda xy, z=z, c=centres[i]: xy * z + c)
                   for u, z, i in zip(unit, length.tolist(), ends) if np.isfinite(z)]
+    if texts and texts[0].size < MIN_CAP and id_wanted:  # no own tile reads: a label tab
+        tabbed = label_flap(strip, texts[0].text)
+        if tabbed is not None:
+            strip, texts[0] = tabbed
     if band is not None:  # "glue" on the band, where it fits
         zone = shapely.buffer(shapely.intersection(band, strip.outline), -PAD, join_style="mitre")
         c = inner_centres([zone])
@@ -493,6 +512,66 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
             texts.append(centred_text(c[0], strip.tab, float(size[0]), float(angle[0])))
     return replace(strip, texts=tuple(texts), arrows=np.array(arrows, dtype=object),
                    plates=plates, plate_fills=plate_fills)
+
+
+FLAP_MARGIN = 0.6  # mm between a label tab's text and its edges
+FLAP_REACH = 1.5  # a label tab's base may reach past its edge (along its line) up to this share
+END_FACING = 0.9  # cosine: a strand's end edge faces the way the strand leaves its last tile
+
+
+def label_flap(strip: Strip, text: str) -> tuple[Strip, Text] | None:
+    """(``strip`` with a label tab, the tab's ``text`` at ``MIN_CAP``), or None where no end
+    edge takes one. The tab is a rectangle on a free end edge of the strip's first or last tile
+    (the edge the strand leaves by, shared with no other tile of the strip; not a glue band's),
+    just large enough for the text along or across the edge plus ``FLAP_MARGIN``, outside every
+    tile of the strip; the smallest tab that fits wins."""
+    x0, y0, x1, y1 = unit_box(text, 0.0).bounds
+    along, high = (x1 - x0) * MIN_CAP, (y1 - y0) * MIN_CAP
+    n = len(strip.tiles)
+    ends = [i for i in sorted({0, n - 1}) if not (strip.glue is not None and i == n - 1)]
+    body = shapely.union_all(strip.tiles)
+    best = None
+    for i in ends:  # two ends
+        tile = strip.tiles[i]
+        if tile.geom_type != "Polygon":
+            continue
+        ring = np.asarray(tile.exterior.coords)
+        a, b = ring[:-1], ring[1:]
+        mid = (a + b) / 2
+        length = np.hypot(*(b - a).T)
+        unit = (b - a) / np.maximum(length, 1e-12)[:, None]
+        normal = np.column_stack([unit[:, 1], -unit[:, 0]])
+        centre = np.asarray(tile.centroid.coords[0])
+        normal *= np.sign(np.einsum("ij,ij->i", normal, mid - centre))[:, None]
+        others = shapely.union_all(np.delete(strip.tiles, i))
+        free = shapely.distance(shapely.points(mid), others) > 1e-6 * max(strip.length, 1.0) \
+            if n > 1 else np.ones(len(mid), dtype=bool)
+        if n > 1:
+            nb = np.asarray(strip.tiles[1 if i == 0 else n - 2].centroid.coords[0])
+            away = (centre - nb) / max(float(np.hypot(*(centre - nb))), 1e-12)
+            facing = normal @ away >= END_FACING
+        else:
+            facing = np.ones(len(mid), dtype=bool)
+        for e in np.flatnonzero(free & facing).tolist():  # an edge or two
+            # text along the edge, or across it: (base on the edge, depth, text angle)
+            for base, depth, direction in ((along, high, unit[e]), (high, along, normal[e])):
+                base, depth = base + 2 * FLAP_MARGIN, depth + 2 * FLAP_MARGIN
+                if base > FLAP_REACH * length[e]:
+                    continue
+                p, q = mid[e] - unit[e] * base / 2, mid[e] + unit[e] * base / 2
+                flap = shapely.Polygon([p, q, q + normal[e] * depth, p + normal[e] * depth])
+                if shapely.intersection(flap, body).area > 1e-6 * flap.area:
+                    continue
+                if best is None or flap.area < best[0].area - 1e-9:
+                    angle = float(np.degrees(np.arctan2(direction[1], direction[0])))
+                    best = (flap, shapely.LineString([p, q]), mid[e] + normal[e] * depth / 2,
+                            angle)
+    if best is None:
+        return None
+    flap, edge, centre, angle = best
+    fill = next((f for f, o in zip(strip.fills, strip.over.tolist()) if o), "#ffffff")
+    label = centred_text(centre, text, MIN_CAP, angle, text_colour_on(fill))
+    return replace(strip, flap=flap, flap_edge=edge, flap_fill=fill), label
 
 
 def _place(strip: Strip, wanted, regions, centres, band, taken=()):
