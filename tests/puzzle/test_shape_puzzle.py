@@ -4,6 +4,7 @@ of a redrawn curve have one length, and a level that turns over is refused in on
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -160,3 +161,39 @@ def test_puzzles_of_random_stars_tile_their_hole(points, dent, wobble, seed):
 def test_puzzle_help_says_size_is_the_width():
     text = CliRunner().invoke(cli, ["puzzle", "--help"]).output
     assert "Width of the finished puzzle" in " ".join(text.split())
+
+
+SQUARE = ('<svg xmlns="http://www.w3.org/2000/svg" width="80mm" height="80mm" '
+          'viewBox="0 0 80 80"><rect x="0" y="0" width="80" height="80"/></svg>')
+
+
+@pytest.mark.parametrize("shape", ["heart", "square"])
+def test_a_drawing_without_cell_or_levels_gets_comfortable_pieces(shape, tmp_path):
+    """Neither --cell nor --levels: the chosen values are reported, and every piece at the
+    default --size is at least 15 mm across and 3 x the material's thickness wide."""
+    path = HEART if shape == "heart" else tmp_path / "square.svg"
+    if shape == "square":
+        path.write_text(SQUARE)
+    result = CliRunner().invoke(cli, ["puzzle", str(path), "--mode", "shared", "--sheet",
+                                      "600x600mm", "--json", "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    info = json.loads(result.stdout)
+    chosen = info["chosen"]
+    assert f"--cell {chosen['cell_mm']:g}mm --levels {chosen['levels']}" in chosen["text"]
+    assert info["levels"] == chosen["levels"] >= 2
+    assert info["piece_across_mm"][0] >= 15.0
+    assert info["piece_width_min_mm"] >= 3 * info["thickness_mm"]
+    assert info["pieces"] >= 20  # a puzzle, not a handful of slabs
+    assert not [w for w in info["warnings"] if "pieces are" in w]
+
+
+def test_the_small_pieces_warning_names_a_cell_that_passes(tmp_path):
+    """A drawing meshed too finely: the warning names a larger --cell, and that cell passes."""
+    args = ["puzzle", str(HEART), "--size", "30cm", "--levels", "2", "--mode", "shared",
+            "--json", "-o", str(tmp_path / "a")]
+    result = CliRunner().invoke(cli, args + ["--cell", "20mm"])
+    advice = [w for w in json.loads(result.stdout)["warnings"] if "--cell" in w]
+    assert len(advice) == 1, result.output
+    cell = advice[0].split("--cell ")[1].split("mm")[0]
+    again = CliRunner().invoke(cli, args[:-1] + [str(tmp_path / "b"), "--cell", f"{cell}mm"])
+    assert not [w for w in json.loads(again.stdout)["warnings"] if "pieces are" in w]
