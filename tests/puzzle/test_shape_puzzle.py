@@ -197,3 +197,14 @@ def test_the_small_pieces_warning_names_a_cell_that_passes(tmp_path):
     cell = advice[0].split("--cell ")[1].split("mm")[0]
     again = CliRunner().invoke(cli, args[:-1] + [str(tmp_path / "b"), "--cell", f"{cell}mm"])
     assert not [w for w in json.loads(again.stdout)["warnings"] if "pieces are" in w]
+
+
+def test_a_star_meshed_in_hexagons_is_refused_naming_mesh_tri(tmp_path):
+    """The star's tips turn every hexagon mesh's pentagons over: one line that names
+    --mesh tri, and no files."""
+    star = Path(__file__).parents[2] / "examples" / "star.svg"
+    result = CliRunner().invoke(cli, ["puzzle", str(star), "--size", "30cm",
+                                      "-o", str(tmp_path / "out")])
+    assert result.exit_code == 1
+    assert "--mesh tri" in result.output and len(result.output.strip().splitlines()) == 1
+    assert not (tmp_path / "out").exists()

@@ -73,7 +73,10 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     \b
     A drawing (.svg, .dxf) of one outline is meshed inside with its curves redrawn as
     straight runs of one length, so the hexagon ring along them keeps one size; --cell and
-    --levels set how many pieces it makes (a few faces and two or three levels).
+    --levels set how many pieces it makes. Without them the cell and level (3 or 2) with the
+    most pieces that are all at least 15 mm across and 3 x the thickness wide at --size are
+    chosen and reported. An outline with sharp tips (a star) needs --mesh tri: hexagons and
+    squares there make pentagons that turn over.
     \b
     Examples:
       weave-cut puzzle -o build/puzzle --material poplar-3mm --numbers

@@ -47,7 +47,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-from ..errors import WeaveCutError
+from ..errors import TurnedOverError, WeaveCutError
 from ..mesh import Mesh
 from ..subdivision.hierarchy import Level
 from ..weave.model import Weave
@@ -228,7 +228,7 @@ def _check_cuttable(mesh: Mesh, fewer: bool = True) -> None:
     if simple.all():
         return
     where = mesh.vertices[mesh.dense_faces()[np.flatnonzero(~simple)[0]]].mean(axis=0)
-    raise WeaveCutError(f"{int((~simple).sum())} pentagons of the last level turn over (the "
+    raise TurnedOverError(f"{int((~simple).sum())} pentagons of the last level turn over (the "
                         f"first near ({where[0]:.4g}, {where[1]:.4g}) in input units), so they "
                         "cannot be cut (sharp corners and slim faces do this); "
                         f"{'use fewer --levels, or ' if fewer else ''}mesh a drawing with "

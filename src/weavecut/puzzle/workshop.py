@@ -13,7 +13,7 @@ import shapely
 from ..layout.lasersetup import material  # noqa: F401 (the puzzle's API)
 from .colouring import Colouring
 from .files import TRAVEL_SPEED, CutResult
-from ..errors import WeaveCutError
+from ..errors import MeshError, TurnedOverError, WeaveCutError
 from ..mesh import Mesh, signed_areas
 from ..subdivision import subdivide
 from .pieces import KIND_NAMES, OCTAGON, Puzzle, build_puzzle, diameter, extent
@@ -127,24 +127,30 @@ def drawing_defaults(read_at: Callable[[float | None], Mesh], size: float, frame
     x0, x1 = mesh.vertices[:, 0].min(), mesh.vertices[:, 0].max()
     finished = area * (size / (x1 - x0)) ** 2  # mm² of the pieces, a little less in fact
     best = last = None
+    turned = False
     for level in levels or DEFAULT_LEVELS:
         for faces in DEFAULT_FACES:
             cell = round(math.sqrt(area / faces), 1)
-            hierarchy = subdivide(read_at(cell), level)
-            if finished / (hierarchy[-1].mesh.n_faces / 2) < MIN_MEAN_AREA:
-                continue  # far too many pieces for their room
             try:
+                hierarchy = subdivide(read_at(cell), level)
+                if finished / (hierarchy[-1].mesh.n_faces / 2) < MIN_MEAN_AREA:
+                    continue  # far too many pieces for their room
                 puzzle = build_puzzle(hierarchy, size, frame_width, "width")
-            except WeaveCutError:
-                continue  # pentagons turn over at this level and cell
+            except TurnedOverError:
+                turned = True  # at this level and cell; a coarser cell may do
+                continue
+            except MeshError:
+                continue  # this cell makes sliver faces
             last = (cell, level, puzzle)
             if comfortable(puzzle, thickness):
                 if best is None or puzzle.n_pieces > best[2].n_pieces:
                     best = last
                 break  # coarser cells only give fewer pieces
     if best is None and last is None:
+        why = (" (its pentagons turn over at every one: sharp corners do this; use --mesh tri)"
+               if turned else "")
         raise WeaveCutError(f"no cell and level tried makes a puzzle of this drawing at "
-                            f"{size:g} mm; give --cell and --levels")
+                            f"{size:g} mm{why}; give --cell and --levels to try others")
     return best or last
 
 
