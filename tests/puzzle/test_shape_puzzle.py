@@ -52,21 +52,20 @@ def test_heart_size_is_the_finished_width(heart):
     assert extent(heart.outer, "width") == pytest.approx(300.0, abs=0.01)
 
 
-def test_heart_frame_is_an_offset_of_the_outline(heart):
-    """Every point of the frame's edge is the same distance from the (scaled, straightened)
-    outline, up to the mitre at convex corners, and the ring's outermost point keeps exactly
-    the frame width to it."""
-    mesh = heart.hierarchy[0].mesh
-    outline = shapely.Polygon(shapely.union_all(shapely.polygons(shapely.linearrings(
-        heart.to_mm(mesh.vertices[mesh.face_indices]), indices=mesh.half_edge_face))).exterior)
-    edge = heart.outer.exterior
-    offset = shapely.distance(edge, outline.exterior)  # the nearest approach
-    round_offset = outline.buffer(offset, quad_segs=64)
-    assert round_offset.difference(heart.outer).area < 1e-6 * heart.outer.area
-    # a mitred offset only adds corners: Hausdorff distance to the round one within the mitre
-    assert shapely.hausdorff_distance(edge, round_offset.exterior) < 3.0 * offset
+def test_heart_frame_is_an_even_band_beyond_the_ring(heart):
+    """The frame's edge keeps the frame width to the ring all round: nowhere nearer (to the
+    arcs' chords), along half of it within 0.1 mm of that width and along nine tenths within
+    1 mm (the closed notches are wider); the old offset of the outline was 15-32 mm, median
+    19.8."""
     ring = shapely.union_all(np.concatenate([heart.pieces, heart.ring]))
-    assert shapely.distance(ring, edge) == pytest.approx(heart.frame_width, abs=1e-6)
+    edge = heart.outer.exterior
+    samples = shapely.points([edge.interpolate(t, normalized=True).coords[0]
+                              for t in np.linspace(0.0, 1.0, 2000, endpoint=False)])
+    band = shapely.distance(samples, ring)
+    assert band.min() == pytest.approx(heart.frame_width, abs=0.1)
+    assert np.percentile(band, 50) < heart.frame_width + 0.1
+    assert np.percentile(band, 90) < heart.frame_width + 1.0
+    assert heart.outer.contains(ring)
 
 
 def test_heart_hexagons_are_regular_and_on_the_boundary(heart):

@@ -139,8 +139,10 @@ def drawing_defaults(read_at: Callable[[float | None], Mesh], size: float, frame
             except TurnedOverError:
                 turned = True  # at this level and cell; a coarser cell may do
                 continue
-            except MeshError:
-                continue  # this cell makes sliver faces
+            except (MeshError, shapely.errors.GEOSException):
+                continue  # this cell makes sliver faces or pieces that cross themselves
+            if not shapely.is_valid(puzzle.pieces).all():
+                continue  # pieces that cross themselves cannot be cut
             last = (cell, level, puzzle)
             if comfortable(puzzle, thickness):
                 if best is None or puzzle.n_pieces > best[2].n_pieces:
