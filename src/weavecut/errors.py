@@ -25,3 +25,7 @@ class TooLargeError(WeaveCutError):
 
 class ExportError(WeaveCutError, OSError):
     """An output cannot be written."""
+
+
+class TurnedOverError(WeaveCutError):
+    """Faces of a subdivided level cross themselves (sharp corners, slim faces)."""

@@ -4,6 +4,7 @@ of a redrawn curve have one length, and a level that turns over is refused in on
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -51,21 +52,20 @@ def test_heart_size_is_the_finished_width(heart):
     assert extent(heart.outer, "width") == pytest.approx(300.0, abs=0.01)
 
 
-def test_heart_frame_is_an_offset_of_the_outline(heart):
-    """Every point of the frame's edge is the same distance from the (scaled, straightened)
-    outline, up to the mitre at convex corners, and the ring's outermost point keeps exactly
-    the frame width to it."""
-    mesh = heart.hierarchy[0].mesh
-    outline = shapely.Polygon(shapely.union_all(shapely.polygons(shapely.linearrings(
-        heart.to_mm(mesh.vertices[mesh.face_indices]), indices=mesh.half_edge_face))).exterior)
-    edge = heart.outer.exterior
-    offset = shapely.distance(edge, outline.exterior)  # the nearest approach
-    round_offset = outline.buffer(offset, quad_segs=64)
-    assert round_offset.difference(heart.outer).area < 1e-6 * heart.outer.area
-    # a mitred offset only adds corners: Hausdorff distance to the round one within the mitre
-    assert shapely.hausdorff_distance(edge, round_offset.exterior) < 3.0 * offset
+def test_heart_frame_is_an_even_band_beyond_the_ring(heart):
+    """The frame's edge keeps the frame width to the ring all round: nowhere nearer (to the
+    arcs' chords), along half of it within 0.1 mm of that width and along nine tenths within
+    1 mm (the closed notches are wider); the old offset of the outline was 15-32 mm, median
+    19.8."""
     ring = shapely.union_all(np.concatenate([heart.pieces, heart.ring]))
-    assert shapely.distance(ring, edge) == pytest.approx(heart.frame_width, abs=1e-6)
+    edge = heart.outer.exterior
+    samples = shapely.points([edge.interpolate(t, normalized=True).coords[0]
+                              for t in np.linspace(0.0, 1.0, 2000, endpoint=False)])
+    band = shapely.distance(samples, ring)
+    assert band.min() == pytest.approx(heart.frame_width, abs=0.1)
+    assert np.percentile(band, 50) < heart.frame_width + 0.1
+    assert np.percentile(band, 90) < heart.frame_width + 1.0
+    assert heart.outer.contains(ring)
 
 
 def test_heart_hexagons_are_regular_and_on_the_boundary(heart):
@@ -160,3 +160,50 @@ def test_puzzles_of_random_stars_tile_their_hole(points, dent, wobble, seed):
 def test_puzzle_help_says_size_is_the_width():
     text = CliRunner().invoke(cli, ["puzzle", "--help"]).output
     assert "Width of the finished puzzle" in " ".join(text.split())
+
+
+SQUARE = ('<svg xmlns="http://www.w3.org/2000/svg" width="80mm" height="80mm" '
+          'viewBox="0 0 80 80"><rect x="0" y="0" width="80" height="80"/></svg>')
+
+
+@pytest.mark.parametrize("shape", ["heart", "square"])
+def test_a_drawing_without_cell_or_levels_gets_comfortable_pieces(shape, tmp_path):
+    """Neither --cell nor --levels: the chosen values are reported, and every piece at the
+    default --size is at least 15 mm across and 3 x the material's thickness wide."""
+    path = HEART if shape == "heart" else tmp_path / "square.svg"
+    if shape == "square":
+        path.write_text(SQUARE)
+    result = CliRunner().invoke(cli, ["puzzle", str(path), "--mode", "shared", "--sheet",
+                                      "600x600mm", "--json", "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    info = json.loads(result.stdout)
+    chosen = info["chosen"]
+    assert f"--cell {chosen['cell_mm']:g}mm --levels {chosen['levels']}" in chosen["text"]
+    assert info["levels"] == chosen["levels"] >= 2
+    assert info["piece_across_mm"][0] >= 15.0
+    assert info["piece_width_min_mm"] >= 3 * info["thickness_mm"]
+    assert info["pieces"] >= 20  # a puzzle, not a handful of slabs
+    assert not [w for w in info["warnings"] if "pieces are" in w]
+
+
+def test_the_small_pieces_warning_names_a_cell_that_passes(tmp_path):
+    """A drawing meshed too finely: the warning names a larger --cell, and that cell passes."""
+    args = ["puzzle", str(HEART), "--size", "30cm", "--levels", "2", "--mode", "shared",
+            "--json", "-o", str(tmp_path / "a")]
+    result = CliRunner().invoke(cli, args + ["--cell", "20mm"])
+    advice = [w for w in json.loads(result.stdout)["warnings"] if "--cell" in w]
+    assert len(advice) == 1, result.output
+    cell = advice[0].split("--cell ")[1].split("mm")[0]
+    again = CliRunner().invoke(cli, args[:-1] + [str(tmp_path / "b"), "--cell", f"{cell}mm"])
+    assert not [w for w in json.loads(again.stdout)["warnings"] if "pieces are" in w]
+
+
+def test_a_star_meshed_in_hexagons_is_refused_naming_mesh_tri(tmp_path):
+    """The star's tips turn every hexagon mesh's pentagons over: one line that names
+    --mesh tri, and no files."""
+    star = Path(__file__).parents[2] / "examples" / "star.svg"
+    result = CliRunner().invoke(cli, ["puzzle", str(star), "--size", "30cm",
+                                      "-o", str(tmp_path / "out")])
+    assert result.exit_code == 1
+    assert "--mesh tri" in result.output and len(result.output.strip().splitlines()) == 1
+    assert not (tmp_path / "out").exists()

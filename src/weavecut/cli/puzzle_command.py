@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import json
 
+from pathlib import Path
+
 import click
+from click.core import ParameterSource
 import numpy as np
 
 from .. import export
@@ -70,7 +73,10 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     \b
     A drawing (.svg, .dxf) of one outline is meshed inside with its curves redrawn as
     straight runs of one length, so the hexagon ring along them keeps one size; --cell and
-    --levels set how many pieces it makes (a few faces and two or three levels).
+    --levels set how many pieces it makes. Without them the cell and level (3 or 2) with the
+    most pieces that are all at least 15 mm across and 3 x the thickness wide at --size are
+    chosen and reported. An outline with sharp tips (a star) needs --mesh tri: hexagons and
+    squares there make pentagons that turn over.
     \b
     Examples:
       weave-cut puzzle -o build/puzzle --material poplar-3mm --numbers
@@ -78,7 +84,9 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     """
     import shapely
 
+    from ..mesh_io import read_valid_mesh
     from ..puzzle import files as pf
+    from ..readers.drawing import READERS
     from ..puzzle import workshop
     from ..puzzle.colouring import colour_puzzle, palette_names
     from ..puzzle.frame import fits, split_frame
@@ -94,12 +102,34 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     from ..validation import check_layout
 
     # a drawn outline is meshed with straight runs of one length, so the ring keeps one size
-    click.get_current_context().meta.setdefault(DRAWING_KEY, {})["runs"] = True
-    mesh = check_layout(load_mesh(input_mesh), "the puzzle", connected=True)
-    puzzle = build_puzzle(subdivide(mesh, levels), size, frame_width,
-                          "diagonal" if input_mesh == "pentagon" else "width")
+    ctx = click.get_current_context()
+    drawing = ctx.meta.setdefault(DRAWING_KEY, {})
+    drawing["runs"] = True
+    read_at = None
+    if Path(input_mesh).suffix.lower() in READERS and drawing.get("mesh") != "none":
+        def read_at(cell):
+            return check_layout(read_valid_mesh(input_mesh, **{**drawing, "cell": cell}),
+                                "the puzzle", connected=True)
+    if read_at is not None and drawing.get("cell") is None:
+        given = ctx.get_parameter_source("levels") is not ParameterSource.DEFAULT
+        cell, levels, puzzle = workshop.drawing_defaults(
+            read_at, size, frame_width, mat["thickness"], (levels,) if given else None)
+        reach = ("so pieces are at least" if workshop.comfortable(puzzle, mat["thickness"])
+                 else "the coarsest tried; pieces still fall short of")
+        chosen = {"cell_mm": cell, "levels": levels, "text": (
+            f"chose --cell {cell:g}mm{'' if given else f' --levels {levels}'} "
+            f"({puzzle.hierarchy[0].mesh.n_faces} faces, {puzzle.n_pieces} pieces) {reach} "
+            f"{workshop.MIN_ACROSS:g} mm across and {workshop.MIN_WIDTH_X_THICKNESS:g} x "
+            f"{mat['thickness']:g} mm wide at --size {size:g}mm; give --cell and --levels "
+            "to choose")}
+    else:
+        cell, chosen = drawing.get("cell"), None
+        mesh = check_layout(load_mesh(input_mesh), "the puzzle", connected=True)
+        puzzle = build_puzzle(subdivide(mesh, levels), size, frame_width,
+                              "diagonal" if input_mesh == "pentagon" else "width")
     pf.check_kerf(puzzle, kerf)
-    warnings = workshop.size_warnings(puzzle, mat["thickness"])
+    warnings = workshop.size_warnings(puzzle, mat["thickness"], read_at,
+                                      cell if read_at is not None else None)
     colouring = colour_puzzle(puzzle, pal, palette_names(palette_name, pal))
     engraved = pf.piece_numbers(puzzle) if numbers else None
     if engraved is not None:
@@ -135,6 +165,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     info = workshop.summary(puzzle, results, speed, colouring)
     info.update(material=mat["description"], thickness_mm=mat["thickness"], kerf_mm=kerf,
                 sheet_mm=list(sheet), laser=las.name,
+                **({"chosen": chosen} if chosen else {}),
                 frame_parts=1 if frame_parts is None else len(frame_parts), warnings=warnings,
                 **flag_nonconvex(puzzle.hierarchy),
                 files=sorted(list(files) + ["puzzle-summary.json", "README.txt"]))

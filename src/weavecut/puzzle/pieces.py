@@ -17,9 +17,14 @@ Decisions (documented here and in the README):
   meet, are part of the frame** (the wedge between the last cell of one side and the first of
   the next). Cells that would overlap the mesh or an earlier cell are dropped (claimed cells
   first); on the pentagon none overlap.
-- **The frame** is the input outline offset outward (mitred; bevelled at corners under 60
-  degrees) to ``frame_width`` beyond the ring's
-  outermost point, minus the union of the pieces (the hole). ``size`` is the frame's diagonal
+- **The frame** of the paper's pentagon (``measure="diagonal"``) is the input outline offset
+  outward (mitred; bevelled at corners under 60 degrees) to ``frame_width`` beyond the ring's
+  outermost point, minus the union of the pieces (the hole): the surrounding pentagon. Any
+  other shape's frame is the ring's outer boundary (pieces and ring cells) offset by
+  ``frame_width`` with round joins, its notches closed by a radius of ``frame_width``, so the
+  band beyond the ring is even all round and its outline follows the drawn shape (an offset
+  of the outline would be as wide as the ring's deepest point everywhere, and a drawn curve's
+  ring wanders off its straight runs). ``size`` is the frame's diagonal
   (the largest distance between two corners of its outer outline): "the diagonal of the
   surrounding pentagon measures 50 cm" (paper, section 6), or with ``measure="width"`` (every
   other shape: a heart, a star) the finished piece's width. The model is scaled to make it so.
@@ -47,7 +52,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-from ..errors import WeaveCutError
+from ..errors import TurnedOverError, WeaveCutError
 from ..mesh import Mesh
 from ..subdivision.hierarchy import Level
 from ..weave.model import Weave
@@ -186,22 +191,21 @@ def build_puzzle(hierarchy: tuple[Level, ...], size: float = 500.0,
              ring_cells.reshape(-1, 2)]
     snapped = _snap(np.concatenate(parts), tol=1e-6 * diagonal)
     outline = _outline(mesh, to_model)
-    depth = float(np.max(shapely.distance(shapely.points(snapped), outline)))
-    scale = frame_scale(outline, depth, frame_width, size, measure)
-    snapped = snapped * scale
-    bounds = np.cumsum([0] + [len(p) for p in parts])
-    octagon_xy, ennea, plain, hexes, ring_cells = (
-        snapped[bounds[k]:bounds[k + 1]].reshape(parts[k].shape if k == 0 else (-1,) + shape)
-        for k, shape in enumerate([None, (9, 2), (5, 2), (6, 2), (6, 2)]))
-    octagons = _polygons(octagon_xy, np.r_[0, np.cumsum(octagon_sizes)])
-    pieces = np.concatenate([octagons, shapely.polygons(ennea), shapely.polygons(plain)])
+    if measure == "diagonal":
+        depth = float(np.max(shapely.distance(shapely.points(snapped), outline)))
+        base, grow = outline, lambda s: _frame_outline(outline, depth, frame_width, s)
+    else:
+        base = shapely.Polygon(shapely.coverage_union_all(np.concatenate(
+            _shapes(snapped, parts, octagon_sizes)[::2])).exterior)
+        grow = lambda s: _ring_offset(base, frame_width, s)  # noqa: E731
+    scale = frame_scale(base, grow, size, measure, frame_width)
+    pieces, hexes, ring = _shapes(snapped * scale, parts, octagon_sizes)
     kinds = np.repeat(np.array([OCTAGON, ENNEAGON, ENNEAGON], dtype=np.int8),
-                      [len(octagons), len(ennea), len(plain)])
+                      [len(octagon_sizes), len(ennea), len(plain)])
     tiles = np.concatenate([octagon_tiles, lone_tiles, dropped]).astype(np.int32)
-    hex_polys = np.concatenate([np.full(len(octagons), None, dtype=object),
-                                shapely.polygons(hexes), np.full(len(plain), None, object)])
-    ring = shapely.polygons(ring_cells) if len(ring_cells) else np.empty(0, dtype=object)
-    outer = _frame_outline(outline, depth, frame_width, scale)
+    hex_polys = np.concatenate([np.full(len(octagon_sizes), None, dtype=object), hexes,
+                                np.full(len(plain), None, object)])
+    outer = grow(scale)
     return Puzzle(pieces, kinds, tiles, hex_polys, ring, outer, tuple(hierarchy), weaves, scale,
                   centre, frame_width, measure)
 
@@ -228,7 +232,7 @@ def _check_cuttable(mesh: Mesh, fewer: bool = True) -> None:
     if simple.all():
         return
     where = mesh.vertices[mesh.dense_faces()[np.flatnonzero(~simple)[0]]].mean(axis=0)
-    raise WeaveCutError(f"{int((~simple).sum())} pentagons of the last level turn over (the "
+    raise TurnedOverError(f"{int((~simple).sum())} pentagons of the last level turn over (the "
                         f"first near ({where[0]:.4g}, {where[1]:.4g}) in input units), so they "
                         "cannot be cut (sharp corners and slim faces do this); "
                         f"{'use fewer --levels, or ' if fewer else ''}mesh a drawing with "
@@ -245,25 +249,49 @@ def _frame_outline(outline: shapely.Polygon, depth: float, frame_width: float,
                           mitre_limit=MITRE_LIMIT)
 
 
-def frame_scale(outline: shapely.Polygon, depth: float, frame_width: float,
-                size: float, measure: str = "diagonal") -> float:
+def _ring_offset(envelope: shapely.Polygon, frame_width: float,
+                 scale: float) -> shapely.Polygon:
+    """The ring's outer boundary at ``scale`` offset by ``frame_width`` (round), its notches
+    closed with a radius of ``frame_width``: an even band that follows the ring."""
+    scaled = shapely.transform(envelope, lambda xy: xy * scale)
+    grown = shapely.buffer(shapely.buffer(scaled, 2.0 * frame_width, quad_segs=16),
+                           -frame_width, quad_segs=16)
+    return shapely.Polygon(grown.exterior)
+
+
+def frame_scale(base: shapely.Polygon, grow, size: float, measure: str = "diagonal",
+                frame_width: float = 20.0) -> float:
     """mm per model unit that makes the frame's diagonal (or width: ``measure``) ``size`` mm.
 
-    The frame is the (centred) input outline scaled, then offset by the scaled ring depth plus
-    the fixed frame width; its diagonal and width grow monotonically with the scale, so a
-    bracketing root search finds it to far below 0.01 mm."""
+    ``grow(scale)`` is the frame's outer outline: ``base`` (centred model units) scaled, then
+    offset by the fixed frame width (and, for the pentagon, the scaled ring depth); its
+    diagonal and width grow monotonically with the scale, so a bracketing root search finds
+    it to far below 0.01 mm."""
     from scipy.optimize import brentq
 
     def excess(scale: float) -> float:
-        return extent(_frame_outline(outline, depth, frame_width, scale), measure) - size
+        return extent(grow(scale), measure) - size
 
-    high = size / extent(outline, measure)  # the outline alone already spans ``size``
+    high = size / extent(base, measure)  # the base alone already spans ``size``
     low = high * 1e-9
     if excess(low) >= 0:
         raise WeaveCutError(f"a frame of {size:g} mm {measure} leaves no room for the pieces "
                             f"inside a {frame_width:g} mm frame; use a larger --size or a "
                             "narrower --frame")
     return float(brentq(excess, low, high, xtol=1e-12 * high, rtol=1e-14))
+
+
+def _shapes(points: NDArray[np.float64], parts: list, octagon_sizes) -> tuple:
+    """Pieces (octagons, enneagons, plain pentagons), claimed hexagons and ring cells as
+    polygons, from the snapped corners of ``parts`` (as ``build_puzzle`` lists them)."""
+    bounds = np.cumsum([0] + [len(p) for p in parts])
+    octagon_xy, ennea, plain, hexes, ring_cells = (
+        points[bounds[k]:bounds[k + 1]].reshape(parts[k].shape if k == 0 else (-1,) + shape)
+        for k, shape in enumerate([None, (9, 2), (5, 2), (6, 2), (6, 2)]))
+    octagons = _polygons(octagon_xy, np.r_[0, np.cumsum(octagon_sizes)])
+    pieces = np.concatenate([octagons, shapely.polygons(ennea), shapely.polygons(plain)])
+    ring = shapely.polygons(ring_cells) if len(ring_cells) else np.empty(0, dtype=object)
+    return pieces, shapely.polygons(hexes), ring
 
 
 def _polygons(coords: NDArray[np.float64], offsets: NDArray[np.int64]) -> NDArray[np.object_]:

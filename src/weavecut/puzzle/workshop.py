@@ -3,7 +3,9 @@ summary, and the workshop folder's README.txt."""
 
 from __future__ import annotations
 
+import math
 import textwrap
+from collections.abc import Callable
 
 import numpy as np
 import shapely
@@ -11,10 +13,17 @@ import shapely
 from ..layout.lasersetup import material  # noqa: F401 (the puzzle's API)
 from .colouring import Colouring
 from .files import TRAVEL_SPEED, CutResult
+from ..errors import MeshError, TurnedOverError, WeaveCutError
+from ..mesh import Mesh, signed_areas
+from ..subdivision import subdivide
 from .pieces import KIND_NAMES, OCTAGON, Puzzle, build_puzzle, diameter, extent
 
 MIN_ACROSS = 15.0  # mm: a piece smaller than this is fiddly to hold and easy to lose
 MIN_WIDTH_X_THICKNESS = 3.0  # a piece narrower than 3x the material thickness breaks
+DEFAULT_LEVELS = (3, 2)  # levels tried for a drawing, highest first
+DEFAULT_FACES = (40, 28, 20, 14, 10, 7, 5, 4, 3)  # faces of the meshed outline tried, most first
+CELL_STEPS = (1.25, 1.5, 1.75, 2.0, 2.5, 3.0)  # larger cells tried for a drawing's warning
+MIN_MEAN_AREA = 1.5 * MIN_ACROSS ** 2  # mm²: fewer, larger pieces are tried without building
 
 
 def piece_sizes(puzzle: Puzzle) -> tuple[np.ndarray, np.ndarray]:
@@ -33,10 +42,13 @@ def piece_sizes(puzzle: Puzzle) -> tuple[np.ndarray, np.ndarray]:
     return across, width
 
 
-def size_warnings(puzzle: Puzzle, thickness: float) -> list[str]:
+def size_warnings(puzzle: Puzzle, thickness: float,
+                  read_at: Callable[[float], Mesh] | None = None,
+                  cell: float | None = None) -> list[str]:
     """Warnings when pieces are too small for the material: smaller than MIN_ACROSS mm across
     or narrower than MIN_WIDTH_X_THICKNESS x ``thickness``, naming the largest level whose
-    pieces all stay above both limits."""
+    pieces all stay above both limits and, for a drawing meshed with ``cell`` (``read_at``
+    meshes it with another), the smallest of a few larger cells that does."""
     limit = MIN_WIDTH_X_THICKNESS * thickness
     out = []
     across, width = piece_sizes(puzzle)
@@ -48,9 +60,14 @@ def size_warnings(puzzle: Puzzle, thickness: float) -> list[str]:
                    f"than 3 x {thickness:g} mm material (narrowest {width.min():.1f} mm)")
     if out:
         ok = largest_good_level(puzzle, thickness)
-        out.append(f"at this size, --levels {ok} keeps every piece above both limits" if ok
-                   else "no level keeps every piece above both limits at this size; use a "
-                   "larger --size")
+        fixes = [f"--levels {ok}"] if ok else []
+        larger = (None if read_at is None or cell is None
+                  else larger_good_cell(puzzle, thickness, read_at, cell))
+        if larger:
+            fixes.insert(0, f"--cell {larger:g}mm")
+        out.append(f"at this size, {' or '.join(fixes)} keeps every piece above both limits"
+                   if fixes else "no level keeps every piece above both limits at this size; "
+                   "use a larger --size")
     return out
 
 
@@ -61,10 +78,82 @@ def largest_good_level(puzzle: Puzzle, thickness: float) -> int | None:
     frame_width = puzzle.frame_width
     for level in range(puzzle.levels - 1, 1, -1):  # each lower level is ~4x smaller to build
         smaller = build_puzzle(puzzle.hierarchy[:level + 1], size, frame_width, puzzle.measure)
-        across, width = piece_sizes(smaller)
-        if across.min() >= MIN_ACROSS and width.min() >= MIN_WIDTH_X_THICKNESS * thickness:
+        if comfortable(smaller, thickness):
             return level
     return None
+
+
+def larger_good_cell(puzzle: Puzzle, thickness: float, read_at: Callable[[float], Mesh],
+                     cell: float) -> float | None:
+    """The smallest of ``cell`` x CELL_STEPS (rounded to 0.1 mm) that, at the puzzle's level
+    and size, keeps every piece ``comfortable`` (None: none)."""
+    size = extent(puzzle.outer, puzzle.measure)
+    for step in CELL_STEPS:
+        larger = round(cell * step, 1)
+        try:
+            bigger = build_puzzle(subdivide(read_at(larger), puzzle.levels), size,
+                                  puzzle.frame_width, puzzle.measure)
+        except WeaveCutError:
+            continue
+        if comfortable(bigger, thickness):
+            return larger
+    return None
+
+
+def comfortable(puzzle: Puzzle, thickness: float) -> bool:
+    """True when every piece is at least MIN_ACROSS across and MIN_WIDTH_X_THICKNESS x
+    ``thickness`` wide."""
+    across, width = piece_sizes(puzzle)
+    return bool(across.min() >= MIN_ACROSS and width.min() >= MIN_WIDTH_X_THICKNESS * thickness)
+
+
+def drawing_defaults(read_at: Callable[[float | None], Mesh], size: float, frame_width: float,
+                     thickness: float, levels: tuple[int, ...] | None = None
+                     ) -> tuple[float, int, Puzzle]:
+    """``(cell, levels, puzzle)`` for a drawn outline when the user gave neither: of the
+    levels DEFAULT_LEVELS (highest first; a level whose pentagons turn over is passed over)
+    and the cells that mesh the outline in about DEFAULT_FACES faces, the puzzle with the
+    most pieces that keeps every piece ``comfortable``; else the coarsest one tried.
+
+    Parameters
+    ----------
+    read_at : the drawing meshed with a cell (mm; None: the reader's default)
+    size, frame_width : mm, as for ``build_puzzle`` (``size`` is the finished width)
+    thickness : mm of material
+    levels : the levels to try (default DEFAULT_LEVELS)
+    """
+    mesh = read_at(None)
+    area = float(np.abs(signed_areas(mesh)).sum())
+    x0, x1 = mesh.vertices[:, 0].min(), mesh.vertices[:, 0].max()
+    finished = area * (size / (x1 - x0)) ** 2  # mm² of the pieces, a little less in fact
+    best = last = None
+    turned = False
+    for level in levels or DEFAULT_LEVELS:
+        for faces in DEFAULT_FACES:
+            cell = round(math.sqrt(area / faces), 1)
+            try:
+                hierarchy = subdivide(read_at(cell), level)
+                if finished / (hierarchy[-1].mesh.n_faces / 2) < MIN_MEAN_AREA:
+                    continue  # far too many pieces for their room
+                puzzle = build_puzzle(hierarchy, size, frame_width, "width")
+            except TurnedOverError:
+                turned = True  # at this level and cell; a coarser cell may do
+                continue
+            except (MeshError, shapely.errors.GEOSException):
+                continue  # this cell makes sliver faces or pieces that cross themselves
+            if not shapely.is_valid(puzzle.pieces).all():
+                continue  # pieces that cross themselves cannot be cut
+            last = (cell, level, puzzle)
+            if comfortable(puzzle, thickness):
+                if best is None or puzzle.n_pieces > best[2].n_pieces:
+                    best = last
+                break  # coarser cells only give fewer pieces
+    if best is None and last is None:
+        why = (" (its pentagons turn over at every one: sharp corners do this; use --mesh tri)"
+               if turned else "")
+        raise WeaveCutError(f"no cell and level tried makes a puzzle of this drawing at "
+                            f"{size:g} mm{why}; give --cell and --levels to try others")
+    return best or last
 
 
 def summary(puzzle: Puzzle, results: dict[str, CutResult], speed: float,
@@ -99,12 +188,13 @@ def summary_text(info: dict) -> str:
     """The summary as a few readable lines."""
     kinds = ", ".join(f"{n} {k}s" for k, n in info["pieces_by_type"].items())
     lo, hi = info["piece_across_mm"]
-    lines = [f"level {info['levels']} puzzle: {info['pieces']} pieces ({kinds}), {lo:g}-{hi:g} "
-             f"mm across, narrowest {info['piece_width_min_mm']:g} mm; "
-             f"{info['ring_hexagons_in_frame']} ring hexagons stay in the frame",
-             f"frame: {info['frame_diagonal_mm']:g} mm diagonal, {info['frame_mm'][0]:g} x "
-             f"{info['frame_mm'][1]:g} mm" + (f", in {info['frame_parts']} dovetailed parts"
-                                              if info.get("frame_parts", 1) > 1 else "")]
+    lines = [info["chosen"]["text"]] if "chosen" in info else []
+    lines += [f"level {info['levels']} puzzle: {info['pieces']} pieces ({kinds}), {lo:g}-{hi:g} "
+              f"mm across, narrowest {info['piece_width_min_mm']:g} mm; "
+              f"{info['ring_hexagons_in_frame']} ring hexagons stay in the frame",
+              f"frame: {info['frame_diagonal_mm']:g} mm diagonal, {info['frame_mm'][0]:g} x "
+              f"{info['frame_mm'][1]:g} mm" + (f", in {info['frame_parts']} dovetailed parts"
+                                               if info.get("frame_parts", 1) > 1 else "")]
     if "material" in info:
         lines.append(f"material: {info['material']}, kerf {info['kerf_mm']:g} mm, sheet "
                      f"{info['sheet_mm'][0]:g} x {info['sheet_mm'][1]:g} mm")
