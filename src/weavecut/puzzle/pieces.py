@@ -52,7 +52,7 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
-from ..errors import TurnedOverError, WeaveCutError
+from ..errors import MeshError, TurnedOverError, WeaveCutError
 from ..mesh import Mesh
 from ..subdivision.hierarchy import Level
 from ..weave.model import Weave
@@ -200,6 +200,7 @@ def build_puzzle(hierarchy: tuple[Level, ...], size: float = 500.0,
         grow = lambda s: _ring_offset(base, frame_width, s)  # noqa: E731
     scale = frame_scale(base, grow, size, measure, frame_width)
     pieces, hexes, ring = _shapes(snapped * scale, parts, octagon_sizes)
+    _check_no_gaps(pieces)
     kinds = np.repeat(np.array([OCTAGON, ENNEAGON, ENNEAGON], dtype=np.int8),
                       [len(octagon_sizes), len(ennea), len(plain)])
     tiles = np.concatenate([octagon_tiles, lone_tiles, dropped]).astype(np.int32)
@@ -208,6 +209,22 @@ def build_puzzle(hierarchy: tuple[Level, ...], size: float = 500.0,
     outer = grow(scale)
     return Puzzle(pieces, kinds, tiles, hex_polys, ring, outer, tuple(hierarchy), weaves, scale,
                   centre, frame_width, measure)
+
+
+def _check_no_gaps(pieces: np.ndarray) -> None:
+    """MeshError unless the pieces cover one region without gaps between them (a ring hexagon
+    dropped where two runs of the boundary meet can leave one)."""
+    union = shapely.coverage_union_all(pieces)  # pieces share edges exactly: no overlay needed
+    if union.geom_type == "Polygon" and not union.interiors:
+        return
+    gaps = (list(union.interiors) if union.geom_type == "Polygon"
+            else [g for p in union.geoms for g in p.interiors])
+    where = (f", one {np.hypot(gaps[0].centroid.x, gaps[0].centroid.y):.0f} mm from the centre"
+             if gaps else "")
+    what = (f"{len(gaps)} gap{'s' * (len(gaps) > 1)} between them{where}" if gaps
+            else "separate parts")
+    raise MeshError(f"the puzzle's pieces leave {what}: the hexagon ring does not close "
+                    "around this mesh; mesh the outline with another --cell")
 
 
 def diameter(polygon: shapely.Polygon) -> float:
