@@ -9,6 +9,7 @@ import io
 import struct
 import zlib
 from collections.abc import Iterable
+from functools import lru_cache
 
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
@@ -112,14 +113,15 @@ def _font(text: str, size: float, px: float) -> ImageFont.FreeTypeFont:
     lacks signs like the superscript two), at cap height ``size`` mm, made smaller where it
     would run wider than the width the layout reserved for ``text``."""
     em = size / CAP_RATIO * px
-    font = _face(em)
+    font = _face(max(1, int(em)))
     natural = font.getlength(text)
     room = text_width(text, size) * px
-    return font if natural <= room else _face(em * room / natural)
+    return font if natural <= room else _face(max(1, int(em * room / natural)))
 
 
-def _face(em: float) -> ImageFont.FreeTypeFont:
-    size = max(1, int(em))
+@lru_cache(maxsize=None)
+def _face(size: int) -> ImageFont.FreeTypeFont:
+    """The font at ``size`` px, loaded once (a sheet has hundreds of texts in a few sizes)."""
     try:
         return ImageFont.truetype("DejaVuSans.ttf", size)
     except OSError:
