@@ -24,6 +24,7 @@ import subprocess
 import sys
 import time
 import tomllib
+from dataclasses import dataclass, field
 from fnmatch import fnmatch
 from pathlib import Path
 
@@ -32,30 +33,45 @@ OUT = ROOT / "build" / "mutation"
 EQUIVALENTS = ROOT / "tests" / "mutation_equivalents.toml"
 MUTMUT = [sys.executable, "-m", "mutmut"]
 
-# test_fuzz's tests that run weave-cut in subprocesses for many seconds: no mutant is reached
-# through the subprocesses (mutmut maps tests to what they call in-process), but the
-# in-process warm-up they start with would make them run for nearly every mesh-core mutant
-DESELECT = {"mesh-core": "not interrupt and not hash_seeds"}
-
 # mutmut stops a mutant after (expected time + 1 s) x this x 2 CPU seconds, or half that in
 # wall time; on a shared, loaded machine a test takes ten times its CPU time in wall time, so
 # mutmut's default (15) reported mutants whose tests passed as timeouts (counted as killed)
 TIMEOUT_MULTIPLIER = 60
 
-# package -> (files to mutate, tests that guard them)
-PACKAGES: dict[str, tuple[list[str], list[str]]] = {
-    "subdivision": (["src/weavecut/subdivision/*"], ["tests/subdivision"]),
-    "weave": (["src/weavecut/weave/*"], ["tests/weave", "tests/surface/test_surface_weave.py",
-                                         "tests/surface/test_woven_model.py"]),
-    "mesh-core": (["src/weavecut/mesh.py", "src/weavecut/mesh_io.py",
-                   "src/weavecut/validation.py"],
-                  ["tests/test_mesh.py", "tests/test_mesh_io.py", "tests/test_validation.py",
-                   "tests/test_fuzz.py", "tests/subdivision/test_snub.py"]),
-    "puzzle": (["src/weavecut/puzzle/*"], ["tests/puzzle"]),
-    "papermodel": (["src/weavecut/papermodel/*"], ["tests/papermodel"]),
-    "export": (["src/weavecut/export/*"], ["tests/export", "tests/test_cli.py",
-                                           "tests/surface/test_woven_model.py"]),
-    "readers": (["src/weavecut/readers/*"], ["tests/readers"]),
+
+@dataclass(frozen=True)
+class Package:
+    """What to mutate, the tests that guard it, and the package's own mutmut settings:
+    ``deselect`` (a pytest ``-k`` expression) and ``settings`` (extra ``[tool.mutmut]`` keys,
+    e.g. ``max_stack_depth`` so that a test reaching a function only through many calls is
+    not run for its mutants)."""
+
+    mutate: tuple[str, ...]
+    tests: tuple[str, ...]
+    deselect: str = ""
+    settings: dict = field(default_factory=dict)
+
+
+PACKAGES: dict[str, Package] = {
+    "subdivision": Package(("src/weavecut/subdivision/*",), ("tests/subdivision",)),
+    "weave": Package(("src/weavecut/weave/*",),
+                     ("tests/weave", "tests/surface/test_surface_weave.py",
+                      "tests/surface/test_woven_model.py")),
+    # test_fuzz's tests that run weave-cut in subprocesses for many seconds: no mutant is
+    # reached through the subprocesses (mutmut maps tests to what they call in-process), but
+    # the in-process warm-up they start with would make them run for nearly every mutant
+    "mesh-core": Package(("src/weavecut/mesh.py", "src/weavecut/mesh_io.py",
+                          "src/weavecut/validation.py"),
+                         ("tests/test_mesh.py", "tests/test_mesh_io.py",
+                          "tests/test_validation.py", "tests/test_fuzz.py",
+                          "tests/subdivision/test_snub.py"),
+                         deselect="not interrupt and not hash_seeds"),
+    "puzzle": Package(("src/weavecut/puzzle/*",), ("tests/puzzle",)),
+    "papermodel": Package(("src/weavecut/papermodel/*",), ("tests/papermodel",)),
+    "export": Package(("src/weavecut/export/*",),
+                      ("tests/export", "tests/test_cli.py",
+                       "tests/surface/test_woven_model.py")),
+    "readers": Package(("src/weavecut/readers/*",), ("tests/readers",)),
 }
 
 
@@ -74,17 +90,19 @@ def tracked_tree(dest: Path) -> None:
                 shutil.copy(src, target)
 
 
-def configure(work: Path, mutate: list[str], tests: list[str], deselect: str = "") -> None:
+def configure(work: Path, package: Package) -> None:
     """Append a [tool.mutmut] table for this package to the copy's pyproject.toml."""
     text = (ROOT / "pyproject.toml").read_text(encoding="utf-8")
-    quoted = ", ".join
-    text += ("\n[tool.mutmut]\nsource_paths = [\"src\"]\n"
-             f"only_mutate = [{quoted(json.dumps(m) for m in mutate)}]\n"
-             f"pytest_add_cli_args_test_selection = [{quoted(json.dumps(t) for t in tests)}]\n"
-             "pytest_add_cli_args = [\"-p\", \"no:cacheprovider\", \"-x\", \"-q\""
-             + (f", \"-k\", {json.dumps(deselect)}" if deselect else "") + "]\n"
-             "also_copy = [\"templates/\", \"examples/\", \"benchmarks/\"]\n"
-             f"timeout_multiplier = {TIMEOUT_MULTIPLIER}\n")
+    args = ["-p", "no:cacheprovider", "-x", "-q"]
+    if package.deselect:
+        args += ["-k", package.deselect]
+    settings = {"source_paths": ["src"], "only_mutate": list(package.mutate),
+                "pytest_add_cli_args_test_selection": list(package.tests),
+                "pytest_add_cli_args": args,
+                "also_copy": ["templates/", "examples/", "benchmarks/"],
+                "timeout_multiplier": TIMEOUT_MULTIPLIER, **package.settings}
+    text += "\n[tool.mutmut]\n" + "".join(f"{key} = {json.dumps(value)}\n"
+                                          for key, value in settings.items())
     (work / "pyproject.toml").write_text(text, encoding="utf-8")
 
 
@@ -92,12 +110,11 @@ def run_package(name: str, children: int, only: list[str], fresh: bool = False) 
     """Run mutmut on one package (only the mutants named in ``only``, if any); ``fresh``
     maps tests to functions anew (mutmut maps only tests it has not seen, so a test that
     changed would keep its old reach)."""
-    mutate, tests = PACKAGES[name]
     work = OUT / name
     tracked_tree(work)
     if fresh:
         (work / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
-    configure(work, mutate, tests, DESELECT.get(name, ""))
+    configure(work, PACKAGES[name])
     start = time.monotonic()
     run = subprocess.run([*MUTMUT, "run", "--max-children", str(children), *only], cwd=work,
                          capture_output=True, text=True,
