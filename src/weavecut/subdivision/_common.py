@@ -8,6 +8,8 @@ from numpy.typing import NDArray
 from ..errors import MeshError
 from ..mesh import Mesh, Topology
 
+BLOCK = 32768  # rows of an interleaved output written at once (< 1 MiB: within the L2 cache)
+
 
 def require_degree(mesh: Mesh, k: int, scheme: str) -> NDArray[np.int32]:
     """(F, k) dense faces, or MeshError naming the first face of another degree."""
@@ -83,7 +85,8 @@ class Corners:
     def face_values(self, offset: int, out: NDArray) -> None:
         """``out[h] = offset + (face of h)``."""
         if self.k:
-            self.grid(out)[...] = (np.arange(self.mesh.n_faces, dtype=np.int32) + offset)[:, None]
+            face = np.arange(offset, offset + self.mesh.n_faces, dtype=out.dtype)
+            interleave([face] * self.k, out=self.grid(out))
         else:
             np.add(self.mesh.half_edge_face, offset, out=out)
 
@@ -123,6 +126,30 @@ class Corners:
         out = np.empty(self.mesh.n_corners, dtype=np.int32)
         fill_rows(self.grid(out), np.arange(self.k, dtype=np.int32))
         return out
+
+
+def interleave(columns, out: NDArray | None = None) -> NDArray:
+    """The (n, m) array whose column j is ``columns[j]`` ((m, n) array or m arrays (n,)),
+    written in blocks of ``BLOCK`` rows, each column by one strided copy: the block stays in
+    the cache while its m columns arrive, and every copy is one long loop (a transposed
+    ``copyto`` or a broadcast runs its inner loop over the m elements of a row, at about five
+    times the instructions).
+
+    Examples
+    --------
+    >>> interleave(np.array([[1, 2, 3], [4, 5, 6]]))
+    array([[1, 4],
+           [2, 5],
+           [3, 6]])
+    """
+    if out is None:
+        first = np.asarray(columns[0])
+        out = np.empty((len(first), len(columns)), dtype=first.dtype)
+    for start in range(0, len(out), BLOCK):
+        rows = out[start:start + BLOCK]
+        for j, column in enumerate(columns):
+            rows[:, j] = column[start:start + BLOCK]
+    return out
 
 
 def fill_rows(out: NDArray, row) -> None:

@@ -41,7 +41,7 @@ from numpy.typing import NDArray
 from ..errors import MeshError
 from ..mesh import Mesh, Topology, area_centroids, face_centroids, outer_vertices
 from ..surface import circumsphere, edge_normals, onto_sphere
-from ._common import Corners, fill_rows
+from ._common import Corners, fill_rows, interleave
 from .hierarchy import Level
 
 FIRST, MIDDLE, LAST, SPOKE = 0, 1, 2, 3
@@ -143,7 +143,7 @@ def _new_vertices(mesh: Mesh, right: bool, centre: str) -> NDArray[np.float64]:
         (np.add if add else np.subtract)(z[j], across, out=z[j])
         z[j] /= 14
         z[j] += base
-    _interleave(z, out=vertices[n_v:n_v + 2 * n_e].reshape(n_e, 4))
+    interleave(z, out=vertices[n_v:n_v + 2 * n_e].reshape(n_e, 4))
     centre_of = area_centroids if centre == "area" else face_centroids
     vertices[n_v + 2 * n_e:] = centre_of(mesh)
     return vertices
@@ -194,15 +194,6 @@ def _corner_vertices(mesh: Mesh, ring: Corners, right: bool):
     return x, y, old
 
 
-def _interleave(columns: NDArray, out: NDArray | None = None) -> NDArray:
-    """The (n, m) array whose column j is row j of ``columns`` (m, n): written row by row from
-    m sequential reads, which is faster than m strided passes over the output."""
-    if out is None:
-        out = np.empty(columns.shape[::-1], dtype=columns.dtype)
-    np.copyto(out, columns.T)
-    return out
-
-
 def _faces(mesh: Mesh, ring: Corners, x, y, old, right: bool) -> NDArray[np.int32]:
     """Operation 3: (H, 5) the pentagons P_h."""
     centre = mesh.n_vertices + 2 * mesh.topology.n_edges
@@ -215,7 +206,7 @@ def _faces(mesh: Mesh, ring: Corners, x, y, old, right: bool) -> NDArray[np.int3
         ring.face_values(centre, out=cols[0])
         cols[1], cols[2], cols[3] = x, y, old
         ring.shifted(x, 1, out=cols[4])
-    return _interleave(cols)
+    return interleave(cols)
 
 
 def _half_edges(mesh: Mesh, ring: Corners, right: bool) -> tuple[NDArray[np.int32], NDArray]:
@@ -243,7 +234,7 @@ def _half_edges(mesh: Mesh, ring: Corners, right: bool) -> tuple[NDArray[np.int3
         fill_rows(sides, np.array([1, 0, 1, 0, 0], np.int8))
     np.add(e3, MIDDLE, out=parts[1])
     sides[:, 1] = topo.half_edge_side
-    return _interleave(parts).reshape(-1), sides.reshape(-1)
+    return interleave(parts).reshape(-1), sides.reshape(-1)
 
 
 def _edges(mesh: Mesh, ring: Corners, x: NDArray[np.int32]):
@@ -251,23 +242,23 @@ def _edges(mesh: Mesh, ring: Corners, x: NDArray[np.int32]):
     topo = mesh.topology
     n_v, n_e, n_h = mesh.n_vertices, topo.n_edges, mesh.n_corners
     edges = np.empty((3 * n_e + n_h, 2), dtype=np.int32)
-    z = np.empty((6, n_e), dtype=np.int32)  # (FIRST, MIDDLE, LAST) x (u, w)
-    np.add(2 * np.arange(n_e, dtype=np.int32), n_v, out=z[1])
-    np.add(z[1], 1, out=z[3])
-    z[0], z[2], z[4], z[5] = topo.edges[:, 0], z[1], topo.edges[:, 1], z[3]
-    _interleave(z, out=edges[:3 * n_e].reshape(n_e, 6))
+    z0 = np.arange(n_v, n_v + 2 * n_e, 2, dtype=np.int32)
+    z1 = z0 + 1  # FIRST (u, z0), MIDDLE (z0, z1), LAST (w, z1)
+    interleave([topo.edges[:, 0], z0, z0, z1, topo.edges[:, 1], z1],
+               out=edges[:3 * n_e].reshape(n_e, 6))
     spokes = np.empty((2, n_h), dtype=np.int32)
     spokes[0] = x
     ring.face_values(n_v + 2 * n_e, out=spokes[1])
-    _interleave(spokes, out=edges[3 * n_e:])
+    interleave(spokes, out=edges[3 * n_e:])
     parent_edge = np.empty(len(edges), dtype=np.int32)
-    parent_edge[:3 * n_e].reshape(n_e, 3)[...] = np.arange(n_e, dtype=np.int32)[:, None]
+    interleave([np.arange(n_e, dtype=np.int32)] * 3, out=parent_edge[:3 * n_e].reshape(n_e, 3))
     ring.face_values(0, out=parent_edge[3 * n_e:])
     edge_part = np.empty(len(edges), dtype=np.int8)
     fill_rows(edge_part[:3 * n_e].reshape(n_e, 3), np.array([FIRST, MIDDLE, LAST], np.int8))
     edge_part[3 * n_e:] = SPOKE
-    boundary = np.zeros(len(edges), dtype=bool)
-    boundary[:3 * n_e].reshape(n_e, 3)[...] = topo.boundary_edges[:, None]
+    boundary = np.empty(len(edges), dtype=bool)
+    interleave([topo.boundary_edges] * 3, out=boundary[:3 * n_e].reshape(n_e, 3))
+    boundary[3 * n_e:] = False
     return edges, parent_edge, edge_part, boundary
 
 
@@ -303,8 +294,8 @@ def _edge_half_edges(mesh: Mesh, ring: Corners, right: bool) -> NDArray[np.int32
         e = np.flatnonzero(pair[:, col] < 0)
         z[FIRST, col, e] = z[MIDDLE, col, e] = z[LAST, 1 - col, e] = -1
     out = np.empty((3 * n_e + mesh.n_corners, 2), dtype=np.int32)
-    _interleave(z.reshape(6, n_e), out=out[:3 * n_e].reshape(n_e, 6))
-    _interleave(spokes, out=out[3 * n_e:])
+    interleave(z.reshape(6, n_e), out=out[:3 * n_e].reshape(n_e, 6))
+    interleave(spokes, out=out[3 * n_e:])
     return out
 
 
