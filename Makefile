@@ -14,7 +14,7 @@ OUT    := build
 RECIPES := $(wildcard templates/recipes/*.toml) $(wildcard examples/*.toml)
 BUILT   := $(patsubst %.toml,$(OUT)/%/.built,$(notdir $(RECIPES)))
 
-.PHONY: run figures docs test fuzz bench mutation clean help
+.PHONY: run figures docs test fuzz bench bench16 mutation clean help
 .DELETE_ON_ERROR:
 
 help:  ## list the targets
@@ -64,6 +64,10 @@ bench: $(STAMP)  ## run the benchmarks (throughput, ratios against peers)
 	$(PY) benchmarks/bench_startup.py  # fails when --help gets slow against import numpy
 	@for b in benchmarks/bench_puzzle.py benchmarks/bench_strands.py; do \
 		[ -f $$b ] && $(PY) $$b || true; done
+
+bench16: $(STAMP)  ## issue 16's before/after table in one run (about 6-10 minutes)
+	$(PY) -m pip install --quiet -e '.[bench]' || echo "some peers did not install"
+	$(PY) benchmarks/issue16.py
 
 mutation: $(STAMP)  ## mutation testing per package (PACKAGES="weave export", MUTATION_ARGS=--survivors): build/mutation/report.md
 	$(PY) -m pip install --quiet -e '.[mutation]'

@@ -53,9 +53,9 @@ def run_case(levels: int, size: int, window) -> dict:
             "png_bytes": len(png), "area_fraction": area}
 
 
-def pyramid(levels: int, size: int, tile_size: int) -> None:
-    """Tiles per second of the DeepZoom pyramid with one and with two processes."""
-    import os
+def pyramid_rate(levels: int, size: int, tile_size: int, jobs: int) -> dict:
+    """The counts and seconds of one DeepZoom pyramid of the pentagon written by ``jobs``
+    processes, with the CPU seconds of this process and its workers (``cpu``)."""
     import tempfile
 
     from weavecut import inputs
@@ -64,18 +64,28 @@ def pyramid(levels: int, size: int, tile_size: int) -> None:
 
     mesh = inputs.get("pentagon")
     grid = lv.Grid.fit(lv.default_window(mesh), size)
-    print(f"\nDeepZoom pyramid, pentagon level {levels}, {grid.width} x {grid.height} px, "
-          f"{tile_size}-px tiles (load {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores):")
+    with tempfile.TemporaryDirectory() as folder:
+        cpu = _cpu()
+        r = deepzoom.write_pyramid(mesh, levels, grid, folder, tile_size=tile_size, jobs=jobs)
+        return {**r, "cpu": _cpu() - cpu}
+
+
+def pyramid(levels: int, size: int, tile_size: int) -> None:
+    """Tiles per second of the DeepZoom pyramid with one and with two processes."""
+    import os
+
     for jobs in (1, 2):
-        with tempfile.TemporaryDirectory() as folder:
-            cpu = _cpu()
-            r = deepzoom.write_pyramid(mesh, levels, grid, folder, tile_size=tile_size, jobs=jobs)
-            cpu = _cpu() - cpu
+        r = pyramid_rate(levels, size, tile_size, jobs)
+        if jobs == 1:
+            print(f"\nDeepZoom pyramid, pentagon level {levels}, {r['width']} x {r['height']} "
+                  f"px, {tile_size}-px tiles (load {os.getloadavg()[0]:.1f} on "
+                  f"{os.cpu_count()} cores):")
         print(f"  {jobs} process(es): {r['tiles']:,} tiles in {r['seconds']:.1f} s = "
               f"{r['tiles'] / r['seconds']:.1f} tiles/s; {r['full_resolution_tiles']:,} "
               f"full-resolution tiles in {r['render_seconds']:.1f} s = "
-              f"{r['full_resolution_tiles'] / r['render_seconds']:.2f} tiles/s; CPU {cpu:.1f} s "
-              f"= {cpu / r['full_resolution_tiles']:.2f} s per full-resolution tile")
+              f"{r['full_resolution_tiles'] / r['render_seconds']:.2f} tiles/s; CPU "
+              f"{r['cpu']:.1f} s = {r['cpu'] / r['full_resolution_tiles']:.2f} s per "
+              f"full-resolution tile")
 
 
 def _cpu() -> float:

@@ -125,33 +125,47 @@ def timed(fn, v, f):
     return min(times), statistics.median(times), n
 
 
-def main() -> int:
+def measure() -> tuple[bool, list[dict]]:
+    """Whether freed memory is kept, and one row per scheme and library: best and median
+    seconds and faces (``error`` instead when a peer failed)."""
     kept = keep_freed_memory()  # as the command line runs; the setting holds for the peers too
     tri = grid(250, 250, quads=False)      # 125,000 triangles
     quad = grid(500, 250, quads=True)      # 125,000 quads
     cases = [("loop", tri, ours(loop.step, 2)), ("butterfly", tri, ours(butterfly.step, 2)),
              ("sqrt3", tri, ours(sqrt3.step, 2)),
              ("catmull-clark", quad, ours(catmull_clark.step, 2))]
-    others = peers()
+    rows = []
+    for name, (v, f), fn in cases:
+        for lib, run in [("weave-cut", fn), *((lib, schemes[name])
+                                               for lib, schemes in peers().items()
+                                               if name in schemes)]:
+            try:
+                best, median, n = timed(run, v, f)
+            except Exception as exc:  # a peer's API drift must not stop the table
+                rows.append({"scheme": name, "library": lib, "error": str(exc)})
+                continue
+            rows.append({"scheme": name, "library": lib, "faces": n, "best": best,
+                         "median": median})
+    return kept, rows
+
+
+def main() -> int:
+    kept, rows = measure()
     print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores; freed memory "
           f"kept in the process: {kept}")
     print(f"{'scheme':14s} {'library':12s} {'faces':>9s} {'best s':>8s} {'median s':>8s} "
           f"{'Mfaces/s':>9s} {'weave-cut x (best, median)':>27s}")
-    for name, (v, f), fn in cases:
-        t_ours, m_ours, n_ours = timed(fn, v, f)
-        print(f"{name:14s} {'weave-cut':12s} {n_ours:9d} {t_ours:8.3f} {m_ours:8.3f} "
-              f"{n_ours / t_ours / 1e6:9.2f}")
-        for lib, schemes in others.items():
-            if name not in schemes:
-                continue
-            try:
-                t, m, n = timed(schemes[name], v, f)
-            except Exception as exc:  # a peer's API drift must not stop the table
-                print(f"{'':14s} {lib:12s} failed: {exc}")
-                continue
-            print(f"{'':14s} {lib:12s} {n:9d} {t:8.3f} {m:8.3f} {n / t / 1e6:9.2f} "
-                  f"{t / t_ours:13.2f}x {m / m_ours:6.2f}x")
-        sys.stdout.flush()
+    for r in rows:
+        name = r["scheme"] if r["library"] == "weave-cut" else ""
+        if "error" in r:
+            print(f"{name:14s} {r['library']:12s} failed: {r['error']}")
+            continue
+        if r["library"] == "weave-cut":
+            mine = r
+        ratio = ("" if r is mine else
+                 f"{r['best'] / mine['best']:13.2f}x {r['median'] / mine['median']:6.2f}x")
+        print(f"{name:14s} {r['library']:12s} {r['faces']:9d} {r['best']:8.3f} "
+              f"{r['median']:8.3f} {r['faces'] / r['best'] / 1e6:9.2f} {ratio}")
     return 0
 
 

@@ -6,10 +6,10 @@
    median and worst of ``--repeat`` steps (each on a fresh copy of level 8 that carries only
    what the previous step left on it, as in a chain), the first (cold) step, page faults per
    step, peak memory; with glibc's default allocator and with freed memory kept in the
-   process (:func:`weavecut.subdivision.hierarchy.keep_freed_memory`). The in-process peer
-   is :func:`naive_step`, the snub step as a first numpy version would write it, run in the
-   same process on the same level 8 (ratio = weave-cut / naive, best to best and median to
-   median).
+   process (:func:`weavecut.subdivision.hierarchy.keep_freed_memory`). The in-process peers
+   are :func:`naive_step`, the snub step as a first numpy version would write it, and the
+   direct step of before issue 16 (``tests/subdivision/snub_oracle.py``), run alternately on
+   the same level 8 (ratio = weave-cut / naive, best to best and median to median).
 3. Peers on a triangle grid with the same number of output faces: trimesh's 1-to-4 midpoint
    subdivision, CGAL's Loop (compas_cgal) and libigl's Loop, when installed.
 
@@ -27,6 +27,7 @@ import subprocess
 import sys
 import time
 import tracemalloc
+from pathlib import Path
 
 import numpy as np
 
@@ -34,6 +35,8 @@ from weavecut import inputs
 from weavecut.mesh import Mesh, Topology
 from weavecut.subdivision import snub
 from weavecut.subdivision.hierarchy import keep_freed_memory
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the test oracle, below
 
 
 def naive_step(vertices, offsets, indices):
@@ -110,15 +113,21 @@ def step_case(keep: bool, repeat: int, naive_repeat: int) -> dict:
     snub.step(as_left_by_chain(level8))
     peak = tracemalloc.get_traced_memory()[1]
     tracemalloc.stop()
-    naive, naive_cpu = [], []
-    args = (level8.vertices, level8.face_offsets, level8.face_indices)
-    for _ in range(naive_repeat):
-        c0, t0 = time.process_time(), time.perf_counter()
-        naive_step(*args)
-        naive.append(time.perf_counter() - t0)
-        naive_cpu.append(time.process_time() - c0)
-    return {"kept": kept, "cold": times[0], "warm": times[1:], "cpu": cpu[1:], "faults": flts,
-            "peak": peak, "naive": naive, "naive_cpu": naive_cpu, "faces": 5 * level8.n_faces}
+    from tests.subdivision import snub_oracle  # the direct step of before issue 16
+
+    peers = {"naive": lambda m: naive_step(m.vertices, m.face_offsets, m.face_indices),
+             "direct": snub_oracle.step}
+    out = {"kept": kept, "cold": times[0], "warm": times[1:], "cpu": cpu[1:], "faults": flts,
+           "peak": peak, "faces": 5 * level8.n_faces}
+    for _ in range(naive_repeat):  # alternating, so that both see the same load
+        for name, run in peers.items():
+            parent = as_left_by_chain(level8)
+            c0, t0 = time.process_time(), time.perf_counter()
+            run(parent)
+            out.setdefault(name, []).append(time.perf_counter() - t0)
+            out.setdefault(f"{name}_cpu", []).append(time.process_time() - c0)
+            del parent
+    return out
 
 
 def table(name: str, levels: int) -> None:
