@@ -196,45 +196,45 @@ def _corner_vertices(mesh: Mesh, ring: Corners, right: bool):
 
 def _faces(mesh: Mesh, ring: Corners, x, y, old, right: bool) -> NDArray[np.int32]:
     """Operation 3: (H, 5) the pentagons P_h."""
-    centre = mesh.n_vertices + 2 * mesh.topology.n_edges
-    cols = np.empty((5, mesh.n_corners), dtype=np.int32)
-    if right:  # (a, y, x, c, x[prev])
-        cols[0], cols[1], cols[2] = old, y, x
-        ring.face_values(centre, out=cols[3])
-        ring.shifted(x, -1, out=cols[4])
-    else:  # (c, x, y, b, x[next])
-        ring.face_values(centre, out=cols[0])
-        cols[1], cols[2], cols[3] = x, y, old
-        ring.shifted(x, 1, out=cols[4])
-    return interleave(cols)
+    centre = np.empty_like(x)
+    ring.face_values(mesh.n_vertices + 2 * mesh.topology.n_edges, out=centre)
+    tip = np.empty_like(x)
+    ring.shifted(x, -1 if right else 1, out=tip)
+    columns = [old, y, x, centre, tip] if right else [centre, x, y, old, tip]
+    return interleave(columns, out=np.empty((mesh.n_corners, 5), dtype=np.int32))
 
 
 def _half_edges(mesh: Mesh, ring: Corners, right: bool) -> tuple[NDArray[np.int32], NDArray]:
     """The child's half-edge -> edge map and sides, (5H,) each (see the module docstring)."""
     topo = mesh.topology
-    spoke = 3 * topo.n_edges
-    parts = np.empty((5, mesh.n_corners), dtype=np.int32)
     sides = np.empty((mesh.n_corners, 5), dtype=np.int8)  # one row per P_h, written directly
     e3 = 3 * topo.half_edge_edge.astype(np.int32, copy=False)
     side2 = 2 * topo.half_edge_side
     near_start = e3 + side2  # the Z part at a, the start of h
     near_end = e3 - side2    # the Z part at b, its end
     near_end += 2
+    middle = e3
+    middle += MIDDLE
+
+    def spoke(shift: int) -> NDArray[np.int32]:  # of the corner itself, its next or previous
+        out = np.empty_like(e3)
+        ring.corner_ids(shift, out, offset=3 * topo.n_edges)
+        return out
+
+    def neighbours(parts: NDArray[np.int32], shift: int) -> NDArray[np.int32]:
+        out = np.empty_like(parts)
+        ring.shifted(parts, shift, out=out)
+        return out
+
     if right:  # (near_start, middle, spoke, spoke[prev], near_end[prev]), sides (0 s 0 1 1)
-        parts[0] = near_start
-        ring.corner_ids(0, parts[2], offset=spoke)
-        ring.corner_ids(-1, parts[3], offset=spoke)
-        ring.shifted(near_end, -1, out=parts[4])
+        parts = [near_start, middle, spoke(0), spoke(-1), neighbours(near_end, -1)]
         fill_rows(sides, np.array([0, 0, 0, 1, 1], np.int8))
     else:  # (spoke, middle, near_end, near_start[next], spoke[next]), sides (1 s 1 0 0)
-        ring.corner_ids(0, parts[0], offset=spoke)
-        parts[2] = near_end
-        ring.shifted(near_start, 1, out=parts[3])
-        ring.corner_ids(1, parts[4], offset=spoke)
+        parts = [spoke(0), middle, near_end, neighbours(near_start, 1), spoke(1)]
         fill_rows(sides, np.array([1, 0, 1, 0, 0], np.int8))
-    np.add(e3, MIDDLE, out=parts[1])
     sides[:, 1] = topo.half_edge_side
-    return interleave(parts).reshape(-1), sides.reshape(-1)
+    edge = interleave(parts, out=np.empty((mesh.n_corners, 5), dtype=np.int32))
+    return edge.reshape(-1), sides.reshape(-1)
 
 
 def _edges(mesh: Mesh, ring: Corners, x: NDArray[np.int32]):
@@ -246,10 +246,9 @@ def _edges(mesh: Mesh, ring: Corners, x: NDArray[np.int32]):
     z1 = z0 + 1  # FIRST (u, z0), MIDDLE (z0, z1), LAST (w, z1)
     interleave([topo.edges[:, 0], z0, z0, z1, topo.edges[:, 1], z1],
                out=edges[:3 * n_e].reshape(n_e, 6))
-    spokes = np.empty((2, n_h), dtype=np.int32)
-    spokes[0] = x
-    ring.face_values(n_v + 2 * n_e, out=spokes[1])
-    interleave(spokes, out=edges[3 * n_e:])
+    centre = np.empty_like(x)
+    ring.face_values(n_v + 2 * n_e, out=centre)
+    interleave([x, centre], out=edges[3 * n_e:])
     parent_edge = np.empty(len(edges), dtype=np.int32)
     interleave([np.arange(n_e, dtype=np.int32)] * 3, out=parent_edge[:3 * n_e].reshape(n_e, 3))
     ring.face_values(0, out=parent_edge[3 * n_e:])
