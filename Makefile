@@ -65,7 +65,7 @@ bench: $(STAMP)  ## run the benchmarks (throughput, ratios against peers)
 	@for b in benchmarks/bench_puzzle.py benchmarks/bench_strands.py; do \
 		[ -f $$b ] && $(PY) $$b || true; done
 
-bench16: $(STAMP)  ## issue 16's before/after table in one run (about 6-10 minutes)
+bench16: $(STAMP)  ## issue 16's before/after table in one run (about 5 minutes on a quiet machine)
 	$(PY) -m pip install --quiet -e '.[bench]' || echo "some peers did not install"
 	$(PY) benchmarks/issue16.py
 

@@ -18,8 +18,9 @@ its own; the peers of a ratio run in the same process as weave-cut, alternately:
   ``pip install -e '.[bench]'``);
 - the DeepZoom tile pyramid of level 10 at 2048 px in 256-px tiles on 2 processes, tiles/s.
 
-"before" is the issue's own measurement on the quiet machine. Takes about 6 minutes on the
-project's 2-core machine when it is quiet (about 10 under a load of 10); the total is printed.
+"before" is the issue's own measurement on the quiet machine. It took 42 minutes under a load
+of 21-26 on the project's 2-core machine (wall clock inflated 5-10 times over the CPU time);
+about 5 minutes are expected when it is quiet. The total is printed.
 """
 
 from __future__ import annotations

@@ -71,3 +71,22 @@ def test_same_arrays_as_the_direct_step(name, options):
 def test_same_arrays_on_random_meshes(mesh):
     for options in OPTIONS[::3]:
         _assert_same_chain(mesh, 2, **options)
+
+
+@pytest.mark.parametrize("options", OPTIONS[::2], ids=lambda o: "-".join(map(str, o.values())))
+@pytest.mark.parametrize("name", ["cube", "dodecahedron", "icosphere:1"])
+def test_surface_topology_as_the_direct_step(name, options):
+    """On a surface in space only the vertices differ from the planar step: every other array
+    is the direct step's on the same faces (given (x, y) only), over two levels."""
+    options = {**options, "centre": "vertex"}  # a surface has vertex centres only
+    mesh = inputs.get(name)
+    for _ in range(2):
+        got = snub.step(mesh, **options)
+        flat = Mesh.trusted(np.ascontiguousarray(mesh.vertices[:, :2]), mesh.face_offsets,
+                            mesh.face_indices, mesh.topology)  # the same edge numbering
+        want = snub_oracle.step(flat, **options)
+        for key, expected in _arrays(want).items():
+            if key != "vertices":
+                assert _bits(_arrays(got)[key]) == _bits(expected), key
+        assert got.mesh.vertices.shape == (want.mesh.n_vertices, 3)
+        mesh = got.mesh
