@@ -1,5 +1,6 @@
 """An unfolded strand measured against the weave and the mesh in space: its visits are the
-strand's (a loop repeats its first), two pentagons per visit (the tile's own), the reported
+strand's (a loop repeats its first), two pentagons per visit (the tile's own) joined along the
+tile's middle edge, visits joined along the edge from a tip to its face centre, the reported
 stretch is each edge's length in the plane over its length in space, the folds are the edges
 neighbours share, their angles those between the pentagons' best-fit planes (from an
 independent SVD), and a visit's tile polygon is its two pentagons joined."""
@@ -42,6 +43,10 @@ def test_an_unfolding_agrees_with_the_weave_and_the_mesh(name, levels):
         ids = dense[u.faces]
         for k in range(len(u.faces) - 1):
             shared = np.intersect1d(ids[k], ids[k + 1])
+            if k % 2:  # visit to visit: along the edge from a tip to its face centre (corner 0)
+                assert ids[k, 0] == ids[k + 1, 0] and ids[k, 0] in shared, (s, k)
+            else:  # a tile's two pentagons: along its middle edge, clear of the face centres
+                assert ids[k, 0] not in shared and ids[k + 1, 0] not in shared, (s, k)
             here = np.sort_complex(z[k][np.isin(ids[k], shared)])
             assert np.array_equal(np.sort_complex(u.folds[k]), here)
             q = [p[j] - p[j].mean(axis=0) for j in (k, k + 1)]
