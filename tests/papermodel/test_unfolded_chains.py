@@ -90,3 +90,17 @@ def test_folds_in_a_dent_are_valley_folds():
             assert np.sign(hinge) == np.sign(u.fold_angles[k]), (s, k)
             signs.append(np.sign(hinge))
     assert signs.count(-1) >= 10 and signs.count(1) >= 300
+
+
+def test_the_strip_is_laid_out_from_the_flat_pentagons_it_is_given():
+    """Turning every flat pentagon by its own angle changes no shape: the strip comes out the
+    same, turned as a whole by the angle of its first pentagon (the others are fitted to it)."""
+    import dataclasses
+    weave = snub_weaves(subdivide(get("cube"), 1, project="sphere"))[-1]
+    flat = flatten(weave)
+    phase = np.exp(1j * np.random.default_rng(3).uniform(0, 2 * np.pi, len(flat.coords)))
+    turned = dataclasses.replace(flat, coords=flat.coords * phase[:, None])
+    for s in range(weave.n_strands):
+        u, v = unfold(weave, s, flat), unfold(weave, s, turned)
+        assert np.allclose(v.corners, u.corners * phase[u.faces[0]], atol=1e-9)
+        assert np.allclose(v.stretch, u.stretch, atol=1e-9)
