@@ -53,6 +53,13 @@ def test_an_unfolding_agrees_with_the_weave_and_the_mesh(name, levels):
             normals = [np.linalg.svd(a)[2][2] for a in q]
             angle = np.arccos(min(abs(normals[0] @ normals[1]), 1.0))
             assert u.fold_angles[k] == pytest.approx(angle, abs=1e-9)  # a convex ball: > 0
+        # each pentagon is its flat self turned and moved: the corners it does not take from
+        # the pentagon before keep their flat distances exactly (no scaling)
+        for k in range(len(u.faces)):
+            mine = np.ones(5, dtype=bool) if k == 0 else ~np.isin(ids[k], ids[k - 1])
+            w = flat.coords[u.faces[k]][mine]
+            assert np.allclose(np.abs(z[k][mine][:, None] - z[k][mine][None]),
+                               np.abs(w[:, None] - w[None]), rtol=0, atol=1e-12)
         polygons = u.tile_polygons()
         assert len(polygons) == n + 1
         faces = shapely.polygons(np.stack([z.real, z.imag], axis=-1))
