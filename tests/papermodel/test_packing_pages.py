@@ -1,0 +1,94 @@
+"""The packer's promises, checked on shapes whose best packing is known: never more pages than
+the pieces need, a piece turned only when it must be, and a clear refusal for a piece that fits
+at no angle. Every placement is checked with shapely: inside the area, ``gap`` apart, a turn
+(determinant 1), by a multiple of the angle step."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+
+from weavecut.papermodel.packing import Place, pack
+
+
+def placed(shapes, places):
+    """Every shape moved by its Place, with its page."""
+    out = []
+    for s, p in zip(shapes, places):
+        m = p.matrix()
+        out.append((p.page, shapely.transform(s, lambda xy, m=m: xy @ m[:2, :2].T + m[:2, 2])))
+    return out
+
+
+def assert_valid(shapes, places, width, height, gap, step=15.0):
+    moved = placed(shapes, places)
+    area = shapely.box(-1e-6, -1e-6, width + 1e-6, height + 1e-6)
+    for (page, g), s, p in zip(moved, shapes, places):
+        assert area.contains(g), (p, g.bounds)
+        assert np.linalg.det(p.matrix()[:2, :2]) == pytest.approx(1.0)
+        assert abs(g.area - s.area) < 1e-6 * s.area
+        assert p.angle % step == pytest.approx(0.0, abs=1e-9) or \
+            p.angle % step == pytest.approx(step, abs=1e-9)
+    for i, (pi, gi) in enumerate(moved):
+        for pj, gj in moved[i + 1:]:
+            if pi == pj:
+                assert gi.distance(gj) >= gap - 1e-6
+    return moved
+
+
+def test_place_matrix_turns_counter_clockwise_then_shifts():
+    m = Place(0, 90.0, (5.0, 7.0)).matrix()
+    assert np.allclose(m @ [1.0, 0.0, 1.0], [5.0, 8.0, 1.0])
+    assert np.allclose(m @ [0.0, 2.0, 1.0], [3.0, 7.0, 1.0])
+    assert np.allclose(Place(1, 0.0, (0.0, 0.0)).matrix(), np.eye(3))
+
+
+@pytest.mark.parametrize("n", [1, 2, 3, 5])
+def test_pieces_that_fill_half_a_page_take_half_as_many_pages(n):
+    """Bars a little under half the area's height: two fit a page, three never do, so n bars
+    need exactly ceil(n / 2) pages, and each page's bars lie one above the other."""
+    width, height, gap = 100.0, 50.0, 2.0
+    bar = shapely.box(0.0, 0.0, 90.0, 20.0)
+    places = pack([bar] * n, width, height, gap)
+    moved = assert_valid([bar] * n, places, width, height, gap)
+    assert max(p.page for p in places) + 1 == -(-n // 2)
+    assert sorted({p.page for p in places}) == list(range(-(-n // 2)))
+    for page, g in moved:  # long side along x: a bar turned upright would not fit
+        x0, y0, x1, y1 = g.bounds
+        assert x1 - x0 == pytest.approx(90.0, abs=1e-6)
+
+
+def test_a_piece_too_long_for_the_width_is_turned_to_fit():
+    """A 14 x 95 bar on an area 100 wide and 40 high fits only lying along x: upright it is taller
+    than the area; the packer must find the turn (90 or 270 degrees)."""
+    bar = shapely.box(0.0, 0.0, 14.0, 95.0)
+    places = pack([bar], 100.0, 40.0, 2.0)
+    assert_valid([bar], places, 100.0, 40.0, 2.0)
+    assert places[0].angle % 180.0 == pytest.approx(90.0)
+
+
+def test_a_piece_that_fits_at_no_angle_is_refused_with_its_size():
+    with pytest.raises(ValueError, match=r"a strip of 130 x 60 mm fits the printable area at "
+                                         r"no angle"):
+        pack([shapely.box(0.0, 0.0, 130.0, 60.0)], 100.0, 50.0, 2.0)
+
+
+def test_pieces_keep_their_order_and_small_ones_fill_the_gaps():
+    """Places come back in input order (each is the piece's own: its moved shape has the piece's
+    area), and small squares go beside a large block on its page rather than onto a new one."""
+    width, height, gap = 120.0, 60.0, 2.0
+    shapes = [shapely.box(0.0, 0.0, 10.0, 10.0), shapely.box(0.0, 0.0, 80.0, 56.0),
+              shapely.box(0.0, 0.0, 12.0, 12.0), shapely.box(0.0, 0.0, 14.0, 14.0)]
+    places = pack(shapes, width, height, gap)
+    moved = assert_valid(shapes, places, width, height, gap)
+    assert [g.area for _, g in moved] == pytest.approx([s.area for s in shapes])
+    assert {p.page for p in places} == {0}
+
+
+@pytest.mark.parametrize("step", [30.0, 45.0])
+def test_turns_are_multiples_of_the_angle_step(step):
+    """With coarser steps every piece is still placed at a multiple of the step, never between."""
+    bar = shapely.box(0.0, 0.0, 60.0, 6.0)
+    places = pack([bar, bar], 70.0, 70.0, 2.0, angle_step=step)
+    assert_valid([bar, bar], places, 70.0, 70.0, 2.0, step)
