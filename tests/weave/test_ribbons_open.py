@@ -7,6 +7,8 @@ consecutive visits; the ribbon's quads must join exactly its consecutive points.
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -62,3 +64,27 @@ def test_a_flat_weave_has_no_ribbons():
     weave = snub_weaves(subdivide(inputs.get("pentagon"), 1))[-1]
     with pytest.raises(ValueError, match="^ribbons need a weave on a surface in space$"):
         ribbons(weave, 0.05, 0.01)
+
+
+def test_a_loop_has_no_start():
+    """A ball's strands are loops: starting every loop at another visit draws the same
+    ribbons (the same triangles, as sets of corner points). The ball is dented at random, so
+    that no strand runs straight through a tile (where a one-sided direction would agree)."""
+    weave = snub_weaves(subdivide(inputs.get("dodecahedron"), 1, project="sphere"))[-1]
+    assert weave.strand_closed.all()
+    mesh = weave.mesh
+    dents = np.random.default_rng(5).uniform(0.9, 1.1, size=(mesh.n_vertices, 1))
+    weave = dataclasses.replace(weave, mesh=Mesh(mesh.vertices * dents, mesh.face_offsets,
+                                                 mesh.face_indices))
+    offsets = weave.strand_offsets
+    start = np.repeat(offsets[:-1], np.diff(offsets))
+    size = np.repeat(np.diff(offsets), np.diff(offsets))
+    turned = start + (np.arange(len(start)) - start + 2) % size  # every loop from its 3rd
+    other = dataclasses.replace(weave, strand_visits=weave.strand_visits[turned],
+                                visit_over=weave.visit_over[turned])
+
+    def triangles(model):
+        corners = np.round(model.vertices[model.triangles], 9)
+        return sorted(map(tuple, corners.reshape(len(corners), -1).tolist()))
+
+    assert triangles(ribbons(weave, 0.05, 0.01)) == triangles(ribbons(other, 0.05, 0.01))
