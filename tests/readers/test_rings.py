@@ -219,3 +219,22 @@ def test_separate_outlines_mesh_apart(tmp_path):
         assert euler(mesh) == 2
         assert signed_areas(mesh).sum() == pytest.approx(1800.0, abs=2 * 240 * 0.2)
     assert reports[0].startswith("d.svg: 2 outline(s), 0 hole(s), 1800 mm², meshed hex")
+
+
+def test_each_outline_keeps_its_own_holes(tmp_path):
+    """Two 40 mm squares, the left with one 10 mm hole, the right with two: meshed, the
+    holes stay where they are drawn (Euler 2 - 3) and the area is 2 x 1600 - 3 x 100."""
+    path = svg(tmp_path, '<rect id="a" width="40" height="40"/>'
+               '<rect id="ha" x="15" y="15" width="10" height="10"/>'
+               '<rect id="b" x="60" width="40" height="40"/>'
+               '<rect id="hb1" x="65" y="5" width="10" height="10"/>'
+               '<rect id="hb2" x="80" y="25" width="10" height="10"/>')
+    reports = []
+    mesh = validate(read_drawing(path, cell=5.0, report=reports.append))
+    assert euler(mesh) == -1
+    assert signed_areas(mesh).sum() == pytest.approx(2900.0, abs=0.2 * 440)
+    assert reports[0].startswith("d.svg: 2 outline(s), 3 hole(s), 2900 mm², meshed hex")
+    centres = np.array([(20, -20), (70, -10), (85, -30)])  # y up
+    faces = shapely.polygons(shapely.linearrings(mesh.vertices[mesh.face_indices],
+                                                 indices=mesh.half_edge_face))
+    assert not shapely.intersects(faces[:, None], shapely.points(centres)[None]).any()
