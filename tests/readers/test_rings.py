@@ -154,13 +154,13 @@ def test_a_grid_of_lines_encloses_its_cells():
 
 
 def test_a_line_that_misses_by_less_than_the_tolerance_joins():
-    """A triangle of lines whose ends miss each other by 0.1 mm, and one line from a ring's
-    corner: every end joins."""
+    """A triangle of lines whose ends miss each other by 0.1 mm, and a diagonal that starts
+    0.1 mm from a square's corner: every end joins (the square splits in two)."""
     lines = [Ring("a", np.array([(0, 0), (10, 0)])), Ring("b", np.array([(10.1, 0), (0, 10)])),
              Ring("c", np.array([(0, 10.1), (0, 0.1)])),
-             Ring("d", np.array([(20, 0.1), (20, 10)]))]
+             Ring("d", np.array([(20.1, 0.05), (30, 10)]))]  # across the square
     faces = enclosed_faces([Ring("sq", square(20, 0, 10))], lines, 0.2)
-    assert sorted(round(abs(shapely.Polygon(f.points).area)) for f in faces) == [50, 100]
+    assert sorted(round(abs(shapely.Polygon(f.points).area)) for f in faces) == [50, 50, 50]
 
 
 def test_a_dangling_line_is_named_where_it_ends():

@@ -145,22 +145,24 @@ def test_a_lone_move_or_a_shape_without_an_id(tmp_path):
 
 def test_layers_by_label_or_id_nested_groups(tmp_path):
     """A layer chosen by its Inkscape label or by its id keeps the shapes of groups inside
-    it; an unknown layer lists every named group, sorted."""
+    it; an unknown layer lists every named group (by label, else id; a group may have a
+    label and no id), sorted."""
     ink = "{http://www.inkscape.org/namespaces/inkscape}"
     assert ink == svg_reader.INKSCAPE
     body = ('<g id="g1" inkscape:label="Cut"><g id="inner" inkscape:label="Inner">'
             '<rect id="a" width="10" height="10"/></g></g>'
             '<g id="g2"><rect id="b" x="50" width="10" height="10"/></g>'
-            '<rect id="c" x="100" width="10" height="10"/>')
+            '<rect id="c" x="100" width="10" height="10"/>'
+            '<g inkscape:label="No id"><rect id="d" x="150" width="10" height="10"/></g>')
     path = drawing(tmp_path, body)
     for name, expected in (("Cut", ["a"]), ("g1", ["a"]), ("Inner", ["a"]), ("g2", ["b"]),
-                           (None, ["a", "b", "c"])):
+                           ("No id", ["d"]), (None, ["a", "b", "c", "d"])):
         rings, _ = svg_reader.read_rings(path, 0.2, name)
         assert [r.label for r in rings] == [f"<rect id='{x}'>" for x in expected]
     with pytest.raises(MeshFileError) as error:
         svg_reader.read_rings(path, 0.2, "nope")
     assert str(error.value).endswith(
-        "no shapes in a layer or group named 'nope'; layers: Cut, Inner, g2")
+        "no shapes in a layer or group named 'nope'; layers: Cut, Inner, No id, g2")
 
 
 def test_a_drawing_without_groups_lists_no_layers(tmp_path):
