@@ -165,3 +165,12 @@ def test_a_reflex_corner_is_cut_not_smoothed():
         assert np.hypot(*(mesh.vertices - (20, 20)).T).min() < 1e-9
         union = shapely.union_all(faces_of(mesh))
         assert union.area == pytest.approx(L_SHAPE.area, abs=0.2 * L_SHAPE.length)
+
+
+def test_a_missing_boundary_segment_is_split_at_its_middle():
+    """The conforming triangulation's step: every flagged edge of a ring gets its midpoint
+    inserted between its two ends, in order; the others stay whole."""
+    ring = np.array([(0, 0), (4, 0), (4, 2), (0, 2)], float)
+    split = outline_mesh._with_midpoints(ring, np.array([True, False, True, True]))
+    assert split.tolist() == [[0, 0], [2, 0], [4, 0], [4, 2], [2, 2], [0, 2], [0, 1]]
+    assert outline_mesh._with_midpoints(ring, np.zeros(4, bool)).tolist() == ring.tolist()
