@@ -80,7 +80,10 @@ PACKAGES: dict[str, Package] = {
     "export": Package(("src/weavecut/export/*",),
                       ("tests/export", "tests/test_cli.py",
                        "tests/surface/test_woven_model.py")),
-    "readers": Package(("src/weavecut/readers/*",), ("tests/readers",)),
+    # the strands commands of a drawing run the paper model for 10-20 s and guard strands,
+    # not the readers (read_drawing is reached by the faster tests of the same drawings)
+    "readers": Package(("src/weavecut/readers/*",), ("tests/readers",),
+                       deselect="not strands_of_a_drawing"),
 }
 
 

@@ -175,3 +175,18 @@ def test_a_palette_is_named_by_its_file_or_by_where_it_was_found(tmp_path):
     bare = tmp_path / "bare.toml"
     bare.write_text('colours = ["#123456"]\n')
     assert palette(str(bare)) == Palette(str(bare), (("#123456",),))
+
+
+def test_levels_above_a_weave_without_lineage_are_not_used():
+    """A run whose last weave has no lineage (a lineage cut, or a scheme without one) is
+    coloured as that weave alone, whatever comes before it, with or without a lineage."""
+    weaves = snub_weaves(subdivide(inputs.get("pentagon"), 3))
+    cut = [*weaves[:-1], replace(weaves[-1], parent_strand=None)]
+    pal = palette("okabe-ito")
+    alone = strand_colours(cut[-1:], pal)
+    assert strand_colours(cut, pal) == alone and strand_colours(cut[-2:], pal) == alone
+    np.testing.assert_array_equal(strand_families(cut, pal), strand_families(cut[-1:], pal))
+    # and a cut further down keeps the levels from the cut on
+    middle = [weaves[0], replace(weaves[1], parent_strand=None), *weaves[2:]]
+    assert strand_colours(middle, pal) == strand_colours(middle[1:], pal)
+    assert strand_colours(middle, pal) != strand_colours(middle[2:], pal)

@@ -191,3 +191,18 @@ def test_an_empty_weave_has_a_zero_length_spread():
     weave = face_split_weave(polygon(5))  # no inner edge: no tile, no strand
     assert weave_summary(weave)["strand_length"] == {"min": 0.0, "mean": 0.0, "max": 0.0,
                                                      "total": 0.0}
+
+
+def test_self_crossings_of_the_first_strand_count():
+    """On the cube projected onto a sphere, level 2, strands cross themselves, strand 0
+    among them (strand numbers start at 0, so a guard that skips "no strand below", -1,
+    must not skip strand 0): the summary equals the recount, lineage included."""
+    weaves = snub_weaves(subdivide(inputs.get("cube"), 2, project="sphere"))
+    weave = weaves[-1]
+    assert ((weave.tile_over == 0) & (weave.tile_under == 0)).any()
+    row = weave_summary(weave, weaves[-2])
+    loops = row.pop("strand_lengths")  # a ball lists its loops (the recount does not)
+    assert len(loops) == weave.n_strands and sum(loops) == pytest.approx(
+        row["strand_length"]["total"])
+    assert row == _recount(weave, weaves[-2])
+    assert row["self_crossings"] == 12

@@ -92,14 +92,23 @@ def mesh_outline(region, kind: str = "hex", cell: float | None = None,
     pieces = _merged_small([q for c in shapely.get_parts(cells)
                             for q in _convex_pieces(c, tolerance)], cell, tolerance)
     rings = [np.asarray(shapely.orient_polygons(p).exterior.coords)[:-1] for p in pieces]
+    parts = shapely.get_parts(region)
+    euler = len(parts) - sum(len(p.interiors) for p in parts)  # V - E + F of its meshes
     for snap, short in ((EDGE[kind], SHORT), (EDGE[kind], 0.0), (0.0, 0.0)):  # tidiest valid
         tidy = _short_inner_edges_merged(_snapped(rings, region, snap * cell), region,
                                          short * cell)
         try:
-            mesh = split_t_junctions(weld(tidy, 1e-9 * cell)[0], 1e-9 * cell)
-            return validate(_without_straight_corners(mesh))
+            mesh = validate(_without_straight_corners(
+                split_t_junctions(weld(tidy, 1e-9 * cell)[0], 1e-9 * cell)))
         except MeshError as exc:
             error = exc
+            continue
+        # merging short edges can move a corner off the neighbour's edge it lay on, which
+        # opens a gap between the faces: a hole the outline does not have (Euler's formula)
+        gaps = euler - (mesh.n_vertices - mesh.topology.n_edges + mesh.n_faces)
+        if gaps == 0:
+            return mesh
+        error = MeshError(f"the faces leave {gaps} gap(s) between them")
     raise MeshError(f"meshing the outline failed ({error}); try another --cell")
 
 
@@ -176,7 +185,7 @@ def _snapped(rings: list[np.ndarray], region, reach: float) -> list[np.ndarray]:
     after a few snub steps."""
     sizes = [len(r) for r in rings]
     points = np.concatenate(rings)
-    outline = shapely.get_coordinates(shapely.get_rings(region))
+    outline = shapely.get_coordinates(shapely.get_rings(shapely.get_parts(region)))
     distance, nearest = cKDTree(outline).query(points)
     if reach == 0:
         return rings

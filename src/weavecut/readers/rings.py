@@ -184,8 +184,11 @@ def enclosed_faces(rings: list[Ring], pieces: list[Ring], tolerance: float) -> l
         shapely.get_parts(shapely.union_all(lines)))
     loose = shapely.get_parts(shapely.union(dangles, invalid))
     if len(loose):
-        x, y = shapely.get_coordinates(loose[0])[0]
-        k = int(np.argmin(shapely.distance(lines[:len(pieces)], loose[0])))
+        # the piece the loose part runs along, and the loose part's end that fewest lines reach
+        k = int(np.argmax(shapely.length(shapely.intersection(lines[:len(pieces)], loose[0]))))
+        ends = shapely.get_coordinates(loose[0])[[0, -1]]
+        reach = shapely.dwithin(lines[:, None], shapely.points(ends)[None], 1e-9).sum(axis=0)
+        x, y = ends[np.argmin(reach)]
         raise MeshFileError(f"{pieces[k].label} near ({x + 0:.4g}, {y + 0:.4g}) mm has an open "
                             "end; lines and arcs must enclose faces")
     return [Ring(f"face {k + 1} enclosed by lines", np.asarray(f.exterior.coords)[:-1])

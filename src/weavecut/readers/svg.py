@@ -65,11 +65,16 @@ def read_rings(path: Path, flatten: float,
 
 def _unit_fix(document) -> float:
     """svgelements turns mm into px with 0.0393701 inch per mm, not 1 / 25.4, so a document
-    sized in mm or cm over a viewBox (Inkscape's) comes out 5.4e-7 too large: this factor
-    undoes that, and a 50 mm square stays 50 mm to the last digit."""
+    sized in mm or cm over a viewBox (Inkscape's) comes out 5.4e-7 too large, and it reads
+    CSS's quarter-millimetres (Q) as pixels: this factor undoes both, and a 50 mm square
+    stays 50 mm to the last digit."""
     width = str(document.values.get("width", "")).strip().lower()
-    if document.viewbox is not None and width.endswith(("mm", "cm", "q")):
+    if document.viewbox is None:
+        return 1.0
+    if width.endswith(("mm", "cm")):
         return 1.0 / (25.4 * 0.0393701)
+    if width.endswith("q"):
+        return 0.25 / MM_PER_PX
     return 1.0
 
 

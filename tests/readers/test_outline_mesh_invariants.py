@@ -1,0 +1,176 @@
+"""Meshed outlines keep the outline's topology and area: holes stay holes, no gaps open
+between faces, separate outlines stay apart, every face convex and counter-clockwise.
+
+The oracles are Euler's formula (V - E + F = outlines - holes for a mesh without gaps), the
+union of the faces as shapely polygons, and each face's own corners.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import shapely
+
+from weavecut.errors import MeshError
+from weavecut.mesh import corner_turns, signed_areas
+from weavecut.readers import outline_mesh
+from weavecut.validation import validate
+
+KINDS = ("hex", "quad", "voronoi", "tri")
+FRAME = shapely.box(0, 0, 60, 40).difference(shapely.box(20, 15, 35, 25))  # 2250 mm², a hole
+TWO = shapely.MultiPolygon([shapely.box(0, 0, 30, 30), shapely.box(50, 0, 80, 30)])
+L_SHAPE = shapely.Polygon([(0, 0), (50, 0), (50, 20), (20, 20), (20, 50), (0, 50)])
+
+
+def faces_of(mesh):
+    return shapely.polygons(shapely.linearrings(mesh.vertices[mesh.face_indices],
+                                                indices=mesh.half_edge_face))
+
+
+def euler(mesh) -> int:
+    return mesh.n_vertices - mesh.topology.n_edges + mesh.n_faces
+
+
+@pytest.mark.parametrize("region, expected_euler", [(FRAME, 0), (TWO, 2), (L_SHAPE, 1)])
+@pytest.mark.parametrize("kind", KINDS)
+def test_meshes_keep_the_outlines_topology_and_area(region, expected_euler, kind):
+    """No gap opens between the faces (a gap is a hole the outline does not have), the faces
+    are convex and counter-clockwise, and they cover the outline but for slivers along it."""
+    cell = 8.0
+    mesh = validate(outline_mesh.mesh_outline(region, kind, cell))
+    assert euler(mesh) == expected_euler
+    union = shapely.union_all(faces_of(mesh))
+    assert shapely.symmetric_difference(union, region).area <= 0.2 * region.boundary.length
+    assert signed_areas(mesh).min() > 0
+    p = mesh.vertices[mesh.face_indices]
+    edges = np.hypot(*(p[mesh.next_half_edge] - p).T)
+    assert (corner_turns(mesh) / (edges * edges[mesh.prev_half_edge])).min() > -1e-9
+    if kind == "tri":
+        assert (mesh.face_sizes == 3).all()
+
+
+@pytest.mark.parametrize("kind", ["hex", "quad", "voronoi", "tri", "pent"])
+def test_refusals_are_one_line(kind):
+    square = shapely.box(0, 0, 10, 10)
+    if kind == "pent":
+        with pytest.raises(MeshError, match=r"^unknown mesh kind 'pent'; choose one of hex, "
+                                            r"quad, tri, voronoi$"):
+            outline_mesh.mesh_outline(square, kind, 1.0)
+        return
+    with pytest.raises(MeshError, match=r"^the outline \(100 mm²\) is smaller than one cell "
+                                        r"\(14.2 mm across\); give a smaller --cell$"):
+        outline_mesh.mesh_outline(square, kind, 14.2)
+    with pytest.raises(MeshError, match=r"^--cell 0.009 mm would give about 1,234,568 faces; "
+                                        r"give a larger --cell$"):
+        outline_mesh.mesh_outline(square, kind, 0.009)
+
+
+def test_a_region_of_half_a_cell_is_one_face():
+    """The smallest outline meshed (half a cell in area) is one convex face: itself."""
+    square = shapely.box(0, 0, 10, 10)
+    mesh = outline_mesh.mesh_outline(square, "hex", 14.1)  # 100 mm² >= 99.4 mm²
+    assert mesh.n_faces == 1 and signed_areas(mesh)[0] == pytest.approx(100.0)
+
+
+def test_quality_reports_angles_and_sizes_of_the_faces():
+    """A 30 x 20 mm rectangle in 10 mm squares: six squares, every angle 90 degrees, every
+    size one cell; with cell 5 the same squares are two cells across."""
+    mesh = outline_mesh.mesh_outline(shapely.box(0, 0, 30, 20), "quad", 10.0)
+    assert outline_mesh.quality(mesh, 10.0) == pytest.approx(
+        {"faces": 6, "min_angle": 90.0, "max_angle": 90.0, "min_size": 1.0,
+         "median_size": 1.0, "max_size": 1.0})
+    assert outline_mesh.quality(mesh, 5.0)["median_size"] == pytest.approx(2.0)
+
+
+def test_quality_of_mixed_faces():
+    """A square and a right triangle (legs 10): angles 45-90, sizes 10 and sqrt(50)."""
+    from weavecut.mesh import Mesh
+    mesh = Mesh(np.array([(0, 0), (10, 0), (10, 10), (0, 10), (20, 0)], float),
+                np.array([0, 4, 7]), np.array([0, 1, 2, 3, 1, 4, 2]))
+    q = outline_mesh.quality(mesh, 10.0)
+    assert q == pytest.approx({"faces": 2, "min_angle": 45.0, "max_angle": 90.0,
+                               "min_size": math.sqrt(50) / 10, "median_size":
+                               (1 + math.sqrt(50) / 10) / 2, "max_size": 1.0})
+
+
+def test_even_runs_keep_corners_and_cut_sides_equally():
+    """A 10 mm square with runs of at most 3 mm: each side in 4 runs of 2.5 mm, corners
+    kept; a 40 x 10 rectangle: long sides in 14 runs, short ones in 4."""
+    square = np.array([(0, 0), (10, 0), (10, 10), (0, 10)], float)
+    runs = outline_mesh._even_runs(square, 3.0)
+    assert len(runs) == 16
+    assert np.hypot(*(np.roll(runs, -1, 0) - runs).T) == pytest.approx(2.5)
+    assert runs[::4].tolist() == square.tolist()
+    rect = np.array([(0, 0), (40, 0), (40, 10), (0, 10)], float)
+    runs = outline_mesh._even_runs(rect, 3.0)
+    lengths = np.hypot(*(np.roll(runs, -1, 0) - runs).T)
+    assert len(runs) == 2 * 14 + 2 * 4
+    assert sorted(set(np.round(lengths, 9))) == pytest.approx([2.5, 40 / 14])
+
+
+def test_even_runs_round_a_curve_without_corners():
+    """A circle flattened into 200 chords (no turn above 30 degrees): runs of one length all
+    round, no longer than the side, each ending on the drawn outline."""
+    t = np.linspace(0, 2 * np.pi, 200, endpoint=False)
+    circle = 20 * np.column_stack([np.cos(t), np.sin(t)])
+    runs = outline_mesh._even_runs(circle, 5.0)
+    along = np.hypot(*(np.roll(circle, -1, 0) - circle).T).sum()
+    assert len(runs) == math.ceil(along / 5.0)
+    assert shapely.distance(shapely.LinearRing(circle), shapely.points(runs)).max() < 1e-9
+    assert runs[0] == pytest.approx(circle[0])
+    # equal runs measured along the outline: the chords are equal to within the curvature
+    chords = np.hypot(*(np.roll(runs, -1, 0) - runs).T)
+    assert np.ptp(chords) < 1e-3 and chords.max() <= 5.0
+
+
+@pytest.mark.parametrize("bend, corners", [(20.0, 3), (40.0, 4)])
+def test_even_runs_corner_is_a_turn_above_thirty_degrees(bend, corners):
+    """A triangle with one side bent in its middle: the bend is a corner (a run ends there)
+    only when it turns by more than 30 degrees."""
+    half = 20 * math.tan(math.radians(bend / 2))
+    ring = np.array([(0, 0), (20, -half), (40, 0), (20, 30)], float)
+    runs = outline_mesh._even_runs(ring, 100.0)  # runs longer than any side: corners only
+    assert len(runs) == corners
+
+
+def test_runs_give_the_outline_equal_boundary_runs():
+    """A 60 x 40 rectangle meshed with runs: every boundary edge of the mesh is a whole
+    number of the sides' run lengths (a straight side's points that one face uses alone are
+    dropped), and the mesh still covers the rectangle exactly."""
+    cell = 10.0
+    mesh = outline_mesh.mesh_outline(shapely.box(0, 0, 60, 40), "hex", cell, runs=True)
+    assert signed_areas(mesh).sum() == pytest.approx(2400.0)
+    side = outline_mesh.EDGE["hex"] * cell
+    runs = {60.0: 60 / math.ceil(60 / side), 40.0: 40 / math.ceil(40 / side)}
+    p = mesh.vertices
+    u, w = mesh.face_indices, mesh.face_indices[mesh.next_half_edge]
+    key = np.minimum(u, w) * len(p) + np.maximum(u, w)
+    boundary = np.flatnonzero(np.bincount(np.unique(key, return_inverse=True)[1]) == 1)
+    edge = np.unique(key, return_index=True)[1][boundary]
+    d = p[w[edge]] - p[u[edge]]
+    horizontal = np.abs(d[:, 1]) < 1e-9
+    assert (np.abs(d[horizontal, 0]) / runs[60.0]) == pytest.approx(
+        np.round(np.abs(d[horizontal, 0]) / runs[60.0]))
+    assert (np.abs(d[~horizontal, 1]) / runs[40.0]) == pytest.approx(
+        np.round(np.abs(d[~horizontal, 1]) / runs[40.0]))
+
+
+def test_a_reflex_corner_is_cut_not_smoothed():
+    """The L's inner corner (20, 20) stays a vertex of the mesh at every kind: the outline is
+    kept to the tolerance, no face bridges the notch."""
+    for kind in KINDS:
+        mesh = outline_mesh.mesh_outline(L_SHAPE, kind, 8.0)
+        assert np.hypot(*(mesh.vertices - (20, 20)).T).min() < 1e-9
+        union = shapely.union_all(faces_of(mesh))
+        assert union.area == pytest.approx(L_SHAPE.area, abs=0.2 * L_SHAPE.length)
+
+
+def test_a_missing_boundary_segment_is_split_at_its_middle():
+    """The conforming triangulation's step: every flagged edge of a ring gets its midpoint
+    inserted between its two ends, in order; the others stay whole."""
+    ring = np.array([(0, 0), (4, 0), (4, 2), (0, 2)], float)
+    split = outline_mesh._with_midpoints(ring, np.array([True, False, True, True]))
+    assert split.tolist() == [[0, 0], [2, 0], [4, 0], [4, 2], [2, 2], [0, 2], [0, 1]]
+    assert outline_mesh._with_midpoints(ring, np.zeros(4, bool)).tolist() == ring.tolist()
