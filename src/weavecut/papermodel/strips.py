@@ -232,6 +232,8 @@ class Strip:
     flap : a label tab holding the ID where no own tile can (cut with the strip, cut off after
         weaving), or None; ``flap_edge`` the line where it meets its tile (drawn dashed),
         ``flap_fill`` its fill
+    left_out : under tiles whose name fits neither the tile nor a plate over its neighbours
+        (the assembly sheet shows those crossings)
     """
 
     strand: int
@@ -255,13 +257,18 @@ class Strip:
     flap: shapely.Polygon | None = None
     flap_edge: shapely.LineString | None = None
     flap_fill: str = "#ffffff"
+    left_out: tuple[int, ...] = ()
 
     @property
     def cut(self) -> shapely.Polygon:
         """The cut line: the outline and the label tab, if any."""
         if self.flap is None:
             return self.outline
-        return outline_of(np.array([self.outline, self.flap]), 1e-6 * max(self.length, 1.0))
+        # the tab grown by a hair: its base, collinear with its tile's edge only up to rounding,
+        # would leave a slit in the union that a cutter follows into the strip
+        eps = 1e-6 * max(self.length, 1.0)
+        return outline_of(np.array([self.outline, shapely.buffer(self.flap, eps,
+                                                                 join_style="mitre")]), eps)
 
     @property
     def length(self) -> float:
@@ -485,6 +492,8 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
     wanted = id_wanted + wanted
     # an under tile too small for the name (a border tile at 23 cm): the assembly sheet shows
     # that crossing, the strip leaves it out
+    left_out = tuple(w[0] for t, w in zip(texts, wanted) if t.size < MIN_CAP
+                     and w not in id_wanted)
     texts = [t for t, w in zip(texts, wanted) if t.size >= MIN_CAP or w in id_wanted]
     if len(plates):
         regions = shapely.difference(regions, shapely.buffer(shapely.union_all(plates), PAD))
@@ -511,7 +520,7 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
         if size[0] >= MIN_CAP:
             texts.append(centred_text(c[0], strip.tab, float(size[0]), float(angle[0])))
     return replace(strip, texts=tuple(texts), arrows=np.array(arrows, dtype=object),
-                   plates=plates, plate_fills=plate_fills)
+                   plates=plates, plate_fills=plate_fills, left_out=left_out)
 
 
 FLAP_MARGIN = 0.6  # mm between a label tab's text and its edges
