@@ -265,10 +265,11 @@ class Strip:
         if self.flap is None:
             return self.outline
         # the tab grown by a hair: its base, collinear with its tile's edge only up to rounding,
-        # would leave a slit in the union that a cutter follows into the strip
+        # would leave a slit in the union that a cutter follows into the strip; the hair's
+        # steps are simplified away
         eps = 1e-6 * max(self.length, 1.0)
-        return outline_of(np.array([self.outline, shapely.buffer(self.flap, eps,
-                                                                 join_style="mitre")]), eps)
+        grown = shapely.buffer(self.flap, eps, join_style="mitre")
+        return shapely.simplify(outline_of(np.array([self.outline, grown]), eps), 10 * eps)
 
     @property
     def length(self) -> float:
@@ -524,6 +525,7 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
 
 
 FLAP_MARGIN = 0.6  # mm between a label tab's text and its edges
+FLAP_STEP = 1.5  # mm, the least step between a label tab's corner and its edge's end
 FLAP_REACH = 1.5  # a label tab's base may reach past its edge (along its line) up to this share
 END_FACING = 0.9  # cosine: a strand's end edge faces the way the strand leaves its last tile
 
@@ -567,6 +569,7 @@ def label_flap(strip: Strip, text: str) -> tuple[Strip, Text] | None:
                 base, depth = base + 2 * FLAP_MARGIN, depth + 2 * FLAP_MARGIN
                 if base > FLAP_REACH * length[e]:
                     continue
+                base = _tab_base(base, float(length[e]))
                 p, q = mid[e] - unit[e] * base / 2, mid[e] + unit[e] * base / 2
                 flap = shapely.Polygon([p, q, q + normal[e] * depth, p + normal[e] * depth])
                 if shapely.intersection(flap, body).area > 1e-6 * flap.area:
@@ -581,6 +584,14 @@ def label_flap(strip: Strip, text: str) -> tuple[Strip, Text] | None:
     fill = next((f for f, o in zip(strip.fills, strip.over.tolist()) if o), "#ffffff")
     label = centred_text(centre, text, MIN_CAP, angle, text_colour_on(fill))
     return replace(strip, flap=flap, flap_edge=edge, flap_fill=fill), label
+
+
+def _tab_base(base: float, edge: float) -> float:
+    """A label tab's ``base`` widened so that its corners meet its ``edge``'s ends, or pass them
+    by at least ``FLAP_STEP``: no step a cutter's knife tears at."""
+    if base <= edge:
+        return edge if base > edge - 2 * FLAP_STEP else base
+    return max(base, edge + 2 * FLAP_STEP)
 
 
 def _place(strip: Strip, wanted, regions, centres, band, taken=()):
