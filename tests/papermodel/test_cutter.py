@@ -8,6 +8,7 @@ import json
 import re
 import tomllib
 import xml.etree.ElementTree as ET
+from dataclasses import replace
 from functools import lru_cache
 from pathlib import Path
 
@@ -214,7 +215,7 @@ def test_every_strip_once_on_a_sheet_of_its_colour(tmp_path):
         path = tmp_path / f"sheet{n}.dxf"
         export.write(drawing, path)
         rings = dxf_rings(path, "cut")
-        kerf = [shapely.buffer(p.outline, 0.05, join_style="mitre", mitre_limit=8.0)
+        kerf = [shapely.buffer(p.cut, 0.05, join_style="mitre", mitre_limit=8.0)
                 for p in pieces]
         assert_coincide(kerf, rings)
         polys = [shapely.Polygon(r) for r in rings]
@@ -233,14 +234,14 @@ def test_engraved_text_lies_inside_its_strip_with_a_margin(tmp_path):
         export.write(drawing, path)
         lines = [shapely.LineString(r) for r in dxf_rings(path, "engrave") if len(r) > 1]
         assert lines
-        inner = [shapely.buffer(p.outline, -lasercard.ENGRAVE_MARGIN + 1e-3,
+        inner = [shapely.buffer(p.cut, -lasercard.ENGRAVE_MARGIN + 1e-3,
                                 join_style="mitre") for p in pieces]
         tree = shapely.STRtree(inner)
         for line in lines:
             assert any(inner[j].covers(line) for j in tree.query(line))
         # every strip carries its ID, and the IDs of the strands on top where it goes under
         for p, (coords, offsets, owner) in zip(pieces, cut.texts[n]):
-            assert len(coords) and shapely.buffer(p.outline, -0.999).covers(
+            assert len(coords) and shapely.buffer(p.cut, -0.999).covers(
                 shapely.MultiPoint(coords))
             # one label per printed one, and no two labels of a strip touch
             assert len(set(owner.tolist())) == len(p.texts)
@@ -307,3 +308,32 @@ def test_strands_cutter_and_laser_card_commands(tmp_path):
         res = runner.invoke(main, ["strands", "square-grid:2x2", *args, "-o",
                                    str(tmp_path / "x.pdf")])
         assert res.exit_code != 0 and message in res.output and "Traceback" not in res.output
+
+
+def test_a_label_tab_is_cut_with_its_strip_and_its_id_engraved_on_it(tmp_path):
+    """A strip whose ID sits on a label tab (the pentagon flower's border strips at 23 cm): the
+    laser cuts the tab with the strip, engraves the ID on the tab and the line where the tab is
+    cut off; read back from the DXF."""
+    from weavecut.papermodel.strips import label_flap
+
+    book, _ = card()
+    pieces = []
+    for _, p in book.pieces[:6]:  # six strips given tabs, as the border strips have
+        with_tab, label = label_flap(p, p.label)
+        pieces.append(replace(with_tab, texts=(label, *p.texts[1:])))
+    assert all(p.flap is not None for p in pieces)
+    cut = lasercard.card_sheets(pieces, book.colours, laser(), 0.1, A4)
+    for n, (drawing, placed) in enumerate(zip(cut.sheets, cut.pieces)):
+        path = tmp_path / f"sheet{n}.dxf"
+        export.write(drawing, path)
+        rings = [shapely.Polygon(r) for r in dxf_rings(path, "cut")]
+        for p in placed:
+            assert sum(r.buffer(1e-3).covers(p.flap) for r in rings) == 1  # the tab is cut
+        # one closed, simple ring per strip: no slit where the tab meets its tile
+        assert all(r.exterior.is_simple and r.is_valid for r in rings)
+        engraved = [shapely.LineString(r) for r in dxf_rings(path, "engrave") if len(r) > 1]
+        for p, (coords, offsets, owner) in zip(placed, cut.texts[n]):
+            id_strokes = shapely.MultiPoint(coords[np.repeat(owner, np.diff(offsets)) == 0])
+            assert p.flap.covers(id_strokes)  # the ID engraved on the tab
+            edge = shapely.buffer(p.flap_edge, 1e-3)
+            assert any(edge.covers(line) and line.length > 1.0 for line in engraved)

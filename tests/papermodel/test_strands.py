@@ -16,6 +16,7 @@ from weavecut.layout.drawing import Polylines
 from weavecut.papermodel.pages import GAP, occupied
 from weavecut.papermodel.book import strand_book
 from weavecut.papermodel.checks import report, sheet_checks, text_checks
+from weavecut.papermodel.printcut import cut_report
 from weavecut.papermodel.strips import build_strips, copy_colours, model_tiles, plan_modules
 from weavecut.papermodel.symmetry import rotate, rotation_group, strand_orbits, tile_centres
 from weavecut.mesh import Mesh
@@ -590,6 +591,9 @@ def test_the_pentagon_flower_reads_at_the_papers_23_cm():
     rep = report(book)
     assert rep["label_violations"] == 0 and rep["smallest_text_mm"] >= 2.5
     assert rep["label_tabs"] == 70 and rep["pages"]["strip"] <= 5
+    # a tab meets its strip without a slit, and without a sliver a cutter's knife tears at
+    cuts = cut_report([p.cut for _, p in book.pieces])
+    assert cuts.simple and cuts.min_feature >= 1.0
     for n in book.strip_pages:
         cuts = occupied(book.drawing.sheets[n - 1].layers)
         flaps = [p.flap for k, p in book.pieces if k == n and p.flap is not None]
@@ -597,3 +601,44 @@ def test_the_pentagon_flower_reads_at_the_papers_23_cm():
     steps = " ".join(t.text for layer in book.drawing.sheets[1].layers if layer.name == "steps"
                      for t in layer.shapes)
     assert "tab" in steps and "dashed" in steps
+
+
+def test_names_left_off_the_strips_are_counted_and_said():
+    """At 23 cm some under tiles of the pentagon flower cannot hold a 2.5 mm name: each such
+    tile is an under tile whose name is printed nowhere near it, --json counts them, and a
+    warning says so. Every other under tile's name is printed on or beside it."""
+    from weavecut.layout.labels import MIN_CAP
+
+    book = pentagon_book()
+    left = 0
+    for _, p in book.pieces:
+        for i in np.flatnonzero(~p.over).tolist():  # under tiles
+            near = shapely.buffer(p.tiles[i], 2 * MIN_CAP)
+            printed = any(t.text == p.names[i] and near.contains(shapely.Point(t.x, t.y))
+                          for t in p.texts)
+            assert printed != (i in p.left_out)
+        left += len(p.left_out)
+    assert left > 0 and report(book)["names_left_out"] == left
+    assert any(f"{left} under-crossing names" in w for w in book.warnings)
+
+
+def test_label_plates_stay_over_their_tiles_whatever_order_a_writer_paints_in():
+    """A writer may paint a shape's polygons grouped by fill (the PDF writer does): within one
+    shape of a strip page no two polygons of different fills overlap, so a label's plate is
+    its own shape over the tiles (the house: an ID on its plate over a light under tile)."""
+    from pathlib import Path
+
+    from weavecut.cli.common import load_mesh
+    from weavecut.layout.drawing import Polygons
+
+    mesh = load_mesh(str(Path(__file__).parents[2] / "examples" / "house.obj"))
+    book = strand_book(snub_weaves(subdivide(mesh, 2)), palette("maritime-12"))
+    assert any(len(p.plates) for _, p in book.pieces)
+    for n in book.strip_pages:
+        for shape in (s for layer in book.drawing.sheets[n - 1].layers for s in layer.shapes
+                      if isinstance(s, Polygons) and s.fills):
+            polys, fills = shape.to_shapely(), np.array(shape.fills)
+            a, b = shapely.STRtree(polys).query(polys, predicate="intersects")
+            pair = (a < b) & (fills[a] != fills[b])
+            assert (shapely.area(shapely.intersection(polys[a[pair]], polys[b[pair]]))
+                    < 1e-6).all()

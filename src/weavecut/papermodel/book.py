@@ -181,6 +181,11 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         need = smallest_tile_size(weave, plan, colours, tile_size, layout, area)
         raise SizeError(f"some labels would be {small:.1f} mm tall at --tile-size {tile_size:.1f}mm"
                         f"; labels need {MIN_CAP:g} mm: {_use(weave, need)}")
+    left_out = sum(len(p.left_out) for p in pieces)
+    if left_out:
+        warnings += (f"{left_out} under-crossing names are left off their strips: the tile "
+                     f"under them, even with a plate over its neighbours, is too small for "
+                     f"{MIN_CAP:g} mm text; page 1 shows those crossings",)
 
     if layout == "module":
         def subtitle(names):

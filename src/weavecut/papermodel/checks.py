@@ -123,7 +123,7 @@ def sheet_checks(book, n: int) -> list[dict]:
 
 def report(book) -> dict:
     """What ``strands --json`` reports: pages, ink, smallest label, contrast, violations, label
-    tabs."""
+    tabs, under-crossing names left off the strips."""
     records = []
     for n, sheet in enumerate(book.drawing.sheets, start=1):
         records += sheet_checks(book, n)
@@ -135,6 +135,7 @@ def report(book) -> dict:
         "smallest_contrast": round(min((r["contrast"] for r in records), default=21.0), 2),
         "label_violations": sum(bool(r["broken"]) for r in records),
         "label_tabs": sum(p.flap is not None for _, p in book.pieces),
+        "names_left_out": sum(len(p.left_out) for _, p in book.pieces),
         "tile_size_mm": round(book.tile_size, 2),
         "strip_width_mm": round(book.strip_width, 1),
         "warnings": list(book.warnings),

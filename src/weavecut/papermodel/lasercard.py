@@ -5,8 +5,10 @@ onto the material's sheets, one sheet set per colour. The cut layer holds each s
 (grown by half the kerf, so the strip comes out true to size), cut after the engraving; the
 engrave layer holds, in single strokes, what the printed strip shows: the strip's ID in its own
 tile, the ID of the strand on top in every under tile (the under-crossing marks) and the
-direction arrows' outlines, and the glue band's edge on a piece of a split strip. Every engraved
-line keeps ``ENGRAVE_MARGIN`` inside its strip.
+direction arrows' outlines, and the glue band's edge on a piece of a split strip. A label tab
+(the ID of a strip too small to hold it) is cut with its strip, as on paper, its ID engraved on
+it and the line where it is cut off after weaving engraved too. Every engraved line keeps
+``ENGRAVE_MARGIN`` inside its strip.
 """
 
 from __future__ import annotations
@@ -70,7 +72,7 @@ def engraved_labels(strip: Strip, margin: float = ENGRAVE_MARGIN
     texts = [t for t in strip.texts if isinstance(t, Text)]
     if not texts:
         return np.zeros((0, 2)), np.zeros(1, dtype=np.int64), np.zeros(0, dtype=np.int64), np.inf
-    inner = shapely.buffer(strip.outline, -margin, join_style="mitre")
+    inner = shapely.buffer(strip.cut, -margin, join_style="mitre")
     regions = shapely.intersection(np.array([text_box(t) for t in texts], dtype=object), inner)
     heights, centres, angles = strokefont.fit_labels(
         regions, [t.text for t in texts], 0.0, max(t.size for t in texts))
@@ -83,12 +85,15 @@ def engraved_labels(strip: Strip, margin: float = ENGRAVE_MARGIN
 
 def marks(strip: Strip, margin: float = ENGRAVE_MARGIN) -> list[NDArray[np.float64]]:
     """What is engraved besides the labels, ``margin`` inside the strip: the direction arrows'
-    outlines and, on a piece of a split strip, the edge of its glue band."""
-    inner = shapely.buffer(strip.outline, -margin, join_style="mitre")
+    outlines, on a piece of a split strip the edge of its glue band, and the line where a label
+    tab is cut off."""
+    inner = shapely.buffer(strip.cut, -margin, join_style="mitre")
     out = [np.asarray(a.exterior.coords) for a in shapely.get_parts(strip.arrows).tolist()
            if a.geom_type == "Polygon" and inner.covers(a)]
-    if strip.glue is not None:
-        edge = shapely.intersection(shapely.union_all(strip.glue).boundary, inner)
+    edges = [] if strip.glue is None else [shapely.union_all(strip.glue).boundary]
+    if strip.flap_edge is not None:
+        edges.append(strip.flap_edge)
+    for edge in shapely.intersection(edges, inner).tolist():
         out += [np.asarray(g.coords) for g in shapely.get_parts(edge).tolist()
                 if g.geom_type == "LineString" and g.length > 1e-6]
     return out
@@ -122,7 +127,7 @@ def card_sheets(pieces: list[Strip], colours, las: Laser, kerf: float,
     report, smallest = cut_report([]), np.inf
     groups = colour_groups(pieces, colours)
     for colour, group in groups.items():  # card colours
-        places = pack([nesting.offset(np.array([p.outline], dtype=object), kerf)[0]
+        places = pack([nesting.offset(np.array([p.cut], dtype=object), kerf)[0]
                        for p in group], width - 2 * margin, height - 2 * margin, gap)
         moved = [p.moved(affine(0.0, (margin, margin)) @ pl.matrix(), pl.angle)
                  for p, pl in zip(group, places)]
@@ -132,7 +137,7 @@ def card_sheets(pieces: list[Strip], colours, las: Laser, kerf: float,
             smallest = min([smallest] + [h for *_, h in labels])
             lines = [c[a:b] for c, o, *_ in labels for a, b in zip(o[:-1], o[1:])]
             lines += [r for m in here for r in marks(m)]
-            cuts = nesting.offset(np.array([m.outline for m in here], dtype=object), kerf)
+            cuts = nesting.offset(np.array([m.cut for m in here], dtype=object), kerf)
             report = report + cut_report(cuts)
             n = len(drawings) + 1
             layers = (Layer("engrave", "engrave", (polylines_from_lines(lines, engrave_style),)),

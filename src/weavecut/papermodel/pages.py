@@ -125,19 +125,24 @@ def strip_layers(strips: list[Strip]) -> list[Layer]:
     """Layers for strips already on the page: tiles (fills and thin outlines), glue bands,
     fold lines, arrows, labels and the cut lines."""
     tiles, fills, arrows_by_ink, glue, texts, outlines = [], [], {}, [], [], []
+    plates, plate_fills = [], []
     for s in strips:
         flap = () if s.flap is None else (s.flap,)
-        for tile, fill in zip([*s.tiles, *flap, *s.plates],
-                              s.fills + (s.flap_fill,) * len(flap) + s.plate_fills):
+        for tile, fill in zip([*s.tiles, *flap], s.fills + (s.flap_fill,) * len(flap)):
             for part in _parts([tile]):
                 tiles.append(part)
                 fills.append(fill)
+        plates += s.plates.tolist()
+        plate_fills += s.plate_fills
         arrows_by_ink.setdefault(s.arrow_ink, []).extend(_parts(s.arrows))
         if s.glue is not None:
             glue.extend(_parts(s.glue))
         texts.extend(s.texts)
         outlines.extend(_parts([s.cut]))
-    layers = [Layer("strips", "paint", (polygons_from_shapely(tiles, TILE_LINE, fills),))]
+    # the label plates over the tiles as a shape of their own: a writer may paint one shape's
+    # polygons grouped by fill, which would put a plate under the tile it covers
+    layers = [Layer("strips", "paint", (polygons_from_shapely(tiles, TILE_LINE, fills),) + (
+        (polygons_from_shapely(plates, TILE_LINE, plate_fills),) if plates else ()))]
     if glue:
         layers.append(Layer("glue", "paint", (polygons_from_shapely(
             glue, Style("#555555", 0.15, GLUE)),)))

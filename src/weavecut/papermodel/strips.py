@@ -232,6 +232,8 @@ class Strip:
     flap : a label tab holding the ID where no own tile can (cut with the strip, cut off after
         weaving), or None; ``flap_edge`` the line where it meets its tile (drawn dashed),
         ``flap_fill`` its fill
+    left_out : under tiles whose name fits neither the tile nor a plate over its neighbours
+        (the assembly sheet shows those crossings)
     """
 
     strand: int
@@ -255,13 +257,19 @@ class Strip:
     flap: shapely.Polygon | None = None
     flap_edge: shapely.LineString | None = None
     flap_fill: str = "#ffffff"
+    left_out: tuple[int, ...] = ()
 
     @property
     def cut(self) -> shapely.Polygon:
         """The cut line: the outline and the label tab, if any."""
         if self.flap is None:
             return self.outline
-        return outline_of(np.array([self.outline, self.flap]), 1e-6 * max(self.length, 1.0))
+        # the tab grown by a hair: its base, collinear with its tile's edge only up to rounding,
+        # would leave a slit in the union that a cutter follows into the strip; the hair's
+        # steps are simplified away
+        eps = 1e-6 * max(self.length, 1.0)
+        grown = shapely.buffer(self.flap, eps, join_style="mitre")
+        return shapely.simplify(outline_of(np.array([self.outline, grown]), eps), 10 * eps)
 
     @property
     def length(self) -> float:
@@ -485,6 +493,8 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
     wanted = id_wanted + wanted
     # an under tile too small for the name (a border tile at 23 cm): the assembly sheet shows
     # that crossing, the strip leaves it out
+    left_out = tuple(w[0] for t, w in zip(texts, wanted) if t.size < MIN_CAP
+                     and w not in id_wanted)
     texts = [t for t, w in zip(texts, wanted) if t.size >= MIN_CAP or w in id_wanted]
     if len(plates):
         regions = shapely.difference(regions, shapely.buffer(shapely.union_all(plates), PAD))
@@ -511,10 +521,11 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
         if size[0] >= MIN_CAP:
             texts.append(centred_text(c[0], strip.tab, float(size[0]), float(angle[0])))
     return replace(strip, texts=tuple(texts), arrows=np.array(arrows, dtype=object),
-                   plates=plates, plate_fills=plate_fills)
+                   plates=plates, plate_fills=plate_fills, left_out=left_out)
 
 
 FLAP_MARGIN = 0.6  # mm between a label tab's text and its edges
+FLAP_STEP = 1.5  # mm, the least step between a label tab's corner and its edge's end
 FLAP_REACH = 1.5  # a label tab's base may reach past its edge (along its line) up to this share
 END_FACING = 0.9  # cosine: a strand's end edge faces the way the strand leaves its last tile
 
@@ -558,6 +569,7 @@ def label_flap(strip: Strip, text: str) -> tuple[Strip, Text] | None:
                 base, depth = base + 2 * FLAP_MARGIN, depth + 2 * FLAP_MARGIN
                 if base > FLAP_REACH * length[e]:
                     continue
+                base = _tab_base(base, float(length[e]))
                 p, q = mid[e] - unit[e] * base / 2, mid[e] + unit[e] * base / 2
                 flap = shapely.Polygon([p, q, q + normal[e] * depth, p + normal[e] * depth])
                 if shapely.intersection(flap, body).area > 1e-6 * flap.area:
@@ -572,6 +584,14 @@ def label_flap(strip: Strip, text: str) -> tuple[Strip, Text] | None:
     fill = next((f for f, o in zip(strip.fills, strip.over.tolist()) if o), "#ffffff")
     label = centred_text(centre, text, MIN_CAP, angle, text_colour_on(fill))
     return replace(strip, flap=flap, flap_edge=edge, flap_fill=fill), label
+
+
+def _tab_base(base: float, edge: float) -> float:
+    """A label tab's ``base`` widened so that its corners meet its ``edge``'s ends, or pass them
+    by at least ``FLAP_STEP``: no step a cutter's knife tears at."""
+    if base <= edge:
+        return edge if base > edge - 2 * FLAP_STEP else base
+    return max(base, edge + 2 * FLAP_STEP)
 
 
 def _place(strip: Strip, wanted, regions, centres, band, taken=()):
