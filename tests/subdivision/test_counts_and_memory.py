@@ -191,3 +191,51 @@ def test_subdivide_refuses_bad_arguments_by_name():
                                          r"butterfly, sqrt3, catmull-clark, midedge, doo-sabin, "
                                          r"dual, akleman$"):
         subdivide(inputs.get("pentagon"), 1, scheme="hex")
+
+
+def test_upper_bounds_are_the_exact_counts_in_the_worst_case():
+    """Mid-edge and Doo-Sabin bound from V, E, F, H alone: their exact counts with every
+    vertex kept (mid-edge: all outer in two or more faces) or every edge and vertex inner
+    (Doo-Sabin), and two half-edges per edge; the dual: every edge and vertex inner."""
+    from weavecut.subdivision import doo_sabin, dual, midedge
+    for v, e, f, h in [(7, 10, 4, 14), (9, 12, 4, 16), (16, 20, 5, 25)]:
+        vm, em, fm = midedge.exact_counts(e, f, h, 0, v)
+        assert midedge.counts(v, e, f, h) == (vm, em, fm, 2 * em)
+        vd, ed, fd = doo_sabin.exact_counts(f, h, e, v)
+        assert doo_sabin.counts(v, e, f, h) == (vd, ed, fd, 2 * ed)
+        assert dual.counts(v, e, f, h) == (f, e, v, 2 * e)
+
+
+def test_midedge_bound_is_reached_when_every_vertex_is_kept():
+    """A ring of quads: every vertex is outer and in two faces, so mid-edge keeps them all."""
+    from weavecut.mesh import Mesh
+    from weavecut.subdivision import midedge
+    n = 6
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    ring = np.vstack([np.column_stack([np.cos(a), np.sin(a)]),
+                      2 * np.column_stack([np.cos(a), np.sin(a)])])
+    quads = [[i, (i + 1) % n, n + (i + 1) % n, n + i] for i in range(n)]
+    mesh = Mesh.from_faces(ring, quads)
+    got = four_counts(midedge.step(mesh).mesh)
+    assert got[:3] == midedge.counts(*four_counts(mesh))[:3]
+
+
+@pytest.mark.parametrize("name, message", [
+    ("loop", "Loop subdivision needs faces with 3 corners; face 1 has 4"),
+    ("butterfly", "butterfly subdivision needs faces with 3 corners; face 1 has 4"),
+])
+def test_triangle_schemes_name_themselves_and_the_first_other_face(name, message):
+    from weavecut.errors import MeshError
+    from weavecut.mesh import Mesh
+    mesh = Mesh.from_faces([(0, 0), (1, 0), (0, 1), (1, 1), (0, 2)],
+                           [[0, 1, 2], [2, 1, 3, 4]])
+    with pytest.raises(MeshError, match=f"^{message}$"):
+        SCHEMES[name](mesh)
+
+
+@pytest.mark.parametrize("t", [0.0, 1.0, 1.5, -0.2])
+def test_akleman_refuses_t_outside_the_open_unit_interval(t):
+    from weavecut.subdivision import akleman
+    with pytest.raises(ValueError, match=rf"^t must lie strictly between 0 and 1, got {t}$"):
+        akleman.step(mixed(), t=t)
+    assert akleman.step(mixed(), t=0.999).mesh.n_faces == mixed().n_faces + mixed().n_corners
