@@ -186,20 +186,6 @@ def child_topology(face_indices: NDArray[np.int32], next_half_edge: NDArray[np.i
     return Topology(edges, half_edge_edge.astype(np.int32, copy=False), side.view(np.int8))
 
 
-def dense_mesh(vertices: NDArray[np.float64], faces: NDArray[np.int32], half_edge_edge,
-               n_edges: int, boundary: NDArray[np.bool_] | None = None) -> Mesh:
-    """A trusted mesh of (F, k) faces with its topology attached."""
-    n_f, k = faces.shape
-    offsets = np.arange(0, k * n_f + 1, k, dtype=np.int64)
-    flat = faces.reshape(-1)
-    nxt = np.arange(1, k * n_f + 1, dtype=np.int32).reshape(n_f, k)
-    nxt[:, -1] -= k
-    topo = child_topology(flat, nxt.reshape(-1), np.asarray(half_edge_edge).reshape(-1), n_edges)
-    if boundary is not None:
-        topo.__dict__["boundary_edges"] = boundary
-    return Mesh.trusted(vertices, offsets, flat, topo)
-
-
 def trusted_dense(vertices: NDArray[np.float64], faces: NDArray[np.int32], topology: Topology,
                   boundary: NDArray[np.bool_] | None = None) -> Mesh:
     """A trusted mesh of (F, k) faces with a topology the step built itself."""

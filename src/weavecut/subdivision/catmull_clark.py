@@ -22,7 +22,6 @@ Counts: V' = V + E + F, E' = 2E + H, F' = H.
 from __future__ import annotations
 
 import numpy as np
-from numpy.typing import NDArray
 
 from ..mesh import Mesh, Topology, face_centroids
 from ._common import is_outer, neighbour_sums, trusted_dense, vertex_sums
@@ -30,8 +29,6 @@ from .hierarchy import Level
 
 FIRST_HALF, SECOND_HALF, SPOKE = 0, 1, 2
 EDGE_PARTS = {"first half": FIRST_HALF, "second half": SECOND_HALF, "spoke": SPOKE}
-OLD, EDGE, FACE = 0, 1, 2
-VERTEX_KINDS = {"old": OLD, "edge": EDGE, "face": FACE}
 
 
 def counts(n_vertices: int, n_edges: int, n_faces: int, n_corners: int) -> tuple[int, ...]:
@@ -43,12 +40,6 @@ def counts(n_vertices: int, n_edges: int, n_faces: int, n_corners: int) -> tuple
     (9, 12, 4, 16)
     """
     return n_vertices + n_edges + n_faces, 2 * n_edges + n_corners, n_corners, 4 * n_corners
-
-
-def vertex_kinds(n_vertices: int, n_edges: int, n_faces: int) -> NDArray[np.int8]:
-    """(V',) OLD, EDGE or FACE for every child vertex of a parent with these counts."""
-    return np.repeat(np.array([OLD, EDGE, FACE], dtype=np.int8),
-                     [n_vertices, n_edges, n_faces])
 
 
 def step(mesh: Mesh) -> Level:
