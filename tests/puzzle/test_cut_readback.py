@@ -1,8 +1,8 @@
 """The cut files read back with ezdxf and checked against the puzzle's geometry: the shared cut
 covers every outline once in paths whose lengths and travel add up, the score lines are the
 ring's free edges, separate pieces grow by perimeter x kerf/2 while the frame's hole shrinks
-by it, and a kerf wider than a piece is refused. Each test builds its own puzzle (mutmut
-credits a shared fixture's work to the first test only)."""
+by it, and a kerf wider than a piece is refused. The puzzles are built once per process
+(tests/built_puzzles.py); the cuts are made in every test."""
 
 from __future__ import annotations
 
@@ -11,16 +11,16 @@ import numpy as np
 import pytest
 import shapely
 
-from weavecut import export, inputs
+from weavecut import export
 from weavecut.errors import WeaveCutError
 from weavecut.puzzle import files as pf
 from weavecut.puzzle.frame import split_frame
-from weavecut.puzzle.pieces import build_puzzle
-from weavecut.subdivision import subdivide
+
+from tests.built_puzzles import pentagon_puzzle
 
 
-def _puzzle(levels=3, size=300.0):
-    return build_puzzle(subdivide(inputs.get("pentagon"), levels), size=size)
+def _puzzle(levels=3):
+    return pentagon_puzzle(levels)
 
 
 def _read(drawing, path):

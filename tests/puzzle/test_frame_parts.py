@@ -10,15 +10,14 @@ import pytest
 import shapely
 from shapely import affinity
 
-from weavecut import inputs
 from weavecut.errors import WeaveCutError
 from weavecut.puzzle.frame import MAX_PARTS, fits, split_frame
-from weavecut.puzzle.pieces import build_puzzle
-from weavecut.subdivision import subdivide
+
+from tests.built_puzzles import pentagon_puzzle
 
 
 def _puzzle():
-    return build_puzzle(subdivide(inputs.get("pentagon"), 2), size=400.0)
+    return pentagon_puzzle(2, 400.0)
 
 
 def _shared(a, b):

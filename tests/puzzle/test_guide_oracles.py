@@ -2,8 +2,8 @@
 piece (placed, and mirrored on the back) in the ink that reads better on that piece's paint,
 split lines are dashes of the stated length along the parent edge, the crosshairs register
 front and back, and the colour key lists for each paint exactly the pieces painted with it.
-Each test builds and colours its own puzzle (mutmut credits a shared fixture's work to the first
-test only)."""
+The puzzles and their paint are made once per process (tests/built_puzzles.py); the guides
+in every test."""
 
 from __future__ import annotations
 
@@ -13,20 +13,18 @@ import numpy as np
 import pytest
 import shapely
 
-from weavecut import inputs
 from weavecut.layout.contrast import BLACK, WHITE, contrast_ratio
 from weavecut.puzzle import files as pf
-from weavecut.puzzle.colouring import UNPAINTED, colour_puzzle
+from weavecut.puzzle.colouring import UNPAINTED
 from weavecut.puzzle.guides import (DASH, GAP, colour_key, guide, painted, piece_halves,
                                     split_ends)
-from weavecut.puzzle.pieces import OCTAGON, build_puzzle
-from weavecut.subdivision import subdivide
-from weavecut.weave.colour import palette
+from weavecut.puzzle.pieces import OCTAGON
+
+from tests.built_puzzles import pentagon_paint, pentagon_puzzle
 
 
 def _coloured(levels=3):
-    puzzle = build_puzzle(subdivide(inputs.get("pentagon"), levels), size=300.0)
-    return puzzle, colour_puzzle(puzzle, palette("puzzle"))
+    return pentagon_puzzle(levels), pentagon_paint(levels)
 
 
 def _layer(sheet, name):

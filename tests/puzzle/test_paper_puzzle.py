@@ -25,13 +25,15 @@ from weavecut.puzzle.pieces import OCTAGON, build_puzzle
 from weavecut.subdivision import subdivide
 from weavecut.weave.colour import palette
 
+from tests.built_puzzles import pentagon_puzzle
+
 HUES = {"green": (100, 180), "blue": (200, 290), "pink": (320, 380)}  # CIELAB hue, degrees
 
 
 @pytest.fixture(scope="module")
 def paper():
     """The paper's puzzle: level 4 on a regular pentagon, 50 cm frame diagonal."""
-    puzzle = build_puzzle(subdivide(inputs.get("pentagon"), 4), size=500.0)
+    puzzle = pentagon_puzzle(4, 500.0)  # built once per process; its paint made here
     pal = palette("puzzle")
     return puzzle, colour_puzzle(puzzle, pal, palette_names("puzzle", pal))
 

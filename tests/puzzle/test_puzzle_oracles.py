@@ -12,7 +12,7 @@ import shapely
 from weavecut import inputs
 from weavecut.errors import WeaveCutError
 from weavecut.puzzle.guides import piece_halves, split_ends
-from weavecut.puzzle.pieces import (ENNEAGON, OCTAGON, build_puzzle, diameter, extent,
+from weavecut.puzzle.pieces import (OCTAGON, build_puzzle, diameter, extent,
                                     frame_scale)
 from weavecut.subdivision import subdivide
 
