@@ -73,29 +73,24 @@ def test_drawing_defaults_try_the_levels_given(monkeypatch):
     assert level == 2 and cell in [c for c, _, _ in _candidates(240.0, (2,))]
 
 
-def test_drawing_defaults_refuse_a_drawing_no_cell_can_make(monkeypatch):
+@pytest.mark.parametrize("error, why", [
+    (TurnedOverError, r" \(its pentagons turn over at every one: sharp corners do this; use "
+                      r"--mesh tri\)"),
+    (MeshError, "")])
+def test_drawing_defaults_refuse_a_drawing_no_cell_can_make(error, why, monkeypatch):
+    """Every cell tried fails (pentagons that turn over, or slivers): one line that says why
+    where it knows."""
     monkeypatch.setattr(workshop, "DEFAULT_FACES", FACES[1:])
 
-    def turned(cell):
+    def failing(cell):
         if cell is None:
             return read_at(None)
-        raise TurnedOverError("turned over")
+        raise error("this cell fails")
 
     with pytest.raises(WeaveCutError, match=r"^no cell and level tried makes a puzzle of this "
-                                            r"drawing at 240 mm \(its pentagons turn over at "
-                                            r"every one: sharp corners do this; use --mesh "
-                                            r"tri\); give --cell and --levels to try others$"):
-        workshop.drawing_defaults(turned, 240.0, 12.0, 2.0, (2,))
-
-    def slivers(cell):
-        if cell is None:
-            return read_at(None)
-        raise MeshError("slivers")
-
-    with pytest.raises(WeaveCutError, match=r"^no cell and level tried makes a puzzle of this "
-                                            r"drawing at 240 mm; give --cell and --levels to "
-                                            r"try others$"):
-        workshop.drawing_defaults(slivers, 240.0, 12.0, 2.0, (2,))
+                                            rf"drawing at 240 mm{why}; give --cell and --levels "
+                                            r"to try others$"):
+        workshop.drawing_defaults(failing, 240.0, 12.0, 2.0, (2,))
 
 
 def test_the_larger_cell_named_is_the_smallest_step_that_is_comfortable():
