@@ -14,6 +14,7 @@ import pytest
 import shapely
 
 from weavecut.layout.contrast import BLACK, WHITE, contrast_ratio
+from weavecut.layout.labels import text_box
 from weavecut.puzzle import files as pf
 from weavecut.puzzle.colouring import UNPAINTED
 from weavecut.puzzle.guides import (DASH, GAP, colour_key, guide, painted, piece_halves,
@@ -239,3 +240,36 @@ def test_only_octagons_have_two_front_halves_painted_apart():
     counts = np.bincount(front.piece, minlength=puzzle.n_pieces)
     octagon = puzzle.kinds == OCTAGON
     assert (counts[~octagon] == 1).all() and (counts[octagon] == 2).all()
+
+
+@pytest.mark.parametrize("page", [(210.0, 297.0), (148.0, 105.0)])
+def test_colour_key_rows_stack_without_overlap_beside_their_swatches(page):
+    """Read from the key's boxes: on every page the heading is above every row; a row's texts
+    start right of its swatch, its name line lies level with the swatch and its piece lines
+    below it; no two texts and no text and swatch overlap; rows stay above the bottom margin."""
+    puzzle, colouring = _coloured(4)
+    margin = 12.0
+    for sheet in colour_key(puzzle, colouring, "front", page=page, margin=margin).sheets:
+        shapes = [s for layer in sheet.layers for s in layer.shapes]
+        texts = [s for s in shapes if hasattr(s, "text")]
+        swatches = [shapely.Polygon(s.rings()[0]) for s in shapes if getattr(s, "fills", None)]
+        boxes = [text_box(t) for t in texts]
+        assert texts[0].text.startswith("Colour key, front: ")
+        assert all(boxes[0].bounds[1] > s.bounds[3] for s in swatches)
+        assert boxes[0].bounds[2] <= page[0] - margin + 1e-6
+        everything = boxes + swatches
+        for i, a in enumerate(everything):
+            for b in everything[i + 1:]:
+                assert a.intersection(b).area < 1e-9
+        rows = [k for k, t in enumerate(texts) if re.search(r"   #[0-9a-f]{6}   ", t.text)]
+        assert len(rows) == len(swatches)
+        for k, end, swatch in zip(rows, rows[1:] + [len(texts)], swatches):
+            name, following = boxes[k], boxes[k + 1:end]  # the name, then the piece lines
+            assert following and texts[k + 1].text.startswith("pieces: ")
+            assert name.bounds[0] > swatch.bounds[2]  # right of the swatch
+            assert swatch.bounds[1] <= name.bounds[1] and name.bounds[3] <= swatch.bounds[3]
+            tops = [b.bounds[3] for b in [name] + following]
+            assert tops == sorted(tops, reverse=True)
+            assert all(b.bounds[0] == pytest.approx(name.bounds[0]) for b in following)
+        assert min(min(b.bounds[1] for b in boxes), min(s.bounds[1] for s in swatches)) \
+            >= margin - 1e-6
