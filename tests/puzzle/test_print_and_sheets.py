@@ -9,10 +9,12 @@ import numpy as np
 import pytest
 import shapely
 
+from weavecut.errors import WeaveCutError
 from weavecut.layout.contrast import BLACK
 from weavecut.layout.tiling import tile
 from weavecut.puzzle import files as pf
 from weavecut.puzzle import workshop
+from weavecut.puzzle.frame import fits
 from weavecut.puzzle.colouring import UNPAINTED
 from weavecut.puzzle.guides import _number_colours, _number_shapes, colour_key, guide, printed
 
@@ -82,3 +84,44 @@ def test_summary_times_keep_a_tenth_of_a_minute():
     info = workshop.summary(puzzle, {"shared": result}, 7.0)
     assert info["modes"]["shared"] == {"cut_length_m": 6.0, "travel_m": 3.0, "paths": 12,
                                        "sheets": 1, "time_min": 14.5}
+
+
+def test_a_part_too_large_for_the_sheet_is_named_as_the_maker_knows_it():
+    """The frame is "the frame", a split frame's parts by their engraved labels, pieces by
+    their engraved numbers (1-based)."""
+    puzzle = pentagon_puzzle(2)
+    with pytest.raises(WeaveCutError, match=r"^the frame is [\d.]+ x [\d.]+ mm and does not fit "
+                                            r"a 200 x 150 mm sheet with 5 mm margins"):
+        pf.separate_cut(puzzle, pf.laser(), 0.2, (200.0, 150.0))
+    long = np.array([shapely.box(0, 0, 300, 10), shapely.box(0, 0, 5, 5)], dtype=object)
+    with pytest.raises(WeaveCutError, match=r"^frame part F1 is 300\.2 x 10\.2 mm"):
+        pf.separate_cut(puzzle, pf.laser(), 0.2, (200.0, 150.0), frame_parts=long)
+    tiny = np.array([shapely.box(0, 0, 5, 5), shapely.box(0, 0, 5, 5)], dtype=object)
+    sheet = (60.0, 60.0)
+    grown = shapely.buffer(puzzle.pieces, 0.1, join_style="mitre")
+    first = int(np.flatnonzero(~fits(grown, sheet, 5.0))[0])
+    with pytest.raises(WeaveCutError, match=rf"^piece {first + 1} is "):
+        pf.separate_cut(puzzle, pf.laser(), 0.2, sheet, frame_parts=tiny)
+
+
+def test_separate_numbers_are_engraved_in_the_lasers_engrave_style_and_travel_adds_up():
+    puzzle = pentagon_puzzle(2)
+    las = pf.laser("ponoko")
+    sheet = (315.0, 300.0)
+    result = pf.separate_cut(puzzle, las, 0.2, sheet, numbers=pf.piece_numbers(puzzle))
+    travel, numbered = 0.0, 0
+    for s in result.drawing.sheets:
+        layers = {layer.name: layer for layer in s.layers}
+        engraved = [shape.style for shape in layers["engrave-numbers"].shapes] if (
+            "engrave-numbers" in layers) else []
+        assert engraved in ([], [las.style("engrave")])
+        numbered += len(engraved)
+        assert all(shape.style == las.style("cut") for name in ("cut-1-inner", "cut-2-outer")
+                   if name in layers for shape in layers[name].shapes)
+        here = np.array([0.0, sheet[1]])  # every sheet starts from the top-left corner
+        for name in ("cut-1-inner", "cut-2-outer"):
+            for ring in (layers[name].shapes[0].rings() if name in layers else []):
+                travel += float(np.hypot(*(ring[0] - here)))
+                here = ring[0]
+    assert result.n_sheets >= 2 and numbered >= 1
+    assert travel == pytest.approx(result.travel_length, rel=1e-9)
