@@ -109,7 +109,7 @@ def test_separate_numbers_are_engraved_in_the_lasers_engrave_style_and_travel_ad
     las = pf.laser("ponoko")
     sheet = (315.0, 300.0)
     result = pf.separate_cut(puzzle, las, 0.2, sheet, numbers=pf.piece_numbers(puzzle))
-    travel, numbered = 0.0, 0
+    travel, numbered, length, paths = 0.0, 0, 0.0, 0
     for s in result.drawing.sheets:
         layers = {layer.name: layer for layer in s.layers}
         engraved = [shape.style for shape in layers["engrave-numbers"].shapes] if (
@@ -118,6 +118,18 @@ def test_separate_numbers_are_engraved_in_the_lasers_engrave_style_and_travel_ad
         numbered += len(engraved)
         assert all(shape.style == las.style("cut") for name in ("cut-1-inner", "cut-2-outer")
                    if name in layers for shape in layers[name].shapes)
+        outlines = [shapely.Polygon(r) for name in ("cut-1-inner", "cut-2-outer")
+                    if name in layers for r in layers[name].shapes[0].rings()]
+        length += sum(p.exterior.length for p in outlines)
+        paths += len(outlines)
+        if engraved:  # every number stroke inside a piece's outline on its sheet
+            strokes = shapely.linestrings(layers["engrave-numbers"].shapes[0].coords,
+                                          indices=np.repeat(np.arange(len(
+                                              layers["engrave-numbers"].shapes[0].offsets) - 1),
+                                              np.diff(layers["engrave-numbers"].shapes[0]
+                                                      .offsets)))
+            small = [p for p in outlines if p.area < 0.5 * puzzle.frame.area]
+            assert all(any(p.contains(st) for p in small) for st in strokes)
         here = np.array([0.0, sheet[1]])  # every sheet starts from the top-left corner
         for name in ("cut-1-inner", "cut-2-outer"):
             for ring in (layers[name].shapes[0].rings() if name in layers else []):
@@ -125,3 +137,4 @@ def test_separate_numbers_are_engraved_in_the_lasers_engrave_style_and_travel_ad
                 here = ring[0]
     assert result.n_sheets >= 2 and numbered >= 1
     assert travel == pytest.approx(result.travel_length, rel=1e-9)
+    assert length == pytest.approx(result.cut_length, rel=1e-9) and paths == result.n_paths
