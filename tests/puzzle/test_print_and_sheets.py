@@ -106,7 +106,8 @@ def test_a_part_too_large_for_the_sheet_is_named_as_the_maker_knows_it():
 
 def test_separate_numbers_are_engraved_in_the_lasers_engrave_style_and_travel_adds_up():
     puzzle = pentagon_puzzle(2)
-    las = pf.laser("ponoko")
+    las = pf.laser("epilog-uls")  # its engrave style is not the fallback of an unknown role
+    assert las.style("engrave") != las.style("no such role")
     sheet = (315.0, 300.0)
     result = pf.separate_cut(puzzle, las, 0.2, sheet, numbers=pf.piece_numbers(puzzle))
     travel, numbered, length, paths = 0.0, 0, 0.0, 0
