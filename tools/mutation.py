@@ -66,7 +66,18 @@ PACKAGES: dict[str, Package] = {
                           "tests/test_validation.py", "tests/test_fuzz.py",
                           "tests/subdivision/test_snub.py"),
                          deselect="not interrupt and not hash_seeds"),
-    "puzzle": Package(("src/weavecut/puzzle/*",), ("tests/puzzle",)),
+    # the CLI tests build whole puzzle sets (drawing defaults: a dozen puzzles, 10 s each on
+    # an idle machine), the figure tests a figure around a level-4 puzzle, and the random
+    # stars nine puzzles (test_star_puzzles runs one star per rule instead); each function
+    # is reached by a test that calls it within four calls (max_stack_depth: the colour
+    # search's helpers sit four calls below colour_puzzle)
+    "puzzle": Package(("src/weavecut/puzzle/*",), ("tests/puzzle",),
+                      deselect="not test_cli_ and not test_a_drawing_without_cell_or_levels "
+                               "and not test_the_small_pieces_warning_names_a_cell "
+                               "and not test_a_star_meshed_in_hexagons "
+                               "and not test_puzzle_help and not random_stars "
+                               "and not test_closeup_shows and not test_pentagon_weave_uses",
+                      settings={"max_stack_depth": 4}),
     # papermodel's tests cache whole books (lru_cache): mutmut's default process isolation forks
     # each mutant from the process that ran the clean suite, so a cached book built without
     # the mutant would hide it; "forkserver" forks from a process that only collected. A test

@@ -18,22 +18,22 @@ from weavecut.cli import cli
 from weavecut.layout.colour_difference import colour_difference, srgb_to_lab
 from weavecut.layout.labels import text_box
 from weavecut.puzzle import files as pf
-from weavecut.puzzle.colouring import colour_puzzle, palette_names
 from weavecut.puzzle.frame import fits, split_frame
 from weavecut.puzzle.guides import colour_key, guide, painted, printed
 from weavecut.puzzle.pieces import OCTAGON, build_puzzle
 from weavecut.subdivision import subdivide
-from weavecut.weave.colour import palette
+
+from tests.built_puzzles import pentagon_paint, pentagon_puzzle
 
 HUES = {"green": (100, 180), "blue": (200, 290), "pink": (320, 380)}  # CIELAB hue, degrees
 
 
 @pytest.fixture(scope="module")
 def paper():
-    """The paper's puzzle: level 4 on a regular pentagon, 50 cm frame diagonal."""
-    puzzle = build_puzzle(subdivide(inputs.get("pentagon"), 4), size=500.0)
-    pal = palette("puzzle")
-    return puzzle, colour_puzzle(puzzle, pal, palette_names("puzzle", pal))
+    """The paper's puzzle: level 4 on a regular pentagon, 50 cm frame diagonal, and its paint,
+    made once per process (tests/built_puzzles.py; the paint's own rules are recounted in
+    test_colouring_recount.py, which colours in every test)."""
+    return pentagon_puzzle(4, 500.0), pentagon_paint(4, 500.0)
 
 
 @pytest.mark.parametrize("size", [500.0, 300.0, 733.3])

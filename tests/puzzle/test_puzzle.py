@@ -14,19 +14,21 @@ from hypothesis import strategies as st
 import shapely
 from click.testing import CliRunner
 
-from weavecut import inputs
 from weavecut.cli import cli
 from weavecut.puzzle import files as pf
 from weavecut.puzzle.colouring import colour_puzzle
 from weavecut.puzzle.guides import guide, piece_halves
-from weavecut.puzzle.pieces import ENNEAGON, OCTAGON, build_puzzle
-from weavecut.subdivision import subdivide
+from weavecut.puzzle.pieces import ENNEAGON, OCTAGON
 from weavecut.weave.colour import palette
+
+from tests.built_puzzles import pentagon_puzzle
 
 
 @pytest.fixture(scope="module")
 def puzzle():
-    return build_puzzle(subdivide(inputs.get("pentagon"), 3), size=300.0)
+    """The level-3 pentagon, built once per process (tests/built_puzzles.py); the tests that
+    guard the pieces themselves build theirs (test_puzzle_oracles.py)."""
+    return pentagon_puzzle(3)
 
 
 def test_pieces_tile_the_hole_without_overlaps(puzzle):

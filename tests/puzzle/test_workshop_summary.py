@@ -7,6 +7,7 @@ and the largest good level found by building each lower level and measuring it."
 from __future__ import annotations
 
 import itertools
+from functools import lru_cache
 
 import numpy as np
 import pytest
@@ -20,20 +21,28 @@ from weavecut.puzzle.pieces import OCTAGON, build_puzzle, diameter
 from weavecut.subdivision import subdivide
 from weavecut.weave.colour import palette
 
+from tests.built_puzzles import pentagon_puzzle
+
 
 @pytest.fixture(scope="module")
 def hierarchy():
     return subdivide(inputs.get("pentagon"), 4)
 
 
-@pytest.fixture(scope="module")
-def small(hierarchy):
-    """A level-3 puzzle, its colouring and both cuts."""
-    puzzle = build_puzzle(hierarchy[:4], size=300.0)
+@lru_cache(maxsize=None)
+def _small():
+    puzzle = pentagon_puzzle(3)
     colouring = colour_puzzle(puzzle, palette("puzzle"))
     results = {"shared": pf.shared_cut(puzzle, pf.laser()),
                "separate": pf.separate_cut(puzzle, pf.laser(), 0.2, (400.0, 300.0))}
     return puzzle, colouring, results
+
+
+@pytest.fixture
+def small():
+    """A level-3 puzzle, its colouring and both cuts, made once per process: these tests
+    check the summary and README made from them (the cuts and paint have their own tests)."""
+    return _small()
 
 
 def _summary(small) -> dict:

@@ -116,8 +116,3 @@ def _ray(frame: shapely.Polygon, centre, angle: float, reach: float
                 if solid.contains(shapely.Polygon(tab)):
                     return np.concatenate([[centre], tab, [centre + reach * u]])
     return None
-
-
-def part_labels(parts: NDArray[np.object_]) -> list[str]:
-    """F1, F2, ... counter-clockwise (no label when the frame is one piece)."""
-    return [f"F{k + 1}" for k in range(len(parts))] if len(parts) > 1 else [""]

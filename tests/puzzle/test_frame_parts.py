@@ -1,0 +1,87 @@
+"""The frame split into dovetailed parts, checked from the parts' geometry: they tile the frame,
+are numbered counter-clockwise so that F1 joins F2 and the last joins F1, each join is a
+dovetail (longer than the straight cut across the band, with a tab that widens into the next
+part), and a frame that fits stays whole. ``fits`` against rectangles whose size is known."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+from shapely import affinity
+
+from weavecut.errors import WeaveCutError
+from weavecut.puzzle.frame import MAX_PARTS, fits, split_frame
+
+from tests.built_puzzles import pentagon_puzzle
+
+
+def _puzzle():
+    return pentagon_puzzle(2, 400.0)
+
+
+def _shared(a, b):
+    """The border two parts share (lines only)."""
+    return shapely.intersection(shapely.buffer(a.boundary, 1e-6), b.boundary)
+
+
+@pytest.mark.parametrize("sheet", [(380.0, 280.0), (300.0, 200.0), (220.0, 160.0)])
+def test_parts_tile_the_frame_counter_clockwise_joined_by_dovetails(sheet):
+    puzzle = _puzzle()
+    frame = puzzle.frame
+    parts = split_frame(frame, puzzle.outer, sheet, 5.0, 0.2)
+    n = len(parts)
+    assert 2 <= n <= MAX_PARTS
+    assert all(p.geom_type == "Polygon" and p.is_valid and not p.interiors for p in parts)
+    assert shapely.area(parts).sum() == pytest.approx(frame.area, rel=1e-9)
+    assert shapely.symmetric_difference(shapely.union_all(parts), frame).area < 1e-6
+    assert fits(shapely.buffer(parts, 0.1, join_style="mitre"), sheet, 5.0).all()
+    # numbered counter-clockwise round the outline's centroid
+    centre = np.asarray(puzzle.outer.centroid.coords[0])
+    angle = np.unwrap([np.arctan2(*(np.asarray(p.centroid.coords[0]) - centre)[::-1])
+                       for p in parts])
+    assert (np.diff(angle) > 0).all() and angle[-1] - angle[0] < 2 * np.pi
+    for k in range(n):
+        a, b = parts[k], parts[(k + 1) % n]
+        border = shapely.line_merge(_shared(a, b))
+        assert border.length > 0, f"F{k + 1} does not join F{(k + 1) % n + 1}"
+        ends = shapely.get_coordinates(shapely.boundary(border)) if border.geom_type == \
+            "LineString" else shapely.get_coordinates(border)[[0, -1]]
+        straight = float(np.hypot(*(ends[0] - ends[-1])))
+        assert border.length > 1.5 * straight  # a tab, not a straight cut across the band
+        # parts that are not neighbours do not touch along a line
+        for m in range(n):
+            if m not in (k, (k + 1) % n) and n > 3:
+                assert _shared(a, parts[m]).length < 1e-6 or _shared(b, parts[m]).length < 1e-6
+
+
+def test_a_frame_that_fits_stays_whole_and_one_that_never_fits_is_refused():
+    puzzle = _puzzle()
+    whole = split_frame(puzzle.frame, puzzle.outer, (800.0, 800.0), 5.0, 0.2)
+    assert len(whole) == 1 and whole[0] is puzzle.frame
+    # as cut, grown by kerf / 2: a sheet that holds the frame but not the frame grown by a
+    # kerf of 2 mm splits it
+    x0, y0, x1, y1 = puzzle.frame.bounds
+    snug = (x1 - x0 + 10.5, y1 - y0 + 10.5)
+    assert fits(np.array([puzzle.frame], dtype=object), snug, 5.0).all()
+    assert len(split_frame(puzzle.frame, puzzle.outer, snug, 5.0, 0.0)) == 1
+    assert len(split_frame(puzzle.frame, puzzle.outer, snug, 5.0, 2.0)) > 1
+    with pytest.raises(WeaveCutError, match=r"^even in 12 parts the frame does not fit a 40 x "
+                                            r"30 mm sheet; use a larger --sheet or a smaller "
+                                            r"--size$"):
+        split_frame(puzzle.frame, puzzle.outer, (40.0, 30.0), 5.0, 0.2)
+
+
+@pytest.mark.parametrize("angle", [0.0, 30.0, 90.0, 137.0])
+def test_fits_lays_a_part_flat_on_its_minimum_rectangle(angle):
+    """A 100 x 20 mm bar at any angle fits a sheet whose room (less the margin on both sides)
+    is at least 100 x 20, and not one that is short of it by a tenth in either direction."""
+    bar = affinity.rotate(shapely.box(0.0, 0.0, 100.0, 20.0), angle, origin=(37.0, -5.0))
+    part = np.array([bar], dtype=object)
+    assert fits(part, (110.0, 30.0), 5.0).all()
+    assert fits(part, (100.0 + 10.0, 20.0 + 10.0), 5.0).all()
+    assert not fits(part, (109.9, 30.0), 5.0).any()
+    assert not fits(part, (110.0, 29.9), 5.0).any()
+    assert not fits(part, (110.0, 30.0), 5.1).any()
+    several = np.array([bar, shapely.box(0, 0, 10, 10), shapely.box(0, 0, 200, 5)], dtype=object)
+    assert fits(several, (110.0, 30.0), 5.0).tolist() == [True, True, False]

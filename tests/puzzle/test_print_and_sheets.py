@@ -1,0 +1,141 @@
+"""What the maker prints and loads beside the cut: the printed guide keeps the colour key first
+and exactly the pages that hold paint, on the page size asked for; separate sheets keep the
+documented 5 mm margin and 2 mm spacing, and each sheet's file keeps the cut's metadata; number
+inks break a tie towards black; the summary's times keep a tenth of a minute."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+
+from weavecut.errors import WeaveCutError
+from weavecut.layout.contrast import BLACK
+from weavecut.layout.tiling import tile
+from weavecut.puzzle import files as pf
+from weavecut.puzzle import workshop
+from weavecut.puzzle.frame import fits
+from weavecut.puzzle.colouring import UNPAINTED
+from weavecut.puzzle.guides import _number_colours, _number_shapes, colour_key, guide, printed
+
+from tests.built_puzzles import pentagon_paint, pentagon_puzzle
+
+
+def _has_paint(sheet) -> bool:
+    return any(layer.role == "paint" and layer.shapes for layer in sheet.layers)
+
+
+@pytest.mark.parametrize("page", [(297.0, 210.0), (148.0, 105.0)])  # not A4, the default
+def test_printed_guide_is_the_key_then_the_pages_with_paint(page):
+    puzzle, colouring = pentagon_puzzle(3), pentagon_paint(3)
+    front = guide(puzzle, colouring, "front")
+    key = colour_key(puzzle, colouring, "front", page=page)
+    pages = printed(front, key, page)
+    assert pages.sheets[:len(key.sheets)] == key.sheets
+    rest = pages.sheets[len(key.sheets):]
+    tiles = tile(front, page).sheets
+    assert [s.name for s in rest] == [s.name for s in tiles if _has_paint(s)]
+    assert len(rest) < len(tiles)  # the frame's corners hold no paint: those pages are left out
+    assert all((s.width, s.height) == page for s in rest)
+
+
+def test_separate_sheets_keep_the_documented_margin_and_spacing():
+    """Defaults: parts 5 mm from the sheet's edges and 2 mm apart (their outlines' boxes, as
+    nested): the tightest part touches each limit."""
+    puzzle = pentagon_puzzle(2)
+    result = pf.separate_cut(puzzle, pf.laser(), 0.2, (500.0, 400.0))
+    for parts in pf.nested_parts(result):
+        boxes = shapely.box(*shapely.bounds(parts).T)
+        lo = shapely.bounds(parts)[:, :2].min(axis=0)
+        np.testing.assert_allclose(lo, [5.0, 5.0], atol=1e-9)
+        a, b = shapely.STRtree(boxes).query(boxes, predicate="dwithin", distance=10.0)
+        a, b = a[a < b], b[a < b]
+        apart = ~(shapely.contains(boxes[a], boxes[b]) | shapely.contains(boxes[b], boxes[a]))
+        gaps = shapely.distance(boxes[a[apart]], boxes[b[apart]])
+        assert gaps.min() == pytest.approx(2.0, abs=1e-9)
+    # each sheet's drawing carries the cut's metadata (mode and kerf) into its file
+    for one in pf.split_sheets(result.drawing):
+        assert one.metadata == (("mode", "separate"), ("kerf", "0.2 mm"))
+        assert one.title.startswith("weave-cut puzzle: separate pieces, sheet ")
+
+
+def test_a_tie_between_black_and_white_numbers_goes_to_black():
+    """A piece painted black and white reads as badly in either ink (contrast 1 on one half):
+    its number is black, like every number on unpainted wood; numbers are drawn in thin
+    strokes (a fraction of a millimetre) so digits 3 mm high stay open."""
+    puzzle, colouring = pentagon_puzzle(2), pentagon_paint(2)
+    front = colouring.front.copy()
+    front[0] = ("#000000", "#ffffff")
+    front[1] = (UNPAINTED, UNPAINTED)
+    tied = type(colouring)(front, colouring.back, colouring.front_strands,
+                           colouring.back_strands, colouring.face_colours, colouring.names,
+                           colouring.touching)
+    inks = _number_colours(puzzle, tied, "front")
+    assert inks[0] == BLACK and inks[1] == BLACK
+    numbers = pf.piece_numbers(puzzle)
+    shapes = _number_shapes(numbers, inks)
+    assert all(0.2 <= s.style.stroke_width <= 0.1 * numbers.heights.max() for s in shapes)
+
+
+def test_summary_times_keep_a_tenth_of_a_minute():
+    """6 m of cutting at 7 mm/s and 3 m of travel at 300 mm/s: 14.29 + 0.17 = 14.5 min."""
+    puzzle = pentagon_puzzle(2)
+    result = pf.CutResult(pf.shared_cut(puzzle, pf.laser()).drawing, 6000.0, 3000.0, 12, 1)
+    info = workshop.summary(puzzle, {"shared": result}, 7.0)
+    assert info["modes"]["shared"] == {"cut_length_m": 6.0, "travel_m": 3.0, "paths": 12,
+                                       "sheets": 1, "time_min": 14.5}
+
+
+def test_a_part_too_large_for_the_sheet_is_named_as_the_maker_knows_it():
+    """The frame is "the frame", a split frame's parts by their engraved labels, pieces by
+    their engraved numbers (1-based)."""
+    puzzle = pentagon_puzzle(2)
+    with pytest.raises(WeaveCutError, match=r"^the frame is [\d.]+ x [\d.]+ mm and does not fit "
+                                            r"a 200 x 150 mm sheet with 5 mm margins"):
+        pf.separate_cut(puzzle, pf.laser(), 0.2, (200.0, 150.0))
+    long = np.array([shapely.box(0, 0, 300, 10), shapely.box(0, 0, 5, 5)], dtype=object)
+    with pytest.raises(WeaveCutError, match=r"^frame part F1 is 300\.2 x 10\.2 mm"):
+        pf.separate_cut(puzzle, pf.laser(), 0.2, (200.0, 150.0), frame_parts=long)
+    tiny = np.array([shapely.box(0, 0, 5, 5), shapely.box(0, 0, 5, 5)], dtype=object)
+    sheet = (60.0, 60.0)
+    grown = shapely.buffer(puzzle.pieces, 0.1, join_style="mitre")
+    first = int(np.flatnonzero(~fits(grown, sheet, 5.0))[0])
+    with pytest.raises(WeaveCutError, match=rf"^piece {first + 1} is "):
+        pf.separate_cut(puzzle, pf.laser(), 0.2, sheet, frame_parts=tiny)
+
+
+def test_separate_numbers_are_engraved_in_the_lasers_engrave_style_and_travel_adds_up():
+    puzzle = pentagon_puzzle(2)
+    las = pf.laser("epilog-uls")  # its engrave style is not the fallback of an unknown role
+    assert las.style("engrave") != las.style("no such role")
+    sheet = (315.0, 300.0)
+    result = pf.separate_cut(puzzle, las, 0.2, sheet, numbers=pf.piece_numbers(puzzle))
+    travel, numbered, length, paths = 0.0, 0, 0.0, 0
+    for s in result.drawing.sheets:
+        layers = {layer.name: layer for layer in s.layers}
+        engraved = [shape.style for shape in layers["engrave-numbers"].shapes] if (
+            "engrave-numbers" in layers) else []
+        assert engraved in ([], [las.style("engrave")])
+        numbered += len(engraved)
+        assert all(shape.style == las.style("cut") for name in ("cut-1-inner", "cut-2-outer")
+                   if name in layers for shape in layers[name].shapes)
+        outlines = [shapely.Polygon(r) for name in ("cut-1-inner", "cut-2-outer")
+                    if name in layers for r in layers[name].shapes[0].rings()]
+        length += sum(p.exterior.length for p in outlines)
+        paths += len(outlines)
+        if engraved:  # every number stroke inside a piece's outline on its sheet
+            strokes = shapely.linestrings(layers["engrave-numbers"].shapes[0].coords,
+                                          indices=np.repeat(np.arange(len(
+                                              layers["engrave-numbers"].shapes[0].offsets) - 1),
+                                              np.diff(layers["engrave-numbers"].shapes[0]
+                                                      .offsets)))
+            small = [p for p in outlines if p.area < 0.5 * puzzle.frame.area]
+            assert all(any(p.contains(st) for p in small) for st in strokes)
+        here = np.array([0.0, sheet[1]])  # every sheet starts from the top-left corner
+        for name in ("cut-1-inner", "cut-2-outer"):
+            for ring in (layers[name].shapes[0].rings() if name in layers else []):
+                travel += float(np.hypot(*(ring[0] - here)))
+                here = ring[0]
+    assert result.n_sheets >= 2 and numbered >= 1
+    assert travel == pytest.approx(result.travel_length, rel=1e-9)
+    assert length == pytest.approx(result.cut_length, rel=1e-9) and paths == result.n_paths

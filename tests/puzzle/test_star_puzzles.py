@@ -1,0 +1,80 @@
+"""Puzzles of drawn stars, one fixed star per rule (the random stars of test_shape_puzzle draw
+many; these are cheap enough to run for every mutant of the piece builder): where ring cells of
+neighbouring runs overlap the later one stays in the frame and the pieces still tile the hole,
+a ring that leaves a gap is refused naming it, and a level that turns over is refused naming
+where (and fewer levels where there can be fewer)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+
+from weavecut.errors import MeshError, TurnedOverError
+from weavecut.puzzle.pieces import build_puzzle, extent
+from weavecut.readers.outline_mesh import mesh_outline
+from weavecut.subdivision import subdivide
+
+
+def _star(points, dent, wobble, seed, levels=2):
+    """The star of test_shape_puzzle's random stars, meshed in 30 mm hexagons with runs."""
+    rng = np.random.default_rng(seed)
+    angle = np.linspace(0, 2 * np.pi, 4 * points, endpoint=False)
+    radius = np.where(np.arange(4 * points) % 4 == 2, dent, 1.0)
+    radius = 50.0 * radius * (1 + wobble * rng.uniform(-0.5, 0.5, len(angle)))
+    region = shapely.Polygon(np.column_stack([radius * np.cos(angle), radius * np.sin(angle)]))
+    return subdivide(mesh_outline(region, "hex", 30.0, runs=True), levels)
+
+
+@pytest.mark.parametrize("star", [(4, 1.0, 0.0, 0), (5, 0.8, 0.0, 0)])
+def test_overlapping_ring_cells_stay_apart_and_the_pieces_tile_the_hole(star):
+    """These stars' corners make ring cells of neighbouring runs overlap: the kept cells
+    overlap neither each other nor a piece, the pieces tile the hole without gaps, and the
+    frame is 250 mm wide with an even 10 mm band beyond the ring."""
+    puzzle = build_puzzle(_star(*star), 250.0, 10.0, "width")
+    pieces = puzzle.pieces
+    assert shapely.is_valid(pieces).all()
+    union = shapely.union_all(pieces)
+    assert union.geom_type == "Polygon" and not union.interiors
+    assert union.area == pytest.approx(shapely.area(pieces).sum(), rel=1e-9)
+    cells = np.concatenate([puzzle.ring, puzzle.hexagons[puzzle.hexagons != None]])  # noqa: E711
+    cells = cells.astype(object)
+    a, b = shapely.STRtree(cells).query(cells, predicate="intersects")
+    overlap = shapely.area(shapely.intersection(cells[a[a < b]], cells[b[a < b]]))
+    assert overlap.max(initial=0.0) < 1e-6
+    assert shapely.area(shapely.intersection(puzzle.ring, union)).max(initial=0.0) < 1e-6
+    # every ring cell once
+    centres = np.round(shapely.get_coordinates(shapely.centroid(cells)), 3)
+    assert len(np.unique(centres, axis=0)) == len(cells)
+    assert extent(puzzle.outer, "width") == pytest.approx(250.0, abs=0.01)
+    ring = shapely.union_all(np.concatenate([pieces, puzzle.ring]))
+    assert shapely.distance(puzzle.outer.exterior, ring) == pytest.approx(10.0, abs=0.05)
+    assert puzzle.outer.contains(ring) and puzzle.frame.is_valid
+    # a cell is dropped only where it would overlap: the mesh's boundary edges all carry one,
+    # bar the few the conflicts removed
+    level = puzzle.weaves[-1].mesh
+    assert len(cells) <= int((level.topology.twin < 0).sum())
+
+
+def test_a_ring_that_leaves_a_gap_is_refused_naming_it():
+    with pytest.raises(MeshError, match=r"^the puzzle's pieces leave 1 gap between them, one "
+                                        r"\d+ mm from the centre: the hexagon ring does not "
+                                        r"close around this mesh; mesh the outline with another "
+                                        r"--cell$"):
+        build_puzzle(_star(5, 0.65625, 0.296875, 640), 250.0, 10.0, "width")
+
+
+def test_a_level_that_turns_over_is_refused_naming_where_and_fewer_levels():
+    with pytest.raises(TurnedOverError, match=r"^3 pentagons of the last level turn over \(the "
+                                              r"first near \(-26\.92, 18\.38\) in input units\), "
+                                              r"so they cannot be cut \(sharp corners and slim "
+                                              r"faces do this\); mesh a drawing with another "
+                                              r"--cell or --mesh tri$"):
+        build_puzzle(_star(4, 0.6, 0.0, 0), 250.0, 10.0, "width")
+    with pytest.raises(TurnedOverError, match=r"^3 pentagons of the last level turn over \(the "
+                                              r"first near \(-28\.63, -16\.84\) in input units\)"
+                                              r", so they cannot be cut \(sharp corners and "
+                                              r"slim faces do this\); use fewer --levels, or "
+                                              r"mesh a drawing with another --cell or --mesh "
+                                              r"tri$"):
+        build_puzzle(_star(6, 0.7, 0.1, 1, levels=3), 250.0, 10.0, "width")
