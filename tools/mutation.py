@@ -57,15 +57,19 @@ PACKAGES: dict[str, Package] = {
     "weave": Package(("src/weavecut/weave/*",),
                      ("tests/weave", "tests/surface/test_surface_weave.py",
                       "tests/surface/test_woven_model.py")),
-    # test_fuzz's tests that run weave-cut in subprocesses for many seconds: no mutant is
-    # reached through the subprocesses (mutmut maps tests to what they call in-process), but
-    # the in-process warm-up they start with would make them run for nearly every mutant
+    # the package's own tests (mutmut runs the fastest first), test_fuzz's in-process bad-file
+    # and random-input cases (not the subprocess, interrupt and million-face runs) and the snub
+    # tests; max_stack_depth 12: the reader's deepest helper is 10 calls below a test, and CLI
+    # and subdivision tests that reach a function through more calls are not run for it
     "mesh-core": Package(("src/weavecut/mesh.py", "src/weavecut/mesh_io.py",
                           "src/weavecut/validation.py"),
-                         ("tests/test_mesh.py", "tests/test_mesh_io.py",
-                          "tests/test_validation.py", "tests/test_fuzz.py",
-                          "tests/subdivision/test_snub.py"),
-                         deselect="not interrupt and not hash_seeds"),
+                         ("tests/test_mesh.py", "tests/test_mesh_geometry.py",
+                          "tests/test_mesh_io.py", "tests/test_mesh_io_rules.py",
+                          "tests/test_validation.py", "tests/test_validation_rules.py",
+                          "tests/test_fuzz.py", "tests/subdivision/test_snub.py"),
+                         deselect="not interrupt and not hash_seeds and not a_million_faces "
+                                  "and not bad_options and not read_only and not fifo",
+                         settings={"max_stack_depth": 12}),
     "puzzle": Package(("src/weavecut/puzzle/*",), ("tests/puzzle",)),
     "papermodel": Package(("src/weavecut/papermodel/*",), ("tests/papermodel",)),
     "export": Package(("src/weavecut/export/*",),
