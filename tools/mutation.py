@@ -59,8 +59,8 @@ PACKAGES: dict[str, Package] = {
                       "tests/surface/test_woven_model.py")),
     # the package's own tests (mutmut runs the fastest first), test_fuzz's in-process bad-file
     # and random-input cases (not the subprocess, interrupt and million-face runs) and the snub
-    # tests; max_stack_depth 12: the reader's deepest helper is 10 calls below a test, and CLI
-    # and subdivision tests that reach a function through more calls are not run for it
+    # tests; no max_stack_depth: mutmut 3.8's stack walk fails on the frame of a dataclass's
+    # generated __init__ (file "<string>"), which every Mesh is built through
     "mesh-core": Package(("src/weavecut/mesh.py", "src/weavecut/mesh_io.py",
                           "src/weavecut/validation.py"),
                          ("tests/test_mesh.py", "tests/test_mesh_geometry.py",
@@ -68,8 +68,7 @@ PACKAGES: dict[str, Package] = {
                           "tests/test_validation.py", "tests/test_validation_rules.py",
                           "tests/test_fuzz.py", "tests/subdivision/test_snub.py"),
                          deselect="not interrupt and not hash_seeds and not a_million_faces "
-                                  "and not bad_options and not read_only and not fifo",
-                         settings={"max_stack_depth": 12}),
+                                  "and not bad_options and not read_only and not fifo"),
     "puzzle": Package(("src/weavecut/puzzle/*",), ("tests/puzzle",)),
     "papermodel": Package(("src/weavecut/papermodel/*",), ("tests/papermodel",)),
     "export": Package(("src/weavecut/export/*",),
