@@ -132,6 +132,7 @@ def test_topology_agrees_with_loops_over_the_faces(mesh):
     topo = mesh.topology
     assert topo.edges.tolist() == [list(e) for e in edges]
     assert vertex_degrees(mesh).tolist() == degrees
+    assert edge_faces(mesh).dtype == np.int32
     assert edge_faces(mesh).tolist() == [[left.get((u, w), -1), left.get((w, u), -1)]
                                          for u, w in edges]
     boundary = [(u, w) in left and (w, u) not in left or (w, u) in left and (u, w) not in left

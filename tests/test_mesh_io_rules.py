@@ -4,6 +4,7 @@ of bad file (line numbers and the counts OBJ users see)."""
 from __future__ import annotations
 
 import json
+import os
 import re
 from unittest.mock import patch
 
@@ -172,6 +173,17 @@ def test_json_text_carries_metadata_the_reader_ignores(tmp_path):
     assert back.faces() == mesh.faces() and back.vertices.tolist() == mesh.vertices.tolist()
 
 
+def test_write_mesh_keeps_the_metadata_and_writes_compact_json(tmp_path):
+    mesh = meshes.mixed()
+    write_mesh(mesh, tmp_path / "m.obj", {"generator": "weave-cut test"})
+    assert "# generator: weave-cut test" in (tmp_path / "m.obj").read_text().splitlines()
+    write_mesh(mesh, tmp_path / "m.json", {"generator": "weave-cut test"})
+    text = (tmp_path / "m.json").read_text()
+    assert json.loads(text)["generator"] == "weave-cut test"
+    assert text.count("\n") == 1 and text.endswith("]]}\n")  # one line
+    assert " " not in text.replace("weave-cut test", "")  # no space between items
+
+
 @pytest.mark.parametrize("name", ["m.obj", "m.json", "M.OBJ", "m.Json"])
 def test_surfaces_and_upper_case_suffixes_round_trip(tmp_path, name):
     rng = np.random.default_rng(3)
@@ -282,3 +294,35 @@ def test_json_limits_and_surfaces(tmp_path):
     assert read_mesh_text(tmp_path, doc(vertices=[[0, 0], [1, 0], [0, 1e3]]),
                           "i.json").vertices.dtype == np.float64
     assert refused(tmp_path, "m.json", b'{"a": "\xff"}') == "not a text file (not UTF-8)"
+
+
+# -- files that are no regular files -----------------------------------------------------------
+
+def test_a_fifo_is_refused_in_process_without_waiting_for_a_writer(tmp_path):
+    # test_mesh_io's FIFO test runs weave-cut in a subprocess; this one reads in-process, in a
+    # daemon thread so that a reader that blocks fails the test instead of hanging the suite
+    import threading
+
+    fifo = tmp_path / "pipe.json"
+    os.mkfifo(fifo)
+    errors = []
+
+    def read():
+        try:
+            read_mesh(fifo)
+        except MeshFileError as exc:
+            errors.append(str(exc))
+
+    thread = threading.Thread(target=read, daemon=True)
+    thread.start()
+    thread.join(60)
+    assert errors == [f"{fifo}: is a FIFO (named pipe); mesh files must be regular files"]
+
+
+@pytest.mark.skipif(not os.access("/dev/loop0", os.R_OK), reason="no block device to read")
+def test_a_block_device_is_refused(tmp_path):
+    path = tmp_path / "disk.obj"
+    path.symlink_to("/dev/loop0")
+    with pytest.raises(MeshFileError, match=rf"^{path}: is a block device; mesh files must be "
+                                            "regular files$"):
+        read_mesh(path)

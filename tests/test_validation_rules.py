@@ -175,6 +175,42 @@ def test_a_closed_surface_is_turned_outwards_and_an_open_one_left_alone():
     assert validate(cap) is cap
 
 
+def test_a_face_of_one_point_has_zero_area_in_the_plane_and_in_space():
+    for point in ((2.0, 3.0), (2.0, 3.0, 4.0)):
+        with pytest.raises(MeshError, match=r"^face 0 has zero area$"):
+            validate(Mesh.from_faces([point] * 3, [[0, 1, 2]]))
+
+
+def test_zero_area_in_space_is_relative_to_the_widest_extent():
+    # a unit triangle next to one two million wide: flat beside it, not on its own
+    big = [(0, 0, 0), (2e6, 0, 0), (0, 2e6, 0)]
+    unit = [(5, 5, 1), (6, 5, 1), (5, 6, 1)]
+    with pytest.raises(MeshError, match=r"^face 1 has zero area$"):
+        validate(Mesh.from_faces(big + unit, [[0, 1, 2], [3, 4, 5]]))
+    # far from the origin along x only: the extent is 1 in every axis, not a million
+    far = Mesh.from_faces([(1e6, 0, 0), (1e6 + 1, 0, 0), (1e6, 1, 1)], [[0, 1, 2]])
+    assert validate(far) is far
+
+
+def test_surface_messages_count_as_the_obj_file(tmp_path):
+    from weavecut.mesh_io import read_valid_mesh
+
+    path = tmp_path / "flip.obj"
+    v, f = TETRAHEDRON
+    faces = [f[0], f[1][::-1], f[2], f[3]]
+    path.write_text("".join(f"v {x} {y} {z}\n" for x, y, z in v) + "# faces\n"
+                    + "".join("f " + " ".join(str(i + 1) for i in face) + "\n"
+                              for face in faces))
+    with pytest.raises(NonManifoldError, match=rf"^{path}: edge \(1, 2\) runs the same way in "
+                                               r"face 1 \(line 6\) and face 2 \(line 7\)"):
+        read_valid_mesh(path)
+
+
+def test_a_closed_surface_without_volume_is_left_as_it_is():
+    pillow = Mesh.from_faces([(0, 0, 0), (1, 0, 0), (0, 1, 1)], [[0, 1, 2], [0, 2, 1]])
+    assert signed_volume(pillow) == 0 and validate(pillow) is pillow
+
+
 def test_surface_faces_must_have_area_and_agree_in_orientation():
     v, f = TETRAHEDRON
     flat = Mesh.from_faces(v + [(2, 0, 0)], f + [[1, 4, 3], [0, 1, 4]])  # (0, 1, 4) collinear
@@ -190,22 +226,38 @@ def test_surface_faces_must_have_area_and_agree_in_orientation():
 
 # -- what the puzzle and the paper model lay out ---------------------------------------------
 
+def quotient(mesh: Mesh) -> np.ndarray:
+    """4 pi A / P^2 of every face, by shapely."""
+    polys = [shapely.Polygon(mesh.vertices[f]) for f in mesh.faces()]
+    return np.array([4 * np.pi * p.area / p.length ** 2 for p in polys])
+
+
 def test_check_layout_refuses_slivers_surfaces_and_separate_parts():
     assert check_layout(meshes.two_squares(), "the puzzle", connected=True).n_faces == 2
-    sliver = Mesh.from_faces(SQUARE + [(2, 0), (2, 1e-4)], [[0, 1, 2, 3], [1, 4, 5]])
-    with pytest.raises(MeshError, match=r"^face 2 is a sliver \(area [0-9.]+e-0[45] of a circle "
-                                        r"with its perimeter\); the puzzle needs faces at least "
+    square = [(0, 0), (10, 0), (10, 10), (0, 10), (20, 0)]  # 10 long: P^2 is not 2 P
+    sliver = Mesh.from_faces(square + [(20, 0.004)], [[0, 1, 2, 3], [1, 4, 5]])
+    q = quotient(sliver)[1]
+    with pytest.raises(MeshError, match=rf"^face 2 is a sliver \(area {q:.1e} of a circle with "
+                                        r"its perimeter\); the puzzle needs faces at least "
                                         r"0\.001 of that$"):
         check_layout(sliver, "the puzzle")
-    thin = Mesh.from_faces(SQUARE + [(2, 0), (2, 0.05)], [[0, 1, 2, 3], [1, 4, 5]])
-    assert check_layout(thin, "the puzzle") is thin  # a quotient of 0.05: thin, not a sliver
+    thin = Mesh.from_faces(square + [(20, 0.015)], sliver.faces())
+    assert 1e-3 < quotient(thin)[1] < 3e-3  # thin, not a sliver (nor a tenth of one)
+    assert check_layout(thin, "the puzzle") is thin
+    w = 0.0003185126899526086  # a 1 x w rectangle's quotient is 0.001 to the last bit
+    limit = Mesh.from_faces([(0, 0), (1, 0), (1, w), (0, w)], [[0, 1, 2, 3]])
+    assert check_layout(limit, "the puzzle") is limit  # at the limit: accepted
+    # the isolated square last: its part has no shared edge to size the face graph by
     apart = Mesh.from_faces(SQUARE + [(3, 0), (4, 0), (4, 1), (3, 1), (1, 2), (0, 2)],
-                            [[0, 1, 2, 3], [4, 5, 6, 7], [3, 2, 8, 9]])
+                            [[0, 1, 2, 3], [3, 2, 8, 9], [4, 5, 6, 7]])
     assert check_layout(apart, "the paper model") is apart
     with pytest.raises(MeshError, match=r"^the mesh has 2 separate parts; the paper model "
                                         r"needs one piece$"):
         check_layout(apart, "the paper model", connected=True)
+    three = Mesh.from_faces(SQUARE + [(3, 0), (4, 0), (4, 1), (3, 1), (6, 0), (7, 0), (7, 1)],
+                            [[4, 5, 6, 7], [0, 1, 2, 3], [8, 9, 10]])
+    with pytest.raises(MeshError, match=r"^the mesh has 3 separate parts; the puzzle needs"):
+        check_layout(three, "the puzzle", connected=True)
     with pytest.raises(MeshError, match=r"^the mesh is a surface in space \(x, y, z vertices\); "
                                         r"the puzzle needs a flat mesh so far$"):
         check_layout(Mesh.from_faces(*TETRAHEDRON), "the puzzle")
-
