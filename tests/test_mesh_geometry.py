@@ -193,6 +193,8 @@ def test_moved_checks_the_shape_and_keeps_the_derived_arrays():
     assert not moved.vertices.flags.writeable
     with pytest.raises(MeshError, match=r"^moved\(\) needs \(7, 2\) vertices, got \(6, 2\)$"):
         mesh.moved(mesh.vertices[:6])
+    whole = meshes.square().moved(np.array([[0, 0], [3, 0], [3, 3], [0, 3]]))  # integers
+    assert whole.vertices.dtype == np.float64 and signed_areas(whole)[0] == 9.0
     fresh = meshes.square().moved(meshes.square().vertices * 3)  # nothing derived yet
     assert "topology" not in fresh.__dict__ and signed_areas(fresh)[0] == 9.0
 

@@ -145,6 +145,10 @@ def test_comments_and_text_that_is_not_ascii(tmp_path):
     assert read_mesh_text(tmp_path, text).faces() == [[0, 1, 2]]
     assert refused(tmp_path, "m.obj", text.encode("latin-1")) == "not a text file (not UTF-8)"
     assert refused(tmp_path, "m.obj", TRIANGLE + "é 1\n") == "line 5: unknown OBJ statement 'é'"
+    # a long statement of two-byte letters, the first 800 bytes of which end inside a letter
+    long = "x" + "é" * 500
+    message = refused(tmp_path, "m.obj", TRIANGLE + long + " 1\n")
+    assert message == f"line 5: unknown OBJ statement {long!r}"[:200]
 
 
 # -- what is written ------------------------------------------------------------------------
@@ -288,6 +292,12 @@ def test_json_limits_and_surfaces(tmp_path):
         assert read_mesh_text(tmp_path, doc(), "ok.json").n_faces == 1
     with patch.object(mesh_io, "MAX_VERTICES", 2):
         assert refused(tmp_path, "m.json", doc()).startswith("1 faces and 3 vertices; ")
+    with patch.object(mesh_io, "MAX_VERTICES", 3):
+        assert read_mesh_text(tmp_path, doc(), "ok.json").n_vertices == 3  # at the limit
+    assert refused(tmp_path, "m.json", "[" * 100_000 + "]" * 100_000) == (
+        "JSON nested too deeply (a mesh needs 3 levels)")
+    assert refused(tmp_path, "m.json", doc().replace("[[0, 1, 2]]", "[[0, 1, " + "9" * 5000 + "]]")) == (
+        "a number in the JSON is too large (thousands of digits)")
     surface = read_mesh_text(tmp_path, doc(vertices=[[0, 0, 1], [1, 0, 2], [0, 1, 3.5]]),
                              "s.json")
     assert surface.vertices.tolist() == [[0, 0, 1], [1, 0, 2], [0, 1, 3.5]]

@@ -187,6 +187,8 @@ def test_zero_area_in_space_is_relative_to_the_widest_extent():
     unit = [(5, 5, 1), (6, 5, 1), (5, 6, 1)]
     with pytest.raises(MeshError, match=r"^face 1 has zero area$"):
         validate(Mesh.from_faces(big + unit, [[0, 1, 2], [3, 4, 5]]))
+    ten = [(5, 5, 1), (15, 5, 1), (5, 15, 1)]  # area 50: above 1e-12 of (2e6)^2
+    assert validate(Mesh.from_faces(big + ten, [[0, 1, 2], [3, 4, 5]])).n_faces == 2
     # far from the origin along x only: the extent is 1 in every axis, not a million
     far = Mesh.from_faces([(1e6, 0, 0), (1e6 + 1, 0, 0), (1e6, 1, 1)], [[0, 1, 2]])
     assert validate(far) is far
