@@ -151,6 +151,17 @@ def test_the_lowest_vertex_inside_a_face_is_named():
         validate(mesh)
 
 
+def test_the_lowest_vertex_is_named_before_the_lowest_face():
+    def square(x, y, size):
+        return [(x, y), (x + size, y), (x + size, y + size), (x, y + size)]
+
+    # face 0 holds vertices 8..11, face 2 holds vertices 4..7: vertex 4 is named, in face 2
+    points = square(0, 0, 10) + square(22, 2, 1) + square(2, 2, 1) + square(20, 0, 10)
+    faces = [[0, 1, 2, 3], [8, 9, 10, 11], [12, 13, 14, 15], [4, 5, 6, 7]]
+    with pytest.raises(MeshError, match=r"^vertex 4 lies inside face 2 \(faces overlap\)$"):
+        validate(Mesh.from_faces(points, faces))
+
+
 def test_self_intersection_is_named_for_the_first_such_face():
     bow = [(3, 0), (5, 2), (5, 0), (3, 3)]  # a bow-tie quad with positive area
     mesh = Mesh.from_faces(SQUARE + bow + [(10, 0), (12, 2), (12, 0), (10, 3)],
