@@ -296,6 +296,8 @@ def test_json_limits_and_surfaces(tmp_path):
         assert read_mesh_text(tmp_path, doc(), "ok.json").n_vertices == 3  # at the limit
     assert refused(tmp_path, "m.json", "[" * 100_000 + "]" * 100_000) == (
         "JSON nested too deeply (a mesh needs 3 levels)")
+    assert refused(tmp_path, "m.json", doc().replace("[0, 1]]", "[0, 1" + "0" * 400 + "]]")) == (
+        "a vertex coordinate is too large for a float")
     assert refused(tmp_path, "m.json", doc().replace("[[0, 1, 2]]", "[[0, 1, " + "9" * 5000 + "]]")) == (
         "a number in the JSON is too large (thousands of digits)")
     surface = read_mesh_text(tmp_path, doc(vertices=[[0, 0, 1], [1, 0, 2], [0, 1, 3.5]]),
