@@ -170,6 +170,7 @@ def test_sizes_degrees_and_dense_faces():
     assert two.dense_faces().tolist() == [[0, 1, 4, 5], [1, 2, 3, 4]]
     empty = Mesh.from_faces([], [])
     assert empty.face_degree is None and empty.n_faces == 0 and empty.vertices.shape == (0, 2)
+    assert signed_areas(empty).shape == (0,) and empty.faces() == []
     assert Mesh.from_faces([(0, 0, 0), (1, 0, 0), (0, 1, 1)], [[0, 1, 2]]).dim == 3
 
 

@@ -246,6 +246,17 @@ def test_read_valid_mesh_names_the_file_and_validates(tmp_path):
         read_valid_mesh(obj)
 
 
+def test_read_valid_mesh_passes_allow_nonconvex_to_a_drawing(tmp_path):
+    path = tmp_path / "ell.svg"  # an L and the piece that fills it up to a rectangle
+    path.write_text('<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" '
+                    'viewBox="0 0 100 100"><polygon points="0,0 40,0 40,20 20,20 20,40 0,40"/>'
+                    '<polygon points="40,0 60,0 60,40 20,40 20,20 40,20"/></svg>')
+    with pytest.raises(MeshError, match=rf"^{path}: face 0 \(<polygon>\) is not convex at "):
+        read_valid_mesh(path)
+    mesh = read_valid_mesh(path, allow_nonconvex=True)
+    assert sorted(signed_areas(mesh).round(9).tolist()) == [1200.0, 1200.0]
+
+
 # -- JSON -----------------------------------------------------------------------------------
 
 def doc(**fields) -> str:
