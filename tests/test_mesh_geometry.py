@@ -155,6 +155,18 @@ def test_topology_agrees_with_loops_over_the_faces(mesh):
                                             for _ in face]
 
 
+def test_edge_lengths_do_not_overflow_or_underflow_in_the_plane():
+    for scale in (1e200, 1e-200):
+        mesh = Mesh.from_faces(np.array([(0, 0), (1, 1), (0, 1)]) * scale, [[0, 1, 2]])
+        assert edge_lengths(mesh).tolist() == [math.hypot(scale, scale), scale, scale]
+
+
+def test_a_vertex_in_no_face_keeps_its_place_in_the_per_vertex_arrays():
+    mesh = Mesh.from_faces(meshes.square().vertices.tolist() + [[5, 5]], [[0, 1, 2, 3]])
+    assert vertex_degrees(mesh).tolist() == [2, 2, 2, 2, 0]
+    assert outer_vertices(mesh).tolist() == [True] * 4 + [False]
+
+
 def test_edge_lengths_of_a_surface_in_space():
     mesh = Mesh.from_faces([(0, 0, 0), (3, 4, 0), (0, 0, 12)], [[0, 1, 2]])
     assert edge_lengths(mesh).tolist() == [5.0, 12.0, 13.0]  # edges (0,1), (0,2), (1,2)

@@ -140,6 +140,15 @@ def test_big_files_are_read_in_pieces_that_agree_with_the_whole(tmp_path):
     assert int(message.split("by line ")[1].split(";")[0]) > lines + 2
 
 
+def test_coordinates_longer_than_the_window_are_read_whole(tmp_path):
+    # numbers numpy converts (exponents, underscores) of more than 40 characters are read one
+    # by one; their first 40 characters alone would be another number
+    tokens = ["1." + "0" * 45 + "1e5", "-2_5." + "5" * 50, "3" + "0" * 45 + "e-45", "7e1"]
+    text = "".join(f"v {t} 1 0\n" for t in tokens) + "f 1 2 3\nf 1 3 4\n"
+    mesh = read_mesh_text(tmp_path, text)
+    assert mesh.vertices[:, 0].tolist() == [float(t) for t in tokens]
+
+
 def test_comments_and_text_that_is_not_ascii(tmp_path):
     text = "# café, naïve\nv 0 0 # ü\nv 1 0\nv 0 1\nf 1 2 3 # é\n"
     assert read_mesh_text(tmp_path, text).faces() == [[0, 1, 2]]
