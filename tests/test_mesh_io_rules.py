@@ -305,6 +305,13 @@ def test_json_messages(tmp_path, text, message):
     assert refused(tmp_path, "m.json", text).startswith(message)
 
 
+def test_json_messages_show_at_most_120_characters(tmp_path):
+    vertex = refused(tmp_path, "m.json", doc(vertices=[[0, 0], [1, "x" * 300]]))
+    face = refused(tmp_path, "m.json", doc(faces=[[0, 1, "y" * 300]]))
+    assert vertex.startswith("vertex 1 must be [x, y] numbers like vertex 0, got [1, 'xxx")
+    assert (len(vertex), len(face)) == (120, 120) and face.endswith("yyy")
+
+
 def test_json_limits_and_surfaces(tmp_path):
     with patch.object(mesh_io, "MAX_FACES", 1):
         assert refused(tmp_path, "m.json", doc(faces=[[0, 1, 2], [0, 2, 1]])) == (
