@@ -1,6 +1,6 @@
 import os
 
-from hypothesis import HealthCheck, settings
+from hypothesis import HealthCheck, Phase, settings
 
 # dev: quick local runs; ci: bounded and reproducible; long: the fuzz suite on demand
 # (HYPOTHESIS_PROFILE=long, or `make fuzz`)
@@ -11,8 +11,10 @@ settings.register_profile("ci", max_examples=60, deadline=None, derandomize=True
 settings.register_profile("long", max_examples=2000, deadline=None,
                           suppress_health_check=[HealthCheck.too_slow])
 # mutation: tools/mutation.py runs the guarding tests once per mutant, so few examples, and
-# the same ones every time (a mutant's verdict must not depend on the draw)
+# the same ones every time (a mutant's verdict must not depend on the draw); no shrinking:
+# a failure kills the mutant as it is found, and shrinking it took 20 to 50 s per mutant
 settings.register_profile("mutation", max_examples=8, deadline=None, derandomize=True,
+                          phases=[Phase.explicit, Phase.reuse, Phase.generate],
                           suppress_health_check=[HealthCheck.too_slow])
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE") or ("ci" if os.environ.get("CI")
                                                                else "dev"))

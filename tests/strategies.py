@@ -2,12 +2,23 @@
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import shapely
 from hypothesis import strategies as st
 
 from weavecut.inputs import _weld
 from weavecut.mesh import Mesh
+
+MUTATION_EXAMPLES = 25
+
+
+def examples(n: int) -> int:
+    """``n`` examples for a test that wants more than the profile gives, but at most
+    ``MUTATION_EXAMPLES`` under the ``mutation`` profile (tools/mutation.py runs the test once
+    per mutant, and an explicit count would override the profile's)."""
+    return min(n, MUTATION_EXAMPLES) if os.environ.get("HYPOTHESIS_PROFILE") == "mutation" else n
 
 
 @st.composite

@@ -17,6 +17,7 @@ from click.testing import CliRunner
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from tests.strategies import examples
 from weavecut.cli import cli
 
 OBJ_CASES = {
@@ -85,7 +86,7 @@ def test_bad_json(tmp_path, name):
     assert_clean_failure(run("subdivide", path, "-o", tmp_path / "out.svg"), tmp_path)
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=examples(40), deadline=None)
 @given(st.binary(max_size=300))
 def test_random_bytes_never_crash(tmp_path_factory, data):
     folder = tmp_path_factory.mktemp("fuzz")
@@ -98,7 +99,7 @@ def test_random_bytes_never_crash(tmp_path_factory, data):
             result.exception, SystemExit)
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=examples(40), deadline=None)
 @given(st.lists(st.sampled_from(["v 0 0", "v 1 0", "v 0 1", "v 1 1", "f 1 2 3", "f 1 2 4",
                                  "f 2 4 3", "f 3 2 1", "f 1 2", "f 1 5 2", "v 2 2 0",
                                  "# x", "g a", "f -1 -2 -3", "v 1e308 1e308"]), max_size=12))

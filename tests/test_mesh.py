@@ -8,7 +8,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from tests import meshes
-from tests.strategies import jittered_grids
+from tests.strategies import examples, jittered_grids
 from weavecut.errors import MeshError, NonManifoldError
 from weavecut.mesh import Mesh, Topology, edge_faces, face_centroids, signed_areas
 
@@ -50,7 +50,7 @@ def faces_with_repeats(draw):
     return faces
 
 
-@settings(max_examples=200)
+@settings(max_examples=examples(200))
 @given(faces_with_repeats())
 def test_the_first_face_with_a_repeated_vertex_is_named(faces):
     # tables by degree for faces of up to MAX_COMPARED (16) corners, a sort beyond

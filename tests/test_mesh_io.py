@@ -17,7 +17,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from tests import obj_reference
-from tests.strategies import any_mesh
+from tests.strategies import examples, any_mesh
 from weavecut import inputs, mesh_io
 from weavecut.errors import MeshError, MeshFileError
 from weavecut.mesh import signed_areas
@@ -112,7 +112,7 @@ UNREADABLE = [
 ]
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=examples(300), deadline=None)
 @given(st.lists(st.sampled_from(VERTICES), min_size=3, max_size=6),
        st.lists(st.sampled_from(READABLE * 8 + UNREADABLE), max_size=12),
        st.lists(st.sampled_from(["\n", "\r\n", "\r"]), min_size=18, max_size=18))
@@ -123,7 +123,7 @@ def test_obj_reader_agrees_with_a_line_by_line_reading(tmp_path_factory, head, b
 FACES = [line for line in READABLE + UNREADABLE if line.startswith("f")]
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=examples(200), deadline=None)
 @given(st.lists(st.sampled_from(FACES[:10] * 6 + FACES), min_size=1, max_size=6))
 def test_runs_of_face_lines_agree_with_a_line_by_line_reading(tmp_path_factory, faces):
     # f lines one after another go to numpy's whole-number parser when they can
@@ -203,7 +203,7 @@ def parses(token: str) -> bool:
         return False
 
 
-@settings(max_examples=200)
+@settings(max_examples=examples(200))
 @given(st.lists(decimals(), min_size=3, max_size=40), st.sampled_from([8, 64, 2**18]),
        st.booleans())
 @example(["1" * 25, "2" * 18 + ".5", "12345678.5", "1234567.5", "-0.0", "+.5", "5.", "-0",

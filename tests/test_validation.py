@@ -9,7 +9,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from tests import meshes
-from tests.strategies import valid_meshes
+from tests.strategies import examples, valid_meshes
 from weavecut import inputs
 from weavecut.errors import MeshError
 from weavecut.mesh import Mesh, signed_areas
@@ -115,7 +115,7 @@ def test_huge_coordinates_are_refused():
         validate(mesh)
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=examples(150), deadline=None)
 @given(valid_meshes, st.integers(0, 2**32 - 1), st.floats(0.05, 1.5))
 def test_verdict_agrees_with_polygon_union(mesh, seed, reach):
     """Move one vertex at random; validate must accept the mesh exactly when its faces are

@@ -217,7 +217,7 @@ def check_structure(mesh: Mesh, numbering: Numbering = ZERO_BASED) -> None:
         raise MeshError(f"{len(v)} vertices is more than weave-cut indexes ({2**31 - 1})")
     bad = np.flatnonzero(~np.isfinite(v).all(axis=1))
     if len(bad):
-        raise MeshError(f"{n.vertex(bad[0])} has a non-finite coordinate {tuple(v[bad[0]])}")
+        raise MeshError(f"{n.vertex(bad[0])} has a non-finite coordinate {tuple(v[bad[0]].tolist())}")
     if off.ndim != 1 or len(off) < 1 or off[0] != 0 or off[-1] != len(idx):
         raise MeshError("face offsets must start at 0 and end at the number of corners")
     sizes = np.diff(off)

@@ -123,6 +123,9 @@ def _check_overlaps(mesh: Mesh, corners: _Corners, scale: float, n: Numbering) -
         invalid = ~shapely.is_valid(_polygons(mesh, unsure))
         if invalid.any():
             raise MeshError(f"{n.face(unsure[np.flatnonzero(invalid)[0]])} intersects itself")
+    unused = np.flatnonzero(np.bincount(mesh.face_indices, minlength=mesh.n_vertices) == 0)
+    if len(unused):  # its angles add up to nothing: not a fan that overlaps
+        raise MeshError(f"{n.vertex(unused[0])} is in no face")
     topo = mesh.topology
     outer = outer_vertices(mesh)
     turn = np.bincount(mesh.face_indices, weights=angles, minlength=mesh.n_vertices) / (2 * np.pi)
