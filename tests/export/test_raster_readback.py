@@ -13,6 +13,7 @@ import pytest
 import shapely
 from PIL import Image
 
+from weavecut.errors import ExportError
 from weavecut.export import pdf, png
 from weavecut.layout.drawing import (
     Drawing, Layer, Sheet, Style, Text, polygons_from_rings, polygons_from_shapely,
@@ -123,11 +124,20 @@ def test_png_pixels_are_where_the_drawing_says():
     assert (img[40 * PX + 10:, 30 * PX:] == 255).all()
 
 
-def test_png_refuses_a_sheet_too_large():
+def test_png_refuses_a_sheet_too_large(monkeypatch):
+    assert png.MAX_PIXELS == 12_000 * 12_000
     huge = Drawing((Sheet(3000, 3000),))
-    with pytest.raises(Exception, match="too large for PNG"):
+    with pytest.raises(ExportError, match=r"a 3000 x 3000 mm sheet at 300 dpi is too large "
+                                          r"for PNG \(35433 x 35433 px\)"):
         png.render(huge, dpi=300)
-    assert png.render(Drawing((Sheet(2032, 2032),)), dpi=150)  # 12 000 px: just allowed
+    # the limit to the pixel, on a small limit (rendering 12 000 x 12 000 px takes a minute):
+    # 100 x 100 px at 254 dpi is 10 mm; one pixel more in either direction is refused
+    monkeypatch.setattr(png, "MAX_PIXELS", 100 * 100)
+    with Image.open(io.BytesIO(png.render(Drawing((Sheet(10, 10),)), dpi=254))) as im:
+        assert im.size == (100, 100)
+    for w, h in [(10.1, 10), (10, 10.1)]:
+        with pytest.raises(ExportError, match="too large for PNG"):
+            png.render(Drawing((Sheet(w, h),)), dpi=254)
 
 
 def test_pdf_pixels_are_where_the_drawing_says(tmp_path):
