@@ -214,3 +214,97 @@ def test_png_smallest_size_renders():
     parts = model((square(0.0), TEAL))
     with Image.open(io.BytesIO(model3d.png_bytes(*parts, size=16, views=((0, 90),)))) as im:
         assert im.size == (32, 16)
+
+
+def depth_oracle(xy, depth, big):
+    """Owner triangle per pixel (-1: none) from first principles: a pixel centre's barycentric
+    weights solved as a linear system, inside when all are >= 0, the largest interpolated
+    depth wins, ties to the first triangle; and a mask of the pixels too near an edge or a tie
+    to call."""
+    q = np.stack(np.meshgrid(np.arange(big) + 0.5, np.arange(big) + 0.5), -1).reshape(-1, 2)
+    best = np.full(len(q), -np.inf)
+    owner = np.full(len(q), -1)
+    unsure = np.zeros(len(q), bool)
+    for k, (corners, d) in enumerate(zip(xy, depth)):
+        m = np.array([corners[1] - corners[0], corners[2] - corners[0]]).T
+        if abs(np.linalg.det(m)) < 1e-9:
+            continue
+        w12 = np.linalg.solve(m, (q - corners[0]).T).T
+        w = np.column_stack([1 - w12.sum(axis=1), w12])
+        inside = (w >= 0).all(axis=1)
+        unsure |= (np.abs(w) < 1e-6).any(axis=1) & (w >= -1e-6).all(axis=1)
+        z = w @ d
+        unsure |= inside & (np.abs(z - best) < 1e-9)
+        win = inside & (z > best)
+        best[win], owner[win] = z[win], k
+    return owner, unsure
+
+
+@pytest.mark.parametrize("seed", range(4))
+@pytest.mark.parametrize("chunk", [7, 2_000_000])
+def test_depth_buffer_keeps_the_nearest_triangle_at_every_pixel(seed, chunk, monkeypatch):
+    monkeypatch.setattr(model3d, "PAIRS_PER_CHUNK", chunk)
+    rng = np.random.default_rng(seed)
+    big = 24
+    xy = rng.uniform(0.5, big - 0.5, (14, 3, 2))
+    xy[0] = [[5.3, 5.3], [5.9, 5.4], [5.4, 5.9]]  # smaller than a pixel, around one centre
+    xy[1] = [[3.0, 3.0], [3.0, 3.0], [9.0, 9.0]]  # degenerate: covers nothing
+    depth = rng.uniform(-1, 1, (14, 3))  # tilted: triangles pass through one another
+    depth[0] = 2.0  # the small one in front
+    covered, tri = model3d._depth_buffer(xy, depth, big)
+    got = np.full(big * big, -1)
+    got[covered] = tri
+    want, unsure = depth_oracle(xy, depth, big)
+    assert (got[~unsure] == want[~unsure]).all()
+    assert got[5 * big + 5] == 0 and (want >= 0).sum() > big * big / 3
+
+
+def test_depth_ties_go_to_the_first_triangle_however_chunked(monkeypatch):
+    # two coplanar squares of different colours over one another: the first one drawn shows,
+    # with one chunk for all or a chunk per triangle
+    parts = model((square(0.0), TEAL), (square(0.0), SAND))
+    pictures = []
+    for chunk in (2_000_000, 300):
+        monkeypatch.setattr(model3d, "PAIRS_PER_CHUNK", chunk)
+        pictures.append(model3d.png_bytes(*parts, size=SIZE, views=((0, 90),)))
+        (img,) = views(pictures[-1], 1)[:1]
+        assert np.abs(img[SIZE // 2, SIZE // 2] - lit(TEAL, [0, 0, 1])).max() < 2
+    assert pictures[0] == pictures[1]
+
+
+def test_png_frames_any_model_whatever_its_place_and_units():
+    # the same two squares, moved far from the origin and scaled to 1/100: the same picture
+    parts = model((square(0.5), TEAL), (square(-0.5), SAND))
+    moved = (parts[0] / 100 + [10.0, -5.0, 3.0], parts[1], parts[2])
+    look = dict(size=SIZE, views=((0, 90), (30, 40)))
+    first, second = (views(model3d.png_bytes(*p, **look), 2) for p in (parts, moved))
+    for a, b in zip(first, second):
+        assert np.abs(a.astype(int) - b).max() <= 2
+
+
+def test_png_shading_is_lambert_from_the_light_with_ambient():
+    # a colour whose lit value is close to a rounding boundary: the light's direction must be
+    # a unit vector for the value to come out right
+    colour = (250, 122, 18)
+    parts = model((square(0.0), colour))
+    (img,) = views(model3d.png_bytes(*parts, size=SIZE, views=((0, 90),)), 1)[:1]
+    centre = img[SIZE // 2 - 4:SIZE // 2 + 4, SIZE // 2 - 4:SIZE // 2 + 4].reshape(-1, 3)
+    assert (centre == np.round(lit(colour, [0, 0, 1]))).all()
+    # a face turned to the light is at full colour, a face edge-on to it at the ambient 35 %
+    light = model3d.LIGHT / np.linalg.norm(model3d.LIGHT)
+    assert lit(colour, light) == pytest.approx(colour)
+
+
+def test_png_odd_number_of_views_leaves_the_last_cell_white():
+    parts = model((square(0.5), TEAL), (square(-0.5), SAND))
+    with Image.open(io.BytesIO(model3d.png_bytes(*parts, size=SIZE,
+                                                 views=((0, 90), (0, -90), (0, 45))))) as im:
+        img = np.asarray(im.convert("RGB"))
+    assert img.shape == (2 * SIZE, 2 * SIZE, 3)
+    assert (img[SIZE:, SIZE:] == 255).all()
+
+
+def test_png_default_size_is_480_per_view():
+    parts = model((square(0.0), TEAL))
+    with Image.open(io.BytesIO(model3d.png_bytes(*parts, views=((0, 90),)))) as im:
+        assert im.size == (960, 480)
