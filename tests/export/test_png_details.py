@@ -132,8 +132,9 @@ def test_text_chunks_latin1_or_utf8_after_the_header():
     with Image.open(io.BytesIO(data)) as im:
         assert im.text == {"Title": "café", "generator": "weave-cut",
                            "command": "weave-cut x → y"}
-    with pytest.raises(ExportError, match="not a PNG stream"):
+    with pytest.raises(ExportError) as err:
         png.with_text(b"GIF89a" + bytes(40), [("Title", "x")])
+    assert str(err.value) == "not a PNG stream"
     assert png.with_text(data, []) == data
 
 
@@ -141,3 +142,26 @@ def test_default_resolution_is_150_dpi():
     with Image.open(io.BytesIO(png.render(Drawing((Sheet(25.4, 50.8),))))) as im:
         assert im.size == (150, 300)
         assert im.info["dpi"] == pytest.approx((150, 150), abs=0.02)  # stored per metre
+
+
+def test_a_hidden_layer_hides_only_itself():
+    hidden = Layer("help", "guide", (polygons_from_shapely([shapely.box(0, 0, 10, 10)],
+                                                           Style(None, 0, "#000000")),),
+                   visible=False)
+    shown = Layer("tiles", "paint", (polygons_from_shapely([shapely.box(10, 0, 20, 10)],
+                                                           Style(None, 0, "#0000ff")),))
+    img = pixels(Drawing((Sheet(20, 10, (hidden, shown)),)))
+    assert at(img, 5, 5, 10) == WHITE and close(at(img, 15, 5, 10), BLUE)
+
+
+def test_thick_lines_turn_round_corners():
+    # a 2 mm line turning a right angle at (10, 10): a round join leaves the far corner of
+    # the square a mitre would fill white
+    corner = Layer("cut", "cut", (polylines_from_lines(
+        [[(10, 18), (10, 10), (18, 10)]], Style("#0000ff", 2.0)),))
+    with Image.open(io.BytesIO(png.render(Drawing((Sheet(20, 20, (corner,)),)),
+                                          dpi=25.4 * 20))) as im:
+        img = np.asarray(im.convert("RGB"))
+    probe = lambda x, y: tuple(img[int((20 - y) * 20), int(x * 20)].tolist())  # noqa: E731
+    assert close(probe(9.5, 9.5), BLUE, 30) and close(probe(10, 14), BLUE, 30)
+    assert probe(9.1, 9.1) == WHITE
