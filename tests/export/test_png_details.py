@@ -165,3 +165,25 @@ def test_thick_lines_turn_round_corners():
     probe = lambda x, y: tuple(img[int((20 - y) * 20), int(x * 20)].tolist())  # noqa: E731
     assert close(probe(9.5, 9.5), BLUE, 30) and close(probe(10, 14), BLUE, 30)
     assert probe(9.1, 9.1) == WHITE
+
+
+@pytest.mark.parametrize("angle", [90.0, -45.0])
+def test_a_narrow_turned_text_is_drawn_whole(angle):
+    # one tall, narrow letter turned about its baseline start: all of its 5 mm shows
+    layer = Layer("l", "label", (Text(10, 10, "I", 5.0, "start", angle),))
+    with Image.open(io.BytesIO(png.render(Drawing((Sheet(20, 20, (layer,)),)),
+                                          dpi=25.4 * 10))) as im:
+        img = np.asarray(im.convert("RGB"))
+    rows, cols = np.nonzero(img.max(axis=2) < 128)
+    x, y = (cols + 0.5) / 10, 20 - (rows + 0.5) / 10
+    along = (x - 10) * np.cos(np.radians(angle + 90)) + (y - 10) * np.sin(np.radians(angle + 90))
+    assert along.max() == pytest.approx(5.0, abs=0.3) and along.min() == pytest.approx(0, abs=0.3)
+
+
+def test_capitals_are_as_high_as_the_text_size():
+    layer = Layer("l", "label", (Text(2, 5, "HHHH", 5.0),))
+    with Image.open(io.BytesIO(png.render(Drawing((Sheet(40, 15, (layer,)),)),
+                                          dpi=25.4 * 20))) as im:
+        img = np.asarray(im.convert("RGB"))
+    rows = np.flatnonzero((img.max(axis=2) < 128).any(axis=1))
+    assert (rows[-1] - rows[0] + 1) / 20 == pytest.approx(5.0, abs=0.15)
