@@ -107,6 +107,8 @@ def test_sheets_of_different_widths_stack_left_aligned():
     assert (img[10 * PX:10 * PX + 10] == 255).all()
     assert close(img[10 * PX + 12, 30 * PX - 2], GREEN)
     assert close(img[-3, 3], BLUE) and (img[-10 * PX:, 20 * PX + 1:] == 255).all()
+    third = 15 * PX + 20  # the third sheet's first row: two sheets and two 10 px gaps above
+    assert (img[third - 10:third] == 255).all() and close(img[third + 1, 3], BLUE)
 
 
 def chunks(data: bytes) -> list[tuple[bytes, bytes]]:
