@@ -157,7 +157,14 @@ def test_true_colours_and_line_weights():
     assert ink.dxf.lineweight == 25  # 0.27 mm: 0.25 is the nearest of DXF's weights
     assert cut.dxf.lineweight == -1  # BYLAYER: a laser cuts hairlines
     assert hair.rgb == (0, 0, 0) and hair.dxf.lineweight == -1  # 0 mm: no weight
-    assert text.rgb == (0, 0, 255)
+    assert text.rgb == (0, 0, 255) and text.dxf.lineweight == -1  # text has no line weight
+
+
+@pytest.mark.parametrize("width, weight", [(0.51, 50), (0.52, 53), (0.05, 5), (3.0, 211)])
+def test_line_weight_is_the_nearest_dxf_weight_in_hundredths_of_a_mm(width, weight):
+    ink = Layer("ink", "paint", (polylines_from_lines([[(0, 0), (1, 1)]], Style("#0a0b0c", width)),))
+    (line,) = read(Drawing((Sheet(20, 20, (ink,)),))).modelspace().query("LWPOLYLINE")
+    assert line.dxf.lineweight == weight
 
 
 @pytest.mark.parametrize("anchor, align", [("start", "BOTTOM_LEFT"),
@@ -173,10 +180,10 @@ def test_text_anchor_height_and_angle(anchor, align):
 
 
 def test_layer_names_without_characters_cad_refuses():
-    label = Layer('a<b>c/d\\e"f:g;h?i*j|k=l`m n', "label", (Text(1, 1, "x", 2.0),))
+    label = Layer('a<b>c/d\\e"f:g;h?i*j|k=l`m nX', "label", (Text(1, 1, "x", 2.0),))
     doc = read(Drawing((Sheet(20, 20, (label,)),)))
     (text,) = doc.modelspace().query("TEXT")
-    assert text.dxf.layer == "a_b_c_d_e_f_g_h_i_j_k_l_m n"
+    assert text.dxf.layer == "a_b_c_d_e_f_g_h_i_j_k_l_m nX"
     assert len(doc.audit().errors) == 0
 
 
