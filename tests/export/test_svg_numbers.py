@@ -134,6 +134,23 @@ def test_several_sheets_each_framed_named_and_with_hidden_layers_hidden():
             (sheet.width, sheet.height)
         assert (frame.get("fill"), frame.get("stroke"), frame.get("stroke-width")) == \
             ("none", "#cccccc", "0.3")
+        assert float(frame.get("x", 0)) == 0 and float(frame.get("y", 0)) == 0  # at its sheet's corner
     inner = [child for child in groups[1] if child.tag == f"{NS}g"]
     assert [(g.get(f"{INK}label"), g.get("style")) for g in inner] == \
         [("cut", None), ("help", "display:none")]
+
+
+def test_several_polygons_in_one_path_and_strokes_around_each_fill():
+    two = [shapely.box(1, 1, 3, 3), shapely.box(5, 1, 7, 3)]
+    plain = Layer("cut", "cut", (polygons_from_shapely(two, Style("#ff0000", 0.2)),))
+    filled = Layer("tiles", "paint", (polygons_from_shapely(
+        two, Style("#0000ff", 0.4), fills=["#00ff00", "#ffff00"]),))
+    root = ET.fromstring(svg.render(Drawing((Sheet(10, 10, (plain, filled)),))))
+    cut, green, yellow = paths(root)
+    # both squares, y flipped, in one path
+    assert sorted(map(tuple, numbers(cut.get("d")).reshape(-1, 2).tolist())) == \
+        sorted([(1, 9), (3, 9), (3, 7), (1, 7), (5, 9), (7, 9), (7, 7), (5, 7)])
+    assert cut.get("d").count("M") == 2 and cut.get("d").count("Z") == 2
+    for p, fill in [(green, "#00ff00"), (yellow, "#ffff00")]:
+        assert (p.get("fill"), p.get("stroke"), p.get("stroke-width")) == \
+            (fill, "#0000ff", "0.4")
