@@ -13,6 +13,7 @@ import pytest
 import shapely
 from PIL import Image
 
+from weavecut.errors import ExportError
 from weavecut.export import pdf, png
 from weavecut.layout.drawing import (
     Drawing, Layer, Sheet, Style, Text, polygons_from_rings, polygons_from_shapely,
@@ -91,10 +92,12 @@ def check_sheet_one(img: np.ndarray, opacity: float) -> None:
     assert hih[:, 1].min() == pytest.approx(35, abs=0.5)
     assert np.ptp(hih[:, 1]) == pytest.approx(3.0, rel=0.2)
     assert np.ptp(hih[:, 0]) > 5                         # three letters, not one
-    # turned text: its ink runs at 30 degrees counter-clockwise, centred near (45, 30)
+    # turned text: its ink runs at 30 degrees counter-clockwise, its baseline through (45, 30):
+    # the middle of its 2 mm high capitals 1 mm above that, turned by 30 degrees with it
     turned = ink(img, 31, 21, 60, 40, 40)
     centre = turned.mean(axis=0)
-    assert np.hypot(*(centre - [45, 30])) < 2.0
+    up = np.array([-np.sin(np.pi / 6), np.cos(np.pi / 6)])
+    assert np.hypot(*(centre - ([45, 30] + 1.0 * up))) < 0.3
     _, vectors = np.linalg.eigh(np.cov((turned - centre).T))
     dx, dy = vectors[:, -1] * np.sign(vectors[0, -1])
     assert np.degrees(np.arctan2(dy, dx)) == pytest.approx(30, abs=4)
@@ -123,11 +126,20 @@ def test_png_pixels_are_where_the_drawing_says():
     assert (img[40 * PX + 10:, 30 * PX:] == 255).all()
 
 
-def test_png_refuses_a_sheet_too_large():
+def test_png_refuses_a_sheet_too_large(monkeypatch):
+    assert png.MAX_PIXELS == 12_000 * 12_000
     huge = Drawing((Sheet(3000, 3000),))
-    with pytest.raises(Exception, match="too large for PNG"):
+    with pytest.raises(ExportError, match=r"a 3000 x 3000 mm sheet at 300 dpi is too large "
+                                          r"for PNG \(35433 x 35433 px\)"):
         png.render(huge, dpi=300)
-    assert png.render(Drawing((Sheet(2032, 2032),)), dpi=150)  # 12 000 px: just allowed
+    # the limit to the pixel, on a small limit (rendering 12 000 x 12 000 px takes a minute):
+    # 100 x 100 px at 254 dpi is 10 mm; one pixel more in either direction is refused
+    monkeypatch.setattr(png, "MAX_PIXELS", 100 * 100)
+    with Image.open(io.BytesIO(png.render(Drawing((Sheet(10, 10),)), dpi=254))) as im:
+        assert im.size == (100, 100)
+    for w, h in [(10.1, 10), (10, 10.1)]:
+        with pytest.raises(ExportError, match="too large for PNG"):
+            png.render(Drawing((Sheet(w, h),)), dpi=254)
 
 
 def test_pdf_pixels_are_where_the_drawing_says(tmp_path):

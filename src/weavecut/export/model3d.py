@@ -138,9 +138,14 @@ def _depth_buffer(xy, depth, big: int):
         inside = (wa >= 0) & (wb >= 0) & (wc >= 0)
         z = (wa * depth[tri, 0] + wb * depth[tri, 1] + wc * depth[tri, 2])[inside]
         pix, tri = (py * big + px)[inside], tri[inside]
-        order = np.lexsort((z, pix))
+        # by pixel, then depth; of equally near triangles the first comes last, so that ties
+        # go to the first triangle within a chunk as across chunks (where the nearer must be
+        # strictly nearer): the picture does not depend on the chunks
+        order = np.lexsort((-tri, z, pix))
         pix, z, tri = pix[order], z[order], tri[order]
-        nearest = np.r_[pix[1:] != pix[:-1], True]  # the last of every pixel: largest z
+        # the last of every pixel (the nearest); pixels are >= 0, so the last one differs
+        # from -1 (and a chunk whose triangles cover no pixel centre keeps nothing)
+        nearest = np.diff(pix, append=-1) != 0
         pix, z, tri = pix[nearest], z[nearest], tri[nearest]
         nearer = z > zbuf[pix]
         zbuf[pix[nearer]], owner[pix[nearer]] = z[nearer], tri[nearer]

@@ -6,6 +6,7 @@ no system libraries, so PNG output works everywhere weave-cut does."""
 from __future__ import annotations
 
 import io
+import math
 import struct
 import zlib
 from collections.abc import Iterable
@@ -129,9 +130,12 @@ def _face(size: int) -> ImageFont.FreeTypeFont:
 
 
 def _rotated_text(img, xy, text, font, fill, angle, anchor) -> None:
-    box = font.getbbox(text)
-    size = (box[2] - box[0] + 4, box[3] - box[1] + 4)
-    tile = Image.new("RGBA", size, (0, 0, 0, 0))
-    ImageDraw.Draw(tile).text((2 - box[0], 2 - box[1]), text, font=font, fill=fill)
-    tile = tile.rotate(angle, expand=True)
-    img.paste(tile, (round(xy[0] - tile.width / 2), round(xy[1] - tile.height / 2)), tile)
+    """``text`` turned ``angle`` degrees counter-clockwise about its anchor point ``xy``, as
+    SVG and PDF turn it: drawn on a square tile with the anchor at the centre, large enough
+    for the text turned any way, and the tile turned about its centre."""
+    box = font.getbbox(text, anchor=anchor)  # relative to the anchor point
+    r = math.ceil(math.hypot(max(-box[0], box[2]), max(-box[1], box[3]))) + 2
+    tile = Image.new("RGBA", (2 * r, 2 * r), (0, 0, 0, 0))
+    ImageDraw.Draw(tile).text((r, r), text, font=font, fill=fill, anchor=anchor)
+    tile = tile.rotate(angle, center=(r, r))
+    img.paste(tile, (round(xy[0]) - r, round(xy[1]) - r), tile)

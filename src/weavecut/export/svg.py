@@ -110,9 +110,14 @@ def _pairs(offsets):
 
 def _points(coords, height: float) -> list[str]:
     xy = np.round(np.column_stack([coords[:, 0], height - coords[:, 1]]), DECIMALS) + 0.0
-    return [f"{x:g},{y:g}" if abs(x) < 1e5 and abs(y) < 1e5 else f"{x:.3f},{y:.3f}"
-            for x, y in xy.tolist()]
+    return [f"{_decimal(x)},{_decimal(y)}" for x, y in xy.tolist()]
 
 
 def _n(x: float) -> str:
-    return f"{round(float(x), DECIMALS) + 0.0:g}" if abs(x) < 1e5 else f"{x:.3f}"
+    return _decimal(round(float(x), DECIMALS) + 0.0)
+
+
+def _decimal(x: float) -> str:
+    """``x`` (rounded to ``DECIMALS``, no negative zero) in fixed point without trailing
+    zeros: every decimal kept however large ``x`` is (``:g`` keeps six digits: 1234.57)."""
+    return f"{x:.{DECIMALS}f}".rstrip("0").rstrip(".")
