@@ -92,5 +92,5 @@ def test_ctrl_c_while_loading_is_one_line(tmp_path, delay):
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=120)
     assert "Traceback" not in err and "KeyboardInterrupt" not in err, err
-    assert proc.returncode in (0, 130, -signal.SIGINT)
+    assert proc.returncode in (0, 130, -signal.SIGINT), err  # seen once as 1 in CI, err unknown
     assert not [p for p in tmp_path.iterdir() if p.name.endswith(".part")]
