@@ -69,9 +69,10 @@ bench16: $(STAMP)  ## issue 16's before/after table in one run (about 5 minutes 
 	$(PY) -m pip install --quiet -e '.[bench]' || echo "some peers did not install"
 	$(PY) benchmarks/issue16.py
 
-mutation: $(STAMP)  ## mutation testing per package (PACKAGES="weave export", MUTATION_ARGS=--survivors): build/mutation/report.md
+MUTATION_SAMPLE ?= 100
+mutation: $(STAMP)  ## mutation testing, a random sample of 100 mutants per package (MUTATION_SAMPLE=0: all; PACKAGES="weave export"; MUTATION_ARGS=--survivors): build/mutation/report.md
 	$(PY) -m pip install --quiet -e '.[mutation]'
-	$(PY) tools/mutation.py $(MUTATION_ARGS) $(PACKAGES)
+	$(PY) tools/mutation.py --sample $(MUTATION_SAMPLE) $(MUTATION_ARGS) $(PACKAGES)
 
 clean:  ## remove build outputs (keeps .venv)
 	rm -rf $(OUT) .pytest_cache .hypothesis

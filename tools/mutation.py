@@ -16,6 +16,7 @@ mutmut: it is maintained, pytest-native, and runs only the tests that reach a mu
 from __future__ import annotations
 
 import argparse
+import hashlib
 import importlib.util
 import json
 import os
@@ -24,6 +25,7 @@ import subprocess
 import sys
 import time
 import tomllib
+from math import sqrt
 from dataclasses import dataclass, field
 from fnmatch import fnmatch
 from pathlib import Path
@@ -32,6 +34,7 @@ ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "build" / "mutation"
 EQUIVALENTS = ROOT / "tests" / "mutation_equivalents.toml"
 MUTMUT = [sys.executable, "-m", "mutmut"]
+NO_MUTANT = "weavecut.no_such_module.x_no_such_function__mutmut_0"
 
 # mutmut stops a mutant after (expected time + 1 s) x this x 2 CPU seconds, or half that in
 # wall time; on a shared, loaded machine a test takes ten times its CPU time in wall time, so
@@ -139,24 +142,54 @@ def configure(work: Path, package: Package) -> None:
     (work / "pyproject.toml").write_text(text, encoding="utf-8")
 
 
-def run_package(name: str, children: int, only: list[str], fresh: bool = False) -> dict:
-    """Run mutmut on one package (only the mutants named in ``only``, if any); ``fresh``
-    maps tests to functions anew (mutmut maps only tests it has not seen, so a test that
-    changed would keep its old reach)."""
+def mutmut_run(work: Path, children: int, names: list[str]) -> subprocess.CompletedProcess:
+    return subprocess.run([*MUTMUT, "run", "--max-children", str(children), *names], cwd=work,
+                          capture_output=True, text=True,
+                          env={**os.environ, "HYPOTHESIS_PROFILE": "mutation"})
+
+
+def sample_of(status: dict[str, str], equivalents: dict[str, str], size: int) -> list[str]:
+    """The ``size`` non-equivalent mutants whose names hash lowest (SHA-256): a uniform random
+    sample that stays the same from run to run, and keeps the mutants of unchanged functions
+    when others change (mutmut numbers mutants per function)."""
+    names = sorted((m for m in status if m not in equivalents),
+                   key=lambda m: hashlib.sha256(m.encode()).hexdigest())
+    return sorted(names[:size])
+
+
+def run_package(name: str, children: int, only: list[str], fresh: bool = False,
+                sample: int = 0, equivalents: dict[str, str] | None = None) -> dict:
+    """Run mutmut on one package: every mutant not yet tested, or only those named in
+    ``only``, or (``sample`` > 0) those of a fixed random sample of that size not yet tested.
+    ``fresh`` maps tests to functions anew (mutmut maps only tests it has not seen, so a test
+    that changed would keep its old reach)."""
     work = OUT / name
     tracked_tree(work)
     if fresh:
         (work / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
     configure(work, PACKAGES[name])
     start = time.monotonic()
-    run = subprocess.run([*MUTMUT, "run", "--max-children", str(children), *only], cwd=work,
-                         capture_output=True, text=True,
-                         env={**os.environ, "HYPOTHESIS_PROFILE": "mutation"})
+    if sample:
+        # mutmut has no generate-only command: a run filtered to a name no mutant has
+        # generates the mutants and maps the tests, then stops with "nothing matches"
+        probe = mutmut_run(work, children, [NO_MUTANT])
+        if "nothing matches" not in probe.stdout + probe.stderr:
+            fail(name, work, probe)
+        status = collect(name)["status"]
+        only = [m for m in sample_of(status, equivalents or {}, sample)
+                if status[m] == "not checked"]
+        if not only:
+            return {**collect(name), "minutes": 0.0}
+    run = mutmut_run(work, children, only)
     if run.returncode:  # e.g. the tests fail without any mutant: show why, then stop
-        print(run.stdout[-3000:], run.stderr[-3000:], sep="\n", file=sys.stderr)
-        raise SystemExit(f"mutation: mutmut failed on {name} (status {run.returncode}); "
-                         f"see above, or run `mutmut run` in {work}")
+        fail(name, work, run)
     return {**collect(name), "minutes": round((time.monotonic() - start) / 60, 1)}
+
+
+def fail(name: str, work: Path, run: subprocess.CompletedProcess) -> None:
+    print(run.stdout[-3000:], run.stderr[-3000:], sep="\n", file=sys.stderr)
+    raise SystemExit(f"mutation: mutmut failed on {name} (status {run.returncode}); "
+                     f"see above, or run `mutmut run` in {work}")
 
 
 def collect(name: str) -> dict:
@@ -187,7 +220,23 @@ def summarise(results: dict[str, dict], equivalents: dict[str, str]) -> dict:
                         "unchecked": unchecked, "survived": alive,
                         "kill_rate": killed / total if total else 1.0,
                         "minutes": result.get("minutes")}
+        if result.get("sample"):
+            tested = [status[m] for m in sample_of(status, equivalents, result["sample"])
+                      if status[m] != "not checked"]
+            dead = sum(s in ("killed", "timeout", "segfault") for s in tested)
+            report[name]["sample"] = {"size": result["sample"], "tested": len(tested),
+                                      "killed": dead, "interval": wilson(dead, len(tested))}
     return report
+
+
+def wilson(killed: int, tested: int, z: float = 1.96) -> tuple[float, float]:
+    """The 95 % Wilson score interval of a package's kill rate from a sample's verdicts."""
+    if not tested:
+        return (0.0, 1.0)
+    p, n = killed / tested, tested
+    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
+    half = z * sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / (1 + z * z / n)
+    return (round(max(0.0, centre - half), 4), round(min(1.0, centre + half), 4))
 
 
 def function_of(mutant: str) -> str:
@@ -199,12 +248,16 @@ def function_of(mutant: str) -> str:
 
 
 def markdown(report: dict) -> str:
-    rows = ["| package | mutants | equivalent | killed | survived | not yet run | kill rate |",
-            "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
+    rows = ["| package | mutants | equivalent | killed | survived | not yet run | kill rate "
+            "| random sample: killed of tested (95 % interval) |",
+            "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for name, r in report.items():
+        sample = r.get("sample")
+        estimate = (f"{sample['killed']} of {sample['tested']} ({100 * sample['interval'][0]:.1f}"
+                    f"–{100 * sample['interval'][1]:.1f} %)" if sample else "")
         rows.append(f"| {name} | {r['mutants']} | {r['equivalent']} | {r['killed']} | "
                     f"{len(r['survived'])} | {r.get('unchecked', 0)} | "
-                    f"{100 * r['kill_rate']:.1f} % |")
+                    f"{100 * r['kill_rate']:.1f} % | {estimate} |")
     by_function = []
     for name, r in report.items():
         counts: dict[str, int] = {}
@@ -231,6 +284,9 @@ def main(argv: list[str]) -> int:
                         help="test only the mutants whose names match PATTERN (fnmatch, "
                              "repeatable), e.g. 'weavecut.puzzle.colouring*': a slice of a "
                              "package too large for one run")
+    parser.add_argument("--sample", type=int, default=0, metavar="N",
+                        help="test only a fixed random sample of N mutants per package (those "
+                             "not yet tested) and report the kill rate's 95 %% interval")
     parser.add_argument("--max-children", type=int, default=2,
                         help="parallel test processes (default 2: this machine's cores)")
     args = parser.parse_args(argv)
@@ -262,10 +318,13 @@ def main(argv: list[str]) -> int:
               flush=True)
         if (args.survivors or args.only) and not only:
             continue
+        sample = args.sample or results.get(name, {}).get("sample", 0)
         if args.report:
-            results[name] = {**results.get(name, {}), **collect(name)}
+            results[name] = {**results.get(name, {}), **collect(name), "sample": sample}
             continue
-        results[name] = run_package(name, args.max_children, only, fresh=args.survivors)
+        results[name] = {**run_package(name, args.max_children, only, fresh=args.survivors,
+                                       sample=0 if only else args.sample,
+                                       equivalents=equivalents), "sample": sample}
     report = summarise({n: results[n] for n in PACKAGES if n in results}, equivalents)
     previous.write_text(json.dumps({"report": report, "raw": results}, indent=1))
     (OUT / "report.md").write_text(markdown(report))
