@@ -11,7 +11,7 @@ import pytest
 import shapely
 
 from weavecut.errors import MeshError, TurnedOverError
-from weavecut.puzzle.pieces import _check_no_gaps, build_puzzle, extent
+from weavecut.puzzle.pieces import _one_region, build_puzzle, extent
 from weavecut.readers.outline_mesh import mesh_outline
 from weavecut.subdivision import subdivide
 
@@ -72,9 +72,20 @@ def test_pieces_that_leave_a_gap_are_refused_naming_it(missing, message):
     with pytest.raises(MeshError, match=rf"^the puzzle's pieces leave {message}: the hexagon "
                                         r"ring does not close around this mesh; mesh the "
                                         r"outline with another --cell$"):
-        _check_no_gaps(pieces)
-    _check_no_gaps(np.array([shapely.box(10 * i - 25, 10 * j - 5, 10 * i - 15, 10 * j + 5)
-                             for i in range(5) for j in range(3)], dtype=object))
+        _one_region(pieces)
+    whole = _one_region(np.array([shapely.box(10 * i - 25, 10 * j - 5, 10 * i - 15, 10 * j + 5)
+                                  for i in range(5) for j in range(3)], dtype=object))
+    assert whole.equals(shapely.box(-25, -5, 25, 25))
+
+
+def test_pieces_that_meet_off_their_corners_are_refused_in_one_line():
+    """GEOS refuses a coverage whose pieces meet an edge mid-way (what slim faces at the ring
+    did to a random star): a one-line MeshError, not GEOS's exception."""
+    pieces = np.array([shapely.box(0, 0, 10, 10), shapely.box(10, 0, 20, 5)], dtype=object)
+    with pytest.raises(MeshError, match=r"^the puzzle's pieces do not meet edge to edge \(.*\); "
+                                        r"the mesh has faces too thin for the hexagon ring: "
+                                        r"mesh the outline with another --cell$"):
+        _one_region(pieces)
 
 
 def test_a_level_that_turns_over_is_refused_naming_where_and_fewer_levels():
@@ -91,3 +102,13 @@ def test_a_level_that_turns_over_is_refused_naming_where_and_fewer_levels():
                                               r"mesh a drawing with another --cell or --mesh "
                                               r"tri$"):
         build_puzzle(_star(6, 0.7, 0.1, 1, levels=3), 250.0, 10.0, "width")
+
+
+def test_a_piece_collapsed_to_a_line_is_refused_naming_where():
+    pieces = np.array([shapely.box(0, 0, 10, 10),
+                       shapely.Polygon([(10, 0), (10, 0), (10, 0), (12, 0)])], dtype=object)
+    with pytest.raises(MeshError, match=r"^1 of the puzzle's pieces collapse to a line or a "
+                                        r"point \(the first at \(10\.0, 0\.0\)\): the mesh has "
+                                        r"faces too thin there; mesh the outline with another "
+                                        r"--cell$"):
+        _one_region(pieces)

@@ -195,12 +195,11 @@ def build_puzzle(hierarchy: tuple[Level, ...], size: float = 500.0,
         depth = float(np.max(shapely.distance(shapely.points(snapped), outline)))
         base, grow = outline, lambda s: _frame_outline(outline, depth, frame_width, s)
     else:
-        base = shapely.Polygon(shapely.coverage_union_all(np.concatenate(
-            _shapes(snapped, parts, octagon_sizes)[::2])).exterior)
+        base = _one_region(np.concatenate(_shapes(snapped, parts, octagon_sizes)[::2]))
         grow = lambda s: _ring_offset(base, frame_width, s)  # noqa: E731
     scale = frame_scale(base, grow, size, measure, frame_width)
     pieces, hexes, ring = _shapes(snapped * scale, parts, octagon_sizes)
-    _check_no_gaps(pieces)
+    _one_region(pieces)
     kinds = np.repeat(np.array([OCTAGON, ENNEAGON, ENNEAGON], dtype=np.int8),
                       [len(octagon_sizes), len(ennea), len(plain)])
     tiles = np.concatenate([octagon_tiles, lone_tiles, dropped]).astype(np.int32)
@@ -211,12 +210,19 @@ def build_puzzle(hierarchy: tuple[Level, ...], size: float = 500.0,
                   centre, frame_width, measure)
 
 
-def _check_no_gaps(pieces: np.ndarray) -> None:
-    """MeshError unless the pieces cover one region without gaps between them (a ring hexagon
-    dropped where two runs of the boundary meet can leave one)."""
-    union = shapely.coverage_union_all(pieces)  # pieces share edges exactly: no overlay needed
+def _one_region(pieces: np.ndarray) -> shapely.Polygon:
+    """The union of the pieces; MeshError unless each is a valid polygon and together they
+    cover one region without gaps between them (a ring hexagon dropped where two runs of the
+    boundary meet can leave one)."""
+    flat = ~shapely.is_valid(pieces)
+    if flat.any():
+        x, y = shapely.get_coordinates(pieces[flat][0])[0]
+        raise MeshError(f"{flat.sum()} of the puzzle's pieces collapse to a line or a point "
+                        f"(the first at ({x:.1f}, {y:.1f})): the mesh has faces too thin "
+                        "there; mesh the outline with another --cell")
+    union = _union(pieces)
     if union.geom_type == "Polygon" and not union.interiors:
-        return
+        return union
     gaps = (list(union.interiors) if union.geom_type == "Polygon"
             else [g for p in union.geoms for g in p.interiors])
     where = (f", one {np.hypot(gaps[0].centroid.x, gaps[0].centroid.y):.0f} mm from the centre"
@@ -225,6 +231,17 @@ def _check_no_gaps(pieces: np.ndarray) -> None:
             else "separate parts")
     raise MeshError(f"the puzzle's pieces leave {what}: the hexagon ring does not close "
                     "around this mesh; mesh the outline with another --cell")
+
+
+def _union(pieces: np.ndarray):
+    """The union of pieces that share edges exactly (no overlay needed); MeshError when they do
+    not (GEOS refuses a coverage whose pieces meet an edge mid-way)."""
+    try:
+        return shapely.coverage_union_all(pieces)
+    except shapely.errors.GEOSException as exc:
+        raise MeshError(f"the puzzle's pieces do not meet edge to edge ({exc}); the mesh has "
+                        "faces too thin for the hexagon ring: mesh the outline with another "
+                        "--cell") from exc
 
 
 def diameter(polygon: shapely.Polygon) -> float:
@@ -273,7 +290,9 @@ def _ring_offset(envelope: shapely.Polygon, frame_width: float,
     scaled = shapely.transform(envelope, lambda xy: xy * scale)
     grown = shapely.buffer(shapely.buffer(scaled, 2.0 * frame_width, quad_segs=16),
                            -frame_width, quad_segs=16)
-    return shapely.Polygon(grown.exterior)
+    # the band of a connected outline is connected; GEOS can leave a speck beside it when the
+    # outline is scaled nearly to a point (the scale search's lower bracket)
+    return shapely.Polygon(max(getattr(grown, "geoms", [grown]), key=shapely.area).exterior)
 
 
 def frame_scale(base: shapely.Polygon, grow, size: float, measure: str = "diagonal",
