@@ -137,6 +137,7 @@ def test_even_runs_keep_corners_and_have_one_length(points, dent, side):
 @example(7, 0.7953513436132074, 0.1391025053684983, 46188)  # two parts: AttributeError
 @example(6, 0.8125, 0.0, 0)  # an enneagon collapsed onto two points: refused
 @example(6, 0.875, 0.0, 0)  # ring corners 0.002 mm off the mesh's: slivers in the union
+@example(7, 0.7193827393200467, 0.13691762504712574, 6398)  # overlapping pieces hid a gap
 def test_puzzles_of_random_stars_tile_their_hole(points, dent, wobble, seed):
     """Stars and polygons with curved-looking sides, meshed with runs: a puzzle is either
     refused in one line (a level that turns over) or its pieces tile the hole exactly and the

@@ -158,3 +158,11 @@ def test_lineages_keep_one_hue_and_siblings_differ():
 def test_not_a_snub_level():
     with pytest.raises(MeshError, match="snub"):
         snub_weave(inputs.get("square-grid:2x2"))
+
+
+def test_weave_arrays_have_the_documented_dtypes():
+    """Weave's contract (weave/model.py): tile and strand ids int32, offsets int64."""
+    for weave in snub_weaves(subdivide(inputs.get("pentagon"), 3))[1:]:
+        assert weave.parent_strand.dtype == np.int32
+        assert weave.tile_faces.dtype == weave.strand_visits.dtype == np.int32
+        assert weave.tile_offsets.dtype == weave.strand_offsets.dtype == np.int64

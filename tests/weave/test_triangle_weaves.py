@@ -168,3 +168,14 @@ def test_scheme_weaves_one_per_level_of_the_schemes_kind(scheme, name, tile_size
         want = face_split_weave(level.mesh)
         assert np.array_equal(w.strand_visits, want.strand_visits)
         assert np.array_equal(w.tile_faces, want.tile_faces)
+
+
+@pytest.mark.parametrize("dtype", [np.int64, np.float64])
+def test_a_c1_marking_of_zeros_and_ones_weaves_like_the_boolean_one(dtype):
+    """``triangle_weave`` reads its marking as booleans: 0/1 integers or floats (as a file
+    gives them) weave the same as the boolean marking."""
+    mesh, c1 = split_quads(3, 2)
+    by_bool, by_number = triangle_weave(mesh, c1), triangle_weave(mesh, c1.astype(dtype))
+    np.testing.assert_array_equal(by_number.tile_faces, by_bool.tile_faces)
+    np.testing.assert_array_equal(by_number.strand_visits, by_bool.strand_visits)
+    np.testing.assert_array_equal(by_number.visit_over, by_bool.visit_over)
