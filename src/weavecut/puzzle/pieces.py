@@ -210,38 +210,39 @@ def build_puzzle(hierarchy: tuple[Level, ...], size: float = 500.0,
                   centre, frame_width, measure)
 
 
+SLIVER = 1e-8  # of the puzzle's area: a gap or overlap smaller than this is rounding
+
+
 def _one_region(pieces: np.ndarray) -> shapely.Polygon:
-    """The union of the pieces; MeshError unless each is a valid polygon and together they
-    cover one region without gaps between them (a ring hexagon dropped where two runs of the
-    boundary meet can leave one)."""
+    """The outline of the pieces' union; MeshError unless each piece is a valid polygon and
+    together they cover one region without overlaps or gaps between them (a ring hexagon
+    dropped where two runs of the boundary meet can leave one). Slivers far below any cutter's
+    resolution (ring corners computed a few micrometres off a mesh vertex) are not gaps."""
     flat = ~shapely.is_valid(pieces)
     if flat.any():
         x, y = shapely.get_coordinates(pieces[flat][0])[0]
         raise MeshError(f"{flat.sum()} of the puzzle's pieces collapse to a line or a point "
                         f"(the first at ({x:.1f}, {y:.1f})): the mesh has faces too thin "
                         "there; mesh the outline with another --cell")
-    union = _union(pieces)
-    if union.geom_type == "Polygon" and not union.interiors:
-        return union
-    gaps = (list(union.interiors) if union.geom_type == "Polygon"
-            else [g for p in union.geoms for g in p.interiors])
+    union = shapely.union_all(pieces)
+    tiny = SLIVER * union.area
+    overlap = float(shapely.area(pieces).sum() - union.area)
+    if overlap > tiny:
+        a, b = shapely.STRtree(pieces).query(pieces, predicate="overlaps")
+        x, y = shapely.get_coordinates(shapely.centroid(pieces[a[a < b][0]]))[0]
+        raise MeshError(f"the puzzle's pieces overlap ({overlap:.3g} square units in all, the "
+                        f"first near ({x:.1f}, {y:.1f})): the mesh has faces too thin for the "
+                        "hexagon ring there; mesh the outline with another --cell")
+    parts = getattr(union, "geoms", [union])
+    gaps = [r for p in parts for r in p.interiors if shapely.Polygon(r).area > tiny]
+    if len(parts) == 1 and not gaps:
+        return shapely.Polygon(union.exterior)
     where = (f", one {np.hypot(gaps[0].centroid.x, gaps[0].centroid.y):.0f} mm from the centre"
              if gaps else "")
     what = (f"{len(gaps)} gap{'s' * (len(gaps) > 1)} between them{where}" if gaps
             else "separate parts")
     raise MeshError(f"the puzzle's pieces leave {what}: the hexagon ring does not close "
                     "around this mesh; mesh the outline with another --cell")
-
-
-def _union(pieces: np.ndarray):
-    """The union of pieces that share edges exactly (no overlay needed); MeshError when they do
-    not (GEOS refuses a coverage whose pieces meet an edge mid-way)."""
-    try:
-        return shapely.coverage_union_all(pieces)
-    except shapely.errors.GEOSException as exc:
-        raise MeshError(f"the puzzle's pieces do not meet edge to edge ({exc}); the mesh has "
-                        "faces too thin for the hexagon ring: mesh the outline with another "
-                        "--cell") from exc
 
 
 def diameter(polygon: shapely.Polygon) -> float:
