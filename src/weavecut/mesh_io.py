@@ -492,9 +492,12 @@ def _obj_part(tok: _Tokens, n_vertices: int) -> _Part:
     indices = _obj_faces(tok, tok.first[is_f], sizes, f_line, errors)
     if errors:
         raise MeshFileError(min(errors)[2])
+    wrong = ""
+    if not len(indices) or (indices.min() > 0 and indices.max()
+                           <= n_vertices + np.searchsorted(v_line, f_line[0])):
+        return _Part(v_line, points, f_line, sizes, (indices - 1).astype(np.int32), wrong)
     seen = np.repeat(n_vertices + np.searchsorted(v_line, f_line), sizes)  # defined before
     bad = np.flatnonzero((indices == 0) | (np.abs(indices) > seen))
-    wrong = ""
     if len(bad):
         k = bad[0]
         f = int(np.searchsorted(np.cumsum(sizes), k, side="right"))
@@ -511,11 +514,16 @@ def _obj_vertices(tok: _Tokens, first, n_numbers, lines, errors) -> np.ndarray:
         i = wrong[0]
         errors.append((lines[i], 0, f"line {lines[i]}: a vertex needs x y [z], got "
                                     f"{n_numbers[i]} numbers"))
-    used = np.arange(3) < np.clip(n_numbers, 0, 3)[:, None]
-    used[wrong] = False
-    points = np.zeros((len(first), 3))
-    values, bad = tok.floats((first[:, None] + 1 + np.arange(3))[used])
-    points[used] = values
+    tokens = first[:, None] + 1 + np.arange(3)
+    if (n_numbers == 3).all():  # x y z on every line
+        values, bad = tok.floats(tokens.ravel())
+        points, used = values.reshape(-1, 3), np.ones(tokens.shape, dtype=bool)
+    else:
+        used = np.arange(3) < np.clip(n_numbers, 0, 3)[:, None]
+        used[wrong] = False
+        points = np.zeros((len(first), 3))
+        values, bad = tok.floats(tokens[used])
+        points[used] = values
     if bad is not None:
         i = np.flatnonzero(used.ravel())[bad] // 3
         errors.append((lines[i], 1, f"line {lines[i]}: vertex coordinates must be numbers"))
