@@ -141,11 +141,33 @@ def agrees_with_the_oracle(tmp_path_factory, lines, ends):
         with pytest.raises(MeshError) as got:
             read_mesh(path, note=notes.append)
         assert str(got.value) == f"{path}: {exc}"
-        return
+        return None
     mesh = read_mesh(path, note=notes.append)
     assert mesh.vertices.tobytes() == want[0].tobytes()
     assert mesh.faces() == want[1]
     assert notes == ([f"{path}: {want[2]}"] if want[2] else [])
+    return mesh
+
+
+@settings(max_examples=examples(60), deadline=None)
+@given(any_mesh, st.sampled_from([None, *UNREADABLE, "v 0 0", "f 1 2 3 4 5 6 7 8 9 10 11 12"]),
+       st.integers(0, 10**6), st.sampled_from([64, 512, 2**18]))
+def test_regular_and_irregular_layouts_read_alike(tmp_path_factory, mesh, stray, where, chunk):
+    # the reader has fast paths for a regular file (no blank line or run of spaces, x y z on
+    # every v line, face indices of vertices read before) and a general one; the same
+    # statements laid out both ways read alike, and as the line-by-line oracle reads them,
+    # with pieces ending anywhere
+    lines = obj_text(mesh).splitlines()
+    if stray is not None:
+        lines.insert(where % (len(lines) + 1), stray)
+    irregular = [" " + line.replace(" ", "  ") + "\n" for line in lines]
+    with patch.object(mesh_io, "CHUNK", chunk):
+        read = [agrees_with_the_oracle(tmp_path_factory, lines, ["\n"] * len(lines)),
+                agrees_with_the_oracle(tmp_path_factory, irregular, ["\n"] * len(lines))]
+    if read[0] is not None:
+        assert read[0].vertices.tobytes() == read[1].vertices.tobytes()
+        assert read[0].faces() == read[1].faces()
+        assert stray is not None or read[0].faces() == mesh.faces()
 
 
 def test_obj_index_rules(tmp_path):

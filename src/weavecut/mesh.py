@@ -360,7 +360,9 @@ def outer_vertices(mesh: Mesh) -> NDArray[np.bool_]:
 
 def vertex_degrees(mesh: Mesh) -> NDArray[np.int64]:
     """(V,) number of edges at every vertex."""
-    return np.bincount(mesh.topology.edges.ravel(), minlength=mesh.n_vertices)
+    degrees = np.zeros(mesh.n_vertices, dtype=np.int64)
+    np.add.at(degrees, mesh.topology.edges.ravel(), 1)  # no intp copy of the edges (bincount)
+    return degrees
 
 
 def face_centroids(mesh: Mesh) -> NDArray[np.float64]:

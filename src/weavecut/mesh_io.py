@@ -188,27 +188,45 @@ class _Tokens:
     statement included); ``n_lines`` counts the text's line ends.
     """
 
-    def __init__(self, data: bytes, lines_before: int = 0) -> None:
+    def __init__(self, data, lines_before: int = 0, comments: bool = True) -> None:
         pad = b" " * MAX_TOKEN  # room for windows of bytes before and after every token
-        self.buf = np.frombuffer(bytearray().join([pad, data, b"\n", pad]), dtype=np.uint8)
+        ends = data[-1:] == b"\n"
+        self.buf = np.frombuffer(bytearray().join([pad, data, b"" if ends else b"\n", pad]),
+                                 dtype=np.uint8)
         text = self.buf[:-MAX_TOKEN]
-        line_end = np.flatnonzero(text == 10)
-        if np.count_nonzero(text < 32) > len(line_end):
+        gap = self._gaps(text)
+        newline = text[gap] == 10
+        n_newlines = int(np.count_nonzero(newline))
+        if n_newlines + np.count_nonzero(text[gap] == 32) < len(gap):  # other control bytes
             _normalise_controls(text)
-            line_end = np.flatnonzero(text == 10)
-        self.n_lines = len(line_end) - 1
-        if b"#" in data:
-            _blank_comments(text, line_end)
-        gap = text <= 32  # space or newline: the only bytes below 33 left
-        change = np.flatnonzero(gap[1:] != gap[:-1])  # a token starts or ends after these
-        self.start, self.end = change[0::2] + 1, change[1::2] + 1
-        line_start = np.concatenate([[MAX_TOKEN], line_end[:-1] + 1])
-        first = np.searchsorted(self.start, line_start)
-        used = first < len(self.start)
-        used[used] = self.start[first[used]] < line_end[used]
-        self.line = np.flatnonzero(used) + 1 + lines_before
-        self.first = first[used]
+            gap = self._gaps(text)
+            newline = text[gap] == 10
+            n_newlines = int(np.count_nonzero(newline))
+        self.n_lines = n_newlines - (not ends)
+        if comments:
+            _blank_comments(text, gap[newline])
+            gap = self._gaps(text)
+            newline = text[gap] == 10
+        # a token lies between two gaps that are not next to each other
+        self.start, self.end = gap[:-1] + 1, gap[1:]
+        newline[0] = True  # the pad: the text starts a line
+        if (self.end > self.start).all():  # no blank line, no run of spaces
+            self.first = np.flatnonzero(newline[:-1])
+            self.line = np.arange(1 + lines_before, 1 + lines_before + len(self.first))
+        else:
+            newline[0] = False
+            line = np.cumsum(newline[:-1])  # of the space after each gap, 0-based
+            token = np.flatnonzero(self.end > self.start)
+            self.start, self.end, line = self.start[token], self.end[token], line[token]
+            self.first = np.flatnonzero(np.diff(line, prepend=-1))
+            self.line = line[self.first] + 1 + lines_before
         self.count = np.diff(self.first, append=len(self.start))
+
+    @staticmethod
+    def _gaps(text: np.ndarray) -> np.ndarray:
+        """Positions of the bytes below 33 (spaces, line ends, control characters) from the
+        pad byte just before the text on."""
+        return np.flatnonzero(text[MAX_TOKEN - 1:] <= 32) + (MAX_TOKEN - 1)
 
     def text(self, token: int) -> str:
         """Token ``token`` as text (its first few hundred characters)."""
@@ -403,11 +421,12 @@ def _first_unconvertible(strings: np.ndarray) -> int:
 
 
 def _line_chunks(data: bytes):
-    """``data`` in pieces of about ``CHUNK`` bytes that end at line feeds."""
-    a = 0
+    """``data`` in pieces of about ``CHUNK`` bytes that end at line feeds (views, no copies),
+    each with whether it holds a ``#``."""
+    a, view = 0, memoryview(data)
     while a < len(data):
         b = data.find(b"\n", a + CHUNK - 1) + 1 or len(data)
-        yield data[a:b]
+        yield view[a:b], data.find(b"#", a, b) >= 0
         a = b
 
 
@@ -430,8 +449,8 @@ def _parse_obj(data: bytes) -> tuple[Mesh, Numbering, str]:
     face index that refers to no vertex once every line is known good.
     """
     parts, n_lines, n_vertices, n_faces = [], 0, 0, 0
-    for chunk in _line_chunks(data):
-        tok = _Tokens(chunk, n_lines)
+    for chunk, comments in _line_chunks(data):
+        tok = _Tokens(chunk, n_lines, comments)
         parts.append(_obj_part(tok, n_vertices))
         n_lines += tok.n_lines
         n_vertices += len(parts[-1].v_line)
@@ -461,9 +480,10 @@ def _obj_part(tok: _Tokens, n_vertices: int) -> _Part:
     is_v, is_f = single & (tag == ord("v")), single & (tag == ord("f"))
     errors: list[tuple[int, int, str]] = []  # (line, rank on the line, message)
     other = np.flatnonzero(~(is_v | is_f))
-    unknown = other[~np.isin(tok.keys(tok.first[other]), [_key(t) for t in _IGNORED])]
-    if len(unknown):
-        i = unknown[0]
+    if len(other):
+        other = other[~np.isin(tok.keys(tok.first[other]), [_key(t) for t in _IGNORED])]
+    if len(other):  # unknown statements
+        i = other[0]
         errors.append((tok.line[i], 0, f"line {tok.line[i]}: unknown OBJ statement "
                                        f"{tok.text(tok.first[i])!r}"[:200]))
     v_line, f_line = tok.line[is_v], tok.line[is_f]
@@ -472,9 +492,12 @@ def _obj_part(tok: _Tokens, n_vertices: int) -> _Part:
     indices = _obj_faces(tok, tok.first[is_f], sizes, f_line, errors)
     if errors:
         raise MeshFileError(min(errors)[2])
+    wrong = ""
+    if not len(indices) or (indices.min() > 0 and indices.max()
+                           <= n_vertices + np.searchsorted(v_line, f_line[0])):
+        return _Part(v_line, points, f_line, sizes, (indices - 1).astype(np.int32), wrong)
     seen = np.repeat(n_vertices + np.searchsorted(v_line, f_line), sizes)  # defined before
     bad = np.flatnonzero((indices == 0) | (np.abs(indices) > seen))
-    wrong = ""
     if len(bad):
         k = bad[0]
         f = int(np.searchsorted(np.cumsum(sizes), k, side="right"))
@@ -491,11 +514,16 @@ def _obj_vertices(tok: _Tokens, first, n_numbers, lines, errors) -> np.ndarray:
         i = wrong[0]
         errors.append((lines[i], 0, f"line {lines[i]}: a vertex needs x y [z], got "
                                     f"{n_numbers[i]} numbers"))
-    used = np.arange(3) < np.clip(n_numbers, 0, 3)[:, None]
-    used[wrong] = False
-    points = np.zeros((len(first), 3))
-    values, bad = tok.floats((first[:, None] + 1 + np.arange(3))[used])
-    points[used] = values
+    tokens = first[:, None] + 1 + np.arange(3)
+    if (n_numbers == 3).all():  # x y z on every line
+        values, bad = tok.floats(tokens.ravel())
+        points, used = values.reshape(-1, 3), np.ones(tokens.shape, dtype=bool)
+    else:
+        used = np.arange(3) < np.clip(n_numbers, 0, 3)[:, None]
+        used[wrong] = False
+        points = np.zeros((len(first), 3))
+        values, bad = tok.floats(tokens[used])
+        points[used] = values
     if bad is not None:
         i = np.flatnonzero(used.ravel())[bad] // 3
         errors.append((lines[i], 1, f"line {lines[i]}: vertex coordinates must be numbers"))

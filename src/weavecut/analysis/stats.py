@@ -28,18 +28,29 @@ def nonconvex_faces(mesh: Mesh) -> np.ndarray:
     return np.bincount(mesh.half_edge_face[reflex], minlength=mesh.n_faces) > 0
 
 
-def _dense_turns(vertices: NDArray[np.float64], faces: NDArray[np.int32]):
-    """(f, k) cross and dot products of the two edges at every corner of faces of one degree,
-    bit for bit those of ``corner_angles``: with e_j = p_(j+1) - p_j, the edge to the
-    previous corner is -e_(j-1) exactly."""
-    p = np.take(vertices, faces, axis=0, mode="clip")  # (f, k, 2)
-    e = np.empty_like(p)
-    np.subtract(p[:, 1:], p[:, :-1], out=e[:, :-1])
-    np.subtract(p[:, 0], p[:, -1], out=e[:, -1])
-    before = np.roll(e, 1, axis=1)
-    cross = e[..., 1] * before[..., 0] - e[..., 0] * before[..., 1]
-    dot = e[..., 0] * before[..., 0]
-    dot += e[..., 1] * before[..., 1]
+def _dense_turns(x: NDArray[np.float64], y: NDArray[np.float64], faces: NDArray[np.int32]):
+    """(k, f) cross and dot products of the two edges at every corner of faces of one degree
+    (corner j of face i at [j, i]), bit for bit those of ``corner_angles``: with
+    e_j = p_(j+1) - p_j, the edge to the previous corner is -e_(j-1) exactly. Corner-major,
+    so that every operation runs over rows of f numbers."""
+    k = faces.shape[1]
+    edges = []
+    for column in (x, y):
+        p = np.take(column, faces.T, mode="clip")  # (k, f)
+        e = np.empty_like(p)
+        np.subtract(p[1:], p[:-1], out=e[:-1])
+        np.subtract(p[0], p[-1], out=e[-1])
+        edges.append(e)
+    ex, ey = edges
+    cross, dot, scratch = np.empty_like(ex), np.empty_like(ex), np.empty_like(ex)
+    for j, i in ((slice(1, k), slice(0, k - 1)), (slice(0, 1), slice(k - 1, k))):
+        # at corner j the edge before is e_i: cross = e_j x e_i, dot = -(e_j . e_i)
+        np.multiply(ey[j], ex[i], out=cross[j])
+        np.multiply(ex[j], ey[i], out=scratch[j])
+        cross[j] -= scratch[j]
+        np.multiply(ex[j], ex[i], out=dot[j])
+        np.multiply(ey[j], ey[i], out=scratch[j])
+        dot[j] += scratch[j]
     np.negative(dot, out=dot)
     return cross, dot
 
@@ -53,10 +64,12 @@ def _pseudo_angles(cross, dot) -> NDArray[np.float64]:
     """An increasing function of :func:`_angles`, in [0, 4], with no transcendental (NaN at a
     corner with an edge of length 0): 1 - dot / (|cross| + |dot|) up to pi, 3 + the ratio
     above."""
-    ratio = np.abs(cross)
-    ratio += np.abs(dot)
+    ratio, turn = np.abs(cross), np.abs(dot)
+    ratio += turn
     np.divide(dot, ratio, out=ratio)
-    return np.where(cross < 0, 3 + ratio, 1 - ratio)
+    np.subtract(1, ratio, out=turn)
+    np.add(3, ratio, out=turn, where=cross < 0)
+    return turn
 
 
 def surface_angles(mesh: Mesh) -> NDArray[np.float64]:
@@ -92,8 +105,9 @@ def angle_summary(mesh: Mesh) -> tuple[float, float, int]:
         angles = corner_angles(mesh)
         return float(angles.min()), float(angles.max()), int(nonconvex_faces(mesh).sum())
     lo, hi, bad = np.inf, -np.inf, 0
+    x, y = np.ascontiguousarray(mesh.vertices.T)
     for start in range(0, len(dense), BLOCK):
-        cross, dot = _dense_turns(mesh.vertices, dense[start:start + BLOCK])
+        cross, dot = _dense_turns(x, y, dense[start:start + BLOCK])
         turn = _pseudo_angles(cross, dot)
         undefined = np.isnan(turn)
         pick = (turn <= np.fmin.reduce(turn, axis=None) + TIE) | undefined
@@ -105,7 +119,7 @@ def angle_summary(mesh: Mesh) -> tuple[float, float, int]:
         if turning.any():
             reflex = np.zeros(cross.shape, dtype=bool)
             reflex[turning] = _angles(cross[turning], dot[turning]) > np.pi + REFLEX_EPS
-            bad += int(reflex.any(axis=1).sum())
+            bad += int(reflex.any(axis=0).sum())
     return lo, hi, bad
 
 
