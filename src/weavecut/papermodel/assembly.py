@@ -17,6 +17,7 @@ from ..layout.drawing import Fit, Layer, Polylines, Sheet, Style, Text, polygons
 from ..layout.labels import (
     MIN_CAP,
     centred_text,
+    inner_centres,
     largest_fit,
     text_box,
     text_width,
@@ -51,8 +52,10 @@ def _paragraphs(items: list[str], x: float, top: float, width: float,
 
 
 def _pattern(weave: Weave, turn: float, box, colours, show=None):
-    """(tiles on the sheet, fit, paint shape) for the pattern fitted into ``box``; with ``show``
-    (S,) bool only those strands are coloured (the others white)."""
+    """(tiles on the sheet, fit, label spots, paint shape, fills) for the pattern fitted into
+    ``box``; with ``show`` (S,) bool only those strands are coloured (the others white). A
+    tile's label spot is the centre of the largest circle inside it: the mean of its corners
+    lies outside a non-convex or twisted tile of an irregular mesh."""
     tiles = model_tiles(weave)
     centre = weave.mesh.vertices.mean(axis=0)
     turned = shapely.transform(tiles, lambda xy: rotate(xy, turn, centre))
@@ -66,7 +69,8 @@ def _pattern(weave: Weave, turn: float, box, colours, show=None):
     top = np.where((over >= 0) & show[np.maximum(over, 0)], over,
                    np.where((under >= 0) & show[np.maximum(under, 0)], under, -1))
     fills = [colours[s] if s >= 0 else "#ffffff" for s in top.tolist()]
-    centres = fit(rotate(tile_centres(weave), turn, centre))
+    centres = inner_centres(shapely.make_valid(on_sheet, method="structure",
+                                               keep_collapsed=False))
     return on_sheet, fit, centres, polygons_from_shapely(list(on_sheet), OUTLINE, fills), fills
 
 
