@@ -35,7 +35,7 @@ ALONG = 6  # an extra ID every this many own tiles along a strand
 OUTLINE = Style("#333333", 0.1)
 
 
-def _paragraphs(items: list[str], x: float, top: float, width: float,
+def paragraphs(items: list[str], x: float, top: float, width: float,
                 numbered: bool = False) -> tuple[list[Text], float]:
     """Wrapped lines from ``top`` down; returns the texts and the y below the last line."""
     texts, y = [], top
@@ -51,7 +51,7 @@ def _paragraphs(items: list[str], x: float, top: float, width: float,
     return texts, y
 
 
-def _pattern(weave: Weave, turn: float, box, colours, show=None):
+def pattern(weave: Weave, turn: float, box, colours, show=None):
     """(tiles on the sheet, fit, label spots, paint shape, fills) for the pattern fitted into
     ``box``; with ``show`` (S,) bool only those strands are coloured (the others white). A
     tile's label spot is the centre of the largest circle inside it: the mean of its corners
@@ -99,9 +99,9 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
                      + page_index(book) + ".")
     lines.append("Each strand's ID is printed at both ends and along it; arrows show the way "
                  "its strip reads. Weaving steps: page 2.")
-    texts, bottom = _paragraphs(lines, x0, y1, x1 - x0)
+    texts, bottom = paragraphs(lines, x0, y1, x1 - x0)
     box = (x0, y0, x1, bottom - GAP)
-    on_sheet, fit, centres, paint, fills = _pattern(weave, turn, box, book.colours)
+    on_sheet, fit, centres, paint, fills = pattern(weave, turn, box, book.colours)
     ids, boxes, leaders, arrows = _strand_labels(weave, book, on_sheet, centres, fills, box)
     note = f"pattern drawn at {100 * fit.scale / book.scale:.0f} % of its printed size"
     texts.append(Text(x1, y0 - GAP - TEXT, note, TEXT, "end"))
@@ -306,7 +306,7 @@ def weaving_sheet(weave: Weave, book, turn: float, title: str, total: int) -> Sh
     area = book.area
     x0, y0, x1, y1 = area.box
     steps, groups = weaving_steps(weave, book, turn)
-    texts, bottom = _paragraphs(steps, x0, y1, x1 - x0, numbered=True)
+    texts, bottom = paragraphs(steps, x0, y1, x1 - x0, numbered=True)
     picks = sorted({0, 1, len(groups) // 2, len(groups) - 1}) if len(groups) > 1 else [0]
     n = len(picks)
     cols = 2 if n > 2 else n
@@ -328,7 +328,7 @@ def weaving_sheet(weave: Weave, book, turn: float, title: str, total: int) -> Sh
         texts.append(Text(bx, by + cell_h - TEXT, caption, TEXT))
         if cell_h - LINE > 10:
             box = (bx, by, bx + cell_w, by + cell_h - LINE)
-            shapes.append(_pattern(weave, turn, box, book.colours, shown.copy())[3])
+            shapes.append(pattern(weave, turn, box, book.colours, shown.copy())[3])
     layers = [Layer("diagrams", "paint", tuple(shapes)), Layer("steps", "label", tuple(texts))]
     layers += page_layers(area, title, "How to weave: numbered steps; the diagrams show the "
                           "weave growing", 2, total)

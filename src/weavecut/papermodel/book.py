@@ -23,6 +23,7 @@ from ..layout.labels import MIN_CAP
 from ..weave.colour import Palette
 from ..weave.model import Weave
 from .assembly import assembly_sheet, weaving_sheet
+from .crossings import crossing_pages, left_out_crossings
 from .packing import pack
 from .pages import GAP, PageArea, page_layers, split_strip, strip_layers
 from .strips import (
@@ -185,7 +186,7 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
     if left_out:
         warnings += (f"{left_out} under-crossing names are left off their strips: the tile "
                      f"under them, even with a plate over its neighbours, is too small for "
-                     f"{MIN_CAP:g} mm text; page 1 shows those crossings",)
+                     f"{MIN_CAP:g} mm text; page 3 on names those crossings",)
 
     if layout == "module":
         def subtitle(names):
@@ -194,15 +195,20 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
     else:
         def subtitle(names):
             return f"Strips: {names}"
-    first = 3  # pages 1, 2: assembly and weaving
+    crossings = crossing_pages(weave, plan, colours, area, left_out_crossings(
+        weave, plan, pieces, layout), turn) if left_out else []
+    first = 3 + len(crossings)  # pages 1, 2: assembly and weaving, then the unnamed crossings
     placed, sheets = strip_sheets(pieces, kinds, area, title, subtitle, colours, first)
     total = len(sheets) + first - 1
     book = StrandBook(Drawing((), title), plan, tuple(colours), layout, placed,
-                      tuple(range(first, first + len(sheets))), (1, 2), scale, area, width,
-                      tile_size, warnings)
-    cover = assembly_sheet(weave, book, tile_size, turn, title, total)
-    weaving = weaving_sheet(weave, book, turn, title, total)
-    return StrandBook(Drawing((cover, weaving, *sheets), title), plan, tuple(colours), layout,
+                      tuple(range(first, first + len(sheets))), tuple(range(1, first)), scale,
+                      area, width, tile_size, warnings)
+    extra = [assembly_sheet(weave, book, tile_size, turn, title, total),
+             weaving_sheet(weave, book, turn, title, total)]
+    extra += [Sheet(area.width, area.height, layers + tuple(page_layers(
+        area, title, "Crossings the strips do not name: the strand named first lies on top", n,
+        total)), f"page {n}: crossings") for n, layers in enumerate(crossings, start=3)]
+    return StrandBook(Drawing((*extra, *sheets), title), plan, tuple(colours), layout,
                       placed, book.strip_pages, book.extra_pages, scale, area, width, tile_size,
                       warnings)
 
