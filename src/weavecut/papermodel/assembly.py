@@ -75,9 +75,12 @@ def pattern(weave: Weave, turn: float, box, colours, show=None):
 
 
 def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str,
-                   total: int) -> Sheet:
-    """Page 1: what to print, which page holds which strip, and the finished pattern with IDs."""
+                   total: int, crossings=()) -> tuple[Sheet, int]:
+    """(page 1, how many of ``crossings`` found no room): what to print, which page holds which
+    strip, and the finished pattern with IDs; with ``crossings`` (tile, strand on top, strand
+    below) those the strips leave unnamed are called out on it too (:mod:`.crossings`)."""
     from .book import page_index
+    from .crossings import DOT, callout_shapes, crossing_label
 
     plan, area = book.plan, book.area
     k, m = plan.k, plan.copies.shape[1]
@@ -99,10 +102,30 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
                      + page_index(book) + ".")
     lines.append("Each strand's ID is printed at both ends and along it; arrows show the way "
                  "its strip reads. Weaving steps: page 2.")
+    if crossings:
+        lines.append(f"{len(crossings)} crossings are too small to carry a name on their strip "
+                     "(printed light with no name there): each is called out below, \"C8 over "
+                     "A14\" meaning strip A14 goes under strand C8 at the dot.")
+    elif book.extra_pages[-1] > 2:
+        lines.append("Crossings too small to carry a name on their strip are called out on "
+                     + (f"pages 3-{book.extra_pages[-1]}." if book.extra_pages[-1] > 3
+                        else "page 3."))
     texts, bottom = paragraphs(lines, x0, y1, x1 - x0)
     box = (x0, y0, x1, bottom - GAP)
     on_sheet, fit, centres, paint, fills = pattern(weave, turn, box, book.colours)
-    ids, boxes, leaders, arrows = _strand_labels(weave, book, on_sheet, centres, fills, box)
+    ids, boxes, leaders, arrows, obstacles = _strand_labels(weave, book, on_sheet, centres,
+                                                            fills, box)
+    called, at, size = [], [], tile_mm(on_sheet)
+    for tile, over, under in crossings:  # callouts
+        spot = _crossing_spot(on_sheet[tile], obstacles)
+        placed = None if spot is None else _free_spot(
+            spot, crossing_label(plan.labels, over, under), obstacles, shapely.box(*box), size)
+        if placed is not None:
+            called.append((placed[0], placed[1], np.asarray(placed[2].coords)))
+            at.append(spot)
+            obstacles += [placed[1], shapely.buffer(placed[2], 0.3), shapely.buffer(
+                shapely.Point(spot), DOT)]
+    callouts, named = callout_shapes(called, at) if called else ([], [])
     note = f"pattern drawn at {100 * fit.scale / book.scale:.0f} % of its printed size"
     texts.append(Text(x1, y0 - GAP - TEXT, note, TEXT, "end"))
     shapes = [paint]
@@ -113,20 +136,27 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
         shapes.append(Polylines(coords, np.arange(0, len(coords) + 1, 2, dtype=np.int64),
                                 Style("#000000", 0.2)))
     shapes += [polygons_from_shapely(a, Style(None, 0.0, ink)) for ink, a in sorted(arrows.items())]
-    layers = [Layer("pattern", "paint", tuple(shapes)), Layer("ids", "label", tuple(ids)),
-              Layer("notes", "label", tuple(texts))]
+    layers = [Layer("pattern", "paint", (*shapes, *callouts)), Layer("ids", "label", tuple(ids)),
+              Layer("crossings", "label", tuple(named)), Layer("notes", "label", tuple(texts))]
     layers += page_layers(area, title, "Assembly sheet: the finished pattern with every "
                           "strand's ID (copy letter + number)", 1, total,
                           book.colours[int(plan.copies[0, 0])] if m else "#3e9fb0")
-    return Sheet(area.width, area.height, tuple(layers), "page 1: assembly")
+    return (Sheet(area.width, area.height, tuple(layers), "page 1: assembly"),
+            len(crossings) - len(called))
+
+
+def tile_mm(on_sheet) -> float:
+    """A typical tile's size on the sheet (mm): the root of the median tile area."""
+    return float(np.sqrt(np.median(shapely.area(on_sheet))))
 
 
 def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
     """IDs at both ends of every strand and every ``ALONG`` own tiles, inside own tiles where
-    they fit; an end that has no room gets its ID on a white box with a leader line."""
+    they fit; an end that has no room gets its ID on a white box with a leader line. Returns
+    (IDs, white boxes, leader lines, arrows by ink, everything later labels keep clear of)."""
     plan = book.plan
     regions = shapely.buffer(on_sheet, -0.4, join_style="mitre")
-    tile_mm = np.sqrt(np.median(shapely.area(on_sheet)))
+    across = tile_mm(on_sheet)
     wanted, order = [], []  # (tile, strand, end?) per candidate
     for s in range(weave.n_strands):  # strands, not mesh elements
         visits, own = weave.strand(s)
@@ -174,7 +204,7 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
     ts = list(arrow_tiles)
     unit = [shapely.transform(arrow_polygon((0.5, 0.0), (1.0, 0.0), 1.0),
                               lambda xy, d=arrow_tiles[t]: xy @ turn_to(d).T) for t in ts]
-    length = largest_fit(regions[ts], unit, centres[ts], 1.5, 0.6 * tile_mm) if ts else []
+    length = largest_fit(regions[ts], unit, centres[ts], 1.5, 0.6 * across) if ts else []
     arrows: dict[str, list] = {}
     for t, u, z in zip(ts, unit, list(length)):
         if np.isfinite(z):
@@ -183,7 +213,7 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
     obstacles = taken + [a for v in arrows.values() for a in v]
     frame = shapely.box(*box)
     for t, label in missing:  # leader lines
-        spot = _free_spot(centres[t], label, obstacles, frame, tile_mm)
+        spot = _free_spot(centres[t], label, obstacles, frame, across)
         if spot is None:
             continue
         text_at, plate, leader = spot
@@ -191,17 +221,30 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
         boxes.append(plate)
         obstacles += [plate, shapely.buffer(leader, 0.3)]
         leaders.append(np.asarray(leader.coords))
-    return ids, boxes, leaders, arrows
+    return ids, boxes, leaders, arrows, obstacles
 
 
-def _free_spot(at, label: str, obstacles, frame, tile_mm: float):
+def _crossing_spot(tile, obstacles):
+    """Where a callout's dot goes in ``tile``: the centre of the largest circle inside it clear
+    of the labels, arrows and leaders already there (an ID's leader often ends in the same
+    small tile), or None if none is left."""
+    from .crossings import DOT
+    tile = shapely.make_valid(tile, method="structure", keep_collapsed=False)
+    near = [o for o in obstacles if o.intersects(tile)]
+    free = shapely.buffer(tile, -0.4, join_style="mitre")
+    if near:
+        free = shapely.difference(free, shapely.buffer(shapely.union_all(near), DOT + 0.3))
+    return None if free.is_empty else inner_centres([free])[0]
+
+
+def _free_spot(at, label: str, obstacles, frame, size: float):
     """(text, white plate, leader line) near ``at``: neither the plate nor its leader line
     touches an obstacle; None if there is no such place."""
     plate_pad = 0.8
     w = text_width(label, MIN_CAP) + 2 * plate_pad
     h = MIN_CAP * 1.3 + 2 * plate_pad
     tree = shapely.STRtree(obstacles) if obstacles else None
-    for r in np.arange(1.0, 8.0, 0.75) * max(tile_mm, h):
+    for r in np.arange(1.0, 8.0, 0.75) * max(size, h):
         for a in np.radians(np.arange(0, 360, 30) + 15):
             c = np.asarray(at) + r * np.array([np.cos(a), np.sin(a)])
             plate = shapely.box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)

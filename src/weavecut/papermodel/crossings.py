@@ -53,6 +53,11 @@ def left_out_crossings(weave: Weave, plan, pieces, layout: str) -> list[tuple[in
     return list(zip(t.tolist(), weave.tile_over[t].tolist(), weave.tile_under[t].tolist()))
 
 
+def crossing_label(ids, over: int, under: int) -> str:
+    """"C8 over A14": strand ``over`` lies on top of strip ``under`` there."""
+    return f"{ids[over]} over {ids[under]}"
+
+
 def column_callouts(spots, labels: list[str], frame, middle: float) -> list:
     """A (text, plate, leader) for every ``spots[i]`` (sheet mm) saying ``labels[i]`` at
     ``MIN_CAP``: a spot left of ``middle`` (x) gets its plate in a column at the left edge of
@@ -118,7 +123,7 @@ def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float) ->
     them in turn from the top."""
     ids = plan.labels
     x0, y0, x1, y1 = area.box
-    labels = [f"{ids[over]} over {ids[under]}" for _, over, under in crossings]
+    labels = [crossing_label(ids, over, under) for _, over, under in crossings]
     note = (f"{len(crossings)} crossings are too small to carry a name on their strip: there the "
             "strip is printed light with no name. Each is called out once on these pages: "
             "\"C8 over A14\" means strip A14 goes under strand C8 at the dot.")
