@@ -1,12 +1,13 @@
-"""The crossings the strips cannot name, named on pages of their own.
+"""The crossings the strips cannot name, called out on page 1 or on pages of their own.
 
 An under tile too small for a 2.5 mm name even on a plate over its neighbours (a border tile of
-the pentagon flower at the paper's 23 cm) is printed without it (:func:`label_strip`). These
-pages show the finished pattern once more, between two columns of callouts: "C8 over A14" on a
-white plate, with a leader line to the crossing (a dot on it), as a technical drawing's
-callouts. A free spot beside each crossing was tried first (a map labeller's greedy search):
-the plates that hug the border wall the later leaders off, so on the pentagon flower only 61
-of its 155 crossings found a spot on a page; columns hold 42 a side.
+the pentagon flower at the paper's 23 cm) is printed without it (:func:`label_strip`). Each
+such crossing is called out once, "C8 over A14" on a white plate with a leader line to a dot on
+the crossing: on the assembly sheet where they all find a free spot (:mod:`.assembly`), else
+on pages after the weaving page that show the pattern once more between two columns of
+callouts, as a technical drawing's. The greedy free-spot search alone fails there: on the
+pentagon flower the plates that hug the border wall the later leaders off, and only 61 of its
+155 crossings found a spot on a page; a column of an A4 page holds 42.
 """
 
 from __future__ import annotations
@@ -25,7 +26,6 @@ PLATE_PAD = 0.8  # mm of white plate round a callout's text
 LEADER = Style("#000000", 0.25)
 CASING = Style("#ffffff", 0.7)  # under the leader, so it shows on dark tiles too
 DOT = 0.7  # mm, radius of the dot on the crossing
-OVER = 10  # mm of leader a plate over the pattern costs
 ROW_GAP = 0.6  # mm between two plates of a column
 
 
@@ -125,7 +125,8 @@ def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float) ->
     x0, y0, x1, y1 = area.box
     labels = [crossing_label(ids, over, under) for _, over, under in crossings]
     note = (f"{len(crossings)} crossings are too small to carry a name on their strip: there the "
-            "strip is printed light with no name. Each is called out once on these pages: "
+            "strip is printed light with no name. Each is called out once, here or on the next "
+            "page: "
             "\"C8 over A14\" means strip A14 goes under strand C8 at the dot.")
     texts, bottom = paragraphs([note], x0, y1, x1 - x0)
     room = max((text_width(s, MIN_CAP) for s in labels), default=0.0) + 2 * PLATE_PAD + 3 * GAP
