@@ -80,7 +80,7 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
     strip, and the finished pattern with IDs; with ``crossings`` (tile, strand on top, strand
     below) those the strips leave unnamed are called out on it too (:mod:`.crossings`)."""
     from .book import page_index
-    from .crossings import DOT, callout_shapes, crossing_label
+    from .crossings import DOT, callout_shapes, crossing_label, too_small
 
     plan, area = book.plan, book.area
     k, m = plan.k, plan.copies.shape[1]
@@ -103,9 +103,9 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
     lines.append("Each strand's ID is printed at both ends and along it; arrows show the way "
                  "its strip reads. Weaving steps: page 2.")
     if crossings:
-        lines.append(f"{len(crossings)} crossings are too small to carry a name on their strip "
-                     "(printed light with no name there): each is called out below, \"C8 over "
-                     "A14\" meaning strip A14 goes under strand C8 at the dot.")
+        lines.append(f"{too_small(len(crossings))} to carry a name on their strip (printed "
+                     "light with no name there): called out below, \"C8 over A14\" meaning "
+                     "strip A14 goes under strand C8 at the dot.")
     elif book.extra_pages[-1] > 2:
         lines.append("Crossings too small to carry a name on their strip are called out on "
                      + (f"pages 3-{book.extra_pages[-1]}." if book.extra_pages[-1] > 3

@@ -204,8 +204,8 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         where = "page 1" if not own else "page 3" if own == 1 else f"pages 3-{first - 1}"
         notes = warnings + ((f"{left_out} under-crossing names are left off their strips: the "
                              f"tile under them, even with a plate over its neighbours, is too "
-                             f"small for {MIN_CAP:g} mm text; {where} calls those crossings "
-                             "out",) if left_out else ())
+                             f"small for {MIN_CAP:g} mm text; they are called out on {where}",)
+                           if left_out else ())
         return (StrandBook(Drawing((), title), plan, tuple(colours), layout, placed,
                            tuple(range(first, first + len(sheets))), tuple(range(1, first)),
                            scale, area, width, tile_size, notes), sheets, len(sheets) + first - 1)

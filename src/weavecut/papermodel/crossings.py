@@ -53,6 +53,11 @@ def left_out_crossings(weave: Weave, plan, pieces, layout: str) -> list[tuple[in
     return list(zip(t.tolist(), weave.tile_over[t].tolist(), weave.tile_under[t].tolist()))
 
 
+def too_small(n: int) -> str:
+    """"3 crossings are too small" (or "1 crossing is")."""
+    return f"{n} crossing is too small" if n == 1 else f"{n} crossings are too small"
+
+
 def crossing_label(ids, over: int, under: int) -> str:
     """"C8 over A14": strand ``over`` lies on top of strip ``under`` there."""
     return f"{ids[over]} over {ids[under]}"
@@ -124,10 +129,9 @@ def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float) ->
     ids = plan.labels
     x0, y0, x1, y1 = area.box
     labels = [crossing_label(ids, over, under) for _, over, under in crossings]
-    note = (f"{len(crossings)} crossings are too small to carry a name on their strip: there the "
-            "strip is printed light with no name. Each is called out once, here or on the next "
-            "page: "
-            "\"C8 over A14\" means strip A14 goes under strand C8 at the dot.")
+    note = (f"{too_small(len(crossings))} to carry a name on their strip: there the "
+            "strip is printed light with no name. Each is called out once: \"C8 over A14\" "
+            "means strip A14 goes under strand C8 at the dot.")
     texts, bottom = paragraphs([note], x0, y1, x1 - x0)
     room = max((text_width(s, MIN_CAP) for s in labels), default=0.0) + 2 * PLATE_PAD + 3 * GAP
     frame = (x0, y0, x1, bottom - GAP)
