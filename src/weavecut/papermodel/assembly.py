@@ -276,6 +276,11 @@ def weaving_steps(weave: Weave, book, turn: float) -> tuple[list[str], list[np.n
         steps.append("Strips too small for their ID carry it on a small tab at one end: cut the "
                      "tab out with the strip and cut it off along its dashed line once the strip "
                      "is woven in.")
+    if any(p.left_out for _, p in book.pieces):
+        last = book.extra_pages[-1]
+        where = "page 1" if last == 2 else "page 3" if last == 3 else f"pages 3-{last}"
+        steps.append("A light part with no name is a crossing too small to name on the strip: "
+                     f"it is called out on {where} (\"C8 over A14\": A14 goes under C8 there).")
     if glue:
         steps.append("Some strips are printed in parts (\"A7 1/2\", \"A7 2/2\"): spread glue on "
                      "the grey band of part 1 and stick it under the start of part 2 before "
