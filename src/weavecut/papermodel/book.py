@@ -202,7 +202,8 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         placed, sheets = strip_sheets(pieces, kinds, area, title, subtitle, colours, first,
                                       places)
         where = "page 1" if not own else "page 3" if own == 1 else f"pages 3-{first - 1}"
-        notes = warnings + ((f"{left_out} under-crossing names are left off their strips: the "
+        names = "name is" if left_out == 1 else "names are"
+        notes = warnings + ((f"{left_out} under-crossing {names} left off their strips: the "
                              f"tile under them, even with a plate over its neighbours, is too "
                              f"small for {MIN_CAP:g} mm text; they are called out on {where}",)
                            if left_out else ())
