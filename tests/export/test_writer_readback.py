@@ -101,10 +101,12 @@ def test_svg_one_sheet_reads_back_as_drawn():
     assert functools.reduce(shapely.symmetric_difference, teal.geoms).equals(
         flip(shapely.union(SQUARE, FRAME)))
 
-    # open lines stay open; a hairline gets a visible minimal width
+    # open lines stay open; a hairline is one screen pixel wide at any zoom (Inkscape's form)
     (fold,) = g["folds"].iter(f"{NS}path")
     assert "Z" not in fold.get("d") and fold.get("fill") == "none"
-    assert fold.get("stroke-width") == "0.01"
+    assert (fold.get("stroke-width"), fold.get("vector-effect"), fold.get("style")) == \
+        ("1", "non-scaling-stroke", "-inkscape-stroke:hairline")
+    assert cut.get("vector-effect") is None  # a stroke of a width keeps it
     a, b = subpaths(fold.get("d"))
     np.testing.assert_array_equal(a, [[0, 80], [5, 75], [10, 80]])
     np.testing.assert_array_equal(b, [[1, 20], [2, 10]])

@@ -268,6 +268,40 @@ def test_the_card_colour_page_names_every_strands_card():
     assert named == strips
 
 
+@pytest.mark.parametrize("name, shows", [("lightburn", True), ("ponoko", False)])
+def test_card_cut_lines_show_on_screen_where_the_laser_program_allows(name, shows, tmp_path):
+    """LightBurn ignores stroke widths: its cut and engrave lines are hairlines, written as
+    Inkscape's (1 px, vector-effect non-scaling-stroke), so a card sheet rendered at 96 dpi
+    shows its red cut lines; Ponoko's rules ask for 0.01 mm lines, which stay so (and stay
+    invisible on screen). Read back with an XML parser and rendered with rsvg-convert."""
+    import shutil
+    import subprocess
+
+    from PIL import Image
+
+    book, _ = card()
+    las = laser(name)
+    cut = lasercard.card_sheets([p for _, p in book.pieces], book.colours, las, 0.1, A4)
+    path = tmp_path / "sheet.svg"
+    export.write(cut.sheets[0], path)
+    ink = las.style("cut").stroke
+    paths = [p for p in ET.parse(path).getroot().iter("{http://www.w3.org/2000/svg}path")
+             if p.get("stroke") == ink]
+    assert paths
+    for p in paths:
+        assert (p.get("vector-effect") == "non-scaling-stroke") == shows
+        assert p.get("stroke-width") == ("1" if shows else "0.01")
+    if shutil.which("rsvg-convert") is None:
+        pytest.skip("rsvg-convert is not installed")
+    png = tmp_path / "sheet.png"
+    subprocess.run(["rsvg-convert", "-d", "96", "-p", "96", "-b", "white", "-o", str(png),
+                    str(path)], check=True)
+    rgb = np.asarray(Image.open(png).convert("RGB")).astype(int)
+    target = np.array([int(ink[i:i + 2], 16) for i in (1, 3, 5)])
+    near = (np.abs(rgb - target).max(axis=2) < 60).sum()
+    assert (near > 1000) == shows  # the outlines of every strip, a pixel wide
+
+
 def test_engraving_comes_before_the_cut():
     _, cut = card()
     roles = [layer.role for layer in cut.sheets[0].sheets[0].layers]

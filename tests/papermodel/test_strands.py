@@ -205,11 +205,31 @@ BOOKS = {"square-grid:2x2": small_book, "hexagon": user_book,
          "module": lambda: user_book("module")}
 
 
-@pytest.mark.parametrize("name", BOOKS)
+@lru_cache(maxsize=None)
+def voronoi_book():
+    """The bundled Voronoi example (examples/voronoi-patch.obj) as `strands` prints it: an
+    irregular mesh with non-convex and twisted tiles, whose corner means lie outside them."""
+    return strand_book(list(voronoi_weaves()), palette("maritime-12"), tile_size=20.0)
+
+
+@lru_cache(maxsize=None)
+def voronoi_weaves():
+    from pathlib import Path
+    from weavecut.mesh_io import read_valid_mesh
+    obj = Path(__file__).parents[2] / "examples" / "voronoi-patch.obj"
+    return tuple(snub_weaves(subdivide(read_valid_mesh(str(obj)), 2)))
+
+
+def voronoi_weave():
+    return voronoi_weaves()[-1]
+
+
+@pytest.mark.parametrize("name", [*BOOKS, "voronoi"])
 def test_every_label_is_readable(name):
     """Upright, >= 2.5 mm, inside its strip's cut line, on one fill with contrast >= 4.5, no
-    overlaps (checked over the Drawing by text_checks, an oracle apart from the placement)."""
-    book = BOOKS[name]()
+    overlaps, an assembly-sheet ID on its strand or on a plate whose leader ends on it (checked
+    over the Drawing by text_checks, an oracle apart from the placement)."""
+    book = voronoi_book() if name == "voronoi" else BOOKS[name]()
     for n in range(1, len(book.drawing.sheets) + 1):
         records = sheet_checks(book, n)
         assert records
@@ -620,6 +640,83 @@ def test_names_left_off_the_strips_are_counted_and_said():
         left += len(p.left_out)
     assert left > 0 and report(book)["names_left_out"] == left
     assert any(f"{left} under-crossing names" in w for w in book.warnings)
+
+
+def crossing_callouts(sheet):
+    """(pattern tiles, white plates, black lines, callout texts) of a page, from its layers."""
+    from weavecut.layout.drawing import Polygons
+    layers = {layer.name: layer for layer in sheet.layers}
+    shapes = layers["pattern"].shapes
+    plates = [g for s in shapes if isinstance(s, Polygons) and s.style.fill == "#ffffff"
+              for g in s.to_shapely().tolist()]
+    lines = [line for s in shapes if isinstance(s, Polylines) and s.style.stroke == "#000000"
+             for line in s.lines()]
+    return shapes[0].to_shapely(), plates, lines, list(layers["crossings"].shapes)
+
+
+def callout_problems(sheet, weave, ids) -> list[str]:
+    """Each callout text on exactly one white plate, one leader line from that plate's edge,
+    ending in a tile of the pattern where the strand named first lies on top of the second."""
+    from weavecut.layout.labels import text_box
+    tiles, plates, lines, texts = crossing_callouts(sheet)
+    out = []
+    for t in texts:
+        box = text_box(t)
+        plate = [g for g in plates if g.covers(box)]
+        lead = [e for e in lines if plate and plate[0].exterior.distance(
+            shapely.Point(e[0])) < 1e-6]
+        if len(plate) != 1 or len(lead) != 1:
+            out.append(f"{t.text}: {len(plate)} plates, {len(lead)} leaders")
+            continue
+        hit = np.flatnonzero(shapely.covers(tiles, shapely.Point(lead[0][-1])))
+        named = {f"{ids[weave.tile_over[k]]} over {ids[weave.tile_under[k]]}"
+                 for k in hit.tolist()}
+        if t.text not in named:
+            out.append(f"{t.text}: its leader ends on {named}")
+    return out
+
+
+@pytest.mark.parametrize("name, on", [("pentagon", (3, 4)), ("voronoi", (1,))])
+def test_every_unnamed_crossing_is_called_out_once_with_a_leader_to_it(name, on):
+    """The crossings the strips leave unnamed (the pentagon flower at 23 cm: 155, on two pages
+    of their own after the weaving page; the Voronoi example: 4, on page 1), each called out
+    once ("C8 over A14": the name the strip would have carried, over the strip's ID), each
+    text on a white plate whose leader line ends in a tile of the pattern where that strand
+    lies on top of that strip; every text passes the page checks (>= 2.5 mm, no overlap,
+    contrast, on the sheet). Plant a swapped pair of callouts: both caught."""
+    from collections import Counter
+    from dataclasses import replace as moved
+    from weavecut.layout.drawing import Layer, Sheet
+    from weavecut.layout.labels import MIN_CAP
+
+    if name == "pentagon":
+        book, weave = pentagon_book(), weaves("pentagon-flower", 3)[-1]
+    else:
+        book = voronoi_book()
+        weave = voronoi_weave()
+    want = Counter(f"{p.names[i]} over {p.label.split(' ')[0]}"
+                   for _, p in book.pieces for i in p.left_out)
+    assert sum(want.values()) == report(book)["names_left_out"] == {"pentagon": 155,
+                                                                    "voronoi": 4}[name]
+    assert book.strip_pages[0] == max(book.extra_pages) + 1 == max(on[-1], 2) + 1
+    assert any(f"called out on {'pages 3-4' if name == 'pentagon' else 'page 1'}" in w
+               for w in book.warnings)
+    seen = Counter()
+    for n in on:
+        sheet = book.drawing.sheets[n - 1]
+        assert not callout_problems(sheet, weave, book.plan.labels)
+        assert not [r for r in sheet_checks(book, n) if r["broken"]]
+        texts = crossing_callouts(sheet)[3]
+        seen.update(t.text for t in texts)
+        assert min(t.size for t in texts) >= MIN_CAP
+    assert seen == want
+    sheet = book.drawing.sheets[on[0] - 1]
+    texts = crossing_callouts(sheet)[3]
+    swapped = (moved(texts[0], text=texts[1].text), moved(texts[1], text=texts[0].text))
+    layers = tuple(Layer("crossings", "label", swapped + tuple(texts[2:]))
+                   if layer.name == "crossings" else layer for layer in sheet.layers)
+    assert len(callout_problems(Sheet(sheet.width, sheet.height, layers), weave,
+                                book.plan.labels)) == 2
 
 
 def test_label_plates_stay_over_their_tiles_whatever_order_a_writer_paints_in():

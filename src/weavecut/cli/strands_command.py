@@ -262,7 +262,8 @@ def _laser_card(book, mat: dict, laser_name: str, out_dir: str, title: str,
     folder = make_folder(out_dir)
     sheets, files = book.drawing.sheets, []
     colours = card_colour_sheet(cut, (sheets[0].width, sheets[0].height), title)
-    assembly = Drawing((sheets[0], sheets[1], colours), title).with_metadata(**provenance())
+    assembly = Drawing((*(sheets[n - 1] for n in book.extra_pages), colours),
+                       title).with_metadata(**provenance())
     export.write(assembly, folder / "strands-assembly.pdf")
     for n, (drawing, colour) in enumerate(zip(cut.sheets, cut.colours), start=1):
         for suffix in (".svg", ".dxf"):

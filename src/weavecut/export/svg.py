@@ -1,4 +1,5 @@
-"""SVG writer: width/height and viewBox in mm, one Inkscape layer per Drawing layer."""
+"""SVG writer: width/height and viewBox in mm, one Inkscape layer per Drawing layer; a stroke of
+width 0 (a laser hairline) is drawn one screen pixel wide at any zoom."""
 
 from __future__ import annotations
 
@@ -9,6 +10,10 @@ from ..layout.drawing import Drawing, Polygons, Polylines, Sheet, Style, Text
 
 SUFFIX = "svg"
 DECIMALS = 3
+# a hairline (stroke width 0): one screen pixel at any zoom, as cairo and Inkscape write it, so
+# it shows on screen; LightBurn ignores stroke widths, Inkscape prints it as a 0-width line
+HAIRLINE = {"stroke_width": "1", "vector_effect": "non-scaling-stroke",
+            "style": "-inkscape-stroke:hairline"}
 
 
 def render(drawing: Drawing) -> bytes:
@@ -94,7 +99,8 @@ def _style(style: Style, closed: bool) -> dict:
     out = {"fill": style.fill if (closed and style.fill) else "none",
            "stroke": style.stroke or "none"}
     if style.stroke:
-        out["stroke_width"] = _n(style.stroke_width) if style.stroke_width > 0 else "0.01"
+        out.update({"stroke_width": _n(style.stroke_width)} if style.stroke_width > 0
+                   else HAIRLINE)
         out["stroke_linejoin"] = "round"
     if closed and style.fill:
         out["fill_rule"] = "evenodd"

@@ -19,7 +19,8 @@ ROLES = ("cut", "score", "engrave", "paint", "label", "guide")
 
 @dataclass(frozen=True)
 class Style:
-    """Stroke and fill. ``stroke_width`` 0 means a hairline (what lasers cut on)."""
+    """Stroke and fill. ``stroke_width`` 0 means a hairline (what lasers cut on; drawn one
+    device pixel wide: a non-scaling stroke in SVG, a 0-width line in PDF)."""
 
     stroke: str | None = "#000000"
     stroke_width: float = 0.2

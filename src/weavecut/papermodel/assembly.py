@@ -17,6 +17,7 @@ from ..layout.drawing import Fit, Layer, Polylines, Sheet, Style, Text, polygons
 from ..layout.labels import (
     MIN_CAP,
     centred_text,
+    inner_centres,
     largest_fit,
     text_box,
     text_width,
@@ -34,7 +35,7 @@ ALONG = 6  # an extra ID every this many own tiles along a strand
 OUTLINE = Style("#333333", 0.1)
 
 
-def _paragraphs(items: list[str], x: float, top: float, width: float,
+def paragraphs(items: list[str], x: float, top: float, width: float,
                 numbered: bool = False) -> tuple[list[Text], float]:
     """Wrapped lines from ``top`` down; returns the texts and the y below the last line."""
     texts, y = [], top
@@ -50,9 +51,11 @@ def _paragraphs(items: list[str], x: float, top: float, width: float,
     return texts, y
 
 
-def _pattern(weave: Weave, turn: float, box, colours, show=None):
-    """(tiles on the sheet, fit, paint shape) for the pattern fitted into ``box``; with ``show``
-    (S,) bool only those strands are coloured (the others white)."""
+def pattern(weave: Weave, turn: float, box, colours, show=None):
+    """(tiles on the sheet, fit, label spots, paint shape, fills) for the pattern fitted into
+    ``box``; with ``show`` (S,) bool only those strands are coloured (the others white). A
+    tile's label spot is the centre of the largest circle inside it: the mean of its corners
+    lies outside a non-convex or twisted tile of an irregular mesh."""
     tiles = model_tiles(weave)
     centre = weave.mesh.vertices.mean(axis=0)
     turned = shapely.transform(tiles, lambda xy: rotate(xy, turn, centre))
@@ -66,14 +69,18 @@ def _pattern(weave: Weave, turn: float, box, colours, show=None):
     top = np.where((over >= 0) & show[np.maximum(over, 0)], over,
                    np.where((under >= 0) & show[np.maximum(under, 0)], under, -1))
     fills = [colours[s] if s >= 0 else "#ffffff" for s in top.tolist()]
-    centres = fit(rotate(tile_centres(weave), turn, centre))
+    centres = inner_centres(shapely.make_valid(on_sheet, method="structure",
+                                               keep_collapsed=False))
     return on_sheet, fit, centres, polygons_from_shapely(list(on_sheet), OUTLINE, fills), fills
 
 
 def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str,
-                   total: int) -> Sheet:
-    """Page 1: what to print, which page holds which strip, and the finished pattern with IDs."""
+                   total: int, crossings=()) -> tuple[Sheet, int]:
+    """(page 1, how many of ``crossings`` found no room): what to print, which page holds which
+    strip, and the finished pattern with IDs; with ``crossings`` (tile, strand on top, strand
+    below) those the strips leave unnamed are called out on it too (:mod:`.crossings`)."""
     from .book import page_index
+    from .crossings import DOT, callout_shapes, crossing_label, too_small
 
     plan, area = book.plan, book.area
     k, m = plan.k, plan.copies.shape[1]
@@ -95,10 +102,30 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
                      + page_index(book) + ".")
     lines.append("Each strand's ID is printed at both ends and along it; arrows show the way "
                  "its strip reads. Weaving steps: page 2.")
-    texts, bottom = _paragraphs(lines, x0, y1, x1 - x0)
+    if crossings:
+        lines.append(f"{too_small(len(crossings))} to carry a name on their strip (printed "
+                     "light with no name there): called out below, \"C8 over A14\" meaning "
+                     "strip A14 goes under strand C8 at the dot.")
+    elif book.extra_pages[-1] > 2:
+        lines.append("Crossings too small to carry a name on their strip are called out on "
+                     + (f"pages 3-{book.extra_pages[-1]}." if book.extra_pages[-1] > 3
+                        else "page 3."))
+    texts, bottom = paragraphs(lines, x0, y1, x1 - x0)
     box = (x0, y0, x1, bottom - GAP)
-    on_sheet, fit, centres, paint, fills = _pattern(weave, turn, box, book.colours)
-    ids, boxes, leaders, arrows = _strand_labels(weave, book, on_sheet, centres, fills, box)
+    on_sheet, fit, centres, paint, fills = pattern(weave, turn, box, book.colours)
+    ids, boxes, leaders, arrows, obstacles = _strand_labels(weave, book, on_sheet, centres,
+                                                            fills, box)
+    called, at, size = [], [], tile_mm(on_sheet)
+    for tile, over, under in crossings:  # callouts
+        spot = _crossing_spot(on_sheet[tile], obstacles)
+        placed = None if spot is None else _free_spot(
+            spot, crossing_label(plan.labels, over, under), obstacles, shapely.box(*box), size)
+        if placed is not None:
+            called.append((placed[0], placed[1], np.asarray(placed[2].coords)))
+            at.append(spot)
+            obstacles += [placed[1], shapely.buffer(placed[2], 0.3), shapely.buffer(
+                shapely.Point(spot), DOT)]
+    callouts, named = callout_shapes(called, at) if called else ([], [])
     note = f"pattern drawn at {100 * fit.scale / book.scale:.0f} % of its printed size"
     texts.append(Text(x1, y0 - GAP - TEXT, note, TEXT, "end"))
     shapes = [paint]
@@ -109,20 +136,27 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
         shapes.append(Polylines(coords, np.arange(0, len(coords) + 1, 2, dtype=np.int64),
                                 Style("#000000", 0.2)))
     shapes += [polygons_from_shapely(a, Style(None, 0.0, ink)) for ink, a in sorted(arrows.items())]
-    layers = [Layer("pattern", "paint", tuple(shapes)), Layer("ids", "label", tuple(ids)),
-              Layer("notes", "label", tuple(texts))]
+    layers = [Layer("pattern", "paint", (*shapes, *callouts)), Layer("ids", "label", tuple(ids)),
+              Layer("crossings", "label", tuple(named)), Layer("notes", "label", tuple(texts))]
     layers += page_layers(area, title, "Assembly sheet: the finished pattern with every "
                           "strand's ID (copy letter + number)", 1, total,
                           book.colours[int(plan.copies[0, 0])] if m else "#3e9fb0")
-    return Sheet(area.width, area.height, tuple(layers), "page 1: assembly")
+    return (Sheet(area.width, area.height, tuple(layers), "page 1: assembly"),
+            len(crossings) - len(called))
+
+
+def tile_mm(on_sheet) -> float:
+    """A typical tile's size on the sheet (mm): the root of the median tile area."""
+    return float(np.sqrt(np.median(shapely.area(on_sheet))))
 
 
 def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
     """IDs at both ends of every strand and every ``ALONG`` own tiles, inside own tiles where
-    they fit; an end that has no room gets its ID on a white box with a leader line."""
+    they fit; an end that has no room gets its ID on a white box with a leader line. Returns
+    (IDs, white boxes, leader lines, arrows by ink, everything later labels keep clear of)."""
     plan = book.plan
     regions = shapely.buffer(on_sheet, -0.4, join_style="mitre")
-    tile_mm = np.sqrt(np.median(shapely.area(on_sheet)))
+    across = tile_mm(on_sheet)
     wanted, order = [], []  # (tile, strand, end?) per candidate
     for s in range(weave.n_strands):  # strands, not mesh elements
         visits, own = weave.strand(s)
@@ -170,7 +204,7 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
     ts = list(arrow_tiles)
     unit = [shapely.transform(arrow_polygon((0.5, 0.0), (1.0, 0.0), 1.0),
                               lambda xy, d=arrow_tiles[t]: xy @ turn_to(d).T) for t in ts]
-    length = largest_fit(regions[ts], unit, centres[ts], 1.5, 0.6 * tile_mm) if ts else []
+    length = largest_fit(regions[ts], unit, centres[ts], 1.5, 0.6 * across) if ts else []
     arrows: dict[str, list] = {}
     for t, u, z in zip(ts, unit, list(length)):
         if np.isfinite(z):
@@ -179,7 +213,7 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
     obstacles = taken + [a for v in arrows.values() for a in v]
     frame = shapely.box(*box)
     for t, label in missing:  # leader lines
-        spot = _free_spot(centres[t], label, obstacles, frame, tile_mm)
+        spot = _free_spot(centres[t], label, obstacles, frame, across)
         if spot is None:
             continue
         text_at, plate, leader = spot
@@ -187,17 +221,30 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
         boxes.append(plate)
         obstacles += [plate, shapely.buffer(leader, 0.3)]
         leaders.append(np.asarray(leader.coords))
-    return ids, boxes, leaders, arrows
+    return ids, boxes, leaders, arrows, obstacles
 
 
-def _free_spot(at, label: str, obstacles, frame, tile_mm: float):
+def _crossing_spot(tile, obstacles):
+    """Where a callout's dot goes in ``tile``: the centre of the largest circle inside it clear
+    of the labels, arrows and leaders already there (an ID's leader often ends in the same
+    small tile), or None if none is left."""
+    from .crossings import DOT
+    tile = shapely.make_valid(tile, method="structure", keep_collapsed=False)
+    near = [o for o in obstacles if o.intersects(tile)]
+    free = shapely.buffer(tile, -0.4, join_style="mitre")
+    if near:
+        free = shapely.difference(free, shapely.buffer(shapely.union_all(near), DOT + 0.3))
+    return None if free.is_empty else inner_centres([free])[0]
+
+
+def _free_spot(at, label: str, obstacles, frame, size: float):
     """(text, white plate, leader line) near ``at``: neither the plate nor its leader line
     touches an obstacle; None if there is no such place."""
     plate_pad = 0.8
     w = text_width(label, MIN_CAP) + 2 * plate_pad
     h = MIN_CAP * 1.3 + 2 * plate_pad
     tree = shapely.STRtree(obstacles) if obstacles else None
-    for r in np.arange(1.0, 8.0, 0.75) * max(tile_mm, h):
+    for r in np.arange(1.0, 8.0, 0.75) * max(size, h):
         for a in np.radians(np.arange(0, 360, 30) + 15):
             c = np.asarray(at) + r * np.array([np.cos(a), np.sin(a)])
             plate = shapely.box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
@@ -229,6 +276,11 @@ def weaving_steps(weave: Weave, book, turn: float) -> tuple[list[str], list[np.n
         steps.append("Strips too small for their ID carry it on a small tab at one end: cut the "
                      "tab out with the strip and cut it off along its dashed line once the strip "
                      "is woven in.")
+    if any(p.left_out for _, p in book.pieces):
+        last = book.extra_pages[-1]
+        where = "page 1" if last == 2 else "page 3" if last == 3 else f"pages 3-{last}"
+        steps.append("A light part with no name is a crossing too small to name on the strip: "
+                     f"it is called out on {where} (\"C8 over A14\": A14 goes under C8 there).")
     if glue:
         steps.append("Some strips are printed in parts (\"A7 1/2\", \"A7 2/2\"): spread glue on "
                      "the grey band of part 1 and stick it under the start of part 2 before "
@@ -302,7 +354,7 @@ def weaving_sheet(weave: Weave, book, turn: float, title: str, total: int) -> Sh
     area = book.area
     x0, y0, x1, y1 = area.box
     steps, groups = weaving_steps(weave, book, turn)
-    texts, bottom = _paragraphs(steps, x0, y1, x1 - x0, numbered=True)
+    texts, bottom = paragraphs(steps, x0, y1, x1 - x0, numbered=True)
     picks = sorted({0, 1, len(groups) // 2, len(groups) - 1}) if len(groups) > 1 else [0]
     n = len(picks)
     cols = 2 if n > 2 else n
@@ -324,7 +376,7 @@ def weaving_sheet(weave: Weave, book, turn: float, title: str, total: int) -> Sh
         texts.append(Text(bx, by + cell_h - TEXT, caption, TEXT))
         if cell_h - LINE > 10:
             box = (bx, by, bx + cell_w, by + cell_h - LINE)
-            shapes.append(_pattern(weave, turn, box, book.colours, shown.copy())[3])
+            shapes.append(pattern(weave, turn, box, book.colours, shown.copy())[3])
     layers = [Layer("diagrams", "paint", tuple(shapes)), Layer("steps", "label", tuple(texts))]
     layers += page_layers(area, title, "How to weave: numbered steps; the diagrams show the "
                           "weave growing", 2, total)

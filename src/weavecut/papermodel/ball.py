@@ -22,7 +22,7 @@ from ..layout.weave_figure import tile_rings
 from ..surface import face_normals
 from ..weave.colour import Palette, strand_colours
 from ..weave.model import Weave
-from .assembly import TEXT, _paragraphs
+from .assembly import TEXT, paragraphs
 from .book import CURL, MIN_STRIP, WARN_STRIP, SizeError, StrandBook, page_index, strip_sheets
 from .pages import FOLD, GAP, PageArea, _fits, page_layers
 from .strips import Strip, affine, copy_letter, flat_angle, label_strip, outline_of, tint
@@ -305,7 +305,7 @@ def assembly_sheet(weave: Weave, book: BallBook, labels, title: str, total: int)
              f"longer or shorter by at most {100 * book.stretch:.2f} %.",
              "The views show each tile in the colour of the strand on top there, with its "
              "ID. Weaving steps: page 2."]
-    texts, bottom = _paragraphs(lines, x0, y1, x1 - x0)
+    texts, bottom = paragraphs(lines, x0, y1, x1 - x0)
     every = np.ones(n, dtype=bool)
     layers = _view_layers(weave, book, labels, (x0, y0, x1, bottom - GAP),
                           [(*v, every) for v in VIEWS])
@@ -337,7 +337,7 @@ def weaving_sheet(weave: Weave, book: BallBook, labels, title: str, total: int) 
         "printed, as the views below (front above, back below) and page 1 show.",
         "Close every loop last: glue its band 'glue j' under its own tile marked 'j'.",
     ]
-    texts, bottom = _paragraphs(steps, x0, y1, x1 - x0, numbered=True)
+    texts, bottom = paragraphs(steps, x0, y1, x1 - x0, numbered=True)
     stages = sorted({max(1, math.ceil(k * n / 3)) for k in (1, 2, 3)})
     cells = []
     for side in VIEWS[0], VIEWS[2]:  # front, back

@@ -13,7 +13,7 @@ Two layouts (paper section 5.2):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -23,6 +23,7 @@ from ..layout.labels import MIN_CAP
 from ..weave.colour import Palette
 from ..weave.model import Weave
 from .assembly import assembly_sheet, weaving_sheet
+from .crossings import crossing_pages, left_out_crossings
 from .packing import pack
 from .pages import GAP, PageArea, page_layers, split_strip, strip_layers
 from .strips import (
@@ -39,6 +40,7 @@ from .strips import (
     strip_width,
 )
 
+ON_COVER = 24  # at most this many unnamed crossings are tried on page 1
 CURL = 0.45  # a strip wider than this share of the page (a curl) is cut into pieces
 MIN_STRIP = 8.0  # mm: narrower strips tear (paper section 5.2)
 WARN_STRIP = 12.0  # mm: below this, strips are fiddly
@@ -182,10 +184,6 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         raise SizeError(f"some labels would be {small:.1f} mm tall at --tile-size {tile_size:.1f}mm"
                         f"; labels need {MIN_CAP:g} mm: {_use(weave, need)}")
     left_out = sum(len(p.left_out) for p in pieces)
-    if left_out:
-        warnings += (f"{left_out} under-crossing names are left off their strips: the tile "
-                     f"under them, even with a plate over its neighbours, is too small for "
-                     f"{MIN_CAP:g} mm text; page 1 shows those crossings",)
 
     if layout == "module":
         def subtitle(names):
@@ -194,26 +192,51 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
     else:
         def subtitle(names):
             return f"Strips: {names}"
-    first = 3  # pages 1, 2: assembly and weaving
-    placed, sheets = strip_sheets(pieces, kinds, area, title, subtitle, colours, first)
-    total = len(sheets) + first - 1
-    book = StrandBook(Drawing((), title), plan, tuple(colours), layout, placed,
-                      tuple(range(first, first + len(sheets))), (1, 2), scale, area, width,
-                      tile_size, warnings)
-    cover = assembly_sheet(weave, book, tile_size, turn, title, total)
-    weaving = weaving_sheet(weave, book, turn, title, total)
-    return StrandBook(Drawing((cover, weaving, *sheets), title), plan, tuple(colours), layout,
-                      placed, book.strip_pages, book.extra_pages, scale, area, width, tile_size,
-                      warnings)
+    crossings = left_out_crossings(weave, plan, pieces, layout) if left_out else []
+    x0, y0, x1, y1 = area.box
+    places = pack([p.cut for p in pieces], x1 - x0, y1 - y0, GAP, kinds=kinds)
+
+    def pages(own: int) -> tuple[StrandBook, list[Sheet], int]:
+        """The book laid out with ``own`` pages of unnamed crossings after the weaving page."""
+        first = 3 + own  # pages 1, 2: assembly and weaving
+        placed, sheets = strip_sheets(pieces, kinds, area, title, subtitle, colours, first,
+                                      places)
+        where = "page 1" if not own else "page 3" if own == 1 else f"pages 3-{first - 1}"
+        names = "name is" if left_out == 1 else "names are"
+        notes = warnings + ((f"{left_out} under-crossing {names} left off their strips: the "
+                             f"tile under them, even with a plate over its neighbours, is too "
+                             f"small for {MIN_CAP:g} mm text; they are called out on {where}",)
+                           if left_out else ())
+        return (StrandBook(Drawing((), title), plan, tuple(colours), layout, placed,
+                           tuple(range(first, first + len(sheets))), tuple(range(1, first)),
+                           scale, area, width, tile_size, notes), sheets, len(sheets) + first - 1)
+
+    # the unnamed crossings are called out on page 1 where they all fit, else on pages of
+    # their own after the weaving page (and the strip pages move up)
+    own_pages: list = []
+    missing = len(crossings) > ON_COVER
+    if not missing:
+        book, sheets, total = pages(0)
+        cover, missing = assembly_sheet(weave, book, tile_size, turn, title, total, crossings)
+    if missing:
+        own_pages = crossing_pages(weave, plan, colours, area, crossings, turn)
+        book, sheets, total = pages(len(own_pages))
+        cover, _ = assembly_sheet(weave, book, tile_size, turn, title, total)
+    extra = [cover, weaving_sheet(weave, book, turn, title, total)]
+    extra += [Sheet(area.width, area.height, layers + tuple(page_layers(
+        area, title, "Crossings the strips do not name: the strand named first lies on top", n,
+        total)), f"page {n}: crossings") for n, layers in enumerate(own_pages, start=3)]
+    return replace(book, drawing=Drawing((*extra, *sheets), title))
 
 
 def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitle, colours,
-                 first: int) -> tuple[tuple[tuple[int, Strip], ...], list[Sheet]]:
-    """(placed, sheets): ``pieces`` packed onto pages numbered from ``first`` on, each page
-    with its strips, title, ``subtitle(names of its strips)``, scale bar and legend; placed
-    holds (page number, piece on the page)."""
+                 first: int, places=None) -> tuple[tuple[tuple[int, Strip], ...], list[Sheet]]:
+    """(placed, sheets): ``pieces`` packed onto pages numbered from ``first`` on (or placed at
+    ``places``, the packer's answer), each page with its strips, title, ``subtitle(names of
+    its strips)``, scale bar and legend; placed holds (page number, piece on the page)."""
     x0, y0, x1, y1 = area.box
-    places = pack([p.cut for p in pieces], x1 - x0, y1 - y0, GAP, kinds=kinds)
+    if places is None:
+        places = pack([p.cut for p in pieces], x1 - x0, y1 - y0, GAP, kinds=kinds)
     n_strip = max(pl.page for pl in places) + 1 if places else 0
     placed = tuple((first + pl.page, p.moved(affine(0.0, (x0, y0)) @ pl.matrix(), pl.angle))
                    for p, pl in zip(pieces, places))

@@ -1,0 +1,156 @@
+"""The crossings the strips cannot name, called out on page 1 or on pages of their own.
+
+An under tile too small for a 2.5 mm name even on a plate over its neighbours (a border tile of
+the pentagon flower at the paper's 23 cm) is printed without it (:func:`label_strip`). Each
+such crossing is called out once, "C8 over A14" on a white plate with a leader line to a dot on
+the crossing: on the assembly sheet where they all find a free spot (:mod:`.assembly`), else
+on pages after the weaving page that show the pattern once more between two columns of
+callouts, as a technical drawing's. The greedy free-spot search alone fails there: on the
+pentagon flower the plates that hug the border wall the later leaders off, and only 61 of its
+155 crossings found a spot on a page; a column of an A4 page holds 42.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import shapely
+
+from ..layout.drawing import Layer, Polylines, Style, Text, polygons_from_shapely
+from ..layout.labels import MIN_CAP, centred_text, text_box, text_width
+from ..weave.model import Weave
+from .assembly import paragraphs, pattern
+from .pages import GAP
+from .strips import model_tiles
+
+PLATE_PAD = 0.8  # mm of white plate round a callout's text
+LEADER = Style("#000000", 0.25)
+CASING = Style("#ffffff", 0.7)  # under the leader, so it shows on dark tiles too
+DOT = 0.7  # mm, radius of the dot on the crossing
+ROW_GAP = 0.6  # mm between two plates of a column
+
+
+def left_out_crossings(weave: Weave, plan, pieces, layout: str) -> list[tuple[int, int, int]]:
+    """(tile, strand on top, strand below) of every crossing some printed strip leaves unnamed,
+    sorted. A piece's tile is found by putting the piece back through the inverse of its page
+    transform; in the module layout every print names the same tiles of every copy."""
+    tiles = shapely.make_valid(model_tiles(weave), method="structure", keep_collapsed=False)
+    tree = shapely.STRtree(tiles)
+    found: set[int] = set()
+    for piece in pieces:  # pieces, not mesh elements
+        if not piece.left_out:
+            continue
+        inv = np.linalg.inv(piece.frame)
+        spots = shapely.transform(shapely.point_on_surface(piece.tiles[list(piece.left_out)]),
+                                  lambda xy, inv=inv: xy @ inv[:2, :2].T + inv[:2, 2])
+        which, hit = tree.query(spots, predicate="intersects")
+        mine = weave.tile_under[hit] == piece.strand
+        found.update(hit[mine].tolist())
+        if len(np.unique(which[mine])) != len(spots):
+            raise AssertionError(f"a left-out crossing of {piece.label} lies on no tile")
+    t = np.array(sorted(found), dtype=np.int64)
+    if layout == "module":  # one print per copy
+        t = np.unique(plan.symmetry.tile_powers()[:, t])
+    return list(zip(t.tolist(), weave.tile_over[t].tolist(), weave.tile_under[t].tolist()))
+
+
+def too_small(n: int) -> str:
+    """"3 crossings are too small" (or "1 crossing is")."""
+    return f"{n} crossing is too small" if n == 1 else f"{n} crossings are too small"
+
+
+def crossing_label(ids, over: int, under: int) -> str:
+    """"C8 over A14": strand ``over`` lies on top of strip ``under`` there."""
+    return f"{ids[over]} over {ids[under]}"
+
+
+def column_callouts(spots, labels: list[str], frame, middle: float) -> list:
+    """A (text, plate, leader) for every ``spots[i]`` (sheet mm) saying ``labels[i]`` at
+    ``MIN_CAP``: a spot left of ``middle`` (x) gets its plate in a column at the left edge of
+    ``frame`` (x0, y0, x1, y1), the others at the right edge; in a column the plates keep the
+    order of their spots from top to bottom, each as near its spot's height as the plates above
+    and below allow, so leaders run nearly level and seldom cross. A column holds
+    :func:`column_room` plates."""
+    spots = np.asarray(spots, dtype=float).reshape(-1, 2)
+    x0, y0, x1, y1 = frame
+    h = _plate_height()
+    out: list = [None] * len(spots)
+    for right in (False, True):  # the two columns
+        mine = np.flatnonzero((spots[:, 0] >= middle) == right)
+        mine = mine[np.argsort(-spots[mine, 1], kind="stable")]  # top first
+        y = np.clip(spots[mine, 1], y0 + h / 2, y1 - h / 2)  # ideal heights, then pushed
+        for k in range(1, len(y)):  # push down below the plate above
+            y[k] = min(y[k], y[k - 1] - h - ROW_GAP)
+        y[-1:] = np.maximum(y[-1:], y0 + h / 2)
+        for k in range(len(y) - 2, -1, -1):  # and up above the plate below
+            y[k] = max(y[k], y[k + 1] + h + ROW_GAP)
+        if len(y) and y[0] > y1 - h / 2 + 1e-9:
+            raise ValueError(f"{len(y)} callouts do not fit in one column")
+        if len(y):  # the stack as a whole level with its spots, where the frame allows
+            y += np.clip(np.mean(spots[mine, 1] - y), y0 + h / 2 - y[-1], y1 - h / 2 - y[0])
+        for i, yi in zip(mine.tolist(), y.tolist()):  # callouts
+            w = text_width(labels[i], MIN_CAP) + 2 * PLATE_PAD
+            left = x1 - w if right else x0
+            text = centred_text((left + w / 2, yi), labels[i], MIN_CAP)
+            plate = shapely.box(left, yi - h / 2, left + w, yi + h / 2)
+            edge = np.array([left if right else left + w, yi])
+            out[i] = (text, plate, np.array([edge, spots[i]]))
+    return out
+
+
+def _plate_height() -> float:
+    bx = text_box(centred_text((0.0, 0.0), "A8", MIN_CAP)).bounds
+    return bx[3] - bx[1] + 2 * PLATE_PAD
+
+
+def column_room(frame) -> int:
+    """How many plates one column of :func:`column_callouts` holds in ``frame``."""
+    return int((frame[3] - frame[1] + ROW_GAP) // (_plate_height() + ROW_GAP))
+
+
+def callout_shapes(placed: list, spots) -> tuple[list, list[Text]]:
+    """(shapes, texts) drawing the ``callouts`` ``placed`` at ``spots``: white plates, leader
+    lines on a white casing, and a dot on every spot."""
+    placed_at = list(zip(placed, np.asarray(spots).reshape(-1, 2)))
+    lines = np.concatenate([p[2] for p, _ in placed_at])
+    offsets = np.arange(0, len(lines) + 1, 2, dtype=np.int64)
+    dots = shapely.buffer(shapely.points([s for _, s in placed_at]), DOT)
+    shapes = [polygons_from_shapely([p[1] for p, _ in placed_at],
+                                    Style("#333333", 0.15, "#ffffff")),
+              Polylines(lines, offsets, CASING), Polylines(lines, offsets, LEADER),
+              polygons_from_shapely(list(dots), Style("#ffffff", 0.2, "#000000"))]
+    return shapes, [p[0] for p, _ in placed_at]
+
+
+def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float) -> list[tuple]:
+    """The layers of the pages naming every crossing in ``crossings``
+    (:func:`left_out_crossings`), without the page furniture: the pattern between two columns
+    of callouts; as many pages as the columns need, the crossings of each side dealt out over
+    them in turn from the top."""
+    ids = plan.labels
+    x0, y0, x1, y1 = area.box
+    labels = [crossing_label(ids, over, under) for _, over, under in crossings]
+    note = (f"{too_small(len(crossings))} to carry a name on their strip: there the "
+            "strip is printed light with no name. Each is called out once: \"C8 over A14\" "
+            "means strip A14 goes under strand C8 at the dot.")
+    texts, bottom = paragraphs([note], x0, y1, x1 - x0)
+    room = max((text_width(s, MIN_CAP) for s in labels), default=0.0) + 2 * PLATE_PAD + 3 * GAP
+    frame = (x0, y0, x1, bottom - GAP)
+    on_sheet, _, centres, paint, _ = pattern(weave, turn, (x0 + room, y0, x1 - room, frame[3]),
+                                             colours)
+    spots = centres[[c[0] for c in crossings]]
+    middle = (x0 + x1) / 2
+    side = spots[:, 0] >= middle
+    n = max(1, -(-max(side.sum(), (~side).sum()) // column_room(frame)))
+    page = np.zeros(len(spots), dtype=np.int64)
+    for right in (False, True):  # deal each side's crossings out over the pages, top first
+        mine = np.flatnonzero(side == right)
+        page[mine[np.argsort(-spots[mine, 1], kind="stable")]] = np.arange(len(mine)) % n
+    pages = []
+    for p in range(n):  # pages
+        on = np.flatnonzero(page == p)
+        placed = column_callouts(spots[on], [labels[i] for i in on.tolist()], frame, middle)
+        shapes, named = callout_shapes(placed, spots[on])
+        pages.append((Layer("pattern", "paint", (paint, *shapes)),
+                      Layer("crossings", "label", tuple(named)),
+                      Layer("notes", "label", tuple(texts))))
+    return pages
