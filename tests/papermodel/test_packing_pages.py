@@ -111,3 +111,16 @@ def test_blocks_take_the_pages_their_area_needs(dims, need):
     places = pack(shapes, width, height, gap)
     assert_valid(shapes, places, width, height, gap)
     assert max(p.page for p in places) + 1 == need
+
+
+def test_a_block_larger_than_a_c_shape_goes_into_its_mouth():
+    """A C shape 96 x 56 (back 16 wide, arms 6, mouth 80 x 44) all but fills a 100 x 60 area, and a 70 x
+    36 block, larger in area than the C, fits its mouth with more than 2 mm to spare: one page. Packed by
+    area the block goes first and leaves no room for the C (two pages); the C takes up its hull."""
+    width, height, gap = 100.0, 60.0, 2.0
+    c_shape = shapely.box(0.0, 0.0, 96.0, 56.0) - shapely.box(16.0, 6.0, 96.0, 50.0)
+    block = shapely.box(0.0, 0.0, 70.0, 36.0)
+    assert block.area > c_shape.area
+    places = pack([block, c_shape], width, height, gap)
+    assert_valid([block, c_shape], places, width, height, gap)
+    assert {p.page for p in places} == {0}

@@ -12,9 +12,10 @@ fits nowhere on the page's 2 x 2 blocks is skipped, and turns go shortest along 
 axis first, so those longer than the best edge found are not tried.
 
 Congruent pieces (the k copies of a module strip, the same ``kind``) are nested into a stack
-first. Stacks go largest first, each on the first page with room (first fit), where its right
-edge is least, then lowest (columns from the left); a stack that fits no open page is halved
-before a page is opened. When the last page is nearly empty, the packing is redone with that
+first. Stacks go largest first (by their pieces' convex hulls: a curled strip takes up more
+than its area), each on the first page with room (first fit), where its right edge is least,
+then lowest (columns from the left); a stack that fits no open page is halved before a page
+is opened. When the last page is nearly empty, the packing is redone with that
 page's pieces first. All of it is done twice, filling columns from the left and rows from the
 bottom (long strips lie across the page in one and along it in the other), and the packing with
 the fewer pages, then the emptier last page, kept.
@@ -153,8 +154,10 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 0.
             masks[key] = _Options(turns, stack, gap / 2 + cell * np.sqrt(0.5), cell)
         return masks[key]
 
-    def area(unit):
-        return -sum(shapes[i].area for i in unit[0])
+    hulls = shapely.area(shapely.convex_hull(shapes))
+
+    def area(unit):  # what a piece takes up: its convex hull (a curled strip holds little)
+        return -float(hulls[unit[0]].sum())
 
     def rank(r):
         return (max(p.page for p in r), _last_fill(r, shapes))
