@@ -18,7 +18,8 @@ then lowest (columns from the left); a stack that fits no open page is halved be
 is opened. When the last page is nearly empty, the packing is redone with that
 page's pieces first. All of it is done twice, filling columns from the left and rows from the
 bottom (long strips lie across the page in one and along it in the other), and the packing with
-the fewer pages, then the emptier last page, kept.
+the fewer pages (then the emptier last page) kept; a try is given up as soon as it needs as many
+pages as the best so far.
 """
 
 from __future__ import annotations
@@ -160,30 +161,35 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 0.
         return -float(hulls[unit[0]].sum())
 
     def rank(r):
-        return (max(p.page for p in r), _last_fill(r, shapes))
+        return (_pages(r), _last_fill(r, shapes))
 
     spectra: dict = {}  # the masks' Fourier transforms, shared by every packing tried
-    tries = []
+    best = None
     for axis in (1, 0):  # columns from the left, then rows from the bottom
-        best = _fill(units, shapes, kinds, options, area, nx, ny, cell, set(), axis, spectra)
+        if best is not None and _pages(best) == 1:
+            break  # nothing to save
+        run = _fill(units, shapes, kinds, options, area, nx, ny, cell, set(), axis, spectra,
+                    None if best is None else _pages(best) - 1)
         first: set = set()
         for _ in range(REPAIRS):  # the last page's pieces go first next time
-            last = max(p.page for p in best)
-            if last == 0 or _last_fill(best, shapes) > REPAIR_BELOW * width * height:
+            if run is None or _pages(run) == 1 or \
+                    _last_fill(run, shapes) > REPAIR_BELOW * width * height:
                 break
-            first |= {i for i, p in enumerate(best) if p.page == last}
-            again = _fill(units, shapes, kinds, options, area, nx, ny, cell, first, axis, spectra)
-            if rank(again) < rank(best):
-                best = again
-        tries.append(best)
-        if max(p.page for p in best) == 0:
-            break  # one page: nothing to save
-    best = min(tries, key=rank)  # the first of equals
+            first |= {i for i, p in enumerate(run) if p.page == _pages(run) - 1}
+            again = _fill(units, shapes, kinds, options, area, nx, ny, cell, first, axis,
+                          spectra, _pages(run))
+            if again is not None and rank(again) < rank(run):
+                run = again
+        best = best if run is None else run
     return [Place(p.page, p.angle, (p.shift[0] - gap / 2, p.shift[1] - gap / 2)) for p in best]
 
 
 REPAIRS = 2  # re-packings with the last page's pieces first ...
 REPAIR_BELOW = 0.15  # ... when the last page is this empty (a page may be saved)
+
+
+def _pages(places) -> int:
+    return max(p.page for p in places) + 1
 
 
 def _last_fill(places, shapes) -> float:
@@ -192,10 +198,10 @@ def _last_fill(places, shapes) -> float:
 
 
 def _fill(units, shapes, kinds, options, area, nx: int, ny: int, cell: float, first, axis: int,
-          spectra: dict):
+          spectra: dict, most: int | None = None):
     """Places for every piece: the units (stacks) largest first (those holding a piece in
     ``first`` before all others), first fit, each where its far edge along ``axis`` is least
-    (:func:`_best_spot`)."""
+    (:func:`_best_spot`); None as soon as it needs more than ``most`` pages."""
     def order(u):
         return (not first.intersection(u[0]), area(u), u[0][0])
 
@@ -223,6 +229,8 @@ def _fill(units, shapes, kinds, options, area, nx: int, ny: int, cell: float, fi
                 x0, y0, x1, y1 = shapes[members[0]].bounds
                 raise ValueError(f"a strip of {x1 - x0:.0f} x {y1 - y0:.0f} mm fits the printable "
                                  f"area at no angle")
+            if most is not None and len(pages) == most:
+                return None  # no better than a packing found before
             pages.append(_Page(ny, nx, spectra))
             spot = len(pages) - 1, _best_spot(pages[-1], opts, axis)
         number, ((iy, ix), angle, mask, origin) = spot
