@@ -92,3 +92,35 @@ def test_turns_are_multiples_of_the_angle_step(step):
     bar = shapely.box(0.0, 0.0, 60.0, 6.0)
     places = pack([bar, bar], 70.0, 70.0, 2.0, angle_step=step)
     assert_valid([bar, bar], places, 70.0, 70.0, 2.0, step)
+
+
+@pytest.mark.parametrize("dims, need", [
+    ([(32.0, 24.0), (54.0, 48.0), (28.0, 36.0)], 1),
+    ([(52.0, 54.0), (8.0, 44.0), (20.0, 42.0), (48.0, 44.0), (52.0, 36.0), (30.0, 48.0)], 2),
+])
+def test_blocks_take_the_pages_their_area_needs(dims, need):
+    """Blocks on a 100 x 60 area whose area (each grown by the gap) needs ``need`` pages, and
+    that fit on that many: in the first set the 54 x 48 block stands upright (48 wide) and the
+    others lie one above the other beside it (24 + 2 + 28 <= 60 high, at most 36 <= 50 wide).
+    Filling columns from the left (least right edge first) lays the big block flat and needs a
+    page more; the packer must find the packing with fewer pages."""
+    width, height, gap = 100.0, 60.0, 2.0
+    shapes = [shapely.box(0.0, 0.0, max(d), min(d)) for d in dims]
+    grown = sum((max(d) + gap) * (min(d) + gap) for d in dims)
+    assert -(-grown // ((width + gap) * (height + gap))) == need  # the area bound
+    places = pack(shapes, width, height, gap)
+    assert_valid(shapes, places, width, height, gap)
+    assert max(p.page for p in places) + 1 == need
+
+
+def test_a_block_larger_than_a_c_shape_goes_into_its_mouth():
+    """A C shape 96 x 56 (back 16 wide, arms 6, mouth 80 x 44) all but fills a 100 x 60 area, and a 70 x
+    36 block, larger in area than the C, fits its mouth with more than 2 mm to spare: one page. Packed by
+    area the block goes first and leaves no room for the C (two pages); the C takes up its hull."""
+    width, height, gap = 100.0, 60.0, 2.0
+    c_shape = shapely.box(0.0, 0.0, 96.0, 56.0) - shapely.box(16.0, 6.0, 96.0, 50.0)
+    block = shapely.box(0.0, 0.0, 70.0, 36.0)
+    assert block.area > c_shape.area
+    places = pack([block, c_shape], width, height, gap)
+    assert_valid([block, c_shape], places, width, height, gap)
+    assert {p.page for p in places} == {0}

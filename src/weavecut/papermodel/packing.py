@@ -8,14 +8,18 @@ so a mask may reach ``gap / 2`` beyond the packing area. Where a mask fits on a 
 grid is one FFT correlation per angle (the page's transform is kept and the masks' are cached,
 so each try is one inverse FFT). Cheaper tests that never refuse a place that fits come first:
 a page with too few free cells or no free disc as large as the piece's is skipped, a turn that
-fits nowhere on the page's 2 x 2 blocks is skipped, and turns go narrowest first, so those
-wider than the best right edge found are not tried.
+fits nowhere on the page's 2 x 2 blocks is skipped, and turns go shortest along the filling
+axis first, so those longer than the best edge found are not tried.
 
 Congruent pieces (the k copies of a module strip, the same ``kind``) are nested into a stack
-first. Stacks go largest first, each on the first page with room (first fit), where its right
-edge is least, then lowest (columns from the left); a stack that fits no open page is halved
-before a page is opened. When the last page is nearly empty, the packing is redone with that
-page's pieces first, and the packing with the fewer pages kept.
+first. Stacks go largest first (by their pieces' convex hulls: a curled strip takes up more
+than its area), each on the first page with room (first fit), where its right edge is least,
+then lowest (columns from the left); a stack that fits no open page is halved before a page
+is opened. When the last page is nearly empty, the packing is redone with that
+page's pieces first. All of it is done twice, filling columns from the left and rows from the
+bottom (long strips lie across the page in one and along it in the other), and the packing with
+the fewer pages (then the emptier last page) kept; a try is given up as soon as it needs as many
+pages as the best so far.
 """
 
 from __future__ import annotations
@@ -151,22 +155,32 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 0.
             masks[key] = _Options(turns, stack, gap / 2 + cell * np.sqrt(0.5), cell)
         return masks[key]
 
-    def area(unit):
-        return -sum(shapes[i].area for i in unit[0])
+    hulls = shapely.area(shapely.convex_hull(shapes))
+
+    def area(unit):  # what a piece takes up: its convex hull (a curled strip holds little)
+        return -float(hulls[unit[0]].sum())
 
     def rank(r):
-        return (max(p.page for p in r), _last_fill(r, shapes))
+        return (_pages(r), _last_fill(r, shapes))
 
-    best = _fill(units, shapes, kinds, options, area, nx, ny, cell, set())
-    first: set = set()
-    for _ in range(REPAIRS):  # the last page's pieces go first next time
-        last = max(p.page for p in best)
-        if last == 0 or _last_fill(best, shapes) > REPAIR_BELOW * width * height:
-            break
-        first |= {i for i, p in enumerate(best) if p.page == last}
-        again = _fill(units, shapes, kinds, options, area, nx, ny, cell, first)
-        if rank(again) < rank(best):
-            best = again
+    spectra: dict = {}  # the masks' Fourier transforms, shared by every packing tried
+    best = None
+    for axis in (1, 0):  # columns from the left, then rows from the bottom
+        if best is not None and _pages(best) == 1:
+            break  # nothing to save
+        run = _fill(units, shapes, kinds, options, area, nx, ny, cell, set(), axis, spectra,
+                    None if best is None else _pages(best) - 1)
+        first: set = set()
+        for _ in range(REPAIRS):  # the last page's pieces go first next time
+            if run is None or _pages(run) == 1 or \
+                    _last_fill(run, shapes) > REPAIR_BELOW * width * height:
+                break
+            first |= {i for i, p in enumerate(run) if p.page == _pages(run) - 1}
+            again = _fill(units, shapes, kinds, options, area, nx, ny, cell, first, axis,
+                          spectra, _pages(run))
+            if again is not None and rank(again) < rank(run):
+                run = again
+        best = best if run is None else run
     return [Place(p.page, p.angle, (p.shift[0] - gap / 2, p.shift[1] - gap / 2)) for p in best]
 
 
@@ -174,20 +188,25 @@ REPAIRS = 2  # re-packings with the last page's pieces first ...
 REPAIR_BELOW = 0.15  # ... when the last page is this empty (a page may be saved)
 
 
+def _pages(places) -> int:
+    return max(p.page for p in places) + 1
+
+
 def _last_fill(places, shapes) -> float:
     last = max(p.page for p in places)
     return sum(s.area for p, s in zip(places, shapes) if p.page == last)
 
 
-def _fill(units, shapes, kinds, options, area, nx: int, ny: int, cell: float, first):
+def _fill(units, shapes, kinds, options, area, nx: int, ny: int, cell: float, first, axis: int,
+          spectra: dict, most: int | None = None):
     """Places for every piece: the units (stacks) largest first (those holding a piece in
-    ``first`` before all others), first fit."""
+    ``first`` before all others), first fit, each where its far edge along ``axis`` is least
+    (:func:`_best_spot`); None as soon as it needs more than ``most`` pages."""
     def order(u):
         return (not first.intersection(u[0]), area(u), u[0][0])
 
     queue = sorted(units, key=order)
     pages: list[_Page] = []
-    spectra: dict = {}
     full: set = set()
     out: list[Place | None] = [None] * len(shapes)
     while queue:  # stacks of pieces
@@ -197,7 +216,7 @@ def _fill(units, shapes, kinds, options, area, nx: int, ny: int, cell: float, fi
         key = (int(kinds[members[0]]), len(members))
         for number, page in enumerate(pages):
             if opts and (key, number) not in full and page.may_hold(opts):
-                if (best := _best_spot(page, opts)) is not None:
+                if (best := _best_spot(page, opts, axis)) is not None:
                     spot = number, best
                     break
                 full.add((key, number))  # pages only fill up: no need to try again
@@ -210,8 +229,10 @@ def _fill(units, shapes, kinds, options, area, nx: int, ny: int, cell: float, fi
                 x0, y0, x1, y1 = shapes[members[0]].bounds
                 raise ValueError(f"a strip of {x1 - x0:.0f} x {y1 - y0:.0f} mm fits the printable "
                                  f"area at no angle")
+            if most is not None and len(pages) == most:
+                return None  # no better than a packing found before
             pages.append(_Page(ny, nx, spectra))
-            spot = len(pages) - 1, _best_spot(pages[-1], opts)
+            spot = len(pages) - 1, _best_spot(pages[-1], opts, axis)
         number, ((iy, ix), angle, mask, origin) = spot
         pages[number].add(mask, iy, ix)
         shift = np.array([ix * cell - origin[0], iy * cell - origin[1]])
@@ -222,31 +243,34 @@ def _fill(units, shapes, kinds, options, area, nx: int, ny: int, cell: float, fi
     return out
 
 
-def _best_spot(grid: "_Page", options):
+def _best_spot(grid: "_Page", options, axis: int = 1):
     """((iy, ix), angle, mask, origin) of the place on ``grid``, among the turns in ``options``,
-    with the least right edge, then the lowest (columns from the left); None if the piece fits
-    nowhere. The turns go narrowest first, so the turns that cannot beat the best right edge
-    found (they are wider than it) are left untried."""
+    whose far edge along ``axis`` (1: the right edge, filling columns from the left; 0: the top
+    edge, filling rows from the bottom) is least, then the one nearest the origin across it;
+    None if the piece fits nowhere. The turns go shortest along ``axis`` first, so the turns
+    that cannot beat the best edge found (they are longer than it) are left untried."""
     best, best_key = None, None
-    for (angle, mask, origin), core in zip(options, options.cores):  # the allowed turns
-        if best_key is not None and best_key < (mask.shape[1], 0):
+    for t in options.along[axis]:  # the allowed turns
+        (angle, mask, origin), core = options[t], options.cores[t]
+        if best_key is not None and best_key < (mask.shape[axis], 0):
             break
         if not grid.could_fit(core):
             continue
         free = grid.correlate(mask) < 0.5
         if not free.any():
             continue
-        iy, ix = np.nonzero(free)
-        j = np.lexsort((iy, ix))[0]
-        key = (int(ix[j] + mask.shape[1]), int(iy[j]))
+        at = np.nonzero(free)  # (iy, ix) of the free places
+        j = np.lexsort((at[1 - axis], at[axis]))[0]
+        key = (int(at[axis][j] + mask.shape[axis]), int(at[1 - axis][j]))
         if best_key is None or key < best_key:
-            best, best_key = ((int(iy[j]), int(ix[j])), angle, mask, origin), key
+            best, best_key = ((int(at[0][j]), int(at[1][j])), angle, mask, origin), key
     return best
 
 
 class _Options(list):
-    """The turns (angle, mask, origin) of ``shape`` (a piece or stack), narrowest first, with
-    what every turn needs of a page: ``cells`` free cells, and a free disc of ``radius`` cells.
+    """The turns (angle, mask, origin) of ``shape`` (a piece or stack), with ``along[axis]`` their
+    indices shortest along that axis first (0: y, 1: x), and what every turn needs of a page:
+    ``cells`` free cells, and a free disc of ``radius`` cells.
     The cells within
     ``reach`` of the piece are in its mask, so the centres within ``r + reach`` of the centre of
     its largest inscribed circle (radius ``r``) are, and the mask's cell nearest that centre is at
@@ -254,7 +278,9 @@ class _Options(list):
     turn."""
 
     def __init__(self, turns, shape, reach: float, cell: float):
-        super().__init__(sorted(turns, key=lambda t: (t[1].shape[1], t[0])))  # narrowest first
+        super().__init__(turns)
+        self.along = [sorted(range(len(turns)), key=lambda t: (turns[t][1].shape[axis],
+                                                               turns[t][0])) for axis in (0, 1)]
         self.cores = [_core(m) for _, m, _ in self]
         self.cells = float(turns[0][1].sum()) if turns else 0.0
         with np.errstate(all="ignore"):  # GEOS on subnormal coordinates
