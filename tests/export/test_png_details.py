@@ -47,6 +47,21 @@ def test_lines_open_rings_closed_at_their_width():
     assert (row[:, 2] - row[:, 0] > 128).sum() == pytest.approx(4, abs=1)
 
 
+@pytest.mark.parametrize("kind", ["line", "ring"])
+def test_a_hairline_is_the_thinnest_line_drawn_and_still_seen(kind):
+    """Stroke width 0 is a hairline (what a laser cuts on): visible, and thinner than a stroke
+    of 0.25 mm (two pixels of the supersampled picture at 4 px/mm)."""
+    def ink_of(width):
+        shape = (polylines_from_lines([[(2, 5), (28, 5)]], Style("#000000", width))
+                 if kind == "line" else
+                 polygons_from_shapely([shapely.box(2, 3, 28, 7)], Style("#000000", width)))
+        img = pixels(Drawing((Sheet(30, 10, (Layer("cut", "cut", (shape,)),)),)))
+        return (255 - img[:, 10 * PX:20 * PX].astype(int)).sum()
+
+    hairline, quarter = ink_of(0.0), ink_of(0.25)
+    assert 0 < hairline < 0.75 * quarter
+
+
 def test_polygon_with_two_holes_keeps_both_open():
     frame = shapely.Polygon([(2, 2), (38, 2), (38, 18), (2, 18)],
                             [[(5, 5), (15, 5), (15, 15), (5, 15)],
