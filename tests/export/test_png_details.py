@@ -111,6 +111,21 @@ def test_text_stays_within_the_width_the_layout_reserved():
         assert 0.8 * text_width(word, 3.0) < width <= text_width(word, 3.0) + 0.25, word
 
 
+@pytest.mark.parametrize("word, size", [("HIH", 0.12), ("mm", 0.125)])
+def test_tiny_text_keeps_to_its_size_and_width_down_to_a_one_pixel_font(word, size):
+    """At 150 dpi a text an eighth of a millimetre high is under two pixels to the em: the
+    font (whole pixels, one at least) is no larger than the em asked for and runs no wider
+    than the layout reserved unless it is down to one pixel ("mm": DejaVu Sans at two pixels
+    would not fit). The font is asked of the writer itself: the pixels are too few to
+    measure."""
+    px = 150 / 25.4 * png.SUPERSAMPLE
+    em = size / png.CAP_RATIO * px
+    room = text_width(word, size) * px
+    font = png._font(word, size, px)
+    assert font.size <= max(1.0, em)
+    assert font.size == 1 or font.getlength(word) <= room  # one pixel is the least there is
+
+
 def test_sheets_of_different_widths_stack_left_aligned():
     a = Sheet(20, 10, (Layer("a", "paint", (polygons_from_shapely(
         [shapely.box(0, 0, 20, 10)], Style(None, 0, "#0000ff")),)),))
