@@ -12,7 +12,7 @@ import zlib
 import numpy as np
 import pytest
 import shapely
-from PIL import Image
+from PIL import Image, ImageDraw
 
 from weavecut.errors import ExportError
 from weavecut.export import png
@@ -219,3 +219,22 @@ def test_capitals_are_as_high_as_the_text_size():
         img = np.asarray(im.convert("RGB"))
     rows = np.flatnonzero((img.max(axis=2) < 128).any(axis=1))
     assert (rows[-1] - rows[0] + 1) / 20 == pytest.approx(5.0, abs=0.15)
+
+
+@pytest.mark.parametrize("anchor", ["ls", "ms"])
+@pytest.mark.parametrize("angle", [30.0, 135.0])
+def test_turned_text_loses_no_ink_even_at_the_corners_of_its_box(anchor, angle):
+    """A full block (ink to the corners of its box) turned about its anchor: the same pixels
+    as the text drawn on a canvas far larger than it and turned by Pillow about the same
+    point, so the writer's tile cuts nothing off."""
+    font = png._face(40)
+    size, centre = 480, (240, 240)
+    big = Image.new("RGBA", (size, size), (0, 0, 0, 0))
+    ImageDraw.Draw(big).text(centre, "\u2588", fill="#000000", font=font, anchor=anchor)
+    big = big.rotate(angle, center=centre)
+    want = Image.new("RGB", (size, size), "white")
+    want.paste(big, (0, 0), big)
+    got = Image.new("RGB", (size, size), "white")
+    png._rotated_text(got, centre, "\u2588", font, "#000000", angle, anchor)
+    assert (np.asarray(want) < 128).any()  # something is drawn
+    np.testing.assert_array_equal(np.asarray(got), np.asarray(want))
