@@ -93,6 +93,10 @@ def test_header_says_millimetres_metric_and_shows_line_weights():
     assert doc.header["$INSUNITS"] == 4 and doc.units == ezdxf.units.MM
     assert doc.header["$MEASUREMENT"] == 1  # metric
     assert doc.header["$LWDISPLAY"] == 1
+    # and declares nothing it does not use: no dashed linetype a laser program would cut as
+    # dashes, no text style naming a font the maker's machine may lack
+    assert [lt.dxf.name for lt in doc.linetypes] == ["ByBlock", "ByLayer", "Continuous"]
+    assert [st.dxf.name for st in doc.styles] == ["Standard"]
 
 
 def test_closed_rings_open_lines_and_odd_parity_fills():
@@ -158,6 +162,11 @@ def test_true_colours_and_line_weights():
     assert cut.dxf.lineweight == -1  # BYLAYER: a laser cuts hairlines
     assert hair.rgb == (0, 0, 0) and hair.dxf.lineweight == -1  # 0 mm: no weight
     assert text.rgb == (0, 0, 255) and text.dxf.lineweight == -1  # text has no line weight
+    # the outline of a polygon keeps its weight off laser layers too
+    ring = Layer("ring", "guide", (polygons_from_shapely([shapely.box(0, 0, 5, 5)],
+                                                         Style("#0a0b0c", 0.5)),))
+    (outline,) = read(Drawing((Sheet(20, 20, (ring,)),))).modelspace().query("LWPOLYLINE")
+    assert outline.closed and outline.dxf.lineweight == 50
 
 
 @pytest.mark.parametrize("width, weight", [(0.51, 50), (0.52, 53), (0.05, 5), (3.0, 211)])

@@ -250,14 +250,16 @@ def test_depth_buffer_keeps_the_nearest_triangle_at_every_pixel(seed, chunk, mon
     xy = rng.uniform(0.5, big - 0.5, (14, 3, 2))
     xy[0] = [[5.3, 5.3], [5.9, 5.4], [5.4, 5.9]]  # smaller than a pixel, around one centre
     xy[1] = [[3.0, 3.0], [3.0, 3.0], [9.0, 9.0]]  # degenerate: covers nothing
+    xy[2] = [[big - 3.0, 2.2], [big + 6.0, 4.1], [big - 2.5, 12.3]]  # past the right edge
+    xy[3] = [[1.2, 0.2], [1.8, 0.3], [1.3, 0.8]]  # around pixel 1 only (alone in a chunk of 7)
     depth = rng.uniform(-1, 1, (14, 3))  # tilted: triangles pass through one another
-    depth[0] = 2.0  # the small one in front
+    depth[0] = depth[3] = 2.0  # the small ones in front
     covered, tri = model3d._depth_buffer(xy, depth, big)
     got = np.full(big * big, -1)
     got[covered] = tri
     want, unsure = depth_oracle(xy, depth, big)
     assert (got[~unsure] == want[~unsure]).all()
-    assert got[5 * big + 5] == 0 and (want >= 0).sum() > big * big / 3
+    assert got[5 * big + 5] == 0 and got[1] == 3 and (want >= 0).sum() > big * big / 3
 
 
 def test_depth_ties_go_to_the_first_triangle_however_chunked(monkeypatch):

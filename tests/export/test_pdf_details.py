@@ -5,6 +5,7 @@ text anchored and sized, the same bytes every time."""
 
 from __future__ import annotations
 
+import io
 import subprocess
 
 import numpy as np
@@ -12,7 +13,7 @@ import pytest
 import shapely
 from PIL import Image
 
-from weavecut.export import pdf
+from weavecut.export import pdf, png
 from weavecut.layout.drawing import (
     Drawing, Layer, Sheet, Style, Text, polygons_from_shapely, polylines_from_lines,
 )
@@ -87,6 +88,22 @@ def test_fills_without_an_outline_and_outlines_around_fills(tmp_path):
     assert at(img, 4.6, 10, 20) == WHITE  # no stroke in a colour the style does not name
     assert close(at(img, 30, 10, 20), GREEN) and close(at(img, 25, 10, 20), BLUE, 30)
     assert at(img, 50, 10, 20) == WHITE and close(at(img, 45, 10, 20), BLUE, 30)
+
+
+def test_overlapping_polygons_of_a_batch_stack_as_in_the_png(tmp_path):
+    """An unfilled square and a filled one after it, overlapping: the fill covers the first
+    square's outline where they overlap, in the PDF as in the PNG (which draws polygon by
+    polygon), so the printed page shows what the preview shows."""
+    batch = Layer("cut", "cut", (polygons_from_shapely(
+        [shapely.box(5, 5, 25, 15), shapely.box(15, 5, 35, 15)], Style("#0000ff", 1.0),
+        fills=[None, "#00a000"]),))
+    drawing = Drawing((Sheet(40, 20, (batch,)),))
+    (img,) = pages(drawing, tmp_path)
+    with Image.open(io.BytesIO(png.render(drawing, dpi=25.4 * PX))) as im:
+        preview = np.asarray(im.convert("RGB"))
+    for picture in (img, preview):
+        assert close(at(picture, 25, 10, 20), GREEN)  # the first square's edge, under the fill
+        assert close(at(picture, 5, 10, 20), BLUE, 30) and close(at(picture, 35, 10, 20), BLUE, 30)
 
 
 def test_corners_are_rounded(tmp_path):

@@ -12,7 +12,7 @@ import zlib
 import numpy as np
 import pytest
 import shapely
-from PIL import Image
+from PIL import Image, ImageDraw
 
 from weavecut.errors import ExportError
 from weavecut.export import png
@@ -45,6 +45,21 @@ def test_lines_open_rings_closed_at_their_width():
     # a 1 mm line is 4 px wide at 4 px/mm
     row = img[int((30 - 15) * PX), :10 * PX]
     assert (row[:, 2] - row[:, 0] > 128).sum() == pytest.approx(4, abs=1)
+
+
+@pytest.mark.parametrize("kind", ["line", "ring"])
+def test_a_hairline_is_the_thinnest_line_drawn_and_still_seen(kind):
+    """Stroke width 0 is a hairline (what a laser cuts on): visible, and thinner than a stroke
+    of 0.25 mm (two pixels of the supersampled picture at 4 px/mm)."""
+    def ink_of(width):
+        shape = (polylines_from_lines([[(2, 5), (28, 5)]], Style("#000000", width))
+                 if kind == "line" else
+                 polygons_from_shapely([shapely.box(2, 3, 28, 7)], Style("#000000", width)))
+        img = pixels(Drawing((Sheet(30, 10, (Layer("cut", "cut", (shape,)),)),)))
+        return (255 - img[:, 10 * PX:20 * PX].astype(int)).sum()
+
+    hairline, quarter = ink_of(0.0), ink_of(0.25)
+    assert 0 < hairline < 0.75 * quarter
 
 
 def test_polygon_with_two_holes_keeps_both_open():
@@ -94,6 +109,21 @@ def test_text_stays_within_the_width_the_layout_reserved():
         found = ink(pixels(Drawing((Sheet(60, 20, (layer,)),))), 0, 0, 60, 20, 20)
         width = np.ptp(found[:, 0])
         assert 0.8 * text_width(word, 3.0) < width <= text_width(word, 3.0) + 0.25, word
+
+
+@pytest.mark.parametrize("word, size", [("HIH", 0.12), ("mm", 0.125)])
+def test_tiny_text_keeps_to_its_size_and_width_down_to_a_one_pixel_font(word, size):
+    """At 150 dpi a text an eighth of a millimetre high is under two pixels to the em: the
+    font (whole pixels, one at least) is no larger than the em asked for and runs no wider
+    than the layout reserved unless it is down to one pixel ("mm": DejaVu Sans at two pixels
+    would not fit). The font is asked of the writer itself: the pixels are too few to
+    measure."""
+    px = 150 / 25.4 * png.SUPERSAMPLE
+    em = size / png.CAP_RATIO * px
+    room = text_width(word, size) * px
+    font = png._font(word, size, px)
+    assert font.size <= max(1.0, em)
+    assert font.size == 1 or font.getlength(word) <= room  # one pixel is the least there is
 
 
 def test_sheets_of_different_widths_stack_left_aligned():
@@ -189,3 +219,22 @@ def test_capitals_are_as_high_as_the_text_size():
         img = np.asarray(im.convert("RGB"))
     rows = np.flatnonzero((img.max(axis=2) < 128).any(axis=1))
     assert (rows[-1] - rows[0] + 1) / 20 == pytest.approx(5.0, abs=0.15)
+
+
+@pytest.mark.parametrize("anchor", ["ls", "ms"])
+@pytest.mark.parametrize("angle", [30.0, 135.0])
+def test_turned_text_loses_no_ink_even_at_the_corners_of_its_box(anchor, angle):
+    """A full block (ink to the corners of its box) turned about its anchor: the same pixels
+    as the text drawn on a canvas far larger than it and turned by Pillow about the same
+    point, so the writer's tile cuts nothing off."""
+    font = png._face(40)
+    size, centre = 480, (240, 240)
+    big = Image.new("RGBA", (size, size), (0, 0, 0, 0))
+    ImageDraw.Draw(big).text(centre, "\u2588", fill="#000000", font=font, anchor=anchor)
+    big = big.rotate(angle, center=centre)
+    want = Image.new("RGB", (size, size), "white")
+    want.paste(big, (0, 0), big)
+    got = Image.new("RGB", (size, size), "white")
+    png._rotated_text(got, centre, "\u2588", font, "#000000", angle, anchor)
+    assert (np.asarray(want) < 128).any()  # something is drawn
+    np.testing.assert_array_equal(np.asarray(got), np.asarray(want))

@@ -151,6 +151,10 @@ def test_several_polygons_in_one_path_and_strokes_around_each_fill():
     assert sorted(map(tuple, numbers(cut.get("d")).reshape(-1, 2).tolist())) == \
         sorted([(1, 9), (3, 9), (3, 7), (1, 7), (5, 9), (7, 9), (7, 7), (5, 7)])
     assert cut.get("d").count("M") == 2 and cut.get("d").count("Z") == 2
+    # path data a viewer reads: closed subpaths of numbers and nothing else between them
+    number = r"-?\d+(\.\d+)?"
+    ring = rf"M{number},{number}( {number},{number})*Z"
+    assert all(re.fullmatch(rf"({ring})+", p.get("d")) for p in (cut, green, yellow))
     for p, fill in [(green, "#00ff00"), (yellow, "#ffff00")]:
         assert (p.get("fill"), p.get("stroke"), p.get("stroke-width")) == \
             (fill, "#0000ff", "0.4")

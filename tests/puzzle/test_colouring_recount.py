@@ -15,7 +15,8 @@ import shapely
 from weavecut import inputs
 from weavecut.layout.colour_difference import colour_difference
 from weavecut.mesh import edge_faces
-from weavecut.puzzle.colouring import UNPAINTED, colour_puzzle, on_top_of_octagon, palette_names
+from weavecut.puzzle.colouring import (UNPAINTED, _families, colour_puzzle, on_top_of_octagon,
+                                       palette_names)
 from weavecut.puzzle.guides import piece_halves
 from weavecut.puzzle.pieces import build_puzzle
 from weavecut.subdivision import subdivide
@@ -313,3 +314,13 @@ def test_on_top_of_octagon_is_a_mask_of_the_strands_with_an_octagon(spec, levels
     front = _puzzle(spec, levels).weaves[-2]
     mask = on_top_of_octagon(front)
     assert np.arange(front.n_strands)[mask].tolist() == _main_strands(front)
+
+
+def test_families_balance_the_colour_count_then_keep_touching_groups_apart():
+    """Three groups of one strand each and two families: the first two take one family each
+    (balance first); the third could join either, and joins the one of no group it touches
+    (strands 0 and 2 touch, so it takes group 1's family, and the other way round)."""
+    group = np.arange(3)
+    for touching, want in (([[0, 2]], [0, 1, 1]), ([[1, 2]], [0, 1, 0])):
+        pairs = np.array(touching, dtype=np.int64)
+        assert _families(group, 3, np.arange(3), pairs, 2).tolist() == want

@@ -11,7 +11,7 @@ import shapely
 from shapely import affinity
 
 from weavecut.errors import WeaveCutError
-from weavecut.puzzle.frame import MAX_PARTS, fits, split_frame
+from weavecut.puzzle.frame import MAX_PARTS, _ray, fits, split_frame
 
 from tests.built_puzzles import pentagon_puzzle
 
@@ -65,6 +65,7 @@ def test_a_frame_that_fits_stays_whole_and_one_that_never_fits_is_refused():
     snug = (x1 - x0 + 10.5, y1 - y0 + 10.5)
     assert fits(np.array([puzzle.frame], dtype=object), snug, 5.0).all()
     assert len(split_frame(puzzle.frame, puzzle.outer, snug, 5.0, 0.0)) == 1
+    assert len(split_frame(puzzle.frame, puzzle.outer, snug, 5.0)) == 1  # no kerf unless given
     assert len(split_frame(puzzle.frame, puzzle.outer, snug, 5.0, 2.0)) > 1
     with pytest.raises(WeaveCutError, match=r"^even in 12 parts the frame does not fit a 40 x "
                                             r"30 mm sheet; use a larger --sheet or a smaller "
@@ -85,3 +86,22 @@ def test_fits_lays_a_part_flat_on_its_minimum_rectangle(angle):
     assert not fits(part, (110.0, 30.0), 5.1).any()
     several = np.array([bar, shapely.box(0, 0, 10, 10), shapely.box(0, 0, 200, 5)], dtype=object)
     assert fits(several, (110.0, 30.0), 5.0).tolist() == [True, True, False]
+
+
+@pytest.mark.parametrize("angle", [0.3, 1.9, 4.0])
+def test_each_cut_carries_a_symmetric_dovetail_that_widens(angle):
+    """The cut along a ray: from the centre out, a tab of four corners, then on: the neck's
+    two corners on the ray, the head's two off it by the same depth, the head wider than the
+    neck and centred on the neck's middle (a dovetail locks only if it widens both ways)."""
+    puzzle = _puzzle()
+    centre = np.asarray(puzzle.outer.centroid.coords[0])
+    cut = _ray(puzzle.frame, centre, angle, 1000.0)
+    assert cut is not None and len(cut) == 6
+    u = np.array([np.cos(angle), np.sin(angle)])
+    n = np.array([-u[1], u[0]])
+    along, off = (cut - centre) @ u, (cut - centre) @ n
+    np.testing.assert_allclose(off[[0, 1, 4, 5]], 0.0, atol=1e-9)
+    assert abs(off[2]) > 0 and off[2] == pytest.approx(off[3], abs=1e-9)
+    neck, head = along[4] - along[1], along[3] - along[2]
+    assert 0 < neck < head
+    assert (along[2] + along[3]) / 2 == pytest.approx((along[1] + along[4]) / 2, abs=1e-9)

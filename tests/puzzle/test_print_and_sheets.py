@@ -16,7 +16,8 @@ from weavecut.puzzle import files as pf
 from weavecut.puzzle import workshop
 from weavecut.puzzle.frame import fits
 from weavecut.puzzle.colouring import UNPAINTED
-from weavecut.puzzle.guides import _number_colours, _number_shapes, colour_key, guide, printed
+from weavecut.puzzle.guides import (OUTLINE, SPLIT, _number_colours, _number_shapes, colour_key,
+                                    guide, printed)
 
 from tests.built_puzzles import pentagon_paint, pentagon_puzzle
 
@@ -59,10 +60,76 @@ def test_separate_sheets_keep_the_documented_margin_and_spacing():
         assert one.title.startswith("weave-cut puzzle: separate pieces, sheet ")
 
 
+def test_separate_sheets_keep_a_margin_asked_for():
+    """A margin other than the default: every part that far from every edge, the tightest on
+    it."""
+    puzzle = pentagon_puzzle(2)
+    sheet = (500.0, 400.0)
+    result = pf.separate_cut(puzzle, pf.laser(), 0.2, sheet, margin=12.0)
+    for parts in pf.nested_parts(result):
+        bounds = shapely.bounds(parts)
+        np.testing.assert_allclose(bounds[:, :2].min(axis=0), [12.0, 12.0], atol=1e-9)
+        assert (bounds[:, 2:] <= np.subtract(sheet, 12.0) + 1e-9).all()
+
+
+def _rings(sheet, name: str) -> list:
+    """The closed rings of one cut layer of a sheet, in cutting order."""
+    layers = {layer.name: layer for layer in sheet.layers}
+    return list(layers[name].shapes[0].rings()) if name in layers else []
+
+
+@pytest.mark.parametrize("sheet", [(500.0, 400.0), (315.0, 300.0)])
+def test_each_sheet_is_cut_from_the_home_corner_along_a_route_no_reversal_shortens(sheet):
+    """The head starts every sheet in its top-left corner (0, height): no reversal of a leading
+    run of the inner cuts shortens the travel from there (2-opt optimal from home; a closed ring
+    ends where it starts), and the frame's outline, cut last, is entered at its corner nearest
+    to where the inner cuts ended."""
+    puzzle = pentagon_puzzle(2)
+    result = pf.separate_cut(puzzle, pf.laser(), 0.2, sheet)
+    home = np.array([0.0, sheet[1]])
+    outlines = 0
+    for s in result.drawing.sheets:
+        inner = _rings(s, "cut-1-inner")
+        starts = np.array([ring[0] for ring in inner])
+
+        def travel(order):
+            return np.hypot(*np.diff(np.vstack([home, starts[order]]), axis=0).T).sum()
+
+        n = len(inner)
+        base = travel(np.arange(n))
+        for j in range(1, n):
+            assert travel(np.r_[np.arange(j, -1, -1), np.arange(j + 1, n)]) >= base - 1e-9
+        for ring in _rings(s, "cut-2-outer")[:1]:
+            d = np.hypot(*(ring - inner[-1][0]).T)
+            assert d[0] <= d.min() + 1e-9
+            outlines += 1
+    assert outlines == 1 and result.n_sheets >= 1
+
+
+def test_every_separate_piece_carries_its_number_even_alone_on_a_sheet():
+    """Sheets that hold a few pieces each (the frame in two small parts): every piece's outline
+    holds engraved strokes, also piece 1's, which this nesting puts alone on its sheet."""
+    puzzle = pentagon_puzzle(2)
+    tiny = np.array([shapely.box(0, 0, 5, 5), shapely.box(0, 0, 5, 5)], dtype=object)
+    result = pf.separate_cut(puzzle, pf.laser(), 0.2, (90.0, 90.0), frame_parts=tiny,
+                             numbers=pf.piece_numbers(puzzle))
+    numbered, alone = 0, 0
+    for s in result.drawing.sheets:
+        pieces = [shapely.Polygon(r) for r in _rings(s, "cut-1-inner")]  # split parts: outer
+        strokes = [shapely.LineString(ln) for layer in s.layers
+                   if layer.name == "engrave-numbers" for shape in layer.shapes
+                   for ln in shape.lines()]
+        numbered += sum(any(p.contains(st) for st in strokes) for p in pieces)
+        alone += len(pieces) == 1
+    assert numbered == puzzle.n_pieces and alone >= 1
+
+
 def test_a_tie_between_black_and_white_numbers_goes_to_black():
     """A piece painted black and white reads as badly in either ink (contrast 1 on one half):
     its number is black, like every number on unpainted wood; numbers are drawn in thin
-    strokes (a fraction of a millimetre) so digits 3 mm high stay open."""
+    strokes (a fraction of a millimetre) so digits 3 mm high stay open, bolder than the
+    dashed split lines they may cross and lighter than the piece outlines around them (the
+    README tells the maker: bold lines are outlines, thin dashed lines split)."""
     puzzle, colouring = pentagon_puzzle(2), pentagon_paint(2)
     front = colouring.front.copy()
     front[0] = ("#000000", "#ffffff")
@@ -74,7 +141,8 @@ def test_a_tie_between_black_and_white_numbers_goes_to_black():
     assert inks[0] == BLACK and inks[1] == BLACK
     numbers = pf.piece_numbers(puzzle)
     shapes = _number_shapes(numbers, inks)
-    assert all(0.2 <= s.style.stroke_width <= 0.1 * numbers.heights.max() for s in shapes)
+    assert all(SPLIT.stroke_width < s.style.stroke_width < OUTLINE.stroke_width
+               and s.style.stroke_width <= 0.1 * numbers.heights.max() for s in shapes)
 
 
 def test_summary_times_keep_a_tenth_of_a_minute():

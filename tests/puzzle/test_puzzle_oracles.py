@@ -5,6 +5,8 @@ quarter of a second): mutmut credits a shared fixture's work to the first test o
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 import shapely
@@ -227,3 +229,15 @@ def test_extent_and_diameter_measure_corners():
     assert diameter(triangle) == pytest.approx(np.hypot(3, 3))
     assert extent(triangle) == extent(triangle, "diagonal") == diameter(triangle)
     assert extent(triangle, "width") == 4.0
+
+
+def test_pieces_do_not_depend_on_the_drawings_units():
+    """The pentagon drawn a thousand times smaller (metres for millimetres) makes the same
+    pieces at the same size: corners snap at a tolerance relative to the drawing."""
+    mesh = inputs.get("pentagon")
+    small = dataclasses.replace(mesh, vertices=mesh.vertices * 1e-3)
+    a = build_puzzle(subdivide(mesh, 2), size=300.0)
+    b = build_puzzle(subdivide(small, 2), size=300.0)
+    assert a.n_pieces == b.n_pieces
+    assert (shapely.get_num_coordinates(a.pieces) == shapely.get_num_coordinates(b.pieces)).all()
+    assert shapely.hausdorff_distance(a.pieces, b.pieces).max() < 1e-9

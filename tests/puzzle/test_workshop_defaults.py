@@ -93,6 +93,35 @@ def test_drawing_defaults_refuse_a_drawing_no_cell_can_make(error, why, monkeypa
         workshop.drawing_defaults(failing, 240.0, 12.0, 2.0, (2,))
 
 
+def test_drawing_defaults_pass_over_a_cell_that_fails_to_the_next(monkeypatch):
+    """The finest cell makes slivers (a MeshError): the next coarser cells are still tried, and
+    the choice is the one made without the failing cell."""
+    monkeypatch.setattr(workshop, "DEFAULT_FACES", FACES)
+    finest = round(math.sqrt(SQUARE.area / FACES[0]), 1)
+
+    def slivers_at_the_finest(cell):
+        if cell is not None and abs(cell - finest) < 0.05:
+            raise MeshError("sliver faces")
+        return read_at(cell)
+
+    cell, level, _ = workshop.drawing_defaults(slivers_at_the_finest, 240.0, 12.0, 2.0, (2,))
+    monkeypatch.setattr(workshop, "DEFAULT_FACES", FACES[1:])
+    assert (cell, level) == workshop.drawing_defaults(read_at, 240.0, 12.0, 2.0, (2,))[:2]
+
+
+def test_drawing_defaults_build_nothing_with_too_many_pieces_for_the_room(monkeypatch):
+    """At 40 mm every candidate has less than MIN_MEAN_AREA per piece (recounted here): none
+    is built, so the drawing is refused."""
+    monkeypatch.setattr(workshop, "DEFAULT_FACES", FACES)
+    wide = float(np.ptp(read_at(None).vertices[:, 0]))
+    for faces in FACES:
+        n = subdivide(read_at(round(math.sqrt(SQUARE.area / faces), 1)), 2)[-1].mesh.n_faces
+        assert SQUARE.area * (40.0 / wide) ** 2 / (n / 2) < workshop.MIN_MEAN_AREA
+    with pytest.raises(WeaveCutError, match=r"^no cell and level tried makes a puzzle of this "
+                                            r"drawing at 40 mm; give --cell"):
+        workshop.drawing_defaults(read_at, 40.0, 12.0, 2.0, (2,))
+
+
 def test_the_larger_cell_named_is_the_smallest_step_that_is_comfortable():
     """A square meshed in 18 mm cells makes pieces too small at 240 mm: the cell named is the
     first of 18 mm x CELL_STEPS (rounded to 0.1 mm) whose puzzle keeps every piece

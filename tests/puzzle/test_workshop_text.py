@@ -43,8 +43,12 @@ def _paragraphs(lines: list[str]) -> list[str]:
     return out
 
 
-def test_each_laser_file_names_its_layers_in_cutting_order():
-    text = workshop.readme({**INFO, "frame_parts": 3, "kerf_mm": 0.15}, "a4")
+@pytest.mark.parametrize("levels", [3, 12])  # from level 10 on, a wrap at 93 would differ
+def test_each_laser_file_names_its_layers_in_cutting_order(levels):
+    text = workshop.readme({**INFO, "levels": levels, "frame_parts": 3, "kerf_mm": 0.15}, "a4")
+    # plain text: no control character but the newline (a vertical tab reads as a line break
+    # to splitlines, not to a text editor)
+    assert all(ch == "\n" or ch.isprintable() for ch in text)
     laser = _paragraphs(_section(text, "1. To the laser", "2. To the printer (at 100 %, no "
                                                            "scaling; check the 100 mm bar)"))
     assert laser == [
@@ -67,8 +71,8 @@ def test_each_laser_file_names_its_layers_in_cutting_order():
         assert len(line) + 1 + len(nxt.split()[0]) > 92
     assert " ".join(" ".join(lines).split()) == (
         "The paper's two-sided puzzle (Lipschuetz, Reitebuch, Skrodzki, Polthier, section 6): "
-        "level 3 pieces of the pentagon snub subdivision; the front is painted with the level 2 "
-        "weave, the back with the level 3 weave.")
+        f"level {levels} pieces of the pentagon snub subdivision; the front is painted with the "
+        f"level {levels - 1} weave, the back with the level {levels} weave.")
 
 
 @pytest.mark.parametrize("parts", [1, 2, 3])

@@ -9,6 +9,7 @@ from hypothesis import given, settings
 
 from weavecut.errors import MeshError
 from weavecut.subdivision import SCHEMES, loop
+from weavecut.subdivision._common import BLOCK, interleave
 
 GENERAL = ["sqrt3", "catmull-clark", "midedge", "doo-sabin", "dual", "akleman"]
 
@@ -61,3 +62,17 @@ def test_registry_names_the_classic_schemes():
     assert {"snub", "loop", "butterfly", "sqrt3", "catmull-clark", "midedge", "doo-sabin",
             "dual", "akleman"} <= set(SCHEMES)
     assert SCHEMES["loop"] is loop.step
+
+
+@pytest.mark.parametrize("n", [5, 2 * BLOCK + 7])  # several blocks, the last one partial
+def test_interleave_puts_column_j_from_array_j(n):
+    """Without ``out``: an (n, m) array of the first column's dtype whose column j is the j-th
+    array (as np.column_stack puts them), over more rows than a block."""
+    rng = np.random.default_rng(n)
+    columns = [rng.integers(-1000, 1000, n).astype(np.int32), rng.integers(0, 1000, n)]
+    got = interleave(columns)
+    assert got.dtype == np.int32 and got.shape == (n, 2)
+    np.testing.assert_array_equal(got, np.column_stack(columns))
+    out = np.full((n, 3), -1, dtype=np.int64)
+    assert interleave(np.stack([columns[1]] * 3), out=out) is out
+    np.testing.assert_array_equal(out, np.column_stack([columns[1]] * 3))
