@@ -325,6 +325,9 @@ def main(argv: list[str]) -> int:
         results[name] = {**run_package(name, args.max_children, only, fresh=args.survivors,
                                        sample=0 if only else args.sample,
                                        equivalents=equivalents), "sample": sample}
+    # another run may have finished meanwhile: keep its packages, replace only this run's
+    ran = {n: results[n] for n in names if n in results}
+    results = {**(json.loads(previous.read_text())["raw"] if previous.exists() else {}), **ran}
     report = summarise({n: results[n] for n in PACKAGES if n in results}, equivalents)
     previous.write_text(json.dumps({"report": report, "raw": results}, indent=1))
     (OUT / "report.md").write_text(markdown(report))
