@@ -174,3 +174,20 @@ def test_a_missing_boundary_segment_is_split_at_its_middle():
     split = outline_mesh._with_midpoints(ring, np.array([True, False, True, True]))
     assert split.tolist() == [[0, 0], [2, 0], [4, 0], [4, 2], [2, 2], [0, 2], [0, 1]]
     assert outline_mesh._with_midpoints(ring, np.zeros(4, bool)).tolist() == ring.tolist()
+
+
+def test_a_short_inner_edge_near_the_outline_collapses_to_its_middle():
+    """Four cells of a 4 mm square meet along the inner edge (1.95, 0.2)-(2.05, 0.2), 0.1 mm
+    long and 0.2 mm from the outline: with short edges of 0.3 mm its two ends meet at their
+    mean (2, 0.2) in every cell, however near the outline they lie; the outline's corners
+    stay where they are."""
+    region = shapely.box(0, 0, 4, 4)
+    p, q = (1.95, 0.2), (2.05, 0.2)
+    cells = [np.array(c, float) for c in ([(1, 0), (3, 0), q, p], [(0, 0), (1, 0), p, (0, 4)],
+                                          [(3, 0), (4, 0), (4, 4), q], [p, q, (4, 4), (0, 4)])]
+    merged = outline_mesh._short_inner_edges_merged(cells, region, 0.3)
+    inner = shapely.distance(region.boundary, shapely.points(np.concatenate(cells))) > 0
+    moved = np.concatenate(merged)
+    assert moved[inner] == pytest.approx(np.tile([2, 0.2], (inner.sum(), 1)))
+    assert moved[~inner].tolist() == np.concatenate(cells)[~inner].tolist()
+    assert [len(c) for c in merged] == [4, 4, 4, 4]
