@@ -191,3 +191,32 @@ def test_a_short_inner_edge_near_the_outline_collapses_to_its_middle():
     assert moved[inner] == pytest.approx(np.tile([2, 0.2], (inner.sum(), 1)))
     assert moved[~inner].tolist() == np.concatenate(cells)[~inner].tolist()
     assert [len(c) for c in merged] == [4, 4, 4, 4]
+
+
+def test_a_gentle_bend_is_dropped_and_a_reflex_corner_cut_in_one_cell():
+    """The L with its bottom side bent in 0.1 mm at (25, 0.1) (a reflex turn of 0.46 degrees,
+    shallower than the 0.2 mm tolerance) drawn before its reflex corner (20, 20): the bend is
+    dropped, the pieces are convex, cover the L without the bend, and the corner is cut (a
+    vertex of two pieces)."""
+    corners = np.array(L_SHAPE.exterior.coords)[:-1]
+    bent = shapely.Polygon(np.insert(corners, 1, (25, 0.1), axis=0))
+    pieces = outline_mesh._convex_pieces(bent, 0.2)
+    rings = [np.array(shapely.orient_polygons(p).exterior.coords)[:-1] for p in pieces]
+    assert not any(np.hypot(*(r - (25, 0.1)).T).min() < 1e-9 for r in rings)
+    assert sum(np.hypot(*(r - (20, 20)).T).min() < 1e-9 for r in rings) == 2
+    for r in rings:
+        before, after = r - np.roll(r, 1, axis=0), np.roll(r, -1, axis=0) - r
+        assert (before[:, 0] * after[:, 1] - before[:, 1] * after[:, 0]).min() > -1e-9
+    assert shapely.union_all(pieces).symmetric_difference(L_SHAPE).area < 1e-9
+
+
+def test_triangles_along_a_long_straight_side_all_have_area():
+    """The triangle (23, 9) (-29, 27) (-30, 14) meshed in triangles of cell 4: its sides, cut
+    into equal parts, are runs of points collinear but for rounding, where Qhull's Delaunay
+    triangulation also returns flat triangles whose centre may round to inside. No face may
+    be flat (validate refuses zero area), and the faces cover the triangle exactly."""
+    region = shapely.Polygon([(23, 9), (-29, 27), (-30, 14)])
+    mesh = validate(outline_mesh.mesh_outline(region, "tri", 4.0))
+    assert signed_areas(mesh).min() > 0.1
+    union = shapely.union_all(faces_of(mesh))
+    assert union.symmetric_difference(region).area < 1e-9 * region.area
