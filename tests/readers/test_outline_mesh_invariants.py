@@ -210,13 +210,15 @@ def test_a_gentle_bend_is_dropped_and_a_reflex_corner_cut_in_one_cell():
     assert shapely.union_all(pieces).symmetric_difference(L_SHAPE).area < 1e-9
 
 
-def test_triangles_along_a_long_straight_side_all_have_area():
+@pytest.mark.parametrize("scale, shift", [(1.0, 0.0), (1e-3, 0.0), (1e5, 0.0), (1.0, (1e5, -1e5))])
+def test_triangles_along_a_long_straight_side_all_have_area(scale, shift):
     """The triangle (23, 9) (-29, 27) (-30, 14) meshed in triangles of cell 4: its sides, cut
     into equal parts, are runs of points collinear but for rounding, where Qhull's Delaunay
     triangulation also returns flat triangles whose centre may round to inside. No face may
-    be flat (validate refuses zero area), and the faces cover the triangle exactly."""
-    region = shapely.Polygon([(23, 9), (-29, 27), (-30, 14)])
-    mesh = validate(outline_mesh.mesh_outline(region, "tri", 4.0))
-    assert signed_areas(mesh).min() > 0.1
+    be flat (validate refuses zero area), and the faces cover the triangle exactly, at any
+    scale (cell and tolerance scaled with the outline) and far from the origin."""
+    region = shapely.Polygon(np.array([(23, 9), (-29, 27), (-30, 14)]) * scale + shift)
+    mesh = validate(outline_mesh.mesh_outline(region, "tri", 4.0 * scale, 0.2 * scale))
+    assert signed_areas(mesh).min() > 0.1 * scale ** 2
     union = shapely.union_all(faces_of(mesh))
     assert union.symmetric_difference(region).area < 1e-9 * region.area

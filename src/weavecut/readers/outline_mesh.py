@@ -424,9 +424,9 @@ def _conforming(region, rings, inner):
         area = ((p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1])
                 - (p[:, 1, 1] - p[:, 0, 1]) * (p[:, 2, 0] - p[:, 0, 0]))
         # Qhull's triangulated output can hold flat triangles along a straight run of outline
-        # points, whose centre rounding may put inside: no faces (validate refuses areas
-        # under 1e-12 of the extent squared; a real triangle is 1e-4 of it or more)
-        solid = np.abs(area) > 1e-9 * np.ptp(points, axis=0).max() ** 2
+        # points, whose centre rounding may put inside: no faces (real ones are about a cell,
+        # and mesh_outline refuses cells under 1e-6 of the region)
+        solid = np.abs(area) > 1e-9 * region.area
         keep = shapely.contains_xy(region, *p.mean(axis=1).T) & solid
         triangles, area = simplices[keep], area[keep]
         edges = np.sort(np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]],
