@@ -222,3 +222,21 @@ def test_triangles_along_a_long_straight_side_all_have_area(scale, shift):
     assert signed_areas(mesh).min() > 0.1 * scale ** 2
     union = shapely.union_all(faces_of(mesh))
     assert union.symmetric_difference(region).area < 1e-9 * region.area
+
+
+@pytest.mark.parametrize("kind", ["quad", "hex"])
+def test_a_rectangle_of_two_cells_is_two_faces(kind):
+    """A 20 x 10 mm rectangle at cell 10 holds two lattice seeds: its Voronoi cells are the
+    two 10 mm squares (the smallest outline that is cut at all)."""
+    mesh = outline_mesh.mesh_outline(shapely.box(0, 0, 20, 10), kind, 10.0)
+    assert signed_areas(mesh).tolist() == [100.0, 100.0]
+
+
+@pytest.mark.parametrize("side, pieces", [(3.0, 2), (2.9, 1)])
+def test_pieces_under_the_minimum_size_merge_and_at_it_stay(side, pieces):
+    """At cell 5 the smallest piece kept is a square of 0.6 * 5 = 3 mm: a 3 mm square beside
+    a larger piece stays, a 2.9 mm one merges with it (their union is convex)."""
+    small, large = shapely.box(0, 0, side, 3), shapely.box(side, 0, 10, 3)
+    merged = outline_mesh._merged_small([small, large], 5.0, 0.2)
+    assert len(merged) == pieces
+    assert shapely.union_all(merged).equals(shapely.box(0, 0, 10, 3))
