@@ -371,3 +371,13 @@ def test_a_label_tab_is_cut_with_its_strip_and_its_id_engraved_on_it(tmp_path):
             assert p.flap.covers(id_strokes)  # the ID engraved on the tab
             edge = shapely.buffer(p.flap_edge, 1e-3)
             assert any(edge.covers(line) and line.length > 1.0 for line in engraved)
+
+
+def test_a_cutter_is_named_by_its_preset(tmp_path):
+    """Each preset names itself (the name reports print); a file of one's own keeps its name."""
+    for name in ("cricut", "scanncut", "silhouette"):
+        assert printcut.cutter(name).name == name
+    own = tmp_path / "cameo.toml"
+    text = (Path(__file__).resolve().parents[2] / "templates/cutters/silhouette.toml").read_text()
+    own.write_text(text.replace('name = "silhouette"', 'name = "my cameo"'))
+    assert printcut.cutter(str(own)).name == "my cameo"

@@ -155,3 +155,15 @@ def test_report_recounts_pages_sizes_contrast_and_violations():
     empty = report(_Book([Sheet(200.0, 200.0)], ()))
     assert (empty["smallest_text_mm"], empty["smallest_contrast"]) == (0.0, 21.0)
     assert text_box(good).area > 0
+
+
+def test_furniture_keeps_its_gap_from_furniture_only():
+    """A strip label 0.7 mm from a page number beyond the printable box: the gap rule is for
+    the page furniture among itself (labels sit on strips, where the overlap rule holds)."""
+    label = centred_text((100.0, 147.5), "A7", 4.0, 0.0, "#ffffff")
+    number = centred_text((100.0, 147.5), "page 3", 4.0, 0.0, "#000000")
+    lift = text_box(label).bounds[3] + 0.7 - text_box(number).bounds[1]
+    number = centred_text((100.0, 147.5 + lift), "page 3", 4.0, 0.0, "#000000")
+    furniture = Layer("page", "label", (number,))
+    box = (50.0, 50.0, 150.0, 150.0)
+    assert _broken(_sheet(label, extra=(furniture,)), box) == [[], []]

@@ -13,6 +13,7 @@ from click.testing import CliRunner
 
 from weavecut import export, inputs
 from weavecut.layout.drawing import Polylines
+from weavecut.papermodel.assembly import _free_spot
 from weavecut.papermodel.pages import GAP, occupied
 from weavecut.papermodel.book import strand_book
 from weavecut.papermodel.checks import report, sheet_checks, text_checks
@@ -739,3 +740,15 @@ def test_label_plates_stay_over_their_tiles_whatever_order_a_writer_paints_in():
             pair = (a < b) & (fills[a] != fills[b])
             assert (shapely.area(shapely.intersection(polys[a[pair]], polys[b[pair]]))
                     < 1e-6).all()
+
+
+def test_a_label_takes_the_nearest_free_spot_round_its_tile():
+    """The plate for a tile at the origin (10 mm tiles) is tried on rings of 10, 17.5, ... mm
+    at 15, 45, ... degrees: an obstacle on the first try (15 degrees at 10 mm) moves it to the
+    next angle of the same ring (45 degrees), not to a farther ring."""
+    obstacle = shapely.box(8, 1, 11, 4)
+    _, plate, leader = _free_spot((0.0, 0.0), "A1", [obstacle], shapely.box(-50, -50, 50, 50),
+                                  10.0)
+    centre = np.asarray(plate.centroid.coords[0])
+    assert centre == pytest.approx(10 * np.array([np.cos(np.pi / 4), np.sin(np.pi / 4)]))
+    assert not plate.intersects(obstacle) and not leader.intersects(obstacle)

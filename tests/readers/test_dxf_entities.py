@@ -16,6 +16,7 @@ import shapely
 
 from weavecut.errors import MeshFileError
 from weavecut.readers import dxf as dxf_reader
+from weavecut.readers import read_drawing
 
 
 def write(tmp_path: Path, build, units: int = 4) -> Path:
@@ -116,3 +117,20 @@ def test_not_a_dxf_is_one_short_line(tmp_path):
     assert "\n" not in text and len(text) <= 200 and "not a readable DXF" in text
     with pytest.raises(MeshFileError, match="not a readable DXF"):
         dxf_reader.read_rings(tmp_path / "missing.dxf", 0.2)
+
+
+@pytest.mark.parametrize("add", ["lwpolyline", "polyline2d"])
+def test_a_closed_polyline_of_two_points_is_a_ring_that_encloses_nothing(tmp_path, add):
+    """Closed is the entity's flag, not a count of points: a closed polyline drawn through two
+    points is a ring (there and back), and reading the drawing names it as enclosing no
+    area, not as a line with an open end."""
+    def build(msp):
+        msp.add_lwpolyline([(0, 0), (10, 0), (10, 10), (0, 10)], close=True)
+        getattr(msp, f"add_{add}")([(20, 0), (30, 0)], close=True)
+    path = write(tmp_path, build)
+    rings, pieces = dxf_reader.read_rings(path, 0.05)
+    assert len(rings) == 2 and not pieces
+    assert rings[1].points.tolist() == [[20, 0], [30, 0]]
+    with pytest.raises(MeshFileError, match=r"(LW)?POLYLINE #\w+ \(layer '0'\) encloses no "
+                                            r"area$"):
+        read_drawing(path)

@@ -174,3 +174,69 @@ def test_a_missing_boundary_segment_is_split_at_its_middle():
     split = outline_mesh._with_midpoints(ring, np.array([True, False, True, True]))
     assert split.tolist() == [[0, 0], [2, 0], [4, 0], [4, 2], [2, 2], [0, 2], [0, 1]]
     assert outline_mesh._with_midpoints(ring, np.zeros(4, bool)).tolist() == ring.tolist()
+
+
+def test_a_short_inner_edge_near_the_outline_collapses_to_its_middle():
+    """Four cells of a 4 mm square meet along the inner edge (1.95, 0.2)-(2.05, 0.2), 0.1 mm
+    long and 0.2 mm from the outline: with short edges of 0.3 mm its two ends meet at their
+    mean (2, 0.2) in every cell, however near the outline they lie; the outline's corners
+    stay where they are."""
+    region = shapely.box(0, 0, 4, 4)
+    p, q = (1.95, 0.2), (2.05, 0.2)
+    cells = [np.array(c, float) for c in ([(1, 0), (3, 0), q, p], [(0, 0), (1, 0), p, (0, 4)],
+                                          [(3, 0), (4, 0), (4, 4), q], [p, q, (4, 4), (0, 4)])]
+    merged = outline_mesh._short_inner_edges_merged(cells, region, 0.3)
+    inner = shapely.distance(region.boundary, shapely.points(np.concatenate(cells))) > 0
+    moved = np.concatenate(merged)
+    assert moved[inner] == pytest.approx(np.tile([2, 0.2], (inner.sum(), 1)))
+    assert moved[~inner].tolist() == np.concatenate(cells)[~inner].tolist()
+    assert [len(c) for c in merged] == [4, 4, 4, 4]
+
+
+def test_a_gentle_bend_is_dropped_and_a_reflex_corner_cut_in_one_cell():
+    """The L with its bottom side bent in 0.1 mm at (25, 0.1) (a reflex turn of 0.46 degrees,
+    shallower than the 0.2 mm tolerance) drawn before its reflex corner (20, 20): the bend is
+    dropped, the pieces are convex, cover the L without the bend, and the corner is cut (a
+    vertex of two pieces)."""
+    corners = np.array(L_SHAPE.exterior.coords)[:-1]
+    bent = shapely.Polygon(np.insert(corners, 1, (25, 0.1), axis=0))
+    pieces = outline_mesh._convex_pieces(bent, 0.2)
+    rings = [np.array(shapely.orient_polygons(p).exterior.coords)[:-1] for p in pieces]
+    assert not any(np.hypot(*(r - (25, 0.1)).T).min() < 1e-9 for r in rings)
+    assert sum(np.hypot(*(r - (20, 20)).T).min() < 1e-9 for r in rings) == 2
+    for r in rings:
+        before, after = r - np.roll(r, 1, axis=0), np.roll(r, -1, axis=0) - r
+        assert (before[:, 0] * after[:, 1] - before[:, 1] * after[:, 0]).min() > -1e-9
+    assert shapely.union_all(pieces).symmetric_difference(L_SHAPE).area < 1e-9
+
+
+@pytest.mark.parametrize("scale, shift", [(1.0, 0.0), (1e-3, 0.0), (1e5, 0.0), (1.0, (1e5, -1e5))])
+def test_triangles_along_a_long_straight_side_all_have_area(scale, shift):
+    """The triangle (23, 9) (-29, 27) (-30, 14) meshed in triangles of cell 4: its sides, cut
+    into equal parts, are runs of points collinear but for rounding, where Qhull's Delaunay
+    triangulation also returns flat triangles whose centre may round to inside. No face may
+    be flat (validate refuses zero area), and the faces cover the triangle exactly, at any
+    scale (cell and tolerance scaled with the outline) and far from the origin."""
+    region = shapely.Polygon(np.array([(23, 9), (-29, 27), (-30, 14)]) * scale + shift)
+    mesh = validate(outline_mesh.mesh_outline(region, "tri", 4.0 * scale, 0.2 * scale))
+    assert signed_areas(mesh).min() > 0.1 * scale ** 2
+    union = shapely.union_all(faces_of(mesh))
+    assert union.symmetric_difference(region).area < 1e-9 * region.area
+
+
+@pytest.mark.parametrize("kind", ["quad", "hex"])
+def test_a_rectangle_of_two_cells_is_two_faces(kind):
+    """A 20 x 10 mm rectangle at cell 10 holds two lattice seeds: its Voronoi cells are the
+    two 10 mm squares (the smallest outline that is cut at all)."""
+    mesh = outline_mesh.mesh_outline(shapely.box(0, 0, 20, 10), kind, 10.0)
+    assert signed_areas(mesh).tolist() == [100.0, 100.0]
+
+
+@pytest.mark.parametrize("side, pieces", [(3.0, 2), (2.9, 1)])
+def test_pieces_under_the_minimum_size_merge_and_at_it_stay(side, pieces):
+    """At cell 5 the smallest piece kept is a square of 0.6 * 5 = 3 mm: a 3 mm square beside
+    a larger piece stays, a 2.9 mm one merges with it (their union is convex)."""
+    small, large = shapely.box(0, 0, side, 3), shapely.box(side, 0, 10, 3)
+    merged = outline_mesh._merged_small([small, large], 5.0, 0.2)
+    assert len(merged) == pieces
+    assert shapely.union_all(merged).equals(shapely.box(0, 0, 10, 3))

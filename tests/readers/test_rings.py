@@ -52,6 +52,16 @@ def test_rings_come_out_counter_clockwise_without_repeated_points():
     assert out[1].points.tolist() == square(20, 0, 10).tolist()
 
 
+@pytest.mark.parametrize("repeat", [0, 1, 2])
+def test_a_triangle_with_a_corner_drawn_twice_is_the_triangle(repeat):
+    """The smallest ring with a repeated point: three distinct corners, one of them twice (an
+    SVG path that returns to its start before ``z``, a DXF polyline closed on its last point)."""
+    triangle = np.array([(0, 0), (10, 0), (0, 10)], float)
+    drawn = np.insert(triangle, repeat, triangle[repeat], axis=0)
+    (out,) = checked([Ring("t", drawn)], 0.2)
+    assert out.points.tolist() == triangle.tolist()
+
+
 def test_a_ring_that_crosses_itself_names_where():
     """The bow (0, 0) (30, 10) (30, 0) (0, 20): y = x / 3 meets y = 20 - 2 x / 3 at (20, 20/3)."""
     bow = np.array([(0, 0), (30, 10), (30, 0), (0, 20)], float)

@@ -420,8 +420,15 @@ def _conforming(region, rings, inner):
     for _ in range(30):
         points = np.concatenate([*rings, inner])
         simplices = Delaunay(points).simplices
-        centres = points[simplices].mean(axis=1)
-        triangles = simplices[shapely.contains_xy(region, *centres.T)]
+        p = points[simplices]
+        area = ((p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1])
+                - (p[:, 1, 1] - p[:, 0, 1]) * (p[:, 2, 0] - p[:, 0, 0]))
+        # Qhull's triangulated output can hold flat triangles along a straight run of outline
+        # points, whose centre rounding may put inside: no faces (real ones are about a cell,
+        # and mesh_outline refuses cells under 1e-6 of the region)
+        solid = np.abs(area) > 1e-9 * region.area
+        keep = shapely.contains_xy(region, *p.mean(axis=1).T) & solid
+        triangles, area = simplices[keep], area[keep]
         edges = np.sort(np.concatenate([triangles[:, [0, 1]], triangles[:, [1, 2]],
                                         triangles[:, [2, 0]]]), axis=1)
         keys = set((edges[:, 0] * len(points) + edges[:, 1]).tolist())
@@ -433,9 +440,6 @@ def _conforming(region, rings, inner):
             missing.append(~np.isin(seg[:, 0] * len(points) + seg[:, 1], list(keys)))
             start += len(r)
         if not any(m.any() for m in missing):
-            p = points[triangles]
-            area = ((p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1])
-                    - (p[:, 1, 1] - p[:, 0, 1]) * (p[:, 2, 0] - p[:, 0, 0]))
             triangles[area < 0] = triangles[area < 0][:, [0, 2, 1]]
             return rings, triangles
         rings = [_with_midpoints(r, m) for r, m in zip(rings, missing)]
