@@ -52,6 +52,8 @@ def refused(tmp_path, name: str, data: bytes | str) -> str:
     ("v 0 0\nv 1 0\nv 0 1\nf 1 2 3.0\n", "line 4: face indices must be whole numbers"),
     ("v 0 0\nv 1 0\nv 0 1\nf 1 2 " + "9" * 20 + "\n",
      "line 4: face index " + "9" * 20 + " is too large"),
+    ("v 0 0\nv 1 0\nv 0 1\nf 1 2 " + "0" * 16 + "1\n",  # more than 16 digits, by length
+     "line 4: face index " + "0" * 16 + "1 is too large"),
     ("v 0 0\nv 1 0\nv 0 1\nf 1 2 " + "9" * 50 + "\n",
      "line 4: face index " + "9" * 37 + "... is too large"),
     ("v 0 0\nv 1 0\nv 0 1\nvx 1 2\n", "line 4: unknown OBJ statement 'vx'"),
