@@ -1,0 +1,165 @@
+"""Contracts of the paper model's pages that the other tests leave unchecked: instruction text
+in sentence case, the layers the pages are built from, the legend's dashed swatches, split
+strips' glue bands and their placement, the assembly sheet's turns, leaders and page number."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import replace
+from functools import lru_cache
+
+import numpy as np
+import shapely
+
+from weavecut import inputs
+from weavecut.layout.drawing import Polygons, Polylines, Text
+from weavecut.papermodel import assembly, ball
+from weavecut.papermodel.book import strand_book
+from weavecut.papermodel.pages import FOLD, PageArea, page_layers, split_strip, strip_layers
+from weavecut.papermodel.strips import build_strips, copy_colours, copy_letter, plan_modules
+from weavecut.subdivision import subdivide
+from weavecut.weave.colour import palette
+from weavecut.weave.snub_weave import snub_weaves
+
+SHOUT = re.compile(r"\b[A-Z]{4,}\b")  # a word of 4+ letters in capitals
+
+
+def texts_of(layers, names=None) -> list[Text]:
+    return [s for lay in layers if names is None or lay.name in names
+            for s in lay.shapes if isinstance(s, Text)]
+
+
+def sentence_case(text: str) -> bool:
+    return SHOUT.search(text) is None
+
+
+@lru_cache(maxsize=None)
+def ball_case():
+    """A 40 mm-octagon dodecahedron ball (its own pages are rebuilt by the tests)."""
+    ws = snub_weaves(subdivide(inputs.get("dodecahedron"), 1, project="sphere"))
+    return ws[-1], ball.ball_book(ws, palette("maritime-12"), (210.0, 297.0),
+                                  ball.diameter_for(ws[-1], 40.0))
+
+
+@lru_cache(maxsize=None)
+def grid_case():
+    ws = list(snub_weaves(subdivide(inputs.get("square-grid:2x2"), 2)))
+    return ws, strand_book(ws, palette("maritime-12"), (210.0, 297.0), tile_size=20.0)
+
+
+def hexagon_weaves():
+    from weavecut.mesh import Mesh
+    ring = [(np.cos(a), np.sin(a)) for a in np.arange(6) * np.pi / 3]
+    mesh = Mesh.from_faces([(0.0, 0.0), *ring], [[0, i + 1, (i + 1) % 6 + 1] for i in range(6)])
+    return snub_weaves(subdivide(mesh, 2))
+
+
+def test_ball_pages_speak_in_sentence_case():
+    weave, book = ball_case()
+    labels = book.plan.labels
+    total = len(book.drawing.sheets)
+    cover = ball.assembly_sheet(weave, book, labels, "ball", total)
+    steps = ball.weaving_sheet(weave, book, labels, "ball", total)
+    words = texts_of(cover.layers, {"notes"}) + texts_of(steps.layers, {"steps"})
+    assert len(words) > 5
+    loud = [t.text for t in words if not sentence_case(t.text)]
+    assert not loud, loud
+
+
+def test_ball_assembly_sheet_has_its_notes_layer():
+    """Page 1 of a ball: the six views (paint), their IDs and captions, the notes (labels)."""
+    weave, book = ball_case()
+    cover = ball.assembly_sheet(weave, book, book.plan.labels, "ball", 9)
+    roles = {lay.name: lay.role for lay in cover.layers}
+    assert {"views": "paint", "ids": "label", "captions": "label", "notes": "label",
+            "page": "label"}.items() <= roles.items()
+    notes = " ".join(t.text for t in texts_of(cover.layers, {"notes"}))
+    assert "Where each strip is" in notes
+
+
+def test_ball_strips_carry_their_folds_as_a_score_layer():
+    """A ball's strips bend round it: their fold lines are a "folds" layer of role score."""
+    _, book = ball_case()
+    pieces = [p for _, p in book.pieces]
+    assert any(len(p.folds) for p in pieces)
+    layers = strip_layers(pieces)
+    folds = [lay for lay in layers if lay.name == "folds"]
+    assert len(folds) == 1 and folds[0].role == "score"
+    assert all(isinstance(s, Polylines) for s in folds[0].shapes)
+
+
+def test_flat_weaving_steps_speak_in_sentence_case():
+    ws, book = grid_case()
+    assert book.plan.k == 4
+    steps, groups = assembly.weaving_steps(ws[-1], book, 0.0)
+    assert len(steps) > 5 and groups
+    loud = [s for s in steps if not sentence_case(s)]
+    assert not loud, loud
+
+
+def test_legend_fold_swatch_dashes_are_even_and_apart():
+    """Fold and tab swatches: three equal dashes, evenly spaced and disjoint, inside the 5 mm
+    swatch."""
+    layers = page_layers(PageArea(210.0, 297.0, 10.0), "t", "s", 1, 1, folds=True, tabs=True)
+    dashed = [s for s in layers[0].shapes if isinstance(s, Polylines) and s.style == FOLD]
+    assert len(dashed) == 1
+    lines = dashed[0].lines()
+    assert len(lines) == 6  # fold and tab, three dashes each
+    for k in range(0, 6, 3):  # swatches
+        xs = np.array([[seg[0, 0], seg[-1, 0]] for seg in lines[k:k + 3]])
+        assert np.allclose(xs[:, 1] - xs[:, 0], xs[0, 1] - xs[0, 0])
+        gaps = xs[1:, 0] - xs[:-1, 1]
+        assert (gaps > 0).all() and np.allclose(gaps, gaps[0])
+        assert xs.max() - xs.min() <= 5.0 + 1e-9
+
+
+def test_split_strip_glues_every_piece_but_the_last_and_lays_them_at_the_origin():
+    ws = snub_weaves(subdivide(inputs.get("square-grid:2x2"), 2))
+    w = ws[-1]
+    plan = plan_modules(w)
+    strips = build_strips(w, plan, copy_colours(plan, palette("maritime-12")), 20.0,
+                          range(w.n_strands))
+    strip = max(strips, key=lambda s: s.length)
+    pieces = split_strip(strip, strip.length / 2.2, 1000.0)
+    n = len(pieces)
+    assert n >= 3
+    assert [p.glue is not None for p in pieces] == [True] * (n - 1) + [False]
+    assert sum(len(p.tiles) for p in pieces) == len(strip.tiles) + n - 1
+    for p in pieces:  # laid flat at the origin, as the packer expects
+        assert np.allclose(p.outline.bounds[:2], 0.0, atol=1e-9)
+
+
+def test_module_layout_names_copy_j_turned_by_j_times_360_over_k():
+    ws = hexagon_weaves()
+    book = strand_book(ws, palette("maritime-12"), (210.0, 297.0), tile_size=25.0,
+                       layout="module")
+    k = book.plan.k
+    assert k > 2
+    sheet, _ = assembly.assembly_sheet(ws[-1], book, book.tile_size, 0.0, "t", 5)
+    notes = " ".join(t.text for t in texts_of(sheet.layers, {"notes"}))
+    found = re.findall(r"copy\s+([A-Z]):\s+turned\s+by\s+([-\d.e+]+)\s+deg", notes)
+    assert [c for c, _ in found] == [copy_letter(j) for j in range(k)]
+    assert np.allclose([float(d) for _, d in found], np.arange(k) * 360 / k)
+
+
+def test_assembly_leaders_are_two_point_lines_one_per_plate_and_the_page_names_the_total():
+    """On a page too small for every end ID, some sit on white plates with a leader line each;
+    the page number reads "page 1 / total"."""
+    ws, book = grid_case()
+    small = replace(book, area=PageArea(100.0, 130.0, 5.0))
+    sheet, _ = assembly.assembly_sheet(ws[-1], small, book.tile_size, 0.0, "t", 7)
+    pattern = next(lay for lay in sheet.layers if lay.name == "pattern")
+    plates = [s for s in pattern.shapes
+              if isinstance(s, Polygons) and s.style.fill == "#ffffff"
+              and s.style.stroke == "#333333"]
+    leaders = [s for s in pattern.shapes
+               if isinstance(s, Polylines) and s.style.stroke == "#000000"
+               and s.style.stroke_width == 0.2]
+    assert len(plates) == 1 and len(leaders) == 1
+    lines = leaders[0].lines()
+    assert len(lines) == len(plates[0].to_shapely()) > 0
+    assert all(len(seg) == 2 for seg in lines)
+    boxes = plates[0].to_shapely()
+    for seg in lines:  # each leader starts on a plate
+        assert min(shapely.distance(shapely.Point(seg[0]), boxes)) < 1e-6
+    assert "page 1 / 7" in [t.text for t in texts_of(sheet.layers, {"page"})]
