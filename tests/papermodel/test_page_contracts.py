@@ -163,3 +163,129 @@ def test_assembly_leaders_are_two_point_lines_one_per_plate_and_the_page_names_t
     for seg in lines:  # each leader starts on a plate
         assert min(shapely.distance(shapely.Point(seg[0]), boxes)) < 1e-6
     assert "page 1 / 7" in [t.text for t in texts_of(sheet.layers, {"page"})]
+
+
+def test_ball_strand_pieces_name_the_tile_their_glue_band_goes_under():
+    """Every piece ends with a band "glue j" that goes under the tile marked "j": the first
+    tile of the next piece, or of the first where the loop closes."""
+    weave, book = ball_case()
+    labels = book.plan.labels
+    for u in book.unfoldings:  # strands
+        parts = ball.strand_pieces(weave, u, book.colours, labels, book.scale, book.area)
+        for i, p in enumerate(parts):
+            nxt = parts[(i + 1) % len(parts)]
+            assert p.glue is not None and p.mark != p.tab
+            assert p.tab == f"glue {nxt.mark}"
+
+
+def test_a_glue_bands_word_stays_inside_its_band():
+    """The "glue j" text is printed on the band, clear of the band's edges."""
+    from weavecut.layout.labels import text_box
+    from weavecut.papermodel.strips import label_strip
+    weave, book = ball_case()
+    labels = book.plan.labels
+    u = book.unfoldings[0]
+    shown = 0
+    for p in ball.strand_pieces(weave, u, book.colours, labels, book.scale, book.area):
+        done = label_strip(p, book.tile_size)
+        band = shapely.intersection(shapely.union_all(done.glue), done.outline)
+        for t in done.texts:
+            if t.text == p.tab:
+                shown += 1
+                assert band.buffer(1e-6).covers(text_box(t)), (t, band.bounds)
+    assert shown
+
+
+def test_a_label_tab_goes_on_the_last_tile_when_the_first_is_in_two_parts():
+    """The tab may sit on the first or the last tile's end edge; a first tile that is not one
+    polygon (twisted, in two parts) leaves the last tile to take it."""
+    from weavecut.papermodel.strips import label_flap
+    ws = snub_weaves(subdivide(inputs.get("square-grid:2x2"), 2))
+    w = ws[-1]
+    plan = plan_modules(w)
+    strips = build_strips(w, plan, copy_colours(plan, palette("maritime-12")), 20.0,
+                          range(w.n_strands))
+    tried = 0
+    for strip in strips:
+        if len(strip.tiles) < 3:
+            continue
+        # the last tile's end edge takes a tab (checked with the first tile left off)
+        if label_flap(replace(strip, tiles=strip.tiles[1:].copy()), "A1") is None:
+            continue
+        first = strip.tiles[0]
+        x0, y0, x1, y1 = first.bounds
+        xm = (x0 + x1) / 2
+        tiles = strip.tiles.copy()
+        tiles[0] = shapely.MultiPolygon([
+            shapely.intersection(first, shapely.box(x0 - 1, y0 - 1, xm - 0.01, y1 + 1)),
+            shapely.intersection(first, shapely.box(xm + 0.01, y0 - 1, x1 + 1, y1 + 1))])
+        tabbed = label_flap(replace(strip, tiles=tiles), "A1")
+        tried += 1
+        assert tabbed is not None
+        tab = tabbed[0].flap
+        assert shapely.distance(tab, strip.tiles[-1]) < 1e-6
+        assert shapely.intersection(tab, shapely.union_all(tiles)).area <= 1e-6 * tab.area
+    assert tried
+
+
+def test_the_legend_shows_the_tab_entry_only_on_pages_with_label_tabs():
+    from weavecut.papermodel.book import labelled_pieces, strip_sheets
+    ws = list(snub_weaves(subdivide(inputs.get("square-grid:2x2"), 2)))
+    w = ws[-1]
+    plan = plan_modules(w, heading=-np.pi / 2)
+    colours = copy_colours(plan, palette("maritime-12"))
+    area = PageArea(210.0, 297.0, 10.0)
+    pieces, kinds = labelled_pieces(w, plan, colours, 20.0, "mixed", area)
+    placed, sheets = strip_sheets(pieces, kinds, area, "t", lambda names: f"Strips: {names}",
+                                  colours, 3)
+    assert sheets
+    for n, sheet in enumerate(sheets, start=3):  # pages
+        flaps = any(p.flap is not None for k, p in placed if k == n)
+        legend = [t.text for t in texts_of(sheet.layers, {"page"})]
+        assert ("tab: cut off after weaving" in legend) == flaps
+        assert "cut" in legend and "on top" in legend
+
+
+def test_a_full_page_could_fit_nothing():
+    """The 2 x 2 block test refuses every mask on a page with no free cell, odd-sized too (the
+    cells beyond the page's edge are taken)."""
+    from weavecut.papermodel.packing import _core, _Page
+    for ny, nx in ((5, 5), (5, 6), (6, 5), (7, 9)):
+        page = _Page(ny, nx, {})
+        page.cells[:] = 1.0
+        for shape in ((1, 1), (2, 2), (1, 3), (3, 1)):
+            core = _core(np.ones(shape))
+            assert not page.could_fit(core), ((ny, nx), shape)
+
+
+def test_best_spot_tries_a_longer_turn_when_a_shorter_one_fits_nowhere():
+    """Rows 1 and 3 of a 4 x 4 page taken: a 3-cell bar fits standing nowhere (though every
+    2 x 2 block keeps a free cell) but fits lying in row 0; the spot is found and free."""
+    from weavecut.papermodel.packing import _best_spot, _Options, _Page
+    page = _Page(4, 4, {})
+    page.cells[[1, 3]] = 1.0
+    standing, lying = np.ones((3, 1)), np.ones((1, 3))
+    turns = [(90.0, standing, np.zeros(2)), (0.0, lying, np.zeros(2))]
+    opts = _Options(turns, shapely.box(0.0, 0.0, 3.0, 1.0), 0.1, 1.0)
+    assert opts.along[1][0] == 0  # the standing turn is tried first
+    spot = _best_spot(page, opts, axis=1)
+    assert spot is not None
+    (iy, ix), angle, mask, _ = spot
+    assert angle == 0.0
+    assert page.cells[iy:iy + mask.shape[0], ix:ix + mask.shape[1]][mask > 0.5].max() < 0.5
+
+
+def test_card_colour_swatches_lie_under_the_texts():
+    """The card colour page paints its swatches first, so every text is drawn over them."""
+    from types import SimpleNamespace
+    from weavecut.papermodel.lasercard import card_colour_sheet
+    piece = SimpleNamespace
+    cut = SimpleNamespace(colours=("#aa0000", "#00aa00", "#aa0000"),
+                          pieces=([piece(label="A1 1/2")], [piece(label="B2")],
+                                  [piece(label="A1 2/2"), piece(label="C3")]))
+    sheet = card_colour_sheet(cut, (210.0, 297.0), "test")
+    shapes = sheet.layers[0].shapes
+    painted = [i for i, s in enumerate(shapes) if isinstance(s, Polygons)]
+    written = [i for i, s in enumerate(shapes) if isinstance(s, Text)]
+    assert len(painted) == 1 and len(written) == 2 + 2 * 2
+    assert painted[0] < min(written)
