@@ -179,20 +179,24 @@ def test_ball_strand_pieces_name_the_tile_their_glue_band_goes_under():
 
 
 def test_a_glue_bands_word_stays_inside_its_band():
-    """The "glue j" text is printed on the band, clear of the band's edges."""
+    """The "glue j" text is printed on the band, at least ``PAD`` clear of the band's edges
+    (or not at all, on a ball too small for it)."""
     from weavecut.layout.labels import text_box
-    from weavecut.papermodel.strips import label_strip
+    from weavecut.papermodel.strips import PAD, label_strip
     weave, book = ball_case()
     labels = book.plan.labels
-    u = book.unfoldings[0]
     shown = 0
-    for p in ball.strand_pieces(weave, u, book.colours, labels, book.scale, book.area):
-        done = label_strip(p, book.tile_size)
-        band = shapely.intersection(shapely.union_all(done.glue), done.outline)
-        for t in done.texts:
-            if t.text == p.tab:
-                shown += 1
-                assert band.buffer(1e-6).covers(text_box(t)), (t, band.bounds)
+    for f in (1.0, 0.6):  # the ball at 40 mm and 24 mm octagons
+        for u in book.unfoldings:  # strands
+            for p in ball.strand_pieces(weave, u, book.colours, labels, book.scale * f,
+                                        book.area):
+                done = label_strip(p, book.tile_size * f)
+                band = shapely.intersection(shapely.union_all(done.glue), done.outline)
+                inside = shapely.buffer(band, -PAD + 1e-6, join_style="mitre")
+                for t in done.texts:
+                    if t.text == p.tab:
+                        shown += 1
+                        assert inside.covers(text_box(t)), (f, t)
     assert shown
 
 
