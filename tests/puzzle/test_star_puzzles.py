@@ -83,10 +83,14 @@ def test_pieces_that_overlap_are_refused_naming_where():
     coverage union, used before, hid the gap they left elsewhere)."""
     pieces = np.array([shapely.box(0, 0, 10, 10), shapely.box(5, 0, 15, 10)], dtype=object)
     with pytest.raises(MeshError, match=r"^the puzzle's pieces overlap \(50 square units in all, "
-                                        r"the first near \(5\.0, 5\.0\)\): the mesh has faces "
+                                        r"the first near \(7\.5, 5\.0\)\): the mesh has faces "
                                         r"too thin for the hexagon ring there; mesh the outline "
                                         r"with another --cell$"):
         _one_region(pieces)
+    inside = np.array([shapely.box(0, 0, 10, 10), shapely.box(2, 2, 4, 4)], dtype=object)
+    with pytest.raises(MeshError, match=r"^the puzzle's pieces overlap \(4 square units in all, "
+                                        r"the first near \(3\.0, 3\.0\)\)"):
+        _one_region(inside)  # a piece within another: no "overlaps" pair, still named
 
 
 def test_a_piece_collapsed_to_a_line_is_refused_naming_where():

@@ -228,8 +228,10 @@ def _one_region(pieces: np.ndarray) -> shapely.Polygon:
     tiny = SLIVER * union.area
     overlap = float(shapely.area(pieces).sum() - union.area)
     if overlap > tiny:
-        a, b = shapely.STRtree(pieces).query(pieces, predicate="overlaps")
-        x, y = shapely.get_coordinates(shapely.centroid(pieces[a[a < b][0]]))[0]
+        a, b = shapely.STRtree(pieces).query(pieces, predicate="intersects")
+        shared = shapely.intersection(pieces[a[a < b]], pieces[b[a < b]])  # also one inside
+        largest = shared[np.argmax(shapely.area(shared))]
+        x, y = shapely.get_coordinates(shapely.centroid(largest))[0]
         raise MeshError(f"the puzzle's pieces overlap ({overlap:.3g} square units in all, the "
                         f"first near ({x:.1f}, {y:.1f})): the mesh has faces too thin for the "
                         "hexagon ring there; mesh the outline with another --cell")
