@@ -720,6 +720,46 @@ def test_every_unnamed_crossing_is_called_out_once_with_a_leader_to_it(name, on)
                                 book.plan.labels)) == 2
 
 
+@lru_cache(maxsize=None)
+def pentagon_module_book():
+    """The pentagon flower at 23 cm in the paper's layout: one module's strips, printed 5 times."""
+    from weavecut.papermodel.book import tile_size_for
+    ws = list(weaves("pentagon-flower", 3))
+    return strand_book(ws, palette("maritime-12"), tile_size=tile_size_for(ws[-1], 230.0),
+                       layout="module")
+
+
+def crossing_leaders(sheet) -> list[tuple[str, str]]:
+    """The pairs of leader lines (callouts' and IDs') of a page that meet, by their ends."""
+    lines = shapely.linestrings(crossing_callouts(sheet)[2])
+    i, j = shapely.STRtree(lines).query(lines, predicate="intersects")
+    return [(str(lines[a]), str(lines[b])) for a, b in zip(i.tolist(), j.tolist()) if a < b]
+
+
+@pytest.mark.parametrize("name", ["pentagon", "module", "voronoi"])
+def test_leader_lines_never_cross(name):
+    """On every page with callouts (the pentagon flower at 23 cm: pages 3-4, or page 3 in the
+    module layout; the Voronoi example: page 1) no two leader lines meet, and each callout's leader
+    still ends on a tile where its strand lies on top. Plant the bug (the slots as the first
+    stacking gave them, without the 2-opt swaps): the pentagon flower's leaders cross."""
+    from unittest import mock
+    from weavecut.papermodel import crossings
+
+    make = {"pentagon": pentagon_book, "module": pentagon_module_book, "voronoi": voronoi_book}
+    book = make[name]()
+    weave = voronoi_weave() if name == "voronoi" else weaves("pentagon-flower", 3)[-1]
+    pages = [s for s in book.drawing.sheets if "crossings" in {la.name for la in s.layers}
+             and crossing_callouts(s)[3]]
+    assert len(pages) == {"pentagon": 2, "module": 1, "voronoi": 1}[name]
+    for sheet in pages:
+        assert not crossing_leaders(sheet), sheet.name
+        assert not callout_problems(sheet, weave, book.plan.labels)
+    if name == "pentagon":
+        with mock.patch.object(crossings, "uncrossed", lambda starts, ends: np.arange(len(ends))):
+            planted = make[name].__wrapped__()
+        assert all(crossing_leaders(s) for s in planted.drawing.sheets[2:4])
+
+
 def test_label_plates_stay_over_their_tiles_whatever_order_a_writer_paints_in():
     """A writer may paint a shape's polygons grouped by fill (the PDF writer does): within one
     shape of a strip page no two polygons of different fills overlap, so a label's plate is
