@@ -760,6 +760,71 @@ def test_leader_lines_never_cross(name):
         assert all(crossing_leaders(s) for s in planted.drawing.sheets[2:4])
 
 
+def instructions(book) -> str:
+    """The words of the pages before the strips (assembly sheet, weaving steps, callout
+    pages), each layer's lines joined, so a wrapped sentence reads whole."""
+    from weavecut.layout.drawing import Text
+    return " ".join(" ".join(t.text for t in layer.shapes if isinstance(t, Text))
+                    for sheet in book.drawing.sheets[:len(book.extra_pages)]
+                    for layer in sheet.layers)
+
+
+def instruction_problems(book) -> list[str]:
+    """What the instructions say that the pages do not hold: an example crossing that is
+    called out nowhere (or told backwards), an example split strip that is not split so, a
+    page range "p. 3-3", copies of a pattern that has no turn."""
+    words = instructions(book)
+    callouts = {t.text for sheet in book.drawing.sheets for layer in sheet.layers
+                if layer.name == "crossings" for t in layer.shapes}
+    labels = {p.label for _, p in book.pieces}
+    out = []
+    out += [f"example crossing {said!r}" for said in re.findall(r'"(\S+ over \S+)"', words)
+            if said not in callouts]
+    out += [f"{said!r} told as {over} over {under}" for said, under, over in re.findall(
+        r'"(\S+ over \S+)": strip (\S+) goes under strand (\S+) at the dot', words)
+        if said != f"{over} over {under}"]
+    out += [f"example part {said!r}" for said in re.findall(r'"(\S+ \d+/\d+)"', words)
+            if said not in labels]
+    for name, n, last in re.findall(r'strip (\S+): "1/(\d+)" to "(\d+)/\d+"', words):
+        if {f"{name} 1/{n}", f"{name} {last}/{n}"} - labels or last != n:
+            out.append(f"example parts of {name}")
+    out += [f"page range {a}-{b}" for a, b in re.findall(r"\b(\d+)-(\d+)\b", words)
+            if int(a) >= int(b)]
+    if book.plan.k == 1 and ("copies" in words or "turned by" in words):
+        out.append("copies of a pattern without symmetry")
+    return out
+
+
+@pytest.mark.parametrize("name", ["pentagon", "module", "voronoi", "hexagon"])
+def test_the_instructions_name_what_is_on_the_pages(name):
+    """The examples in the words are the maker's own: the crossing explained is one called
+    out, the split strip one printed in those parts; page ranges run forward; a pattern with
+    no turn (the Voronoi example) speaks of no copies; one strip page is "p. 3" (the
+    hexagon). Each check has something to check (the
+    Voronoi example has split strips and callouts; the pentagon flower callout pages), and a
+    planted stock example ("C8 over A14" where no such crossing is called out) is caught."""
+    from dataclasses import replace as moved
+    from weavecut.layout.drawing import Drawing, Layer, Sheet, Text
+
+    book = {"pentagon": pentagon_book, "module": pentagon_module_book,
+            "voronoi": voronoi_book, "hexagon": user_book}[name]()
+    words = instructions(book)
+    assert not instruction_problems(book)
+    assert len(re.findall(r'": strip \S+ goes under', words)) == {"pentagon": 3,
+                                                                   "hexagon": 0}.get(name, 2)
+    if name == "hexagon":
+        assert "(p. 3)" in words
+    if name == "voronoi":
+        assert re.search(r'strip \S+: "1/2" to', words) and "one strip each" in words
+    sheet = book.drawing.sheets[1]
+    stock = Text(0.0, 0.0, '"C8 over A14": strip A14 goes under strand C8 at the dot', 3.0)
+    planted = Sheet(sheet.width, sheet.height, (*sheet.layers, Layer("notes", "label", (stock,))))
+    sheets = list(book.drawing.sheets)
+    sheets[1] = planted
+    assert instruction_problems(moved(book, drawing=Drawing(tuple(sheets), "t"))) == [
+        "example crossing 'C8 over A14'"]
+
+
 def test_label_plates_stay_over_their_tiles_whatever_order_a_writer_paints_in():
     """A writer may paint a shape's polygons grouped by fill (the PDF writer does): within one
     shape of a strip page no two polygons of different fills overlap, so a label's plate is

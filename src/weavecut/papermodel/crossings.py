@@ -63,6 +63,14 @@ def crossing_label(ids, over: int, under: int) -> str:
     return f"{ids[over]} over {ids[under]}"
 
 
+def crossing_meaning(ids, crossing) -> str:
+    """'"C8 over A14": strip A14 goes under strand C8 at the dot', told with ``crossing``
+    (tile, strand on top, strand below), so the example is one the maker finds on the page."""
+    _, over, under = crossing
+    return (f"\"{crossing_label(ids, over, under)}\": strip {ids[under]} goes under strand "
+            f"{ids[over]} at the dot")
+
+
 def column_callouts(spots, labels: list[str], frame, middle: float) -> list:
     """A (text, plate, leader) for every ``spots[i]`` (sheet mm) saying ``labels[i]`` at
     ``MIN_CAP``: a spot left of ``middle`` (x) gets its plate in a column at the left edge of
@@ -160,8 +168,8 @@ def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float) ->
     x0, y0, x1, y1 = area.box
     labels = [crossing_label(ids, over, under) for _, over, under in crossings]
     note = (f"{too_small(len(crossings))} to carry a name on their strip: there the "
-            "strip is printed light with no name. Each is called out once: \"C8 over A14\" "
-            "means strip A14 goes under strand C8 at the dot.")
+            "strip is printed light with no name. Each is called out once: "
+            f"{crossing_meaning(ids, crossings[0])}.")
     texts, bottom = paragraphs([note], x0, y1, x1 - x0)
     room = max((text_width(s, MIN_CAP) for s in labels), default=0.0) + 2 * PLATE_PAD + 3 * GAP
     frame = (x0, y0, x1, bottom - GAP)

@@ -29,6 +29,16 @@ FLAP_LINE = Style("#333333", 0.3)  # dashed line where a label tab is cut off af
 FLAP_DASH = (0.6, 0.4)  # mm dash and gap
 
 
+def page_span(pages, short: bool = False) -> str:
+    """"pages 3-4", or "page 3" for a single page ("p. 3-4", "p. 3" when ``short``), of the
+    consecutive page numbers ``pages``; "-" if there are none."""
+    if not len(pages):
+        return "-"
+    first, last = pages[0], pages[-1]
+    word = "p." if short else "page" if first == last else "pages"
+    return f"{word} {first}" if first == last else f"{word} {first}-{last}"
+
+
 @dataclass(frozen=True)
 class PageArea:
     """A page and the rectangle strips may use, all in mm; ``limit`` (x0, y0, x1, y1), when
