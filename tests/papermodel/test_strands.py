@@ -738,8 +738,8 @@ def crossing_leaders(sheet) -> list[tuple[str, str]]:
 
 @pytest.mark.parametrize("name", ["pentagon", "module", "voronoi"])
 def test_leader_lines_never_cross(name):
-    """On every page with callouts (the pentagon flower at 23 cm: pages 3-4, or page 3 in the
-    module layout; the Voronoi example: page 1) no two leader lines meet, and each callout's leader
+    """On the assembly sheet and every page with callouts (the pentagon flower at 23 cm: pages
+    3-4, or page 3 in the module layout; the Voronoi example: page 1) no two leader lines meet, and each callout's leader
     still ends on a tile where its strand lies on top. Plant the bug (the slots as the first
     stacking gave them, without the 2-opt swaps): the pentagon flower's leaders cross."""
     from unittest import mock
@@ -748,10 +748,10 @@ def test_leader_lines_never_cross(name):
     make = {"pentagon": pentagon_book, "module": pentagon_module_book, "voronoi": voronoi_book}
     book = make[name]()
     weave = voronoi_weave() if name == "voronoi" else weaves("pentagon-flower", 3)[-1]
-    pages = [s for s in book.drawing.sheets if "crossings" in {la.name for la in s.layers}
-             and crossing_callouts(s)[3]]
-    assert len(pages) == {"pentagon": 2, "module": 1, "voronoi": 1}[name]
-    for sheet in pages:
+    pages = [s for s in book.drawing.sheets if "crossings" in {la.name for la in s.layers}]
+    callout_pages = sum(bool(crossing_callouts(s)[3]) for s in pages)
+    assert callout_pages == {"pentagon": 2, "module": 1, "voronoi": 1}[name]
+    for sheet in pages:  # page 1's ID leaders too
         assert not crossing_leaders(sheet), sheet.name
         assert not callout_problems(sheet, weave, book.plan.labels)
     if name == "pentagon":
