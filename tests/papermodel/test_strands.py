@@ -253,21 +253,36 @@ def test_the_checks_catch_a_bad_label():
     assert {"small", "upside down", "low contrast", "outside its strip"} <= set(broken)
 
 
-@pytest.mark.parametrize("page, margin", [((210.0, 297.0), 10.0), ((210.0, 297.0), 18.0),
-                                          ((215.9, 279.4), 23.0), ((150.0, 200.0), 10.0)])
-def test_page_furniture_keeps_its_texts_apart(page, margin):
+LONG_PATH = ("weave-cut strands: /home/maker/Documents/paper models/a rather long folder name/"
+             "another folder inside it/my hexagon of six triangles.obj, level 2")
+
+
+@pytest.mark.parametrize("page, margin, title", [
+    ((210.0, 297.0), 10.0, "weave-cut strands: square-grid:2x2, level 2 (gjpqy)"),
+    ((210.0, 297.0), 18.0, "weave-cut strands: square-grid:2x2, level 2 (gjpqy)"),
+    ((215.9, 279.4), 23.0, "weave-cut strands: square-grid:2x2, level 2 (gjpqy)"),
+    ((150.0, 200.0), 10.0, "weave-cut strands: square-grid:2x2, level 2 (gjpqy)"),
+    ((210.0, 297.0), 10.0, LONG_PATH)])
+def test_page_furniture_keeps_its_texts_apart(page, margin, title):
     """Title, subtitle, page number, scale-bar caption and legend keep FURNITURE_GAP (1 mm)
     between their boxes on wide pages and narrow ones (A4 inside a cutter's marks): measured
-    pairwise with shapely, and held by the page checks."""
+    pairwise with shapely, and held by the page checks. A title too long even at the least
+    size (a deep input path) loses its middle to "...", keeping its start and end."""
     from weavecut.layout.labels import text_box
     from weavecut.papermodel.pages import FURNITURE_GAP
 
     book = strand_book(weaves("square-grid:2x2", 2), palette("maritime-12"), page, 20.0,
-                       margin, title="weave-cut strands: square-grid:2x2, level 2 (gjpqy)")
-    for n in book.strip_pages:
+                       margin, title=title)
+    for n in (1, *book.strip_pages):
         sheet = book.drawing.sheets[n - 1]
-        boxes = [text_box(t) for layer in sheet.layers if layer.name == "page"
-                 for t in layer.shapes if hasattr(t, "text")]
+        said = [t for layer in sheet.layers if layer.name == "page"
+                for t in layer.shapes if hasattr(t, "text")]
+        top = max(said, key=lambda t: (t.y, t.anchor == "start"))  # left of the page number
+        head = top.text
+        assert head == title or (title == LONG_PATH and "..." in head and head.endswith(
+            "triangles.obj, level 2") and head.startswith("weave-cut strands: /home/"))
+        assert text_box(top).bounds[2] <= page[0] - margin + 1e-9
+        boxes = [text_box(t) for t in said]
         assert len(boxes) >= 7  # title, subtitle, number, caption, three legend entries
         gaps = shapely.distance(*np.broadcast_arrays(np.array(boxes)[:, None], np.array(boxes)))
         assert gaps[~np.eye(len(boxes), dtype=bool)].min() >= FURNITURE_GAP - 1e-9
