@@ -253,21 +253,36 @@ def test_the_checks_catch_a_bad_label():
     assert {"small", "upside down", "low contrast", "outside its strip"} <= set(broken)
 
 
-@pytest.mark.parametrize("page, margin", [((210.0, 297.0), 10.0), ((210.0, 297.0), 18.0),
-                                          ((215.9, 279.4), 23.0), ((150.0, 200.0), 10.0)])
-def test_page_furniture_keeps_its_texts_apart(page, margin):
+LONG_PATH = ("weave-cut strands: /home/maker/Documents/paper models/a rather long folder name/"
+             "another folder inside it/my hexagon of six triangles.obj, level 2")
+
+
+@pytest.mark.parametrize("page, margin, title", [
+    ((210.0, 297.0), 10.0, "weave-cut strands: square-grid:2x2, level 2 (gjpqy)"),
+    ((210.0, 297.0), 18.0, "weave-cut strands: square-grid:2x2, level 2 (gjpqy)"),
+    ((215.9, 279.4), 23.0, "weave-cut strands: square-grid:2x2, level 2 (gjpqy)"),
+    ((150.0, 200.0), 10.0, "weave-cut strands: square-grid:2x2, level 2 (gjpqy)"),
+    ((210.0, 297.0), 10.0, LONG_PATH)])
+def test_page_furniture_keeps_its_texts_apart(page, margin, title):
     """Title, subtitle, page number, scale-bar caption and legend keep FURNITURE_GAP (1 mm)
     between their boxes on wide pages and narrow ones (A4 inside a cutter's marks): measured
-    pairwise with shapely, and held by the page checks."""
+    pairwise with shapely, and held by the page checks. A title too long even at the least
+    size (a deep input path) loses its middle to "...", keeping its start and end."""
     from weavecut.layout.labels import text_box
     from weavecut.papermodel.pages import FURNITURE_GAP
 
     book = strand_book(weaves("square-grid:2x2", 2), palette("maritime-12"), page, 20.0,
-                       margin, title="weave-cut strands: square-grid:2x2, level 2 (gjpqy)")
-    for n in book.strip_pages:
+                       margin, title=title)
+    for n in (1, *book.strip_pages):
         sheet = book.drawing.sheets[n - 1]
-        boxes = [text_box(t) for layer in sheet.layers if layer.name == "page"
-                 for t in layer.shapes if hasattr(t, "text")]
+        said = [t for layer in sheet.layers if layer.name == "page"
+                for t in layer.shapes if hasattr(t, "text")]
+        top = max(said, key=lambda t: (t.y, t.anchor == "start"))  # left of the page number
+        head = top.text
+        assert head == title or (title == LONG_PATH and "..." in head and head.endswith(
+            "triangles.obj, level 2") and head.startswith("weave-cut strands: /home/"))
+        assert text_box(top).bounds[2] <= page[0] - margin + 1e-9
+        boxes = [text_box(t) for t in said]
         assert len(boxes) >= 7  # title, subtitle, number, caption, three legend entries
         gaps = shapely.distance(*np.broadcast_arrays(np.array(boxes)[:, None], np.array(boxes)))
         assert gaps[~np.eye(len(boxes), dtype=bool)].min() >= FURNITURE_GAP - 1e-9
@@ -718,6 +733,127 @@ def test_every_unnamed_crossing_is_called_out_once_with_a_leader_to_it(name, on)
                    if layer.name == "crossings" else layer for layer in sheet.layers)
     assert len(callout_problems(Sheet(sheet.width, sheet.height, layers), weave,
                                 book.plan.labels)) == 2
+
+
+@lru_cache(maxsize=None)
+def pentagon_module_book():
+    """The pentagon flower at 23 cm in the paper's layout: one module's strips, printed 5 times."""
+    from weavecut.papermodel.book import tile_size_for
+    ws = list(weaves("pentagon-flower", 3))
+    return strand_book(ws, palette("maritime-12"), tile_size=tile_size_for(ws[-1], 230.0),
+                       layout="module")
+
+
+def crossing_leaders(sheet) -> list[tuple[str, str]]:
+    """The pairs of leader lines (callouts' and IDs') of a page that meet, by their ends."""
+    lines = shapely.linestrings(crossing_callouts(sheet)[2])
+    i, j = shapely.STRtree(lines).query(lines, predicate="intersects")
+    return [(str(lines[a]), str(lines[b])) for a, b in zip(i.tolist(), j.tolist()) if a < b]
+
+
+def leaders_through_plates(sheet) -> list[str]:
+    """Leader lines that run into a white plate other than at their own start (on the plate's
+    edge): a leader must stay clear of every other plate and of its own plate's inside."""
+    _, plates, lines, _ = crossing_callouts(sheet)
+    plates = np.array(plates, dtype=object)
+    out = []
+    for line in lines:  # leaders, not mesh elements
+        start = shapely.Point(line[0]).buffer(1e-6)
+        rest = shapely.difference(shapely.LineString(line), start)
+        if shapely.intersects(plates, rest).any():
+            out.append(str(line.tolist()))
+    return out
+
+
+@pytest.mark.parametrize("name", ["pentagon", "module", "voronoi"])
+def test_leader_lines_never_cross(name):
+    """On the assembly sheet and every page with callouts (the pentagon flower at 23 cm: pages
+    3-4, or page 3 in the module layout; the Voronoi example: page 1) no two leader lines meet,
+    none runs over a plate, and each callout's leader
+    still ends on a tile where its strand lies on top. Plant the bug (the slots as the first
+    stacking gave them, without the 2-opt swaps): the pentagon flower's leaders cross."""
+    from unittest import mock
+    from weavecut.papermodel import crossings
+
+    make = {"pentagon": pentagon_book, "module": pentagon_module_book, "voronoi": voronoi_book}
+    book = make[name]()
+    weave = voronoi_weave() if name == "voronoi" else weaves("pentagon-flower", 3)[-1]
+    pages = [s for s in book.drawing.sheets if "crossings" in {la.name for la in s.layers}]
+    callout_pages = sum(bool(crossing_callouts(s)[3]) for s in pages)
+    assert callout_pages == {"pentagon": 2, "module": 1, "voronoi": 1}[name]
+    for sheet in pages:  # page 1's ID leaders too
+        assert not crossing_leaders(sheet), sheet.name
+        assert not leaders_through_plates(sheet), sheet.name
+        assert not callout_problems(sheet, weave, book.plan.labels)
+    if name == "pentagon":
+        with mock.patch.object(crossings, "uncrossed", lambda starts, ends: np.arange(len(ends))):
+            planted = make[name].__wrapped__()
+        assert all(crossing_leaders(s) for s in planted.drawing.sheets[2:4])
+
+
+def instructions(book) -> str:
+    """The words of the pages before the strips (assembly sheet, weaving steps, callout
+    pages), each layer's lines joined, so a wrapped sentence reads whole."""
+    from weavecut.layout.drawing import Text
+    return " ".join(" ".join(t.text for t in layer.shapes if isinstance(t, Text))
+                    for sheet in book.drawing.sheets[:len(book.extra_pages)]
+                    for layer in sheet.layers)
+
+
+def instruction_problems(book) -> list[str]:
+    """What the instructions say that the pages do not hold: an example crossing that is
+    called out nowhere (or told backwards), an example split strip that is not split so, a
+    page range "p. 3-3", copies of a pattern that has no turn."""
+    words = instructions(book)
+    callouts = {t.text for sheet in book.drawing.sheets for layer in sheet.layers
+                if layer.name == "crossings" for t in layer.shapes}
+    labels = {p.label for _, p in book.pieces}
+    out = []
+    out += [f"example crossing {said!r}" for said in re.findall(r'"(\S+ over \S+)"', words)
+            if said not in callouts]
+    out += [f"{said!r} told as {over} over {under}" for said, under, over in re.findall(
+        r'"(\S+ over \S+)": strip (\S+) goes under strand (\S+) at the dot', words)
+        if said != f"{over} over {under}"]
+    out += [f"example part {said!r}" for said in re.findall(r'"(\S+ \d+/\d+)"', words)
+            if said not in labels]
+    for name, n, last in re.findall(r'strip (\S+): "1/(\d+)" to "(\d+)/\d+"', words):
+        if {f"{name} 1/{n}", f"{name} {last}/{n}"} - labels or last != n:
+            out.append(f"example parts of {name}")
+    out += [f"page range {a}-{b}" for a, b in re.findall(r"\b(\d+)-(\d+)\b", words)
+            if int(a) >= int(b)]
+    if book.plan.k == 1 and ("copies" in words or "turned by" in words):
+        out.append("copies of a pattern without symmetry")
+    return out
+
+
+@pytest.mark.parametrize("name", ["pentagon", "module", "voronoi", "hexagon"])
+def test_the_instructions_name_what_is_on_the_pages(name):
+    """The examples in the words are the maker's own: the crossing explained is one called
+    out, the split strip one printed in those parts; page ranges run forward; a pattern with
+    no turn (the Voronoi example) speaks of no copies; one strip page is "p. 3" (the
+    hexagon). Each check has something to check (the
+    Voronoi example has split strips and callouts; the pentagon flower callout pages), and a
+    planted stock example ("C8 over A14" where no such crossing is called out) is caught."""
+    from dataclasses import replace as moved
+    from weavecut.layout.drawing import Drawing, Layer, Sheet, Text
+
+    book = {"pentagon": pentagon_book, "module": pentagon_module_book,
+            "voronoi": voronoi_book, "hexagon": user_book}[name]()
+    words = instructions(book)
+    assert not instruction_problems(book)
+    assert len(re.findall(r'": strip \S+ goes under', words)) == {"pentagon": 3,
+                                                                   "hexagon": 0}.get(name, 2)
+    if name == "hexagon":
+        assert "(p. 3)" in words
+    if name == "voronoi":
+        assert re.search(r'strip \S+: "1/2" to', words) and "one strip each" in words
+    sheet = book.drawing.sheets[1]
+    stock = Text(0.0, 0.0, '"C8 over A14": strip A14 goes under strand C8 at the dot', 3.0)
+    planted = Sheet(sheet.width, sheet.height, (*sheet.layers, Layer("notes", "label", (stock,))))
+    sheets = list(book.drawing.sheets)
+    sheets[1] = planted
+    assert instruction_problems(moved(book, drawing=Drawing(tuple(sheets), "t"))) == [
+        "example crossing 'C8 over A14'"]
 
 
 def test_label_plates_stay_over_their_tiles_whatever_order_a_writer_paints_in():

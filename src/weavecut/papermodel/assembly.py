@@ -25,7 +25,7 @@ from ..layout.labels import (
     wrap,
 )
 from ..weave.model import Weave
-from .pages import GAP, page_layers
+from .pages import GAP, page_layers, page_span
 from .strips import arrow_polygon, copy_letter, model_tiles, turn_to
 from .symmetry import rotate, tile_centres
 
@@ -80,19 +80,21 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
     strip, and the finished pattern with IDs; with ``crossings`` (tile, strand on top, strand
     below) those the strips leave unnamed are called out on it too (:mod:`.crossings`)."""
     from .book import page_index
-    from .crossings import DOT, callout_shapes, crossing_label, too_small
+    from .crossings import DOT, callout_shapes, crossing_label, crossing_meaning, too_small
 
     plan, area = book.plan, book.area
     k, m = plan.k, plan.copies.shape[1]
     x0, y0, x1, y1 = area.box
     size_mm = np.ptp(weave.mesh.vertices, axis=0) * book.scale
-    strips = f"p. {book.strip_pages[0]}-{book.strip_pages[-1]}" if book.strip_pages else "-"
-    lines = [f"{weave.n_strands} strands: {k} copies (A-{copy_letter(k - 1)}) of a module of "
-             f"{m} strips" + (f" + {len(plan.extras)} extras (X)" if len(plan.extras) else "")
-             + f"; copy j is the module turned by j x {360 / k:g} deg. Finished model about "
+    strips = page_span(book.strip_pages, short=True)
+    copies = (f": {k} copies (A-{copy_letter(k - 1)}) of a module of {m} strips"
+              + (f" + {len(plan.extras)} extras (X)" if len(plan.extras) else "")
+              + f"; copy j is the module turned by j x {360 / k:g} deg" if k > 1
+              else ", one strip each")  # no turn maps the pattern onto itself: no copies
+    lines = [f"{weave.n_strands} strands{copies}. Finished model about "
              f"{size_mm[0] / 10:.1f} x {size_mm[1] / 10:.1f} cm, octagons {tile_size:.1f} mm "
              "across. Print at 100 % (no fit to page)."]
-    if book.layout == "module":
+    if book.layout == "module" and k > 1:
         turns = "; ".join(f"print {j + 1} = copy {copy_letter(j)}: turned by {j * 360 / k:g} deg"
                           for j in range(k))
         lines.append(f"Print the strip pages ({strips}) {k} times, once per direction, and write "
@@ -104,12 +106,11 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
                  "its strip reads. Weaving steps: page 2.")
     if crossings:
         lines.append(f"{too_small(len(crossings))} to carry a name on their strip (printed "
-                     "light with no name there): called out below, \"C8 over A14\" meaning "
-                     "strip A14 goes under strand C8 at the dot.")
+                     "light with no name there): called out below, "
+                     f"{crossing_meaning(plan.labels, crossings[0])}.")
     elif book.extra_pages[-1] > 2:
         lines.append("Crossings too small to carry a name on their strip are called out on "
-                     + (f"pages 3-{book.extra_pages[-1]}." if book.extra_pages[-1] > 3
-                        else "page 3."))
+                     f"{page_span(book.extra_pages[2:])}.")
     texts, bottom = paragraphs(lines, x0, y1, x1 - x0)
     box = (x0, y0, x1, bottom - GAP)
     on_sheet, fit, centres, paint, fills = pattern(weave, turn, box, book.colours)
@@ -277,14 +278,18 @@ def weaving_steps(weave: Weave, book, turn: float) -> tuple[list[str], list[np.n
                      "tab out with the strip and cut it off along its dashed line once the strip "
                      "is woven in.")
     if any(p.left_out for _, p in book.pieces):
-        last = book.extra_pages[-1]
-        where = "page 1" if last == 2 else "page 3" if last == 3 else f"pages 3-{last}"
+        from .crossings import crossing_meaning, left_out_crossings
+        first = left_out_crossings(weave, plan, [p for _, p in book.pieces], book.layout)[0]
         steps.append("A light part with no name is a crossing too small to name on the strip: "
-                     f"it is called out on {where} (\"C8 over A14\": A14 goes under C8 there).")
+                     f"it is called out on {page_span(book.extra_pages[2:] or [1])} "
+                     f"({crossing_meaning(ids, first)}).")
     if glue:
-        steps.append("Some strips are printed in parts (\"A7 1/2\", \"A7 2/2\"): spread glue on "
-                     "the grey band of part 1 and stick it under the start of part 2 before "
-                     "weaving, so the IDs line up.")
+        name, _, part = next(p.label for _, p in book.pieces if p.glue is not None).partition(" ")
+        n = part.partition("/")[2]
+        steps.append(f"Some strips are printed in parts, numbered beside their ID (strip {name}: "
+                     f"\"1/{n}\" to \"{n}/{n}\"): spread glue on the grey band at the end of a "
+                     "part and stick it under the start of the next part before weaving, so the "
+                     "tiles line up.")
     if k == 4:
         heads = plan.copies
         warp = np.concatenate([heads[0], heads[2]])

@@ -24,7 +24,7 @@ from ..weave.colour import Palette, strand_colours
 from ..weave.model import Weave
 from .assembly import TEXT, paragraphs
 from .book import CURL, MIN_STRIP, WARN_STRIP, SizeError, StrandBook, page_index, strip_sheets
-from .pages import FOLD, GAP, PageArea, _fits, page_layers
+from .pages import FOLD, GAP, PageArea, _fits, page_layers, page_span
 from .strips import Strip, affine, copy_letter, flat_angle, label_strip, outline_of, tint
 from .unfold import OVERLAP, Unfolding, UnfoldError, dashed, flatten, unfold
 
@@ -292,7 +292,7 @@ def assembly_sheet(weave: Weave, book: BallBook, labels, title: str, total: int)
     x0, y0, x1, y1 = area.box
     n = weave.n_strands
     lengths = weave.strand_lengths() * book.scale
-    strips = f"p. {book.strip_pages[0]}-{book.strip_pages[-1]}" if book.strip_pages else "-"
+    strips = page_span(book.strip_pages, short=True)
     lines = [f"{n} strands, each a closed loop: {n} strips ({labels[0]}-{labels[-1]}) in "
              f"{len(book.pieces)} pieces. Finished ball {book.diameter / 10:.1f} cm across, "
              f"octagons {book.tile_size:.1f} mm across. Print the strip pages ({strips}) once, "

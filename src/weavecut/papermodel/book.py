@@ -25,7 +25,7 @@ from ..weave.model import Weave
 from .assembly import assembly_sheet, weaving_sheet
 from .crossings import crossing_pages, left_out_crossings
 from .packing import pack
-from .pages import GAP, PageArea, page_layers, split_strip, strip_layers
+from .pages import GAP, PageArea, page_layers, page_span, split_strip, strip_layers
 from .strips import (
     ModulePlan,
     Strip,
@@ -201,7 +201,7 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         first = 3 + own  # pages 1, 2: assembly and weaving
         placed, sheets = strip_sheets(pieces, kinds, area, title, subtitle, colours, first,
                                       places)
-        where = "page 1" if not own else "page 3" if own == 1 else f"pages 3-{first - 1}"
+        where = page_span(range(3, first) if own else [1])
         names = "name is" if left_out == 1 else "names are"
         notes = warnings + ((f"{left_out} under-crossing {names} left off their strips: the "
                              f"tile under them, even with a plate over its neighbours, is too "

@@ -63,13 +63,22 @@ def crossing_label(ids, over: int, under: int) -> str:
     return f"{ids[over]} over {ids[under]}"
 
 
+def crossing_meaning(ids, crossing) -> str:
+    """'"C8 over A14": strip A14 goes under strand C8 at the dot', told with ``crossing``
+    (tile, strand on top, strand below), so the example is one the maker finds on the page."""
+    _, over, under = crossing
+    return (f"\"{crossing_label(ids, over, under)}\": strip {ids[under]} goes under strand "
+            f"{ids[over]} at the dot")
+
+
 def column_callouts(spots, labels: list[str], frame, middle: float) -> list:
     """A (text, plate, leader) for every ``spots[i]`` (sheet mm) saying ``labels[i]`` at
     ``MIN_CAP``: a spot left of ``middle`` (x) gets its plate in a column at the left edge of
-    ``frame`` (x0, y0, x1, y1), the others at the right edge; in a column the plates keep the
-    order of their spots from top to bottom, each as near its spot's height as the plates above
-    and below allow, so leaders run nearly level and seldom cross. A column holds
-    :func:`column_room` plates."""
+    ``frame`` (x0, y0, x1, y1), the others at the right edge. The plates of a column are as wide
+    as its widest, so every leader starts on one line and runs away from the column (clear of
+    its plates); their slots lie in the order of the spots from top to bottom, each as near its
+    spot's height as the slots above and below allow, and :func:`uncrossed` then deals the slots
+    out so that no two leaders cross. A column holds :func:`column_room` plates."""
     spots = np.asarray(spots, dtype=float).reshape(-1, 2)
     x0, y0, x1, y1 = frame
     h = _plate_height()
@@ -85,16 +94,45 @@ def column_callouts(spots, labels: list[str], frame, middle: float) -> list:
             y[k] = max(y[k], y[k + 1] + h + ROW_GAP)
         if len(y) and y[0] > y1 - h / 2 + 1e-9:
             raise ValueError(f"{len(y)} callouts do not fit in one column")
-        if len(y):  # the stack as a whole level with its spots, where the frame allows
-            y += np.clip(np.mean(spots[mine, 1] - y), y0 + h / 2 - y[-1], y1 - h / 2 - y[0])
-        for i, yi in zip(mine.tolist(), y.tolist()):  # callouts
-            w = text_width(labels[i], MIN_CAP) + 2 * PLATE_PAD
-            left = x1 - w if right else x0
-            text = centred_text((left + w / 2, yi), labels[i], MIN_CAP)
-            plate = shapely.box(left, yi - h / 2, left + w, yi + h / 2)
-            edge = np.array([left if right else left + w, yi])
-            out[i] = (text, plate, np.array([edge, spots[i]]))
+        if not len(y):
+            continue
+        y += np.clip(np.mean(spots[mine, 1] - y), y0 + h / 2 - y[-1], y1 - h / 2 - y[0])
+        w = max(text_width(labels[i], MIN_CAP) for i in mine.tolist()) + 2 * PLATE_PAD
+        left = x1 - w if right else x0
+        edges = np.column_stack([np.full(len(y), x1 - w if right else x0 + w), y])
+        for i, k in zip(mine.tolist(), uncrossed(edges, spots[mine]).tolist()):  # callouts
+            text = centred_text((left + w / 2, y[k]), labels[i], MIN_CAP)
+            plate = shapely.box(left, y[k] - h / 2, left + w, y[k] + h / 2)
+            out[i] = (text, plate, np.array([edges[k], spots[i]]))
     return out
+
+
+def uncrossed(starts, ends) -> np.ndarray:
+    """``slot``: the leaders ``starts[slot[i]]`` to ``ends[i]`` cross nowhere. Starting from
+    ``slot[i] = i``, two leaders that cross swap their starts (2-opt): the two new leaders are
+    together strictly shorter than the two old ones (the triangle inequality twice), so the
+    total length falls with every swap and the swaps come to an end."""
+    starts, ends = np.asarray(starts, dtype=float), np.asarray(ends, dtype=float)
+    slot = np.arange(len(ends))
+    while True:
+        i, j = np.nonzero(np.triu(segments_cross(starts[slot], ends), 1))
+        if not len(i):
+            return slot
+        slot[[i[0], j[0]]] = slot[[j[0], i[0]]]
+
+
+def segments_cross(a, b) -> np.ndarray:
+    """(n, n) bool: segment ``a[i]``-``b[i]`` crosses segment ``a[j]``-``b[j]``, each passing
+    strictly between the other's ends (segments that only touch, or lie on one line, do not)."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    d = b - a
+
+    def side(pts):  # (i, j): the side of segment i that pts[j] lies on
+        r = pts[None, :, :] - a[:, None, :]
+        return np.sign(d[:, None, 0] * r[..., 1] - d[:, None, 1] * r[..., 0])
+
+    apart = side(a) * side(b) < 0  # (i, j): a[j], b[j] on two sides of segment i
+    return apart & apart.T
 
 
 def _plate_height() -> float:
@@ -130,8 +168,8 @@ def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float) ->
     x0, y0, x1, y1 = area.box
     labels = [crossing_label(ids, over, under) for _, over, under in crossings]
     note = (f"{too_small(len(crossings))} to carry a name on their strip: there the "
-            "strip is printed light with no name. Each is called out once: \"C8 over A14\" "
-            "means strip A14 goes under strand C8 at the dot.")
+            "strip is printed light with no name. Each is called out once: "
+            f"{crossing_meaning(ids, crossings[0])}.")
     texts, bottom = paragraphs([note], x0, y1, x1 - x0)
     room = max((text_width(s, MIN_CAP) for s in labels), default=0.0) + 2 * PLATE_PAD + 3 * GAP
     frame = (x0, y0, x1, bottom - GAP)

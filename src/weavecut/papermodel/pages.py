@@ -29,6 +29,16 @@ FLAP_LINE = Style("#333333", 0.3)  # dashed line where a label tab is cut off af
 FLAP_DASH = (0.6, 0.4)  # mm dash and gap
 
 
+def page_span(pages, short: bool = False) -> str:
+    """"pages 3-4", or "page 3" for a single page ("p. 3-4", "p. 3" when ``short``), of the
+    consecutive page numbers ``pages``; "-" if there are none."""
+    if not len(pages):
+        return "-"
+    first, last = pages[0], pages[-1]
+    word = "p." if short else "page" if first == last else "pages"
+    return f"{word} {first}" if first == last else f"{word} {first}-{last}"
+
+
 @dataclass(frozen=True)
 class PageArea:
     """A page and the rectangle strips may use, all in mm; ``limit`` (x0, y0, x1, y1), when
@@ -207,6 +217,7 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
     w, h, m = area.width, area.height, area.margin
     number_text = f"page {number} / {total}"
     room = w - 2 * m - text_width(number_text, 3.2) - 4
+    title = _shortened(title, room, MIN_CAP)
     title_size = max(MIN_CAP, min(4.0, 4.0 * room / max(text_width(title, 4.0), 1e-9)))
     head = Text(m, h - m - 4.0, title, title_size)
     below = min(h - m - 8.5, text_box(head).bounds[1] - FURNITURE_GAP - SMALL)  # the subtitle
@@ -242,6 +253,19 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
     if dashes:
         shapes.append(polylines_from_lines(dashes, FOLD))
     return [Layer("page", "label", tuple(shapes) + tuple(texts))]
+
+
+def _shortened(text: str, width: float, size: float) -> str:
+    """``text``, or where it is wider than ``width`` mm at cap height ``size`` (a title naming
+    a deep input path), its start and end joined by "..." in place of as little of its middle
+    as must go."""
+    if text_width(text, size) <= width:
+        return text
+    for keep in range(len(text) - 1, 0, -1):  # characters kept, not mesh elements
+        short = text[:(keep + 1) // 2] + "..." + text[len(text) - keep // 2:]
+        if text_width(short, size) <= width:
+            return short
+    return "..."
 
 
 def _wrap(text: str, width: float, lines: int) -> list[str]:
