@@ -329,9 +329,9 @@ def weaving_steps(weave: Weave, book, turn: float) -> tuple[list[str], list[np.n
         order = "; ".join(f"{n}: " + ", ".join(ids[s] for s in g)
                           for n, g in enumerate(groups, start=1))
         steps += [
-            (f"This pattern has {k} directions and no right angles, so it is best woven by two "
-             "people: one holds the strands already joined while the other threads the next. "
-             if k >= 3 else "")
+            (f"This pattern has {k} directions{'' if k % 4 == 0 else ' and no right angles'}, "
+             "so it is best woven by two people: one holds the strands already joined while the "
+             "other threads the next. " if k >= 3 else "")
             + "Work from the centre outwards on the cardboard, page 1 beside you.",
             "Start with the strands of group 1 (they cross the centre): lay them as page 1 shows "
             "and weave them through each other. Where a strip is printed light it goes under the "
