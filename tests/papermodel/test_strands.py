@@ -888,3 +888,16 @@ def test_a_label_takes_the_nearest_free_spot_round_its_tile():
     centre = np.asarray(plate.centroid.coords[0])
     assert centre == pytest.approx(10 * np.array([np.cos(np.pi / 4), np.sin(np.pi / 4)]))
     assert not plate.intersects(obstacle) and not leader.intersects(obstacle)
+
+
+def test_module_warning_counts_names_per_print_and_on_the_model():
+    """The module layout leaves names off the one print of the module, which is printed k
+    times: the warning gives both counts, and the model's count is k times the print's (every
+    copy has the same crossings), the number of callouts the crossing pages carry."""
+    book = pentagon_module_book()
+    per_print = sum(len(p.left_out) for _, p in book.pieces)
+    on_model = sum(len(crossing_callouts(sheet)[3]) for sheet in book.drawing.sheets
+                   if any(layer.name == "crossings" for layer in sheet.layers))
+    assert per_print > 0 and on_model == book.plan.k * per_print
+    assert any(w.startswith(f"{per_print} under-crossing names are left off each print's "
+                            f"strips ({on_model} on the model)") for w in book.warnings)

@@ -203,7 +203,9 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
                                       places)
         where = page_span(range(3, first) if own else [1])
         names = "name is" if left_out == 1 else "names are"
-        notes = warnings + ((f"{left_out} under-crossing {names} left off their strips: the "
+        strips = (f"each print's strips ({len(crossings)} on the model)" if layout == "module"
+                  else "their strips")
+        notes = warnings + ((f"{left_out} under-crossing {names} left off {strips}: the "
                              f"tile under them, even with a plate over its neighbours, is too "
                              f"small for {MIN_CAP:g} mm text; they are called out on {where}",)
                            if left_out else ())
