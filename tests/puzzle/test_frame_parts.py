@@ -11,7 +11,7 @@ import shapely
 from shapely import affinity
 
 from weavecut.errors import WeaveCutError
-from weavecut.puzzle.frame import MAX_PARTS, _ray, fits, split_frame
+from weavecut.puzzle.frame import MAX_PARTS, _parts, _ray, fits, split_frame
 
 from tests.built_puzzles import pentagon_puzzle
 
@@ -105,3 +105,24 @@ def test_each_cut_carries_a_symmetric_dovetail_that_widens(angle):
     neck, head = along[4] - along[1], along[3] - along[2]
     assert 0 < neck < head
     assert (along[2] + along[3]) / 2 == pytest.approx((along[1] + along[4]) / 2, abs=1e-9)
+
+
+def test_a_frame_that_needs_the_most_parts_is_split_into_them():
+    """On a 156 x 117 mm sheet the 400 mm pentagon's frame fits in no fewer than MAX_PARTS
+    parts (checked by trying every ray count below it from every start split_frame offers:
+    each side's midpoint and each corner); split_frame still finds the split, and every part
+    fits the sheet as cut (grown by kerf / 2)."""
+    puzzle = _puzzle()
+    sheet, kerf = (156.0, 117.0), 0.2
+    parts = split_frame(puzzle.frame, puzzle.outer, sheet, 5.0, kerf)
+    assert len(parts) == MAX_PARTS
+    assert fits(shapely.buffer(parts, kerf / 2, join_style="mitre"), sheet, 5.0).all()
+    assert shapely.symmetric_difference(shapely.union_all(parts), puzzle.frame).area < 1e-6
+    centre = np.asarray(puzzle.outer.centroid.coords[0])
+    corners = np.asarray(puzzle.outer.exterior.coords)[:-1]
+    through = np.concatenate([(corners + np.roll(corners, -1, axis=0)) / 2, corners]) - centre
+    for k in range(2, MAX_PARTS):
+        for start in np.arctan2(through[:, 1], through[:, 0]):
+            fewer = _parts(puzzle.frame, centre, start + 2 * np.pi * np.arange(k) / k)
+            assert fewer is None or not fits(shapely.buffer(fewer, kerf / 2, join_style="mitre"),
+                                             sheet, 5.0).all(), (k, start)
