@@ -324,3 +324,36 @@ def test_families_balance_the_colour_count_then_keep_touching_groups_apart():
     for touching, want in (([[0, 2]], [0, 1, 1]), ([[1, 2]], [0, 1, 0])):
         pairs = np.array(touching, dtype=np.int64)
         assert _families(group, 3, np.arange(3), pairs, 2).tolist() == want
+
+
+def test_a_fragment_without_a_parent_may_take_any_colour_with_an_octagon():
+    """At level 2 there is no level t-2 (no families from grandparents): the square grid's
+    border fragments have no parent, so each may wear any colour a strand with an octagon
+    wears, and wears the one whose smallest difference to the strands it touches is largest
+    (the first in palette order on a tie), not one of a single family."""
+    puzzle, pal, colouring = case("square-grid:2x2", 2)
+    front = puzzle.weaves[-2]
+    main = _main_strands(front)
+    fragments = sorted({int(s) for s in front.tile_over.tolist() if s >= 0} - set(main))
+    flat = [c for fam in pal.families for c in fam]
+    candidates = sorted({colouring.front_strands[m] for m in main}, key=flat.index)
+    family = {c: i for i, fam in enumerate(pal.families) for c in fam}
+    assert len({family[c] for c in candidates}) == len(pal.families)
+    near_of: dict[int, set] = {}
+    for a, b in _strand_touching(puzzle):
+        near_of.setdefault(a, set()).add(b)
+        near_of.setdefault(b, set()).add(a)
+    checked = 0
+    for s in fragments:
+        near = [colouring.front_strands[n] for n in near_of.get(s, ())
+                if n in main or (n < s and n in fragments)]
+        if not near:
+            continue
+
+        def worst(c):
+            return min(float(colour_difference(c, n)) for n in near)
+        best = max(worst(c) for c in candidates)
+        assert colouring.front_strands[s] == next(c for c in candidates
+                                                  if worst(c) >= best - 1e-9), s
+        checked += 1
+    assert checked == len(fragments) > 0
