@@ -15,7 +15,9 @@ import shapely
 from weavecut import inputs
 from weavecut.layout.colour_difference import colour_difference
 from weavecut.mesh import edge_faces
-from weavecut.puzzle.colouring import (UNPAINTED, _families, colour_puzzle, on_top_of_octagon,
+from weavecut.layout.colour_difference import ciede2000, srgb_to_lab
+from weavecut.puzzle.colouring import (UNPAINTED, _families, _Plan, _search, colour_puzzle,
+                                       on_top_of_octagon,
                                        palette_names)
 from weavecut.puzzle.guides import piece_halves
 from weavecut.puzzle.pieces import build_puzzle
@@ -357,3 +359,65 @@ def test_a_fragment_without_a_parent_may_take_any_colour_with_an_octagon():
                                                   if worst(c) >= best - 1e-9), s
         checked += 1
     assert checked == len(fragments) > 0
+
+
+def _one_family_plan(n: int, shades: int, pairs) -> _Plan:
+    """``n`` single strands (no sibling pairs), all in one family of the puzzle palette's first
+    ``shades`` greens, touching as ``pairs`` (listed by strand, as colour_puzzle lists them)."""
+    greens = list(palette("puzzle").families[0][:shades])
+    lab = srgb_to_lab(greens)
+    return _Plan(np.arange(n), np.arange(n), np.zeros(n, dtype=np.int64), np.zeros(n, bool),
+                 greens, np.array([0]), np.array([shades]), ciede2000(lab[:, None], lab[None]),
+                 np.array(pairs, dtype=np.int64).reshape(-1, 2), [])
+
+
+def _hill_climb(plan: _Plan, slot: list[int], worst: int = 12) -> list[int]:
+    """The search as its docstring states it, in plain Python: each round, the strands of the
+    ``worst`` touching pairs of smallest difference (pairs of equal difference in the order
+    they are listed), worst first, each strand's moves in turn (swap shades with every other
+    strand, in strand order, then every other shade), the first move that raises the score
+    (fewest equal colours touching, then the ten smallest differences) is kept."""
+    shades = int(plan.family_size[0])
+    pairs = plan.pairs.tolist()
+
+    def differences(slot):
+        return [float(plan.difference[slot[a] % shades, slot[b] % shades]) for a, b in pairs]
+
+    def score(slot):
+        d = differences(slot)
+        return (-d.count(0.0), tuple(sorted(round(x, 6) for x in d if x > 0)[:10]))
+
+    def moves(slot, k):
+        for o in range(len(slot)):
+            if o != k:
+                trial = list(slot)
+                trial[k], trial[o] = slot[o], slot[k]
+                yield trial
+        for value in range(shades):
+            if value != slot[k] % shades:
+                yield slot[:k] + [value] + slot[k + 1:]
+
+    for _ in range(400):
+        d = differences(slot)
+        ranked = sorted(range(len(pairs)), key=d.__getitem__)[:worst]  # sorted() is stable
+        strands = dict.fromkeys(s for i in ranked for s in pairs[i])
+        best = score(slot)
+        better = next((t for k in strands for t in moves(slot, k) if score(t) > best), None)
+        if better is None:
+            return slot
+        slot = better
+    return slot
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_the_colour_search_breaks_ties_between_equal_differences_in_pair_order(seed):
+    """Twelve strands in four shades touch in 18 to 33 pairs, so many pairs share a colour
+    pair (an equal difference). Which of them the search tries first decides where it ends:
+    the search must take them in the order the pairs are listed (a sort that does not keep
+    that order, such as numpy's default one, gives another colouring, and one that depends
+    on the machine's sort routine), as the plain-Python search of its docstring does."""
+    rng = np.random.default_rng(seed)
+    every = np.array([(a, b) for a in range(12) for b in range(a + 1, 12)])
+    pairs = every[np.sort(rng.choice(len(every), int(rng.integers(18, 34)), replace=False))]
+    plan = _one_family_plan(12, 4, pairs)
+    assert _search(plan, np.arange(12)).tolist() == _hill_climb(plan, list(range(12)))

@@ -348,7 +348,9 @@ def _search(plan: _Plan, slot: NDArray[np.int64], rounds: int = 400,
             worst: int = 12) -> NDArray[np.int64]:
     """Hill-climb on the worst touching pairs: try the moves that involve the strands of the
     ``worst`` pairs, worst first (see ``_trials``), keep the first that raises the score; stop
-    when none does (or after ``rounds``)."""
+    when none does (or after ``rounds``). Pairs of equal difference are taken in the order
+    ``plan.pairs`` lists them (a stable sort): which is tried first decides where the search
+    ends, and an unstable sort's order depends on the machine's sort routine."""
     index = np.full(int(plan.main.max(initial=-1)) + 1, -1)
     index[plan.main] = np.arange(len(plan.main))
     best = _score(plan, slot)
