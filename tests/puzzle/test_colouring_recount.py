@@ -16,7 +16,8 @@ from weavecut import inputs
 from weavecut.layout.colour_difference import colour_difference
 from weavecut.mesh import edge_faces
 from weavecut.layout.colour_difference import ciede2000, srgb_to_lab
-from weavecut.puzzle.colouring import (UNPAINTED, _families, _Plan, _search, colour_puzzle,
+from weavecut.puzzle.colouring import (UNPAINTED, _colour_index, _families, _main_colours,
+                                       _Plan, _score, _search, _trials, colour_puzzle,
                                        on_top_of_octagon,
                                        palette_names)
 from weavecut.puzzle.guides import piece_halves
@@ -421,3 +422,71 @@ def test_the_colour_search_breaks_ties_between_equal_differences_in_pair_order(s
     pairs = every[np.sort(rng.choice(len(every), int(rng.integers(18, 34)), replace=False))]
     plan = _one_family_plan(12, 4, pairs)
     assert _search(plan, np.arange(12)).tolist() == _hill_climb(plan, list(range(12)))
+
+
+def _hand_plan(colours, family, group, paired, pairs, fragments=()) -> _Plan:
+    """A plan for strands 0 .. len(family) - 1 with an octagon, all in one family of the shades
+    ``colours``: their groups, which hold half of a light/dark pair, the touching pairs and
+    the fragments ((strand, candidate main strands) each)."""
+    lab = srgb_to_lab(list(colours))
+    n = len(family)
+    return _Plan(np.arange(n), np.array(group, dtype=np.int64).reshape(n),
+                 np.array(family, dtype=np.int64).reshape(n), np.array(paired, bool).reshape(n),
+                 list(colours), np.array([0]), np.array([len(colours)]),
+                 ciede2000(lab[:, None], lab[None]),
+                 np.array(pairs, dtype=np.int64).reshape(-1, 2),
+                 [(s, np.array(m, dtype=np.int64)) for s, m in fragments])
+
+
+def test_every_fragment_is_painted_even_one_that_touches_nothing():
+    """Strands 0-2 wear greens 0-2. Fragment 3 touches nothing: it takes its first candidate
+    colour; fragment 4 touches strand 0 and takes whichever of greens 1 and 2 differs more
+    from green 0; fragment 5, the last strand, touches nothing either. A strand that touches
+    one but is on top of no tile (6) stays unpainted (-1), as do fragments before the
+    fragments' pass."""
+    greens = list(palette("puzzle").families[0][:3])
+    fragments = [(3, [0, 1, 2]), (4, [1, 2]), (5, [1, 2])]
+    plan = _hand_plan(greens, [0] * 3, [0, 1, 2], [False] * 3, [(0, 4)], fragments)
+    slot = np.arange(3)
+    assert _main_colours(plan, slot).tolist() == [0, 1, 2, -1, -1, -1]
+    far = max((1, 2), key=lambda c: (colour_difference(greens[c], greens[0]), -c))
+    assert _colour_index(plan, slot).tolist() == [0, 1, 2, 0, far, 1]
+    under = _hand_plan(greens, [0] * 3, [0, 1, 2], [False] * 3, [(0, 4), (2, 6)], fragments)
+    assert _main_colours(under, slot).tolist() == [0, 1, 2, -1, -1, -1, -1]
+    assert _colour_index(under, slot).tolist()[6] == -1
+
+
+@pytest.mark.parametrize("n", [0, 1])
+def test_a_plan_of_one_strand_or_none(n):
+    """No strand: nothing to paint and nothing to search. One strand touching nothing: it
+    wears its family's first shade, and the search leaves it there."""
+    plan = _hand_plan(["#2aad78", "#323d0d"], [0] * n, list(range(n)), [False] * n, [])
+    assert _main_colours(plan, np.zeros(n, dtype=np.int64)).tolist() == [0] * n
+    assert _search(plan, np.zeros(n, dtype=np.int64)).tolist() == [0] * n
+    assert _score(plan, np.zeros(n, dtype=np.int64)) == (0, ())
+
+
+def test_the_score_counts_equal_colours_then_every_difference_to_a_millionth():
+    """Two greys 0.75 CIEDE2000 apart (under 1, still a difference): the score of two
+    touching strands in them is no equal pair and that difference, rounded to 1e-6 (float
+    noise below that is no gain); in one grey, one equal pair and no difference."""
+    greys = ["#808080", "#828282"]
+    plan = _hand_plan(greys, [0, 0], [0, 1], [False, False], [(0, 1)])
+    d = float(colour_difference(*greys))
+    assert 0 < d < 1
+    assert _score(plan, np.array([0, 1])) == (0, (round(d, 6),))
+    assert _score(plan, np.array([1, 1])) == (-1, ())
+
+
+def test_a_sibling_pair_flips_or_trades_with_another_pair_of_its_family():
+    """Strands 0, 1 are the sibling pair of group 0, strands 2, 3 that of group 1, strand 4 a
+    single, all in one family of seven shades (no shade repeats, so no recolouring). A pair
+    strand's moves: flip its pair's light and dark, then trade shades with every other pair
+    of the family (the strand takes the other pair's first strand's shade, its mate the
+    second's); the lone single has no other single to swap with."""
+    greens = list(palette("puzzle").families[0])
+    plan = _hand_plan(greens, [0] * 5, [0, 0, 1, 1, 2], [True] * 4 + [False], [])
+    slot = np.arange(5)
+    assert [t.tolist() for t in _trials(plan, slot, 0)] == [[1, 0, 2, 3, 4], [2, 3, 0, 1, 4]]
+    assert [t.tolist() for t in _trials(plan, slot, 3)] == [[0, 1, 3, 2, 4], [3, 2, 1, 0, 4]]
+    assert list(_trials(plan, slot, 4)) == []

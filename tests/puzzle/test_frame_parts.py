@@ -126,3 +126,15 @@ def test_a_frame_that_needs_the_most_parts_is_split_into_them():
             fewer = _parts(puzzle.frame, centre, start + 2 * np.pi * np.arange(k) / k)
             assert fewer is None or not fits(shapely.buffer(fewer, kerf / 2, join_style="mitre"),
                                              sheet, 5.0).all(), (k, start)
+
+
+def test_fits_allows_a_nanometre_over_the_room_and_no_more():
+    """The room is the sheet less the margin on both sides, plus 1e-9 mm for rounding: a part
+    exactly that wide (or high) fits, one a float step over it does not."""
+    wide, high = 110.0 - 2 * 5.0 + 1e-9, 30.0 - 2 * 5.0 + 1e-9
+    exact = np.array([shapely.box(0.0, 0.0, wide, 20.0), shapely.box(0.0, 0.0, 100.0, high)],
+                     dtype=object)
+    assert fits(exact, (110.0, 30.0), 5.0).tolist() == [True, True]
+    over = np.array([shapely.box(0.0, 0.0, np.nextafter(wide, np.inf), 20.0),
+                     shapely.box(0.0, 0.0, 100.0, np.nextafter(high, np.inf))], dtype=object)
+    assert fits(over, (110.0, 30.0), 5.0).tolist() == [False, False]
