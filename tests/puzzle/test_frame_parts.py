@@ -107,25 +107,32 @@ def test_each_cut_carries_a_symmetric_dovetail_that_widens(angle):
     assert (along[2] + along[3]) / 2 == pytest.approx((along[1] + along[4]) / 2, abs=1e-9)
 
 
+def _no_fewer_parts_fit(puzzle, sheet, kerf, n):
+    """No split into fewer than ``n`` parts fits ``sheet``: not the whole frame, and no ray
+    count below ``n`` from any start split_frame offers (each side's midpoint, each corner)."""
+    grown = shapely.buffer(np.array([puzzle.frame], dtype=object), kerf / 2, join_style="mitre")
+    assert not fits(grown, sheet, 5.0).any()
+    centre = np.asarray(puzzle.outer.centroid.coords[0])
+    corners = np.asarray(puzzle.outer.exterior.coords)[:-1]
+    through = np.concatenate([(corners + np.roll(corners, -1, axis=0)) / 2, corners]) - centre
+    for k in range(2, n):
+        for start in np.arctan2(through[:, 1], through[:, 0]):
+            fewer = _parts(puzzle.frame, centre, start + 2 * np.pi * np.arange(k) / k)
+            assert fewer is None or not fits(shapely.buffer(fewer, kerf / 2, join_style="mitre"),
+                                             sheet, 5.0).all(), (k, start)
+
+
 def test_a_frame_that_needs_the_most_parts_is_split_into_them():
     """On a 156 x 117 mm sheet the 400 mm pentagon's frame fits in no fewer than MAX_PARTS
-    parts (checked by trying every ray count below it from every start split_frame offers:
-    each side's midpoint and each corner); split_frame still finds the split, and every part
-    fits the sheet as cut (grown by kerf / 2)."""
+    parts; split_frame still finds the split, and every part fits the sheet as cut (grown by
+    kerf / 2)."""
     puzzle = _puzzle()
     sheet, kerf = (156.0, 117.0), 0.2
     parts = split_frame(puzzle.frame, puzzle.outer, sheet, 5.0, kerf)
     assert len(parts) == MAX_PARTS
     assert fits(shapely.buffer(parts, kerf / 2, join_style="mitre"), sheet, 5.0).all()
     assert shapely.symmetric_difference(shapely.union_all(parts), puzzle.frame).area < 1e-6
-    centre = np.asarray(puzzle.outer.centroid.coords[0])
-    corners = np.asarray(puzzle.outer.exterior.coords)[:-1]
-    through = np.concatenate([(corners + np.roll(corners, -1, axis=0)) / 2, corners]) - centre
-    for k in range(2, MAX_PARTS):
-        for start in np.arctan2(through[:, 1], through[:, 0]):
-            fewer = _parts(puzzle.frame, centre, start + 2 * np.pi * np.arange(k) / k)
-            assert fewer is None or not fits(shapely.buffer(fewer, kerf / 2, join_style="mitre"),
-                                             sheet, 5.0).all(), (k, start)
+    _no_fewer_parts_fit(puzzle, sheet, kerf, MAX_PARTS)
 
 
 def test_fits_allows_a_nanometre_over_the_room_and_no_more():
@@ -138,3 +145,60 @@ def test_fits_allows_a_nanometre_over_the_room_and_no_more():
     over = np.array([shapely.box(0.0, 0.0, np.nextafter(wide, np.inf), 20.0),
                      shapely.box(0.0, 0.0, 100.0, np.nextafter(high, np.inf))], dtype=object)
     assert fits(over, (110.0, 30.0), 5.0).tolist() == [False, False]
+
+
+def _crossings(parts, outer):
+    """Where the cuts between neighbouring parts meet the outer outline, counter-clockwise."""
+    rim = shapely.buffer(outer.exterior, 1e-6)
+    ends = [shapely.centroid(g) for a, b in zip(parts, np.roll(parts, -1))
+            for g in shapely.get_parts(shapely.intersection(_shared(a, b), rim))]
+    xy = np.unique(np.round(shapely.get_coordinates(ends), 5), axis=0)
+    centre = np.asarray(outer.centroid.coords[0])
+    return xy[np.argsort(np.arctan2(*(xy - centre).T[::-1]))]
+
+
+@pytest.mark.parametrize("sheet, n", [((420.0, 300.0), 2), ((300.0, 200.0), 4)])
+def test_cuts_are_equally_spaced_rays_through_a_side_midpoint_or_a_corner(sheet, n):
+    """The fewest parts that fit (two on a sheet that holds half the frame), cut along rays
+    that leave the frame at points of its outline at equal angles round the centre, one of
+    them a side's midpoint or a corner."""
+    puzzle = _puzzle()
+    outer = puzzle.outer
+    parts = split_frame(puzzle.frame, outer, sheet, 5.0, 0.2)
+    assert len(parts) == n
+    _no_fewer_parts_fit(puzzle, sheet, 0.2, n)
+    centre = np.asarray(outer.centroid.coords[0])
+    ends = _crossings(parts, outer)
+    angle = np.arctan2(*(ends - centre).T[::-1])  # ascending: _crossings sorts them
+    np.testing.assert_allclose(np.diff(np.r_[angle, angle[0] + 2 * np.pi]),
+                               2 * np.pi / len(parts), atol=1e-6)
+    corners = np.asarray(outer.exterior.coords)[:-1]
+    marks = np.concatenate([(corners + np.roll(corners, -1, axis=0)) / 2, corners])
+    assert len(ends) == len(parts)
+    assert np.hypot(*(ends[:, None] - marks[None]).transpose(2, 0, 1)).min() < 1e-4
+
+
+def test_a_moved_frame_splits_into_the_moved_parts():
+    """The split depends on the frame's shape, not on where it lies: moved 5 m away, the same
+    parts, moved."""
+    puzzle = _puzzle()
+    parts = split_frame(puzzle.frame, puzzle.outer, (300.0, 200.0), 5.0, 0.2)
+    far = [affinity.translate(g, 5000.0, -3000.0) for g in (puzzle.frame, puzzle.outer)]
+    moved = split_frame(*far, (300.0, 200.0), 5.0, 0.2)
+    assert len(moved) == len(parts)
+    for a, b in zip(parts, moved):
+        assert shapely.hausdorff_distance(affinity.translate(a, 5000.0, -3000.0), b) < 1e-6
+
+
+@pytest.mark.parametrize("angle", [0.3, 1.9, 4.0])
+def test_a_dovetail_sticks_out_towards_the_next_part_where_it_fits(angle):
+    """A tab leaves the part before the ray for the next one (counter-clockwise, to the left of
+    the ray) where one fits there, as it does at these angles: inside the frame with a wall
+    of frame around it."""
+    puzzle = _puzzle()
+    centre = np.asarray(puzzle.outer.centroid.coords[0])
+    cut = _ray(puzzle.frame, centre, angle, 1000.0)
+    u = np.array([np.cos(angle), np.sin(angle)])
+    left = (cut[2:4] - centre) @ np.array([-u[1], u[0]])
+    assert (left > 0).all()
+    assert puzzle.frame.contains(shapely.Polygon(cut[1:5]))
