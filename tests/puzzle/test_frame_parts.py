@@ -213,3 +213,23 @@ def test_a_dovetail_sticks_out_towards_the_next_part_where_it_fits(angle):
     left = (cut[2:4] - centre) @ np.array([-u[1], u[0]])
     assert (left > 0).all()
     assert puzzle.frame.contains(shapely.Polygon(cut[1:5]))
+
+
+@pytest.mark.parametrize("angle", [0.0, 1.0, 2.0, 4.5])
+def test_a_ray_across_two_bands_of_frame_carries_its_tab_in_the_outer_one(angle):
+    """Two rings (10-20 and 30-40 mm round a centre far from the origin) joined by a bridge
+    on the far side: a ray from the centre crosses both, and its dovetail sits in the outer
+    band, whole (from the centre out: the neck's corners on the ray at 30-40 mm)."""
+    centre = np.array([-300.0, 800.0])
+
+    def ring(r0, r1):
+        disc = shapely.Point(centre)
+        return shapely.difference(disc.buffer(r1, 256), disc.buffer(r0, 256))
+
+    bridge = shapely.box(centre[0] - 45, centre[1] - 2, centre[0] - 5, centre[1] + 2)
+    frame = shapely.union_all([ring(10, 20), ring(30, 40), bridge])
+    cut = _ray(frame, centre, angle, 1000.0)
+    u = np.array([np.cos(angle), np.sin(angle)])
+    along = (cut[1:5] - centre) @ u
+    assert 30 < along.min() and along.max() < 40
+    assert frame.contains(shapely.Polygon(cut[1:5]))
