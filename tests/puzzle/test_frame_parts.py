@@ -233,3 +233,17 @@ def test_a_ray_across_two_bands_of_frame_carries_its_tab_in_the_outer_one(angle)
     along = (cut[1:5] - centre) @ u
     assert 30 < along.min() and along.max() < 40
     assert frame.contains(shapely.Polygon(cut[1:5]))
+
+
+def test_a_frame_that_falls_apart_in_every_split_is_refused():
+    """Every part is one piece. Two rings joined by one bridge fall apart under any split (a
+    wedge without the bridge holds an arc of each ring, apart), so on a sheet too small for
+    the whole frame it is refused rather than cut into loose pieces."""
+    def ring(r0, r1):
+        return shapely.difference(shapely.Point(0, 0).buffer(r1, 16),
+                                  shapely.Point(0, 0).buffer(r0, 16))
+
+    frame = shapely.union_all([ring(10, 20), ring(30, 40), shapely.box(-45, -2, -5, 2)])
+    assert frame.geom_type == "Polygon"
+    with pytest.raises(WeaveCutError, match=r"^even in 12 parts the frame does not fit"):
+        split_frame(frame, shapely.box(-40, -40, 40, 40), (70.0, 50.0), 1.0)
