@@ -15,7 +15,10 @@ import shapely
 from weavecut import inputs
 from weavecut.layout.colour_difference import colour_difference
 from weavecut.mesh import edge_faces
-from weavecut.puzzle.colouring import (UNPAINTED, _families, colour_puzzle, on_top_of_octagon,
+from weavecut.layout.colour_difference import ciede2000, srgb_to_lab
+from weavecut.puzzle.colouring import (UNPAINTED, _colour_index, _families, _main_colours,
+                                       _Plan, _score, _search, _trials, colour_puzzle,
+                                       on_top_of_octagon,
                                        palette_names)
 from weavecut.puzzle.guides import piece_halves
 from weavecut.puzzle.pieces import build_puzzle
@@ -324,3 +327,166 @@ def test_families_balance_the_colour_count_then_keep_touching_groups_apart():
     for touching, want in (([[0, 2]], [0, 1, 1]), ([[1, 2]], [0, 1, 0])):
         pairs = np.array(touching, dtype=np.int64)
         assert _families(group, 3, np.arange(3), pairs, 2).tolist() == want
+
+
+def test_a_fragment_without_a_parent_may_take_any_colour_with_an_octagon():
+    """At level 2 there is no level t-2 (no families from grandparents): the square grid's
+    border fragments have no parent, so each may wear any colour a strand with an octagon
+    wears, and wears the one whose smallest difference to the strands it touches is largest
+    (the first in palette order on a tie), not one of a single family."""
+    puzzle, pal, colouring = case("square-grid:2x2", 2)
+    front = puzzle.weaves[-2]
+    main = _main_strands(front)
+    fragments = sorted({int(s) for s in front.tile_over.tolist() if s >= 0} - set(main))
+    flat = [c for fam in pal.families for c in fam]
+    candidates = sorted({colouring.front_strands[m] for m in main}, key=flat.index)
+    family = {c: i for i, fam in enumerate(pal.families) for c in fam}
+    assert len({family[c] for c in candidates}) == len(pal.families)
+    near_of: dict[int, set] = {}
+    for a, b in _strand_touching(puzzle):
+        near_of.setdefault(a, set()).add(b)
+        near_of.setdefault(b, set()).add(a)
+    checked = 0
+    for s in fragments:
+        near = [colouring.front_strands[n] for n in near_of.get(s, ())
+                if n in main or (n < s and n in fragments)]
+        if not near:
+            continue
+
+        def worst(c):
+            return min(float(colour_difference(c, n)) for n in near)
+        best = max(worst(c) for c in candidates)
+        assert colouring.front_strands[s] == next(c for c in candidates
+                                                  if worst(c) >= best - 1e-9), s
+        checked += 1
+    assert checked == len(fragments) > 0
+
+
+def _one_family_plan(n: int, shades: int, pairs) -> _Plan:
+    """``n`` single strands (no sibling pairs), all in one family of the puzzle palette's first
+    ``shades`` greens, touching as ``pairs`` (listed by strand, as colour_puzzle lists them)."""
+    greens = list(palette("puzzle").families[0][:shades])
+    lab = srgb_to_lab(greens)
+    return _Plan(np.arange(n), np.arange(n), np.zeros(n, dtype=np.int64), np.zeros(n, bool),
+                 greens, np.array([0]), np.array([shades]), ciede2000(lab[:, None], lab[None]),
+                 np.array(pairs, dtype=np.int64).reshape(-1, 2), [])
+
+
+def _hill_climb(plan: _Plan, slot: list[int], worst: int = 12) -> list[int]:
+    """The search as its docstring states it, in plain Python: each round, the strands of the
+    ``worst`` touching pairs of smallest difference (pairs of equal difference in the order
+    they are listed), worst first, each strand's moves in turn (swap shades with every other
+    strand, in strand order, then every other shade), the first move that raises the score
+    (fewest equal colours touching, then the ten smallest differences) is kept."""
+    shades = int(plan.family_size[0])
+    pairs = plan.pairs.tolist()
+
+    def differences(slot):
+        return [float(plan.difference[slot[a] % shades, slot[b] % shades]) for a, b in pairs]
+
+    def score(slot):
+        d = differences(slot)
+        return (-d.count(0.0), tuple(sorted(round(x, 6) for x in d if x > 0)[:10]))
+
+    def moves(slot, k):
+        for o in range(len(slot)):
+            if o != k:
+                trial = list(slot)
+                trial[k], trial[o] = slot[o], slot[k]
+                yield trial
+        for value in range(shades):
+            if value != slot[k] % shades:
+                yield slot[:k] + [value] + slot[k + 1:]
+
+    for _ in range(400):
+        d = differences(slot)
+        ranked = sorted(range(len(pairs)), key=d.__getitem__)[:worst]  # sorted() is stable
+        strands = dict.fromkeys(s for i in ranked for s in pairs[i])
+        best = score(slot)
+        better = next((t for k in strands for t in moves(slot, k) if score(t) > best), None)
+        if better is None:
+            return slot
+        slot = better
+    return slot
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_the_colour_search_breaks_ties_between_equal_differences_in_pair_order(seed):
+    """Twelve strands in four shades touch in 18 to 33 pairs, so many pairs share a colour
+    pair (an equal difference). Which of them the search tries first decides where it ends:
+    the search must take them in the order the pairs are listed (a sort that does not keep
+    that order, such as numpy's default one, gives another colouring, and one that depends
+    on the machine's sort routine), as the plain-Python search of its docstring does."""
+    rng = np.random.default_rng(seed)
+    every = np.array([(a, b) for a in range(12) for b in range(a + 1, 12)])
+    pairs = every[np.sort(rng.choice(len(every), int(rng.integers(18, 34)), replace=False))]
+    plan = _one_family_plan(12, 4, pairs)
+    assert _search(plan, np.arange(12)).tolist() == _hill_climb(plan, list(range(12)))
+
+
+def _hand_plan(colours, family, group, paired, pairs, fragments=()) -> _Plan:
+    """A plan for strands 0 .. len(family) - 1 with an octagon, all in one family of the shades
+    ``colours``: their groups, which hold half of a light/dark pair, the touching pairs and
+    the fragments ((strand, candidate main strands) each)."""
+    lab = srgb_to_lab(list(colours))
+    n = len(family)
+    return _Plan(np.arange(n), np.array(group, dtype=np.int64).reshape(n),
+                 np.array(family, dtype=np.int64).reshape(n), np.array(paired, bool).reshape(n),
+                 list(colours), np.array([0]), np.array([len(colours)]),
+                 ciede2000(lab[:, None], lab[None]),
+                 np.array(pairs, dtype=np.int64).reshape(-1, 2),
+                 [(s, np.array(m, dtype=np.int64)) for s, m in fragments])
+
+
+def test_every_fragment_is_painted_even_one_that_touches_nothing():
+    """Strands 0-2 wear greens 0-2. Fragment 3 touches nothing: it takes its first candidate
+    colour; fragment 4 touches strand 0 and takes whichever of greens 1 and 2 differs more
+    from green 0; fragment 5, the last strand, touches nothing either. A strand that touches
+    one but is on top of no tile (6) stays unpainted (-1), as do fragments before the
+    fragments' pass."""
+    greens = list(palette("puzzle").families[0][:3])
+    fragments = [(3, [0, 1, 2]), (4, [1, 2]), (5, [1, 2])]
+    plan = _hand_plan(greens, [0] * 3, [0, 1, 2], [False] * 3, [(0, 4)], fragments)
+    slot = np.arange(3)
+    assert _main_colours(plan, slot).tolist() == [0, 1, 2, -1, -1, -1]
+    far = max((1, 2), key=lambda c: (colour_difference(greens[c], greens[0]), -c))
+    assert _colour_index(plan, slot).tolist() == [0, 1, 2, 0, far, 1]
+    under = _hand_plan(greens, [0] * 3, [0, 1, 2], [False] * 3, [(0, 4), (2, 6)], fragments)
+    assert _main_colours(under, slot).tolist() == [0, 1, 2, -1, -1, -1, -1]
+    assert _colour_index(under, slot).tolist()[6] == -1
+
+
+@pytest.mark.parametrize("n", [0, 1])
+def test_a_plan_of_one_strand_or_none(n):
+    """No strand: nothing to paint and nothing to search. One strand touching nothing: it
+    wears its family's first shade, and the search leaves it there."""
+    plan = _hand_plan(["#2aad78", "#323d0d"], [0] * n, list(range(n)), [False] * n, [])
+    assert _main_colours(plan, np.zeros(n, dtype=np.int64)).tolist() == [0] * n
+    assert _search(plan, np.zeros(n, dtype=np.int64)).tolist() == [0] * n
+    assert _score(plan, np.zeros(n, dtype=np.int64)) == (0, ())
+
+
+def test_the_score_counts_equal_colours_then_every_difference_to_a_millionth():
+    """Two greys 0.75 CIEDE2000 apart (under 1, still a difference): the score of two
+    touching strands in them is no equal pair and that difference, rounded to 1e-6 (float
+    noise below that is no gain); in one grey, one equal pair and no difference."""
+    greys = ["#808080", "#828282"]
+    plan = _hand_plan(greys, [0, 0], [0, 1], [False, False], [(0, 1)])
+    d = float(colour_difference(*greys))
+    assert 0 < d < 1
+    assert _score(plan, np.array([0, 1])) == (0, (round(d, 6),))
+    assert _score(plan, np.array([1, 1])) == (-1, ())
+
+
+def test_a_sibling_pair_flips_or_trades_with_another_pair_of_its_family():
+    """Strands 0, 1 are the sibling pair of group 0, strands 2, 3 that of group 1, strand 4 a
+    single, all in one family of seven shades (no shade repeats, so no recolouring). A pair
+    strand's moves: flip its pair's light and dark, then trade shades with every other pair
+    of the family (the strand takes the other pair's first strand's shade, its mate the
+    second's); the lone single has no other single to swap with."""
+    greens = list(palette("puzzle").families[0])
+    plan = _hand_plan(greens, [0] * 5, [0, 0, 1, 1, 2], [True] * 4 + [False], [])
+    slot = np.arange(5)
+    assert [t.tolist() for t in _trials(plan, slot, 0)] == [[1, 0, 2, 3, 4], [2, 3, 0, 1, 4]]
+    assert [t.tolist() for t in _trials(plan, slot, 3)] == [[0, 1, 3, 2, 4], [3, 2, 1, 0, 4]]
+    assert list(_trials(plan, slot, 4)) == []

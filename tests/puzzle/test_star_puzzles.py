@@ -11,7 +11,8 @@ import pytest
 import shapely
 
 from weavecut.errors import MeshError, TurnedOverError
-from weavecut.puzzle.pieces import _one_region, build_puzzle, extent
+from weavecut.puzzle.guides import piece_halves, split_ends
+from weavecut.puzzle.pieces import OCTAGON, _one_region, build_puzzle, extent
 from weavecut.readers.outline_mesh import mesh_outline
 from weavecut.subdivision import subdivide
 
@@ -101,3 +102,33 @@ def test_a_piece_collapsed_to_a_line_is_refused_naming_where():
                                         r"faces too thin there; mesh the outline with another "
                                         r"--cell$"):
         _one_region(pieces)
+
+
+def test_an_octagon_whose_chord_leaves_it_is_halved_into_its_pentagons():
+    """A three-armed star with sharp, wobbly arms has octagons bent so hard that the straight
+    line between their two level t-1 corners runs outside the piece: those are halved into
+    their two pentagons (face 0, face 1), the others along the chord; either way the halves
+    are polygons that tile the piece."""
+    puzzle = build_puzzle(_star(3, 0.4, 0.3, 3), 250.0, 10.0, "width")
+    weave, mesh = puzzle.weaves[-1], puzzle.weaves[-1].mesh
+    faces = shapely.polygons(puzzle.to_mm(mesh.vertices[mesh.dense_faces()]))
+    tiles = puzzle.piece_tiles
+    f0 = weave.tile_faces[weave.tile_offsets[tiles]]
+    f1 = weave.tile_faces[weave.tile_offsets[tiles + 1] - 1]
+    u, w = split_ends(puzzle)
+    chord = shapely.linestrings(np.stack([u, w], axis=1))
+    octagon = puzzle.kinds == OCTAGON
+    leaves = octagon & ~shapely.covers(shapely.buffer(puzzle.pieces, 1e-9), chord)
+    assert 0 < leaves.sum() < octagon.sum()
+    halves = piece_halves(puzzle)
+    assert (shapely.get_type_id(halves) == 3).all() and shapely.is_valid(halves).all()
+    assert shapely.equals(halves[leaves, 0], faces[f0[leaves]]).all()
+    assert shapely.equals(halves[leaves, 1], faces[f1[leaves]]).all()
+    np.testing.assert_allclose(shapely.area(halves[octagon]).sum(axis=1),
+                               shapely.area(puzzle.pieces[octagon]), rtol=1e-9)
+    assert shapely.area(shapely.intersection(halves[octagon, 0], halves[octagon, 1])
+                        ).max() < 1e-6
+    cut = octagon & ~leaves
+    border = shapely.line_merge(shapely.intersection(shapely.boundary(halves[cut, 0]),
+                                                     shapely.boundary(halves[cut, 1])))
+    assert shapely.length(shapely.symmetric_difference(border, chord[cut])).max() < 1e-6

@@ -240,3 +240,20 @@ def test_pieces_under_the_minimum_size_merge_and_at_it_stay(side, pieces):
     merged = outline_mesh._merged_small([small, large], 5.0, 0.2)
     assert len(merged) == pieces
     assert shapely.union_all(merged).equals(shapely.box(0, 0, 10, 3))
+
+
+def test_a_small_piece_is_cut_anew_with_one_neighbour_never_joined_with_two():
+    """A 2 mm square in the corner of a 10 mm square whose rest is cut along the diagonal
+    from its inner corner: its union with either neighbour has a reflex corner, so it is cut
+    anew with one of them (the smallest of the two new pieces, 20 mm², is over 1.2 x 4 mm²).
+    Its union with both is the whole square, convex, one piece: a recut that left one piece
+    would make a face of two neighbours and more, so the three pieces stay three."""
+    small = shapely.box(0, 0, 2, 2)
+    right = shapely.Polygon([(2, 0), (10, 0), (10, 10), (2, 2)])
+    top = shapely.Polygon([(0, 2), (2, 2), (10, 10), (0, 10)])
+    merged = outline_mesh._merged_small([small, right, top], 5.0, 0.2)
+    assert len(merged) == 3
+    areas = shapely.area(merged)
+    assert areas.min() > 1.2 * small.area and areas.max() <= top.area + small.area + 1e-9
+    assert shapely.union_all(merged).symmetric_difference(shapely.box(0, 0, 10, 10)).area < 1e-9
+    assert (shapely.area(shapely.convex_hull(merged)) - areas < 1e-9).all()

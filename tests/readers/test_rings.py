@@ -182,6 +182,41 @@ def test_a_dangling_line_is_named_where_it_ends():
         enclosed_faces([], lines, 0.2)
 
 
+
+def _redrawn(rings, pieces, turn: int):
+    """The same drawing drawn otherwise: every ring starting ``turn`` corners later (and the
+    odd ones the other way round), every piece reversed, both lists in reverse order."""
+    rings = [Ring(r.label, np.roll(r.points, -turn, axis=0)[::(-1) ** k])
+             for k, r in enumerate(rings)]
+    return rings[::-1], [Ring(p.label, p.points[::-1]) for p in pieces[::-1]]
+
+
+def test_enclosed_faces_are_numbered_and_started_by_their_geometry():
+    """An untouched pentagon, a square that a line cuts from its lower-left corner (two
+    triangles sharing that corner) and a house of lines: each face runs counter-clockwise from
+    its leftmost corner (the lowest of them), the faces are in the order of those corners
+    (x, then y) and the two triangles counter-clockwise around theirs; the same drawing
+    drawn from other corners, the other way round, in another order gives the same faces."""
+    pentagon = np.array([(60, 0), (70, 0), (75, 8), (65, 14), (55, 8)], dtype=float)
+    rings = [Ring("pentagon", pentagon), Ring("square", square(20, 0, 10))]
+    pieces = [Ring("diagonal", np.array([(20, 0), (30, 10)])),
+              Ring("walls", np.array([(0, 0), (0, 10), (5, 15), (10, 10), (10, 0)])),
+              Ring("floor", np.array([(0, 0), (10, 0)])),
+              Ring("ceiling", np.array([(0, 10), (10, 10)]))]
+    faces = enclosed_faces(rings, pieces, 0.2)
+    want = [[(0, 0), (10, 0), (10, 10), (0, 10)], [(0, 10), (10, 10), (5, 15)],
+            [(20, 0), (30, 0), (30, 10)], [(20, 0), (30, 10), (20, 10)],
+            [(55, 8), (60, 0), (70, 0), (75, 8), (65, 14)]]
+    assert [f.points.tolist() for f in faces] == [np.array(w, float).tolist() for w in want]
+    assert [f.label for f in faces] == [f"face {k} enclosed by lines" for k in range(1, 6)]
+    for f in faces:
+        assert shapely.Polygon(f.points).exterior.is_ccw
+        assert tuple(f.points[0]) == min(map(tuple, f.points))
+    for turn in (1, 2, 3):
+        again = enclosed_faces(*_redrawn(rings, pieces, turn), 0.2)
+        assert [f.points.tolist() for f in again] == [f.points.tolist() for f in faces], turn
+
+
 # --- drawing.read: files and options ------------------------------------------------------
 
 def test_missing_empty_and_oversized_files_are_one_line(tmp_path, monkeypatch):

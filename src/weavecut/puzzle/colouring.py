@@ -8,8 +8,9 @@ color of the enclosed puzzle-piece". weave-cut makes that a rule:
 
 - **One colour per front strand.** Every level t-1 strand that is on top of an octagon gets its
   own colour (20 on the paper's pentagon). A strand with no octagon (a short fragment along the
-  border, on top of boundary pentagons only) takes one of the colours of its parent's family:
-  the one that differs most from every strand it touches, so it never merges with a neighbour.
+  border, on top of boundary pentagons only) takes one of the colours of its parent's family
+  (of every family where it has no parent, as at level 2): the one that differs most from
+  every strand it touches, so it never merges with a neighbour.
 - **Families from the grandparents.** Each level t-2 strand takes a family (a hue: green, blue,
   pink); its descendants share it. Families are balanced by the number of colours they must
   hold, and strands whose descendants touch go to different families where the balance allows.
@@ -347,7 +348,9 @@ def _search(plan: _Plan, slot: NDArray[np.int64], rounds: int = 400,
             worst: int = 12) -> NDArray[np.int64]:
     """Hill-climb on the worst touching pairs: try the moves that involve the strands of the
     ``worst`` pairs, worst first (see ``_trials``), keep the first that raises the score; stop
-    when none does (or after ``rounds``)."""
+    when none does (or after ``rounds``). Pairs of equal difference are taken in the order
+    ``plan.pairs`` lists them (a stable sort): which is tried first decides where the search
+    ends, and an unstable sort's order depends on the machine's sort routine."""
     index = np.full(int(plan.main.max(initial=-1)) + 1, -1)
     index[plan.main] = np.arange(len(plan.main))
     best = _score(plan, slot)

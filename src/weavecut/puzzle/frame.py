@@ -26,8 +26,8 @@ WALL = 0.05  # frame kept around a tab, x the band's width
 MAX_PARTS = 12
 
 
-def fits(parts: NDArray[np.object_], sheet: tuple[float, float], margin: float,
-         spacing: float = 0.0) -> NDArray[np.bool_]:
+def fits(parts: NDArray[np.object_], sheet: tuple[float, float], margin: float
+         ) -> NDArray[np.bool_]:
     """(N,) True where a part, laid flat on its minimum rectangle, fits the sheet's room."""
     angles = upright_angles(parts)
     turned = [affinity.rotate(p, a, origin=(0.0, 0.0)) for p, a in zip(parts, angles)]

@@ -352,7 +352,10 @@ def _convex_pieces(polygon, tolerance: float) -> list:
 def _merged_small(pieces: list, cell: float, tolerance: float) -> list:
     """Pieces smaller than MIN_SIZE * cell (side of the square of equal area), smallest first,
     merged into the neighbour with the longest shared edge whose union stays convex, or else
-    cut anew together with one or two neighbours if that leaves larger pieces."""
+    cut anew (``_convex_pieces``) together with one neighbour, or with the two it shares most
+    with, where that leaves two or more pieces whose smallest is over 1.2 times the small
+    one's area. A recut never joins them into one piece (only a single neighbour, whose union
+    with the small piece is convex, takes it whole), so a face never swallows two neighbours."""
     pieces = list(pieces)
     while True:
         areas = shapely.area(pieces)

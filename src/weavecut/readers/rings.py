@@ -170,6 +170,11 @@ def enclosed_faces(rings: list[Ring], pieces: list[Ring], tolerance: float) -> l
 
     A piece's end within ``tolerance`` of a ring's corner or of another end joins it; a piece
     with an end that joins nothing is an error naming it.
+
+    Every face runs counter-clockwise from its leftmost corner (the lowest of them), and the
+    faces come in the order of those corners (by x, then y), faces that share one
+    counter-clockwise around it: the numbering depends on the faces' geometry only, not on
+    how the lines were drawn or how GEOS walks them.
     """
     corners = np.concatenate([r.points for r in rings]) if rings else np.empty((0, 2))
     ends = np.array([[p.points[0], p.points[-1]] for p in pieces]).reshape(-1, 2)
@@ -191,5 +196,11 @@ def enclosed_faces(rings: list[Ring], pieces: list[Ring], tolerance: float) -> l
         x, y = ends[np.argmin(reach)]
         raise MeshFileError(f"{pieces[k].label} near ({x + 0:.4g}, {y + 0:.4g}) mm has an open "
                             "end; lines and arcs must enclose faces")
-    return [Ring(f"face {k + 1} enclosed by lines", np.asarray(f.exterior.coords)[:-1])
-            for k, f in enumerate(shapely.get_parts(faces))]
+    # GEOS's normalize starts a ring at its smallest corner (x, then y), clockwise: reversed,
+    # counter-clockwise from the same corner
+    rings = [np.roll(np.asarray(f.exterior.coords)[-2::-1], 1, axis=0)
+             for f in shapely.normalize(shapely.get_parts(faces))]
+    first = np.array([r[0] for r in rings]).reshape(-1, 2)
+    step = np.array([r[1] - r[0] for r in rings]).reshape(-1, 2)
+    order = np.lexsort((np.arctan2(step[:, 1], step[:, 0]), first[:, 1], first[:, 0]))
+    return [Ring(f"face {k + 1} enclosed by lines", rings[i]) for k, i in enumerate(order)]
