@@ -311,3 +311,52 @@ def test_png_default_size_is_480_per_view():
     parts = model((square(0.0), TEAL))
     with Image.open(io.BytesIO(model3d.png_bytes(*parts, views=((0, 90),)))) as im:
         assert im.size == (960, 480)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_depth_buffer_clips_triangles_at_every_edge_of_the_image(seed):
+    # triangles reaching past each edge, and wholly outside on each side: each paints the
+    # pixels of the image whose centres it covers, and nothing else
+    rng = np.random.default_rng(seed)
+    big = 16
+    xy = rng.uniform(-big / 2, 1.5 * big, (24, 3, 2))
+    left = np.array([[-9.0, 3.0], [-2.0, 12.0], [-4.0, 6.0]])  # 2 px or more away
+    xy[0], xy[1] = left, big - left * [1, -1] - [0, big]  # wholly left, wholly right
+    xy[2], xy[3] = left[:, ::-1], big - left[:, ::-1] * [-1, 1] - [big, 0]  # above, below
+    depth = rng.uniform(-1, 1, (24, 3))
+    covered, tri = model3d._depth_buffer(xy, depth, big)
+    got = np.full(big * big, -1)
+    got[covered] = tri
+    want, unsure = depth_oracle(xy, depth, big)
+    assert (got[~unsure] == want[~unsure]).all()
+    assert not np.isin(got, range(4)).any()
+
+
+@pytest.mark.parametrize("turn", range(3))
+@pytest.mark.parametrize("diagonal", [0, 1])
+def test_depth_buffer_leaves_no_gap_on_an_edge_through_pixel_centres(turn, diagonal):
+    # a square with its corners on pixel centres, cut along a diagonal into two triangles
+    # (each with its vertices turned so the diagonal is each of its edges in turn): every
+    # pixel centre in the closed square is covered, on its sides and on the diagonal too
+    big = 12
+    corners = np.array([[2.5, 2.5], [10.5, 2.5], [10.5, 10.5], [2.5, 10.5]])
+    corners = np.roll(corners, diagonal, axis=0)
+    halves = np.array([[0, 1, 2], [2, 3, 0]])
+    xy = corners[np.roll(halves, turn, axis=1)]
+    covered, tri = model3d._depth_buffer(xy, np.zeros((2, 3)), big)
+    cols, rows = np.meshgrid(range(2, 11), range(2, 11))
+    assert sorted(covered.tolist()) == sorted((rows * big + cols).ravel().tolist())
+    # the diagonal's pixels go to the first triangle (a tie), the rest to the one holding them
+    first = cols + rows <= 12 if diagonal else cols >= rows
+    owner = dict(zip(covered.tolist(), tri.tolist()))
+    assert [owner[r * big + c] for r, c in zip(rows.ravel(), cols.ravel())] == \
+        np.where(first, 0, 1).ravel().tolist()
+
+
+def test_png_largest_size_renders(monkeypatch):
+    # the largest size the refusal names is allowed (each view a stand-in: drawn at 4096 px a
+    # view holds gigabytes)
+    monkeypatch.setattr(model3d, "_view", lambda *args: Image.new("RGB", (2, 2), "red"))
+    parts = model((square(0.0), TEAL))
+    with Image.open(io.BytesIO(model3d.png_bytes(*parts, size=4096, views=((0, 90),)))) as im:
+        assert im.size == (8192, 4096)

@@ -238,3 +238,46 @@ def test_turned_text_loses_no_ink_even_at_the_corners_of_its_box(anchor, angle):
     png._rotated_text(got, centre, "\u2588", font, "#000000", angle, anchor)
     assert (np.asarray(want) < 128).any()  # something is drawn
     np.testing.assert_array_equal(np.asarray(got), np.asarray(want))
+
+
+def test_thick_rings_turn_round_corners_at_every_corner():
+    # a 2 mm outline of a square, as SVG draws it (stroke-linejoin round): just outside each
+    # corner, within 1 mm of it, is ink, and the far corner of the mitre square is white; also
+    # at the corner where the ring starts and ends
+    ring = Layer("cut", "cut", (polygons_from_shapely([shapely.box(5, 5, 15, 15)],
+                                                      Style("#0000ff", 2.0)),))
+    with Image.open(io.BytesIO(png.render(Drawing((Sheet(20, 20, (ring,)),)),
+                                          dpi=25.4 * 20))) as im:
+        img = np.asarray(im.convert("RGB"))
+    probe = lambda x, y: tuple(img[int((20 - y) * 20), int(x * 20)].tolist())  # noqa: E731
+    for x, y in [(5, 5), (15, 5), (15, 15), (5, 15)]:
+        sx, sy = np.sign(x - 10), np.sign(y - 10)  # outwards
+        assert close(probe(x + 0.5 * sx, y + 0.5 * sy), BLUE, 30), (x, y)
+        assert probe(x + 0.9 * sx, y + 0.9 * sy) == WHITE, (x, y)
+
+
+def test_an_unstroked_line_draws_nothing():
+    # a line with no stroke over a blue square leaves the square as it is, as in SVG
+    square = polygons_from_shapely([shapely.box(2, 2, 18, 8)], Style(None, 0.0, "#0000ff"))
+    line = polylines_from_lines([[(1, 5), (19, 5)], [(10, 1), (10, 9)]], Style(None, 1.0))
+    alone, crossed = (pixels(Drawing((Sheet(20, 10, (Layer("cut", "cut", shapes),)),)))
+                      for shapes in [(square,), (square, line)])
+    assert (alone == crossed).all()
+
+
+def test_shapes_after_a_text_are_drawn():
+    # a text, then a square in the same layer: the square is drawn
+    shapes = (Text(2, 2, "A", 2.0), polygons_from_shapely([shapely.box(10, 2, 18, 8)],
+                                                          Style(None, 0.0, "#0000ff")))
+    img = pixels(Drawing((Sheet(20, 10, (Layer("cut", "cut", shapes),)),)))
+    assert close(at(img, 14, 5, 10), BLUE)
+
+
+@pytest.mark.parametrize("width, dpi", [(0.05, 150), (1.0, 10), (0.3, 150), (7.0, 15)])
+def test_a_sheet_is_its_size_at_the_resolution_to_within_a_pixel(width, dpi):
+    # down to sheets smaller than a pixel, which still make a one-pixel image
+    sheet = Sheet(width, width, (Layer("cut", "cut", (Text(0, 0, "", 1.0),)),))
+    with Image.open(io.BytesIO(png.render(Drawing((sheet,)), dpi=dpi))) as im:
+        size = im.size
+    want = width / 25.4 * dpi
+    assert all(n >= 1 and abs(n - max(want, 1)) < 1 for n in size), (size, want)

@@ -84,7 +84,8 @@ def _sheet(sheet, dpi: float) -> Image.Image:
                 continue
             width = max(1, round(shape.style.stroke_width * px)) if shape.style.stroke else 0
             if isinstance(shape, Polylines):
-                for line in shape.lines():
+                # no stroke, nothing drawn (older Pillow drew a 0-wide line 1 px wide)
+                for line in shape.lines() if shape.style.stroke else ():
                     draw.line(to_px(line), fill=shape.style.stroke, width=width, joint="curve")
                 continue
             fills = shape.fills or (shape.style.fill,) * shape.n_polygons
@@ -103,8 +104,10 @@ def _sheet(sheet, dpi: float) -> Image.Image:
                     img.paste(fill, mask=mask)
                 if shape.style.stroke:
                     for ring in own:
+                        # closed through the second point again: Pillow joins only the
+                        # inner points of a line, and the first corner is one of them too
                         pts = to_px(ring)
-                        draw.line(pts + pts[:1], fill=shape.style.stroke, width=width,
+                        draw.line(pts + pts[:2], fill=shape.style.stroke, width=width,
                                   joint="curve")
     return img.resize((max(1, w // SUPERSAMPLE), max(1, h // SUPERSAMPLE)), Image.LANCZOS)
 
