@@ -14,6 +14,8 @@ from PIL import Image
 from weavecut.errors import ExportError
 from weavecut.export import model3d
 
+from tests.export.test_png_details import lanczos_halved
+
 trimesh = pytest.importorskip("trimesh")
 
 TEAL, SAND = (0x12, 0x7A, 0x7A), (0xE0, 0xC0, 0x80)
@@ -128,12 +130,12 @@ def test_view_rotation_is_the_camera_turned_and_raised(view):
 SIZE = 64
 
 
-def views(data, n):
-    """The PNG's n views as (SIZE, SIZE, 3) arrays, left to right, top to bottom."""
+def views(data, n, size=SIZE):
+    """The PNG's n views as (size, size, 3) arrays, left to right, top to bottom."""
     with Image.open(io.BytesIO(data)) as im:
         img = np.asarray(im.convert("RGB"))
-    assert img.shape == (-(-n // 2) * SIZE, 2 * SIZE, 3)
-    return [img[(k // 2) * SIZE:(k // 2 + 1) * SIZE, (k % 2) * SIZE:(k % 2 + 1) * SIZE]
+    assert img.shape == (-(-n // 2) * size, 2 * size, 3)
+    return [img[(k // 2) * size:(k // 2 + 1) * size, (k % 2) * size:(k % 2 + 1) * size]
             for k in range(n)]
 
 
@@ -360,3 +362,41 @@ def test_png_largest_size_renders(monkeypatch):
     parts = model((square(0.0), TEAL))
     with Image.open(io.BytesIO(model3d.png_bytes(*parts, size=4096, views=((0, 90),)))) as im:
         assert im.size == (8192, 4096)
+
+
+def test_png_views_are_drawn_twice_as_large_and_halved_with_lanczos(monkeypatch):
+    # each view drawn without supersampling at twice the size, then halved by the filter's
+    # definition: the PNG's view, to within rounding (other filters differ by 10 or more)
+    parts = model((square(0.5), TEAL), (square(-0.5, x=0.7), SAND))
+    look = dict(views=((20, 25), (200, -60)))
+    small = views(model3d.png_bytes(*parts, size=SIZE, **look), 2)
+    monkeypatch.setattr(model3d, "SUPERSAMPLE", 1)
+    large = views(model3d.png_bytes(*parts, size=2 * SIZE, **look), 2, 2 * SIZE)
+    for got, twice in zip(small, large):
+        assert np.abs(got.astype(int) - lanczos_halved(twice)).max() <= 1
+
+
+def test_depth_buffer_draws_a_lone_triangle_over_the_last_pixel():
+    # one triangle around the centre of the last pixel, reaching past the image's corner: that
+    # pixel is drawn (the triangle's box, clipped to the image, is that pixel alone)
+    big = 8
+    xy = big - np.array([[[0.9, 0.9], [-4.0, 0.9], [0.9, -4.0]]])
+    covered, tri = model3d._depth_buffer(xy, np.zeros((1, 3)), big)
+    assert covered.tolist() == [big * big - 1] and tri.tolist() == [0]
+
+
+def test_depth_buffer_draws_no_pixel_outside_a_triangles_box():
+    # slivers so thin that their barycentric weights are rounding noise, which takes pixel
+    # centres on a sliver's line, even past its end, for inside; yet a triangle draws no pixel
+    # outside its box: one ending a quarter pixel right of column 62's centres, its box
+    # clipped to the image's last column, and one wholly left of the image
+    big = 64
+    slivers = np.array([
+        [[63.751620452537146, 7.218742386768315], [105.15930389207364, -2.086176041217823],
+         [98.28076051646093, -0.5404656875608567]],
+        [[-0.8480617845833467, 47.782418490758715], [-40.29366194156568, 35.727610785348084],
+         [-31.93462051576808, 38.28218307195363]]])
+    for xy in slivers:
+        covered, _ = model3d._depth_buffer(xy[None], np.zeros((1, 3)), big)
+        centres = np.column_stack([covered % big, covered // big]) + 0.5
+        assert ((centres >= xy.min(axis=0)) & (centres <= xy.max(axis=0))).all()
