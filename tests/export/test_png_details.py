@@ -261,14 +261,14 @@ def test_an_unstroked_line_draws_nothing():
     square = polygons_from_shapely([shapely.box(2, 2, 18, 8)], Style(None, 0.0, "#0000ff"))
     line = polylines_from_lines([[(1, 5), (19, 5)], [(10, 1), (10, 9)]], Style(None, 1.0))
     alone, crossed = (pixels(Drawing((Sheet(20, 10, (Layer("cut", "cut", shapes),)),)))
-                      for shapes in [(square,), (square, line)])
+                      for shapes in [(square,), (line, square)])
     assert (alone == crossed).all()
 
 
-def test_shapes_after_a_text_are_drawn():
-    # a text, then a square in the same layer: the square is drawn
-    shapes = (Text(2, 2, "A", 2.0), polygons_from_shapely([shapely.box(10, 2, 18, 8)],
-                                                          Style(None, 0.0, "#0000ff")))
+def test_shapes_after_a_text_or_a_line_are_drawn():
+    # a text, a line, then a square in the same layer: the square is drawn
+    shapes = (Text(2, 2, "A", 2.0), polylines_from_lines([[(1, 9), (9, 9)]], Style()),
+              polygons_from_shapely([shapely.box(10, 2, 18, 8)], Style(None, 0.0, "#0000ff")))
     img = pixels(Drawing((Sheet(20, 10, (Layer("cut", "cut", shapes),)),)))
     assert close(at(img, 14, 5, 10), BLUE)
 
@@ -276,7 +276,7 @@ def test_shapes_after_a_text_are_drawn():
 @pytest.mark.parametrize("width, dpi", [(0.05, 150), (1.0, 10), (0.3, 150), (7.0, 15)])
 def test_a_sheet_is_its_size_at_the_resolution_to_within_a_pixel(width, dpi):
     # down to sheets smaller than a pixel, which still make a one-pixel image
-    sheet = Sheet(width, width, (Layer("cut", "cut", (Text(0, 0, "", 1.0),)),))
+    sheet = Sheet(width, width)
     with Image.open(io.BytesIO(png.render(Drawing((sheet,)), dpi=dpi))) as im:
         size = im.size
     want = width / 25.4 * dpi

@@ -82,10 +82,11 @@ def _sheet(sheet, dpi: float) -> Image.Image:
                 else:
                     draw.text((x, y), shape.text, fill=shape.fill, font=font, anchor=anchor)
                 continue
+            if not shape.style.stroke and isinstance(shape, Polylines):
+                continue  # nothing to draw (older Pillow drew a 0-wide line 1 px wide)
             width = max(1, round(shape.style.stroke_width * px)) if shape.style.stroke else 0
             if isinstance(shape, Polylines):
-                # no stroke, nothing drawn (older Pillow drew a 0-wide line 1 px wide)
-                for line in shape.lines() if shape.style.stroke else ():
+                for line in shape.lines():
                     draw.line(to_px(line), fill=shape.style.stroke, width=width, joint="curve")
                 continue
             fills = shape.fills or (shape.style.fill,) * shape.n_polygons
