@@ -312,3 +312,11 @@ def test_a_sheet_is_drawn_at_twice_the_resolution_and_halved_with_lanczos(monkey
     with Image.open(io.BytesIO(png.render(drawing, dpi=2 * DPI))) as im:
         twice = np.asarray(im.convert("RGB"))
     assert np.abs(img.astype(int) - lanczos_halved(twice)).max() <= 1
+
+
+def test_an_unstroked_shapes_stroke_width_plays_no_part():
+    # as in SVG, where stroke="none" leaves stroke-width unread: even an infinite one
+    square = [shapely.box(2, 2, 18, 8)]
+    a, b = (pixels(Drawing((Sheet(20, 10, (Layer("cut", "cut", (polygons_from_shapely(
+        square, Style(None, width, "#0000ff")),)),)),))) for width in (0.2, float("inf")))
+    assert (a == b).all()
