@@ -14,6 +14,8 @@ from PIL import Image
 from weavecut.errors import ExportError
 from weavecut.export import model3d
 
+from tests.export.test_png_details import lanczos_halved
+
 trimesh = pytest.importorskip("trimesh")
 
 TEAL, SAND = (0x12, 0x7A, 0x7A), (0xE0, 0xC0, 0x80)
@@ -128,12 +130,12 @@ def test_view_rotation_is_the_camera_turned_and_raised(view):
 SIZE = 64
 
 
-def views(data, n):
-    """The PNG's n views as (SIZE, SIZE, 3) arrays, left to right, top to bottom."""
+def views(data, n, size=SIZE):
+    """The PNG's n views as (size, size, 3) arrays, left to right, top to bottom."""
     with Image.open(io.BytesIO(data)) as im:
         img = np.asarray(im.convert("RGB"))
-    assert img.shape == (-(-n // 2) * SIZE, 2 * SIZE, 3)
-    return [img[(k // 2) * SIZE:(k // 2 + 1) * SIZE, (k % 2) * SIZE:(k % 2 + 1) * SIZE]
+    assert img.shape == (-(-n // 2) * size, 2 * size, 3)
+    return [img[(k // 2) * size:(k // 2 + 1) * size, (k % 2) * size:(k % 2 + 1) * size]
             for k in range(n)]
 
 
@@ -311,3 +313,90 @@ def test_png_default_size_is_480_per_view():
     parts = model((square(0.0), TEAL))
     with Image.open(io.BytesIO(model3d.png_bytes(*parts, views=((0, 90),)))) as im:
         assert im.size == (960, 480)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_depth_buffer_clips_triangles_at_every_edge_of_the_image(seed):
+    # triangles reaching past each edge, and wholly outside on each side: each paints the
+    # pixels of the image whose centres it covers, and nothing else
+    rng = np.random.default_rng(seed)
+    big = 16
+    xy = rng.uniform(-big / 2, 1.5 * big, (24, 3, 2))
+    left = np.array([[-9.0, 3.0], [-2.0, 12.0], [-4.0, 6.0]])  # 2 px or more away
+    xy[0], xy[1] = left, big - left * [1, -1] - [0, big]  # wholly left, wholly right
+    xy[2], xy[3] = left[:, ::-1], big - left[:, ::-1] * [-1, 1] - [big, 0]  # above, below
+    depth = rng.uniform(-1, 1, (24, 3))
+    covered, tri = model3d._depth_buffer(xy, depth, big)
+    got = np.full(big * big, -1)
+    got[covered] = tri
+    want, unsure = depth_oracle(xy, depth, big)
+    assert (got[~unsure] == want[~unsure]).all()
+    assert not np.isin(got, range(4)).any()
+
+
+@pytest.mark.parametrize("turn", range(3))
+@pytest.mark.parametrize("diagonal", [0, 1])
+def test_depth_buffer_leaves_no_gap_on_an_edge_through_pixel_centres(turn, diagonal):
+    # a square with its corners on pixel centres, cut along a diagonal into two triangles
+    # (each with its vertices turned so the diagonal is each of its edges in turn): every
+    # pixel centre in the closed square is covered, on its sides and on the diagonal too
+    big = 12
+    corners = np.array([[2.5, 2.5], [10.5, 2.5], [10.5, 10.5], [2.5, 10.5]])
+    corners = np.roll(corners, diagonal, axis=0)
+    halves = np.array([[0, 1, 2], [2, 3, 0]])
+    xy = corners[np.roll(halves, turn, axis=1)]
+    covered, tri = model3d._depth_buffer(xy, np.zeros((2, 3)), big)
+    cols, rows = np.meshgrid(range(2, 11), range(2, 11))
+    assert sorted(covered.tolist()) == sorted((rows * big + cols).ravel().tolist())
+    # the diagonal's pixels go to the first triangle (a tie), the rest to the one holding them
+    first = cols + rows <= 12 if diagonal else cols >= rows
+    owner = dict(zip(covered.tolist(), tri.tolist()))
+    assert [owner[r * big + c] for r, c in zip(rows.ravel(), cols.ravel())] == \
+        np.where(first, 0, 1).ravel().tolist()
+
+
+def test_png_largest_size_renders(monkeypatch):
+    # the largest size the refusal names is allowed (each view a stand-in: drawn at 4096 px a
+    # view holds gigabytes)
+    monkeypatch.setattr(model3d, "_view", lambda *args: Image.new("RGB", (2, 2), "red"))
+    parts = model((square(0.0), TEAL))
+    with Image.open(io.BytesIO(model3d.png_bytes(*parts, size=4096, views=((0, 90),)))) as im:
+        assert im.size == (8192, 4096)
+
+
+def test_png_views_are_drawn_twice_as_large_and_halved_with_lanczos(monkeypatch):
+    # each view drawn without supersampling at twice the size, then halved by the filter's
+    # definition: the PNG's view, to within rounding (other filters differ by 10 or more)
+    parts = model((square(0.5), TEAL), (square(-0.5, x=0.7), SAND))
+    look = dict(views=((20, 25), (200, -60)))
+    small = views(model3d.png_bytes(*parts, size=SIZE, **look), 2)
+    monkeypatch.setattr(model3d, "SUPERSAMPLE", 1)
+    large = views(model3d.png_bytes(*parts, size=2 * SIZE, **look), 2, 2 * SIZE)
+    for got, twice in zip(small, large):
+        assert np.abs(got.astype(int) - lanczos_halved(twice)).max() <= 1
+
+
+def test_depth_buffer_draws_a_lone_triangle_over_the_last_pixel():
+    # one triangle around the centre of the last pixel, reaching past the image's corner: that
+    # pixel is drawn (the triangle's box, clipped to the image, is that pixel alone)
+    big = 8
+    xy = big - np.array([[[0.9, 0.9], [-4.0, 0.9], [0.9, -4.0]]])
+    covered, tri = model3d._depth_buffer(xy, np.zeros((1, 3)), big)
+    assert covered.tolist() == [big * big - 1] and tri.tolist() == [0]
+
+
+def test_depth_buffer_draws_no_pixel_outside_a_triangles_box():
+    # slivers so thin that their barycentric weights are rounding noise, which takes pixel
+    # centres on a sliver's line, even past its end, for inside; yet a triangle draws no pixel
+    # outside its box: one ending a quarter pixel right of column 62's centres, its box
+    # clipped to the image's last column, and one wholly left of the image
+    big = 64
+    slivers = np.array([
+        [[63.751620452537146, 7.218742386768315], [105.15930389207364, -2.086176041217823],
+         [98.28076051646093, -0.5404656875608567]],
+        [[-0.8480617845833467, 47.782418490758715], [-40.29366194156568, 35.727610785348084],
+         [-31.93462051576808, 38.28218307195363]]])
+    for xy in slivers:
+        covered, _ = model3d._depth_buffer(xy[None], np.zeros((1, 3)), big)
+        centres = np.column_stack([covered % big, covered // big]) + 0.5
+        assert ((centres >= xy.min(axis=0)) & (centres <= xy.max(axis=0))).all()

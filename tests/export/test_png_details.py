@@ -238,3 +238,85 @@ def test_turned_text_loses_no_ink_even_at_the_corners_of_its_box(anchor, angle):
     png._rotated_text(got, centre, "\u2588", font, "#000000", angle, anchor)
     assert (np.asarray(want) < 128).any()  # something is drawn
     np.testing.assert_array_equal(np.asarray(got), np.asarray(want))
+
+
+def test_thick_rings_turn_round_corners_at_every_corner():
+    # a 2 mm outline of a square, as SVG draws it (stroke-linejoin round): just outside each
+    # corner, within 1 mm of it, is ink, and the far corner of the mitre square is white; also
+    # at the corner where the ring starts and ends
+    ring = Layer("cut", "cut", (polygons_from_shapely([shapely.box(5, 5, 15, 15)],
+                                                      Style("#0000ff", 2.0)),))
+    with Image.open(io.BytesIO(png.render(Drawing((Sheet(20, 20, (ring,)),)),
+                                          dpi=25.4 * 20))) as im:
+        img = np.asarray(im.convert("RGB"))
+    probe = lambda x, y: tuple(img[int((20 - y) * 20), int(x * 20)].tolist())  # noqa: E731
+    for x, y in [(5, 5), (15, 5), (15, 15), (5, 15)]:
+        sx, sy = np.sign(x - 10), np.sign(y - 10)  # outwards
+        assert close(probe(x + 0.5 * sx, y + 0.5 * sy), BLUE, 30), (x, y)
+        assert probe(x + 0.9 * sx, y + 0.9 * sy) == WHITE, (x, y)
+
+
+def test_an_unstroked_line_draws_nothing():
+    # a line with no stroke over a blue square leaves the square as it is, as in SVG
+    square = polygons_from_shapely([shapely.box(2, 2, 18, 8)], Style(None, 0.0, "#0000ff"))
+    line = polylines_from_lines([[(1, 5), (19, 5)], [(10, 1), (10, 9)]], Style(None, 1.0))
+    alone, crossed = (pixels(Drawing((Sheet(20, 10, (Layer("cut", "cut", shapes),)),)))
+                      for shapes in [(square,), (line, square)])
+    assert (alone == crossed).all()
+
+
+def test_shapes_after_a_text_or_a_line_are_drawn():
+    # a text, a line, then a square in the same layer: the square is drawn
+    shapes = (Text(2, 2, "A", 2.0), polylines_from_lines([[(1, 9), (9, 9)]], Style()),
+              polygons_from_shapely([shapely.box(10, 2, 18, 8)], Style(None, 0.0, "#0000ff")))
+    img = pixels(Drawing((Sheet(20, 10, (Layer("cut", "cut", shapes),)),)))
+    assert close(at(img, 14, 5, 10), BLUE)
+
+
+@pytest.mark.parametrize("width, dpi", [(0.05, 150), (1.0, 10), (0.3, 150), (7.0, 15)])
+def test_a_sheet_is_its_size_at_the_resolution_to_within_a_pixel(width, dpi):
+    # down to sheets smaller than a pixel, which still make a one-pixel image
+    sheet = Sheet(width, width)
+    with Image.open(io.BytesIO(png.render(Drawing((sheet,)), dpi=dpi))) as im:
+        size = im.size
+    want = width / 25.4 * dpi
+    assert all(n >= 1 and abs(n - max(want, 1)) < 1 for n in size), (size, want)
+
+
+def lanczos_halved(img: np.ndarray) -> np.ndarray:
+    """``img`` (H, W, 3) uint8, H and W even, halved each way with the Lanczos filter (three
+    lobes, widened twice for the reduction) from its definition: sinc(x) sinc(x / 3) for
+    |x| < 3, weights normalised per output pixel, rows first then columns, each pass rounded
+    to 8 bits as Pillow rounds them (within 1 of Pillow's fixed point)."""
+    out = img.astype(float)
+    for axis in (1, 0):
+        n = out.shape[axis]
+        x = (np.arange(n) + 0.5 - (np.arange(n // 2)[:, None] + 0.5) * 2) / 2
+        w = np.where(np.abs(x) < 3, np.sinc(x) * np.sinc(x / 3), 0.0)
+        w /= w.sum(axis=1, keepdims=True)
+        out = np.clip(np.round(np.moveaxis(np.tensordot(w, out, axes=([1], [axis])), 0, axis)),
+                      0, 255)
+    return out.astype(np.uint8)
+
+
+def test_a_sheet_is_drawn_at_twice_the_resolution_and_halved_with_lanczos(monkeypatch):
+    # the drawing drawn without supersampling at twice the resolution, then halved by the
+    # filter's definition: the PNG, to within rounding (other filters differ by 10 or more)
+    shapes = (polygons_from_shapely([shapely.Polygon([(2, 2), (17, 3), (9, 9)])],
+                                    Style("#000000", 0.5, "#127a7a")),
+              polylines_from_lines([[(1, 8), (19, 1)]], Style("#c81e1e", 0.0)),
+              Text(11, 6, "Ag", 2.0))
+    drawing = Drawing((Sheet(20, 10, (Layer("cut", "cut", shapes),)),))
+    img = pixels(drawing)
+    monkeypatch.setattr(png, "SUPERSAMPLE", 1)
+    with Image.open(io.BytesIO(png.render(drawing, dpi=2 * DPI))) as im:
+        twice = np.asarray(im.convert("RGB"))
+    assert np.abs(img.astype(int) - lanczos_halved(twice)).max() <= 1
+
+
+def test_an_unstroked_shapes_stroke_width_plays_no_part():
+    # as in SVG, where stroke="none" leaves stroke-width unread: even an infinite one
+    square = [shapely.box(2, 2, 18, 8)]
+    a, b = (pixels(Drawing((Sheet(20, 10, (Layer("cut", "cut", (polygons_from_shapely(
+        square, Style(None, width, "#0000ff")),)),)),))) for width in (0.2, float("inf")))
+    assert (a == b).all()

@@ -82,6 +82,8 @@ def _sheet(sheet, dpi: float) -> Image.Image:
                 else:
                     draw.text((x, y), shape.text, fill=shape.fill, font=font, anchor=anchor)
                 continue
+            if not shape.style.stroke and isinstance(shape, Polylines):
+                continue  # nothing to draw (older Pillow drew a 0-wide line 1 px wide)
             width = max(1, round(shape.style.stroke_width * px)) if shape.style.stroke else 0
             if isinstance(shape, Polylines):
                 for line in shape.lines():
@@ -103,8 +105,10 @@ def _sheet(sheet, dpi: float) -> Image.Image:
                     img.paste(fill, mask=mask)
                 if shape.style.stroke:
                     for ring in own:
+                        # closed through the second point again: Pillow joins only the
+                        # inner points of a line, and the first corner is one of them too
                         pts = to_px(ring)
-                        draw.line(pts + pts[:1], fill=shape.style.stroke, width=width,
+                        draw.line(pts + pts[:2], fill=shape.style.stroke, width=width,
                                   joint="curve")
     return img.resize((max(1, w // SUPERSAMPLE), max(1, h // SUPERSAMPLE)), Image.LANCZOS)
 
