@@ -92,15 +92,20 @@ def test_a_crossing_dot_keeps_clear_of_what_is_drawn_in_its_tile(top):
     assert shapely.buffer(tile, -0.4).covers(dot)
 
 
-def test_a_crossing_dot_shows_on_light_and_dark_tiles_and_sits_on_its_crossing():
-    """Callouts for three spots: each dot is a disc of radius DOT on its spot, black (it shows
-    on a light tile) in a white ring (it shows on a dark one), and the leader ends on it."""
+def test_a_callouts_plate_and_dot_show_on_any_tile_and_the_dot_sits_on_its_crossing():
+    """Callouts for three spots: each text on a white plate with a dark outline (it shows on
+    the blank page beside the pattern); each dot a disc of radius DOT on its spot, black (it
+    shows on a light tile) in a white ring (it shows on a dark one); each leader ends on it."""
     spots = np.array([[30.0, 50.0], [70.0, 40.0], [60.0, 80.0]])
     labels = ["A1 over B2", "C3 over D4", "B5 over A6"]
     placed = column_callouts(spots, labels, (0.0, 0.0, 100.0, 100.0), 50.0)
     shapes, texts = callout_shapes(placed, spots)
     assert [t.text for t in texts] == labels
-    dots = shapes[-1]
+    plates, dots = shapes[0], shapes[-1]
+    assert plates.style.fill == "#ffffff" and plates.style.stroke_width > 0
+    assert contrast_ratio(plates.style.stroke, "#ffffff") >= MIN_CONTRAST
+    for (_, plate, _), box in zip(placed, plates.to_shapely()):
+        assert shapely.equals(plate, box)
     assert isinstance(dots, Polygons)
     discs = dots.to_shapely()
     assert len(discs) == len(spots)
