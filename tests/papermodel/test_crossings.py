@@ -4,6 +4,7 @@ the dot looks, and that the pattern on the crossing pages keeps clear of the cal
 
 from __future__ import annotations
 
+import re
 from dataclasses import replace
 
 import numpy as np
@@ -15,6 +16,7 @@ from weavecut.layout.contrast import MIN_CONTRAST, contrast_ratio
 from weavecut.layout.drawing import Polygons
 from weavecut.papermodel.assembly import _crossing_spot
 from weavecut.papermodel.crossings import (
+    CASING,
     DOT,
     callout_shapes,
     column_callouts,
@@ -95,7 +97,9 @@ def test_a_crossing_dot_keeps_clear_of_what_is_drawn_in_its_tile(top):
 def test_a_callouts_plate_and_dot_show_on_any_tile_and_the_dot_sits_on_its_crossing():
     """Callouts for three spots: each text on a white plate with a dark outline (it shows on
     the blank page beside the pattern); each dot a disc of radius DOT on its spot, black (it
-    shows on a light tile) in a white ring (it shows on a dark one); each leader ends on it."""
+    shows on a light tile) in a white ring (it shows on a dark one); each leader ends on it.
+    Colours are spelled "#rrggbb" in lower case, as the palettes spell them, so a page's file
+    names each colour one way."""
     spots = np.array([[30.0, 50.0], [70.0, 40.0], [60.0, 80.0]])
     labels = ["A1 over B2", "C3 over D4", "B5 over A6"]
     placed = column_callouts(spots, labels, (0.0, 0.0, 100.0, 100.0), 50.0)
@@ -115,6 +119,10 @@ def test_a_callouts_plate_and_dot_show_on_any_tile_and_the_dot_sits_on_its_cross
         assert disc.area == pytest.approx(np.pi * DOT ** 2, rel=0.02)
     assert contrast_ratio(dots.style.fill, "#ffffff") >= MIN_CONTRAST
     assert contrast_ratio(dots.style.stroke, "#000000") >= MIN_CONTRAST
+    # the ring is there, and leaves a black core wider than the leader's white casing
+    assert 0 < dots.style.stroke_width and 2 * DOT - dots.style.stroke_width > CASING.stroke_width
+    colours = [c for shape in shapes for c in (shape.style.stroke, shape.style.fill) if c]
+    assert all(re.fullmatch("#[0-9a-f]{6}", c) for c in colours), colours  # one spelling each
     for (_, _, leader), spot in zip(placed, spots):
         assert leader[-1] == pytest.approx(spot)
 
