@@ -156,12 +156,14 @@ def test_the_last_pages_piece_packed_first_saves_a_page():
     assert {p.page for p in places} == {0}
 
 
-def test_the_quick_page_test_never_refuses_a_page_a_turn_fits():
+@pytest.mark.parametrize("cell", [0.75, 1.25])
+def test_the_quick_page_test_never_refuses_a_page_a_turn_fits(cell):
     """A page taken everywhere but the mask of a diamond turned by 45 degrees (a square, of fewer
     cells than the diamond's own mask): the piece fits there, so the quick test (free cells,
-    free disc) must not say the page cannot hold it, whichever turn comes first."""
+    free disc) must not say the page cannot hold it, whichever turn comes first, on a grid of
+    cells smaller or larger than a millimetre."""
     from weavecut.papermodel.packing import _best_spot, _mask, _Options, _Page
-    gap, cell = 2.0, 0.75
+    gap = 2.0
     diamond = shapely.Polygon([(0.0, -10.0), (10.0, 0.0), (0.0, 10.0), (-10.0, 0.0)])
     turns = [(a, *_mask(diamond, a, gap, cell, 100.0, 100.0)) for a in (0.0, 45.0)]
     assert turns[1][1].sum() < turns[0][1].sum()
