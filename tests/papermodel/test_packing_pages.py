@@ -124,3 +124,54 @@ def test_a_block_larger_than_a_c_shape_goes_into_its_mouth():
     places = pack([block, c_shape], width, height, gap)
     assert_valid([block, c_shape], places, width, height, gap)
     assert {p.page for p in places} == {0}
+
+
+def test_two_congruent_strips_go_one_by_one_where_their_stack_does_not_fit():
+    """A 96 x 76 block stands upright on a 100 x 100 area and leaves a column 22 mm wide; two
+    congruent 45 x 12 strips nest into a stack 26 deep, too deep for it, but upright one above
+    the other (45 + 2 + 45 <= 100, 76 + 2 + 12 <= 100) they fit: the stack must be halved
+    before a page is opened, so one page holds all three."""
+    width, height, gap = 100.0, 100.0, 2.0
+    block, strip = shapely.box(0.0, 0.0, 96.0, 76.0), shapely.box(0.0, 0.0, 45.0, 12.0)
+    shapes = [block, strip, strip]
+    places = pack(shapes, width, height, gap, kinds=[0, 1, 1])
+    assert_valid(shapes, places, width, height, gap)
+    assert {p.page for p in places} == {0}
+
+
+def test_the_last_pages_piece_packed_first_saves_a_page():
+    """Four blocks with a one-page packing, built here by hand: 24 x 54, 37 x 49 and 52 x 31
+    (upright) side by side along the bottom (24 + 37 + 31 + 2 x 2 <= 100), 52 x 39 above them
+    (54 + 2 + 39 <= 100). Largest first, filling columns from the left or rows from the bottom,
+    leaves the 24 x 54 block over for a second page; packed again with that page's piece first
+    (as the packer does when its last page is nearly empty), all fit on one."""
+    width, height, gap = 100.0, 100.0, 2.0
+    dims = [(52.0, 31.0), (37.0, 49.0), (24.0, 54.0), (52.0, 39.0)]
+    shapes = [shapely.box(0.0, 0.0, w, h) for w, h in dims]
+    by_hand = [Place(0, 90.0, (96.0, 0.0)), Place(0, 0.0, (26.0, 0.0)),
+               Place(0, 0.0, (0.0, 0.0)), Place(0, 0.0, (0.0, 56.0))]
+    assert_valid(shapes, by_hand, width, height, gap)
+    places = pack(shapes, width, height, gap)
+    assert_valid(shapes, places, width, height, gap)
+    assert {p.page for p in places} == {0}
+
+
+@pytest.mark.parametrize("cell", [0.75, 1.25])
+def test_the_quick_page_test_never_refuses_a_page_a_turn_fits(cell):
+    """A page taken everywhere but the mask of a diamond turned by 45 degrees (a square, of fewer
+    cells than the diamond's own mask): the piece fits there, so the quick test (free cells,
+    free disc) must not say the page cannot hold it, whichever turn comes first, on a grid of
+    cells smaller or larger than a millimetre."""
+    from weavecut.papermodel.packing import _best_spot, _mask, _Options, _Page
+    gap = 2.0
+    diamond = shapely.Polygon([(0.0, -10.0), (10.0, 0.0), (0.0, 10.0), (-10.0, 0.0)])
+    turns = [(a, *_mask(diamond, a, gap, cell, 100.0, 100.0)) for a in (0.0, 45.0)]
+    assert turns[1][1].sum() < turns[0][1].sum()
+    page = _Page(60, 60, {})
+    page.cells[:] = 1.0
+    m = turns[1][1]
+    page.cells[5:5 + m.shape[0], 7:7 + m.shape[1]] -= m
+    options = _Options(turns, diamond, gap / 2 + cell * np.sqrt(0.5), cell)
+    (at, angle, _, _) = _best_spot(page, options)
+    assert at == (5, 7) and angle == 45.0
+    assert page.may_hold(options)

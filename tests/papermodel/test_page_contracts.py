@@ -9,6 +9,7 @@ from dataclasses import replace
 from functools import lru_cache
 
 import numpy as np
+import pytest
 import shapely
 
 from weavecut import inputs
@@ -95,6 +96,42 @@ def test_flat_weaving_steps_speak_in_sentence_case():
     assert len(steps) > 5 and groups
     loud = [s for s in steps if not sentence_case(s)]
     assert not loud, loud
+
+
+def sentence_problems(step: str) -> list[str]:
+    """What breaks plain sentences in ``step``: each sentence starts with a capital or a digit
+    and the step ends with a full stop; inside a sentence a capital starts only a copy letter
+    or strand ID ("A", "B or D", "A14", "X2") or the acronym "ID"; no word is in capitals."""
+    out = [] if step.endswith(".") else [f"ends in {step[-5:]!r}"]
+    for sentence in re.split(r"(?<=\.)\s+", step):
+        if not (sentence[:1].isupper() or sentence[:1].isdigit()):
+            out.append(f"starts in lower case: {sentence[:20]!r}")
+        loud = [w for w in re.findall(r"[A-Za-z]+", sentence)[1:]
+                if w != w.lower() and not (len(w) == 1 or w in ("ID", "IDs"))]
+        out += [f"{w!r} in {sentence[:30]!r}" for w in loud]
+    return out
+
+
+@pytest.mark.parametrize("spec, levels", [("square-grid:2x2", 2), ("pentagon-flower", 2)])
+def test_weaving_steps_are_plain_sentences_naming_every_strand_once(spec, levels):
+    """The weaving steps of a square grid (k = 4: warp and weft) and of the pentagon flower
+    (k = 5: groups from the centre), with every optional step (label tabs, unnamed crossings,
+    glued parts): each step is plain sentences, and the groups woven in name every strand
+    once. A book stand-in holds only what the steps read."""
+    from types import SimpleNamespace
+    weave = snub_weaves(subdivide(inputs.get(spec), levels))[-1]
+    plan = plan_modules(weave)
+    piece = SimpleNamespace(flap=shapely.box(0, 0, 1, 1), left_out=(0,),
+                            glue=shapely.box(0, 0, 1, 1))
+    book = SimpleNamespace(plan=plan, pieces=((3, piece),), extra_pages=(1, 2, 3))
+    steps, groups = assembly.weaving_steps(weave, book, 0.0)
+    assert len(steps) >= 10
+    problems = {s[:40]: sentence_problems(s) for s in steps if sentence_problems(s)}
+    assert not problems, problems
+    woven = np.concatenate(groups)
+    assert sorted(woven.tolist()) == list(range(weave.n_strands))
+    assert len(sentence_problems("Lay the warp XX(copies A and C).XX")) == 3
+    assert len(sentence_problems("Join the group BEFORE THE NEXT. so it holds.")) == 4
 
 
 def test_legend_fold_swatch_dashes_are_even_and_apart():

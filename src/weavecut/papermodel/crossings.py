@@ -162,8 +162,8 @@ def callout_shapes(placed: list, spots) -> tuple[list, list[Text]]:
 def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float) -> list[tuple]:
     """The layers of the pages naming every crossing in ``crossings``
     (:func:`left_out_crossings`), without the page furniture: the pattern between two columns
-    of callouts; as many pages as the columns need, the crossings of each side dealt out over
-    them in turn from the top."""
+    of callouts, 3 GAP clear of the widest plate (room for the leaders); as many pages as the
+    columns need, the crossings of each side dealt out over them in turn from the top."""
     ids = plan.labels
     x0, y0, x1, y1 = area.box
     labels = [crossing_label(ids, over, under) for _, over, under in crossings]

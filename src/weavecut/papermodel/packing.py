@@ -270,7 +270,8 @@ def _best_spot(grid: "_Page", options, axis: int = 1):
 class _Options(list):
     """The turns (angle, mask, origin) of ``shape`` (a piece or stack), with ``along[axis]`` their
     indices shortest along that axis first (0: y, 1: x), and what every turn needs of a page:
-    ``cells`` free cells, and a free disc of ``radius`` cells.
+    ``cells`` free cells (as many as its mask holds, at least the fewest of any turn), and a
+    free disc of ``radius`` cells.
     The cells within
     ``reach`` of the piece are in its mask, so the centres within ``r + reach`` of the centre of
     its largest inscribed circle (radius ``r``) are, and the mask's cell nearest that centre is at
@@ -282,7 +283,7 @@ class _Options(list):
         self.along = [sorted(range(len(turns)), key=lambda t: (turns[t][1].shape[axis],
                                                                turns[t][0])) for axis in (0, 1)]
         self.cores = [_core(m) for _, m, _ in self]
-        self.cells = float(turns[0][1].sum()) if turns else 0.0
+        self.cells = min((float(m.sum()) for _, m, _ in turns), default=0.0)
         with np.errstate(all="ignore"):  # GEOS on subnormal coordinates
             r = float(shapely.length(shapely.maximum_inscribed_circle(shape, 0.1 * cell)))
         r = min(np.nan_to_num(r), np.sqrt(shape.area / np.pi))  # no circle beats the area
