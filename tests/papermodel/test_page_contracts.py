@@ -113,17 +113,22 @@ def sentence_problems(step: str) -> list[str]:
 
 
 @pytest.mark.parametrize("spec, levels", [("square-grid:2x2", 2), ("pentagon-flower", 2)])
-def test_weaving_steps_are_plain_sentences_naming_every_strand_once(spec, levels):
+def test_weaving_steps_are_plain_sentences_naming_every_strand_once(spec, levels, monkeypatch):
     """The weaving steps of a square grid (k = 4: warp and weft) and of the pentagon flower
     (k = 5: groups from the centre), with every optional step (label tabs, unnamed crossings,
     glued parts): each step is plain sentences, and the groups woven in name every strand
-    once. A book stand-in holds only what the steps read."""
+    once. A book stand-in holds only what the steps read (its one unnamed crossing is tile
+    0's)."""
     from types import SimpleNamespace
+    from weavecut.papermodel import crossings
     weave = snub_weaves(subdivide(inputs.get(spec), levels))[-1]
     plan = plan_modules(weave)
+    monkeypatch.setattr(crossings, "left_out_crossings", lambda weave, *_: [
+        (0, int(weave.tile_over[0]), int(weave.tile_under[0]))])
     piece = SimpleNamespace(flap=shapely.box(0, 0, 1, 1), left_out=(0,),
-                            glue=shapely.box(0, 0, 1, 1))
-    book = SimpleNamespace(plan=plan, pieces=((3, piece),), extra_pages=(1, 2, 3))
+                            glue=shapely.box(0, 0, 1, 1), label=f"{plan.labels[0]} 1/2")
+    book = SimpleNamespace(plan=plan, pieces=((3, piece),), extra_pages=(1, 2, 3),
+                           layout="mixed")
     steps, groups = assembly.weaving_steps(weave, book, 0.0)
     assert len(steps) >= 10
     problems = {s[:40]: sentence_problems(s) for s in steps if sentence_problems(s)}
