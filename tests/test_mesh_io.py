@@ -412,3 +412,28 @@ def test_hostile_files_fail_in_one_line_in_the_cli(tmp_path):
         assert result.exit_code == 1, (name, result.output)
         assert result.output.startswith(f"Error: {tmp_path / name}: "), result.output
         assert len(result.output.strip().splitlines()) == 1 and "internal" not in result.output
+
+
+@given(st.lists(st.binary(min_size=8, max_size=8), min_size=1, max_size=40),
+       st.sampled_from([ord("."), ord(" "), 0, 0x80, 0xFF]))
+def test_first_byte_finds_the_lowest_byte_equal_to_the_one_sought(chunks, byte):
+    """The SWAR search against a byte-by-byte look (little-endian: position 0 is the word's
+    lowest byte); 8 where no byte of the word is the one sought."""
+    from weavecut.mesh_io import _first_byte
+    words = np.frombuffer(b"".join(chunks), dtype="<u8").copy()
+    want = [next((i for i, b in enumerate(c) if b == byte), 8) for c in chunks]
+    assert _first_byte(words, byte).tolist() == want
+
+
+@given(st.lists(st.tuples(st.sampled_from(["", "-", "+"]), st.integers(0, 9_999_999),
+                          st.text("0123456789", max_size=8)), min_size=1, max_size=30))
+def test_plain_decimals_are_converted_by_the_fast_path_exactly(numbers):
+    """Plain decimals (a sign, 1-7 digits before the point, up to 8 after: at most 15 digits,
+    under 2**53) are all converted by the fast path, each to the double Python's float gives:
+    the digit path is the reader's speed, so falling back to numpy for them is a fault too."""
+    from weavecut.mesh_io import _Tokens
+    texts = [f"{s}{w}.{f}" if f else f"{s}{w}" for s, w, f in numbers]
+    tokens = _Tokens(" ".join(texts).encode())
+    values, plain = tokens._decimals(tokens.start, tokens.end)
+    assert plain.all(), [t for t, p in zip(texts, plain) if not p]
+    assert values.tolist() == [float(t) for t in texts]
