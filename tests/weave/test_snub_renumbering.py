@@ -56,3 +56,11 @@ def test_snub_weave_is_the_same_whichever_pentagon_is_first(name):
 @given(valid_meshes)
 def test_snub_weave_of_a_random_mesh_is_the_same_whichever_pentagon_is_first(mesh):
     _check_every_face_first(subdivide(mesh, 1)[1].mesh)
+
+
+def test_every_octagon_lists_its_pentagons_in_increasing_order():
+    for level in subdivide(inputs.get("hex-grid:4x4"), 2)[1:]:
+        weave = snub_weave(level.mesh)
+        pair = weave.tile_offsets[:-1][np.diff(weave.tile_offsets) == 2]
+        assert len(pair) and (weave.tile_faces[pair] < weave.tile_faces[pair + 1]).all()
+        assert np.array_equal(np.sort(weave.tile_faces), np.arange(level.mesh.n_faces))

@@ -35,7 +35,11 @@ def _graph_components(n: int, a: NDArray, b: NDArray) -> NDArray[np.int64]:
 
 
 def snub_weave(mesh: Mesh) -> Weave:
-    """The weave of a mesh made by a snub step (pentagons in the step's local order)."""
+    """The weave of a mesh made by a snub step (pentagons in the step's local order).
+
+    Tiles are numbered by middle edge and list their pentagons in increasing order, so the
+    first face of a tile (which drawings and puzzle guides read) does not depend on the sort.
+    """
     faces = mesh.dense_faces()
     if faces is None or faces.shape[1] != 5:
         raise MeshError("the snub weave needs a level made by a pentagon snub step (level >= 1)")
