@@ -15,6 +15,7 @@ from hypothesis import given, settings
 
 from tests.strategies import examples, valid_meshes
 from weavecut import inputs
+from weavecut.errors import MeshError
 from weavecut.mesh import Mesh
 from weavecut.subdivision import subdivide
 from weavecut.weave.snub_weave import snub_weave
@@ -64,3 +65,14 @@ def test_every_octagon_lists_its_pentagons_in_increasing_order():
         pair = weave.tile_offsets[:-1][np.diff(weave.tile_offsets) == 2]
         assert len(pair) and (weave.tile_faces[pair] < weave.tile_faces[pair + 1]).all()
         assert np.array_equal(np.sort(weave.tile_faces), np.arange(level.mesh.n_faces))
+
+
+def test_a_turned_pentagon_is_named_in_the_refusal():
+    """Turning the last pentagon's corners by one moves its tip off every middle edge; the
+    refusal names that pentagon, not one whose tip lies on tile 0's middle edge."""
+    mesh = subdivide(inputs.get("square-grid:3x3"), 1)[1].mesh
+    faces = mesh.dense_faces().copy()
+    last = len(faces) - 1
+    faces[last] = np.roll(faces[last], 1)
+    with pytest.raises(MeshError, match=f"^pentagon {last} has no middle edge at its tip"):
+        snub_weave(Mesh.from_faces(mesh.vertices, faces))
