@@ -8,7 +8,9 @@ and continues in the tile whose pentagon has its tip at the other end of U's mid
 successor map on pentagons, ``succ(p) = sibling(partner(p))``, ordered by pointer jumping.
 
 Everything is read off the level's mesh: middle edges are local edge 1 of every pentagon, tips
-local vertex 4 (the snub step's numbering), so no parent data is needed.
+local vertex 4 (the snub step's numbering), so no parent data is needed. Tiles are numbered by
+middle edge and list their pentagons in increasing order (drawings and puzzle guides read a
+tile's first face).
 """
 
 from __future__ import annotations
@@ -35,11 +37,7 @@ def _graph_components(n: int, a: NDArray, b: NDArray) -> NDArray[np.int64]:
 
 
 def snub_weave(mesh: Mesh) -> Weave:
-    """The weave of a mesh made by a snub step (pentagons in the step's local order).
-
-    Tiles are numbered by middle edge and list their pentagons in increasing order, so the
-    first face of a tile (which drawings and puzzle guides read) does not depend on the sort.
-    """
+    """The weave of a mesh made by a snub step (pentagons in the step's local order)."""
     faces = mesh.dense_faces()
     if faces is None or faces.shape[1] != 5:
         raise MeshError("the snub weave needs a level made by a pentagon snub step (level >= 1)")
