@@ -76,3 +76,19 @@ def test_a_turned_pentagon_is_named_in_the_refusal():
     faces[last] = np.roll(faces[last], 1)
     with pytest.raises(MeshError, match=f"^pentagon {last} has no middle edge at its tip"):
         snub_weave(Mesh.from_faces(mesh.vertices, faces))
+
+
+def _starts_at_its_lone_end(weave):
+    lone = np.diff(weave.tile_offsets) == 1
+    for s in np.flatnonzero(~weave.strand_closed):
+        tiles, over = weave.strand(s)
+        first, last = over[0] & lone[tiles[0]], over[-1] & lone[tiles[-1]]
+        assert first or not last, f"strand {s} ends on its own lone tile but starts elsewhere"
+
+
+@pytest.mark.parametrize("name", ["square-grid:3x3", "pentagon-flower", "hex-grid:2x2"])
+def test_an_open_strand_starts_at_its_own_lone_end(name):
+    """The walking direction kept is the one with more pentagons: a strand whose own boundary
+    (lone) tile is at one end only is walked from there."""
+    for level in subdivide(inputs.get(name), 2)[1:]:
+        _starts_at_its_lone_end(snub_weave(level.mesh))
