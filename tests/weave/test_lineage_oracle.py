@@ -12,11 +12,13 @@ from collections import Counter
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
 
+from tests.strategies import examples, valid_meshes
 from weavecut import inputs
 from weavecut.subdivision import subdivide
 from weavecut.weave.colour import palette, shade, strand_colours
-from weavecut.weave.snub_weave import snub_weaves
+from weavecut.weave.snub_weave import lineage, snub_weave, snub_weaves
 
 
 
@@ -86,3 +88,14 @@ def test_siblings_take_shades_longest_first(name):
                 assert luminance(children[kids[0]]) < luminance(parents[p]) < luminance(
                     children[kids[1]])
         assert checked >= 5
+
+
+@settings(max_examples=examples(30), deadline=None)
+@given(valid_meshes)
+def test_lineage_of_a_random_mesh_equals_recounted_votes(mesh):
+    """Irregular patches have many lone boundary tiles (passed under by no strand): their
+    empty votes must count for nobody."""
+    hierarchy = subdivide(mesh, 3)
+    parent, child = snub_weave(hierarchy[2].mesh), snub_weave(hierarchy[3].mesh)
+    got = lineage(parent, child, hierarchy[3].parent_face)
+    assert got.tolist() == lineage_by_loops(parent, child, hierarchy[3].parent_face)

@@ -206,3 +206,14 @@ def test_self_crossings_of_the_first_strand_count():
         row["strand_length"]["total"])
     assert row == _recount(weave, weaves[-2])
     assert row["self_crossings"] == 12
+
+
+def test_a_balls_listed_loops_agree_with_its_length_spread():
+    """The loops a ball lists and the spread beside them are the same lengths to the same 6
+    decimals: the shortest and longest listed are the spread's min and max exactly."""
+    weave = snub_weaves(subdivide(inputs.get("dodecahedron"), 2, project="sphere"))[-1]
+    row = weave_summary(weave)
+    loops = row["strand_lengths"]
+    assert weave.strand_closed.all() and len(loops) == weave.n_strands
+    assert (min(loops), max(loops)) == (row["strand_length"]["min"], row["strand_length"]["max"])
+    assert all(round(x, 6) == x for x in loops)

@@ -8,7 +8,10 @@ and continues in the tile whose pentagon has its tip at the other end of U's mid
 successor map on pentagons, ``succ(p) = sibling(partner(p))``, ordered by pointer jumping.
 
 Everything is read off the level's mesh: middle edges are local edge 1 of every pentagon, tips
-local vertex 4 (the snub step's numbering), so no parent data is needed.
+local vertex 4 (the snub step's numbering), so no parent data is needed. Tiles are numbered by
+middle edge and list their pentagons in increasing order (drawings and puzzle guides read a
+tile's first face). Of a strand's two walking directions the one with more pentagons is
+kept, so a strand whose own lone tile is at one end only is walked from there.
 """
 
 from __future__ import annotations
