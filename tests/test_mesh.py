@@ -160,3 +160,20 @@ def test_topology_against_a_dict_built_one(faces):
     assert topo.edges.tolist() == [list(e) for e in edges]
     assert topo.half_edge_edge.tolist() == he_edge
     assert topo.half_edge_side.tolist() == side
+
+
+def test_vertex_count_beyond_int32_indexes_is_refused():
+    """2**31 vertices (a zero-stride view, no memory) are one more than int32 indexes reach."""
+    from types import SimpleNamespace
+    from weavecut.mesh import check_structure
+    many = SimpleNamespace(vertices=np.broadcast_to(np.zeros((1, 2)), (2**31, 2)),
+                           face_offsets=np.zeros(1, np.int64), face_indices=np.zeros(0, np.int32))
+    with pytest.raises(MeshError, match=r"^2147483648 vertices is more than weave-cut indexes "
+                                        r"\(2147483647\)$"):
+        check_structure(many)
+
+
+def test_out_of_range_first_corner_names_its_own_face():
+    """The out-of-range corner opening face 1 is blamed on face 1, not on the face before."""
+    with pytest.raises(MeshError, match=r"^face 1 uses vertex 5, out of range 0\.\.2$"):
+        Mesh.from_faces([(0, 0), (1, 0), (0, 1)], [[0, 1, 2], [5, 1, 2]])
