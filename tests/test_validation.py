@@ -191,3 +191,15 @@ def test_a_mesh_without_faces_is_refused_in_words():
     from weavecut.validation import validate
     with pytest.raises(MeshError, match="^the mesh has no faces$"):
         validate(Mesh.from_faces([(0, 0), (1, 0), (0, 1)], []))
+
+
+def test_a_face_wholly_inside_another_far_from_the_origin_is_found():
+    """A small triangle inside a big one (no edges cross; only the boundary-vertex test sees
+    it), the big one second and far from the origin, the small one near its corner: the
+    prefilter's circle is centred on the big face's own vertex mean."""
+    from weavecut.validation import validate
+    points = [(100, 100), (101, 100), (100, 101),  # face 0, apart
+              (50, 50), (60, 50), (50, 60),  # face 1, the big one
+              (50.5, 50.5), (51, 50.5), (50.5, 51)]  # face 2, inside face 1 near vertex 3
+    with pytest.raises(MeshError, match=r"^vertex 6 lies inside face 1 \(faces overlap\)$"):
+        validate(Mesh.from_faces(points, [[0, 1, 2], [3, 4, 5], [6, 7, 8]]))
