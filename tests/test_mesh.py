@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 from hypothesis import example, given, settings
@@ -114,3 +116,64 @@ def test_topology_edges_are_sorted_and_deterministic():
     np.testing.assert_array_equal(a.edges, b.edges)
     keys = a.edges[:, 0].astype(np.int64) * mesh.n_vertices + a.edges[:, 1]
     assert (np.diff(keys) > 0).all()
+
+
+def _oracle_topology(faces):
+    """Dict-based topology of a list of faces: (edges, half-edge edge, half-edge side), or the
+    message of the first bad edge (by the sorted edge order) that Topology.build must give."""
+    directed = [(f, u, face[(i + 1) % len(face)]) for f, face in enumerate(faces)
+                for i, u in enumerate(face)]
+    edges = sorted({(min(u, w), max(u, w)) for _, u, w in directed})
+    index = {e: i for i, e in enumerate(edges)}
+    he_edge = [index[(min(u, w), max(u, w))] for _, u, w in directed]
+    side = [int(u > w) for _, u, w in directed]
+    for e, (a, b) in enumerate(edges):
+        if he_edge.count(e) > 2:
+            return f"edge ({a}, {b}) is in {he_edge.count(e)} faces"
+    for e, (a, b) in enumerate(edges):
+        for s in (0, 1):
+            on = [f for (f, _, _), h, t in zip(directed, he_edge, side) if h == e and t == s]
+            if len(on) > 1:
+                return f"edge ({a}, {b}) runs the same way in face {on[0]} and face {on[1]}"
+    return edges, he_edge, side
+
+
+@settings(max_examples=300)
+@given(st.lists(st.permutations(range(7)).map(lambda p: list(p[:3])), min_size=1, max_size=6))
+@example([[0, 1, 2], [2, 1, 3], [3, 1, 4], [4, 1, 5], [1, 2, 6]])
+@example([[0, 1, 2], [1, 0, 3], [2, 1, 4], [4, 1, 5], [5, 6, 4], [6, 5, 2]])
+def test_topology_against_a_dict_built_one(faces):
+    """Topology.build on triangle soups against a dict oracle: the same edges, half-edge edges
+    and sides, or the same first bad edge named in the error (bow-tie vertices aside)."""
+    want = _oracle_topology(faces)
+    mesh = Mesh.from_faces(np.zeros((7, 2)), faces)
+    if isinstance(want, str):
+        with pytest.raises(NonManifoldError, match="^" + re.escape(want)):
+            Topology.build(mesh)
+        return
+    try:
+        topo = Topology.build(mesh)
+    except NonManifoldError as error:
+        assert "separate fans" in str(error)
+        return
+    edges, he_edge, side = want
+    assert topo.edges.tolist() == [list(e) for e in edges]
+    assert topo.half_edge_edge.tolist() == he_edge
+    assert topo.half_edge_side.tolist() == side
+
+
+def test_vertex_count_beyond_int32_indexes_is_refused():
+    """2**31 vertices (a zero-stride view, no memory) are one more than int32 indexes reach."""
+    from types import SimpleNamespace
+    from weavecut.mesh import check_structure
+    many = SimpleNamespace(vertices=np.broadcast_to(np.zeros((1, 2)), (2**31, 2)),
+                           face_offsets=np.zeros(1, np.int64), face_indices=np.zeros(0, np.int32))
+    with pytest.raises(MeshError, match=r"^2147483648 vertices is more than weave-cut indexes "
+                                        r"\(2147483647\)$"):
+        check_structure(many)
+
+
+def test_out_of_range_first_corner_names_its_own_face():
+    """The out-of-range corner opening face 1 is blamed on face 1, not on the face before."""
+    with pytest.raises(MeshError, match=r"^face 1 uses vertex 5, out of range 0\.\.2$"):
+        Mesh.from_faces([(0, 0), (1, 0), (0, 1)], [[0, 1, 2], [5, 1, 2]])

@@ -437,3 +437,62 @@ def test_plain_decimals_are_converted_by_the_fast_path_exactly(numbers):
     values, plain = tokens._decimals(tokens.start, tokens.end)
     assert plain.all(), [t for t, p in zip(texts, plain) if not p]
     assert values.tolist() == [float(t) for t in texts]
+
+
+def _oracle_tokens(data: bytes, lines_before: int, comments: bool):
+    """A plain-Python split of an OBJ text: (tokens, first token of each kept line, its line
+    number, tokens on it, line ends), with _Tokens' rules spelt out byte by byte."""
+    text = bytearray(data if data.endswith(b"\n") else data + b"\n")
+    for i, b in enumerate(text):
+        if b == 13:
+            text[i] = 32 if text[i + 1] == 10 else 10
+        elif b in (9, 11, 12):
+            text[i] = 32
+        elif b < 32 and b != 10:
+            text[i] = 127
+    lines = bytes(text).split(b"\n")[:-1]
+    tokens, first, number, count = [], [], [], []
+    for n, line in enumerate(lines):
+        if comments:
+            line = line.split(b"#")[0]
+        words = [w for w in line.split(b" ") if w]
+        if words:
+            first.append(len(tokens))
+            number.append(n + 1 + lines_before)
+            count.append(len(words))
+            tokens += words
+    return tokens, first, number, count, len(lines) - (not data.endswith(b"\n"))
+
+
+@settings(max_examples=300)
+@given(st.lists(st.sampled_from([b"v", b"1", b"-2.5", b"#", b" ", b"  ", b"\t", b"\n", b"\r",
+                                 b"\r\n", b"\x01", b"\x0b", b"\x0c", b"\x7f"]), max_size=40),
+       st.integers(0, 3), st.booleans())
+@example([b"v", b" ", b"1", b"\n", b"f", b"\n"], 0, True)
+@example([b"v", b" ", b"1"], 2, False)
+@example([b"\n", b"\n"], 0, True)
+def test_tokens_split_like_a_plain_python_split(parts, lines_before, comments):
+    """_Tokens (both its fast path for texts of single spaces and its general one) against a
+    byte-by-byte split: the same tokens, first tokens, line numbers, counts and line ends."""
+    from weavecut.mesh_io import _Tokens
+    data = b"".join(parts)
+    tokens = _Tokens(data, lines_before, comments)
+    words, first, number, count, n_lines = _oracle_tokens(data, lines_before, comments)
+    got = [tokens.buf[a:b].tobytes() for a, b in zip(tokens.start.tolist(), tokens.end.tolist())]
+    assert got == words
+    assert tokens.first.tolist() == first
+    assert tokens.line.tolist() == number
+    assert tokens.count.tolist() == count
+    assert tokens.n_lines == n_lines
+
+
+@given(st.lists(st.sampled_from([b"v", b"1", b"-2.5", b"#", b" ", b"  ", b"\n"]), max_size=30))
+def test_tokens_leave_texts_of_spaces_and_line_feeds_as_they_are(parts):
+    """A text whose only bytes below 33 are spaces and line feeds skips the control-byte pass
+    (the common case, kept fast), and comments are blanked by default."""
+    from weavecut.mesh_io import _Tokens
+    data = b"".join(parts)
+    with patch.object(mesh_io, "_normalise_controls", side_effect=AssertionError("normalised")):
+        tokens = _Tokens(data)
+    assert b"#" not in tokens.buf.tobytes()
+    assert _Tokens(b"v 1\n").line.tolist() == [1]  # lines count from 1 by default

@@ -153,3 +153,53 @@ def test_a_star_that_turns_left_at_every_corner_intersects_itself(allow):
     assert signed_areas(star)[0] > 0  # it winds round twice, always turning left
     with pytest.raises(MeshError, match="face 0 intersects itself"):
         validate(star, allow_nonconvex=allow)
+
+
+@settings(max_examples=60)
+@given(st.sampled_from([1e-6, 1e-3, 1.0, 1e3, 1e6]), st.sampled_from([0.0, 10.0]))
+def test_flat_and_reflex_thresholds_are_relative_to_the_mesh_size(scale, lift):
+    """The zero-area and reflex-corner tests compare with AREA_EPS times the squared largest
+    side of the bounding box, whatever the size and position: a sliver of relative area
+    0.5e-12 is flat and one of 4e-12 is not; a corner turning by -0.25e-12 (relative) is
+    straight enough, one turning by -8e-12 is reflex."""
+    from weavecut.validation import validate
+
+    def mesh(points, faces):
+        return Mesh.from_faces(scale * (np.array(points) + [0.0, lift]), faces)
+
+    with pytest.raises(MeshError, match="^face 0 has zero area"):
+        validate(mesh([(0, 0), (1, 0), (0.5, 1e-12)], [[0, 1, 2]]))
+    validate(mesh([(0, 0), (1, 0), (0.5, 8e-12)], [[0, 1, 2]]))
+    dent = [(0, 0), (1, 0), (1, 1), (0.5, 1 - 0.25e-12), (0, 1)]
+    validate(mesh(dent, [[0, 1, 2, 3, 4]]))
+    dent[3] = (0.5, 1 - 8e-12)
+    with pytest.raises(MeshError, match="^face 0 is not convex at vertex 3"):
+        validate(mesh(dent, [[0, 1, 2, 3, 4]]))
+
+
+def test_mixed_orientation_names_the_first_clockwise_face_and_counts_them():
+    """The message names the first clockwise face (not merely a small one) and the count."""
+    from weavecut.validation import validate
+    m = Mesh.from_faces([(0, 0), (0.1, 0), (0, 0.1), (2, 0), (2, 1), (3, 0)],
+                        [[0, 1, 2], [3, 4, 5]])
+    with pytest.raises(MeshError, match=r"^face 1 is clockwise while others are "
+                                        r"counter-clockwise \(1 of 2 faces are clockwise\)$"):
+        validate(m)
+
+
+def test_a_mesh_without_faces_is_refused_in_words():
+    from weavecut.validation import validate
+    with pytest.raises(MeshError, match="^the mesh has no faces$"):
+        validate(Mesh.from_faces([(0, 0), (1, 0), (0, 1)], []))
+
+
+def test_a_face_wholly_inside_another_far_from_the_origin_is_found():
+    """A small triangle inside a big one (no edges cross; only the boundary-vertex test sees
+    it), the big one second and far from the origin, the small one near its corner: the
+    prefilter's circle is centred on the big face's own vertex mean."""
+    from weavecut.validation import validate
+    points = [(100, 100), (101, 100), (100, 101),  # face 0, apart
+              (50, 50), (60, 50), (50, 60),  # face 1, the big one
+              (50.5, 50.5), (51, 50.5), (50.5, 51)]  # face 2, inside face 1 near vertex 3
+    with pytest.raises(MeshError, match=r"^vertex 6 lies inside face 1 \(faces overlap\)$"):
+        validate(Mesh.from_faces(points, [[0, 1, 2], [3, 4, 5], [6, 7, 8]]))
