@@ -13,6 +13,7 @@ import numpy as np
 
 from .errors import MeshError
 from .mesh import Mesh
+from .numeric import dot
 
 MAX_GRID = 2000
 
@@ -112,7 +113,7 @@ def pentagon_flower(param: str | None = None) -> Mesh:
     for i in range(5):  # reflect the central pentagon across each of its edges
         a, b = centre[i], centre[(i + 1) % 5]
         n = np.array([b[1] - a[1], a[0] - b[0]]) / np.hypot(*(b - a))
-        petal = centre - 2 * ((centre - a) @ n)[:, None] * n
+        petal = centre - 2 * dot(centre - a, n)[:, None] * n
         polys.append(petal[::-1])  # a reflection reverses orientation
     return _weld(polys)
 
@@ -156,8 +157,8 @@ def _convex_solid(points) -> Mesh:
     centre = centre[f] / np.bincount(f)[f][:, None]
     ref = points[v][np.r_[0, np.flatnonzero(f[1:] != f[:-1]) + 1]][f] - centre
     # angle around the outward normal from the face's first corner: counter-clockwise outside
-    angle = np.arctan2(np.einsum("ij,ij->i", np.cross(ref, points[v] - centre), normal),
-                       np.einsum("ij,ij->i", ref, points[v] - centre))
+    angle = np.arctan2(dot(np.cross(ref, points[v] - centre), normal),
+                       dot(ref, points[v] - centre))
     order = np.lexsort((angle, f))
     sizes = np.bincount(f)
     return Mesh(points, np.concatenate([[0], np.cumsum(sizes)]), v[order])

@@ -15,6 +15,7 @@ from numpy.typing import NDArray
 
 from .errors import MeshError
 from .mesh import Mesh
+from .numeric import solve
 
 SPHERE_TOLERANCE = 1e-6  # relative spread of the distances from the centre of a spherical mesh
 
@@ -58,10 +59,18 @@ def circumsphere(points: NDArray[np.float64]) -> tuple[NDArray[np.float64], floa
     ``SPHERE_TOLERANCE`` of the radius)."""
     if points.shape[1] != 3:
         raise MeshError("--project sphere needs a surface in space (x, y, z vertices)")
-    # |p|^2 = 2 c . p + (r^2 - |c|^2): linear in c and the constant
-    a = np.column_stack([2 * points, np.ones(len(points))])
-    solution = np.linalg.lstsq(a, (points**2).sum(axis=1), rcond=None)[0]
-    centre = solution[:3]
+    # |q|^2 = 2 c . q + (r^2 - |c|^2), q = p - mean: linear in c and the constant; the normal
+    # equations summed and solved without BLAS or LAPACK (numeric), the same bits everywhere
+    mean = points.mean(axis=0)
+    q = points - mean
+    a = np.column_stack([2 * q, np.ones(len(q))])
+    b = (q * q).sum(axis=1)
+    try:
+        solution = solve((a[:, :, None] * a[:, None, :]).sum(axis=0), (a * b[:, None]).sum(axis=0))
+    except ValueError:
+        raise MeshError("--project sphere needs a surface in space whose vertices span a "
+                        "sphere; these lie in one plane") from None
+    centre = mean + solution[:3]
     distance = np.linalg.norm(points - centre, axis=1)
     radius = float(distance.mean())
     worst = int(np.argmax(np.abs(distance - radius)))

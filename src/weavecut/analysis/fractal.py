@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..mesh import Mesh, outer_vertices
+from ..numeric import line_fit
 from ..subdivision import Level
 from ..subdivision.snub import FIRST, LAST, MIDDLE, SPOKE
 
@@ -271,7 +272,7 @@ def box_counting(segments: NDArray[np.float64], sizes=None, n_grids: int = 8) ->
                                for s in shifts]))
     x = np.log(1.0 / sizes)
     y = np.log(np.asarray(counts, dtype=float))
-    slope, intercept = np.polyfit(x, y, 1)
+    slope, intercept = line_fit(x, y)
     fit = slope * x + intercept
     ss = float(((y - y.mean()) ** 2).sum())
     r2 = 1.0 - float(((y - fit) ** 2).sum()) / ss if ss > 0 else 1.0
@@ -279,7 +280,7 @@ def box_counting(segments: NDArray[np.float64], sizes=None, n_grids: int = 8) ->
     stderr = (math.sqrt(float(((y - fit) ** 2).sum()) / dof / float(((x - x.mean()) ** 2).sum()))
               if dof > 0 else math.nan)
     half = len(x) // 2
-    halves = [float(np.polyfit(x[part], y[part], 1)[0]) if len(x[part]) > 1 else math.nan
+    halves = [line_fit(x[part], y[part])[0] if len(x[part]) > 1 else math.nan
               for part in (slice(0, half + 1), slice(half, None))]
     return {"sizes": [float(s) for s in sizes], "counts": [float(c) for c in counts],
             "dimension": float(slope), "intercept": float(intercept), "r2": r2,
@@ -296,7 +297,7 @@ def lsystem_boundary(mesh: Mesh, levels: int, chirality: str = "left") -> NDArra
     b = mesh.vertices[mesh.face_indices[mesh.next_half_edge[lone]]]
     ref = lsystem_curve(levels, chirality=chirality)
     unit = ref[:, 0] + 1j * ref[:, 1]
-    pts = (a[:, 0] + 1j * a[:, 1])[:, None] + ((b - a) @ [1, 1j])[:, None] * unit[None]
+    pts = (a[:, 0] + 1j * a[:, 1])[:, None] + ((b - a)[:, 0] + 1j * (b - a)[:, 1])[:, None] * unit[None]
     return curve_segments(np.stack([pts.real, pts.imag], axis=-1))
 
 

@@ -6,6 +6,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..mesh import Mesh, corner_angles, outer_vertices, vertex_degrees
+from ..numeric import dot
 
 REFLEX_EPS = 1e-9
 BLOCK = 1 << 16  # faces per block of the angle pass: its scratch stays in the cache
@@ -81,8 +82,8 @@ def surface_angles(mesh: Mesh) -> NDArray[np.float64]:
     a = p[mesh.prev_half_edge] - p
     b = p[mesh.next_half_edge] - p
     cross = np.cross(b, a)
-    side = np.einsum("hk,hk->h", cross, face_normals(mesh)[mesh.half_edge_face])
-    angle = np.arctan2(np.linalg.norm(cross, axis=1), np.einsum("hk,hk->h", a, b))
+    side = dot(cross, face_normals(mesh)[mesh.half_edge_face])
+    angle = np.arctan2(np.linalg.norm(cross, axis=1), dot(a, b))
     return np.where(side < 0, 2 * np.pi - angle, angle)
 
 

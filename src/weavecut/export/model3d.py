@@ -16,6 +16,7 @@ from numpy.typing import NDArray
 from PIL import Image
 
 from ..errors import ExportError
+from ..numeric import dot, matmul
 
 # (azimuth, elevation) in degrees of the views of a PNG, left to right, top to bottom
 VIEWS = ((20, 25), (110, 25), (200, 25), (290, -60))
@@ -64,7 +65,7 @@ def _rotation(azimuth: float, elevation: float) -> NDArray[np.float64]:
     # world z up -> view y up; world -y (after the spin) towards the viewer
     upright = np.array([[1, 0, 0], [0, 0, 1], [0, -1, 0]], dtype=float)
     tilt = np.array([[1, 0, 0], [0, math.cos(e), -math.sin(e)], [0, math.sin(e), math.cos(e)]])
-    return tilt @ upright @ spin
+    return matmul(matmul(tilt, upright), spin)
 
 
 def png_bytes(vertices, triangles, colours, size: int = 480, views=VIEWS) -> bytes:
@@ -88,11 +89,11 @@ def png_bytes(vertices, triangles, colours, size: int = 480, views=VIEWS) -> byt
 def _view(vertices, triangles, colours, radius: float, big: int, view) -> Image.Image:
     """One view: flat-shaded triangles, orthographic, hidden surfaces removed by a depth
     buffer."""
-    p = vertices @ _rotation(*view).T
+    p = matmul(vertices, _rotation(*view).T)
     corners = p[triangles]  # (M, 3, 3)
     normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
     normal /= np.maximum(np.linalg.norm(normal, axis=1), 1e-300)[:, None]
-    light = np.abs(normal @ (LIGHT / np.linalg.norm(LIGHT)))  # paper: lit on both sides
+    light = np.abs(dot(normal, np.asarray(LIGHT) / math.hypot(*LIGHT)))  # paper: lit on both sides
     rgb = colours[triangles].mean(axis=1) * (0.35 + 0.65 * light)[:, None]
     xy = (corners[:, :, :2] / radius * 0.47 * big) * np.array([1, -1]) + big / 2
     front, tri = _depth_buffer(xy, corners[:, :, 2], big)

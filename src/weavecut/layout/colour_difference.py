@@ -17,6 +17,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..numeric import matmul
+
 _WHITE_D65 = np.array([0.95047, 1.0, 1.08883])
 _SRGB_TO_XYZ = np.array([[0.4124564, 0.3575761, 0.1804375],
                          [0.2126729, 0.7151522, 0.0721750],
@@ -39,7 +41,7 @@ def srgb_to_lab(colours) -> NDArray[np.float64]:
     """CIELAB (L*, a*, b*) under D65 of ``"#rrggbb"`` strings: (N, 3), or (3,) for one."""
     c = hex_to_rgb(colours)
     linear = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
-    xyz = linear @ _SRGB_TO_XYZ.T / _WHITE_D65
+    xyz = matmul(linear, _SRGB_TO_XYZ.T) / _WHITE_D65
     eps, kappa = 216 / 24389, 24389 / 27
     f = np.where(xyz > eps, np.cbrt(xyz), (kappa * xyz + 16) / 116)
     return np.stack([116 * f[..., 1] - 16, 500 * (f[..., 0] - f[..., 1]),

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..numeric import dot
+
 BLACK, WHITE = "#000000", "#ffffff"
 MIN_CONTRAST = 4.5
 """WCAG 2 level AA for normal text; the least any printed label may have."""
@@ -26,7 +28,7 @@ def relative_luminance(colour: str) -> float:
     """WCAG 2 relative luminance of an sRGB colour, 0 (black) to 1 (white)."""
     c = np.array(rgb(colour))
     linear = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
-    return float(linear @ np.array([0.2126, 0.7152, 0.0722]))
+    return float(dot(linear, [0.2126, 0.7152, 0.0722]))
 
 
 def contrast_ratio(a: str, b: str) -> float:

@@ -20,6 +20,7 @@ import numpy as np
 import shapely
 from reportlab.pdfbase.pdfmetrics import stringWidth
 
+from ..numeric import affine, transform
 from .drawing import Text
 
 MIN_CAP = 2.5
@@ -43,10 +44,7 @@ def _box_in_frame(text: str, size: float, anchor: str) -> tuple[float, float, fl
 
 
 def _turn(xy, angle_deg: float, origin) -> np.ndarray:
-    a = np.radians(angle_deg)
-    c, s = np.cos(a), np.sin(a)
-    xy = np.asarray(xy, dtype=float)
-    return xy @ np.array([[c, s], [-s, c]]) + np.asarray(origin, dtype=float)
+    return transform(affine(angle_deg, np.asarray(origin, dtype=float)))(xy)
 
 
 def text_box(t: Text) -> shapely.Polygon:

@@ -18,9 +18,9 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 from numpy.typing import NDArray
-from shapely import affinity
 
 from ..errors import WeaveCutError
+from ..numeric import affine, transform
 
 
 def offset(parts: NDArray[np.object_], kerf: float) -> NDArray[np.object_]:
@@ -43,8 +43,7 @@ class Placement:
         """The parts moved to their places on their sheets."""
         out = np.empty(len(parts), dtype=object)
         for k, part in enumerate(parts):  # one affine per part; no batch form for angles
-            moved = affinity.rotate(part, self.angle[k], origin=(0.0, 0.0))
-            out[k] = affinity.translate(moved, *self.shift[k])
+            out[k] = shapely.transform(part, transform(affine(self.angle[k], self.shift[k])))
         return out
 
 
@@ -76,7 +75,7 @@ def nest(parts: NDArray[np.object_], sheet: tuple[float, float], spacing: float,
     angle = upright_angles(parts)
     if rotate is not None:
         angle = np.where(rotate, angle, 0.0)
-    turned = np.array([affinity.rotate(p, a, origin=(0.0, 0.0)) for p, a in zip(parts, angle)],
+    turned = np.array([shapely.transform(p, transform(affine(a))) for p, a in zip(parts, angle)],
                       dtype=object)
     b = shapely.bounds(turned)
     w, h = b[:, 2] - b[:, 0] + spacing, b[:, 3] - b[:, 1] + spacing

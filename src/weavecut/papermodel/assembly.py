@@ -12,6 +12,7 @@ import numpy as np
 import shapely
 import shapely.ops
 
+from ..numeric import transform
 from ..layout.contrast import text_colour_on
 from ..layout.drawing import Fit, Layer, Polylines, Sheet, Style, Text, polygons_from_shapely
 from ..layout.labels import (
@@ -204,7 +205,7 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
             used.add(t)
     ts = list(arrow_tiles)
     unit = [shapely.transform(arrow_polygon((0.5, 0.0), (1.0, 0.0), 1.0),
-                              lambda xy, d=arrow_tiles[t]: xy @ turn_to(d).T) for t in ts]
+                              transform(turn_to(arrow_tiles[t]))) for t in ts]
     length = largest_fit(regions[ts], unit, centres[ts], 1.5, 0.6 * across) if ts else []
     arrows: dict[str, list] = {}
     for t, u, z in zip(ts, unit, list(length)):

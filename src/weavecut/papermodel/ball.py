@@ -25,7 +25,8 @@ from ..weave.model import Weave
 from .assembly import TEXT, paragraphs
 from .book import CURL, MIN_STRIP, WARN_STRIP, SizeError, StrandBook, page_index, strip_sheets
 from .pages import FOLD, GAP, PageArea, _fits, page_layers, page_span
-from .strips import Strip, affine, copy_letter, flat_angle, label_strip, outline_of, tint
+from ..numeric import affine, dot, snap
+from .strips import Strip, copy_letter, flat_angle, label_strip, outline_of, tint
 from .unfold import OVERLAP, Unfolding, UnfoldError, dashed, flatten, unfold
 
 MIN_FOLD = math.radians(1.0)  # joints flatter than this are not drawn as folds
@@ -260,10 +261,10 @@ def _views(weave: Weave, colours, labels, box, cells):
         r = np.cross(u, d)
         cx = x0 + (k % 3 + 0.5) * (x1 - x0) / 3
         cy = y1 - (k // 3) * (cell + TEXT + 2) - cell / 2
-        facing = normals @ d
+        facing = dot(normals, d)
         keep = np.flatnonzero(facing > 0.05)
-        keep = keep[np.argsort(rings[keep].mean(axis=1) @ d)]  # far ones first
-        shapes = shapely.polygons(np.stack([rings[keep] @ r, rings[keep] @ u], axis=-1)
+        keep = keep[np.argsort(snap(dot(rings[keep].mean(axis=1), d)), kind="stable")]  # far first
+        shapes = shapely.polygons(np.stack([dot(rings[keep], r), dot(rings[keep], u)], axis=-1)
                                   * scale + [cx, cy])
         fill = np.where(shown[top], own, np.where(shown[under], light, "#ffffff"))[keep]
         polys += shapes.tolist()

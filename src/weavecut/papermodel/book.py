@@ -17,6 +17,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ..numeric import matmul
 from ..errors import WeaveCutError
 from ..layout.drawing import Drawing, Sheet
 from ..layout.labels import MIN_CAP
@@ -240,7 +241,7 @@ def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitl
     if places is None:
         places = pack([p.cut for p in pieces], x1 - x0, y1 - y0, GAP, kinds=kinds)
     n_strip = max(pl.page for pl in places) + 1 if places else 0
-    placed = tuple((first + pl.page, p.moved(affine(0.0, (x0, y0)) @ pl.matrix(), pl.angle))
+    placed = tuple((first + pl.page, p.moved(matmul(affine(0.0, (x0, y0)), pl.matrix()), pl.angle))
                    for p, pl in zip(pieces, places))
     total = n_strip + first - 1
     sheets = []

@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
+from ..numeric import affine_inverse, transform
 from ..layout.drawing import Layer, Polylines, Style, Text, polygons_from_shapely
 from ..layout.labels import MIN_CAP, centred_text, text_box, text_width
 from ..weave.model import Weave
@@ -39,9 +40,8 @@ def left_out_crossings(weave: Weave, plan, pieces, layout: str) -> list[tuple[in
     for piece in pieces:  # pieces, not mesh elements
         if not piece.left_out:
             continue
-        inv = np.linalg.inv(piece.frame)
         spots = shapely.transform(shapely.point_on_surface(piece.tiles[list(piece.left_out)]),
-                                  lambda xy, inv=inv: xy @ inv[:2, :2].T + inv[:2, 2])
+                                  transform(affine_inverse(piece.frame)))
         which, hit = tree.query(spots, predicate="intersects")
         mine = weave.tile_under[hit] == piece.strand
         found.update(hit[mine].tolist())

@@ -19,6 +19,7 @@ import numpy as np
 import shapely
 from numpy.typing import NDArray
 
+from ..numeric import affine, matmul
 from ..layout import nesting, strokefont
 from ..layout.drawing import (
     Drawing,
@@ -34,7 +35,7 @@ from ..layout.lasersetup import Laser
 from .packing import pack
 from .pages import GAP
 from .printcut import CutReport, cut_layer, cut_report, ordered_outlines
-from .strips import Strip, affine
+from .strips import Strip
 
 ENGRAVE_MARGIN = 1.0  # mm between an engraved line and its strip's edge (card scorches there)
 MIN_ENGRAVED = 1.5  # mm: a smaller label is left out
@@ -129,7 +130,7 @@ def card_sheets(pieces: list[Strip], colours, las: Laser, kerf: float,
     for colour, group in groups.items():  # card colours
         places = pack([nesting.offset(np.array([p.cut], dtype=object), kerf)[0]
                        for p in group], width - 2 * margin, height - 2 * margin, gap)
-        moved = [p.moved(affine(0.0, (margin, margin)) @ pl.matrix(), pl.angle)
+        moved = [p.moved(matmul(affine(0.0, (margin, margin)), pl.matrix()), pl.angle)
                  for p, pl in zip(group, places)]
         for s in range(max(pl.page for pl in places) + 1):  # this colour's sheets
             here = [m for m, pl in zip(moved, places) if pl.page == s]

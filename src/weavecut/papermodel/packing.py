@@ -32,6 +32,8 @@ from numpy.typing import NDArray
 from scipy.fft import irfft2, next_fast_len, rfft2
 from scipy.ndimage import distance_transform_edt
 
+from ..numeric import affine, snap, transform
+
 ANGLE_STEP = 15.0  # degrees between the turns tried
 
 
@@ -46,15 +48,11 @@ class Place:
 
     def matrix(self) -> NDArray[np.float64]:
         """(3, 3) the affine map from the piece's frame to the packing area."""
-        a = np.radians(self.angle)
-        c, s = np.cos(a), np.sin(a)
-        return np.array([[c, -s, self.shift[0]], [s, c, self.shift[1]], [0.0, 0.0, 1.0]])
+        return affine(self.angle, self.shift)
 
 
 def _turned(shape, angle: float):
-    a = np.radians(angle)
-    c, s = np.cos(a), np.sin(a)
-    return shapely.transform(shape, lambda xy: xy @ np.array([[c, s], [-s, c]]))
+    return shapely.transform(shape, transform(affine(angle)))
 
 
 def _mask(shape, angle: float, gap: float, cell: float, width: float, height: float):
@@ -158,10 +156,10 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 0.
     hulls = shapely.area(shapely.convex_hull(shapes))
 
     def area(unit):  # what a piece takes up: its convex hull (a curled strip holds little)
-        return -float(hulls[unit[0]].sum())
+        return -int(snap(hulls[unit[0]].sum()))
 
     def rank(r):
-        return (_pages(r), _last_fill(r, shapes))
+        return (_pages(r), int(snap(_last_fill(r, shapes))))
 
     spectra: dict = {}  # the masks' Fourier transforms, shared by every packing tried
     best = None
@@ -236,9 +234,9 @@ def _fill(units, shapes, kinds, options, area, nx: int, ny: int, cell: float, fi
         number, ((iy, ix), angle, mask, origin) = spot
         pages[number].add(mask, iy, ix)
         shift = np.array([ix * cell - origin[0], iy * cell - origin[1]])
-        turn = Place(number, float(angle), (0.0, 0.0)).matrix()[:2, :2]
+        turn = transform(Place(number, float(angle), (0.0, 0.0)).matrix())
         for j, i in enumerate(members):
-            at = shift + turn @ (j * move)
+            at = shift + turn(j * move)
             out[i] = Place(number, float(angle), (float(at[0]), float(at[1])))
     return out
 

@@ -13,7 +13,8 @@ from ..layout.drawing import (Layer, Polygons, Polylines, Style, Text, polygons_
                               polylines_from_lines)
 from ..layout.contrast import text_colour_on
 from ..layout.labels import DESCENT, MIN_CAP, text_box, text_width, wrap
-from .strips import Strip, affine, flat_angle, outline_of, tint
+from ..numeric import affine
+from .strips import Strip, flat_angle, outline_of, tint
 from .unfold import dashed
 
 HEADER = 10.0  # mm above the printable area for the title line and one line of subtitle

@@ -19,6 +19,7 @@ import numpy as np
 import shapely
 from numpy.typing import NDArray
 
+from ..numeric import affine, affine_matrix, dot, matmul, snap, transform
 from ..weave.colour import Palette, crossing_pairs, greedy_classes
 from ..weave.model import Weave
 from ..layout.contrast import text_colour_on
@@ -284,9 +285,7 @@ class Strip:
     def moved(self, matrix: NDArray[np.float64], angle: float = 0.0) -> Strip:
         """The strip through the affine ``matrix`` (3, 3), a turn by ``angle`` degrees plus a
         shift; its texts turn with it and are then set upright."""
-        def f(xy):
-            return xy @ matrix[:2, :2].T + matrix[:2, 2]
-
+        f = transform(matrix)
         texts = []
         for t in self.texts:
             x, y = f(np.array([[t.x, t.y]]))[0]
@@ -300,14 +299,7 @@ class Strip:
                        flap=None if self.flap is None else shapely.transform(self.flap, f),
                        flap_edge=None if self.flap_edge is None
                        else shapely.transform(self.flap_edge, f),
-                       texts=tuple(texts), frame=matrix @ self.frame)
-
-
-def affine(angle: float = 0.0, shift=(0.0, 0.0), scale: float = 1.0) -> NDArray[np.float64]:
-    """(3, 3) the map xy -> scale * turn(xy, ``angle`` degrees) + ``shift``."""
-    a = np.radians(angle)
-    c, s = np.cos(a) * scale, np.sin(a) * scale
-    return np.array([[c, -s, shift[0]], [s, c, shift[1]], [0.0, 0.0, 1.0]])
+                       texts=tuple(texts), frame=matmul(matrix, self.frame))
 
 
 def model_tiles(weave: Weave) -> NDArray[np.object_]:
@@ -370,14 +362,15 @@ def build_strips(weave: Weave, plan: ModulePlan, colours: list[str], scale: floa
     names = [names[t] for t in image.tolist()]
     cols = [colours[t] for t in image.tolist()]
     c = plan.symmetry.centre
-    back = affine(0.0, c) @ affine(-np.degrees(copy * plan.symmetry.angle)) @ affine(0.0, -c)
+    back = matmul(matmul(affine(0.0, c), affine(-np.degrees(copy * plan.symmetry.angle))),
+                  affine(0.0, -c))
     out = []
     for s in np.asarray(strands).tolist():  # strands, not mesh elements
         visits, over = weave.strand(s)
         if plan.reversed[s]:
             visits, over = visits[::-1], over[::-1]
         strip = _strip(weave, s, visits, over, tiles, centres, names, cols, scale, tile_mm)
-        out.append(replace(strip, strand=int(image[s]), frame=strip.frame @ back))
+        out.append(replace(strip, strand=int(image[s]), frame=matmul(strip.frame, back)))
     return out
 
 
@@ -396,7 +389,7 @@ def flat_angle(outline) -> float:
     """Degrees to turn ``outline`` so that its smallest rectangle's long side lies along x."""
     rect = np.asarray(shapely.minimum_rotated_rectangle(outline).exterior.coords)[:4]
     edges = np.diff(np.vstack([rect, rect[:1]]), axis=0)
-    long = edges[np.argmax(np.hypot(edges[:, 0], edges[:, 1]))]
+    long = edges[np.argmax(snap(np.hypot(edges[:, 0], edges[:, 1])))]
     return float(-np.degrees(np.arctan2(long[1], long[0])))
 
 
@@ -406,13 +399,11 @@ def _strip(weave, s, visits, over, tiles, centres, labels, colours, scale, tile_
     pts = centres[visits]
     outline = outline_of(shapes, 1e-6 * tile_mm / scale)
     theta = flat_angle(outline)  # long side along x, walking towards +x
-    travel = (pts[-1] - pts[0]) @ affine(theta)[:2, :2].T
+    travel = transform(affine(theta))((pts[-1] - pts[0])[None])[0]
     turn = affine(theta + 180.0 if len(pts) > 1 and travel[0] < 0 else theta, scale=scale)
-    x0, y0 = shapely.transform(outline, lambda xy: xy @ turn[:2, :2].T).bounds[:2]
-    frame = affine(0.0, (-x0, -y0)) @ turn
-
-    def place(xy):
-        return xy @ frame[:2, :2].T + frame[:2, 2]
+    x0, y0 = shapely.transform(outline, transform(turn)).bounds[:2]
+    frame = matmul(affine(0.0, (-x0, -y0)), turn)
+    place = transform(frame)
 
     over_strand = weave.tile_over[visits]
     fills = tuple(colours[s] if o else tint(colours[t]) for o, t in
@@ -453,8 +444,8 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
     if len(cand):
         id_size, _ = _fit_text(regions[cand], centres[cand],
                                [strip.label.partition(" ")[0]] * len(cand), ID_SIZE)
-        rank = np.lexsort((np.arange(len(cand)), -shapely.area(regions[cand])))
-        first = rank[0] if id_size[rank[0]] >= MIN_CAP else int(np.argmax(id_size))
+        rank = np.lexsort((np.arange(len(cand)), -snap(shapely.area(regions[cand]))))
+        first = rank[0] if id_size[rank[0]] >= MIN_CAP else int(np.argmax(snap(id_size)))
         id_tiles = [int(cand[first])]
         if len(cand) >= 6:
             half = cand > cand[first] if cand[first] < cand[len(cand) // 2] else cand < cand[first]
@@ -506,7 +497,7 @@ def label_strip(strip: Strip, tile_mm: float) -> Strip:
         pts = np.array([(c.x, c.y) for c in shapely.centroid(strip.tiles)])
         dirs = [pts[min(i + 1, len(pts) - 1)] - pts[max(i - 1, 0)] for i in ends]
         unit = [arrow_polygon((0.5, 0.0), (1.0, 0.0), 1.0) for _ in ends]
-        unit = [shapely.transform(u, lambda xy, d=d: xy @ turn_to(d).T) for u, d in zip(unit, dirs)]
+        unit = [shapely.transform(u, transform(turn_to(d))) for u, d in zip(unit, dirs)]
         length = largest_fit(regions[ends], unit, centres[ends], 2.0, 0.45 * tile_mm)
         arrows = [shapely.transform(u, lambda xy, z=z, c=centres[i]: xy * z + c)
                   for u, z, i in zip(unit, length.tolist(), ends) if np.isfinite(z)]
@@ -553,14 +544,14 @@ def label_flap(strip: Strip, text: str) -> tuple[Strip, Text] | None:
         unit = (b - a) / np.maximum(length, 1e-12)[:, None]
         normal = np.column_stack([unit[:, 1], -unit[:, 0]])
         centre = np.asarray(tile.centroid.coords[0])
-        normal *= np.sign(np.einsum("ij,ij->i", normal, mid - centre))[:, None]
+        normal *= np.sign(dot(normal, mid - centre))[:, None]
         others = shapely.union_all(np.delete(strip.tiles, i))
         free = shapely.distance(shapely.points(mid), others) > 1e-6 * max(strip.length, 1.0) \
             if n > 1 else np.ones(len(mid), dtype=bool)
         if n > 1:
             nb = np.asarray(strip.tiles[1 if i == 0 else n - 2].centroid.coords[0])
             away = (centre - nb) / max(float(np.hypot(*(centre - nb))), 1e-12)
-            facing = normal @ away >= END_FACING
+            facing = dot(normal, away) >= END_FACING
         else:
             facing = np.ones(len(mid), dtype=bool)
         for e in np.flatnonzero(free & facing).tolist():  # an edge or two
@@ -625,7 +616,7 @@ def _place(strip: Strip, wanted, regions, centres, band, taken=()):
         mid = shapely.get_coordinates(shapely.centroid(zone)).reshape(-1, 2)[:1]
         spots = np.vstack([inner, mid, (inner + mid) / 2]) if len(mid) else inner[None]
         z, a = _fit_text([wide] * len(spots), spots, [text] * len(spots), MIN_CAP)
-        best = int(np.argmax(z))
+        best = int(np.argmax(snap(z)))
         near, z, a = spots[best:best + 1], z[best:best + 1], a[best:best + 1]
         if z[0] >= MIN_CAP - 1e-9:
             texts[k] = centred_text(near[0], text, float(z[0]), float(a[0]),
@@ -636,9 +627,9 @@ def _place(strip: Strip, wanted, regions, centres, band, taken=()):
 
 
 def turn_to(d) -> NDArray[np.float64]:
-    """(2, 2) the turn taking the x axis to the direction ``d``."""
+    """(3, 3) the turn taking the x axis to the direction ``d``."""
     d = np.asarray(d, dtype=float) / max(float(np.hypot(*d)), 1e-12)
-    return np.array([[d[0], -d[1]], [d[1], d[0]]])
+    return affine_matrix(d[0], -d[1], d[1], d[0])
 
 
 def _fit_text(regions, centres, texts, high: float):
@@ -653,5 +644,5 @@ def _fit_text(regions, centres, texts, high: float):
     fits = largest_fit(np.tile(regions, reps), shapes, np.tile(np.asarray(centres), (reps, 1)),
                        0.2, np.tile(np.broadcast_to(np.asarray(high, float), (n,)), reps), 10)
     sizes = np.nan_to_num(fits.reshape(reps, n).T, nan=0.0)
-    pick = sizes.argmax(axis=1)
+    pick = snap(sizes).argmax(axis=1)  # the first angle of equal sizes
     return sizes[np.arange(n), pick], np.asarray(ANGLES)[pick]

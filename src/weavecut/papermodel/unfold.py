@@ -36,6 +36,7 @@ import shapely
 from numpy.typing import NDArray
 
 from ..errors import WeaveCutError
+from ..numeric import dot, plane_normals
 from ..surface import face_normals
 from ..weave.model import Weave
 
@@ -68,7 +69,9 @@ class Flat:
 
 
 def flatten(weave: Weave) -> Flat:
-    """Every face of ``weave.mesh`` (pentagons, in space) projected onto its best-fit plane."""
+    """Every face of ``weave.mesh`` (pentagons, in space) projected onto its best-fit plane
+    (least squares, through the corners' mean: :func:`~weavecut.numeric.plane_normals`, the same
+    bits on every machine, where an SVD's are not), x towards corner 0."""
     mesh = weave.mesh
     faces = mesh.dense_faces()
     if faces is None or mesh.dim != 3:
@@ -76,12 +79,12 @@ def flatten(weave: Weave) -> Flat:
     p = mesh.vertices[faces]  # (F, 5, 3)
     centres = p.mean(axis=1)
     x = p - centres[:, None]
-    _, _, vt = np.linalg.svd(x)  # rows: the plane's two axes, then its normal
-    normal = vt[:, 2] * np.sign(np.einsum("fk,fk->f", vt[:, 2], face_normals(mesh)))[:, None]
-    e1 = vt[:, 0]
+    normal = plane_normals(x, face_normals(mesh))
+    e1 = x[:, 0] - dot(x[:, 0], normal)[:, None] * normal  # towards corner 0, in the plane
+    e1 /= np.linalg.norm(e1, axis=1)[:, None]
     e2 = np.cross(normal, e1)
-    coords = np.einsum("fvk,fk->fv", x, e1) + 1j * np.einsum("fvk,fk->fv", x, e2)
-    height = np.abs(np.einsum("fvk,fk->fv", x, normal)).max(axis=1)
+    coords = dot(x, e1[:, None]) + 1j * dot(x, e2[:, None])
+    height = np.abs(dot(x, normal[:, None])).max(axis=1)
     diameter = np.linalg.norm(p[:, :, None] - p[:, None], axis=-1).max(axis=(1, 2))
     return Flat(coords, height / diameter, normal, centres)
 
@@ -194,8 +197,8 @@ def unfold(weave: Weave, s: int, flat: Flat | None = None) -> Unfolding:
     stretch = np.abs(np.roll(corners, -1, axis=1) - corners) / length - 1.0
     folds = corners[rows + 1, later]
     n0, n1 = flat.normals[faces[:-1]], flat.normals[faces[1:]]
-    angle = np.arccos(np.clip(np.einsum("jk,jk->j", n0, n1), -1.0, 1.0))
-    convex = np.einsum("jk,jk->j", flat.centres[faces[1:]] - flat.centres[faces[:-1]], n0) <= 0
+    angle = np.arccos(np.clip(dot(n0, n1), -1.0, 1.0))
+    convex = dot(flat.centres[faces[1:]] - flat.centres[faces[:-1]], n0) <= 0
     start = int(weave.strand_offsets[s])
     tiles = weave.strand_visits[start + visits]
     over = weave.visit_over[start + visits]

@@ -11,13 +11,15 @@ exactly.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import shapely
 from numpy.typing import NDArray
-from shapely import affinity
 
 from ..errors import WeaveCutError
 from ..layout.nesting import offset, upright_angles
+from ..numeric import affine, transform
 
 HEADS = np.array([0.56, 0.45, 0.36, 0.28])  # dovetail head widths tried, x the band's width
 NECK, DEPTH = 0.6, 0.8  # neck width and depth, x the head width
@@ -30,7 +32,7 @@ def fits(parts: NDArray[np.object_], sheet: tuple[float, float], margin: float
          ) -> NDArray[np.bool_]:
     """(N,) True where a part, laid flat on its minimum rectangle, fits the sheet's room."""
     angles = upright_angles(parts)
-    turned = [affinity.rotate(p, a, origin=(0.0, 0.0)) for p, a in zip(parts, angles)]
+    turned = [shapely.transform(p, transform(affine(a))) for p, a in zip(parts, angles)]
     b = shapely.bounds(np.array(turned, dtype=object))
     return ((b[:, 2] - b[:, 0] <= sheet[0] - 2 * margin + 1e-9)
             & (b[:, 3] - b[:, 1] <= sheet[1] - 2 * margin + 1e-9))
@@ -97,7 +99,7 @@ def _ray(frame: shapely.Polygon, centre, angle: float, reach: float
     inside = [g for g in inside if g.geom_type == "LineString" and g.length > 0]
     if not inside:
         return None
-    band = max(inside, key=lambda g: np.linalg.norm(np.asarray(g.coords).mean(axis=0) - centre))
+    band = max(inside, key=lambda g: math.hypot(*(np.asarray(g.coords).mean(axis=0) - centre)))
     ends = np.linalg.norm(np.asarray(band.coords) - centre, axis=1)
     r_in, r_out = float(ends.min()), float(ends.max())
     width = r_out - r_in

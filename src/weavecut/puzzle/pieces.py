@@ -42,6 +42,8 @@ Colours are in ``colouring``, cut files in ``files``, painting guides in ``guide
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -403,7 +405,7 @@ def _unique_cells(cells: NDArray[np.float64], claimed_cells: NDArray[np.float64]
     """Unclaimed cells (K, 6, 2), each once, without those also claimed by another edge."""
     if not len(cells):
         return cells
-    side = float(np.linalg.norm(cells[0, 0] - cells[0, 1]))
+    side = math.hypot(*(cells[0, 0] - cells[0, 1]))
     key = np.round(cells.mean(axis=1) / (side * 1e-3)).astype(np.int64)
     taken = np.round(claimed_cells.mean(axis=1) / (side * 1e-3)).astype(np.int64)
     _, first = np.unique(key, axis=0, return_index=True)

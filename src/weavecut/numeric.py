@@ -1,0 +1,134 @@
+"""Arithmetic with the same bits on every machine.
+
+numpy hands ``@``, ``dot``, ``einsum`` and ``linalg`` to BLAS and LAPACK (or to SIMD loops),
+whose kernels differ between CPUs in how they order and fuse multiply-adds: one product of two
+matrices differs in its last bits on a laptop and on a workshop PC, and a decision made on it
+(which piece goes first, where a strip is split, which way a pentagon's axis points) can flip.
+Everything here is built from elementwise ``+ - * /`` and ``sqrt``, which IEEE 754 rounds
+exactly, in a fixed order, so it gives the same bits everywhere. weave-cut uses these instead of
+numpy's kernels (``tests/test_determinism.py`` keeps it so), and makes discrete decisions on
+:func:`snap`-ped values, never on the last bits of a float.
+
+>>> m = affine_matrix(0.5, 0.0, 0.0, 2.0, 3.0, -1.0)
+>>> transform(m)(np.array([[1.0, 1.0]])).tolist()
+[[3.5, 1.0]]
+>>> matmul(affine_inverse(m), m).tolist()
+[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+>>> solve([[2.0, 1.0], [1.0, 3.0]], [3.0, 5.0])
+[0.8, 1.4]
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+GRID = 1e-6  # snap(): 1 nm (or nm², or a millionth of a mesh unit): far below what prints or
+# cuts, far above the noise of kernels and SIMD paths (about 1e-13 mm at 100 mm)
+
+
+def dot(a: ArrayLike, b: ArrayLike) -> NDArray[np.float64]:
+    """Dot products along the last axis (broadcast): ``(a * b).sum(-1)``."""
+    return (np.asarray(a, dtype=float) * np.asarray(b, dtype=float)).sum(axis=-1)
+
+
+def matmul(a: ArrayLike, b: ArrayLike) -> NDArray[np.float64]:
+    """``a @ b`` for 1-D, 2-D and stacked arrays, as numpy defines it, without BLAS."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    if b.ndim == 1:
+        return dot(a, b)
+    b_rows = np.swapaxes(b, -1, -2)  # (..., m, k): a row per column of b
+    return dot(a, b_rows) if a.ndim == 1 else dot(a[..., :, None, :], b_rows[..., None, :, :])
+
+
+def affine_matrix(a: float, b: float, c: float, d: float, xoff: float = 0.0,
+                  yoff: float = 0.0) -> NDArray[np.float64]:
+    """(3, 3) the map (x, y) -> (a x + b y + xoff, c x + d y + yoff)."""
+    return np.array([[a, b, xoff], [c, d, yoff], [0.0, 0.0, 1.0]])
+
+
+def affine(angle: float = 0.0, shift=(0.0, 0.0), scale: float = 1.0) -> NDArray[np.float64]:
+    """(3, 3) the map xy -> scale * turn(xy, ``angle`` degrees) + ``shift``; quarter turns
+    are exact."""
+    a = np.radians(angle)
+    c, s = (0.0 if abs(v) < 2.5e-16 else float(v) * scale for v in (np.cos(a), np.sin(a)))
+    return affine_matrix(c, -s, s, c, shift[0], shift[1])
+
+
+def transform(matrix: ArrayLike):
+    """The function (N, 2) -> (N, 2) of the affine ``matrix`` (3, 3), for ``shapely.transform``."""
+    m = np.asarray(matrix, dtype=float)
+
+    def apply(xy: NDArray) -> NDArray[np.float64]:
+        xy = np.asarray(xy, dtype=float)
+        x, y = xy[..., 0], xy[..., 1]
+        return np.stack([m[0, 0] * x + m[0, 1] * y + m[0, 2],
+                         m[1, 0] * x + m[1, 1] * y + m[1, 2]], axis=-1)
+
+    return apply
+
+
+def affine_inverse(matrix: ArrayLike) -> NDArray[np.float64]:
+    """The inverse of the affine ``matrix`` (3, 3) in closed form."""
+    (a, b, x), (c, d, y) = np.asarray(matrix, dtype=float)[:2].tolist()
+    det = a * d - b * c
+    ia, ib, ic, id_ = d / det, -b / det, -c / det, a / det
+    return affine_matrix(ia, ib, ic, id_, -(ia * x + ib * y), -(ic * x + id_ * y))
+
+
+def plane_normals(points: ArrayLike, start: ArrayLike, rounds: int = 200) -> NDArray[np.float64]:
+    """(F, 3) unit normals of the least-squares planes through the point sets ``points``
+    (F, k, 3), each centred on its mean, on the side of ``start`` (F, 3), a normal near the
+    answer (Newell's, say). The normal is the eigenvector of the smallest eigenvalue of the
+    scatter matrix S: power iteration with S's adjugate, whose eigenvalues are the products of
+    the other two, so each round shrinks the error by the ratio of S's two smallest (a nearly
+    flat set converges in two or three); it stops when no normal moves, or after ``rounds``.
+    A set with no plane (a line, a point) keeps ``start``."""
+    x = np.asarray(points, dtype=float)
+    s = (x[..., :, None] * x[..., None, :]).sum(axis=-3)  # (F, 3, 3)
+    adjugate = np.stack([np.cross(s[..., 1, :], s[..., 2, :]), np.cross(s[..., 2, :], s[..., 0, :]),
+                         np.cross(s[..., 0, :], s[..., 1, :])], axis=-2)
+    n = start = np.asarray(start, dtype=float)
+    for _ in range(rounds):
+        m = matmul(adjugate, n[..., None])[..., 0]
+        size = np.sqrt(dot(m, m))[..., None]
+        m = np.where(size > 0, m / np.where(size > 0, size, 1.0), n)
+        m *= np.where(dot(m, n) < 0, -1.0, 1.0)[..., None]
+        if (np.abs(m - n) <= 4 * np.finfo(float).eps).all():
+            break
+        n = m
+    return m * np.where(dot(m, start) < 0, -1.0, 1.0)[..., None]
+
+
+def line_fit(x: ArrayLike, y: ArrayLike) -> tuple[float, float]:
+    """(slope, intercept) of the least-squares line through the points (x, y), in closed form
+    (``np.polyfit`` solves it with LAPACK)."""
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    dx = x - x.mean()
+    slope = float(dot(dx, y - y.mean()) / dot(dx, dx))
+    return slope, float(y.mean() - slope * x.mean())
+
+
+def solve(a: ArrayLike, b: ArrayLike) -> list[float]:
+    """x with ``a x = b`` for a small square system (Gaussian elimination with partial
+    pivoting, in Python floats); ValueError when ``a`` is singular."""
+    rows = [[*map(float, r), float(v)] for r, v in zip(np.asarray(a).tolist(), np.asarray(b))]
+    n = len(rows)
+    for k in range(n):
+        p = max(range(k, n), key=lambda i: (abs(rows[i][k]), -i))
+        if rows[p][k] == 0.0:
+            raise ValueError("singular system")
+        rows[k], rows[p] = rows[p], rows[k]
+        for i in range(k + 1, n):
+            f = rows[i][k] / rows[k][k]
+            rows[i] = [u - f * w for u, w in zip(rows[i], rows[k])]
+    x = [0.0] * n
+    for k in reversed(range(n)):
+        x[k] = (rows[k][n] - sum(rows[k][j] * x[j] for j in range(k + 1, n))) / rows[k][k]
+    return x
+
+
+def snap(values: ArrayLike, grid: float = GRID) -> NDArray[np.int64]:
+    """Integer keys of ``values`` on a ``grid``: what a decision (a sort, a tie, a
+    comparison) looks at, so that last-bit noise cannot flip it."""
+    return np.rint(np.asarray(values, dtype=float) / grid).astype(np.int64)
