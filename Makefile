@@ -1,29 +1,31 @@
 # weave-cut: `make run` builds every recipe in templates/recipes into build/<recipe>/ (the
 # figures recipe is also `make figures`) with a page build/<recipe>/index.html each, and
 # build/index.html linking them; `make test` runs the tests, `make docs` redraws the
-# README's images. All create .venv and install the project first when needed.
+# README's images. All create .venv and install the project first when needed, with the exact
+# versions of constraints.txt (`make lock` renews it; `make test-latest` tries the newest).
 
 PYTHON ?= python3
 VENV   := .venv
 PY     := $(VENV)/bin/python
 WC     := $(VENV)/bin/weave-cut
 STAMP  := $(VENV)/.installed
+LOCK   := constraints.txt
 SRC    := $(shell find src -name '*.py' 2>/dev/null) pyproject.toml
 OUT    := build
 
 RECIPES := $(wildcard templates/recipes/*.toml) $(wildcard examples/*.toml)
 BUILT   := $(patsubst %.toml,$(OUT)/%/.built,$(notdir $(RECIPES)))
 
-.PHONY: run figures docs test fuzz bench bench16 mutation clean help
+.PHONY: run figures docs test test-latest lock fuzz bench bench16 mutation clean help
 .DELETE_ON_ERROR:
 
 help:  ## list the targets
 	@grep -E '^[a-z]+:.*## ' $(MAKEFILE_LIST) | sed 's/:.*## /\t/'
 
-$(STAMP): pyproject.toml setup.py
+$(STAMP): pyproject.toml setup.py $(LOCK)
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e '.[test]'
+	$(PY) -m pip install --quiet -c $(LOCK) -e '.[test]'
 	touch $(STAMP)
 
 run: $(OUT)/index.html  ## build every recipe (templates/recipes, examples) into build/ (incremental)
@@ -47,14 +49,34 @@ figures: $(OUT)/figures/.built  ## every paper figure weave-cut reproduces, into
 docs: $(STAMP)  ## redraw the README's images (docs/, examples/previews/) from the code
 	$(PY) docs/make_docs.py
 
-test: $(STAMP)  ## run the whole test suite
+test: $(STAMP)  ## run the whole test suite (with the versions of constraints.txt)
 	$(PY) -m pytest
+
+test-latest:  ## the tests with the newest release of every dependency (.venv-latest); says which versions differ from constraints.txt
+	$(PYTHON) -m venv .venv-latest
+	.venv-latest/bin/python -m pip install --quiet --upgrade pip
+	.venv-latest/bin/python -m pip install --quiet --upgrade --upgrade-strategy eager -e '.[test]'
+	.venv-latest/bin/python -m pip freeze --exclude-editable > .venv-latest/versions.txt
+	@grep -v '^#' $(LOCK) | diff - .venv-latest/versions.txt | grep '^[<>]' \
+		| sed 's/^</  locked:/; s/^>/  newest:/' || echo "  the newest releases are the locked ones"
+	.venv-latest/bin/python -m pytest
+
+lock:  ## renew constraints.txt: the newest release of every dependency and test tool, pinned
+	rm -rf .venv-lock
+	$(PYTHON) -m venv .venv-lock
+	.venv-lock/bin/python -m pip install --quiet --upgrade pip
+	.venv-lock/bin/python -m pip install --quiet '.[test]'
+	{ echo "# exact versions for make test, make run and CI; renewed by make lock"; \
+	  .venv-lock/bin/python -m pip freeze --exclude weave-cut; } > $(LOCK).part
+	mv $(LOCK).part $(LOCK)
+	rm -rf .venv-lock build/lib build/bdist*
+	@echo "$(LOCK) renewed: check it in after make test passes"
 
 fuzz: $(STAMP)  ## the untrusted-input fuzz suite with the long hypothesis profile
 	HYPOTHESIS_PROFILE=long $(PY) -m pytest tests/untrusted -k "fuzz or corpus"
 
 bench: $(STAMP)  ## run the benchmarks (throughput, ratios against peers)
-	$(PY) -m pip install --quiet -e '.[bench]' || echo "some peers did not install"
+	$(PY) -m pip install --quiet -c $(LOCK) -e '.[bench]' || echo "some peers did not install"
 	$(PY) benchmarks/bench_snub.py
 	$(PY) benchmarks/bench_weave.py
 	$(PY) benchmarks/bench_schemes.py
@@ -66,12 +88,12 @@ bench: $(STAMP)  ## run the benchmarks (throughput, ratios against peers)
 		[ -f $$b ] && $(PY) $$b || true; done
 
 bench16: $(STAMP)  ## issue 16's before/after table in one run (about 5 minutes on a quiet machine)
-	$(PY) -m pip install --quiet -e '.[bench]' || echo "some peers did not install"
+	$(PY) -m pip install --quiet -c $(LOCK) -e '.[bench]' || echo "some peers did not install"
 	$(PY) benchmarks/issue16.py
 
 MUTATION_SAMPLE ?= 100
 mutation: $(STAMP)  ## mutation testing, a random sample of 100 mutants per package (MUTATION_SAMPLE=0: all; PACKAGES="weave export"; MUTATION_ARGS=--survivors): build/mutation/report.md
-	$(PY) -m pip install --quiet -e '.[mutation]'
+	$(PY) -m pip install --quiet -c $(LOCK) -e '.[mutation]'
 	$(PY) tools/mutation.py --sample $(MUTATION_SAMPLE) $(MUTATION_ARGS) $(PACKAGES)
 
 clean:  ## remove build outputs (keeps .venv)

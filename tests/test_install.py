@@ -3,8 +3,8 @@ and every preset, and its commands find palettes, materials and recipes by name 
 virtual environment in a folder far from the checkout.
 
 The wheel is built once per session from a copy of the sources (so no build folder lands in the
-checkout) and installed with its dependencies as a user's ``pip install`` would (pip's cache
-makes the second time fast).
+checkout) and installed with its dependencies as a user's ``pip install`` would, at the
+versions of ``constraints.txt`` (pip's cache makes the second time fast).
 """
 
 from __future__ import annotations
@@ -61,7 +61,9 @@ def installed(wheel, tmp_path_factory) -> Path:
     venv = tmp_path_factory.mktemp("venv")
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True, env=_clean_env())
     bin_dir = venv / ("Scripts" if os.name == "nt" else "bin")
-    _pip(bin_dir / "python", "install", "--quiet", str(wheel), cwd=venv)
+    # the dependencies at the versions of constraints.txt, as make test has them
+    _pip(bin_dir / "python", "install", "--quiet", "-c", str(ROOT / "constraints.txt"),
+         str(wheel), cwd=venv)
     return bin_dir
 
 
