@@ -1,6 +1,6 @@
 """Same input, same bytes, on every machine: no BLAS or LAPACK in weave-cut's arithmetic, and a
 fixed set of commands (``determinism_run.py``) writing byte-identical files under several
-OpenBLAS kernels and thread counts."""
+OpenBLAS kernels and thread counts, and with numpy's AVX-512 loops off where the CPU has them."""
 
 from __future__ import annotations
 
@@ -18,6 +18,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
+from numpy._core import _multiarray_umath as umath
 
 from weavecut import numeric
 from weavecut.surface import circumsphere
@@ -148,6 +149,13 @@ KERNELS = {"haswell-1-thread": {"OPENBLAS_CORETYPE": "Haswell", "OPENBLAS_NUM_TH
            "prescott-2-threads": {"OPENBLAS_CORETYPE": "Prescott", "OPENBLAS_NUM_THREADS": "2"},
            "unset-1-thread": {"OPENBLAS_CORETYPE": None, "OPENBLAS_NUM_THREADS": "1"},
            "unset-2-threads": {"OPENBLAS_CORETYPE": None, "OPENBLAS_NUM_THREADS": "2"}}
+# numpy's own SIMD loops (arctan2, arccos, exp, ...) differ between CPUs with and without
+# AVX-512: on a machine that has it, also run as one without (AVX2 only)
+_AVX512 = [f for f in umath.__cpu_dispatch__
+           if (f == "X86_V4" or f.startswith("AVX512")) and umath.__cpu_features__.get(f)]
+if _AVX512:
+    KERNELS["unset-2-threads-no-avx512"] = {"OPENBLAS_CORETYPE": None,
+                                            "NPY_DISABLE_CPU_FEATURES": " ".join(_AVX512)}
 
 
 def _run(name: str, settings: dict, root: Path) -> tuple[dict, dict]:
@@ -172,6 +180,8 @@ def test_same_bytes_under_every_blas_kernel_and_thread_count(tmp_path):
     assert all(ran[k] for k in ran), f"numpy uses no OpenBLAS here: {ran}"
     assert len({frozenset(a for a, _ in v) for v in ran.values()}) >= 2, ran
     assert {t for v in ran.values() for _, t in v} >= {1, 2}, ran
+    if _AVX512:
+        assert not set(_AVX512) & set(runs["unset-2-threads-no-avx512"][1]["simd"])
     first, (files, _) = next(iter(runs.items()))
     assert len(files) >= 15
     for name, (other, _) in runs.items():

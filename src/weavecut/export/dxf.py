@@ -19,6 +19,7 @@ import functools
 import io
 
 import ezdxf
+import numpy as np
 from ezdxf import colors
 from ezdxf.enums import TextEntityAlignment
 from ezdxf.lldxf.const import VALID_DXF_LINEWEIGHTS
@@ -26,6 +27,7 @@ from ezdxf.lldxf.const import VALID_DXF_LINEWEIGHTS
 from ..layout.drawing import Drawing, Layer, Polygons, Polylines, Text
 
 SUFFIX = "dxf"
+DECIMALS = 6  # mm: 1 nm, far below any cutter; the last bits of a float never reach the file
 VERSION = "R2004"
 ROLE_COLOURS = {"cut": 1, "score": 5, "engrave": 3, "paint": 8, "label": 7, "guide": 9}
 LASER_ROLES = {"cut", "score", "engrave"}
@@ -73,13 +75,14 @@ def _add(doc, msp, shape, layer: Layer, name: str, dx: float) -> None:
         attribs = _attribs(doc, layer, name, shape.fill)
         msp.add_text(shape.text, height=shape.size, rotation=shape.angle,
                      dxfattribs=attribs).set_placement(
-            (shape.x + dx, shape.y), align=TextEntityAlignment[ALIGN[shape.anchor]])
+            tuple(_mm(np.array([shape.x, shape.y]), dx)),
+            align=TextEntityAlignment[ALIGN[shape.anchor]])
         return
     if isinstance(shape, Polylines):
         if shape.style.stroke:
             attribs = _attribs(doc, layer, name, shape.style.stroke, shape.style.stroke_width)
             for line in shape.lines():
-                msp.add_lwpolyline((line + (dx, 0.0)).tolist(), close=False, dxfattribs=attribs)
+                msp.add_lwpolyline(_mm(line, dx), close=False, dxfattribs=attribs)
         return
     rings = shape.rings()
     po = shape.polygon_rings().tolist()
@@ -94,11 +97,16 @@ def _add(doc, msp, shape, layer: Layer, name: str, dx: float) -> None:
         hatch.set_solid_fill(_aci(fill), style=0, rgb=_rgb(fill))  # odd parity: holes open
         for i in by_fill[fill]:
             for ring in rings[po[i]:po[i + 1]]:
-                hatch.paths.add_polyline_path((ring + (dx, 0.0)).tolist(), is_closed=True)
+                hatch.paths.add_polyline_path(_mm(ring, dx), is_closed=True)
     if shape.style.stroke:
         attribs = _attribs(doc, layer, name, shape.style.stroke, shape.style.stroke_width)
         for ring in rings:
-            msp.add_lwpolyline((ring + (dx, 0.0)).tolist(), close=True, dxfattribs=attribs)
+            msp.add_lwpolyline(_mm(ring, dx), close=True, dxfattribs=attribs)
+
+
+def _mm(xy, dx: float) -> list:
+    """Coordinates moved ``dx`` along x and rounded to ``DECIMALS`` (no negative zero)."""
+    return (np.round(xy + (dx, 0.0), DECIMALS) + 0.0).tolist()
 
 
 def _attribs(doc, layer: Layer, name: str, colour: str, width: float = 0.0) -> dict:

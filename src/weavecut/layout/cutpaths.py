@@ -16,6 +16,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ..numeric import snap
+
+FAR = np.iinfo(np.int64).max  # no path left there
+
 
 @dataclass(frozen=True)
 class EdgeGraph:
@@ -122,15 +126,15 @@ def order_paths(paths: list[NDArray], start=(0.0, 0.0), passes: int = 30
     chosen: list[NDArray] = []
     alive = np.ones(len(paths), dtype=bool)
     for _ in todo:  # greedy nearest neighbour, one path per step
-        d_head = np.where(alive, np.hypot(*(heads - here).T), np.inf)
-        d_tail = np.where(alive & ~closed, np.hypot(*(tails - here).T), np.inf)
-        i_h, i_t = int(np.argmin(d_head)), int(np.argmin(d_tail))
+        d_head = np.where(alive, snap(np.hypot(*(heads - here).T)), FAR)
+        d_tail = np.where(alive & ~closed, snap(np.hypot(*(tails - here).T)), FAR)
+        i_h, i_t = int(np.argmin(d_head)), int(np.argmin(d_tail))  # nearest; ties: first
         if d_tail[i_t] < d_head[i_h]:
             i, path = i_t, paths[i_t][::-1]
         else:
             i, path = i_h, paths[i_h]
         if closed[i]:  # enter a loop at its nearest corner
-            j = int(np.argmin(np.hypot(*(path[:-1] - here).T)))
+            j = int(np.argmin(snap(np.hypot(*(path[:-1] - here).T))))
             path = np.concatenate([path[j:-1], path[:j + 1]])
         alive[i] = False
         chosen.append(path)
@@ -161,9 +165,9 @@ def _two_opt(paths: list[NDArray], start: NDArray, passes: int,
                 j < n - 1, np.hypot(*(e[j] - nxt_start).T), 0.0)
             new = np.hypot(*(prev - e[j]).T) + np.where(
                 j < n - 1, np.hypot(*(s[i] - nxt_start).T), 0.0)
-            gain = old - new
+            gain = snap(old - new)
             k = int(np.argmax(gain))
-            if gain[k] > 1e-9:
+            if gain[k] > 0:  # at least 1 nm shorter
                 run = slice(i, int(j[k]) + 1)  # reversed: each path's ends swap too
                 order[run] = order[run][::-1].copy()
                 flipped[run] = ~flipped[run][::-1]

@@ -20,7 +20,7 @@ import shapely
 from numpy.typing import NDArray
 
 from ..errors import WeaveCutError
-from ..numeric import affine, transform
+from ..numeric import affine, snap, transform
 
 
 def offset(parts: NDArray[np.object_], kerf: float) -> NDArray[np.object_]:
@@ -88,7 +88,7 @@ def nest(parts: NDArray[np.object_], sheet: tuple[float, float], spacing: float,
             f"{name} is {w[k] - spacing:.1f} x {h[k] - spacing:.1f} mm and does not fit a "
             f"{sheet[0]:g} x {sheet[1]:g} mm sheet with {margin:g} mm margins; use a larger "
             "--sheet or a smaller --size")
-    order = np.lexsort((np.arange(n), -w, -h))  # tallest first, then widest
+    order = np.lexsort((np.arange(n), -snap(w), -snap(h)))  # tallest first, then widest
     skylines: list[list[list[float]]] = []
     sheet_of = np.zeros(n, dtype=np.int64)
     pos = np.zeros((n, 2))
