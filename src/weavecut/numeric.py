@@ -88,7 +88,7 @@ def plane_normals(points: ArrayLike, start: ArrayLike, rounds: int = 200) -> NDA
     s = (x[..., :, None] * x[..., None, :]).sum(axis=-3)  # (F, 3, 3)
     adjugate = np.stack([np.cross(s[..., 1, :], s[..., 2, :]), np.cross(s[..., 2, :], s[..., 0, :]),
                          np.cross(s[..., 0, :], s[..., 1, :])], axis=-2)
-    n = start = np.asarray(start, dtype=float)
+    m = n = start = np.asarray(start, dtype=float)
     for _ in range(rounds):
         m = matmul(adjugate, n[..., None])[..., 0]
         size = np.sqrt(dot(m, m))[..., None]
