@@ -2,7 +2,8 @@
 
 A preset is found by name in ``templates/<kind>/<name>.toml`` (installed with the package as
 ``weavecut.templates``, or ``$WEAVECUT_TEMPLATES``), or given as a path to a ``.toml`` file. Every preset is
-read through ``schema.read_toml`` (bounded) and checked against its kind's schema before use.
+read through ``schema.read_toml`` (bounded) and checked against its kind's schema
+(``SCHEMAS``) before use. A sheet size may name a page preset (``page_size``).
 """
 
 from __future__ import annotations
@@ -11,7 +12,9 @@ import os
 from importlib import resources
 from pathlib import Path
 
-from .schema import SCHEMAS, SchemaError, nearest, read_toml
+from . import units
+from .schema import (ABOUT, Choice, Colour, Length, ListOf, Number, SchemaError, Sheet, Table,
+                     Text, nearest, read_toml)
 
 
 class PresetError(SchemaError):
@@ -47,9 +50,57 @@ def find(kind: str, name: str) -> Path:
 
 def load(kind: str, name: str) -> dict:
     """The preset ``name`` (or a path to a .toml file) of ``kind`` as a dict, checked against
-    ``schema.SCHEMAS[kind]`` when there is one (recipes are checked by ``build``)."""
+    ``SCHEMAS[kind]`` when there is one (recipes are checked by ``build``)."""
     path = find(kind, name)
     doc = read_toml(path, PresetError)
     if kind in SCHEMAS:
         SCHEMAS[kind].check(doc, str(path), PresetError)
     return doc
+
+
+def page_size(value: str) -> tuple[float, float]:
+    """A paper name (a4, a3, letter), a page preset (``templates/pages/NAME.toml``) or ``WxH``
+    with units -> (width, height) in mm (``units.page_size`` without the presets).
+
+    Examples
+    --------
+    >>> page_size("a5"), page_size("100x50mm")
+    ((148.0, 210.0), (100.0, 50.0))
+    """
+    key = value.strip().lower()
+    if key in units.PAPER_SIZES or "x" in key:
+        return units.page_size(value)
+    try:
+        doc = load("pages", key)
+        return (units.to_mm(doc["width"]), units.to_mm(doc["height"]))
+    except (PresetError, KeyError, TypeError) as exc:
+        raise ValueError(f"{key!r} is not a page size: use a4, a3, letter, a preset "
+                         f"({', '.join(names('pages'))}) or WxH like 200x300mm") from exc
+
+
+def _stroke(role: str) -> Table:
+    return Table({"colour": Colour(), "width": Number(0, 10, unit="mm")}, ("colour",),
+                 label=role)
+
+
+SCHEMAS: dict[str, Table] = {
+    "palettes": Table({**ABOUT, "colours": ListOf(Colour(), 1, 256),
+                       "families": ListOf(ListOf(Colour(), 1, 16), 1, 256),
+                       "family_names": ListOf(Text(40), 1, 256)},
+                      one_of=("colours", "families")),
+    "materials": Table({**ABOUT, "thickness": Length(0, 100, open_lo=True),
+                        "kerf": Length(0, 5), "sheet": Sheet(page_size),
+                        "cut_speed": Number(0, 10_000, open_lo=True, unit="mm/s")},
+                       ("thickness", "kerf", "sheet", "cut_speed")),
+    "laser": Table({**ABOUT, **{r: _stroke(r) for r in ("cut", "score", "engrave")}},
+                   ("cut", "score", "engrave")),
+    "pages": Table({**ABOUT, "width": Length(0, 10_000, open_lo=True),
+                    "height": Length(0, 10_000, open_lo=True)}, ("width", "height")),
+    "cutters": Table({**ABOUT, "marks": Choice(("square-and-corners", "corners", "frame")),
+                      "inset": Length(0, 100), "length": Length(0, 100, open_lo=True),
+                      "thickness": Length(0, 20, open_lo=True), "clearance": Length(0, 100),
+                      "max_width": Length(0, 10_000, open_lo=True),
+                      "max_height": Length(0, 10_000, open_lo=True),
+                      "min_feature": Length(0, 100)},
+                     ("marks", "inset", "length", "thickness", "clearance", "min_feature")),
+}

@@ -1,8 +1,8 @@
-"""Declared schemas for the TOML files weave-cut reads (presets and recipes), and a bounded
-TOML reader.
+"""Checkers for the TOML files weave-cut reads (presets and recipes), the recipe's schema, and
+a bounded TOML reader.
 
-Every preset kind has one ``Table`` of fields here (types, ranges, units, allowed and required
-keys). ``read_toml`` refuses anything that is not a regular UTF-8 file of at most
+Every preset kind has one ``Table`` of these checkers (types, ranges, units, allowed and
+required keys: ``presets.SCHEMAS``). ``read_toml`` refuses anything that is not a regular UTF-8 file of at most
 ``MAX_BYTES`` or nests deeper than ``MAX_DEPTH`` *before* the parser sees it (a 50,000-deep
 dotted key takes tomllib a minute and gigabytes); ``Table.check`` then names the file, table and
 key of the first problem and suggests the nearest key for a misspelt one::
@@ -23,7 +23,7 @@ import os
 import re
 import stat
 import tomllib
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 from . import units
@@ -186,13 +186,16 @@ class Length(Number):
 
 @dataclass(frozen=True)
 class Sheet:
-    """A page or sheet size 'WxH' with units, or a paper name (see ``units.page_size``)."""
+    """A page or sheet size: 'WxH' with units, or a name ``size`` knows (``units.page_size``:
+    a paper name; ``presets.page_size`` also takes a page preset)."""
+
+    size: Callable[[str], tuple[float, float]] = units.page_size
 
     def problem(self, value) -> str | None:
         if not isinstance(value, str):
             return f"expected a size like '1000x700mm', got {_kind(value)}"
         try:
-            units.page_size(value)
+            self.size(value)
         except ValueError as exc:
             return str(exc)
         return None
@@ -274,37 +277,9 @@ class Table:
             raise error(f"{where} needs exactly one of {' or '.join(map(repr, self.one_of))}")
 
 
-# --- the schemas --------------------------------------------------------------------------
+# --- the recipe (the presets' kinds: presets.SCHEMAS) ---------------------------------
 
-_ABOUT = {"name": Text(80), "description": Text(400)}
-
-
-def _stroke(role: str) -> Table:
-    return Table({"colour": Colour(), "width": Number(0, 10, unit="mm")}, ("colour",),
-                 label=role)
-
-
-SCHEMAS: dict[str, Table] = {
-    "palettes": Table({**_ABOUT, "colours": ListOf(Colour(), 1, 256),
-                       "families": ListOf(ListOf(Colour(), 1, 16), 1, 256),
-                       "family_names": ListOf(Text(40), 1, 256)},
-                      one_of=("colours", "families")),
-    "materials": Table({**_ABOUT, "thickness": Length(0, 100, open_lo=True),
-                        "kerf": Length(0, 5), "sheet": Sheet(),
-                        "cut_speed": Number(0, 10_000, open_lo=True, unit="mm/s")},
-                       ("thickness", "kerf", "sheet", "cut_speed")),
-    "laser": Table({**_ABOUT, **{r: _stroke(r) for r in ("cut", "score", "engrave")}},
-                   ("cut", "score", "engrave")),
-    "pages": Table({**_ABOUT, "width": Length(0, 10_000, open_lo=True),
-                    "height": Length(0, 10_000, open_lo=True)}, ("width", "height")),
-    "cutters": Table({**_ABOUT, "marks": Choice(("square-and-corners", "corners", "frame")),
-                      "inset": Length(0, 100), "length": Length(0, 100, open_lo=True),
-                      "thickness": Length(0, 20, open_lo=True), "clearance": Length(0, 100),
-                      "max_width": Length(0, 10_000, open_lo=True),
-                      "max_height": Length(0, 10_000, open_lo=True),
-                      "min_feature": Length(0, 100)},
-                     ("marks", "inset", "length", "thickness", "clearance", "min_feature")),
-}
+ABOUT = {"name": Text(80), "description": Text(400)}
 
 
 @dataclass(frozen=True)
@@ -347,4 +322,4 @@ class Jobs:
         return None
 
 
-RECIPE = Table({"recipe": Table(_ABOUT, label="recipe"), "job": Jobs()}, ("job",))
+RECIPE = Table({"recipe": Table(ABOUT, label="recipe"), "job": Jobs()}, ("job",))

@@ -36,7 +36,8 @@ def to_mm(value: str | float) -> float:
 
 
 def page_size(value: str) -> tuple[float, float]:
-    """A paper name (a4, a3, letter) or ``WxH`` with units -> (width, height) in mm.
+    """A paper name (a4, a3, letter) or ``WxH`` with units -> (width, height) in mm (page
+    presets: ``presets.page_size``).
 
     Examples
     --------
@@ -46,8 +47,6 @@ def page_size(value: str) -> tuple[float, float]:
     key = value.strip().lower()
     if key in PAPER_SIZES:
         return PAPER_SIZES[key]
-    if "x" not in key:
-        return _page_preset(key)
     parts = key.split("x")
     if len(parts) != 2:
         raise ValueError(f"{value!r} is not a page size: use a4, a3, letter, a preset or WxH "
@@ -60,15 +59,3 @@ def page_size(value: str) -> tuple[float, float]:
     if max(w, h) > LARGEST_PAGE:
         raise ValueError(f"page size {value!r} is larger than {LARGEST_PAGE / 1000:g} m")
     return (w, h)
-
-
-def _page_preset(name: str) -> tuple[float, float]:
-    """A page size preset from templates/pages/NAME.toml."""
-    from . import presets
-
-    try:
-        doc = presets.load("pages", name)
-        return (to_mm(doc["width"]), to_mm(doc["height"]))
-    except (presets.PresetError, KeyError, TypeError) as exc:
-        raise ValueError(f"{name!r} is not a page size: use a4, a3, letter, a preset "
-                         f"({', '.join(presets.names('pages'))}) or WxH like 200x300mm") from exc

@@ -10,7 +10,8 @@ import time
 import pytest
 
 from weavecut import presets
-from weavecut.schema import MAX_BYTES, MAX_DEPTH, SCHEMAS, read_toml, toml_depth
+from weavecut.presets import SCHEMAS
+from weavecut.schema import MAX_BYTES, MAX_DEPTH, read_toml, toml_depth
 
 from .helpers import files_under, refused, run
 

@@ -67,8 +67,10 @@ class PageSize(click.ParamType):
     def convert(self, value, param, ctx):
         if isinstance(value, tuple):
             return value
+        from .. import presets
+
         try:
-            return units.page_size(value)
+            return presets.page_size(value)
         except ValueError as exc:
             self.fail(str(exc), param, ctx)
 

@@ -7,7 +7,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from .. import presets
-from ..units import page_size, to_mm
+from ..units import to_mm
 from .drawing import Style
 
 DEFAULT_LASER = "lightburn"
@@ -39,6 +39,6 @@ def material(name: str) -> dict:
         return {"name": str(doc.get("name", name)),
                 "description": str(doc.get("description", name)),
                 "thickness": to_mm(doc["thickness"]), "kerf": to_mm(doc["kerf"]),
-                "sheet": page_size(doc["sheet"]), "cut_speed": float(doc["cut_speed"])}
+                "sheet": presets.page_size(doc["sheet"]), "cut_speed": float(doc["cut_speed"])}
     except (KeyError, ValueError) as exc:
         raise presets.PresetError(f"material {name!r}: bad or missing {exc}") from exc
