@@ -16,12 +16,12 @@ from weavecut.papermodel.book import (
     WARN_STRIP,
     SizeError,
     check_strip_width,
-    page_index,
     preset_for,
     tile_size_for,
     tile_size_width,
 )
 from weavecut.papermodel.strips import octagon_size, plan_modules, strip_width
+from weavecut.papermodel.wording import page_index
 from weavecut.subdivision import subdivide
 from weavecut.weave.snub_weave import snub_weaves
 

@@ -14,7 +14,7 @@ import shapely.ops
 
 from ..numeric import transform
 from ..layout.contrast import text_colour_on
-from ..layout.drawing import Fit, Layer, Polylines, Sheet, Style, Text, polygons_from_shapely
+from ..layout.drawing import Layer, Polylines, Sheet, Style, Text, polygons_from_shapely
 from ..layout.labels import (
     MIN_CAP,
     centred_text,
@@ -23,56 +23,16 @@ from ..layout.labels import (
     text_box,
     text_width,
     unit_box,
-    wrap,
 )
 from ..weave.model import Weave
+from .crossings import DOT, callout_shapes, crossing_label, crossing_meaning, too_small
 from .pages import GAP, page_layers, page_span
-from .strips import arrow_polygon, copy_letter, model_tiles, turn_to
+from .pattern import pattern
+from .strips import arrow_polygon, copy_letter, turn_to
 from .symmetry import rotate, tile_centres
+from .wording import LINE, TEXT, page_index, paragraphs
 
-TEXT = 2.6  # cap height of running text on these pages (mm)
-LINE = 4.4  # line pitch (mm)
 ALONG = 6  # an extra ID every this many own tiles along a strand
-OUTLINE = Style("#333333", 0.1)
-
-
-def paragraphs(items: list[str], x: float, top: float, width: float,
-                numbered: bool = False) -> tuple[list[Text], float]:
-    """Wrapped lines from ``top`` down; returns the texts and the y below the last line."""
-    texts, y = [], top
-    for n, item in enumerate(items, start=1):
-        head = f"{n}. " if numbered else ""
-        indent = text_width(head, TEXT) if numbered else 0.0
-        for i, line in enumerate(wrap(item, width - indent, TEXT)):
-            y -= LINE
-            if i == 0 and head:
-                texts.append(Text(x, y, head.strip(), TEXT))
-            texts.append(Text(x + indent, y, line, TEXT))
-        y -= 0.8
-    return texts, y
-
-
-def pattern(weave: Weave, turn: float, box, colours, show=None):
-    """(tiles on the sheet, fit, label spots, paint shape, fills) for the pattern fitted into
-    ``box``; with ``show`` (S,) bool only those strands are coloured (the others white). A
-    tile's label spot is the centre of the largest circle inside it: the mean of its corners
-    lies outside a non-convex or twisted tile of an irregular mesh."""
-    tiles = model_tiles(weave)
-    centre = weave.mesh.vertices.mean(axis=0)
-    turned = shapely.transform(tiles, lambda xy: rotate(xy, turn, centre))
-    x0, y0, x1, y1 = box
-    fit = Fit.into(shapely.total_bounds(turned), x1 - x0, y1 - y0, 0.0)
-    fit = Fit(fit.scale, (fit.offset[0] + x0, fit.offset[1] + y0))
-    on_sheet = shapely.transform(turned, fit)
-    over, under = weave.tile_over, weave.tile_under
-    if show is None:
-        show = np.ones(weave.n_strands, dtype=bool)
-    top = np.where((over >= 0) & show[np.maximum(over, 0)], over,
-                   np.where((under >= 0) & show[np.maximum(under, 0)], under, -1))
-    fills = [colours[s] if s >= 0 else "#ffffff" for s in top.tolist()]
-    centres = inner_centres(shapely.make_valid(on_sheet, method="structure",
-                                               keep_collapsed=False))
-    return on_sheet, fit, centres, polygons_from_shapely(list(on_sheet), OUTLINE, fills), fills
 
 
 def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str,
@@ -80,8 +40,6 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
     """(page 1, how many of ``crossings`` found no room): what to print, which page holds which
     strip, and the finished pattern with IDs; with ``crossings`` (tile, strand on top, strand
     below) those the strips leave unnamed are called out on it too (:mod:`.crossings`)."""
-    from .book import page_index
-    from .crossings import DOT, callout_shapes, crossing_label, crossing_meaning, too_small
 
     plan, area = book.plan, book.area
     k, m = plan.k, plan.copies.shape[1]
@@ -231,7 +189,6 @@ def _crossing_spot(tile, obstacles):
     the tile (shrunk by 0.4 mm) where the dot keeps 0.3 mm clear of the labels, arrows and
     leaders already there (an ID's leader often ends in the same small tile), or None if none
     is left."""
-    from .crossings import DOT
     tile = shapely.make_valid(tile, method="structure", keep_collapsed=False)
     near = [o for o in obstacles if o.intersects(tile)]
     free = shapely.buffer(tile, -0.4, join_style="mitre")

@@ -16,22 +16,22 @@ import numpy as np
 import shapely
 
 from ..layout.contrast import text_colour_on
-from ..layout.drawing import Drawing, Layer, Sheet, Style, Text, polygons_from_shapely
+from ..layout.drawing import Drawing, Layer, Sheet, Text, polygons_from_shapely
 from ..layout.labels import MIN_CAP, centred_text, inner_centres, largest_fit, unit_box
 from ..layout.weave_figure import tile_rings
 from ..surface import face_normals
 from ..weave.colour import Palette, strand_colours
 from ..weave.model import Weave
-from .assembly import TEXT, paragraphs
-from .book import CURL, MIN_STRIP, WARN_STRIP, SizeError, StrandBook, page_index, strip_sheets
+from .book import CURL, MIN_STRIP, WARN_STRIP, SizeError, StrandBook, strip_sheets
 from .pages import FOLD, GAP, PageArea, _fits, page_layers, page_span
+from .pattern import OUTLINE
 from ..numeric import affine, dot, snap
 from .strips import Strip, copy_letter, flat_angle, label_strip, outline_of, tint
 from .unfold import OVERLAP, Unfolding, UnfoldError, dashed, flatten, unfold
+from .wording import TEXT, page_index, paragraphs
 
 MIN_FOLD = math.radians(1.0)  # joints flatter than this are not drawn as folds
 VALLEY = (0.5, 1.0)  # mm dash and gap of a valley fold (a mountain fold: unfold.DASH)
-OUTLINE = Style("#333333", 0.1)
 # (name, towards the viewer, up): six views, every tile seen head-on in one of them
 VIEWS = (("front", (0, 0, 1), (0, 1, 0)), ("right", (1, 0, 0), (0, 1, 0)),
          ("back", (0, 0, -1), (0, 1, 0)), ("left", (-1, 0, 0), (0, 1, 0)),

@@ -40,6 +40,7 @@ from .strips import (
     plan_modules,
     strip_width,
 )
+from .wording import strip_runs
 
 ON_COVER = 24  # at most this many unnamed crossings are tried on page 1
 CURL = 0.45  # a strip wider than this share of the page (a curl) is cut into pieces
@@ -247,7 +248,7 @@ def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitl
     sheets = []
     for n in range(first, first + n_strip):  # pages
         on_page = [p for k, p in placed if k == n]
-        names_here = _runs(sorted({p.label.split(" ")[0] for p in on_page}, key=_label_key))
+        names_here = strip_runs({p.label.split(" ")[0] for p in on_page})
         layers = strip_layers(on_page) + page_layers(
             area, title, subtitle(names_here), n, total, colours[on_page[0].strand],
             glue=any(p.glue is not None for p in on_page),
@@ -309,39 +310,6 @@ def smallest_tile_size(weave: Weave, plan: ModulePlan, colours, start: float, la
         mid = (low + high) // 2
         low, high = (low, mid) if reads(mid) else (mid, high)
     return float(high)
-
-
-def _label_key(label: str):
-    head = label.rstrip("0123456789")
-    return (head, int(label[len(head):] or -1))  # -1: a letter alone (a ball's strand "A")
-
-
-def _key_text(key) -> str:
-    return key[0] + (str(key[1]) if key[1] >= 0 else "")
-
-
-def _runs(labels: list[str]) -> str:
-    """"A1-A4, A6, X1" from sorted labels."""
-    out, start, prev = [], None, None
-    for lab in labels + [None]:
-        key = None if lab is None else _label_key(lab)
-        if prev is not None and key is not None and key[0] == prev[0] and key[1] == prev[1] + 1:
-            prev = key
-            continue
-        if start is not None:
-            out.append(_key_text(start) if start == prev
-                       else f"{_key_text(start)}-{_key_text(prev)}")
-        start = prev = key
-    return ", ".join(out)
-
-
-def page_index(book: StrandBook) -> str:
-    """"p. 3: A1-A4, B2; p. 4: ..." which page holds which strip."""
-    parts = []
-    for n in book.strip_pages:
-        labels = {p.label.split(" ")[0] for k, p in book.pieces if k == n}
-        parts.append(f"p. {n}: {_runs(sorted(labels, key=_label_key))}")
-    return "; ".join(parts)
 
 
 # The paper's two models (section 5.2): levels, how the assembly sheet is turned (radians),

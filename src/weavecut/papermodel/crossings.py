@@ -19,9 +19,10 @@ from ..numeric import affine_inverse, transform
 from ..layout.drawing import Layer, Polylines, Style, Text, polygons_from_shapely
 from ..layout.labels import MIN_CAP, centred_text, text_box, text_width
 from ..weave.model import Weave
-from .assembly import paragraphs, pattern
 from .pages import GAP
+from .pattern import pattern
 from .strips import model_tiles
+from .wording import paragraphs
 
 PLATE_PAD = 0.8  # mm of white plate round a callout's text
 LEADER = Style("#000000", 0.25)
