@@ -22,7 +22,8 @@ from PIL import Image
 
 from weavecut import export, kitpage
 from weavecut.cli import cli
-from weavecut.cli.build_command import MANIFEST, PAGE
+from weavecut.cli.recipe import PAGE
+from weavecut.manifest import MANIFEST
 from weavecut.fileio import recording, write_atomic
 from weavecut.kitpage import document as kp
 from weavecut.kitpage import previews

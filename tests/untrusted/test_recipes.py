@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from weavecut.cli.build_command import MANIFEST, file_hash
+from weavecut.manifest import MANIFEST, file_hash
 
 from .helpers import files_under, refused, run
 

@@ -5,7 +5,7 @@ like every file weave-cut writes there."""
 import sys
 from pathlib import Path
 
-from ..cli.build_command import file_hash, record_manifest
+from ..manifest import file_hash, record_manifest
 from . import write_index
 
 if len(sys.argv) < 2:

@@ -1,0 +1,361 @@
+"""A recipe's jobs, checked before the first runs, and how one runs (``weave-cut build``).
+
+A recipe is TOML with one ``[[job]]`` table per output::
+
+    [[job]]
+    command = "weave"                 # any weave-cut command but build
+    input = "square-grid"             # its INPUT: a built-in name, or a file beside the recipe
+    output = "square-weave.svg"       # -o, inside the build folder
+    levels = 2                        # every other key is an option of that command
+    outline-level = 1                 # (dashes or underscores; true for a flag)
+
+A recipe is untrusted input. Every job is checked before the first one runs, and the first
+problem is one line naming the recipe, the job and the key:
+
+- the command and its keys (a misspelt key gets the nearest one), and every value through the
+  option's own type; values reach the command as typed values, never as argv, so no value can
+  become an option;
+- the input: a built-in name, or a file in the recipe's folder (and below) or in a folder given
+  with ``--allow-read``; preset files (``palette = "my.toml"``) likewise;
+- the output: a relative path inside ``-o DIR`` (no ``..``, not absolute, not through a
+  symlink out of it), never an input, a device or a FIFO, and never an existing file that
+  weave-cut did not write there (recorded with its hash in ``.weave-cut-manifest.json``) unless
+  ``--force``. That holds for every file a job may write: a folder output's ``COMMAND-*``
+  files, the files a command says it writes beside its output (``strands --cutter``'s cut
+  files) and the files the job wrote last time.
+
+The manifest records every file each job wrote, by the job's output; a file a job wrote last
+time and not this time (a cut file of a page the model no longer has) is removed.
+
+After the last job, ``DIR/index.html`` shows every output (the kit page, ``weavecut.kitpage``).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import os
+import shlex
+import stat
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import click
+
+from .. import inputs, presets
+from ..errors import WeaveCutError
+from ..fileio import check_writable, make_folder, recording, write_atomic
+from ..manifest import MANIFEST, file_hash, read_manifest, record_manifest
+from ..schema import SchemaError, nearest
+from .common import say
+
+if TYPE_CHECKING:  # the kit page (and shapely) load when a job runs, not for --help
+    from .. import kitpage
+
+PAGE = "index.html"  # the kit page of the build
+PRESET_OPTIONS = {"palette": "palettes", "material": "materials", "laser": "laser"}
+
+
+class RecipeError(SchemaError):
+    """A recipe is missing or malformed, names an unknown command or key, or reads or writes
+    outside its folders."""
+
+
+@dataclass(frozen=True)
+class Job:
+    """One checked job: the command, its typed values by parameter name, and where it writes
+    (``output`` absolute; ``prints``: the output is what the command prints)."""
+
+    where: str  # the recipe and the label
+    label: str  # "job 2 (weave)"
+    command: click.Command
+    values: dict
+    output: Path | None
+    shown: str | None  # the output as the user sees it
+    prints: bool
+    reads: tuple[Path, ...]
+
+    def command_line(self) -> str:
+        """The job as a shell command (for --dry-run and progress lines)."""
+        words = [self.command.name]
+        for p in self.command.params:
+            if p.name not in self.values:
+                continue
+            value = self.values[p.name]
+            if isinstance(p, click.Argument):
+                words.append(str(value))
+            elif "-o" in p.opts:
+                words += ["-o", self.shown]
+            elif getattr(p, "is_flag", False):
+                words += [_long(p)] if value in (True, "true", "1", "yes") else []
+            else:
+                for item in value if isinstance(value, list) else [value]:
+                    words += [_long(p), str(item)]
+        line = "weave-cut " + " ".join(shlex.quote(w) for w in words)
+        return line + (f" > {shlex.quote(self.shown)}" if self.prints else "")
+
+
+def _long(p: click.Parameter) -> str:
+    return max(p.opts, key=len)
+
+
+def _key(p: click.Parameter) -> str:
+    return _long(p).lstrip("-")
+
+
+def find_recipe(spec: str) -> Path:
+    """A recipe file, or a recipe preset by name (``templates/recipes/NAME.toml``)."""
+    path = Path(spec)
+    if path.suffix or os.sep in spec or path.exists():
+        return path
+    try:
+        return presets.find("recipes", spec)
+    except presets.PresetError as exc:
+        raise RecipeError(str(exc)) from exc
+
+
+def _inside(path: Path, folders) -> bool:
+    return any(path == f or path.is_relative_to(f) for f in folders)
+
+
+class Planner:
+    """Checks the jobs of one recipe against the commands of ``group``."""
+
+    def __init__(self, group: click.Group, root: click.Context, recipe: Path, out_dir: Path,
+                 shown_dir: str, allow_read: tuple[Path, ...], force: bool) -> None:
+        self.group, self.root, self.recipe = group, root, recipe
+        self.out_dir, self.shown_dir, self.force = out_dir, shown_dir, force
+        self.readable = (recipe.resolve().parent, *(d.resolve() for d in allow_read))
+        self.ours, self.wrote = read_manifest(out_dir)
+        self.written: set[str] = set()  # by the jobs run so far
+
+    def commands(self) -> dict[str, click.Command]:
+        return {n: c for n, c in self.group.commands.items() if n != "build"}
+
+    def options(self, command: click.Command) -> dict[str, click.Parameter]:
+        """Recipe keys (dashed long names) of ``command``'s options, -o as 'output'."""
+        out = {}
+        for p in command.params:
+            if isinstance(p, click.Option) and p.name != "html":  # build writes the page
+                out["output" if "-o" in p.opts else _key(p)] = p
+        return out
+
+    def plan(self, n: int, job: dict, overrides: dict[str, str]) -> Job:
+        name = job["command"]
+        command = self.commands().get(name)
+        where = f"{self.recipe} job {n} ({name})"
+        if command is None:
+            raise RecipeError(f"{self.recipe} job {n}: unknown command {name!r}"
+                              f"{nearest(name, self.commands())}; choose one of "
+                              f"{', '.join(sorted(self.commands()))}")
+        options = self.options(command)
+        argument = next((p for p in command.params if isinstance(p, click.Argument)), None)
+        allowed = {"command", "output", *options, *(["input"] if argument else [])}
+        raw = {}
+        for key, value in job.items():
+            norm = key.replace("_", "-")
+            if norm not in allowed:
+                raise RecipeError(f"{where}: unknown key {key!r}{nearest(norm, allowed)}; "
+                                  f"{name} takes {', '.join(sorted(allowed - {'command'}))}")
+            raw[norm] = value
+        raw.update({k: v for k, v in overrides.items() if k in options and k != "output"})
+        values, reads = {}, []
+        if argument is not None and "input" in raw:
+            value = raw.pop("input")
+            if not isinstance(value, str):
+                raise RecipeError(f"{where}: input: expected a string")
+            if argument.name == "input_mesh":
+                value = self.mesh_input(value, where)
+                reads += [Path(value)] if Path(value).is_absolute() else []
+            values[argument.name] = value
+        raw.pop("command")
+        output = raw.pop("output", None)
+        for key, value in raw.items():
+            values[options[key].name] = self.value(options[key], key, value, where, reads)
+        target = shown = None
+        prints = False
+        if output is not None:
+            target = self.output(output, where)
+            shown = str(Path(self.shown_dir) / output)
+            if "output" in options:
+                values[options["output"].name] = str(target)
+            else:
+                prints = True
+        job = Job(where, f"job {n} ({name})", command, values, target, shown, prints,
+                  tuple(reads))
+        self.convert(job)
+        return job
+
+    def mesh_input(self, value: str, where: str) -> str:
+        """A built-in input name as it is, or a mesh file inside a readable folder."""
+        if inputs.is_builtin(value):
+            return value
+        path = (self.recipe.parent / value).resolve()
+        try:
+            found = path.is_file()
+        except OSError:  # a name too long for the file system
+            found = False
+        if not found:
+            raise RecipeError(f"{where}: input {value!r} is neither a built-in input"
+                              f"{nearest(value, inputs.INPUTS)} nor a file beside the recipe")
+        return str(self.readable_file(path, value, where, "input"))
+
+    def readable_file(self, path: Path, value: str, where: str, key: str) -> Path:
+        if not _inside(path, self.readable):
+            raise RecipeError(f"{where}: {key} {value!r} is outside the recipe's folder; "
+                              "allow its folder with --allow-read DIR")
+        return path
+
+    def value(self, p: click.Parameter, key: str, value, where: str, reads: list) -> object:
+        """A recipe value for option ``p``, checked for its kind (click converts it later)."""
+        if isinstance(value, bool) and not getattr(p, "is_flag", False):
+            raise RecipeError(f"{where}: {key}: expected a value, not {value!r}")
+        if isinstance(p.type, click.types.IntParamType) and isinstance(value, float):
+            raise RecipeError(f"{where}: {key}: expected an integer, got {value!r}")
+        if p.multiple and not isinstance(value, list):
+            value = [value]
+        if not p.multiple and isinstance(value, list):
+            raise RecipeError(f"{where}: {key}: expected one value, got a list")
+        if isinstance(value, str) and value.endswith(".toml"):  # a preset file, any option
+            path = self.readable_file((self.recipe.parent / value).resolve(), value, where, key)
+            reads.append(path)
+            value = str(path)
+        kind = PRESET_OPTIONS.get(key)
+        if kind and isinstance(value, str):
+            try:
+                presets.load(kind, value)
+            except presets.PresetError as exc:
+                raise RecipeError(f"{where}: {key}: {exc}") from exc
+        return value
+
+    def output(self, value, where: str) -> Path:
+        """The checked absolute path of output ``value`` inside the build folder."""
+        rel = Path(value) if isinstance(value, str) else None
+        if rel is None or not value or rel.is_absolute() or ".." in rel.parts:
+            raise RecipeError(f"{where}: output {value!r} must be a relative path inside the "
+                              "build folder (not absolute, no '..')")
+        target = self.out_dir / rel
+        if not _inside(target.resolve(), [self.out_dir.resolve()]):
+            raise RecipeError(f"{where}: output {value!r} leads out of the build folder "
+                              "through a symlink")
+        if rel.name == MANIFEST or rel == Path(PAGE):
+            raise RecipeError(f"{where}: output {value!r} is weave-cut's "
+                              + ("manifest" if rel.name == MANIFEST else "page of the build"))
+        return target
+
+    def convert(self, job: Job) -> None:
+        """Convert every value with the command's own option types, as click would."""
+        sub = self.context(job)
+        sub.close()
+
+    def context(self, job: Job) -> click.Context:
+        try:
+            return job.command.make_context(job.command.name, [], parent=self.root,
+                                            default_map=job.values)
+        except click.MissingParameter as exc:
+            what = "output" if exc.param is not None and "-o" in exc.param.opts else (
+                "input" if isinstance(exc.param, click.Argument) else
+                (_key(exc.param) if exc.param else "a key"))
+            raise RecipeError(f"{job.where}: needs {what!r}") from exc
+        except click.BadParameter as exc:
+            key = _key(exc.param) if exc.param is not None and exc.param.opts else "input"
+            raise RecipeError(f"{job.where}: {key}: {exc.message}") from exc
+        except click.ClickException as exc:
+            raise RecipeError(f"{job.where}: {exc.format_message()}") from exc
+
+    def check_outputs(self, jobs: list[Job]) -> None:
+        """No output is an input, another job's output, or a file weave-cut did not write."""
+        read = {p.resolve(): j for j in jobs for p in j.reads}
+        read[self.recipe.resolve()] = None
+        seen: dict[Path, Job] = {}
+        for job in jobs:
+            if job.output is None:
+                continue
+            real = job.output.resolve()
+            if real in read:
+                source = read[real]
+                raise RecipeError(f"{job.where}: output {job.shown!r} is "
+                                  + ("the recipe itself" if source is None else
+                                     f"an input of {source.label}"))
+            if real in seen and job.output.suffix:
+                raise RecipeError(f"{job.where}: output {job.shown!r} is also the output of "
+                                  f"{seen[real].label}")
+            seen[real] = job
+            for path in self.replaced(job):
+                self.check_replace(path, job.where)
+        self.check_replace(self.out_dir / PAGE, str(self.recipe))
+
+    def check_replace(self, path: Path, where: str) -> None:
+        """``path`` may be written: no link, no folder or device, and weave-cut wrote it (or
+        ``--force``)."""
+        if not os.path.lexists(path):
+            return
+        if path.is_symlink():
+            raise RecipeError(f"{where}: {path} is a symlink; weave-cut does not replace links")
+        try:
+            check_writable(path)
+        except WeaveCutError as exc:
+            raise RecipeError(f"{where}: {exc}") from exc
+        if not self.force and self.ours.get(self.rel(path)) != file_hash(path):
+            raise RecipeError(f"{where}: {self.shown_dir}/{self.rel(path)} exists and weave-cut "
+                              f"did not write it (it is not in {MANIFEST}); use --force to "
+                              "replace it")
+
+    def replaced(self, job: Job) -> list[Path]:
+        """Existing files ``job`` may replace or remove: its output (a folder output: its
+        COMMAND-* files), the files its command writes beside the output (the command's
+        ``beside(values, output)``), and the files it wrote last time."""
+        last = [self.out_dir / p for p in self.wrote.get(self.rel(job.output), ())]
+        beside = getattr(job.command, "beside", None)
+        found = beside(job.values, job.output) if beside and not job.prints else []
+        try:
+            st = os.lstat(job.output)
+        except OSError:
+            st = None
+        option = self.options(job.command).get("output")
+        folder = not job.prints and getattr(option.type, "dir_okay", False)
+        if st is not None and folder and stat.S_ISDIR(st.st_mode):  # puzzle, --laser-card
+            found += job.output.glob(f"{job.command.name}-*")
+        elif st is not None:
+            found.append(job.output)
+        return sorted({p for p in [*found, *last] if os.path.lexists(p)})
+
+    def rel(self, path: Path) -> str:
+        return path.resolve().relative_to(self.out_dir.resolve()).as_posix()
+
+    def run(self, job: Job, n: int, total: int) -> kitpage.Run:
+        """Run ``job``; what it wrote, for the kit page."""
+        from .. import kitpage
+
+        say(f"[{n}/{total}] {job.command_line()}")
+        if job.output is not None:
+            make_folder(job.output.parent)  # checked to lie inside the build folder
+        sub = self.context(job)
+        printed = io.StringIO()
+        try:
+            with recording() as record:
+                with sub, (contextlib.redirect_stdout(printed) if job.prints
+                           else contextlib.nullcontext()):
+                    job.command.invoke(sub)
+                if job.prints:
+                    write_atomic(job.output, printed.getvalue().encode("utf-8"))
+        except click.ClickException as exc:  # no usage line of the nested command
+            raise RecipeError(f"{job.where}: {exc.format_message()}") from exc
+        self.remember(job, record.files)
+        return kitpage.Run.of(record, job.command_line())
+
+    def remember(self, job: Job, written) -> None:
+        """Record the files ``job`` wrote in the manifest, and remove the files it wrote last
+        time and not now (checked to be weave-cut's before the first job ran)."""
+        if job.output is None:
+            return
+        inside = self.out_dir.resolve()
+        now = sorted({self.rel(p) for p in written if Path(p).resolve().is_relative_to(inside)})
+        self.written.update(now)
+        stale = [p for p in self.wrote.get(self.rel(job.output), ()) if p not in self.written]
+        for rel in stale:  # unless edited since (then --force let it be; it is no longer ours)
+            if file_hash(self.out_dir / rel) == self.ours.get(rel):
+                os.unlink(self.out_dir / rel)
+        record_manifest(self.out_dir, {p: file_hash(self.out_dir / p) for p in now},
+                        {self.rel(job.output): now}, stale)
