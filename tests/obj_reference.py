@@ -1,5 +1,5 @@
 """A line-by-line OBJ reader that follows weave-cut's rules one statement at a time: the oracle
-for the vectorised reader in ``weavecut.mesh_io``."""
+for the vectorised reader in ``weavecut.readers.obj``."""
 
 from __future__ import annotations
 

@@ -18,7 +18,8 @@ from hypothesis import strategies as st
 
 from tests import obj_reference
 from tests.strategies import examples, any_mesh
-from weavecut import inputs, mesh_io
+from weavecut import inputs
+from weavecut.readers import obj, obj_tokens
 from weavecut.errors import MeshError, MeshFileError
 from weavecut.mesh import signed_areas
 from weavecut.mesh_io import MAX_BYTES, obj_text, read_mesh, read_valid_mesh, write_mesh
@@ -161,7 +162,7 @@ def test_regular_and_irregular_layouts_read_alike(tmp_path_factory, mesh, stray,
     if stray is not None:
         lines.insert(where % (len(lines) + 1), stray)
     irregular = [" " + line.replace(" ", "  ") + "\n" for line in lines]
-    with patch.object(mesh_io, "CHUNK", chunk):
+    with patch.object(obj, "CHUNK", chunk):
         read = [agrees_with_the_oracle(tmp_path_factory, lines, ["\n"] * len(lines)),
                 agrees_with_the_oracle(tmp_path_factory, irregular, ["\n"] * len(lines))]
     if read[0] is not None:
@@ -236,7 +237,7 @@ def test_decimals_are_read_as_python_reads_them(tmp_path_factory, tokens, chunk,
     path = tmp_path_factory.mktemp("obj") / "m.obj"
     path.write_text("".join(f"v {t} 0 0\n" for t in tokens) + "f 1 2 3\nf -1 -2 -3\n")
     bad = [i for i, t in enumerate(tokens) if not parses(t)]
-    with patch.object(mesh_io, "CHUNK", chunk), patch.object(mesh_io, "_X87", x87 and mesh_io._X87):
+    with patch.object(obj, "CHUNK", chunk), patch.object(obj_tokens, "_X87", x87 and obj_tokens._X87):
         if bad:
             with pytest.raises(MeshFileError, match=f"line {bad[0] + 1}: vertex coordinates"):
                 read_mesh(path)
@@ -419,7 +420,7 @@ def test_hostile_files_fail_in_one_line_in_the_cli(tmp_path):
 def test_first_byte_finds_the_lowest_byte_equal_to_the_one_sought(chunks, byte):
     """The SWAR search against a byte-by-byte look (little-endian: position 0 is the word's
     lowest byte); 8 where no byte of the word is the one sought."""
-    from weavecut.mesh_io import _first_byte
+    from weavecut.readers.obj_tokens import _first_byte
     words = np.frombuffer(b"".join(chunks), dtype="<u8").copy()
     want = [next((i for i, b in enumerate(c) if b == byte), 8) for c in chunks]
     assert _first_byte(words, byte).tolist() == want
@@ -431,9 +432,9 @@ def test_plain_decimals_are_converted_by_the_fast_path_exactly(numbers):
     """Plain decimals (a sign, 1-7 digits before the point, up to 8 after: at most 15 digits,
     under 2**53) are all converted by the fast path, each to the double Python's float gives:
     the digit path is the reader's speed, so falling back to numpy for them is a fault too."""
-    from weavecut.mesh_io import _Tokens
+    from weavecut.readers.obj_tokens import Tokens
     texts = [f"{s}{w}.{f}" if f else f"{s}{w}" for s, w, f in numbers]
-    tokens = _Tokens(" ".join(texts).encode())
+    tokens = Tokens(" ".join(texts).encode())
     values, plain = tokens._decimals(tokens.start, tokens.end)
     assert plain.all(), [t for t, p in zip(texts, plain) if not p]
     assert values.tolist() == [float(t) for t in texts]
@@ -441,7 +442,7 @@ def test_plain_decimals_are_converted_by_the_fast_path_exactly(numbers):
 
 def _oracle_tokens(data: bytes, lines_before: int, comments: bool):
     """A plain-Python split of an OBJ text: (tokens, first token of each kept line, its line
-    number, tokens on it, line ends), with _Tokens' rules spelt out byte by byte."""
+    number, tokens on it, line ends), with Tokens' rules spelt out byte by byte."""
     text = bytearray(data if data.endswith(b"\n") else data + b"\n")
     for i, b in enumerate(text):
         if b == 13:
@@ -472,11 +473,11 @@ def _oracle_tokens(data: bytes, lines_before: int, comments: bool):
 @example([b"v", b" ", b"1"], 2, False)
 @example([b"\n", b"\n"], 0, True)
 def test_tokens_split_like_a_plain_python_split(parts, lines_before, comments):
-    """_Tokens (both its fast path for texts of single spaces and its general one) against a
+    """Tokens (both its fast path for texts of single spaces and its general one) against a
     byte-by-byte split: the same tokens, first tokens, line numbers, counts and line ends."""
-    from weavecut.mesh_io import _Tokens
+    from weavecut.readers.obj_tokens import Tokens
     data = b"".join(parts)
-    tokens = _Tokens(data, lines_before, comments)
+    tokens = Tokens(data, lines_before, comments)
     words, first, number, count, n_lines = _oracle_tokens(data, lines_before, comments)
     got = [tokens.buf[a:b].tobytes() for a, b in zip(tokens.start.tolist(), tokens.end.tolist())]
     assert got == words
@@ -490,9 +491,9 @@ def test_tokens_split_like_a_plain_python_split(parts, lines_before, comments):
 def test_tokens_leave_texts_of_spaces_and_line_feeds_as_they_are(parts):
     """A text whose only bytes below 33 are spaces and line feeds skips the control-byte pass
     (the common case, kept fast), and comments are blanked by default."""
-    from weavecut.mesh_io import _Tokens
+    from weavecut.readers.obj_tokens import Tokens
     data = b"".join(parts)
-    with patch.object(mesh_io, "_normalise_controls", side_effect=AssertionError("normalised")):
-        tokens = _Tokens(data)
+    with patch.object(obj_tokens, "_normalise_controls", side_effect=AssertionError("normalised")):
+        tokens = Tokens(data)
     assert b"#" not in tokens.buf.tobytes()
-    assert _Tokens(b"v 1\n").line.tolist() == [1]  # lines count from 1 by default
+    assert Tokens(b"v 1\n").line.tolist() == [1]  # lines count from 1 by default

@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 from tests import meshes, obj_reference
-from weavecut import mesh_io
+from weavecut import mesh_io, readers
+from weavecut.readers import obj
 from weavecut.errors import MeshError, MeshFileError
 from weavecut.mesh import Mesh, signed_areas
 from weavecut.mesh_io import json_text, obj_text, read_mesh, read_valid_mesh, write_mesh
@@ -108,11 +109,11 @@ def test_planes_are_tried_z_first_then_y_then_x(tmp_path):
 
 def test_more_faces_or_vertices_than_the_limit_are_refused(tmp_path):
     text = "v 0 0\nv 1 0\nv 0 1\nv 1 1\nf 1 2 3\nf 2 4 3\nf 1 2 4\n"
-    with patch.object(mesh_io, "MAX_FACES", 2):
+    with patch.object(readers, "MAX_FACES", 2):
         assert refused(tmp_path, "m.obj", text) == (
             "more than 2 faces or 33,554,432 vertices by line 7; weave-cut reads at most that")
         assert read_mesh_text(tmp_path, text[:-len("f 1 2 4\n")]).n_faces == 2
-    with patch.object(mesh_io, "MAX_VERTICES", 3):
+    with patch.object(readers, "MAX_VERTICES", 3):
         assert refused(tmp_path, "m.obj", text) == (
             "more than 16,777,216 faces or 3 vertices by line 7; weave-cut reads at most that")
 
@@ -128,13 +129,13 @@ def test_big_files_are_read_in_pieces_that_agree_with_the_whole(tmp_path):
     # the limit's line count cross the pieces' ends
     mesh = meshes.mixed()
     text = obj_text(mesh) + "# end\n"
-    with patch.object(mesh_io, "CHUNK", 64):
+    with patch.object(obj, "CHUNK", 64):
         back = read_mesh_text(tmp_path, text)
         assert back.faces() == mesh.faces() and back.vertices.tolist() == mesh.vertices.tolist()
         bad = text + "f 1 2 99\n"
         assert refused(tmp_path, "m.obj", bad) == (
             f"line {bad.count(chr(10))}: face index 99 refers to no vertex (7 defined so far)")
-        with patch.object(mesh_io, "MAX_FACES", 2):
+        with patch.object(readers, "MAX_FACES", 2):
             message = refused(tmp_path, "m.obj", text)
     first_faces = text.index("\nf ") + 1
     lines = text[:first_faces].count("\n")
@@ -251,10 +252,10 @@ def test_read_valid_mesh_names_the_file_and_validates(tmp_path):
         read_valid_mesh(path)
     mesh = read_valid_mesh(path, allow_nonconvex=True)
     assert signed_areas(mesh)[0] > 0 and mesh.faces() == [[0, 1, 2, 3, 4]]
-    obj = tmp_path / "bad.obj"
-    obj.write_text("v 0 0\nv 1 0\nv 0 1\nv 5 5\nf 1 2 3\n")
-    with pytest.raises(MeshError, match=rf"^{obj}: vertex 4 is in no face$"):
-        read_valid_mesh(obj)
+    bad = tmp_path / "bad.obj"
+    bad.write_text("v 0 0\nv 1 0\nv 0 1\nv 5 5\nf 1 2 3\n")
+    with pytest.raises(MeshError, match=rf"^{bad}: vertex 4 is in no face$"):
+        read_valid_mesh(bad)
 
 
 def test_read_valid_mesh_passes_allow_nonconvex_to_a_drawing(tmp_path):
@@ -315,13 +316,13 @@ def test_json_messages_show_at_most_120_characters(tmp_path):
 
 
 def test_json_limits_and_surfaces(tmp_path):
-    with patch.object(mesh_io, "MAX_FACES", 1):
+    with patch.object(readers, "MAX_FACES", 1):
         assert refused(tmp_path, "m.json", doc(faces=[[0, 1, 2], [0, 2, 1]])) == (
             "2 faces and 3 vertices; weave-cut reads at most 1 faces and 33,554,432 vertices")
         assert read_mesh_text(tmp_path, doc(), "ok.json").n_faces == 1
-    with patch.object(mesh_io, "MAX_VERTICES", 2):
+    with patch.object(readers, "MAX_VERTICES", 2):
         assert refused(tmp_path, "m.json", doc()).startswith("1 faces and 3 vertices; ")
-    with patch.object(mesh_io, "MAX_VERTICES", 3):
+    with patch.object(readers, "MAX_VERTICES", 3):
         assert read_mesh_text(tmp_path, doc(), "ok.json").n_vertices == 3  # at the limit
     assert refused(tmp_path, "m.json", "[" * 100_000 + "]" * 100_000) == (
         "JSON nested too deeply (a mesh needs 3 levels)")

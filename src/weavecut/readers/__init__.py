@@ -1,8 +1,11 @@
-"""Meshes from drawings: SVG and DXF outlines as faces, or one outline meshed inside.
+"""The file formats weave-cut reads: mesh files (OBJ, weave-cut's JSON) and drawings (SVG and
+DXF outlines as faces, or one outline meshed inside); ``mesh_io`` opens the files.
 
-Modules: ``svg`` and ``dxf`` read closed outlines in mm, ``rings`` checks them, finds holes and
-welds faces, ``outline_mesh`` meshes an outline, ``drawing`` puts them together. They load on
-first use (svgelements, ezdxf's reader and scipy's spatial tools take a while to import).
+Modules: ``obj`` (with ``obj_tokens``) and ``mesh_json`` parse mesh files within
+``MAX_FACES`` and ``MAX_VERTICES``; ``svg`` and ``dxf`` read closed outlines in mm, ``rings``
+checks them, finds holes and welds faces, ``outline_mesh`` meshes an outline, ``drawing`` puts
+them together. The drawing modules load on first use (svgelements, ezdxf's reader and scipy's
+spatial tools take a while to import).
 """
 
 from __future__ import annotations
@@ -17,6 +20,8 @@ KINDS = ("hex", "quad", "tri", "voronoi")  # ways to mesh an outline (outline_me
 MESH_CHOICES = ("auto", "none", *KINDS)
 DEFAULT_FLATTEN = 0.2  # mm
 DEFAULT_KIND = "hex"
+MAX_FACES = 2**24  # read from a mesh file: 16.8 million, 1.7 times the pentagon's level 10
+MAX_VERTICES = 2**25
 
 
 def read_drawing(path: str | Path, *, flatten: float = DEFAULT_FLATTEN, layer: str | None = None,
