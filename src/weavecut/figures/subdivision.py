@@ -14,9 +14,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .. import inputs
+from ..analysis import boxcount as bc
 from ..analysis import convexity as cv
 from ..analysis import fractal as fr
 from ..analysis import levels as lv
+from ..analysis import lsystem as ls
 from ..mesh import Mesh, edge_lengths, signed_areas
 from ..subdivision import snub, subdivide
 from ..layout.drawing import (
@@ -71,8 +73,8 @@ def angle_label_point(vertex, first_arm: float) -> NDArray[np.float64]:
 
 
 def z_triplet_panel() -> Panel:
-    pts = fr.lsystem_curve(1)
-    a = fr.ALPHA
+    pts = ls.lsystem_curve(1)
+    a = ls.ALPHA
 
     def draw(fit: Fit) -> list[Layer]:
         s = fit.scale
@@ -339,7 +341,7 @@ def fractal_curves_panel(hierarchy, born: int = 1, caption: str | None = None) -
         lw = line_width(mesh, fit)
         layers = [Layer("edges", "guide", (segments(fit(edge_coords(mesh)),
                                                     Style("#c8c8c8", 0.7 * lw)),)),
-                  Layer("boundary", "cut", (segments(fit(fr.boundary_segments(mesh)),
+                  Layer("boundary", "cut", (segments(fit(bc.boundary_segments(mesh)),
                                                      Style("#000000", 2 * lw)),))]
         if len(inner):
             verts, _ = fr.follow_curves(hierarchy, born, start.topology.edges[inner, 0],
@@ -360,7 +362,7 @@ def fractal_curves_panel(hierarchy, born: int = 1, caption: str | None = None) -
 
 
 def lsystem_panel() -> Panel:
-    pts = fr.lsystem_curve(1)
+    pts = ls.lsystem_curve(1)
 
     def draw(fit: Fit) -> list[Layer]:
         lw = 0.01 * fit.scale
@@ -368,14 +370,14 @@ def lsystem_panel() -> Panel:
         lines = [("\u25bd: rot(\u03b1)    \u25b3: rot(-\u03b1)", 0),
                  ("+: rot(\u03c0/3)    -: rot(-\u03c0/3)", 1),
                  ("F \u2192 \u25bd F - F + F \u25b3", 2),
-                 (f"\u03b1 = atan(\u221a3/5) = {math.degrees(fr.ALPHA):.4f}\u00b0", 3),
-                 (f"D = log 3 / log \u221a7 = {fr.DIMENSION:.5f}", 4)]
+                 (f"\u03b1 = atan(\u221a3/5) = {math.degrees(ls.ALPHA):.4f}\u00b0", 3),
+                 (f"D = log 3 / log \u221a7 = {ls.DIMENSION:.5f}", 4)]
         texts = tuple(Text(*fit(np.array([0.5, -0.32 - 0.13 * i])), s, size=size,
                            anchor="middle") for s, i in lines)
         return [Layer("generator", "cut", (
             Polylines(fit(pts), np.array([0, 4]), Style("#000000", lw)),
             segments(fit(np.array([[[0, 0], [1, 0]]])), Style(GREY, 0.5 * lw)),
-            Polylines(fit(_arc((0, 0), 0.2, 0, fr.ALPHA)), np.array([0, 24]),
+            Polylines(fit(_arc((0, 0), 0.2, 0, ls.ALPHA)), np.array([0, 24]),
                       Style("#000000", 0.5 * lw)),
             discs(fit(pts[[0, 3]]), 0.02 * fit.scale, Style("#000000", 0.4 * lw, fill=WHITE)),
             discs(fit(pts[[1, 2]]), 0.02 * fit.scale, Style("#000000", 0.4 * lw, fill=BLUE)))),
