@@ -11,18 +11,18 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from weavecut import inputs
-from weavecut.analysis import fractal
+from weavecut.analysis import boxcount, fractal, lsystem
 from weavecut.subdivision import subdivide
 
 
 def test_alpha_is_atan_sqrt3_over_5():
-    assert fractal.ALPHA == pytest.approx(math.atan(math.sqrt(3) / 5), abs=1e-15)
-    assert fractal.alpha_from_z_triplet() == pytest.approx(fractal.ALPHA, abs=1e-15)
-    assert math.degrees(fractal.ALPHA) == pytest.approx(19.1066, abs=1e-4)
+    assert lsystem.ALPHA == pytest.approx(math.atan(math.sqrt(3) / 5), abs=1e-15)
+    assert lsystem.alpha_from_z_triplet() == pytest.approx(lsystem.ALPHA, abs=1e-15)
+    assert math.degrees(lsystem.ALPHA) == pytest.approx(19.1066, abs=1e-4)
 
 
 def test_lsystem_generator_is_the_z_triplet():
-    pts = fractal.lsystem_curve(1)
+    pts = lsystem.lsystem_curve(1)
     edges = np.diff(pts, axis=0)
     assert np.hypot(*edges.T) == pytest.approx([1 / math.sqrt(7)] * 3, abs=1e-15)
     assert pts[1] == pytest.approx([5 / 14, math.sqrt(3) / 14], abs=1e-15)
@@ -35,7 +35,7 @@ def test_lsystem_generator_is_the_z_triplet():
 
 @pytest.mark.parametrize("levels", [0, 1, 2, 5])
 def test_lsystem_length_grows_by_3_over_sqrt7(levels):
-    pts = fractal.lsystem_curve(levels)
+    pts = lsystem.lsystem_curve(levels)
     assert len(pts) == 3**levels + 1
     assert np.hypot(*np.diff(pts, axis=0).T).sum() == pytest.approx((3 / math.sqrt(7))**levels)
     assert pts[-1] == pytest.approx([1.0, 0.0], abs=1e-12)
@@ -56,7 +56,7 @@ def test_boundary_is_the_lsystem_curve_exactly(spec, chirality):
 def test_boundary_curve_count_and_length():
     h = subdivide(inputs.get("pentagon"), 4)
     mesh = h[-1].mesh
-    seg = fractal.boundary_segments(mesh)
+    seg = boxcount.boundary_segments(mesh)
     assert len(seg) == 5 * 3**4
     side = np.hypot(*(h[0].mesh.vertices[1] - h[0].mesh.vertices[0]))
     assert np.hypot(*(seg[:, 1] - seg[:, 0]).T).sum() == pytest.approx(
@@ -66,17 +66,17 @@ def test_boundary_curve_count_and_length():
 def test_box_counting_of_lsystem_level8_is_near_log3_over_log_sqrt7():
     """Level 8 on a unit edge: boxes from 1/32 of the curve's extent (0.0313) down to two
     segments (2 * 7**-4 = 0.00083), four sizes per halving, counts averaged over 8 grids."""
-    seg = fractal.curve_segments(fractal.lsystem_curve(8))
-    result = fractal.box_counting(seg)
+    seg = boxcount.curve_segments(lsystem.lsystem_curve(8))
+    result = boxcount.box_counting(seg)
     assert result["sizes"][0] == pytest.approx(0.0313, abs=1e-3)
     assert result["sizes"][-1] >= 2 * 7**-4
-    assert abs(result["dimension"] - fractal.DIMENSION) < 0.02
-    assert fractal.DIMENSION == pytest.approx(1.12915, abs=1e-5)
+    assert abs(result["dimension"] - lsystem.DIMENSION) < 0.02
+    assert lsystem.DIMENSION == pytest.approx(1.12915, abs=1e-5)
 
 
 def test_box_counting_of_a_straight_line_is_one():
-    seg = fractal.curve_segments(np.column_stack([np.linspace(0, 1, 2001), np.zeros(2001)]))
-    assert fractal.box_counting(seg)["dimension"] == pytest.approx(1.0, abs=0.01)
+    seg = boxcount.curve_segments(np.column_stack([np.linspace(0, 1, 2001), np.zeros(2001)]))
+    assert boxcount.box_counting(seg)["dimension"] == pytest.approx(1.0, abs=0.01)
 
 
 @settings(max_examples=30, deadline=None)
@@ -87,7 +87,7 @@ def test_box_count_of_one_segment_matches_shapely(eps, ox, oy, angle, length):
     a = np.array([0.1, 0.2])
     b = a + length * np.array([math.cos(angle), math.sin(angle)])
     origin = np.array([ox, oy]) * eps
-    got = fractal.box_count(np.array([[a, b]]), eps, origin)
+    got = boxcount.box_count(np.array([[a, b]]), eps, origin)
     # the boxes near the segment, each as a square; a box whose inside (a hair in from its
     # sides) the segment crosses is surely met, one farther than a hair is surely not
     # (sampling points along the segment missed the corners a nearly diagonal one clips by
@@ -147,8 +147,8 @@ def test_inner_curves_table():
 def test_lsystem_boundary_is_the_mesh_boundary(name, levels):
     """The cheap boundary (no mesh) equals the level's boundary edges, as a set of segments."""
     mesh = inputs.get(name)
-    cheap = fractal.lsystem_boundary(mesh, levels)
-    real = fractal.boundary_segments(subdivide(mesh, levels)[-1].mesh)
+    cheap = boxcount.lsystem_boundary(mesh, levels)
+    real = boxcount.boundary_segments(subdivide(mesh, levels)[-1].mesh)
 
     def key(segs):
         pts = np.round(segs, 9) + 0.0          # + 0.0: no negative zeros
@@ -160,9 +160,9 @@ def test_lsystem_boundary_is_the_mesh_boundary(name, levels):
 
 def test_box_counting_uncertainty_of_a_line():
     # a straight line has dimension 1 at every scale: tiny standard error, equal halves
-    line = fractal.curve_segments(np.column_stack([np.linspace(0, 1, 2001),
-                                                   np.zeros(2001)]))
-    r = fractal.box_counting(line)
+    line = boxcount.curve_segments(np.column_stack([np.linspace(0, 1, 2001),
+                                                    np.zeros(2001)]))
+    r = boxcount.box_counting(line)
     assert r["dimension"] == pytest.approx(1.0, abs=0.01)
     assert r["stderr"] < 0.01
     assert r["halves"] == pytest.approx([1.0, 1.0], abs=0.02)

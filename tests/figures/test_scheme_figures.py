@@ -10,7 +10,7 @@ import pytest
 from tests.svg_readback import assert_svg_shows
 from weavecut import export, inputs
 from weavecut.figures import gallery, schemes
-from weavecut.figures import subdivision as sub_figures
+from weavecut.figures import fractal as fractal_figures
 from weavecut.layout.drawing import Drawing, Polylines, Text
 from weavecut.subdivision import subdivide
 from weavecut.validation import validate
@@ -75,7 +75,7 @@ def _circle(p, q, r):
 def test_z_triplet_labels_sit_at_their_arcs():
     """Each 2pi/3 label lies inside its angle, on the bisector, within two arc radii of the
     vertex (the old labels sat about three radii away, off the bisector)."""
-    drawing = sub_figures.fig_z_triplet()
+    drawing = fractal_figures.fig_z_triplet()
     layers = {layer.name: layer for layer in drawing.sheets[0].layers}
     arcs = [s for s in layers["z-triplet"].shapes if isinstance(s, Polylines)][2:]
     labels = [s for s in layers["labels"].shapes if s.text == "2\u03c0/3"]

@@ -21,7 +21,9 @@ from ..mesh import outer_vertices, vertex_degrees
 from ..subdivision import subdivide
 from ..weave.report import weave_summaries
 from ..weave.snub_weave import snub_weaves
+from . import boxcount as bc
 from . import fractal as fr
+from . import lsystem as ls
 from .convexity import nonconvex_levels
 
 
@@ -91,7 +93,7 @@ def _set(values) -> str:
 
 
 def _boundary_length(mesh) -> float:
-    seg = fr.boundary_segments(mesh)
+    seg = bc.boundary_segments(mesh)
     return float(np.hypot(*(seg[:, 1] - seg[:, 0]).T).sum())
 
 
@@ -198,7 +200,7 @@ def dimension() -> Finding:
     """Box counting on the pentagon's boundary at levels 6-10 (the L-system curves)."""
     pentagon = inputs.get("pentagon")
     error = max(fr.boundary_lsystem_error(subdivide(pentagon, 8)))
-    rows = [(t, fr.box_counting(fr.lsystem_boundary(pentagon, t))) for t in DIMENSION_LEVELS]
+    rows = [(t, bc.box_counting(bc.lsystem_boundary(pentagon, t))) for t in DIMENSION_LEVELS]
     values = ", ".join(f"{t}: {r['dimension']:.4f} ± {r['stderr']:.4f} "
                        f"(halves {r['halves'][0]:.3f}/{r['halves'][1]:.3f})" for t, r in rows)
     last = rows[-1][1]
@@ -213,7 +215,7 @@ def dimension() -> Finding:
         f"real uncertainty: the counts wave with log ε). On the pentagon's boundary at level "
         f"t (the L-system curve; it equals the mesh boundary to {error:.0e} up to level 8): "
         f"{values}. The estimate {trend} with the level; the analytic value is "
-        f"log 3/log √7 = {fr.DIMENSION:.5f}, {fr.DIMENSION - last['dimension']:.4f} above the "
+        f"log 3/log √7 = {ls.DIMENSION:.5f}, {ls.DIMENSION - last['dimension']:.4f} above the "
         f"level-{rows[-1][0]} estimate.",
         "`weave-cut fractal pentagon --levels 8 --json` (level 8); `weave-cut findings` "
         "(slow)")

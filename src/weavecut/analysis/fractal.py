@@ -1,11 +1,11 @@
-"""The fractal side of the snub scheme (paper section 4): L-system, dimensions, inner curves.
+"""Curves through the levels of the snub scheme (paper section 4): following, inner curves, report.
 
 Every edge of level t is replaced by a Z-triplet in each later step, so it becomes a curve of
-3^(t'-t) edges at level t'. On the boundary nothing is smoothed and the curve is exactly the
-Lindenmayer system ``F -> vF-F+F^`` (v: turn by +alpha, ^: by -alpha, +/-: by +-60 degrees),
-with edges 1/sqrt(7) as long each step, so the limit has dimension log 3 / log sqrt 7. Inside,
-smoothing moves the vertices; :func:`inner_curves` measures what that does to the lengths (the
-paper's open question).
+3^(t'-t) edges at level t'. On the boundary that curve is the Lindenmayer system of
+``analysis.lsystem`` (:func:`boundary_lsystem_error` checks it). Inside, smoothing moves the
+vertices; :func:`inner_curves` measures what that does to the lengths (the paper's open
+question). :func:`fractal_report` gathers both with the box-counting dimensions of
+``analysis.boxcount``.
 
 Curves are followed through the snub numbering (``subdivision.snub``): the Z vertices of parent
 edge e are ``V + 2e`` (near u) and ``V + 2e + 1`` (near w), its Z edges ``3e + part``.
@@ -19,74 +19,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..mesh import Mesh, outer_vertices
-from ..numeric import line_fit
 from ..subdivision import Level
 from ..subdivision.snub import FIRST, LAST, MIDDLE, SPOKE
-
-ALPHA = math.atan(math.sqrt(3.0) / 5.0)
-"""Angle between an edge and the first edge of its Z-triplet: atan(sqrt 3 / 5), 19.1066 deg."""
-SCALE = 1.0 / math.sqrt(7.0)
-"""Length of a Z edge relative to the edge it replaces."""
-DIMENSION = math.log(3.0) / math.log(math.sqrt(7.0))
-"""Similarity dimension of the boundary curve, log 3 / log sqrt 7 = 1.12915..."""
-
-AXIOM, RULE = "F", "vF-F+F^"
-TURNS = {"v": ALPHA, "^": -ALPHA, "+": math.pi / 3, "-": -math.pi / 3}
-
-
-def alpha_from_z_triplet() -> float:
-    """Alpha derived from the Z-triplet: three equal edges, 120 degrees between consecutive ones.
-
-    The Z u-x-y-w with |ux| = |xy| = |yw| = s and point symmetry about the midpoint has
-    x = (a, b), y = (1 - a, -b) for the unit edge, with |x| = s and the angle u-x-y 120
-    degrees: solving gives x = (5 + i sqrt 3) / 14, so alpha = atan2(sqrt 3, 5).
-
-    Examples
-    --------
-    >>> round(math.degrees(alpha_from_z_triplet()), 4)
-    19.1066
-    """
-    x = complex(5.0, math.sqrt(3.0)) / 14.0
-    y = 1.0 - x
-    s = abs(x)
-    inner = (x - 0) / (x - y)  # direction x->u against x->y
-    angle = abs(math.atan2(inner.imag, inner.real))
-    assert abs(abs(y - x) - s) < 1e-15 and abs(angle - 2 * math.pi / 3) < 1e-12
-    return math.atan2(x.imag, x.real)
-
-
-def lsystem_string(levels: int) -> str:
-    """The L-system word after ``levels`` rewritings of the axiom F.
-
-    Examples
-    --------
-    >>> lsystem_string(1)
-    'vF-F+F^'
-    """
-    word = AXIOM
-    for _ in range(levels):
-        word = word.replace("F", RULE)
-    return word
-
-
-def lsystem_curve(levels: int, start=(0.0, 0.0), end=(1.0, 0.0),
-                  chirality: str = "left") -> NDArray[np.float64]:
-    """(3**levels + 1, 2) points of the L-system curve from ``start`` to ``end``.
-
-    The turtle is vectorised: turns become a cumulative heading, F steps a cumulative sum.
-    ``chirality="right"`` mirrors every turn (the snub step's other chirality).
-    """
-    word = np.frombuffer(lsystem_string(levels).encode("ascii"), dtype=np.uint8)
-    sign = -1.0 if chirality == "right" else 1.0
-    turn = np.zeros(len(word))
-    for symbol, angle in TURNS.items():
-        turn[word == ord(symbol)] = sign * angle
-    heading = np.cumsum(turn)[word == ord("F")]
-    start = complex(*start)
-    chord = complex(*end) - start
-    steps = np.exp(1j * heading) * (chord * SCALE**levels)
-    points = np.concatenate([[start], start + np.cumsum(steps)])
-    return np.column_stack([points.real, points.imag])
+from .boxcount import boundary_segments, box_counting, mesh_segments
+from .lsystem import ALPHA, AXIOM, DIMENSION, RULE, SCALE, alpha_from_z_triplet, lsystem_curve
 
 
 # -- following curves through the levels ---------------------------------------------------
@@ -178,145 +114,6 @@ def boundary_lsystem_error(hierarchy, chirality: str = "left") -> list[float]:
         got = pts[..., 0] + 1j * pts[..., 1]
         errors.append(float(np.abs(got - expected).max()) if got.size else 0.0)
     return errors
-
-
-# -- box counting ------------------------------------------------------------------------
-
-def _split_long(a, b, eps):
-    """Cut segments into pieces shorter than ``eps`` (vectorised with repeat)."""
-    length = np.hypot(*(b - a).T)
-    pieces = np.maximum(1, np.ceil(length / (0.999 * eps)).astype(np.int64))
-    if (pieces == 1).all():
-        return a, b
-    seg = np.repeat(np.arange(len(a)), pieces)
-    k = np.arange(len(seg)) - np.repeat(np.cumsum(pieces) - pieces, pieces)
-    t0 = (k / pieces[seg])[:, None]
-    t1 = ((k + 1) / pieces[seg])[:, None]
-    d = (b - a)[seg]
-    return a[seg] + t0 * d, a[seg] + t1 * d
-
-
-def box_count(segments: NDArray[np.float64], eps: float, origin=(0.0, 0.0)) -> int:
-    """Number of grid boxes of side ``eps`` that the segments (n, 2, 2) meet.
-
-    Exact for the union of segments: a segment shorter than a box meets the boxes of its
-    ends and, when it changes both row and column, the one box it passes between them.
-    """
-    a, b = _split_long(segments[:, 0] - origin, segments[:, 1] - origin, eps)
-    ia = np.floor(a / eps).astype(np.int64)
-    ib = np.floor(b / eps).astype(np.int64)
-    cells = [ia, ib]
-    both = (ia[:, 0] != ib[:, 0]) & (ia[:, 1] != ib[:, 1])
-    if both.any():
-        pa, pb, ca, cb = a[both], b[both], ia[both], ib[both]
-        gx = np.maximum(ca[:, 0], cb[:, 0]) * eps
-        gy = np.maximum(ca[:, 1], cb[:, 1]) * eps
-        tx = (gx - pa[:, 0]) / (pb[:, 0] - pa[:, 0])
-        ty = (gy - pa[:, 1]) / (pb[:, 1] - pa[:, 1])
-        x_first = (tx < ty)[:, None]
-        cells.append(np.where(x_first, np.column_stack([cb[:, 0], ca[:, 1]]),
-                              np.column_stack([ca[:, 0], cb[:, 1]])))
-    c = np.concatenate(cells)
-    c -= c.min(axis=0)
-    return int(len(np.unique(c[:, 0] * (int(c[:, 1].max()) + 1) + c[:, 1])))
-
-
-def box_sizes(segments: NDArray[np.float64], coarsest: float = 1 / 32,
-              finest: float = 2.0, per_octave: int = 4) -> NDArray[np.float64]:
-    """Box sizes from ``coarsest`` x the curve's extent down to ``finest`` x its mean segment.
-
-    The default range (extent/32 .. 2 mean segments, four sizes per halving) keeps the fit
-    inside the scales where the curve is resolved, and away from the coarse end where a
-    curve a few boxes wide looks like a line (which pulls the slope towards 1).
-    """
-    pts = segments.reshape(-1, 2)
-    extent = float(np.max(pts.max(axis=0) - pts.min(axis=0)))
-    mean = float(np.hypot(*(segments[:, 1] - segments[:, 0]).T).mean())
-    hi, lo = coarsest * extent, finest * mean
-    if lo >= hi:
-        raise ValueError("the curve has too few segments for box counting; use more levels")
-    k = np.arange(0, int(np.floor(per_octave * np.log2(hi / lo))) + 1)
-    return hi * 2.0 ** (-k / per_octave)
-
-
-GRID_SHIFT = np.array([0.7548776662466927, 0.5698402909980532])  # Kronecker sequence step
-
-
-def box_counting(segments: NDArray[np.float64], sizes=None, n_grids: int = 8) -> dict:
-    """Box-counting dimension: slope of log N(eps) against log(1/eps), least squares.
-
-    N(eps) is the mean count over ``n_grids`` grids shifted by a low-discrepancy sequence
-    of fractions of a box (one grid's count jumps with its alignment).
-
-    Parameters
-    ----------
-    segments : (n, 2, 2) float64, the curve as segments
-    sizes : box sizes (default :func:`box_sizes`)
-    n_grids : number of shifted grids averaged per size
-
-    Returns
-    -------
-    dict with ``sizes``, ``counts`` (mean over grids), ``dimension`` (the slope),
-    ``intercept``, ``r2``, ``grids``, ``stderr`` (the slope's standard error from the fit's
-    residuals) and ``halves`` (the slopes fitted to the coarser and the finer half of the
-    sizes alone: how much the answer depends on the fit range, usually far more than
-    ``stderr``, because the counts of a self-similar curve wave with log eps).
-    """
-    segments = np.asarray(segments, dtype=np.float64).reshape(-1, 2, 2)
-    sizes = box_sizes(segments) if sizes is None else np.asarray(sizes, dtype=float)
-    lower = segments.reshape(-1, 2).min(axis=0)
-    shifts = (np.arange(1, n_grids + 1)[:, None] * GRID_SHIFT) % 1.0
-    counts = []
-    for eps in sizes:  # loops over box sizes and grids, not over mesh elements
-        counts.append(np.mean([box_count(segments, float(eps), lower - eps * s)
-                               for s in shifts]))
-    x = np.log(1.0 / sizes)
-    y = np.log(np.asarray(counts, dtype=float))
-    slope, intercept = line_fit(x, y)
-    fit = slope * x + intercept
-    ss = float(((y - y.mean()) ** 2).sum())
-    r2 = 1.0 - float(((y - fit) ** 2).sum()) / ss if ss > 0 else 1.0
-    dof = len(x) - 2
-    stderr = (math.sqrt(float(((y - fit) ** 2).sum()) / dof / float(((x - x.mean()) ** 2).sum()))
-              if dof > 0 else math.nan)
-    half = len(x) // 2
-    halves = [line_fit(x[part], y[part])[0] if len(x[part]) > 1 else math.nan
-              for part in (slice(0, half + 1), slice(half, None))]
-    return {"sizes": [float(s) for s in sizes], "counts": [float(c) for c in counts],
-            "dimension": float(slope), "intercept": float(intercept), "r2": r2,
-            "grids": n_grids, "stderr": stderr, "halves": halves}
-
-
-def lsystem_boundary(mesh: Mesh, levels: int, chirality: str = "left") -> NDArray[np.float64]:
-    """(n, 2, 2) segments of the L-system curves of ``levels`` on every boundary edge of
-    ``mesh`` in its face's direction: the boundary of the snub level ``levels`` (see
-    :func:`boundary_lsystem_error`) without building the mesh, so deep levels are cheap."""
-    topo = mesh.topology
-    lone = topo.edge_half_edges[topo.boundary_edges].max(axis=1)
-    a = mesh.vertices[mesh.face_indices[lone]]
-    b = mesh.vertices[mesh.face_indices[mesh.next_half_edge[lone]]]
-    ref = lsystem_curve(levels, chirality=chirality)
-    unit = ref[:, 0] + 1j * ref[:, 1]
-    pts = (a[:, 0] + 1j * a[:, 1])[:, None] + ((b - a)[:, 0] + 1j * (b - a)[:, 1])[:, None] * unit[None]
-    return curve_segments(np.stack([pts.real, pts.imag], axis=-1))
-
-
-def mesh_segments(mesh: Mesh, edges: NDArray | None = None) -> NDArray[np.float64]:
-    """(n, 2, 2) segments of the mesh's edges (all, or the ids / mask given)."""
-    e = mesh.topology.edges if edges is None else mesh.topology.edges[edges]
-    return np.stack([mesh.vertices[e[:, 0]], mesh.vertices[e[:, 1]]], axis=1)
-
-
-def boundary_segments(mesh: Mesh) -> NDArray[np.float64]:
-    return mesh_segments(mesh, mesh.topology.boundary_edges)
-
-
-def curve_segments(points: NDArray[np.float64]) -> NDArray[np.float64]:
-    """(n * m, 2, 2) segments of (n, m + 1, 2) curves (or one (m + 1, 2) curve)."""
-    points = np.asarray(points, dtype=float)
-    if points.ndim == 2:
-        points = points[None]
-    return np.stack([points[:, :-1], points[:, 1:]], axis=2).reshape(-1, 2, 2)
 
 
 # -- inner curves ------------------------------------------------------------------------

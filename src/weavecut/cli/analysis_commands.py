@@ -110,7 +110,7 @@ def fractal_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonc
       weave-cut fractal pentagon --levels 5 -o fractal.svg
       weave-cut fractal square-grid:3x3 --levels 6 --curve 2:40
     """
-    from ..figures import subdivision as figures
+    from ..figures import fractal as figures
 
     _suffix_check(output, tuple(export.formats()))
     if curve is not None and curve[0] > levels:

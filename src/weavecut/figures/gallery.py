@@ -1,5 +1,6 @@
-"""Every figure weave-cut reproduces, by name: the subdivision and fractal figures of
-``figures.subdivision``, the weave figures of ``figures.weaving``, the classic schemes'
+"""Every figure weave-cut reproduces, by name: the subdivision, fractal and level-image
+figures of ``figures.subdivision`` (built there and in ``figures.fractal`` and
+``figures.level_image``), the weave figures of ``figures.weaving``, the classic schemes'
 stages and weaves of ``figures.schemes`` and the jigsaw puzzle's of ``figures.jigsaw``."""
 
 from __future__ import annotations

@@ -11,6 +11,7 @@ import numpy as np
 import shapely
 from numpy.typing import NDArray
 
+from ..analysis import boxcount as bc
 from ..analysis import fractal as fr
 from ..mesh import Mesh
 from ..layout.drawing import (
@@ -93,7 +94,7 @@ def segments(coords: NDArray[np.float64], style: Style) -> Polylines:
 
 def edge_coords(mesh: Mesh, edges=None) -> NDArray[np.float64]:
     """(n, 2, 2) endpoints of the mesh's edges (all, or the ids / mask given)."""
-    return fr.mesh_segments(mesh, edges)
+    return bc.mesh_segments(mesh, edges)
 
 
 def clip_segments(segs: NDArray[np.float64], box) -> NDArray[np.float64]:

@@ -1,13 +1,15 @@
-"""The paper's figures, by name: ``FIGURES = {name: (description, builder)}``.
+"""The paper's figures, by name (``FIGURES = {name: (description, builder)}``), and the
+subdivision figures among them: operations 1-3, smoothing, refinement steps, edge renders.
 
 A builder takes no arguments and returns a Drawing (vector figures) or PNG bytes (raster
 figures). ``weave-cut figure NAME -o OUT`` writes one; ``weave-cut figure --list`` lists them.
-Multi-panel figures are laid out on one sheet with a caption under every panel.
+Multi-panel figures are laid out on one sheet with a caption under every panel. The Z-triplet
+and fractal figures are built in ``figures.fractal``, the level image in
+``figures.level_image``; ``convexity_drawing`` here is what ``weave-cut convexity -o`` writes.
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 
 import numpy as np
@@ -15,8 +17,6 @@ from numpy.typing import NDArray
 
 from .. import inputs
 from ..analysis import convexity as cv
-from ..analysis import fractal as fr
-from ..analysis import levels as lv
 from ..mesh import Mesh, edge_lengths, signed_areas
 from ..subdivision import snub, subdivide
 from ..layout.drawing import (
@@ -24,17 +24,16 @@ from ..layout.drawing import (
     Fit,
     Layer,
     Polygons,
-    Polylines,
     Style,
-    Text,
     mesh_bounds,
     mesh_polygons,
     polygons_from_rings,
 )
 from ..layout.mesh_figure import line_width
+from .fractal import fig_fractal_curves, fig_z_triplet, z_triplet_panel
+from .level_image import level_image_png
 from .panels import (
     BLUE,
-    CURVE_COLOURS,
     GREY,
     LIGHT_BLUE,
     RED,
@@ -51,62 +50,7 @@ from .panels import (
     segments,
 )
 
-# -- Figure Z-triplet and operations 1-3 ------------------------------------------------
-
-def _arc(centre, radius, a0, a1, n=24) -> NDArray[np.float64]:
-    t = np.linspace(a0, a1, n)
-    return np.asarray(centre) + radius * np.column_stack([np.cos(t), np.sin(t)])
-
-
-ANGLE_ARC = 0.09         # radius of the 2pi/3 arcs (the edge is 1 long)
-ANGLE_LABEL = 0.145      # distance from the vertex to the middle of its 2pi/3 label
-ANGLE_TEXT = 0.036       # height of the 2pi/3 labels
-
-
-def angle_label_point(vertex, first_arm: float) -> NDArray[np.float64]:
-    """Where the middle of a 2pi/3 label goes: on the bisector of the angle that opens at
-    ``first_arm`` (radians) and turns 2pi/3 counter-clockwise, ANGLE_LABEL from ``vertex``."""
-    mid = first_arm + np.pi / 3
-    return np.asarray(vertex, dtype=float) + ANGLE_LABEL * np.array([np.cos(mid), np.sin(mid)])
-
-
-def z_triplet_panel() -> Panel:
-    pts = fr.lsystem_curve(1)
-    a = fr.ALPHA
-
-    def draw(fit: Fit) -> list[Layer]:
-        s = fit.scale
-        lw = 0.012 * s
-        # a dashed look: the original edge as short pieces
-        t = np.linspace(0, 1, 41)
-        dash = np.column_stack([t, np.zeros_like(t)])
-        dashes = np.stack([dash[0:-1:2], dash[1::2]], axis=1)
-        z = Polylines(fit(pts), np.array([0, 4]), Style("#000000", lw))
-        arc_a = Polylines(fit(_arc((0, 0), 0.22, 0, a)), np.array([0, 24]), Style("#000000", 0.5 * lw))
-        e1 = pts[1] - pts[0]
-        back = math.atan2(-e1[1], -e1[0])          # from z0 back to u: -160.9 degrees
-        # the 120-degree angles: at z0 below the Z, at z1 above it
-        arcs = ((pts[1], back), (pts[2], a))        # (vertex, first arm's angle)
-        arc_b, arc_c = (Polylines(fit(_arc(v, ANGLE_ARC, a0, a0 + 2 * np.pi / 3)),
-                                  np.array([0, 24]), Style("#000000", 0.5 * lw))
-                        for v, a0 in arcs)
-        r = 0.025 * s
-        ends = discs(fit(pts[[0, 3]]), r, Style("#000000", 0.4 * lw, fill=WHITE))
-        mids = discs(fit(pts[[1, 2]]), r, Style("#000000", 0.4 * lw, fill=BLUE))
-        size = 0.06 * s
-        lab = [Text(*fit(np.array([0.24, 0.012])), "\u03b1", size=0.8 * size)]
-        # each 2pi/3 on its angle's bisector just beyond the arc (the text's middle there)
-        for v, a0 in arcs:
-            middle = angle_label_point(v, a0)
-            lab.append(Text(*fit(middle - np.array([0.0, 0.35 * ANGLE_TEXT])), "2\u03c0/3",
-                            size=ANGLE_TEXT * s, anchor="middle"))
-        return [Layer("edge", "guide", (segments(fit(dashes), Style(GREY, 0.6 * lw)),)),
-                Layer("z-triplet", "cut", (z, arc_a, arc_b, arc_c)),
-                Layer("vertices", "paint", (ends, mids)),
-                Layer("labels", "label", tuple(lab))]
-
-    return Panel((-0.08, -0.3, 1.08, 0.3), draw, "Z-triplet: |e|/\u221a7 each, \u03b1 = atan(\u221a3/5)")
-
+# -- Figure operations 1-3 (the Z-triplet panel: figures.fractal) -----------------------
 
 def paper_input() -> Mesh:
     """A small input like the paper's Figure InputMesh: convex faces around two inner vertices,
@@ -179,10 +123,6 @@ def operations_panels() -> list[Panel]:
     return [Panel(box, input_draw, "input M0 (faces blue)"),
             Panel(box, ops12_draw, "operations 1 and 2"),
             Panel(box, op3_draw, "operation 3")]
-
-
-def fig_z_triplet() -> Drawing:
-    return compose([z_triplet_panel()], 1, cell=40, title="Z-triplet")
 
 
 def fig_operations() -> Drawing:
@@ -321,79 +261,6 @@ def fig_edge_renders() -> Drawing:
     return compose(panels, 2, cell=80, title="Edges of refinement levels 5-8")
 
 
-# -- Figure FractalCurvesAndLindenmayer -----------------------------------------------------
-
-def fractal_curves_panel(hierarchy, born: int = 1, caption: str | None = None) -> Panel:
-    """The last level's edges in grey, the boundary in black and the curves grown from the
-    inner edges of level ``born`` in colour."""
-    mesh = hierarchy[-1].mesh
-    last = len(hierarchy) - 1
-    born = min(born, last)
-    start = hierarchy[born].mesh
-    kinds = fr.edge_kinds(start)
-    inner = np.flatnonzero(kinds > 0)
-    if born > 0:  # the curves born at this level (spokes), not older ones
-        inner = inner[inner >= 3 * hierarchy[born - 1].mesh.topology.n_edges]
-
-    def draw(fit: Fit) -> list[Layer]:
-        lw = line_width(mesh, fit)
-        layers = [Layer("edges", "guide", (segments(fit(edge_coords(mesh)),
-                                                    Style("#c8c8c8", 0.7 * lw)),)),
-                  Layer("boundary", "cut", (segments(fit(fr.boundary_segments(mesh)),
-                                                     Style("#000000", 2 * lw)),))]
-        if len(inner):
-            verts, _ = fr.follow_curves(hierarchy, born, start.topology.edges[inner, 0],
-                                        inner)[-1]
-            pts = fr.curve_points(mesh, verts)
-            shapes = []
-            for k in range(len(CURVE_COLOURS)):  # a loop over colours
-                sel = pts[k::len(CURVE_COLOURS)]
-                if len(sel):
-                    offsets = np.arange(0, sel.shape[0] * sel.shape[1] + 1, sel.shape[1])
-                    shapes.append(Polylines(fit(sel.reshape(-1, 2)), offsets,
-                                            Style(CURVE_COLOURS[k], 2 * lw)))
-            layers.append(Layer(f"curves-from-level-{born}", "paint", tuple(shapes)))
-        return layers
-
-    return Panel(grow(mesh_bounds(mesh), 0.02), draw,
-                 caption or f"level {last}: boundary and curves born at level {born}")
-
-
-def lsystem_panel() -> Panel:
-    pts = fr.lsystem_curve(1)
-
-    def draw(fit: Fit) -> list[Layer]:
-        lw = 0.01 * fit.scale
-        size = 0.045 * fit.scale
-        lines = [("\u25bd: rot(\u03b1)    \u25b3: rot(-\u03b1)", 0),
-                 ("+: rot(\u03c0/3)    -: rot(-\u03c0/3)", 1),
-                 ("F \u2192 \u25bd F - F + F \u25b3", 2),
-                 (f"\u03b1 = atan(\u221a3/5) = {math.degrees(fr.ALPHA):.4f}\u00b0", 3),
-                 (f"D = log 3 / log \u221a7 = {fr.DIMENSION:.5f}", 4)]
-        texts = tuple(Text(*fit(np.array([0.5, -0.32 - 0.13 * i])), s, size=size,
-                           anchor="middle") for s, i in lines)
-        return [Layer("generator", "cut", (
-            Polylines(fit(pts), np.array([0, 4]), Style("#000000", lw)),
-            segments(fit(np.array([[[0, 0], [1, 0]]])), Style(GREY, 0.5 * lw)),
-            Polylines(fit(_arc((0, 0), 0.2, 0, fr.ALPHA)), np.array([0, 24]),
-                      Style("#000000", 0.5 * lw)),
-            discs(fit(pts[[0, 3]]), 0.02 * fit.scale, Style("#000000", 0.4 * lw, fill=WHITE)),
-            discs(fit(pts[[1, 2]]), 0.02 * fit.scale, Style("#000000", 0.4 * lw, fill=BLUE)))),
-            Layer("rules", "label", texts)]
-
-    return Panel((-0.1, -0.95, 1.1, 0.25), draw, "the boundary's Lindenmayer system")
-
-
-def fractal_drawing(hierarchy, born: int = 1) -> Drawing:
-    """``weave-cut fractal -o``: the curves of the last level next to the L-system."""
-    return compose([fractal_curves_panel(hierarchy, born), lsystem_panel()], 2, cell=90,
-                   title="Fractal curves and the Lindenmayer system")
-
-
-def fig_fractal_curves() -> Drawing:
-    return fractal_drawing(subdivide(inputs.get("pentagon"), 5))
-
-
 # -- convexity -----------------------------------------------------------------------------
 
 def convexity_drawing(mesh: Mesh, size: float = 200.0, title: str = "non-convex faces"
@@ -416,61 +283,6 @@ def convexity_drawing(mesh: Mesh, size: float = 200.0, title: str = "non-convex 
              if len(bad) else f"all {mesh.n_faces:,} faces convex")
     panel = Panel(grow(mesh_bounds(mesh), 0.02), draw, label)
     return compose([panel], 1, cell=size, title=title, caption_size=3.5)
-
-
-# -- Figure colorLevels (raster) ---------------------------------------------------------------
-
-LEVEL_ZOOM = (0.29, 0.09, 0.39, 0.19)
-
-
-def _frame(rgb: NDArray[np.uint8], box, colour=(224, 48, 42), width: int = 2) -> None:
-    r0, c0, r1, c1 = box
-    rgb[r0:r0 + width, c0:c1] = colour
-    rgb[r1 - width:r1, c0:c1] = colour
-    rgb[r0:r1, c0:c0 + width] = colour
-    rgb[r0:r1, c1 - width:c1] = colour
-
-
-def level_image_png(size: int = 1200, zoom_size: int = 560, levels: int = 9,
-                    zoom_levels: int = 12, zoom=LEVEL_ZOOM) -> bytes:
-    """Figure colorLevels: the pentagon to level 9 (left, the zoom box framed in red); right,
-    the box as the left image has it (enlarged pixels), and recomputed to level 12."""
-    mesh = inputs.get("pentagon")
-    big, grid = lv.level_image(mesh, levels, size)
-    deep, _ = lv.level_image(mesh, zoom_levels, zoom_size, zoom)
-    left = lv.colour(big)
-    x0, _, _, y1 = grid.window
-    c0 = int(round((zoom[0] - x0) / grid.pixel))
-    c1 = int(round((zoom[2] - x0) / grid.pixel))
-    r0 = int(round((y1 - zoom[3]) / grid.pixel))
-    r1 = int(round((y1 - zoom[1]) / grid.pixel))
-    crop = left[r0:r1, c0:c1]
-    rows = np.minimum(np.arange(zoom_size) * crop.shape[0] // zoom_size, crop.shape[0] - 1)
-    cols = np.minimum(np.arange(zoom_size) * crop.shape[1] // zoom_size, crop.shape[1] - 1)
-    near = crop[rows][:, cols]
-    _frame(left, (r0 - 2, c0 - 2, r1 + 2, c1 + 2))
-    gap = 16
-    height = max(left.shape[0], 2 * zoom_size + gap)
-    canvas = np.full((height, left.shape[1] + gap + zoom_size, 3), 255, dtype=np.uint8)
-    canvas[:left.shape[0], :left.shape[1]] = left
-    for k, rgb in enumerate((near, lv.colour(deep))):
-        rgb = rgb.copy()
-        _frame(rgb, (0, 0, rgb.shape[0], rgb.shape[1]))
-        top = k * (zoom_size + gap)
-        canvas[top:top + rgb.shape[0], left.shape[1] + gap:left.shape[1] + gap + rgb.shape[1]] \
-            = rgb
-    legend = _legend(max(zoom_levels, levels) + 1, width=canvas.shape[1])
-    return lv.png_bytes(np.concatenate([canvas, legend], axis=0))
-
-
-def _legend(n: int, width: int, height: int = 28) -> NDArray[np.uint8]:
-    """A strip of the level colours 0..n-1 (no text: the README explains the scale)."""
-    out = np.full((height, width, 3), 255, dtype=np.uint8)
-    cell = min(40, width // max(n, 1))
-    colours = lv.colour(np.arange(n, dtype=np.uint8)[None, :])[0]
-    for k in range(n):  # a loop over levels
-        out[6:height - 6, k * cell + 2:(k + 1) * cell - 2] = colours[k]
-    return out
 
 
 # -- registry --------------------------------------------------------------------------------
