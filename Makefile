@@ -16,11 +16,11 @@ OUT    := build
 RECIPES := $(wildcard templates/recipes/*.toml) $(wildcard examples/*.toml)
 BUILT   := $(patsubst %.toml,$(OUT)/%/.built,$(notdir $(RECIPES)))
 
-.PHONY: run figures docs test test-latest lock fuzz bench bench16 mutation clean help
+.PHONY: run figures docs test test-latest lock fuzz bench bench-engine mutation clean help
 .DELETE_ON_ERROR:
 
 help:  ## list the targets
-	@grep -E '^[a-z]+:.*## ' $(MAKEFILE_LIST) | sed 's/:.*## /\t/'
+	@grep -E '^[a-z-]+:.*## ' $(MAKEFILE_LIST) | sed 's/:.*## /\t/'
 
 $(STAMP): pyproject.toml setup.py $(LOCK)
 	$(PYTHON) -m venv $(VENV)
@@ -87,9 +87,9 @@ bench: $(STAMP)  ## run the benchmarks (throughput, ratios against peers)
 	@for b in benchmarks/bench_puzzle.py benchmarks/bench_strands.py; do \
 		[ -f $$b ] && $(PY) $$b || true; done
 
-bench16: $(STAMP)  ## issue 16's before/after table in one run (about 5 minutes on a quiet machine)
+bench-engine: $(STAMP)  ## the engine at scale (snub step, stats, OBJ read, memory guard, schemes, tiles), before and after its speed work, in one run (about 5 minutes on a quiet machine)
 	$(PY) -m pip install --quiet -c $(LOCK) -e '.[bench]' || echo "some peers did not install"
-	$(PY) benchmarks/issue16.py
+	$(PY) benchmarks/bench_engine.py
 
 MUTATION_SAMPLE ?= 100
 mutation: $(STAMP)  ## mutation testing, a random sample of 100 mutants per package (MUTATION_SAMPLE=0: all; PACKAGES="weave export"; MUTATION_ARGS=--survivors): build/mutation/report.md

@@ -11,7 +11,7 @@ when installed. Peer for validation: GEOS validity
 
     python benchmarks/bench_mesh_io.py [--repeat 3]
 
-Targets (issue 16): OBJ read of a million faces <= 1 s, validation <= 3 s.
+Targets (the engine's speed work): OBJ read of a million faces <= 1 s, validation <= 3 s.
 """
 
 from __future__ import annotations

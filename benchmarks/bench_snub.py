@@ -8,7 +8,7 @@
    step, peak memory; with glibc's default allocator and with freed memory kept in the
    process (:func:`weavecut.subdivision.hierarchy.keep_freed_memory`). The in-process peers
    are :func:`naive_step`, the snub step as a first numpy version would write it, and the
-   direct step of before issue 16 (``tests/subdivision/snub_oracle.py``), run alternately on
+   direct step the speed work started from (``tests/subdivision/snub_oracle.py``), run alternately on
    the same level 8 (ratio = weave-cut / naive, best to best and median to median).
 3. Peers on a triangle grid with the same number of output faces: trimesh's 1-to-4 midpoint
    subdivision, CGAL's Loop (compas_cgal) and libigl's Loop, when installed.
@@ -113,7 +113,7 @@ def step_case(keep: bool, repeat: int, naive_repeat: int) -> dict:
     snub.step(as_left_by_chain(level8))
     peak = tracemalloc.get_traced_memory()[1]
     tracemalloc.stop()
-    from tests.subdivision import snub_oracle  # the direct step of before issue 16
+    from tests.subdivision import snub_oracle  # the direct step the speed work started from
 
     peers = {"naive": lambda m: naive_step(m.vertices, m.face_offsets, m.face_indices),
              "direct": snub_oracle.step}

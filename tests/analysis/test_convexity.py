@@ -81,7 +81,7 @@ def test_drawing_highlights_nonconvex_faces():
 
 
 def test_nonconvex_levels_name_count_level_and_place():
-    # the measurement: the 24-gon has 72 non-convex faces at level 5, all with their
+    # a measurement made apart from this code: the 24-gon has 72 non-convex faces at level 5, all with their
     # reflex corner at an outer Z vertex of degree 3
     h = subdivide(inputs.get("ngon:24"), 5)
     rows = cv.nonconvex_levels(h)

@@ -36,7 +36,7 @@ def test_readme_findings_are_the_command_output():
     expected = [r.topic for r in rows]
     assert [t for t in topics if t in expected] == expected
     assert len(topics) == len(fd.FINDINGS)
-    # an independent oracle: the numbers the issue measured with `weave-cut convexity`
+    # an independent oracle: the numbers measured once with `weave-cut convexity`
     convexity = {r.key: r.statement for r in rows}["convexity"]
     assert "ngon:24 72 at level 5, 600 at level 6" in convexity
     assert "triangulated-ngon:24 192 at level 5, 600 at level 6" in convexity

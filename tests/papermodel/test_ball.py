@@ -62,7 +62,7 @@ def test_unfolding_is_isometric_per_pentagon_within_the_reported_stretch(name, l
         edges = (j - i == 1) | (j - i == 4)
         change = np.abs(d2 / d3 - 1)
         assert change[:, edges].max() <= np.abs(u.stretch).max() + 1e-12
-        assert change.max() < 0.02  # the goal: 2 % at levels 1-2 on the sphere
+        assert change.max() < 0.02  # the goal: 2 % at levels 1-2 on the sphere
         # a diagonal changes no more than bending a pentagon flat can change it
         assert change.max() < 4 * flat.non_planarity.max() + np.abs(u.stretch).max()
 

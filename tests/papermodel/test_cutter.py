@@ -1,4 +1,4 @@
-"""Strips cut by machine (issue 20): print-and-cut pages with registration marks and their cut
+"""Strips cut by machine: print-and-cut pages with registration marks and their cut
 files, and strips laser-cut from coloured card. The files are read back with ezdxf and an XML
 parser; the mark geometry is rebuilt from the preset's TOML values, not from the code's."""
 

@@ -1,4 +1,4 @@
-"""Paper strands: modules from symmetry, strips, pages (issue 4)."""
+"""Paper strands: modules from symmetry, strips, pages."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The checks issue 12 asks of the paper's puzzle: size, front colours, back colours, stroke
+"""The paper's puzzle checked as a maker would: size, front colours, back colours, stroke
 numbers, frame parts, colour key. Oracles are computed apart from the code: distances between
 corners, octagon centroids of the coarser level, a real DXF reader, shapely unions."""
 

@@ -38,7 +38,7 @@ def test_every_parent_is_counted(name, levels):
 
 
 def test_parents_at_the_end_of_the_numbering_are_not_dropped():
-    # the case: at level 3 of the triangulated 24-gon, parents without children sit
+    # the case first seen: at level 3 of the triangulated 24-gon, parents without children sit
     # at the end of the parent numbering, which parent.max() + 1 dropped (48 of 72)
     weaves = snub_weaves(subdivide(inputs.get("triangulated-ngon:24"), 3))
     lin = weave_summaries(weaves)[2]["lineage"]

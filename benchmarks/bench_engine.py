@@ -1,6 +1,7 @@
-"""Issue 16's before/after table in one command (prints; asserts nothing).
+"""The engine at scale, before and after its speed work, as one table (prints; asserts
+nothing).
 
-    .venv/bin/python benchmarks/issue16.py          (or: make bench16)
+    .venv/bin/python benchmarks/bench_engine.py          (or: make bench-engine)
 
 Every heavy case runs in a fresh process, so that its peak memory and first (cold) step are
 its own; the peers of a ratio run in the same process as weave-cut, alternately:
@@ -8,7 +9,7 @@ its own; the peers of a ratio run in the same process as weave-cut, alternately:
 - snub step 8 -> 9 of the pentagon (1,953,125 pentagons), with glibc's default allocator
   (cold: fresh pages every step) and with freed memory kept (warm, as the command line
   runs): wall best / median / worst, CPU best / median, the first step, page faults, peak
-  (tracemalloc), ratios to the naive numpy step and to the direct step of before the issue
+  (tracemalloc), ratios to the naive numpy step and to the direct step the speed work started from
   (``bench_snub.py``);
 - ``weave-cut stats pentagon --levels 9 --json``: wall and CPU, peak RSS;
 - OBJ read and validation of a million faces (``bench_mesh_io.py``'s two files);
@@ -18,7 +19,7 @@ its own; the peers of a ratio run in the same process as weave-cut, alternately:
   ``pip install -e '.[bench]'``);
 - the DeepZoom tile pyramid of level 10 at 2048 px in 256-px tiles on 2 processes, tiles/s.
 
-"before" is the issue's own measurement on the quiet machine. It took 42 minutes under a load
+"before" is the measurement on the quiet machine before the speed work (2026-11). It took 42 minutes under a load
 of 21-26 on the project's 2-core machine (wall clock inflated 5-10 times over the CPU time);
 about 5 minutes are expected when it is quiet. The total is printed.
 """
@@ -171,9 +172,9 @@ def main() -> None:
     memory_guard()
     schemes()
     pyramid()
-    print(f"\nissue 16, load average {os.getloadavg()[0]:.1f} at the end, "
+    print(f"\nthe engine at scale, load average {os.getloadavg()[0]:.1f} at the end, "
           f"{(time.perf_counter() - start) / 60:.1f} minutes:\n")
-    print("| what | before (issue 16) | now |\n| --- | --- | --- |")
+    print("| what | before the speed work | now |\n| --- | --- | --- |")
     for what, before, now in ROWS:
         print(f"| {what} | {before} | {now} |")
 
