@@ -1,9 +1,11 @@
-"""Imports flow one way: the drawing layer and the writers never import a product, and nothing
-below the command line imports it (DESIGN.md, "The flow")."""
+"""Imports flow one way: the drawing layer and the writers never import a product, nothing below
+the command line imports it, no module imports itself through others (no cycle, even through an
+import inside a function), and modules stay small enough to read (DESIGN.md, "The flow")."""
 
 from __future__ import annotations
 
 import ast
+import shutil
 from pathlib import Path
 
 import pytest
@@ -53,6 +55,7 @@ def imported_packages(path: Path, text: str | None = None) -> set[str]:
 
 
 MODULES = sorted(p for p in SRC.rglob("*.py") if p.name != "__main__.py")
+LONGEST = 400  # lines; a longer module says why in its first line: "# over 400 lines: ..."
 
 
 @pytest.mark.parametrize("path", MODULES, ids=lambda p: str(p.relative_to(SRC)))
@@ -68,3 +71,127 @@ def test_the_checker_sees_relative_imports():
                                              "from ..papermodel.strips import x")
     assert "figures" in imported_packages(SRC / "cli" / "x.py", "from .. import figures")
     assert "puzzle" in imported_packages(SRC / "export" / "x.py", "import weavecut.puzzle.files")
+
+
+def test_nothing_below_the_command_line_imports_it():
+    """cli/ is the top floor: no other module (a package's ``__main__`` too) imports it, but
+    ``python -m weavecut``, which runs it."""
+    bad = [str(p.relative_to(SRC)) for p in SRC.rglob("*.py") if p != SRC / "__main__.py"
+           and package_of(p) != "cli" and "cli" in imported_packages(p)]
+    assert not bad, f"below the command line, these import cli/: {bad}"
+
+
+# --- cycles -------------------------------------------------------------------------------
+
+def module_name(path: Path, root: Path) -> str:
+    """``weavecut.papermodel.book`` for ``root/papermodel/book.py`` (a package: its folder)."""
+    parts = path.relative_to(root).with_suffix("").parts
+    return ".".join((root.name, *(parts[:-1] if parts[-1] == "__init__" else parts)))
+
+
+def import_graph(root: Path) -> dict[str, set[str]]:
+    """Module -> the modules of the package at ``root`` it imports: every ``import`` and
+    ``from ... import`` anywhere in it (inside functions and ``TYPE_CHECKING`` too), relative
+    or absolute; ``from pkg import sub`` imports the module ``pkg.sub``, not ``pkg``'s
+    ``__init__`` unless a name comes from it."""
+    files = {module_name(p, root): p for p in root.rglob("*.py")}
+    graph = {}
+    for name, path in files.items():
+        package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+        found = set()
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                found.update(a.name for a in node.names if a.name in files)
+            elif isinstance(node, ast.ImportFrom):
+                if node.level:
+                    base = package.split(".")[: len(package.split(".")) - node.level + 1]
+                    target = ".".join(base + ([node.module] if node.module else []))
+                else:
+                    target = node.module or ""
+                subs = {f"{target}.{a.name}" for a in node.names} & files.keys()
+                found |= subs
+                if target in files and len(subs) < len(node.names):
+                    found.add(target)
+        graph[name] = found - {name}
+    return graph
+
+
+def cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """Every strongly connected group of more than one module (Tarjan), each as a sorted list:
+    empty when imports flow one way."""
+    index, low, stack, on, groups = {}, {}, [], set(), []
+
+    def visit(v):
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on.add(v)
+        for w in sorted(graph.get(v, ())):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            group = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                group.append(w)
+                if w == v:
+                    break
+            if len(group) > 1:
+                groups.append(sorted(group))
+
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return groups
+
+
+def test_no_import_cycles():
+    assert cycles(import_graph(SRC)) == []
+
+
+def test_a_planted_cycle_is_found(tmp_path):
+    """Plant the bug: a copy of the package where a low module imports a product inside a
+    function (as units once imported presets) has a cycle; each import style is followed."""
+    root = tmp_path / "weavecut"
+    shutil.copytree(SRC, root)
+    assert cycles(import_graph(root)) == []
+    units = root / "units.py"
+    units.write_text(units.read_text() + "\n\ndef late():\n    from . import presets\n")
+    assert cycles(import_graph(root)) == [["weavecut.presets", "weavecut.schema",
+                                           "weavecut.units"]]
+    units.write_text(units.read_text().replace("from . import presets",
+                                               "from weavecut.presets import load"))
+    assert cycles(import_graph(root)) == [["weavecut.presets", "weavecut.schema",
+                                           "weavecut.units"]]
+    mesh = root / "mesh.py"  # mesh -> papermodel.book -> ... -> mesh
+    mesh.write_text(mesh.read_text() + "\nimport weavecut.papermodel.book\n")
+    found = cycles(import_graph(root))
+    assert any({"weavecut.mesh", "weavecut.papermodel.book"} <= set(g) for g in found)
+
+
+def test_sibling_imports_name_the_module_not_the_package(tmp_path):
+    pkg = tmp_path / "p"
+    (pkg / "sub").mkdir(parents=True)
+    (pkg / "__init__.py").write_text("from .a import f\n")
+    (pkg / "a.py").write_text("from . import b\n")
+    (pkg / "b.py").write_text("X = 1\n")
+    (pkg / "sub" / "__init__.py").write_text("")
+    (pkg / "sub" / "c.py").write_text("from .. import X_FROM_INIT\nfrom ..b import X\n")
+    assert import_graph(pkg) == {"p": {"p.a"}, "p.a": {"p.b"}, "p.b": set(), "p.sub": set(),
+                                 "p.sub.c": {"p", "p.b"}}
+    assert cycles(import_graph(pkg)) == []
+    (pkg / "b.py").write_text("from .sub.c import Y\n")  # p -> a -> b -> sub.c -> p
+    assert cycles(import_graph(pkg)) == [["p", "p.a", "p.b", "p.sub.c"]]
+
+
+# --- size ---------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("path", sorted(SRC.rglob("*.py")), ids=lambda p: str(p.relative_to(SRC)))
+def test_modules_stay_readable(path):
+    lines = path.read_text(encoding="utf-8").splitlines()
+    assert len(lines) <= LONGEST or lines[0].startswith(f"# over {LONGEST} lines: "), (
+        f"{path.relative_to(SRC)} has {len(lines)} lines: split it along a seam its docstring "
+        f"names, or say why it must stay whole in its first line (# over {LONGEST} lines: ...)")
