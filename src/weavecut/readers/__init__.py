@@ -1,8 +1,9 @@
 """Meshes from drawings: SVG and DXF outlines as faces, or one outline meshed inside.
 
 Modules: ``svg`` and ``dxf`` read closed outlines in mm, ``rings`` checks them, finds holes and
-welds faces, ``outline_mesh`` meshes an outline, ``drawing`` puts them together. They load on
-first use (svgelements, ezdxf's reader and scipy's spatial tools take a while to import).
+welds faces, ``outline_mesh`` meshes an outline (from the cells ``tessellations`` lays out),
+``drawing`` puts them together. They load on first use (svgelements, ezdxf's reader and scipy's
+spatial tools take a while to import).
 """
 
 from __future__ import annotations
