@@ -20,7 +20,7 @@ from tests import obj_reference
 from tests.strategies import examples, any_mesh
 from weavecut import inputs, mesh_io
 from weavecut.errors import MeshError, MeshFileError
-from weavecut.mesh import signed_areas
+from weavecut.mesh_geometry import signed_areas
 from weavecut.mesh_io import MAX_BYTES, obj_text, read_mesh, read_valid_mesh, write_mesh
 
 

@@ -14,7 +14,7 @@ import pytest
 import shapely
 
 from weavecut.errors import MeshError
-from weavecut.mesh import corner_turns, signed_areas
+from weavecut.mesh_geometry import corner_turns, signed_areas
 from weavecut.readers import outline_mesh, tessellations
 from weavecut.validation import validate
 

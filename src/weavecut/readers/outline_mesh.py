@@ -24,7 +24,8 @@ from scipy.spatial import cKDTree
 from shapely.ops import split
 
 from ..errors import MeshError
-from ..mesh import Mesh, corner_angles, signed_areas
+from ..mesh import Mesh
+from ..mesh_geometry import corner_angles, signed_areas
 from ..validation import validate
 from . import KINDS
 from .rings import close_groups, split_t_junctions, weld
