@@ -36,7 +36,7 @@ def run_case(levels: int, size: int, window) -> dict:
 
     from weavecut import inputs
     from weavecut.analysis import levels as lv
-    from weavecut.mesh import signed_areas
+    from weavecut.mesh_geometry import signed_areas
 
     mesh = inputs.get("pentagon")
     start = time.perf_counter()

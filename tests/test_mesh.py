@@ -12,7 +12,8 @@ from hypothesis import strategies as st
 from tests import meshes
 from tests.strategies import examples, jittered_grids
 from weavecut.errors import MeshError, NonManifoldError
-from weavecut.mesh import Mesh, Topology, edge_faces, face_centroids, signed_areas
+from weavecut.mesh import Mesh, Topology, edge_faces
+from weavecut.mesh_geometry import face_centroids, signed_areas
 
 
 def test_arrays_are_private_and_read_only():

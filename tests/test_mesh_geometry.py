@@ -14,9 +14,9 @@ from hypothesis import strategies as st
 from tests import meshes
 from tests.strategies import any_mesh, valid_meshes
 from weavecut.errors import MeshError
-from weavecut.mesh import (Mesh, Numbering, Topology, area_centroids, corner_angles, corner_turns,
-                           edge_faces, edge_lengths, face_centroids, face_perimeters, mirrored,
-                           outer_vertices, signed_areas, vertex_degrees)
+from weavecut.mesh import Mesh, Numbering, Topology, edge_faces, outer_vertices, vertex_degrees
+from weavecut.mesh_geometry import (area_centroids, corner_angles, corner_turns, edge_lengths,
+                                    face_centroids, face_perimeters, mirrored, signed_areas)
 
 # an L-shaped hexagon (one reflex corner), a skewed quad, a triangle, a pentagon: faces of
 # several degrees, convex and not, that share edges

@@ -21,7 +21,7 @@ from tests.strategies import examples, any_mesh
 from weavecut import inputs
 from weavecut.readers import obj, obj_tokens
 from weavecut.errors import MeshError, MeshFileError
-from weavecut.mesh import signed_areas
+from weavecut.mesh_geometry import signed_areas
 from weavecut.mesh_io import MAX_BYTES, obj_text, read_mesh, read_valid_mesh, write_mesh
 
 

@@ -15,7 +15,8 @@ from tests import meshes, obj_reference
 from weavecut import mesh_io, readers
 from weavecut.readers import obj
 from weavecut.errors import MeshError, MeshFileError
-from weavecut.mesh import Mesh, signed_areas
+from weavecut.mesh import Mesh
+from weavecut.mesh_geometry import signed_areas
 from weavecut.mesh_io import json_text, obj_text, read_mesh, read_valid_mesh, write_mesh
 
 TRIANGLE = "v 0 0\nv 1 0\nv 0 1\nf 1 2 3\n"

@@ -12,7 +12,8 @@ from tests import meshes
 from tests.strategies import examples, valid_meshes
 from weavecut import inputs
 from weavecut.errors import MeshError
-from weavecut.mesh import Mesh, signed_areas
+from weavecut.mesh import Mesh
+from weavecut.mesh_geometry import signed_areas
 from weavecut.validation import validate
 
 

@@ -11,7 +11,8 @@ import shapely
 
 from tests import meshes
 from weavecut.errors import MeshError, NonManifoldError
-from weavecut.mesh import Mesh, Numbering, signed_areas
+from weavecut.mesh import Mesh, Numbering
+from weavecut.mesh_geometry import signed_areas
 from weavecut.surface import signed_volume
 from weavecut.validation import MAX_COORDINATE, check_layout, validate
 

@@ -67,8 +67,8 @@ PACKAGES: dict[str, Package] = {
     # multiplier 20: the test times mutmut measures (with its tracing) are 3 to 25 times the
     # real ones here, and at 60 a mutant that loops (the reader's bisection and line pieces)
     # held a child for over ten minutes
-    "mesh-core": Package(("src/weavecut/mesh.py", "src/weavecut/mesh_io.py",
-                          "src/weavecut/validation.py"),
+    "mesh-core": Package(("src/weavecut/mesh.py", "src/weavecut/mesh_geometry.py",
+                          "src/weavecut/mesh_io.py", "src/weavecut/validation.py"),
                          ("tests/test_mesh.py", "tests/test_mesh_geometry.py",
                           "tests/test_mesh_io.py", "tests/test_mesh_io_rules.py",
                           "tests/test_validation.py", "tests/test_validation_rules.py",

@@ -19,8 +19,8 @@ from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 from .errors import MeshError
-from .mesh import (ZERO_BASED, Mesh, Numbering, Topology, face_perimeters, outer_vertices,
-                   signed_areas)
+from .mesh import ZERO_BASED, Mesh, Numbering, Topology, outer_vertices
+from .mesh_geometry import face_perimeters, signed_areas
 from .surface import signed_volume, vector_areas
 
 AREA_EPS = 1e-12
@@ -42,7 +42,7 @@ class _Corners:
         self.cross_next = x * y[nxt] - y * x[nxt]  # shoelace terms
 
     def angles(self) -> NDArray[np.float64]:
-        """(H,) interior angle at every corner in radians, as ``mesh.corner_angles``."""
+        """(H,) interior angle at every corner in radians, as ``mesh_geometry.corner_angles``."""
         return np.mod(np.arctan2(self.turn, -self.dot), 2 * np.pi)
 
 

@@ -12,7 +12,8 @@ from weavecut import inputs
 from weavecut.analysis import convexity as cv
 from weavecut.analysis.stats import level_stats
 from weavecut.cli import cli
-from weavecut.mesh import Mesh, corner_turns
+from weavecut.mesh import Mesh
+from weavecut.mesh_geometry import corner_turns
 from weavecut.subdivision import subdivide
 
 CASES = [("pentagon", 5, True, "vertex"), ("pentagon", 5, False, "vertex"),

@@ -9,7 +9,7 @@ from hypothesis import given, settings
 from tests.strategies import valid_meshes
 from weavecut import inputs
 from weavecut.analysis import stats
-from weavecut.mesh import corner_angles, edge_lengths
+from weavecut.mesh_geometry import corner_angles, edge_lengths
 from weavecut.subdivision import subdivide
 
 

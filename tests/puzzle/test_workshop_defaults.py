@@ -13,7 +13,7 @@ import pytest
 import shapely
 
 from weavecut.errors import MeshError, TurnedOverError, WeaveCutError
-from weavecut.mesh import signed_areas
+from weavecut.mesh_geometry import signed_areas
 from weavecut.puzzle import workshop
 from weavecut.puzzle.pieces import build_puzzle, extent
 from weavecut.readers.outline_mesh import mesh_outline

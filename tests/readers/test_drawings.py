@@ -19,7 +19,8 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from weavecut.errors import MeshError, MeshFileError
-from weavecut.mesh import Mesh, edge_faces, signed_areas
+from weavecut.mesh import Mesh, edge_faces
+from weavecut.mesh_geometry import signed_areas
 from weavecut.readers import read_drawing
 from weavecut.validation import validate
 

@@ -14,8 +14,8 @@ import pytest
 import shapely
 
 from weavecut.errors import MeshError
-from weavecut.mesh import corner_turns, signed_areas
-from weavecut.readers import outline_mesh
+from weavecut.mesh_geometry import corner_turns, signed_areas
+from weavecut.readers import outline_mesh, tessellations
 from weavecut.validation import validate
 
 KINDS = ("hex", "quad", "voronoi", "tri")
@@ -171,9 +171,9 @@ def test_a_missing_boundary_segment_is_split_at_its_middle():
     """The conforming triangulation's step: every flagged edge of a ring gets its midpoint
     inserted between its two ends, in order; the others stay whole."""
     ring = np.array([(0, 0), (4, 0), (4, 2), (0, 2)], float)
-    split = outline_mesh._with_midpoints(ring, np.array([True, False, True, True]))
+    split = tessellations._with_midpoints(ring, np.array([True, False, True, True]))
     assert split.tolist() == [[0, 0], [2, 0], [4, 0], [4, 2], [2, 2], [0, 2], [0, 1]]
-    assert outline_mesh._with_midpoints(ring, np.zeros(4, bool)).tolist() == ring.tolist()
+    assert tessellations._with_midpoints(ring, np.zeros(4, bool)).tolist() == ring.tolist()
 
 
 def test_a_short_inner_edge_near_the_outline_collapses_to_its_middle():

@@ -15,7 +15,7 @@ import pytest
 import shapely
 
 from weavecut.errors import MeshError, MeshFileError
-from weavecut.mesh import signed_areas
+from weavecut.mesh_geometry import signed_areas
 from weavecut.readers import drawing, read_drawing
 from weavecut.readers.rings import (Ring, checked, close_groups, enclosed_faces, nesting,
                                     split_t_junctions, weld)

@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 from hypothesis import strategies as st
 
-from weavecut.mesh import Mesh, Topology, signed_areas
+from weavecut.mesh import Mesh, Topology
+from weavecut.mesh_geometry import signed_areas
 
 
 def grid_points(n: int, m: int, jitter: float = 0.0, seed: int = 0) -> np.ndarray:

@@ -11,7 +11,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from weavecut.mesh import Mesh, Topology, area_centroids, face_centroids, outer_vertices
+from weavecut.mesh import Mesh, Topology, outer_vertices
+from weavecut.mesh_geometry import area_centroids, face_centroids
 from weavecut.subdivision.hierarchy import Level
 from weavecut.subdivision.snub import FIRST, LAST, MIDDLE, SPOKE
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from hypothesis import given, settings
 
-from weavecut.mesh import corner_turns
+from weavecut.mesh_geometry import corner_turns
 from weavecut.subdivision import akleman
 
 from .classic_meshes import any_meshes, polygon

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from weavecut.mesh import face_centroids
+from weavecut.mesh_geometry import face_centroids
 from weavecut.subdivision import dual, loop
 
 from .classic_meshes import tri_grid

@@ -15,10 +15,8 @@ from tests.strategies import valid_meshes
 from weavecut import inputs
 from weavecut.cli import cli
 from weavecut.mesh_io import read_mesh, write_mesh
-from weavecut.mesh import (
-    Mesh, Topology, corner_angles, edge_lengths, mirrored, outer_vertices, signed_areas,
-    vertex_degrees,
-)
+from weavecut.mesh import Mesh, Topology, outer_vertices, vertex_degrees
+from weavecut.mesh_geometry import corner_angles, edge_lengths, mirrored, signed_areas
 from weavecut.subdivision import snub, subdivide
 from weavecut.validation import validate
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from hypothesis import given, settings
 
-from weavecut.mesh import face_centroids
+from weavecut.mesh_geometry import face_centroids
 from weavecut.subdivision import sqrt3
 
 from .classic_meshes import fan, jittered_tri_grids

@@ -13,7 +13,8 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from ..mesh import Mesh, corner_angles, outer_vertices, vertex_degrees
+from ..mesh import Mesh, outer_vertices, vertex_degrees
+from ..mesh_geometry import corner_angles
 from .stats import REFLEX_EPS, nonconvex_faces
 
 ORIGINS = ("input", "z", "centre")

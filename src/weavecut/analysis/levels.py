@@ -36,7 +36,8 @@ from numpy.typing import NDArray
 
 from ..errors import WeaveCutError
 from ..fileio import write_atomic
-from ..mesh import Mesh, Topology, outer_vertices, signed_areas
+from ..mesh import Mesh, Topology, outer_vertices
+from ..mesh_geometry import signed_areas
 from ..subdivision import snub
 from ..subdivision.hierarchy import BASE_BYTES, require, sizes
 

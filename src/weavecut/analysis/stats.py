@@ -5,7 +5,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ..mesh import Mesh, corner_angles, outer_vertices, vertex_degrees
+from ..mesh import Mesh, outer_vertices, vertex_degrees
+from ..mesh_geometry import corner_angles
 from ..numeric import dot
 
 REFLEX_EPS = 1e-9

@@ -17,7 +17,8 @@ import shapely
 from numpy.typing import NDArray
 
 from .. import inputs
-from ..mesh import Mesh, face_centroids
+from ..mesh import Mesh
+from ..mesh_geometry import face_centroids
 from ..subdivision import butterfly, loop, sqrt3, subdivide
 from ..weave.face_split import face_split_mesh, face_split_weave
 from ..weave.colour import palette, strand_colours

@@ -17,7 +17,8 @@ from numpy.typing import NDArray
 
 from .. import inputs
 from ..analysis import convexity as cv
-from ..mesh import Mesh, edge_lengths, signed_areas
+from ..mesh import Mesh
+from ..mesh_geometry import edge_lengths, signed_areas
 from ..subdivision import snub, subdivide
 from ..layout.drawing import (
     Drawing,

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..mesh import Mesh, edge_lengths
+from ..mesh import Mesh
+from ..mesh_geometry import edge_lengths
 from . import cutpaths
 from .drawing import Drawing, Fit, Layer, Sheet, Style, mesh_bounds, polylines_from_lines
 

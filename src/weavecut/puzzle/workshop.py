@@ -14,7 +14,8 @@ from ..layout.lasersetup import material  # noqa: F401 (the puzzle's API)
 from .colouring import Colouring
 from .files import TRAVEL_SPEED, CutResult
 from ..errors import MeshError, TurnedOverError, WeaveCutError
-from ..mesh import Mesh, signed_areas
+from ..mesh import Mesh
+from ..mesh_geometry import signed_areas
 from ..subdivision import subdivide
 from .pieces import KIND_NAMES, OCTAGON, Puzzle, build_puzzle, diameter, extent
 

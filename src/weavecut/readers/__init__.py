@@ -3,9 +3,9 @@ DXF outlines as faces, or one outline meshed inside); ``mesh_io`` opens the file
 
 Modules: ``obj`` (with ``obj_tokens``) and ``mesh_json`` parse mesh files within
 ``MAX_FACES`` and ``MAX_VERTICES``; ``svg`` and ``dxf`` read closed outlines in mm, ``rings``
-checks them, finds holes and welds faces, ``outline_mesh`` meshes an outline, ``drawing`` puts
-them together. The drawing modules load on first use (svgelements, ezdxf's reader and scipy's
-spatial tools take a while to import).
+checks them, finds holes and welds faces, ``outline_mesh`` meshes an outline (from the cells
+``tessellations`` lays out), ``drawing`` puts them together. The drawing modules load on first
+use (svgelements, ezdxf's reader and scipy's spatial tools take a while to import).
 """
 
 from __future__ import annotations

@@ -19,7 +19,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..mesh import Mesh, face_centroids
+from ..mesh import Mesh
+from ..mesh_geometry import face_centroids
 from ._common import corner_index, ragged_mesh
 from .hierarchy import Level
 

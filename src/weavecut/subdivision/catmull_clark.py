@@ -23,7 +23,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..mesh import Mesh, Topology, face_centroids
+from ..mesh import Mesh, Topology
+from ..mesh_geometry import face_centroids
 from ._common import is_outer, neighbour_sums, trusted_dense, vertex_sums
 from .hierarchy import Level
 

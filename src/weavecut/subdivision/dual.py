@@ -16,7 +16,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..mesh import Mesh, face_centroids
+from ..mesh import Mesh
+from ..mesh_geometry import face_centroids
 from ._common import ragged_mesh, vertex_rings
 from .hierarchy import Level
 from .midedge import inner_vertices

@@ -39,7 +39,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import MeshError
-from ..mesh import Mesh, Topology, area_centroids, face_centroids, outer_vertices
+from ..mesh import Mesh, Topology, outer_vertices
+from ..mesh_geometry import area_centroids, face_centroids
 from ..surface import circumsphere, edge_normals, onto_sphere
 from ._common import Corners, fill_rows, interleave
 from .hierarchy import Level

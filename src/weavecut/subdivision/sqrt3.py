@@ -22,7 +22,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ..mesh import Mesh, Topology, face_centroids
+from ..mesh import Mesh, Topology
+from ..mesh_geometry import face_centroids
 from ._common import is_outer, neighbour_sums, trusted_dense
 from .hierarchy import Level
 

@@ -13,7 +13,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..mesh import Mesh, face_centroids
+from ..mesh import Mesh
+from ..mesh_geometry import face_centroids
 from .model import Weave
 from .quad import quad_weave, twins_by_key
 

@@ -12,7 +12,8 @@ from functools import cached_property
 import numpy as np
 from numpy.typing import NDArray
 
-from ..mesh import Mesh, face_centroids
+from ..mesh import Mesh
+from ..mesh_geometry import face_centroids
 
 
 @dataclass(frozen=True, eq=False)
