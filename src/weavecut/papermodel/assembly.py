@@ -27,7 +27,9 @@ from ..layout.labels import (
 )
 from ..weave.model import Weave
 from .pages import GAP, page_layers, page_span
-from .strips import arrow_polygon, copy_letter, model_tiles, turn_to
+from .modules import copy_letter
+from .strip_labels import arrow_polygon, turn_to
+from .strips import model_tiles
 from .symmetry import rotate, tile_centres
 
 TEXT = 2.6  # cap height of running text on these pages (mm)

@@ -27,19 +27,9 @@ from .assembly import assembly_sheet, weaving_sheet
 from .crossings import crossing_pages, left_out_crossings
 from .packing import pack
 from .pages import GAP, PageArea, page_layers, page_span, split_strip, strip_layers
-from .strips import (
-    ModulePlan,
-    Strip,
-    affine,
-    build_strips,
-    copy_colours,
-    copy_family_colours,
-    label_strip,
-    octagon_size,
-    orbit_colours,
-    plan_modules,
-    strip_width,
-)
+from .modules import ModulePlan, copy_colours, copy_family_colours, orbit_colours, plan_modules
+from .strip_labels import label_strip
+from .strips import Strip, affine, build_strips, octagon_size, strip_width
 
 ON_COVER = 24  # at most this many unnamed crossings are tried on page 1
 CURL = 0.45  # a strip wider than this share of the page (a curl) is cut into pieces
