@@ -20,7 +20,8 @@ from weavecut.papermodel.book import (
     tile_size_for,
     tile_size_width,
 )
-from weavecut.papermodel.strips import octagon_size, plan_modules, strip_width
+from weavecut.papermodel.modules import plan_modules
+from weavecut.papermodel.strips import octagon_size, strip_width
 from weavecut.papermodel.wording import page_index
 from weavecut.subdivision import subdivide
 from weavecut.weave.snub_weave import snub_weaves

@@ -24,7 +24,8 @@ from weavecut.papermodel.crossings import (
     left_out_crossings,
 )
 from weavecut.papermodel.pages import GAP, PageArea
-from weavecut.papermodel.strips import build_strips, copy_colours, plan_modules
+from weavecut.papermodel.modules import copy_colours, plan_modules
+from weavecut.papermodel.strips import build_strips
 from weavecut.subdivision import subdivide
 from weavecut.weave.colour import palette
 from weavecut.weave.snub_weave import snub_weaves

@@ -348,7 +348,7 @@ def test_a_label_tab_is_cut_with_its_strip_and_its_id_engraved_on_it(tmp_path):
     """A strip whose ID sits on a label tab (the pentagon flower's border strips at 23 cm): the
     laser cuts the tab with the strip, engraves the ID on the tab and the line where the tab is
     cut off; read back from the DXF."""
-    from weavecut.papermodel.strips import label_flap
+    from weavecut.papermodel.strip_labels import label_flap
 
     book, _ = card()
     pieces = []

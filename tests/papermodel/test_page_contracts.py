@@ -17,7 +17,8 @@ from weavecut.layout.drawing import Polygons, Polylines, Text
 from weavecut.papermodel import assembly, ball
 from weavecut.papermodel.book import strand_book
 from weavecut.papermodel.pages import FOLD, PageArea, page_layers, split_strip, strip_layers
-from weavecut.papermodel.strips import build_strips, copy_colours, copy_letter, plan_modules
+from weavecut.papermodel.modules import copy_colours, copy_letter, plan_modules
+from weavecut.papermodel.strips import build_strips
 from weavecut.subdivision import subdivide
 from weavecut.weave.colour import palette
 from weavecut.weave.snub_weave import snub_weaves
@@ -224,7 +225,7 @@ def test_a_glue_bands_word_stays_inside_its_band():
     """The "glue j" text is printed on the band, at least ``PAD`` clear of the band's edges
     (or not at all, on a ball too small for it)."""
     from weavecut.layout.labels import text_box
-    from weavecut.papermodel.strips import PAD, label_strip
+    from weavecut.papermodel.strip_labels import PAD, label_strip
     weave, book = ball_case()
     labels = book.plan.labels
     shown = 0
@@ -245,7 +246,7 @@ def test_a_glue_bands_word_stays_inside_its_band():
 def test_a_label_tab_goes_on_the_last_tile_when_the_first_is_in_two_parts():
     """The tab may sit on the first or the last tile's end edge; a first tile that is not one
     polygon (twisted, in two parts) leaves the last tile to take it."""
-    from weavecut.papermodel.strips import label_flap
+    from weavecut.papermodel.strip_labels import label_flap
     ws = snub_weaves(subdivide(inputs.get("square-grid:2x2"), 2))
     w = ws[-1]
     plan = plan_modules(w)

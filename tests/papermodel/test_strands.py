@@ -18,7 +18,8 @@ from weavecut.papermodel.pages import GAP, occupied
 from weavecut.papermodel.book import strand_book
 from weavecut.papermodel.checks import report, sheet_checks, text_checks
 from weavecut.papermodel.printcut import cut_report
-from weavecut.papermodel.strips import build_strips, copy_colours, model_tiles, plan_modules
+from weavecut.papermodel.modules import copy_colours, plan_modules
+from weavecut.papermodel.strips import build_strips, model_tiles
 from weavecut.papermodel.symmetry import rotate, rotation_group, strand_orbits, tile_centres
 from weavecut.mesh import Mesh
 from weavecut.subdivision import subdivide
@@ -500,10 +501,10 @@ def test_the_first_refusal_names_the_size_that_passes_every_check(tabs, monkeypa
     read only from a larger size. Tiles of 5 mm are refused for the strips, and the message
     already names the size where the labels read too: that size builds with no label violation,
     and half a mm less (with tabs) or a mm less (without) is refused."""
-    from weavecut.papermodel import strips
+    from weavecut.papermodel import strip_labels
     from weavecut.papermodel.book import SizeError, strip_need
     if not tabs:
-        monkeypatch.setattr(strips, "label_flap", lambda strip, text: None)
+        monkeypatch.setattr(strip_labels, "label_flap", lambda strip, text: None)
     ws = list(weaves("square-grid:2x2", 2))
     pal = palette("maritime-12")
     with pytest.raises(SizeError, match="tear") as thin:

@@ -13,23 +13,25 @@ import shapely
 
 from tests.meshes import hexagon
 from weavecut import inputs
-from weavecut.papermodel.strips import (
-    Strip,
-    affine,
-    arrow_polygon,
-    build_strips,
+from weavecut.papermodel.modules import (
     copy_colours,
     copy_family_colours,
     copy_letter,
+    orbit_colours,
+    plan_modules,
+)
+from weavecut.papermodel.strip_labels import arrow_polygon
+from weavecut.papermodel.strips import (
+    Strip,
+    build_strips,
     flat_angle,
     model_tiles,
     octagon_size,
-    orbit_colours,
     outline_of,
-    plan_modules,
     strip_width,
     tint,
 )
+from weavecut.numeric import affine
 from weavecut.papermodel.symmetry import tile_centres
 from weavecut.subdivision import subdivide
 from weavecut.weave.colour import crossing_pairs, palette

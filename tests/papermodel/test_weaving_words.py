@@ -8,7 +8,7 @@ import pytest
 
 from weavecut import inputs
 from weavecut.papermodel import assembly
-from weavecut.papermodel.strips import plan_modules
+from weavecut.papermodel.modules import plan_modules
 from weavecut.subdivision import subdivide
 from weavecut.weave.snub_weave import snub_weaves
 

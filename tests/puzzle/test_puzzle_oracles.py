@@ -13,9 +13,9 @@ import shapely
 
 from weavecut import inputs
 from weavecut.errors import WeaveCutError
+from weavecut.puzzle.frame_size import diameter, extent, frame_scale
 from weavecut.puzzle.guides import piece_halves, split_ends
-from weavecut.puzzle.pieces import (OCTAGON, build_puzzle, diameter, extent,
-                                    frame_scale)
+from weavecut.puzzle.pieces import OCTAGON, build_puzzle
 from weavecut.subdivision import subdivide
 
 HEXAGON_AREA = 3.0 * np.sqrt(3.0) / 2.0  # x side squared

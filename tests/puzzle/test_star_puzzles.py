@@ -11,8 +11,9 @@ import pytest
 import shapely
 
 from weavecut.errors import MeshError, TurnedOverError
+from weavecut.puzzle.frame_size import extent
 from weavecut.puzzle.guides import piece_halves, split_ends
-from weavecut.puzzle.pieces import OCTAGON, _one_region, build_puzzle, extent
+from weavecut.puzzle.pieces import OCTAGON, _one_region, build_puzzle
 from weavecut.readers.outline_mesh import mesh_outline
 from weavecut.subdivision import subdivide
 

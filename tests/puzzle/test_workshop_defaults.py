@@ -15,7 +15,8 @@ import shapely
 from weavecut.errors import MeshError, TurnedOverError, WeaveCutError
 from weavecut.mesh_geometry import signed_areas
 from weavecut.puzzle import workshop
-from weavecut.puzzle.pieces import build_puzzle, extent
+from weavecut.puzzle.frame_size import extent
+from weavecut.puzzle.pieces import build_puzzle
 from weavecut.readers.outline_mesh import mesh_outline
 from weavecut.subdivision import subdivide
 

@@ -17,7 +17,8 @@ from weavecut import inputs, presets
 from weavecut.puzzle import files as pf
 from weavecut.puzzle import workshop
 from weavecut.puzzle.colouring import UNPAINTED, colour_puzzle
-from weavecut.puzzle.pieces import OCTAGON, build_puzzle, diameter
+from weavecut.puzzle.frame_size import diameter
+from weavecut.puzzle.pieces import OCTAGON, build_puzzle
 from weavecut.subdivision import subdivide
 from weavecut.weave.colour import palette
 

@@ -27,8 +27,9 @@ from ..layout.labels import (
 from ..weave.model import Weave
 from .crossings import DOT, callout_shapes, crossing_label, crossing_meaning, too_small
 from .pages import GAP, page_layers, page_span
+from .modules import copy_letter
 from .pattern import pattern
-from .strips import arrow_polygon, copy_letter, turn_to
+from .strip_labels import arrow_polygon, turn_to
 from .symmetry import rotate, tile_centres
 from .wording import LINE, TEXT, page_index, paragraphs
 

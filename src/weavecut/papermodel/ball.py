@@ -26,7 +26,9 @@ from .book import CURL, MIN_STRIP, WARN_STRIP, SizeError, StrandBook, strip_shee
 from .pages import FOLD, GAP, PageArea, _fits, page_layers, page_span
 from .pattern import OUTLINE
 from ..numeric import affine, dot, snap
-from .strips import Strip, copy_letter, flat_angle, label_strip, outline_of, tint
+from .modules import copy_letter
+from .strip_labels import label_strip
+from .strips import Strip, flat_angle, outline_of, tint
 from .unfold import OVERLAP, Unfolding, UnfoldError, dashed, flatten, unfold
 from .wording import TEXT, page_index, paragraphs
 

@@ -17,7 +17,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..numeric import matmul
+from ..numeric import affine, matmul
 from ..errors import WeaveCutError
 from ..layout.drawing import Drawing, Sheet
 from ..layout.labels import MIN_CAP
@@ -27,19 +27,9 @@ from .assembly import assembly_sheet, weaving_sheet
 from .crossings import crossing_pages, left_out_crossings
 from .packing import pack
 from .pages import GAP, PageArea, page_layers, page_span, split_strip, strip_layers
-from .strips import (
-    ModulePlan,
-    Strip,
-    affine,
-    build_strips,
-    copy_colours,
-    copy_family_colours,
-    label_strip,
-    octagon_size,
-    orbit_colours,
-    plan_modules,
-    strip_width,
-)
+from .modules import ModulePlan, copy_colours, copy_family_colours, orbit_colours, plan_modules
+from .strip_labels import label_strip
+from .strips import Strip, build_strips, octagon_size, strip_width
 from .wording import strip_runs
 
 ON_COVER = 24  # at most this many unnamed crossings are tried on page 1

@@ -1,4 +1,4 @@
-"""The laser-cut jigsaw puzzle of the paper's section 6: pieces, hexagon ring, frame, colours.
+"""The laser-cut jigsaw puzzle of the paper's section 6: pieces, hexagon ring, frame.
 
 Pieces are the tiles of the level-t snub weave: octagons (two pentagons glued along a Z middle
 edge) and, for every boundary pentagon (its middle edge on the boundary), an *enneagon*: the
@@ -17,17 +17,8 @@ Decisions (documented here and in the README):
   meet, are part of the frame** (the wedge between the last cell of one side and the first of
   the next). Cells that would overlap the mesh or an earlier cell are dropped (claimed cells
   first); on the pentagon none overlap.
-- **The frame** of the paper's pentagon (``measure="diagonal"``) is the input outline offset
-  outward (mitred; bevelled at corners under 60 degrees) to ``frame_width`` beyond the ring's
-  outermost point, minus the union of the pieces (the hole): the surrounding pentagon. Any
-  other shape's frame is the ring's outer boundary (pieces and ring cells) offset by
-  ``frame_width`` with round joins, its notches closed by a radius of ``frame_width``, so the
-  band beyond the ring is even all round and its outline follows the drawn shape (an offset
-  of the outline would be as wide as the ring's deepest point everywhere, and a drawn curve's
-  ring wanders off its straight runs). ``size`` is the frame's diagonal
-  (the largest distance between two corners of its outer outline): "the diagonal of the
-  surrounding pentagon measures 50 cm" (paper, section 6), or with ``measure="width"`` (every
-  other shape: a heart, a star) the finished piece's width. The model is scaled to make it so.
+- **The frame** grows from the input's outline (the paper's pentagon) or from the ring's outer
+  boundary (any other shape) to the asked ``size``: see ``frame_size``.
 - **Straight runs.** The ring follows every edge of the input's outline: its snub levels turn
   by +-60 degrees along each edge, so each edge carries one row of hexagons, and the corners
   between edges are left to the frame. A drawn curve is therefore first redrawn as runs of
@@ -37,7 +28,8 @@ Decisions (documented here and in the README):
 - **Pieces must be cuttable.** A level whose pentagons turn over (self-intersect, as at a
   star's sharp tips after a few steps) is refused with where it happens.
 
-Colours are in ``colouring``, cut files in ``files``, painting guides in ``guides``.
+The frame's outer outline and size are in ``frame_size``, colours in ``colouring``, cut files
+in ``files``, painting guides in ``guides``.
 """
 
 from __future__ import annotations
@@ -60,10 +52,9 @@ from ..subdivision.hierarchy import Level
 from ..weave.model import Weave
 from ..weave.snub_weave import snub_weaves
 from ..layout.weave_figure import tile_rings
+from .frame_size import MEASURES, frame_outline, frame_scale, ring_offset
 
 OCTAGON, ENNEAGON = 0, 1
-MEASURES = ("diagonal", "width")  # what --size measures of the frame's outer outline
-MITRE_LIMIT = 2.0  # the frame's corners: mitre length / offset, beyond which they are bevelled
 KIND_NAMES = ("octagon", "enneagon")
 _SIN60, _COS60 = np.sqrt(3.0) / 2.0, 0.5
 
@@ -195,10 +186,10 @@ def build_puzzle(hierarchy: tuple[Level, ...], size: float = 500.0,
     outline = _outline(mesh, to_model)
     if measure == "diagonal":
         depth = float(np.max(shapely.distance(shapely.points(snapped), outline)))
-        base, grow = outline, lambda s: _frame_outline(outline, depth, frame_width, s)
+        base, grow = outline, lambda s: frame_outline(outline, depth, frame_width, s)
     else:
         base = _one_region(np.concatenate(_shapes(snapped, parts, octagon_sizes)[::2]))
-        grow = lambda s: _ring_offset(base, frame_width, s)  # noqa: E731
+        grow = lambda s: ring_offset(base, frame_width, s)  # noqa: E731
     scale = frame_scale(base, grow, size, measure, frame_width)
     pieces, hexes, ring = _shapes(snapped * scale, parts, octagon_sizes)
     _one_region(pieces)
@@ -249,20 +240,6 @@ def _one_region(pieces: np.ndarray) -> shapely.Polygon:
                     "around this mesh; mesh the outline with another --cell")
 
 
-def diameter(polygon: shapely.Polygon) -> float:
-    """The largest distance between two corners of a polygon's outline (its diagonal)."""
-    xy = np.asarray(polygon.exterior.coords)
-    return float(np.max(np.linalg.norm(xy[:, None] - xy[None], axis=2)))
-
-
-def extent(polygon: shapely.Polygon, measure: str = "diagonal") -> float:
-    """What ``size`` measures: the polygon's ``diameter``, or its width (x extent)."""
-    if measure == "width":
-        x0, _, x1, _ = polygon.bounds
-        return float(x1 - x0)
-    return diameter(polygon)
-
-
 def _check_cuttable(mesh: Mesh, fewer: bool = True) -> None:
     """Refuse a level with faces that turn over (a pentagon crossing itself cannot be cut);
     the message suggests fewer levels where there can be fewer."""
@@ -276,50 +253,6 @@ def _check_cuttable(mesh: Mesh, fewer: bool = True) -> None:
                         "cannot be cut (sharp corners and slim faces do this); "
                         f"{'use fewer --levels, or ' if fewer else ''}mesh a drawing with "
                         "another --cell or --mesh tri")
-
-
-def _frame_outline(outline: shapely.Polygon, depth: float, frame_width: float,
-                   scale: float) -> shapely.Polygon:
-    """The outline at ``scale`` offset by the ring's depth plus the frame width: mitred, and
-    bevelled where a mitre would reach more than twice that far (corners under 60 degrees, a
-    star's tips; the pentagon's and a square's corners keep their mitres)."""
-    scaled = shapely.transform(outline, lambda xy: xy * scale)
-    return shapely.buffer(scaled, depth * scale + frame_width, join_style="mitre",
-                          mitre_limit=MITRE_LIMIT)
-
-
-def _ring_offset(envelope: shapely.Polygon, frame_width: float,
-                 scale: float) -> shapely.Polygon:
-    """The ring's outer boundary at ``scale`` offset by ``frame_width`` (round), its notches
-    closed with a radius of ``frame_width``: an even band that follows the ring."""
-    scaled = shapely.transform(envelope, lambda xy: xy * scale)
-    grown = shapely.buffer(shapely.buffer(scaled, 2.0 * frame_width, quad_segs=16),
-                           -frame_width, quad_segs=16)
-    # the band of a connected outline is connected; GEOS can leave a speck beside it when the
-    # outline is scaled nearly to a point (the scale search's lower bracket)
-    return shapely.Polygon(max(getattr(grown, "geoms", [grown]), key=shapely.area).exterior)
-
-
-def frame_scale(base: shapely.Polygon, grow, size: float, measure: str = "diagonal",
-                frame_width: float = 20.0) -> float:
-    """mm per model unit that makes the frame's diagonal (or width: ``measure``) ``size`` mm.
-
-    ``grow(scale)`` is the frame's outer outline: ``base`` (centred model units) scaled, then
-    offset by the fixed frame width (and, for the pentagon, the scaled ring depth); its
-    diagonal and width grow monotonically with the scale, so a bracketing root search finds
-    it to far below 0.01 mm."""
-    from scipy.optimize import brentq
-
-    def excess(scale: float) -> float:
-        return extent(grow(scale), measure) - size
-
-    high = size / extent(base, measure)  # the base alone already spans ``size``
-    low = high * 1e-9
-    if excess(low) >= 0:
-        raise WeaveCutError(f"a frame of {size:g} mm {measure} leaves no room for the pieces "
-                            f"inside a {frame_width:g} mm frame; use a larger --size or a "
-                            "narrower --frame")
-    return float(brentq(excess, low, high, xtol=1e-12 * high, rtol=1e-14))
 
 
 def _shapes(points: NDArray[np.float64], parts: list, octagon_sizes) -> tuple:

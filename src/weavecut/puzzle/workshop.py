@@ -17,7 +17,8 @@ from ..errors import MeshError, TurnedOverError, WeaveCutError
 from ..mesh import Mesh
 from ..mesh_geometry import signed_areas
 from ..subdivision import subdivide
-from .pieces import KIND_NAMES, OCTAGON, Puzzle, build_puzzle, diameter, extent
+from .frame_size import diameter, extent
+from .pieces import KIND_NAMES, OCTAGON, Puzzle, build_puzzle
 
 MIN_ACROSS = 15.0  # mm: a piece smaller than this is fiddly to hold and easy to lose
 MIN_WIDTH_X_THICKNESS = 3.0  # a piece narrower than 3x the material thickness breaks
