@@ -36,7 +36,7 @@ Note = Callable[[str], None]
 
 def read_mesh(path: str | Path, note: Note | None = None, **drawing_options) -> Mesh:
     """Read an OBJ or JSON mesh, or an SVG or DXF drawing (``drawing_options``: see
-    ``readers.read_drawing``); MeshFileError names the file and line of a problem.
+    ``readers.drawing.read_drawing``); MeshFileError names the file and line of a problem.
 
     ``note`` receives remarks that are no errors (an OBJ read in the xz- or yz-plane, what a
     drawing held).
@@ -90,7 +90,9 @@ def json_text(mesh: Mesh, metadata: dict[str, str] | None = None) -> str:
 def _read(path: Path, note: Note | None, drawing_options: dict) -> tuple[Mesh, Numbering]:
     suffix = path.suffix.lower()
     if suffix in readers.SUFFIXES:
-        return readers.read_drawing(path, report=note, **drawing_options), ZERO_BASED
+        from .readers.drawing import read_drawing  # shapely, svgelements: only for a drawing
+
+        return read_drawing(path, report=note, **drawing_options), ZERO_BASED
     if suffix not in SUFFIXES:
         raise MeshFileError(f"{path}: unknown mesh format {path.suffix!r}; use .obj or .json, "
                             "or a drawing (.svg, .dxf)")

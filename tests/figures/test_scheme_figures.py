@@ -9,7 +9,7 @@ import pytest
 
 from tests.svg_readback import assert_svg_shows
 from weavecut import export, inputs
-from weavecut.figures import gallery, schemes
+from weavecut.figures import gallery, scheme_stages, schemes
 from weavecut.figures import fractal as fractal_figures
 from weavecut.layout.drawing import Drawing, Polylines, Text
 from weavecut.subdivision import subdivide
@@ -26,9 +26,9 @@ def test_scheme_figures_render(name):
 
 
 def test_figure_inputs_are_valid_meshes():
-    for mesh in (schemes.triangle_input(), schemes.quad_dominant_input()):
+    for mesh in (scheme_stages.triangle_input(), scheme_stages.quad_dominant_input()):
         validate(mesh)
-    quad = schemes.quad_dominant_input()
+    quad = scheme_stages.quad_dominant_input()
     assert sorted(np.unique(quad.face_sizes).tolist()) == [3, 4, 5]
 
 
@@ -38,7 +38,7 @@ def _captions(drawing):
 
 
 def test_scheme_stages_has_every_stage_of_the_paper():
-    captions = _captions(schemes.fig_scheme_stages())
+    captions = _captions(scheme_stages.fig_scheme_stages())
     assert len(captions) == 4 * 4 + 3       # Loop, butterfly, sqrt3, mid-edge; singularities
     for word in ("Loop: input", "butterfly: input", "\u221a3: input", "mid-edge: input",
                  "flip the old edges", "Catmull-Clark", "Doo-Sabin"):

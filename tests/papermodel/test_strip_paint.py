@@ -13,6 +13,7 @@ import shapely
 
 from tests.meshes import hexagon
 from weavecut import inputs
+from weavecut.numeric import affine
 from weavecut.papermodel.modules import (
     copy_colours,
     copy_family_colours,
@@ -31,7 +32,6 @@ from weavecut.papermodel.strips import (
     strip_width,
     tint,
 )
-from weavecut.numeric import affine
 from weavecut.papermodel.symmetry import tile_centres
 from weavecut.subdivision import subdivide
 from weavecut.weave.colour import crossing_pairs, palette

@@ -19,7 +19,7 @@ from weavecut.errors import WeaveCutError
 from weavecut.puzzle.frame_size import extent
 from weavecut.puzzle.guides import piece_halves
 from weavecut.puzzle.pieces import build_puzzle
-from weavecut.readers import read_drawing
+from weavecut.readers.drawing import read_drawing
 from weavecut.readers.outline_mesh import _even_runs, mesh_outline
 from weavecut.subdivision import subdivide
 

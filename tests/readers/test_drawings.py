@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 from weavecut.errors import MeshError, MeshFileError
 from weavecut.mesh import Mesh, edge_faces
 from weavecut.mesh_geometry import signed_areas
-from weavecut.readers import read_drawing
+from weavecut.readers.drawing import read_drawing
 from weavecut.validation import validate
 
 from ..strategies import valid_meshes

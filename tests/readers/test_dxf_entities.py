@@ -16,7 +16,7 @@ import shapely
 
 from weavecut.errors import MeshFileError
 from weavecut.readers import dxf as dxf_reader
-from weavecut.readers import read_drawing
+from weavecut.readers.drawing import read_drawing
 
 
 def write(tmp_path: Path, build, units: int = 4) -> Path:

@@ -18,7 +18,8 @@ from hypothesis import strategies as st
 from weavecut.errors import MeshError
 from weavecut.mesh import Mesh
 from weavecut.mesh_geometry import corner_turns, signed_areas
-from weavecut.readers import outline_mesh, read_drawing
+from weavecut.readers import outline_mesh
+from weavecut.readers.drawing import read_drawing
 from weavecut.subdivision import subdivide
 from weavecut.validation import validate
 

@@ -16,7 +16,8 @@ import shapely
 
 from weavecut.errors import MeshError, MeshFileError
 from weavecut.mesh_geometry import signed_areas
-from weavecut.readers import drawing, read_drawing
+from weavecut.readers import drawing
+from weavecut.readers.drawing import read_drawing
 from weavecut.readers.rings import (Ring, checked, close_groups, enclosed_faces, nesting,
                                     split_t_junctions, weld)
 from weavecut.validation import validate

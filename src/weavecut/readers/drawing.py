@@ -21,11 +21,28 @@ READERS = {".svg": svg.read_rings, ".dxf": dxf.read_rings}
 MAX_BYTES = 64 * 2**20  # an untrusted drawing is read whole into memory
 
 
-def read(path: Path, *, flatten: float = DEFAULT_FLATTEN, layer: str | None = None,
-         mesh: str = "auto", cell: float | None = None, runs: bool = False,
-         allow_nonconvex: bool = False,
-         report: Callable[[str], None] | None = None) -> Mesh:
-    """``weavecut.readers.read_drawing``, which documents the parameters."""
+def read_drawing(path: str | Path, *, flatten: float = DEFAULT_FLATTEN,
+                 layer: str | None = None, mesh: str = "auto", cell: float | None = None, runs: bool = False,
+                 allow_nonconvex: bool = False,
+                 report: Callable[[str], None] | None = None) -> Mesh:
+    """Read an SVG or DXF drawing as a mesh in millimetres.
+
+    Parameters
+    ----------
+    path : ``.svg`` or ``.dxf`` file
+    flatten : largest distance (mm) between a curve and its polyline; points of neighbouring
+        faces closer than this are merged into one vertex
+    layer : read only this layer (DXF layer; SVG Inkscape layer or group, by label or id)
+    mesh : ``auto`` meshes a drawing of one outline (holes allowed) and keeps the faces of any
+        other drawing; ``none`` always keeps the faces as drawn; one of KINDS meshes the inside
+        of the whole drawing
+    cell : face size for meshing (mm); default: about 60 faces
+    runs : when meshing, first redraw the outline as straight runs of one length, about a
+        cell edge, between its corners (``outline_mesh._even_runs``; the puzzle's ring)
+    allow_nonconvex : accept faces drawn non-convex (a meshed outline's faces are convex)
+    report : called with one line saying what was read (counts, merges, mesh quality)
+    """
+    path = Path(path)
     if not path.is_file():
         raise MeshFileError(f"cannot read {path}: no such file")
     if path.stat().st_size > MAX_BYTES:
