@@ -16,7 +16,7 @@ OUT    := build
 RECIPES := $(wildcard templates/recipes/*.toml) $(wildcard examples/*.toml)
 BUILT   := $(patsubst %.toml,$(OUT)/%/.built,$(notdir $(RECIPES)))
 
-.PHONY: run figures docs test test-latest lock fuzz bench bench-engine mutation clean help
+.PHONY: run figures docs test test-latest lock fuzz bench bench-engine bench-kits mutation clean help
 .DELETE_ON_ERROR:
 
 help:  ## list the targets
@@ -84,8 +84,11 @@ bench: $(STAMP)  ## run the benchmarks (throughput, ratios against peers)
 	$(PY) benchmarks/bench_memory.py
 	$(PY) benchmarks/bench_mesh_io.py
 	$(PY) benchmarks/bench_startup.py  # fails when --help gets slow against import numpy
-	@for b in benchmarks/bench_puzzle.py benchmarks/bench_strands.py; do \
-		[ -f $$b ] && $(PY) $$b || true; done
+	$(PY) benchmarks/bench_puzzle.py
+	$(PY) benchmarks/bench_kits.py
+
+bench-kits: $(STAMP)  ## whole kit commands (paper models, laser card, puzzle, ball) against the frozen code of before they were made fast: CPU and ratio
+	$(PY) benchmarks/bench_kits.py
 
 bench-engine: $(STAMP)  ## the engine at scale (snub step, stats, OBJ read, memory guard, schemes, tiles), before and after its speed work, in one run (about 5 minutes on a quiet machine)
 	$(PY) -m pip install --quiet -c $(LOCK) -e '.[bench]' || echo "some peers did not install"

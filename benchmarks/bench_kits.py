@@ -1,0 +1,100 @@
+"""Whole kit commands, as a maker runs them, against the same commands of a frozen commit
+(prints a table; asserts nothing).
+
+    .venv/bin/python benchmarks/bench_kits.py [--repeat 3] [--base COMMIT]   (or: make bench-kits)
+
+Each command runs in a fresh process (interpreter start and imports included, as
+``/usr/bin/time`` counts them), the frozen commit's and this checkout's alternately, ``repeat``
+times each; the figure is its CPU time (user + system of the child), best and median, and the
+ratio is this checkout's over the frozen one's, best to best. The frozen source is
+``git archive``'d once into ``build/bench-base/<commit>/``: the code of before the kits were
+made fast (``BASE``), as ``tests/subdivision/snub_oracle.py`` freezes the engine's old step.
+Pages and sheets are counted in the outputs of the last run of each.
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import resource
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+BASE = "e6bca44"  # main before the kits were made fast
+PAGE = re.compile(rb"/Type /Page\b")
+RUN = "import sys; from weavecut.cli import main; sys.argv[0] = 'weave-cut'; main()"
+# (name, arguments, output, target ratio)
+KITS = (
+    ("pentagon flower paper model", ["strands", "pentagon-flower", "--size", "23cm"], "pf.pdf",
+     0.2),
+    ("square grid, laser card", ["strands", "square-grid", "--size", "27cm", "--laser-card"],
+     "card", 0.2),
+    ("square grid paper model", ["strands", "square-grid", "--size", "27cm"], "sq.pdf", 0.25),
+    ("puzzle with numbers", ["puzzle", "--numbers"], "pz", 0.35),
+    ("ball, level 1", ["strands", "dodecahedron", "--levels", "1", "--project", "sphere",
+                       "--size", "12cm"], "ball.pdf", 0.5),
+)
+
+
+def frozen_source(commit: str) -> Path:
+    """``src/`` of ``commit``, extracted once under build/bench-base/."""
+    folder = ROOT / "build" / "bench-base" / commit
+    if not (folder / "src" / "weavecut").is_dir():
+        shutil.rmtree(folder, ignore_errors=True)
+        folder.mkdir(parents=True)
+        archive = subprocess.run(["git", "-C", str(ROOT), "archive", commit, "src"],
+                                 check=True, capture_output=True).stdout
+        subprocess.run(["tar", "-x", "-C", str(folder)], input=archive, check=True)
+    return folder / "src"
+
+
+def cpu_of(src: Path, args: list[str], out: Path) -> float:
+    """CPU seconds (user + system) of one run of ``weave-cut -q ARGS -o OUT`` with ``src``."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    subprocess.run([sys.executable, "-c", RUN, "-q", *args, "-o", str(out)], check=True,
+                   env={"PYTHONPATH": str(src), "PATH": "/usr/bin:/bin"},
+                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def pages(out: Path) -> str:
+    """Pages of a PDF, or the files of a kit folder ("3 pages", "8 sheets")."""
+    if out.suffix == ".pdf":
+        return f"{len(PAGE.findall(out.read_bytes()))} pages"
+    files = sorted(p.name for p in out.iterdir())
+    sheets = [f for f in files if re.search(r"-(card|sheet|cut)-.*\.svg$", f)]
+    return f"{len(sheets)} sheets, {len(files)} files"
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=3)
+    parser.add_argument("--base", default=BASE, help="the frozen commit (default %(default)s)")
+    args = parser.parse_args()
+    sources = {"before": frozen_source(args.base), "now": ROOT / "src"}
+    print(f"| command | before ({args.base}), CPU s best / median | now | ratio (target) | "
+          "pages before / now |\n| --- | --- | --- | --- | --- |", flush=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, cmd, output, target in KITS:
+            times: dict[str, list[float]] = {"before": [], "now": []}
+            outs = {k: Path(tmp) / k / output for k in sources}
+            for _ in range(args.repeat):
+                for k, src in sources.items():
+                    shutil.rmtree(outs[k].parent, ignore_errors=True)
+                    outs[k].parent.mkdir()
+                    times[k].append(cpu_of(src, cmd, outs[k]))
+            best = {k: min(v) for k, v in times.items()}
+            cell = {k: f"{best[k]:.2f} / {statistics.median(times[k]):.2f}" for k in times}
+            print(f"| `weave-cut {' '.join(cmd)} -o {output}` ({name}) | {cell['before']} | "
+                  f"{cell['now']} | {best['now'] / best['before']:.2f} (≤ {target}) | "
+                  f"{pages(outs['before'])} / {pages(outs['now'])} |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
