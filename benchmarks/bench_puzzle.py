@@ -32,7 +32,7 @@ def run(levels: int, folder: Path) -> dict[str, float]:
         times[name] = time.process_time() - t0
         return out
 
-    mat = workshop.material()
+    mat = workshop.material("poplar-3mm")
     hierarchy = stage("levels", lambda: subdivide(inputs.get("pentagon"), levels))
     puzzle = stage("geometry", lambda: build_puzzle(hierarchy, 500.0))
     colouring = stage("colours", lambda: colour_puzzle(puzzle, palette("puzzle")))
