@@ -60,10 +60,13 @@ from .common import (CONTEXT, DRAWING_KEY, Finite, Length, PageSize, complete_in
               help="Paint families (templates/palettes); the default is the paper's green, "
               "blue and pink.")
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
+@click.option("--preview", is_flag=True, help="Only draw the painted front and back "
+              "(puzzle-preview.svg in -o): no cut files, guides or README, in a fraction of a "
+              "second.")
 @reports_errors
 @html_option
 def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, sheet, laser_name,
-                   frame_width, numbers, speed, page, palette_name, as_json) -> None:
+                   frame_width, numbers, speed, page, palette_name, as_json, preview) -> None:
     """Write the jigsaw puzzle's workshop folder: cut files, painting guides, README.txt.
 
     \b
@@ -81,6 +84,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     Examples:
       weave-cut puzzle -o build/puzzle --material poplar-3mm --numbers
       weave-cut puzzle heart.svg --cell 39mm --levels 2 --size 30cm -o heart
+      weave-cut puzzle --levels 3 --palette puzzle --preview -o look
     """
     import shapely
 
@@ -91,6 +95,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     from ..puzzle.colouring import colour_puzzle, palette_names
     from ..puzzle.frame import fits, split_frame
     from ..puzzle.guides import colour_key, guide, printed
+    from ..puzzle.guides import preview as painted_preview
     from ..puzzle.pieces import build_puzzle
 
     mat = workshop.material(material)
@@ -127,6 +132,11 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
         mesh = check_layout(load_mesh(input_mesh), "the puzzle", connected=True)
         puzzle = build_puzzle(subdivide(mesh, levels), size, frame_width,
                               "diagonal" if input_mesh == "pentagon" else "width")
+    if preview:
+        colouring = colour_puzzle(puzzle, pal, palette_names(palette_name, pal))
+        path = make_folder(out_dir) / "puzzle-preview.svg"
+        export.write(painted_preview(puzzle, colouring).with_metadata(**provenance()), path)
+        return summary(f"{path}: the front and back of {puzzle.n_pieces} pieces, painted")
     pf.check_kerf(puzzle, kerf)
     warnings = workshop.size_warnings(puzzle, mat["thickness"], read_at,
                                       cell if read_at is not None else None)

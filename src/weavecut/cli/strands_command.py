@@ -76,11 +76,14 @@ class PrintLength(Length):
                    "with --laser-card.")
 @click.option("--json", "as_json", is_flag=True,
               help="Print the plan and the page checks (ink, smallest label) as JSON.")
+@click.option("--preview", is_flag=True,
+              help="Only draw the finished pattern in the strips' colours into -o (.svg, .pdf "
+                   "or .png): no strips, no pages, in a fraction of a second. Flat models.")
 @reports_errors
 @html_option
 def strands_command(input_mesh, levels, page, tile_size, model_size, layout, margin,
                     palette_name, turn, chirality, project, cutter_name, laser_card, material,
-                    laser_name, output, as_json) -> None:
+                    laser_name, output, as_json, preview) -> None:
     """Printable paper strips for weaving INPUT by hand: an assembly sheet, a page of weaving
     steps, then one strip per strand, grouped into modules by the pattern's rotational symmetry.
     A closed surface in space gives a woven ball: every loop one strip, unfolded pentagon by
@@ -94,15 +97,19 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
       weave-cut strands dodecahedron --levels 1 --project sphere --size 12cm -o ball.pdf
       weave-cut strands square-grid --size 27cm --cutter silhouette -o square-cut.pdf
       weave-cut strands square-grid --size 27cm --laser-card --palette maritime-4 -o card/
+      weave-cut strands pentagon-flower --preview -o look.svg
     """
     from ..papermodel.book import preset_for, strand_book, tile_size_for
     from ..papermodel.checks import report
     from ..weave.snub_weave import snub_weaves
 
     fmt = Path(output).suffix.lower().lstrip(".")
-    if fmt not in FORMATS and not laser_card:
-        raise click.BadParameter(f"unknown format {Path(output).suffix!r}; use .pdf or .svg",
-                                 param_hint="'-o'")
+    if preview and (cutter_name is not None or laser_card or as_json):
+        raise click.BadParameter("--preview draws the pattern only; give it without --cutter, "
+                                 "--laser-card and --json", param_hint="'--preview'")
+    if fmt not in FORMATS + (("png",) if preview else ()) and not laser_card:
+        raise click.BadParameter(f"unknown format {Path(output).suffix!r}; use .pdf or .svg"
+                                 + (" or .png" if preview else ""), param_hint="'-o'")
     if cutter_name is not None and laser_card:
         raise click.BadParameter("give --cutter (print and cut) or --laser-card, not both",
                                  param_hint="'--cutter'")
@@ -120,9 +127,9 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
         if layout != "mixed" or turn is not None:
             raise click.UsageError("--layout and --turn are for flat models; a ball prints "
                                    "every strip once")
-        if cutter_name is not None or laser_card:
-            raise click.UsageError("--cutter and --laser-card are for flat models so far; "
-                                   "print a ball's strips and cut them by hand")
+        if cutter_name is not None or laser_card or preview:
+            raise click.UsageError("--cutter, --laser-card and --preview are for flat models "
+                                   "so far; print a ball's strips and cut them by hand")
         return ball(mesh, input_mesh, levels, page, tile_size, model_size, margin, pal,
                     chirality, project, output, as_json)
     if project:
@@ -131,6 +138,14 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
     turn = preset["turn"] if turn is None else math.radians(turn)
     hierarchy = subdivide(check_layout(mesh, "the paper model"), levels, chirality=chirality)
     weaves = snub_weaves(hierarchy)
+    title = f"weave-cut strands: {input_mesh}, level {levels}"
+    if preview:
+        from ..papermodel.preview import pattern_preview
+
+        export.write(pattern_preview(weaves, pal, turn, layout, f"{title}: preview")
+                     .with_metadata(**provenance()), output)
+        return summary(f"{output}: the pattern of {weaves[-1].n_strands} strands, as the "
+                       "strips are coloured")
     nonconvex = flag_nonconvex(hierarchy)
     if model_size is not None:
         tile_size = tile_size_for(weaves[-1], model_size)
@@ -147,7 +162,6 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
 
         mat = card(material or "card-300gsm")
         page, margin = mat["sheet"], SHEET_MARGIN
-    title = f"weave-cut strands: {input_mesh}, level {levels}"
     try:
         book = strand_book(weaves, pal, page, tile_size or 20.0, margin, turn, title=title,
                            layout=layout, limit=limit)

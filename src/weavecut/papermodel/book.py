@@ -27,7 +27,7 @@ from .assembly import assembly_sheet, weaving_sheet
 from .crossings import crossing_pages, left_out_crossings
 from .packing import pack
 from .pages import GAP, PageArea, page_layers, page_span, split_strip, strip_layers
-from .modules import ModulePlan, copy_colours, copy_family_colours, orbit_colours, plan_modules
+from .modules import ModulePlan, book_colours, plan_modules
 from .strip_labels import label_strip
 from .strips import Strip, build_strips, octagon_size, strip_width
 from .wording import strip_runs
@@ -160,12 +160,7 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
     area = PageArea(page[0], page[1], margin, limit)
     area.check()
     plan = plan_modules(weave, heading=-np.pi / 2 - turn)
-    if not pal.shaded:
-        colours = copy_colours(plan, pal)
-    elif layout == "module":
-        colours = orbit_colours(weaves, plan, pal)
-    else:
-        colours = copy_family_colours(weave, plan, pal)
+    colours = book_colours(weaves, plan, pal, layout)
     width, warnings = check_strip_width(weave, tile_size, lambda t: smallest_tile_size(
         weave, plan, colours, t, layout, area))
     scale = tile_size / octagon_size(weave)

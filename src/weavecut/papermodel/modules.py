@@ -181,3 +181,14 @@ def copy_family_colours(weave: Weave, plan: ModulePlan, pal: Palette) -> list[st
     for i, s in enumerate(plan.extras.tolist()):
         out[s] = fam[i % len(fam)]
     return out
+
+
+def book_colours(weaves: list[Weave], plan: ModulePlan, pal: Palette, layout: str) -> list[str]:
+    """A colour per strand of ``weaves[-1]`` as the strand book prints it: a flat palette gives
+    one colour per copy; shade families tell the copies apart (``mixed``) or give a module
+    strand its braided-pair shade (``module``)."""
+    if not pal.shaded:
+        return copy_colours(plan, pal)
+    if layout == "module":
+        return orbit_colours(weaves, plan, pal)
+    return copy_family_colours(weaves[-1], plan, pal)

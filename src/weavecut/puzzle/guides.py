@@ -192,6 +192,13 @@ def guide(puzzle: Puzzle, colouring: Colouring, side: str, numbers: Labels | Non
     return Drawing((Sheet(width, height, tuple(layers), f"{side} guide"),), title)
 
 
+def preview(puzzle: Puzzle, colouring: Colouring) -> Drawing:
+    """A quick look at the painted puzzle: the front and the back guide without numbers, one
+    sheet each (``weave-cut puzzle --preview``; the web app's live preview)."""
+    sheets = tuple(guide(puzzle, colouring, side).sheets[0] for side in ("front", "back"))
+    return Drawing(sheets, f"weave-cut puzzle: preview, level {puzzle.levels}")
+
+
 def _split_lines(puzzle: Puzzle, colouring: Colouring, place_xy) -> Polylines:
     """Dashed parent edges across the two-coloured pieces (the paint's diagonal)."""
     u, w = split_ends(puzzle)
