@@ -25,7 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import ExportError
-from ..fileio import write_atomic
+from ..fileio import note, write_atomic
 from ..mesh import Mesh
 from . import levels as lv
 
@@ -117,6 +117,8 @@ def write_pyramid(mesh: Mesh, levels: int, grid: lv.Grid, folder, *, tile_size: 
                               image[r:r + h, c:c + w].copy()))
         if lower:
             list(pool.map(_write, *zip(*lower)))
+    for path in [*paths, *(p for p, _ in lower)]:  # written by workers: noted here
+        note(path)
     write_atomic(folder / f"{NAME}.dzi", dzi(grid.width, grid.height, tile_size))
     done = time.perf_counter()
     return {"width": grid.width, "height": grid.height, "pyramid_levels": len(sizes),

@@ -100,12 +100,38 @@ def write_png(data: bytes, output: str, title: str) -> None:
     write_atomic(output, with_text(data, [("Title", title), *provenance().items()]))
 
 
+def path_options(command: click.Command) -> list[click.Option]:
+    """The options of ``command`` that name a file or folder it writes: every ``click.Path``
+    that need not exist. A recipe confines each to its build folder (``recipe.Planner``)."""
+    return [p for p in command.params if isinstance(p, click.Option)
+            and isinstance(p.type, click.Path) and not p.type.exists]
+
+
+def _output_folders() -> list[str]:
+    """The folders the running command writes into (a folder option's value, a file option's
+    folder; both for an option that takes either); refuses an empty path."""
+    ctx = click.get_current_context(silent=True)
+    folders = []
+    for p in path_options(ctx.command) if ctx else ():
+        value = ctx.params.get(p.name)
+        for path in value if isinstance(value, (tuple, list)) else [value]:
+            if path is None:
+                continue
+            if not str(path):
+                raise click.BadParameter("an empty path names no file or folder", param=p)
+            folders += [path] if p.type.dir_okay else []
+            folders += [os.path.dirname(os.path.abspath(path))] if p.type.file_okay else []
+    return folders
+
+
 def reports_errors(f):
-    """Turn a WeaveCutError (or a ValueError from option checks) into a one-line exit 1."""
+    """Turn a WeaveCutError (or a ValueError from option checks) into a one-line exit 1; an
+    empty path option is refused first."""
 
     @functools.wraps(f)
     def wrapper(*args, **kwargs):
         try:
+            _output_folders()
             return f(*args, **kwargs)
         except WeaveCutError as exc:
             raise click.ClickException(str(exc)) from exc
