@@ -272,3 +272,36 @@ def test_a_folder_named_like_a_toml_file_in_a_recipe_is_refused(tmp_path):
     recipe.write_text(job("weave", "output", "w.svg") + 'palette = "x.toml"\n')
     refused(run("build", recipe, "-o", tmp_path / "out"), "job 1 (weave)", "palette",
             "is a folder")
+
+
+PRINTED = {  # output of a printing job -> whether it is written
+    "s.txt": True, "S.TXT": True, "s.html": False, "s.HTM": False, "s.svg": False,
+    "s.xhtml": False, "s": False, "s.json": False, "s.txt.html": False, "s.md": False,
+}
+
+
+@pytest.mark.parametrize("output", sorted(PRINTED))
+def test_a_printing_job_writes_only_text(tmp_path, output):
+    name = "<img src=x onerror=alert(1)>.obj"
+    (tmp_path / name).write_text("v 0 0\nv 1 0\nv 0 1\nf 1 2 3\n")
+    recipe = tmp_path / "r.toml"
+    recipe.write_text("[[job]]\n" + ws.toml_table({"command": "stats", "input": name,
+                                                   "levels": 0, "output": output}))
+    result = run("build", recipe, "-o", tmp_path / "out")
+    if not PRINTED[output]:
+        refused(result, "job 1 (stats)", repr(output), "a job that prints writes text",
+                "name it .txt (or .json with json = true)")
+        assert not (tmp_path / "out").exists()
+        return
+    assert result.exit_code == 0, result.output
+    assert name in (tmp_path / "out" / output).read_text()
+    assert "<img src=x" not in (tmp_path / "out" / "index.html").read_text()
+
+
+def test_a_printing_job_writes_json_only_when_it_prints_json(tmp_path):
+    recipe = tmp_path / "r.toml"
+    recipe.write_text(job("stats", "output", "s.json") + "json = true\nlevels = 0\n")
+    assert run("build", recipe, "-o", tmp_path / "out").exit_code == 0
+    assert json.loads((tmp_path / "out" / "s.json").read_text())["levels"]
+    refused(run("build", recipe, "-o", tmp_path / "out", "--set", "json=false"),
+            "name it .txt", status=(1,))

@@ -24,7 +24,8 @@ problem is one line naming the recipe, the job and the key:
   weave-cut did not write there (recorded with its hash in ``.weave-cut-manifest.json``) unless
   ``--force``. That holds for every file a job may write: a folder output's ``COMMAND-*``
   files, the files a command says it writes beside its output (``strands --cutter``'s cut
-  files) and the files the job wrote last time.
+  files) and the files the job wrote last time. A job that prints (``stats``) writes what it
+  prints as ``.txt`` (or ``.json`` with ``json = true``), never as a page a browser renders.
 
 The manifest records every file each job wrote, by the job's output; a file a job wrote last
 time and not this time (a cut file of a page the model no longer has) is removed.
@@ -186,6 +187,8 @@ class Planner:
         paths = {} if prints else {options[k].name: shown[k] for k in writes}
         values.update({} if prints else {options[k].name: str(targets[k]) for k in writes})
         first = writes[0] if writes else None
+        if prints:
+            self.check_printed(command, targets[first], values, where)
         folder = bool(paths) and getattr(options[first].type, "dir_okay", False)
         job = Job(where, f"job {n} ({name})", command, values, targets.get(first),
                   shown.get(first), prints, tuple(reads), paths, folder)
@@ -251,6 +254,22 @@ class Planner:
             raise RecipeError(f"{where}: {key} {value!r} is weave-cut's "
                               + ("manifest" if rel.name == MANIFEST else "page of the build"))
         return target
+
+    @staticmethod
+    def check_printed(command: click.Command, target: Path, values: dict, where: str) -> None:
+        """A printing job's output is text a browser shows as text: ``.txt``, or ``.json``
+        when the job prints JSON (never ``.html`` or ``.svg``, which would render a hostile
+        input name's markup from the kit page)."""
+        try:
+            as_json = click.BOOL.convert(values.get("as_json", False), None, None)
+        except click.BadParameter:  # refused with the key's name when converted
+            as_json = False
+        allowed = [".txt", *([".json"] if as_json else [])]
+        if target.suffix.lower() not in allowed:
+            can = not as_json and any(p.name == "as_json" for p in command.params)
+            raise RecipeError(f"{where}: output {target.name!r}: a job that prints writes "
+                              f"text; name it {' or '.join(allowed)}"
+                              + (" (or .json with json = true)" if can else ""))
 
     def convert(self, job: Job) -> None:
         """Convert every value with the command's own option types, as click would."""
