@@ -6,7 +6,6 @@ kit page's writer adds itself."""
 from __future__ import annotations
 
 import errno
-import fcntl
 import hashlib
 import json
 import os
@@ -15,7 +14,7 @@ import stat
 from pathlib import Path, PurePosixPath
 
 from .errors import WeaveCutError
-from .fileio import write_atomic
+from .fileio import folder_lock, write_atomic
 
 MANIFEST = ".weave-cut-manifest.json"
 
@@ -122,14 +121,10 @@ def record_manifest(out_dir: Path, entries: dict[str, str],
                     outputs: dict[str, list[str]] | None = None, gone=()) -> None:
     """Add ``entries`` (and the files each output's job wrote, ``outputs``) to the manifest of
     ``out_dir``, dropping the removed files ``gone`` (locked against concurrent builds)."""
-    fd = os.open(out_dir, os.O_RDONLY)
-    try:
-        fcntl.flock(fd, fcntl.LOCK_EX)
+    with folder_lock(out_dir):
         files, wrote = read_manifest(out_dir)
         files = {k: v for k, v in {**files, **entries}.items() if k not in gone}
         wrote = {**wrote, **(outputs or {})}
         doc = {"format": "weave-cut-manifest", "version": 2, "files": dict(sorted(files.items())),
                "outputs": {k: sorted(v) for k, v in sorted(wrote.items())}}
         write_atomic(out_dir / MANIFEST, (json.dumps(doc, indent=1) + "\n").encode())
-    finally:
-        os.close(fd)

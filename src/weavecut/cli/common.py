@@ -20,7 +20,7 @@ import numpy as np
 
 from .. import __version__, inputs, units
 from ..errors import MeshError, WeaveCutError
-from ..fileio import note, protect, recording
+from ..fileio import note, protect, recording, writing_into
 from ..mesh import Mesh
 from ..readers import DEFAULT_FLATTEN, MESH_CHOICES
 from ..text import clean
@@ -102,7 +102,8 @@ def write_png(data: bytes, output: str, title: str) -> None:
 
 def path_options(command: click.Command) -> list[click.Option]:
     """The options of ``command`` that name a file or folder it writes: every ``click.Path``
-    that need not exist. A recipe confines each to its build folder (``recipe.Planner``)."""
+    that need not exist. A recipe confines each to its build folder (``recipe.Planner``), and
+    the command locks the folder of each (``reports_errors``)."""
     return [p for p in command.params if isinstance(p, click.Option)
             and isinstance(p.type, click.Path) and not p.type.exists]
 
@@ -125,14 +126,14 @@ def _output_folders() -> list[str]:
 
 
 def reports_errors(f):
-    """Turn a WeaveCutError (or a ValueError from option checks) into a one-line exit 1; an
-    empty path option is refused first."""
+    """Turn a WeaveCutError (or a ValueError from option checks) into a one-line exit 1; the
+    folders the command writes into are locked at the first write (``fileio.writing_into``)."""
 
     @functools.wraps(f)
     def wrapper(*args, **kwargs):
         try:
-            _output_folders()
-            return f(*args, **kwargs)
+            with writing_into(_output_folders()):
+                return f(*args, **kwargs)
         except WeaveCutError as exc:
             raise click.ClickException(str(exc)) from exc
         except _geometry_errors() as exc:  # a last resort: meshes are checked before layout

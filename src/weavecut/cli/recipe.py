@@ -133,7 +133,8 @@ class Planner:
         self.group, self.root, self.recipe = group, root, recipe
         self.out_dir, self.shown_dir, self.force = out_dir, shown_dir, force
         self.readable = (recipe.resolve().parent, *(d.resolve() for d in allow_read))
-        self.ours, self.wrote = read_manifest(out_dir)
+        self.ours: dict[str, str] = {}  # the manifest, as check_outputs read it
+        self.wrote: dict[str, list[str]] = {}
         self.written: set[str] = set()  # by the jobs run so far
 
     def commands(self) -> dict[str, click.Command]:
@@ -292,7 +293,10 @@ class Planner:
             raise RecipeError(f"{job.where}: {exc.format_message()}") from exc
 
     def check_outputs(self, jobs: list[Job]) -> None:
-        """No output is an input, another job's output, or a file weave-cut did not write."""
+        """No output is an input, another job's output, or a file weave-cut did not write
+        (by the manifest as it is now: ``build`` checks before the first write, and again
+        once it holds the folder, which another build may have written meanwhile)."""
+        self.ours, self.wrote = read_manifest(self.out_dir)
         read = {p.resolve(): j for j in jobs for p in j.reads}
         read[self.recipe.resolve()] = None
         seen: dict[Path, Job] = {}
