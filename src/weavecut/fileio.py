@@ -1,14 +1,28 @@
 """Atomic file writes: a file is written whole or not at all, never over an input of the same
 command and never in place of a device, FIFO or socket. Inside ``recording()`` every write is
 also noted (with the Drawing it was rendered from, and the summary a command printed), which
-is what the kit page shows."""
+is what the kit page shows.
+
+Inside ``writing_into(folders)`` (every command, through ``cli.common.reports_errors``) the
+first write into one of ``folders`` locks it (an exclusive ``flock`` on the folder itself)
+until the outermost block ends, so two weave-cut processes never write one folder at once:
+the second waits, saying so on stderr, at most ``LOCK_WAIT`` seconds, then is refused.
+Waiting rather than refusing at once: two runs started together (``make -j``, a repeated
+command) both finish, as if run one after the other; the bound keeps a stopped or stuck
+writer from hanging the other. The lock is taken at the first write, not at the start, so a
+run refused for its input never waits, and a folder that does not exist yet is locked as soon
+as it is made.
+"""
 
 from __future__ import annotations
 
 import contextlib
+import fcntl
 import os
 import stat
+import sys
 import tempfile
+import time
 from contextvars import ContextVar
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -16,6 +30,7 @@ from pathlib import Path
 from .errors import ExportError
 
 _INPUTS: set[tuple[int, int]] = set()  # (device, inode) of every file read as an input
+LOCK_WAIT = 600.0  # seconds a writer waits for another weave-cut writing into its folder
 
 
 @dataclass
@@ -90,7 +105,115 @@ def make_folder(path: str | os.PathLike) -> Path:
         raise ExportError(f"cannot create folder {path}: a file of that name exists") from exc
     except OSError as exc:
         raise ExportError(f"cannot create folder {path}: {exc.strerror}") from exc
+    _claim(path)
     return path
+
+
+@dataclass
+class _Locks:
+    """The folders the running command writes into, and those it holds locked."""
+
+    roots: list[str] = field(default_factory=list)  # absolute, locked at the first write
+    held: dict[tuple[int, int], int] = field(default_factory=dict)  # (device, inode) -> fd
+    claimed: set[str] = field(default_factory=set)
+    depth: int = 0
+    pid: int = 0
+
+
+_LOCKS = _Locks()
+
+
+@contextlib.contextmanager
+def writing_into(folders):
+    """Lock each of ``folders`` at the first write into it or below (``make_folder``,
+    ``write_atomic``) and hold the locks until the outermost block ends. Nested blocks (the
+    jobs of a build) add their folders; a forked worker writes under its parent's locks."""
+    if _LOCKS.depth == 0:
+        _LOCKS.pid = os.getpid()
+    _LOCKS.depth += 1
+    _LOCKS.roots += [os.path.abspath(f) for f in folders]
+    try:
+        yield
+    finally:
+        _LOCKS.depth -= 1
+        if _LOCKS.depth == 0:
+            for fd in _LOCKS.held.values():
+                os.close(fd)
+            _LOCKS.roots.clear()
+            _LOCKS.held.clear()
+            _LOCKS.claimed.clear()
+
+
+def _claim(path: str | os.PathLike) -> None:
+    """Lock every registered folder that ``path`` (being written) lies in, once."""
+    if _LOCKS.pid != os.getpid():
+        return
+    where = os.path.abspath(path)
+    for root in _LOCKS.roots:
+        if root not in _LOCKS.claimed and (
+                where == root or where.startswith(root.rstrip(os.sep) + os.sep)):
+            _LOCKS.claimed.add(root)
+            if os.path.isdir(root):  # not the file an option that takes either names
+                lock_folder(root)
+
+
+def lock_folder(folder: str | os.PathLike) -> bool:
+    """Lock ``folder`` against other weave-cut processes until the outermost ``writing_into``
+    ends; False if this process holds it already (or the file system cannot lock it). Waits
+    at most LOCK_WAIT seconds for another writer, saying so on stderr, then raises
+    ExportError."""
+    try:
+        fd = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
+    except OSError:  # a folder this user may write but not read: written as before, unlocked
+        return False
+    st = os.fstat(fd)
+    key = (st.st_dev, st.st_ino)
+    try:
+        locked = key not in _LOCKS.held and _wait_for(fd, folder)
+    except BaseException:
+        os.close(fd)
+        raise
+    if not locked:
+        os.close(fd)
+        return False
+    _LOCKS.held[key] = fd
+    return True
+
+
+def _wait_for(fd: int, folder) -> bool:
+    deadline = None
+    while True:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            return True
+        except BlockingIOError:
+            pass
+        except OSError:  # a file system without locks
+            return False
+        now = time.monotonic()
+        if deadline is None:
+            deadline = now + LOCK_WAIT
+            _tell(f"weave-cut: waiting for another weave-cut writing into {folder} (at most "
+                  f"{LOCK_WAIT:g} s)...")
+        elif now >= deadline:
+            raise ExportError(f"another weave-cut has been writing into {folder} for "
+                              f"{LOCK_WAIT:g} s; try again when it is done")
+        time.sleep(min(0.1, LOCK_WAIT))
+
+
+@contextlib.contextmanager
+def folder_lock(folder: str | os.PathLike):
+    """Hold the lock on ``folder`` inside the block (kept if this process held it before)."""
+    with writing_into(()):
+        yield lock_folder(folder)
+
+
+def _tell(message: str) -> None:
+    try:
+        sys.stderr.write(message + "\n")
+        sys.stderr.flush()
+    except (OSError, ValueError):
+        pass
 
 
 def write_atomic(path: str | os.PathLike, data: bytes) -> None:
@@ -104,6 +227,7 @@ def write_atomic(path: str | os.PathLike, data: bytes) -> None:
     folder = path.parent if str(path.parent) else Path(".")
     if not folder.is_dir():
         raise ExportError(f"cannot write {path}: folder {folder} does not exist")
+    _claim(path)
     try:
         fd, tmp = tempfile.mkstemp(dir=folder, prefix=".wc-", suffix=".part")
     except OSError as exc:

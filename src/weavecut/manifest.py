@@ -5,15 +5,16 @@ kit page's writer adds itself."""
 
 from __future__ import annotations
 
-import fcntl
+import errno
 import hashlib
 import json
 import os
+import re
 import stat
-from pathlib import Path
+from pathlib import Path, PurePosixPath
 
 from .errors import WeaveCutError
-from .fileio import write_atomic
+from .fileio import folder_lock, write_atomic
 
 MANIFEST = ".weave-cut-manifest.json"
 
@@ -36,38 +37,94 @@ def file_hash(path: Path) -> str | None:
 def read_manifest(out_dir: Path) -> tuple[dict[str, str], dict[str, list[str]]]:
     """The files weave-cut wrote into ``out_dir`` (relative path -> SHA-256), and the files
     each job wrote (its output's relative path -> relative paths; none in a version 1
-    manifest)."""
+    manifest).
+
+    A manifest found in a folder is untrusted: a regular file (not a link) of at most
+    MAX_BYTES, JSON nested no deeper than its schema (a deeper one is refused by the parser's
+    recursion bound or by the schema), every name a normalised relative path inside
+    ``out_dir`` (no ``..``, not absolute, not through a symlink out). Anything else is a
+    ManifestError naming it, before a file is replaced or removed."""
     path = out_dir / MANIFEST
-    if not path.exists():
+    if not os.path.lexists(path):
         return {}, {}
     try:
-        if os.lstat(path).st_size > 16 * 2**20 or not path.is_file():
-            raise ValueError("not a small regular file")
-        doc = json.loads(path.read_bytes())
-        files, outputs = doc["files"], doc.get("outputs", {})
-        if doc.get("format") != "weave-cut-manifest" or not all(
-                isinstance(k, str) and isinstance(v, str) for k, v in files.items()) or not all(
-                isinstance(k, str) and isinstance(v, list) and all(p in files for p in v)
-                for k, v in outputs.items()):
-            raise ValueError("not a weave-cut manifest")
-    except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
+        doc = json.loads(_read_small(path))
+        files, outputs = _checked(doc)
+    except RecursionError:
+        raise ManifestError(f"{path}: unreadable manifest (nested too deep); remove it and "
+                            "build with --force") from None
+    except (OSError, ValueError) as exc:
         raise ManifestError(f"{path}: unreadable manifest ({exc}); remove it and build with "
-                          "--force") from exc
+                            "--force") from exc
+    real = os.path.realpath(out_dir)
+    for folder in {os.path.dirname(name) for name in files}:
+        if not _inside(os.path.realpath(os.path.join(real, folder)), real):
+            name = next(n for n in sorted(files) if os.path.dirname(n) == folder)
+            raise ManifestError(f"{path}: lists {name!r}, which is not inside {out_dir} (a "
+                                "symlink leads out); remove the manifest and build with --force")
     return files, outputs
+
+
+MAX_BYTES = 16 * 2**20
+_SHA256 = re.compile(r"[0-9a-f]{64}")
+
+
+def _read_small(path: Path) -> bytes:
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+    except OSError as exc:
+        raise ValueError("a symlink" if exc.errno == errno.ELOOP else exc.strerror) from exc
+    with os.fdopen(fd, "rb") as f:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            raise ValueError("not a regular file")
+        data = f.read(MAX_BYTES + 1)
+    if len(data) > MAX_BYTES:
+        raise ValueError(f"larger than {MAX_BYTES >> 20} MiB")
+    return data
+
+
+def _checked(doc) -> tuple[dict[str, str], dict[str, list[str]]]:
+    """``doc``'s files and outputs, or ValueError naming the first thing that breaks the
+    schema."""
+    if not isinstance(doc, dict) or doc.get("format") != "weave-cut-manifest":
+        raise ValueError("not a weave-cut manifest")
+    if set(doc) - {"format", "version", "files", "outputs"} or doc.get("version") not in (1, 2):
+        raise ValueError("unknown keys or version")
+    files, outputs = doc.get("files"), doc.get("outputs", {})
+    if not isinstance(files, dict) or not isinstance(outputs, dict):
+        raise ValueError("'files' and 'outputs' must be tables")
+    for name, digest in files.items():
+        _relative(name)
+        if not (isinstance(digest, str) and _SHA256.fullmatch(digest)):
+            raise ValueError(f"the hash of {name!r} is not a SHA-256")
+    for name, wrote in outputs.items():
+        _relative(name, folder_ok=True)
+        if not (isinstance(wrote, list) and all(isinstance(p, str) and p in files
+                                                for p in wrote)):
+            raise ValueError(f"the files of {name!r} are not a list of listed files")
+    return files, outputs
+
+
+def _relative(name, folder_ok: bool = False) -> None:
+    """Raise ValueError unless ``name`` is a normalised relative path that stays inside."""
+    pure = PurePosixPath(name) if isinstance(name, str) and name and "\0" not in name else None
+    if (pure is None or pure.is_absolute() or ".." in pure.parts or pure.as_posix() != name
+            or (name == "." and not folder_ok)):
+        raise ValueError(f"lists {name!r}, which is not a relative path inside the folder")
+
+
+def _inside(path: str, folder: str) -> bool:
+    return path == folder or path.startswith(folder.rstrip(os.sep) + os.sep)
 
 
 def record_manifest(out_dir: Path, entries: dict[str, str],
                     outputs: dict[str, list[str]] | None = None, gone=()) -> None:
     """Add ``entries`` (and the files each output's job wrote, ``outputs``) to the manifest of
     ``out_dir``, dropping the removed files ``gone`` (locked against concurrent builds)."""
-    fd = os.open(out_dir, os.O_RDONLY)
-    try:
-        fcntl.flock(fd, fcntl.LOCK_EX)
+    with folder_lock(out_dir):
         files, wrote = read_manifest(out_dir)
         files = {k: v for k, v in {**files, **entries}.items() if k not in gone}
         wrote = {**wrote, **(outputs or {})}
         doc = {"format": "weave-cut-manifest", "version": 2, "files": dict(sorted(files.items())),
                "outputs": {k: sorted(v) for k, v in sorted(wrote.items())}}
         write_atomic(out_dir / MANIFEST, (json.dumps(doc, indent=1) + "\n").encode())
-    finally:
-        os.close(fd)

@@ -101,9 +101,12 @@ def read_toml(path: str | os.PathLike, error: type[SchemaError] = SchemaError) -
         fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
     except OSError as exc:
         raise error(f"cannot read {path}: {exc.strerror}") from exc
+    mode = os.fstat(fd).st_mode
+    if not stat.S_ISREG(mode):  # before fdopen, which refuses a folder with an OSError
+        os.close(fd)
+        raise error(f"cannot read {path}: " + ("it is a folder, not a TOML file"
+                                               if stat.S_ISDIR(mode) else "not a regular file"))
     with os.fdopen(fd, "rb") as f:
-        if not stat.S_ISREG(os.fstat(fd).st_mode):
-            raise error(f"cannot read {path}: not a regular file")
         try:
             data = f.read(MAX_BYTES + 1)
         except OSError as exc:

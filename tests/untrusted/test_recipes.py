@@ -122,10 +122,10 @@ def test_printing_jobs_write_only_inside_and_never_replace_devices(tmp_path):
     refused(run("build", recipe, "-o", tmp_path / "out"), "no '..'")
     out = tmp_path / "out"
     out.mkdir()
-    os.mkfifo(out / "fifo")
-    recipe = write_recipe(tmp_path, 'output = "fifo"', "stats")
+    os.mkfifo(out / "fifo.txt")
+    recipe = write_recipe(tmp_path, 'output = "fifo.txt"', "stats")
     refused(run("build", recipe, "-o", out, "--force"), "not a regular file")
-    assert (out / "fifo").is_fifo()
+    assert (out / "fifo.txt").is_fifo()
 
 
 def test_existing_files_are_replaced_only_if_weave_cut_wrote_them(tmp_path):
@@ -186,7 +186,7 @@ def test_an_output_is_never_an_input(tmp_path):
     (tmp_path / "m.obj").write_text("v 0 0\nv 1 0\nv 0 1\nf 1 2 3\n")
     recipe = write_recipe(tmp_path, 'output = "m.obj"', "subdivide", "m.obj")
     refused(run("build", recipe, "-o", tmp_path, "--force"), "input of", "job 1")
-    recipe = write_recipe(tmp_path, 'output = "r.toml"', "stats")
+    recipe = write_recipe(tmp_path, 'output = "r.toml"', "subdivide")
     refused(run("build", recipe, "-o", tmp_path, "--force"), "the recipe itself")
     recipe.write_text(JOB.format(command="subdivide") + 'input = "pentagon"\noutput = "a.svg"\n'
                       + JOB.format(command="weave") + 'input = "pentagon"\noutput = "a.svg"\n')

@@ -24,8 +24,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import ExportError
-from ..fileio import write_atomic
+from ..fileio import make_folder, note, write_atomic
 from ..mesh import Mesh
 from . import levels as lv
 
@@ -95,11 +94,8 @@ def write_pyramid(mesh: Mesh, levels: int, grid: lv.Grid, folder, *, tile_size: 
     folder = Path(folder)
     start = time.perf_counter()
     sizes = pyramid_sizes(grid.width, grid.height)
-    try:
-        for lev in range(len(sizes)):
-            (folder / f"{NAME}_files" / str(lev)).mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise ExportError(f"cannot write the tiles into {folder}: {exc.strerror}") from exc
+    for lev in range(len(sizes)):  # through make_folder: locks the folder before any tile
+        make_folder(folder / f"{NAME}_files" / str(lev))
     top = len(sizes) - 1
     rects = tile_rects(grid.width, grid.height, tile_size)
     paths = [_tile_path(folder, top, rect, tile_size) for rect in rects]
@@ -117,6 +113,8 @@ def write_pyramid(mesh: Mesh, levels: int, grid: lv.Grid, folder, *, tile_size: 
                               image[r:r + h, c:c + w].copy()))
         if lower:
             list(pool.map(_write, *zip(*lower)))
+    for path in [*paths, *(p for p, _ in lower)]:  # written by workers: noted here
+        note(path)
     write_atomic(folder / f"{NAME}.dzi", dzi(grid.width, grid.height, tile_size))
     done = time.perf_counter()
     return {"width": grid.width, "height": grid.height, "pyramid_levels": len(sizes),

@@ -255,6 +255,21 @@ def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonco
             f"the last at level {int(image[hit].max()) if hit.any() else '-'}")
 
 
+def _levels_beside(values: dict, output: Path) -> list[Path]:
+    """The existing files a run with ``values`` writes into its ``--tiles`` folder (the
+    descriptor and the pyramid's tiles), and any symlink there: ``build`` checks them before
+    the first job runs."""
+    if values.get("tiles") is None:
+        return []
+    folder = Path(values["tiles"])
+    tiles = folder / f"{deepzoom.NAME}_files"
+    return [p for p in (folder / f"{deepzoom.NAME}.dzi", tiles, *tiles.rglob("*"))
+            if p.is_symlink() or p.is_file()]
+
+
+levels_command.beside = _levels_beside
+
+
 @click.command("convexity", context_settings=CONTEXT)
 @input_argument
 @snub_options

@@ -64,7 +64,8 @@ def build_command(ctx: click.Context, recipe: str, output_dir: str, overrides: t
         for job in jobs:
             click.echo(job.command_line())
         return
-    make_folder(out_dir)
+    make_folder(out_dir)  # locks the folder: another weave-cut writing there is waited for
+    planner.check_outputs(jobs)
     for job in jobs:
         for p in job.reads:
             protect(p)

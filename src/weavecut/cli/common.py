@@ -20,7 +20,7 @@ import numpy as np
 
 from .. import __version__, inputs, units
 from ..errors import MeshError, WeaveCutError
-from ..fileio import note, protect, recording
+from ..fileio import note, protect, recording, writing_into
 from ..mesh import Mesh
 from ..readers import DEFAULT_FLATTEN, MESH_CHOICES
 from ..text import clean
@@ -100,13 +100,40 @@ def write_png(data: bytes, output: str, title: str) -> None:
     write_atomic(output, with_text(data, [("Title", title), *provenance().items()]))
 
 
+def path_options(command: click.Command) -> list[click.Option]:
+    """The options of ``command`` that name a file or folder it writes: every ``click.Path``
+    that need not exist. A recipe confines each to its build folder (``recipe.Planner``), and
+    the command locks the folder of each (``reports_errors``)."""
+    return [p for p in command.params if isinstance(p, click.Option)
+            and isinstance(p.type, click.Path) and not p.type.exists]
+
+
+def _output_folders() -> list[str]:
+    """The folders the running command writes into (a folder option's value, a file option's
+    folder; both for an option that takes either); refuses an empty path."""
+    ctx = click.get_current_context(silent=True)
+    folders = []
+    for p in path_options(ctx.command) if ctx else ():
+        value = ctx.params.get(p.name)
+        for path in value if isinstance(value, (tuple, list)) else [value]:
+            if path is None:
+                continue
+            if not str(path):
+                raise click.BadParameter("an empty path names no file or folder", param=p)
+            folders += [path] if p.type.dir_okay else []
+            folders += [os.path.dirname(os.path.abspath(path))] if p.type.file_okay else []
+    return folders
+
+
 def reports_errors(f):
-    """Turn a WeaveCutError (or a ValueError from option checks) into a one-line exit 1."""
+    """Turn a WeaveCutError (or a ValueError from option checks) into a one-line exit 1; the
+    folders the command writes into are locked at the first write (``fileio.writing_into``)."""
 
     @functools.wraps(f)
     def wrapper(*args, **kwargs):
         try:
-            return f(*args, **kwargs)
+            with writing_into(_output_folders()):
+                return f(*args, **kwargs)
         except WeaveCutError as exc:
             raise click.ClickException(str(exc)) from exc
         except _geometry_errors() as exc:  # a last resort: meshes are checked before layout

@@ -17,12 +17,15 @@ problem is one line naming the recipe, the job and the key:
   become an option;
 - the input: a built-in name, or a file in the recipe's folder (and below) or in a folder given
   with ``--allow-read``; preset files (``palette = "my.toml"``) likewise;
-- the output: a relative path inside ``-o DIR`` (no ``..``, not absolute, not through a
-  symlink out of it), never an input, a device or a FIFO, and never an existing file that
+- every path a job writes (``output``, and every other option that names a file or folder
+  written, such as ``levels``'s ``tiles``: ``common.path_options``): a relative path inside
+  ``-o DIR`` (no ``..``, not absolute, no ``~``, not through a symlink out of it), checked by
+  ``Planner.output``; never an input, a device or a FIFO, and never an existing file that
   weave-cut did not write there (recorded with its hash in ``.weave-cut-manifest.json``) unless
   ``--force``. That holds for every file a job may write: a folder output's ``COMMAND-*``
   files, the files a command says it writes beside its output (``strands --cutter``'s cut
-  files) and the files the job wrote last time.
+  files) and the files the job wrote last time. A job that prints (``stats``) writes what it
+  prints as ``.txt`` (or ``.json`` with ``json = true``), never as a page a browser renders.
 
 The manifest records every file each job wrote, by the job's output; a file a job wrote last
 time and not this time (a cut file of a page the model no longer has) is removed.
@@ -48,7 +51,7 @@ from ..errors import WeaveCutError
 from ..fileio import check_writable, make_folder, recording, write_atomic
 from ..manifest import MANIFEST, file_hash, read_manifest, record_manifest
 from ..schema import SchemaError, nearest
-from .common import say
+from .common import path_options, say
 
 if TYPE_CHECKING:  # the kit page (and shapely) load when a job runs, not for --help
     from .. import kitpage
@@ -65,7 +68,8 @@ class RecipeError(SchemaError):
 @dataclass(frozen=True)
 class Job:
     """One checked job: the command, its typed values by parameter name, and where it writes
-    (``output`` absolute; ``prints``: the output is what the command prints)."""
+    (``output`` absolute: the -o path, else the first other path it writes; ``prints``: the
+    output is what the command prints)."""
 
     where: str  # the recipe and the label
     label: str  # "job 2 (weave)"
@@ -75,6 +79,8 @@ class Job:
     shown: str | None  # the output as the user sees it
     prints: bool
     reads: tuple[Path, ...]
+    paths: dict[str, str]  # parameter name -> every path it writes, as the user sees it
+    folder: bool = False  # the output may be a folder (its option takes one)
 
     def command_line(self) -> str:
         """The job as a shell command (for --dry-run and progress lines)."""
@@ -85,8 +91,8 @@ class Job:
             value = self.values[p.name]
             if isinstance(p, click.Argument):
                 words.append(str(value))
-            elif "-o" in p.opts:
-                words += ["-o", self.shown]
+            elif p.name in self.paths:
+                words += ["-o" if "-o" in p.opts else _long(p), self.paths[p.name]]
             elif getattr(p, "is_flag", False):
                 words += [_long(p)] if value in (True, "true", "1", "yes") else []
             else:
@@ -127,13 +133,15 @@ class Planner:
         self.group, self.root, self.recipe = group, root, recipe
         self.out_dir, self.shown_dir, self.force = out_dir, shown_dir, force
         self.readable = (recipe.resolve().parent, *(d.resolve() for d in allow_read))
-        self.ours, self.wrote = read_manifest(out_dir)
+        self.ours: dict[str, str] = {}  # the manifest, as check_outputs read it
+        self.wrote: dict[str, list[str]] = {}
         self.written: set[str] = set()  # by the jobs run so far
 
     def commands(self) -> dict[str, click.Command]:
         return {n: c for n, c in self.group.commands.items() if n != "build"}
 
-    def options(self, command: click.Command) -> dict[str, click.Parameter]:
+    @staticmethod
+    def options(command: click.Command) -> dict[str, click.Parameter]:
         """Recipe keys (dashed long names) of ``command``'s options, -o as 'output'."""
         out = {}
         for p in command.params:
@@ -170,20 +178,21 @@ class Planner:
                 reads += [Path(value)] if Path(value).is_absolute() else []
             values[argument.name] = value
         raw.pop("command")
-        output = raw.pop("output", None)
+        prints = "output" in raw and "output" not in options  # it writes what it prints
+        writes = [k for k in raw if k == "output" or options[k] in path_options(command)]
+        writes.sort(key=lambda k: k != "output")  # -o first: the job's output
+        targets = {k: self.output(raw[k], where, k) for k in writes}
+        shown = {k: str(Path(self.shown_dir) / raw.pop(k)) for k in writes}
         for key, value in raw.items():
             values[options[key].name] = self.value(options[key], key, value, where, reads)
-        target = shown = None
-        prints = False
-        if output is not None:
-            target = self.output(output, where)
-            shown = str(Path(self.shown_dir) / output)
-            if "output" in options:
-                values[options["output"].name] = str(target)
-            else:
-                prints = True
-        job = Job(where, f"job {n} ({name})", command, values, target, shown, prints,
-                  tuple(reads))
+        paths = {} if prints else {options[k].name: shown[k] for k in writes}
+        values.update({} if prints else {options[k].name: str(targets[k]) for k in writes})
+        first = writes[0] if writes else None
+        if prints:
+            self.check_printed(command, targets[first], values, where)
+        folder = bool(paths) and getattr(options[first].type, "dir_okay", False)
+        job = Job(where, f"job {n} ({name})", command, values, targets.get(first),
+                  shown.get(first), prints, tuple(reads), paths, folder)
         self.convert(job)
         return job
 
@@ -217,7 +226,8 @@ class Planner:
             value = [value]
         if not p.multiple and isinstance(value, list):
             raise RecipeError(f"{where}: {key}: expected one value, got a list")
-        if isinstance(value, str) and value.endswith(".toml"):  # a preset file, any option
+        if isinstance(value, str) and (value.endswith(".toml")  # a preset file, any option
+                                       or isinstance(p.type, click.Path)):  # a file read
             path = self.readable_file((self.recipe.parent / value).resolve(), value, where, key)
             reads.append(path)
             value = str(path)
@@ -229,20 +239,38 @@ class Planner:
                 raise RecipeError(f"{where}: {key}: {exc}") from exc
         return value
 
-    def output(self, value, where: str) -> Path:
-        """The checked absolute path of output ``value`` inside the build folder."""
+    def output(self, value, where: str, key: str = "output") -> Path:
+        """The checked absolute path inside the build folder of ``value``, a path the job
+        writes (its ``output``, or any other ``path_options`` key): the one rule for them."""
         rel = Path(value) if isinstance(value, str) else None
-        if rel is None or not value or rel.is_absolute() or ".." in rel.parts:
-            raise RecipeError(f"{where}: output {value!r} must be a relative path inside the "
-                              "build folder (not absolute, no '..')")
+        if (rel is None or not value or rel.is_absolute() or ".." in rel.parts
+                or value.startswith("~")):
+            raise RecipeError(f"{where}: {key} {value!r} must be a relative path inside the "
+                              "build folder (not absolute, no '..', no '~')")
         target = self.out_dir / rel
         if not _inside(target.resolve(), [self.out_dir.resolve()]):
-            raise RecipeError(f"{where}: output {value!r} leads out of the build folder "
+            raise RecipeError(f"{where}: {key} {value!r} leads out of the build folder "
                               "through a symlink")
         if rel.name == MANIFEST or rel == Path(PAGE):
-            raise RecipeError(f"{where}: output {value!r} is weave-cut's "
+            raise RecipeError(f"{where}: {key} {value!r} is weave-cut's "
                               + ("manifest" if rel.name == MANIFEST else "page of the build"))
         return target
+
+    @staticmethod
+    def check_printed(command: click.Command, target: Path, values: dict, where: str) -> None:
+        """A printing job's output is text a browser shows as text: ``.txt``, or ``.json``
+        when the job prints JSON (never ``.html`` or ``.svg``, which would render a hostile
+        input name's markup from the kit page)."""
+        try:
+            as_json = click.BOOL.convert(values.get("as_json", False), None, None)
+        except click.BadParameter:  # refused with the key's name when converted
+            as_json = False
+        allowed = [".txt", *([".json"] if as_json else [])]
+        if target.suffix.lower() not in allowed:
+            can = not as_json and any(p.name == "as_json" for p in command.params)
+            raise RecipeError(f"{where}: output {target.name!r}: a job that prints writes "
+                              f"text; name it {' or '.join(allowed)}"
+                              + (" (or .json with json = true)" if can else ""))
 
     def convert(self, job: Job) -> None:
         """Convert every value with the command's own option types, as click would."""
@@ -265,7 +293,10 @@ class Planner:
             raise RecipeError(f"{job.where}: {exc.format_message()}") from exc
 
     def check_outputs(self, jobs: list[Job]) -> None:
-        """No output is an input, another job's output, or a file weave-cut did not write."""
+        """No output is an input, another job's output, or a file weave-cut did not write
+        (by the manifest as it is now: ``build`` checks before the first write, and again
+        once it holds the folder, which another build may have written meanwhile)."""
+        self.ours, self.wrote = read_manifest(self.out_dir)
         read = {p.resolve(): j for j in jobs for p in j.reads}
         read[self.recipe.resolve()] = None
         seen: dict[Path, Job] = {}
@@ -313,9 +344,7 @@ class Planner:
             st = os.lstat(job.output)
         except OSError:
             st = None
-        option = self.options(job.command).get("output")
-        folder = not job.prints and getattr(option.type, "dir_okay", False)
-        if st is not None and folder and stat.S_ISDIR(st.st_mode):  # puzzle, --laser-card
+        if st is not None and job.folder and stat.S_ISDIR(st.st_mode):  # puzzle, --laser-card
             found += job.output.glob(f"{job.command.name}-*")
         elif st is not None:
             found.append(job.output)
