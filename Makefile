@@ -28,7 +28,10 @@ $(STAMP): pyproject.toml setup.py $(LOCK)
 	$(PY) -m pip install --quiet -c $(LOCK) -e '.[test]'
 	touch $(STAMP)
 
-run: $(OUT)/index.html  ## build every recipe (templates/recipes, examples) into build/ (incremental)
+JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
+
+run: $(STAMP)  ## build every recipe (templates/recipes, examples) into build/ (incremental, one recipe per core)
+	@$(MAKE) --no-print-directory --output-sync=target -j$(JOBS) $(OUT)/index.html
 	@echo "built into $(OUT)/: $(notdir $(basename $(RECIPES))); open $(OUT)/index.html"
 
 $(OUT)/index.html: $(BUILT)
@@ -49,8 +52,8 @@ figures: $(OUT)/figures/.built  ## every paper figure weave-cut reproduces, into
 docs: $(STAMP)  ## redraw the README's images (docs/, examples/previews/) from the code
 	$(PY) docs/make_docs.py
 
-test: $(STAMP)  ## run the whole test suite (with the versions of constraints.txt)
-	$(PY) -m pytest
+test: $(STAMP)  ## run the whole test suite in parallel processes (with the versions of constraints.txt)
+	$(PY) -m pytest -n auto --dist worksteal
 
 test-latest:  ## the tests with the newest release of every dependency (.venv-latest); says which versions differ from constraints.txt
 	$(PYTHON) -m venv .venv-latest
@@ -59,7 +62,7 @@ test-latest:  ## the tests with the newest release of every dependency (.venv-la
 	.venv-latest/bin/python -m pip freeze --exclude-editable > .venv-latest/versions.txt
 	@grep -v '^#' $(LOCK) | diff - .venv-latest/versions.txt | grep '^[<>]' \
 		| sed 's/^</  locked:/; s/^>/  newest:/' || echo "  the newest releases are the locked ones"
-	.venv-latest/bin/python -m pytest
+	.venv-latest/bin/python -m pytest -n auto --dist worksteal
 
 lock:  ## renew constraints.txt: the newest release of every dependency and test tool, pinned
 	rm -rf .venv-lock
