@@ -4,10 +4,16 @@ closed stdout (a traceback from the flush at exit). Each is now one line."""
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
+from pathlib import Path
+
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+import weavecut
 from weavecut import inputs
 
 from .helpers import files_under, refused, run, well_formed_xml
@@ -89,3 +95,40 @@ def test_a_moved_vertex_never_makes_an_internal_error(tmp_path, name, data, move
     result = run(*args)
     if result.exit_code != 0:
         refused(result)
+
+
+# -- a closed stdout ----------------------------------------------------------------------------
+
+def _closed(args) -> subprocess.CompletedProcess:
+    """``weave-cut ARGS >&-``."""
+    env = {**os.environ, "PYTHONPATH": str(Path(weavecut.__file__).parents[1])}
+    return subprocess.run([sys.executable, "-m", "weavecut", *args], env=env,
+                          preexec_fn=lambda: os.close(1), stderr=subprocess.PIPE, text=True,
+                          timeout=120)
+
+
+@pytest.mark.parametrize("args", [["inputs"], ["inputs", "--json"], ["--help"],
+                                  ["stats", "pentagon", "--levels", "2"]])
+def test_closed_stdout_is_one_line(args):
+    proc = _closed(args)
+    assert proc.returncode == 1
+    assert proc.stderr == "weave-cut: error: cannot write the output: stdout is closed\n"
+
+
+def test_closed_stdout_takes_no_file_descriptor_of_an_output(tmp_path):
+    """With -q nothing goes to stdout: the command works, and its file is whole (descriptor 1
+    was never handed to it)."""
+    proc = _closed(["-q", "subdivide", "pentagon", "--levels", "2", "-o", tmp_path / "x.svg"])
+    assert (proc.returncode, proc.stderr) == (0, "")
+    assert well_formed_xml(tmp_path / "x.svg").tag.endswith("svg")
+
+
+def test_closed_pipe_is_quiet():
+    """``weave-cut inputs | head -c0``: the reader is gone before anything is written."""
+    env = {**os.environ, "PYTHONPATH": str(Path(weavecut.__file__).parents[1])}
+    with subprocess.Popen([sys.executable, "-m", "weavecut", "inputs"], env=env,
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) as proc:
+        proc.stdout.close()
+        err = proc.stderr.read()
+    assert proc.returncode == 1
+    assert "Traceback" not in err and len(err.splitlines()) <= 1, err
