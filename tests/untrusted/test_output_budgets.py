@@ -201,7 +201,8 @@ def _limited(tmp_path, args, **limits) -> subprocess.CompletedProcess:
             resource.setrlimit(getattr(resource, f"RLIMIT_{name}"), (value, value))
 
     env = {**os.environ, "PYTHONDONTWRITEBYTECODE": "1",
-           "PYTHONPATH": str(Path(weavecut.__file__).parents[1])}  # this weavecut, from anywhere
+           "PYTHONPATH": str(Path(weavecut.__file__).parents[1]),  # this weavecut, from anywhere
+           "OPENBLAS_NUM_THREADS": "1"}  # its buffers per core would count against ulimit -v
     with subprocess.Popen([sys.executable, "-m", "weavecut", *args], cwd=tmp_path, env=env,
                           preexec_fn=apply, start_new_session=True, stdout=subprocess.PIPE,
                           stderr=subprocess.PIPE, text=True) as proc:
