@@ -27,6 +27,7 @@ from contextvars import ContextVar
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .budget import check_file_size
 from .errors import ExportError
 
 _INPUTS: set[tuple[int, int]] = set()  # (device, inode) of every file read as an input
@@ -224,6 +225,7 @@ def write_atomic(path: str | os.PathLike, data: bytes) -> None:
     """
     path = Path(path)
     check_writable(path)
+    check_file_size(len(data), str(path))
     folder = path.parent if str(path.parent) else Path(".")
     if not folder.is_dir():
         raise ExportError(f"cannot write {path}: folder {folder} does not exist")

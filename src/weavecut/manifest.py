@@ -127,4 +127,5 @@ def record_manifest(out_dir: Path, entries: dict[str, str],
         wrote = {**wrote, **(outputs or {})}
         doc = {"format": "weave-cut-manifest", "version": 2, "files": dict(sorted(files.items())),
                "outputs": {k: sorted(v) for k, v in sorted(wrote.items())}}
-        write_atomic(out_dir / MANIFEST, (json.dumps(doc, indent=1) + "\n").encode())
+        text = json.dumps(doc, indent=1, allow_nan=False) + "\n"
+        write_atomic(out_dir / MANIFEST, text.encode())

@@ -84,7 +84,7 @@ def obj_text(mesh: Mesh, metadata: dict[str, str] | None = None) -> str:
 def json_text(mesh: Mesh, metadata: dict[str, str] | None = None) -> str:
     doc = {"format": JSON_FORMAT, "version": 1, **(metadata or {}),
            "vertices": mesh.vertices.tolist(), "faces": mesh.faces()}
-    return json.dumps(doc, separators=(",", ":")) + "\n"
+    return json.dumps(doc, separators=(",", ":"), allow_nan=False) + "\n"
 
 
 def _read(path: Path, note: Note | None, drawing_options: dict) -> tuple[Mesh, Numbering]:

@@ -1,7 +1,8 @@
 """Geometric checks on input meshes: orientation, degenerate, non-convex and overlapping faces.
 
 A surface in space (vertices (V, 3)) is checked as an oriented 2-manifold only: no zero-area
-face, no non-manifold edge or vertex, consistent orientation (outwards on a closed surface).
+face or zero-length edge, no unused vertex, no non-manifold edge or vertex, consistent
+orientation (outwards on a closed surface).
 
 The Mesh constructor already refuses bad indices, short faces, repeated corners and
 non-finite coordinates; ``Topology.build`` refuses non-manifold edges and bow-tie vertices.
@@ -101,6 +102,14 @@ def _validate_surface(mesh: Mesh, n: Numbering) -> Mesh:
     flat = np.linalg.norm(vector_areas(mesh), axis=1) <= AREA_EPS * scale
     if flat.any():
         raise MeshError(f"{n.face(np.flatnonzero(flat)[0])} has zero area")
+    ends = mesh.face_indices, mesh.face_indices[mesh.next_half_edge]
+    d = mesh.vertices[ends[1]] - mesh.vertices[ends[0]]
+    short = np.flatnonzero((d * d).sum(axis=1) <= AREA_EPS * scale)
+    if len(short):  # the snub step turns every edge by its direction
+        h = short[0]
+        raise MeshError(f"{n.face(mesh.half_edge_face[h])} has an edge of zero length: "
+                        f"{n.edge(ends[0][h], ends[1][h])} joins two vertices at one point")
+    _check_every_vertex_used(mesh, n)  # an unused vertex has no place to be smoothed to
     if "topology" not in mesh.__dict__:  # non-manifold and inconsistently oriented edges raise
         mesh.__dict__["topology"] = Topology.build(mesh, n)
     if not mesh.topology.boundary_edges.any() and signed_volume(mesh) < 0:
@@ -123,9 +132,7 @@ def _check_overlaps(mesh: Mesh, corners: _Corners, scale: float, n: Numbering) -
         invalid = ~shapely.is_valid(_polygons(mesh, unsure))
         if invalid.any():
             raise MeshError(f"{n.face(unsure[np.flatnonzero(invalid)[0]])} intersects itself")
-    unused = np.flatnonzero(np.bincount(mesh.face_indices, minlength=mesh.n_vertices) == 0)
-    if len(unused):  # its angles add up to nothing: not a fan that overlaps
-        raise MeshError(f"{n.vertex(unused[0])} is in no face")
+    _check_every_vertex_used(mesh, n)  # its angles add up to nothing: not a fan that overlaps
     topo = mesh.topology
     outer = outer_vertices(mesh)
     turn = np.bincount(mesh.face_indices, weights=angles, minlength=mesh.n_vertices) / (2 * np.pi)
@@ -144,6 +151,12 @@ def _check_overlaps(mesh: Mesh, corners: _Corners, scale: float, n: Numbering) -
         raise MeshError(f"faces overlap: boundary edges ({n.number(i[0])}, {n.number(i[1])}) "
                         f"and ({n.number(j[0])}, {n.number(j[1])}) cross")
     _check_boundary_vertices_outside(mesh, corners, np.unique(edges), n)
+
+
+def _check_every_vertex_used(mesh: Mesh, n: Numbering) -> None:
+    unused = np.flatnonzero(np.bincount(mesh.face_indices, minlength=mesh.n_vertices) == 0)
+    if len(unused):
+        raise MeshError(f"{n.vertex(unused[0])} is in no face")
 
 
 def _certainly_simple(mesh: Mesh, corners: _Corners, angles, scale: float) -> NDArray[np.bool_]:

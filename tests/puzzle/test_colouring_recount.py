@@ -105,7 +105,7 @@ def test_touching_pairs_and_smallest_difference_are_those_of_neighbouring_faces(
         smallest = min(float(colour_difference(a, b)) for a, b in pairs)
         assert colouring.smallest_difference == pytest.approx(smallest, abs=1e-9)
     else:
-        assert colouring.smallest_difference == float("inf")
+        assert colouring.smallest_difference is None
 
 
 @pytest.mark.parametrize("spec, levels", CASES)

@@ -12,12 +12,13 @@ import sys
 import numpy as np
 import pytest
 
-from weavecut import inputs
+from weavecut import budget, inputs
+from weavecut.budget import available_memory
 from weavecut.errors import TooLargeError
 from weavecut.mesh import Topology
 from weavecut.subdivision import SCHEMES, _counts, hierarchy, snub, subdivide
 from weavecut.subdivision.hierarchy import (
-    BASE_BYTES, LEVEL_BYTES_PER_CORNER, available_memory, check_fits, hierarchy_bytes,
+    BASE_BYTES, LEVEL_BYTES_PER_CORNER, check_fits, hierarchy_bytes,
     keep_freed_memory, require, sizes,
 )
 
@@ -71,7 +72,7 @@ def test_sizes_and_bytes_follow_the_recursion():
     (1 << 30, "1.0 GiB"), (3 << 30, "3.0 GiB"), (1234 << 30, "1,234.0 GiB"),
 ])
 def test_gib_prints_mib_below_one_gib_and_gib_from_there(n, text):
-    assert hierarchy._gib(n) == text
+    assert budget.gib(n) == text
 
 
 def test_require_names_the_last_level_its_need_and_the_deepest_that_fits():
@@ -109,12 +110,12 @@ def test_available_memory_falls_back_to_8_gib(monkeypatch):
     def unreadable(*_args, **_kwargs):
         raise OSError("no /proc")
 
-    monkeypatch.setattr(hierarchy, "open", unreadable, raising=False)
+    monkeypatch.setattr(budget, "open", unreadable, raising=False)
     assert available_memory() == 8 << 30
-    monkeypatch.setattr(hierarchy, "open", lambda *a, **k: io.StringIO("MemTotal: 5 kB\n"),
+    monkeypatch.setattr(budget, "open", lambda *a, **k: io.StringIO("MemTotal: 5 kB\n"),
                         raising=False)
     assert available_memory() == 8 << 30
-    monkeypatch.setattr(hierarchy, "open", lambda *a, **k: io.StringIO(
+    monkeypatch.setattr(budget, "open", lambda *a, **k: io.StringIO(
         "MemTotal:  9 kB\nMemAvailable:    3 kB\n"), raising=False)
     assert available_memory() == 3 * 1024
 

@@ -26,7 +26,7 @@ def test_check_fits_names_the_deepest_level_that_fits():
 
 
 def test_subdivide_refuses_before_refining(monkeypatch):
-    monkeypatch.setattr("weavecut.subdivision.hierarchy.available_memory", lambda: 1 << 20)
+    monkeypatch.setattr("weavecut.budget.available_memory", lambda: 1 << 20)
     monkeypatch.setattr(snub, "step", lambda *a, **k: pytest.fail("refined anyway"))
     with pytest.raises(TooLargeError):
         subdivide(inputs.get("pentagon"), 12)

@@ -84,8 +84,12 @@ def test_open_surface_with_boundary_is_accepted():
     """Half an octahedron (a square pyramid without its base): a surface with boundary."""
     octa = inputs.get("octahedron")
     top = [f for f in octa.faces() if np.isin(f, np.flatnonzero(octa.vertices[:, 2] > 0.5)).any()]
-    mesh = validate(Mesh.from_faces(octa.vertices, top))
+    keep = np.flatnonzero(octa.vertices[:, 2] > -0.5)  # the bottom apex is in no face now
+    number = {int(v): k for k, v in enumerate(keep)}
+    mesh = validate(Mesh.from_faces(octa.vertices[keep], [[number[v] for v in f] for f in top]))
     assert mesh.topology.boundary_edges.sum() == 4
+    with pytest.raises(MeshError, match="vertex 5 is in no face"):  # NaN once smoothed
+        validate(Mesh.from_faces(octa.vertices, top))
 
 
 @pytest.mark.parametrize("name, suffix", list(itertools.product(["dodecahedron", "icosphere:1"],

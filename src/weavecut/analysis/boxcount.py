@@ -94,10 +94,14 @@ def box_counting(segments: NDArray[np.float64], sizes=None, n_grids: int = 8) ->
     ``intercept``, ``r2``, ``grids``, ``stderr`` (the slope's standard error from the fit's
     residuals) and ``halves`` (the slopes fitted to the coarser and the finer half of the
     sizes alone: how much the answer depends on the fit range, usually far more than
-    ``stderr``, because the counts of a self-similar curve wave with log eps).
+    ``stderr``, because the counts of a self-similar curve wave with log eps); ``stderr`` is
+    None with fewer than three sizes, a half's slope None with fewer than two.
     """
     segments = np.asarray(segments, dtype=np.float64).reshape(-1, 2, 2)
     sizes = box_sizes(segments) if sizes is None else np.asarray(sizes, dtype=float)
+    if len(sizes) < 2:  # a slope needs two points
+        raise ValueError(f"the curve has too few segments for box counting ({len(sizes)} box "
+                         "size between its extent/32 and two segments); use more levels")
     lower = segments.reshape(-1, 2).min(axis=0)
     shifts = (np.arange(1, n_grids + 1)[:, None] * GRID_SHIFT) % 1.0
     counts = []
@@ -112,9 +116,9 @@ def box_counting(segments: NDArray[np.float64], sizes=None, n_grids: int = 8) ->
     r2 = 1.0 - float(((y - fit) ** 2).sum()) / ss if ss > 0 else 1.0
     dof = len(x) - 2
     stderr = (math.sqrt(float(((y - fit) ** 2).sum()) / dof / float(((x - x.mean()) ** 2).sum()))
-              if dof > 0 else math.nan)
+              if dof > 0 else None)
     half = len(x) // 2
-    halves = [line_fit(x[part], y[part])[0] if len(x[part]) > 1 else math.nan
+    halves = [line_fit(x[part], y[part])[0] if len(x[part]) > 1 else None
               for part in (slice(0, half + 1), slice(half, None))]
     return {"sizes": [float(s) for s in sizes], "counts": [float(c) for c in counts],
             "dimension": float(slope), "intercept": float(intercept), "r2": r2,

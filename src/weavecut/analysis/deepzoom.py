@@ -24,12 +24,16 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from .. import budget
 from ..fileio import make_folder, note, write_atomic
 from ..mesh import Mesh
 from . import levels as lv
 
 NAME = "levels"
 _WORKER: dict = {}
+# the disk estimate: twice the densest pyramid measured (0.45 bytes per pixel, a level-12
+# zoom; whole-input pyramids take 0.07 to 0.2), each file at least one disk block
+PNG_BYTES_PER_PIXEL = 1.0
 
 
 def pyramid_sizes(width: int, height: int) -> list[tuple[int, int]]:
@@ -43,6 +47,35 @@ def tile_rects(width: int, height: int, size: int) -> list[tuple[int, int, int, 
     """Pixel rectangles (column, row, w, h) of the tiles of a width x height level, row by row."""
     return [(c, r, min(size, width - c), min(size, height - r))
             for r in range(0, height, size) for c in range(0, width, size)]
+
+
+def png_bound(width: int, height: int) -> int:
+    """The most bytes an RGB PNG of width x height pixels takes: the raw rows, deflate's
+    worst-case growth (zlib's ``deflateBound``) and the chunks around them."""
+    raw = height * (3 * width + 1)
+    return raw + (raw >> 11) + 1024
+
+
+def pyramid_files(width: int, height: int, tile_size: int) -> int:
+    """Files of the pyramid: the tiles of every level and the descriptor."""
+    return 1 + sum(math.ceil(w / tile_size) * math.ceil(h / tile_size)
+                   for w, h in pyramid_sizes(width, height))
+
+
+def check_budget(grid: lv.Grid, tile_size: int, folder) -> None:
+    """Refuse, before any tile is made, a pyramid of more than ``budget.MAX_FILES`` files,
+    with a tile that may exceed the file-size limit, or larger than the free disk space."""
+    sizes = pyramid_sizes(grid.width, grid.height)
+    files = pyramid_files(grid.width, grid.height, tile_size)
+    what = f"a {grid.width:,} x {grid.height:,} px pyramid in {tile_size}-pixel tiles"
+    budget.check_count(files, budget.MAX_FILES, "files", what,
+                       "use a larger --tile-size or a smaller --size")
+    tile = min(tile_size, grid.width), min(tile_size, grid.height)
+    budget.check_file_size(png_bound(*tile), f"a {tile[0]} x {tile[1]} px tile",
+                           "use a smaller --tile-size", most=True)
+    pixels = sum(w * h for w, h in sizes)
+    budget.check_disk(int(PNG_BYTES_PER_PIXEL * pixels) + files * budget.FILE_BLOCK, folder,
+                      f"{what} ({files:,} files)")
 
 
 def halve(image: NDArray[np.uint8]) -> NDArray[np.uint8]:
@@ -86,11 +119,13 @@ def write_pyramid(mesh: Mesh, levels: int, grid: lv.Grid, folder, *, tile_size: 
     """Write the DeepZoom pyramid of the level image on ``grid`` into ``folder``.
 
     ``jobs`` processes render the full-resolution tiles (one task per tile; default: one per
-    core; 1 renders in this process). The descriptor is written last, so a viewer never sees
+    core; 1 renders in this process). Refused first if over budget (:func:`check_budget`).
+    The descriptor is written last, so a viewer never sees
     a pyramid whose tiles are missing. Returns counts and seconds.
     """
     if tile_size < 1:
         raise ValueError(f"tile size must be at least 1 pixel, got {tile_size}")
+    check_budget(grid, tile_size, folder)
     folder = Path(folder)
     start = time.perf_counter()
     sizes = pyramid_sizes(grid.width, grid.height)

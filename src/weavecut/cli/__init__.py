@@ -26,8 +26,8 @@ if os.path.basename(sys.argv[0] if sys.argv else "") == "weave-cut":  # the cons
 
 import errno  # noqa: E402
 import signal  # noqa: E402
-# a write to stdout or a file that fails for want of room, not for a bug
-_NO_ROOM = {errno.ENOSPC, errno.EPIPE, errno.EIO, errno.EFBIG, errno.EDQUOT}
+# a write to stdout or a file that fails for want of room or a reader, not for a bug
+_NO_ROOM = {errno.ENOSPC, errno.EPIPE, errno.EIO, errno.EFBIG, errno.EDQUOT, errno.EBADF}
 
 
 def __getattr__(name: str):
@@ -52,7 +52,8 @@ def _say(message: str) -> None:
 
 def _stdout_gone(exc: OSError) -> int:
     """Report a failed write to stdout once, and silence the flush at exit."""
-    _say(f"error: cannot write the output: {exc.strerror or exc}")
+    why = "stdout is closed" if exc.errno == errno.EBADF else exc.strerror or exc
+    _say(f"error: cannot write the output: {why}")
     try:
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
     except (OSError, ValueError):
@@ -60,8 +61,26 @@ def _stdout_gone(exc: OSError) -> int:
     return 1
 
 
+def _closed_streams() -> None:
+    """Stand in for a closed stdout or stderr (``weave-cut inputs >&-``; Python then sets
+    ``sys.stdout`` to None): /dev/null takes the descriptor, so no file weave-cut opens gets
+    it, read-only for stdout, so the first write fails as on a closed one and is reported
+    in one line, and writable for stderr, whose lines have nowhere to go."""
+    import io
+
+    for fd, name, flags in ((1, "stdout", os.O_RDONLY), (2, "stderr", os.O_WRONLY)):
+        if getattr(sys, name) is None:
+            null = os.open(os.devnull, flags)
+            if null != fd:
+                os.dup2(null, fd)
+                os.close(null)
+            setattr(sys, name, io.TextIOWrapper(io.FileIO(fd, "w", closefd=False),
+                                                line_buffering=True))
+
+
 def main(argv: list[str] | None = None) -> None:
     """Console entry point: run ``cli`` and turn anything unexpected into one line."""
+    _closed_streams()
     # SIGTERM, SIGHUP (terminal closed) and SIGQUIT clean up temporary files like Ctrl-C does;
     # Ctrl-C while the commands load exits at once (nothing is written yet)
     for sig in (signal.SIGTERM, signal.SIGHUP, signal.SIGQUIT):

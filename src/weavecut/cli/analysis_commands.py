@@ -127,9 +127,14 @@ def fractal_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonc
         drawing = figures.fractal_drawing(h, min(min(born, default=1), levels))
         write_drawing(drawing, output, page)
     if as_json:
-        click.echo(json.dumps(report, indent=2))
+        click.echo(json.dumps(report, indent=2, allow_nan=False))
         return
     _print_fractal(report)
+
+
+def _fixed(value: float | None) -> str:
+    """Four decimals, or "-" for a figure too few box sizes leave undefined."""
+    return "-" if value is None else f"{value:.4f}"
 
 
 def _print_box(title: str, box: dict) -> None:
@@ -137,11 +142,12 @@ def _print_box(title: str, box: dict) -> None:
         click.echo(f"{title}: not measured ({box['skipped']})")
         return
     s = box["sizes"]
-    click.echo(f"{title}: D = {box['dimension']:.4f} \u00b1 {box['stderr']:.4f} (least-squares "
+    stderr, halves = (_fixed(box["stderr"]), [_fixed(h) for h in box["halves"]])
+    click.echo(f"{title}: D = {box['dimension']:.4f} \u00b1 {stderr} (least-squares "
                f"slope of log N against log 1/eps and its standard error, r2 = {box['r2']:.5f}, "
                f"{len(s)} box sizes {s[0]:.4g} .. {s[-1]:.4g}, counts averaged over "
                f"{box['grids']} shifted grids; the coarser and finer half of the sizes alone "
-               f"give {box['halves'][0]:.4f} and {box['halves'][1]:.4f})")
+               f"give {halves[0]} and {halves[1]})")
     click.echo("  box size     " + " ".join(f"{x:9.3g}" for x in s[::4]))
     click.echo("  boxes        " + " ".join(f"{x:9.1f}" for x in box["counts"][::4]))
 
@@ -230,7 +236,7 @@ def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonco
                                       jobs=jobs, **options)
         if as_json:
             click.echo(json.dumps({"input": input_mesh, "levels": levels, "tiles": tiles,
-                                   **made}, indent=2))
+                                   **made}, indent=2, allow_nan=False))
         else:
             summary(f"{tiles}/{deepzoom.NAME}.dzi: {grid.width} x {grid.height} px, "
                     f"{made['tiles']:,} tiles in {made['pyramid_levels']} levels "
@@ -248,7 +254,8 @@ def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonco
         click.echo(json.dumps({"input": input_mesh, "levels": levels, "output": output,
                                "width": grid.width, "height": grid.height,
                                "window": list(grid.window), "pixels_reached": int(hit.sum()),
-                               "pixels_per_level": per_level.tolist()}, indent=2))
+                               "pixels_per_level": per_level.tolist()}, indent=2,
+                               allow_nan=False))
         return
     summary(f"{output}: {grid.width} x {grid.height} px over "
             f"{', '.join(f'{v:g}' for v in grid.window)}; {int(hit.sum()):,} pixels reached, "
@@ -300,7 +307,7 @@ def convexity_command(input_mesh, levels, no_smooth, chirality, centre, allow_no
         write_drawing(drawing, output, page)
     if as_json:
         click.echo(json.dumps({"input": input_mesh, "smooth": not no_smooth, "centre": centre,
-                               "chirality": chirality, "levels": rows}, indent=2))
+                               "chirality": chirality, "levels": rows}, indent=2, allow_nan=False))
         return
     click.echo(f"{input_mesh} ({'smoothed' if not no_smooth else 'not smoothed'}, "
                f"{centre} centres)")

@@ -27,6 +27,6 @@ def findings_command(as_json: bool, fast: bool) -> None:
 
     rows = fd.findings(fast=fast)
     if as_json:
-        click.echo(json.dumps(fd.as_json(rows), indent=2, ensure_ascii=False))
+        click.echo(json.dumps(fd.as_json(rows), indent=2, ensure_ascii=False, allow_nan=False))
         return
     click.echo(fd.markdown(rows), nl=False)

@@ -101,7 +101,7 @@ def inputs_command(as_json: bool) -> None:
         rows.append({"name": spec, "vertices": mesh.n_vertices, "edges": mesh.topology.n_edges,
                      "faces": mesh.n_faces, "description": entry.description})
     if as_json:
-        click.echo(json.dumps(rows, indent=2))
+        click.echo(json.dumps(rows, indent=2, allow_nan=False))
         return
     click.echo(f"{'name':24} {'V':>5} {'E':>5} {'F':>5}  description")
     for r in rows:
@@ -181,7 +181,7 @@ def stats_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
     if hierarchy[0].mesh.dim == 3:
         rows = [{**r, **more} for r, more in zip(rows, surface_stats(hierarchy))]
     if as_json:
-        click.echo(json.dumps({"input": input_mesh, "levels": rows}, indent=2))
+        click.echo(json.dumps({"input": input_mesh, "levels": rows}, indent=2, allow_nan=False))
         return
     click.echo(f"{input_mesh} ({scheme})")
     click.echo(f"{'level':>5} {'V':>10} {'E':>10} {'F':>10} {'non-convex':>10} "

@@ -179,7 +179,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
                 frame_parts=1 if frame_parts is None else len(frame_parts), warnings=warnings,
                 **flag_nonconvex(puzzle.hierarchy),
                 files=sorted(list(files) + ["puzzle-summary.json", "README.txt"]))
-    text = json.dumps(info, indent=2)
+    text = json.dumps(info, indent=2, allow_nan=False)
     folder = make_folder(out_dir)
     meta = provenance()
     for name, drawing in files.items():

@@ -184,7 +184,7 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
                                "module_strips": int(plan.copies.shape[1]),
                                "extra_strips": len(plan.extras),
                                "strands": int(weaves[-1].n_strands), **nonconvex, **extra},
-                              indent=2))
+                              indent=2, allow_nan=False))
     else:
         summary(f"{output}: {len(book.drawing.sheets)} pages ({len(book.strip_pages)} of "
                 f"strips, {100 * book.ink:.0f} % ink); C{plan.k}, {plan.k} copies of "
@@ -233,7 +233,7 @@ def ball(mesh, input_mesh, levels, page, tile_size, diameter, margin, pal, chira
                                "strands": int(weave.n_strands),
                                "strand_lengths_mm": np.round(weave.strand_lengths()
                                                              * book.scale, 1).tolist()},
-                              indent=2))
+                              indent=2, allow_nan=False))
     else:
         summary(f"{output}: {len(book.drawing.sheets)} pages ({len(book.strip_pages)} of "
                 f"strips, {100 * book.ink:.0f} % ink); {weave.n_strands} strips in "
@@ -292,7 +292,7 @@ def _laser_card(book, mat: dict, laser_name: str, out_dir: str, title: str,
                                "card_colours": n_colours, "strips": len(book.pieces),
                                "smallest_label_mm": round(cut.smallest_label, 2),
                                "cut_minutes": round(minutes, 1), "files": files,
-                               **cut.report.as_dict()}, indent=2))
+                               **cut.report.as_dict()}, indent=2, allow_nan=False))
     else:
         summary(f"{out_dir}: {len(cut.sheets)} sheets of {mat['name']} in {n_colours} card "
                 f"colours, {len(book.pieces)} strip pieces, {cut.report.length / 1000:.1f} m of "

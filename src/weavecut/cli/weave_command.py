@@ -106,7 +106,8 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
     if as_json:
         first = levels - len(weaves) + 1
         click.echo(json.dumps({"input": input_mesh, "scheme": scheme, **nonconvex, "levels": [
-            {"level": first + i, **s} for i, s in enumerate(weave_summaries(weaves))]}, indent=2))
+            {"level": first + i, **s} for i, s in enumerate(weave_summaries(weaves))]},
+            indent=2, allow_nan=False))
     if output and surface:
         write_model(weaves, strand_colours(weaves, pal), size, thickness, output,
                     f"{input_mesh}, {scheme} weave, level {levels}")

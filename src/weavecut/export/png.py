@@ -15,6 +15,7 @@ from functools import lru_cache
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
+from .. import budget
 from ..errors import ExportError
 from ..layout.drawing import Drawing, Polylines, Text
 from ..layout.labels import CAP_RATIO, text_width
@@ -23,9 +24,17 @@ SUFFIX = "png"
 DPI = 150
 SUPERSAMPLE = 2
 MAX_PIXELS = 12_000 * 12_000
+# the memory guard's model, per output pixel (fitted to peak RSS: 27 bytes per pixel for one
+# sheet of 36 and of 129 million pixels): while a sheet is drawn, its supersampled picture
+# (12), a mask for a fill with holes (4) and the resampling's half-way picture (6); every
+# page kept (3); the stacked picture and the PNG stream (3 each)
+SHEET_BYTES_PER_PIXEL = 22
+PAGE_BYTES_PER_PIXEL = 3
+STACK_BYTES_PER_PIXEL = 6
 
 
 def render(drawing: Drawing, dpi: float = DPI) -> bytes:
+    check_size(drawing, dpi)
     pages = [_sheet(sheet, dpi) for sheet in drawing.sheets]
     width = max(p.width for p in pages)
     height = sum(p.height for p in pages) + 10 * (len(pages) - 1)
@@ -37,6 +46,33 @@ def render(drawing: Drawing, dpi: float = DPI) -> bytes:
     buf = io.BytesIO()
     out.save(buf, "PNG", dpi=(dpi, dpi), optimize=False)
     return with_text(buf.getvalue(), [("Title", drawing.title), *drawing.metadata])
+
+
+def _pixels(sheet, dpi: float) -> tuple[int, int]:
+    """(width, height) of ``sheet`` in supersampled pixels."""
+    px = dpi / 25.4 * SUPERSAMPLE
+    return round(sheet.width * px), round(sheet.height * px)
+
+
+def check_size(drawing: Drawing, dpi: float = DPI) -> None:
+    """Refuse, before drawing anything, a sheet or the sheets stacked over ``MAX_PIXELS``,
+    or a picture that would not fit in memory."""
+    sizes = [_pixels(sheet, dpi) for sheet in drawing.sheets]
+    for sheet, (w, h) in zip(drawing.sheets, sizes):
+        if w * h > MAX_PIXELS * SUPERSAMPLE**2:
+            raise ExportError(f"a {sheet.width:.0f} x {sheet.height:.0f} mm sheet at {dpi:g} "
+                              f"dpi is too large for PNG ({w // SUPERSAMPLE} x "
+                              f"{h // SUPERSAMPLE} px)")
+    out = [max(1, w // SUPERSAMPLE) * max(1, h // SUPERSAMPLE) for w, h in sizes]
+    width = max(max(1, w // SUPERSAMPLE) for w, _ in sizes)
+    height = sum(max(1, h // SUPERSAMPLE) for _, h in sizes) + 10 * (len(sizes) - 1)
+    if width * height > MAX_PIXELS:
+        raise ExportError(f"{len(sizes)} sheets at {dpi:g} dpi stacked are too large for PNG "
+                          f"({width} x {height} px)")
+    budget.check_memory(budget.BASE_BYTES + SHEET_BYTES_PER_PIXEL * max(out)
+                        + PAGE_BYTES_PER_PIXEL * sum(out)
+                        + STACK_BYTES_PER_PIXEL * width * height,
+                        f"a {width} x {height} px PNG")
 
 
 def with_text(data: bytes, items: Iterable[tuple[str, str]]) -> bytes:
@@ -58,10 +94,7 @@ def _text_chunk(keyword: str, text: str) -> bytes:
 
 def _sheet(sheet, dpi: float) -> Image.Image:
     px = dpi / 25.4 * SUPERSAMPLE
-    w, h = round(sheet.width * px), round(sheet.height * px)
-    if w * h > MAX_PIXELS * SUPERSAMPLE**2:
-        raise ExportError(f"a {sheet.width:.0f} x {sheet.height:.0f} mm sheet at {dpi:g} dpi is "
-                          f"too large for PNG ({w // SUPERSAMPLE} x {h // SUPERSAMPLE} px)")
+    w, h = _pixels(sheet, dpi)
     img = Image.new("RGB", (w, h), "white")
     draw = ImageDraw.Draw(img)
 

@@ -15,6 +15,7 @@ from dataclasses import replace
 import numpy as np
 import shapely
 
+from .. import budget
 from .drawing import Drawing, Layer, Polygons, Polylines, Sheet, Style, Text, polygons_from_shapely
 
 MARK = Style("#808080", 0.2)
@@ -26,25 +27,40 @@ def on_pages(drawing: Drawing, page: tuple[float, float], overlap: float = 10.0,
     upright or turned a quarter (landscape), when it fits inside ``printer_margin``; else the
     sheet tiled, on whichever orientation needs fewer pages (when equal, the one shaped like
     the sheet)."""
-    pages: list[Sheet] = []
     turned = (page[1], page[0])
+    plan = []  # per sheet: the page it fits on, centred, or the page it is tiled on
     for sheet in drawing.sheets:
         x0, y0, x1, y1 = _content_box(sheet)
         room = 2 * printer_margin
         fits = [p for p in (page, turned) if x1 - x0 <= p[0] - room and y1 - y0 <= p[1] - room]
         if fits:
-            w, h = fits[0]
-            dx, dy = (w - x0 - x1) / 2, (h - y0 - y1) / 2
-            pages.append(replace(sheet, width=w, height=h, layers=tuple(
-                replace(layer, shapes=tuple(_moved(s, dx, dy) for s in layer.shapes))
-                for layer in sheet.layers)))
+            plan.append((sheet, fits[0], (x0, y0, x1, y1), 1))
             continue
-        one = replace(drawing, sheets=(sheet,))
         wide = sheet.width > sheet.height
         best = min((page, turned), key=lambda p: (math.prod(_grid(sheet, p, overlap, margin)),
                                                   (p[0] > p[1]) != wide))
-        pages.extend(tile(one, best, overlap, margin).sheets)
+        plan.append((sheet, best, None, math.prod(_grid(sheet, best, overlap, margin))))
+    check_pages(drawing, page, sum(n for *_, n in plan))
+    pages: list[Sheet] = []
+    for sheet, (w, h), box, _ in plan:
+        if box is None:
+            pages.extend(tile(replace(drawing, sheets=(sheet,)), (w, h), overlap, margin).sheets)
+            continue
+        dx, dy = (w - box[0] - box[2]) / 2, (h - box[1] - box[3]) / 2
+        pages.append(replace(sheet, width=w, height=h, layers=tuple(
+            replace(layer, shapes=tuple(_moved(s, dx, dy) for s in layer.shapes))
+            for layer in sheet.layers)))
     return replace(drawing, sheets=tuple(pages))
+
+
+def check_pages(drawing: Drawing, page: tuple[float, float], n: int) -> None:
+    """Refuse, before any page is made, a print of ``drawing`` on more than
+    ``budget.MAX_PAGES`` pages."""
+    big = max(drawing.sheets, key=lambda s: s.width * s.height)
+    budget.check_count(n, budget.MAX_PAGES, "pages",
+                       f"printing the {big.width:,.0f} x {big.height:,.0f} mm drawing 1:1 on "
+                       f"{page[0]:g} x {page[1]:g} mm paper",
+                       "a ream; use a smaller --size or a larger --page")
 
 
 def _content_box(sheet: Sheet) -> tuple[float, float, float, float]:
@@ -81,6 +97,7 @@ def tile(drawing: Drawing, page: tuple[float, float] = (210.0, 297.0), overlap: 
     pw, ph = page[0] - 2 * margin, page[1] - 2 * margin
     step_x, step_y = pw - overlap, ph - overlap
     cols, rows = _grid(big, page, overlap, margin)
+    check_pages(drawing, page, cols * rows)
     pages = []
     for r in range(rows):  # pages, a handful
         for c in range(cols):

@@ -71,10 +71,11 @@ class Colouring:
     touching: NDArray[np.object_]
 
     @cached_property
-    def smallest_difference(self) -> float:
-        """The smallest CIEDE2000 difference between two different touching front colours."""
+    def smallest_difference(self) -> float | None:
+        """The smallest CIEDE2000 difference between two different touching front colours;
+        None when no two different colours touch (a one-colour palette)."""
         if not len(self.touching):
-            return float("inf")
+            return None
         return float(ciede2000(srgb_to_lab(self.touching[:, 0].tolist()),
                                srgb_to_lab(self.touching[:, 1].tolist())).min())
 

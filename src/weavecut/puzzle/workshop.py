@@ -26,6 +26,7 @@ DEFAULT_LEVELS = (3, 2)  # levels tried for a drawing, highest first
 DEFAULT_FACES = (40, 28, 20, 14, 10, 7, 5, 4, 3)  # faces of the meshed outline tried, most first
 CELL_STEPS = (1.25, 1.5, 1.75, 2.0, 2.5, 3.0)  # larger cells tried for a drawing's warning
 MIN_MEAN_AREA = 1.5 * MIN_ACROSS ** 2  # mm²: fewer, larger pieces are tried without building
+NO_TOUCHING = "no two different paints touch on the front"  # so no smallest difference
 
 
 def piece_sizes(puzzle: Puzzle) -> tuple[np.ndarray, np.ndarray]:
@@ -174,7 +175,10 @@ def summary(puzzle: Puzzle, results: dict[str, CutResult], speed: float,
     if colouring is not None:
         out["front_colours"] = len(colouring.front_colours)
         out["back_colours"] = len(colouring.back_colours)
-        out["smallest_delta_e"] = round(colouring.smallest_difference, 2)
+        smallest = colouring.smallest_difference
+        out["smallest_delta_e"] = None if smallest is None else round(smallest, 2)
+        if smallest is None:
+            out["smallest_delta_e_reason"] = NO_TOUCHING
         out["single_coloured_pieces"] = int(((colouring.front[:, 0] == colouring.front[:, 1])
                                              & (puzzle.kinds == OCTAGON)).sum())
     for mode, r in results.items():
@@ -201,8 +205,10 @@ def summary_text(info: dict) -> str:
         lines.append(f"material: {info['material']}, kerf {info['kerf_mm']:g} mm, sheet "
                      f"{info['sheet_mm'][0]:g} x {info['sheet_mm'][1]:g} mm")
     if "front_colours" in info:
+        differ = (NO_TOUCHING if info["smallest_delta_e"] is None else
+                  f"touching colours differ by CIEDE2000 >= {info['smallest_delta_e']:g}")
         lines.append(f"paints: front {info['front_colours']}, back {info['back_colours']}; "
-                     f"touching colours differ by CIEDE2000 >= {info['smallest_delta_e']:g}; "
+                     f"{differ}; "
                      f"{info['single_coloured_pieces']} single-coloured pieces on the front")
     for mode, m in info["modes"].items():
         lines.append(f"{mode}: cut {m['cut_length_m']:.2f} m in {m['paths']} paths, travel "

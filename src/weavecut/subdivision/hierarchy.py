@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ..budget import BASE_BYTES, gib, memory_limit
 from ..mesh import Mesh
 
 
@@ -39,8 +40,8 @@ Hierarchy = tuple[Level, ...]
 
 
 # The memory guard's model, fitted to peak resident memory measured on this machine
-# (benchmarks/bench_memory.py prints estimate and measurement side by side):
-BASE_BYTES = 128 << 20      # the interpreter with weave-cut's imports (RSS of ``--version``)
+# (benchmarks/bench_memory.py prints estimate and measurement side by side), on top of
+# BASE_BYTES, the interpreter with weave-cut's imports:
 LEVEL_BYTES_PER_CORNER = 38  # a level kept in a hierarchy: mesh, topology, provenance, the
                              # step's scratch while it is made and what commands add to it
 
@@ -70,18 +71,6 @@ def keep_freed_memory() -> bool:
     return bool(mallopt(M_MMAP_MAX, 0)) and bool(mallopt(M_TRIM_THRESHOLD, 2**31 - 1))
 
 
-def available_memory() -> int:
-    """Bytes of memory available now (MemAvailable), or 8 GiB when it cannot be read."""
-    try:
-        with open("/proc/meminfo") as f:
-            for line in f:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except OSError:
-        pass
-    return 8 << 30
-
-
 def sizes(mesh: Mesh, levels: int, counts) -> list[tuple[int, int, int, int]]:
     """(V, E, F, H) of levels 0..levels from a scheme's ``counts`` recursion."""
     out = [(mesh.n_vertices, mesh.topology.n_edges, mesh.n_faces, mesh.n_corners)]
@@ -104,20 +93,17 @@ def hierarchy_bytes(table) -> int:
 
 def require(need: list[int], faces: list[int], available: int | None = None,
             what: str = "") -> None:
-    """Raise TooLargeError unless ``need[-1]`` bytes are available; ``need[t]`` and
-    ``faces[t]`` are the estimated peak and the faces when stopping at level t (the message
-    names the deepest level that would fit)."""
+    """Raise TooLargeError unless ``need[-1]`` bytes are available (``available``, else the
+    lower of the free memory and the room under ``ulimit -v``); ``need[t]`` and ``faces[t]``
+    are the estimated peak and the faces when stopping at level t (the message names the
+    limit and the deepest level that would fit)."""
     from ..errors import TooLargeError
 
-    have = available_memory() if available is None else available
+    have, source = memory_limit() if available is None else (available, "is available")
     if need[-1] <= have:
         return
     fits = [t for t, n in enumerate(need) if n <= have]
     hint = f"level {fits[-1]} would fit" if fits else "no level fits"
     raise TooLargeError(
         f"level {len(need) - 1}{what} has {faces[-1]:,} faces and needs about "
-        f"{_gib(need[-1])} of memory; {_gib(have)} is available ({hint})")
-
-
-def _gib(n: float) -> str:
-    return f"{n / 2**30:,.1f} GiB" if n >= 2**30 else f"{n / 2**20:,.0f} MiB"
+        f"{gib(need[-1])} of memory; {gib(have)} {source} ({hint})")
