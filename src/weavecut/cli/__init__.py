@@ -98,7 +98,16 @@ def main(argv: list[str] | None = None) -> None:
 
         keep_freed_memory()  # big levels reuse freed pages instead of faulting in new ones
         signal.signal(signal.SIGINT, signal.default_int_handler)
-        cli.main(args=argv, prog_name="weave-cut", standalone_mode=True)
+        import click
+
+        try:  # not click's standalone mode: it ends a Ctrl-C while parsing in "Aborted!", 1
+            returned = cli.main(args=argv, prog_name="weave-cut", standalone_mode=False)
+            code = returned if isinstance(returned, int) else 0  # click's Exit, --help
+        except click.ClickException as exc:
+            exc.show()
+            code = exc.exit_code
+        except click.Abort:
+            raise KeyboardInterrupt from None
     except SystemExit as exc:
         code = exc.code
     except KeyboardInterrupt:
