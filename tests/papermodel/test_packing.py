@@ -96,3 +96,18 @@ def test_the_block_tests_never_refuse_a_place_that_fits(h, w, y, x, dh, dw, k, s
     if core is not None:
         fits = page.fits(k, [core])[0]
         assert all(fits[iy // k + offset[0], ix // k + offset[1]] for iy, ix in at.tolist())
+
+
+@settings(max_examples=10, deadline=None)
+@given(pieces)
+def test_the_finer_block_tests_find_the_same_places(spec):
+    """Giving up on cell by cell tries at once (the 2 x 2 block test, then the exact
+    correlation, take over every time) packs every piece in the same place."""
+    import weavecut.papermodel.packing as packing
+    shapes = [wavy(a, b, c) for a, b, c in spec]
+    quick = pack(shapes, 150.0, 130.0, 2.0)
+    tries, packing.TRIES = packing.TRIES, 0
+    try:
+        assert pack(shapes, 150.0, 130.0, 2.0) == quick
+    finally:
+        packing.TRIES = tries

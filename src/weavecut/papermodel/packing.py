@@ -9,7 +9,8 @@ narrowed by block tests that never refuse a place that fits (:mod:`.packing_grid
 correlation of every turn's core on 8 x 8 blocks of cells gives each turn's least possible
 edge along the filling axis, turns go least edge first and stop where none can beat the best
 place found, and a turn's core on 4 x 4 blocks leaves the places tried cell by cell, in order,
-the first that holds the mask being the turn's best. A page with too few free cells is skipped.
+the first that holds the mask being the turn's best (finer tests, down to an exact
+correlation, take over where many places fail). A page with too few free cells is skipped.
 
 Congruent pieces (the k copies of a module strip, the same ``kind``) are nested into a stack
 first. Stacks go largest first (by their pieces' convex hulls: a curled strip takes up more
@@ -34,6 +35,7 @@ from ..numeric import affine, snap, transform
 from .packing_grid import BLOCKS, Options, Page, turned_masks
 
 ANGLE_STEP = 15.0  # degrees between the turns tried
+TRIES = 256  # places tried one by one before the next finer block test
 
 
 @dataclass(frozen=True)
@@ -219,7 +221,8 @@ def _best_spot(grid: Page, options, axis: int = 1):
 
     The coarsest block test of every turn at once gives each turn's least possible edge; the
     turns go least edge first and stop where none can beat the best place found. A turn's
-    places are those its finest block test leaves, tried cell by cell in order."""
+    places are those its next block test leaves, tried cell by cell in order; after ``TRIES``
+    that fail, the next finer test cuts down the rest, the last (on single cells) exact."""
     best, best_key = None, None
     coarse = grid.fits(BLOCKS[0], options.cores)
     bounds = []
@@ -234,21 +237,41 @@ def _best_spot(grid: Page, options, axis: int = 1):
     for edge, r, t in sorted(bounds):
         if best_key is not None and edge > best_key[0]:
             break
-        angle, mask, origin = options[t]
-        test = (1, None, (0, 0)) if coarse[t] is None else (  # the finest with a core
+        last = None  # the key of the last place tried
+        test = (1, None, (0, 0)) if coarse[t] is None else (  # the finest test with a core
             BLOCKS[0], coarse[t], options.offsets[t])
         for k in BLOCKS[1:]:
             core, offset = options.core(k, t)
             if (fits := grid.fits(k, [core])[0]) is not None:
                 test = (k, fits, offset)
-        for iy, ix in _places(*test, mask.shape, grid.taken.shape, axis):
-            key = ((iy, ix)[axis] + mask.shape[axis], (iy, ix)[1 - axis], r)
-            if best_key is not None and key >= best_key:
+            tries = TRIES if k > 1 else -1
+            last, at, more = _try(grid, options[t][1], test, axis, (r, best_key, last), tries)
+            if not more:
                 break
-            if not (grid.taken[iy:iy + mask.shape[0], ix:ix + mask.shape[1]] & mask).any():
-                best, best_key = ((iy, ix), angle, mask, origin), key
-                break
+        if at is not None:
+            best, best_key = (at, *options[t]), last
     return best
+
+
+def _try(grid, mask, test, axis: int, keys, tries: int):
+    """(last, at, more): the first place ``at`` (iy, ix) that holds ``mask`` among those
+    ``test`` leaves (see :func:`_places`), trying at most ``tries`` (-1: all) of those whose
+    key comes after ``last`` (None: from the first) and before ``bound``, ``keys`` being (rank,
+    bound, last) and a place's key (its edge along ``axis``, its place across, rank); None if
+    none holds it. ``last`` is the key last tried, ``more`` whether untried places remain."""
+    rank, bound, last = keys
+    for iy, ix in _places(*test, mask.shape, grid.taken.shape, axis):
+        key = ((iy, ix)[axis] + mask.shape[axis], (iy, ix)[1 - axis], rank)
+        if bound is not None and key >= bound:
+            break
+        if last is not None and key <= last:
+            continue  # tried before
+        if tries == 0:
+            return last, None, True
+        tries, last = tries - 1, key
+        if not (grid.taken[iy:iy + mask.shape[0], ix:ix + mask.shape[1]] & mask).any():
+            return key, (iy, ix), False
+    return last, None, False
 
 
 def _places(k: int, fits, offset, size, page, axis: int):

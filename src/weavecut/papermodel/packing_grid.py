@@ -14,7 +14,7 @@ from scipy.fft import irfft2, next_fast_len, rfft2
 
 from ..numeric import affine
 
-BLOCKS = (8, 4)  # the block tests' sizes (cells), coarsest first
+BLOCKS = (8, 4, 2, 1)  # the block tests' sizes (cells), coarsest first; 1: cell by cell
 
 
 def turned_masks(shape, angles, gap: float, cell: float, width: float, height: float) -> list:
@@ -59,8 +59,9 @@ def raster(uv, edges, shapes) -> list:
     u = ua + (rows - va) / (vb - va) * (ub - ua)
     starts = np.cumsum(shapes[:, 0] * (nx + 1)) - shapes[:, 0] * (nx + 1)
     line = starts[grid] + rows * (nx + 1)[grid]  # where the row starts, in all grids' cells
-    order = np.lexsort((u, line))  # every row crosses the rings an even number of times
-    at = line[order] + np.clip(np.ceil(u[order]), 0, nx[grid[order]]).astype(np.int64)
+    # the first cell right of each crossing, in order: every row crosses the rings an even
+    # number of times, and crossings in one cell stand for each other
+    at = np.sort(line + np.clip(np.ceil(u), 0, nx[grid]).astype(np.int64))
     total = int(starts[-1] + shapes[-1, 0] * (nx[-1] + 1)) if len(shapes) else 0
     inside = np.cumsum(np.bincount(at[0::2], minlength=total) -
                        np.bincount(at[1::2], minlength=total)) > 0  # each row sums to 0
@@ -149,8 +150,14 @@ class Page:
         one inverse FFT of the page's transform times each core's."""
         if k not in self._blocks:
             ny, nx = self.taken.shape
-            taken = np.pad(self.taken, ((0, -ny % k), (0, -nx % k)), constant_values=True)
-            blocks = taken.reshape(len(taken) // k, k, -1, k).all(axis=(1, 3))
+            taken = np.ones((ny + -ny % k, nx + -nx % k), dtype=bool)  # beyond the page: taken
+            taken[:ny, :nx] = self.taken
+            columns = taken[:, ::k].copy()  # the blocks' rows, then the blocks
+            for i in range(1, k):
+                columns &= taken[:, i::k]
+            blocks = columns[::k].copy()
+            for i in range(1, k):
+                blocks &= columns[i::k]
             shape = tuple(next_fast_len(n) for n in blocks.shape)  # no wrap where it is read
             self._blocks[k] = blocks, shape, rfft2(blocks.astype(np.float32), shape)
         blocks, shape, page = self._blocks[k]
