@@ -46,8 +46,8 @@ def turned_masks(shape, angles, gap: float, cell: float, width: float, height: f
 def raster(uv, edges, shapes) -> list:
     """For each grid a, (ny, nx) = ``shapes[a]`` bool: the cells whose centre lies inside the
     rings with vertices ``uv[a]`` (N, 2) (in cells, centres at whole numbers), an edge from
-    each vertex in ``edges`` to the next; even-odd, a scanline fill along each row of centres,
-    every grid at once."""
+    each vertex in ``edges`` to the next; even-odd along each row of centres, every grid at
+    once."""
     (ua, va), (ub, vb) = uv[:, edges].transpose(2, 0, 1), uv[:, edges + 1].transpose(2, 0, 1)
     ny, nx = shapes[:, 0, None], shapes[:, 1]
     first = np.clip(np.ceil(np.minimum(va, vb)), 0, ny).astype(np.int64)
@@ -59,12 +59,10 @@ def raster(uv, edges, shapes) -> list:
     u = ua + (rows - va) / (vb - va) * (ub - ua)
     starts = np.cumsum(shapes[:, 0] * (nx + 1)) - shapes[:, 0] * (nx + 1)
     line = starts[grid] + rows * (nx + 1)[grid]  # where the row starts, in all grids' cells
-    # the first cell right of each crossing, in order: every row crosses the rings an even
-    # number of times, and crossings in one cell stand for each other
-    at = np.sort(line + np.clip(np.ceil(u), 0, nx[grid]).astype(np.int64))
+    at = line + np.clip(np.ceil(u), 0, nx[grid]).astype(np.int64)  # first cell right of it
     total = int(starts[-1] + shapes[-1, 0] * (nx[-1] + 1)) if len(shapes) else 0
-    inside = np.cumsum(np.bincount(at[0::2], minlength=total) -
-                       np.bincount(at[1::2], minlength=total)) > 0  # each row sums to 0
+    # inside: an odd number of crossings left of the centre (each row has an even number)
+    inside = np.logical_xor.accumulate((np.bincount(at, minlength=total) & 1).astype(bool))
     return [inside[s:s + h * (w + 1)].reshape(h, w + 1)[:, :w]
             for s, (h, w) in zip(starts.tolist(), shapes.tolist())]
 
