@@ -78,24 +78,30 @@ def test_a_piece_goes_into_the_hole_it_fits(turn):
 
 @settings(max_examples=80, deadline=None)
 @given(st.integers(1, 20), st.integers(1, 20), st.integers(0, 12), st.integers(0, 12),
-       st.integers(0, 3), st.integers(0, 3), st.sampled_from([2, 3, 4, 8]), st.integers(0, 999))
+       st.integers(0, 3), st.integers(0, 3), st.sampled_from([1, 2, 3, 4, 8]),
+       st.integers(0, 999))
 def test_the_block_tests_never_refuse_a_place_that_fits(h, w, y, x, dh, dw, k, seed):
     """A page taken everywhere but a free window (``dh``, ``dw`` cells larger than a mask with
-    holes, at any offset): wherever the mask fits cell by cell (checked by brute force), the
-    quick test on k x k blocks leaves the block place of the mask's core there."""
+    holes, at any offset): wherever the mask, or the mask turned by half a turn, fits cell by
+    cell (checked by brute force), the quick test on k x k blocks leaves the block place of its
+    core there; the half-turned mask's core is the one its own mask has."""
     from scipy.signal import correlate2d
-    from weavecut.papermodel.packing_grid import Page, block_core
+    from weavecut.papermodel.packing_grid import Page, block_cores
     page = Page(40, 40, {})
     page.taken[:] = True
     page.taken[y:y + h + dh, x:x + w + dw] = False
     mask = np.random.default_rng(seed).random((h, w)) < 0.8
     mask[0, 0] = mask[-1, -1] = True  # the mask's own size
-    at = np.argwhere(correlate2d(page.taken.astype(int), mask.astype(int), mode="valid") == 0)
-    assert len(at)  # the window holds it
-    core, offset = block_core(mask, k)
-    if core is not None:
-        fits = page.fits(k, [core])[0]
-        assert all(fits[iy // k + offset[0], ix // k + offset[1]] for iy, ix in at.tolist())
+    cores = block_cores(mask, k)
+    own = block_cores(mask[::-1, ::-1], k)[0]
+    assert own[1] == cores[1][1] and (own[0] is None) == (cores[1][0] is None)
+    assert own[0] is None or np.array_equal(own[0], cores[1][0])
+    for m, (core, offset) in zip((mask, mask[::-1, ::-1]), cores):
+        at = np.argwhere(correlate2d(page.taken.astype(int), m.astype(int), mode="valid") == 0)
+        assert len(at)  # the window holds it
+        if core is not None:
+            fits = page.fits(k, [core])[0]
+            assert all(fits[iy // k + offset[0], ix // k + offset[1]] for iy, ix in at.tolist())
 
 
 @settings(max_examples=10, deadline=None)

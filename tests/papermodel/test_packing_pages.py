@@ -166,7 +166,8 @@ def test_the_quick_page_test_never_refuses_a_page_a_turn_fits(cell):
     from weavecut.papermodel.packing_grid import Options, Page, turned_masks
     gap = 2.0
     diamond = shapely.Polygon([(0.0, -10.0), (10.0, 0.0), (0.0, 10.0), (-10.0, 0.0)])
-    turns = [t for t in turned_masks(diamond, [0.0, 45.0], gap, cell, 100.0, 100.0) if t[0] < 180]
+    turns = turned_masks(diamond, [0.0, 45.0], gap, cell, 100.0, 100.0)  # and 180, 225
+    assert [a for a, _, _ in turns] == [0.0, 45.0, 180.0, 225.0]
     assert turns[1][1].sum() < turns[0][1].sum()
     page = Page(60, 60, {})
     page.taken[:] = True
@@ -174,6 +175,7 @@ def test_the_quick_page_test_never_refuses_a_page_a_turn_fits(cell):
     page.taken[5:5 + m.shape[0], 7:7 + m.shape[1]] &= ~m
     page.free = int((~page.taken).sum())
     options = Options(turns)
-    (at, angle, _, _) = _best_spot(page, options)
-    assert at == (5, 7) and angle == 45.0
+    (iy, ix), angle, mask, _ = _best_spot(page, options)
+    assert angle in (45.0, 225.0)  # the square turns, the diamond's own do not fit
+    assert not page.taken[iy:iy + mask.shape[0], ix:ix + mask.shape[1]][mask].any()
     assert page.may_hold(options)

@@ -296,16 +296,15 @@ def test_the_legend_shows_the_tab_entry_only_on_pages_with_label_tabs():
 def test_a_full_page_could_fit_nothing():
     """The block tests refuse every mask on a page with no free cell, odd-sized too (the
     cells beyond the page's edge are taken)."""
-    from weavecut.papermodel.packing_grid import Page, block_core
+    from weavecut.papermodel.packing_grid import Page, block_cores
     for ny, nx in ((5, 5), (5, 6), (6, 5), (7, 9), (17, 23)):
         page = Page(ny, nx, {})
         page.taken[:] = True
         for shape in ((1, 1), (2, 2), (1, 3), (3, 1), (5, 5), (9, 17)):
-            for k in (2, 4, 8):
-                core, _ = block_core(np.ones(shape, dtype=bool), k)
-                if core is not None and min(page.taken.shape) >= max(shape):
-                    fits = page.fits(k, [core])[0]
-                    assert not fits.any(), ((ny, nx), shape, k)
+            for k in (1, 2, 4, 8):
+                for core, _ in block_cores(np.ones(shape, dtype=bool), k):
+                    if core is not None and min(page.taken.shape) >= max(shape):
+                        assert not page.fits(k, [core])[0].any(), ((ny, nx), shape, k)
 
 
 def test_best_spot_tries_a_longer_turn_when_a_shorter_one_fits_nowhere():
@@ -316,9 +315,10 @@ def test_best_spot_tries_a_longer_turn_when_a_shorter_one_fits_nowhere():
     page = Page(4, 4, {})
     page.taken[[1, 3]] = True
     standing, lying = np.ones((3, 1), dtype=bool), np.ones((1, 3), dtype=bool)
-    turns = [(90.0, standing, np.zeros(2)), (0.0, lying, np.zeros(2))]
+    turns = [(90.0, standing, np.zeros(2)), (0.0, lying, np.zeros(2)),
+             (270.0, standing, np.zeros(2)), (180.0, lying, np.zeros(2))]  # half-turned
     opts = Options(turns)
-    assert opts.rank[1] == [0, 1]  # the standing turn is tried first
+    assert opts.rank[1][0] == 0  # the standing turn is tried first
     spot = _best_spot(page, opts, axis=1)
     assert spot is not None
     (iy, ix), angle, mask, _ = spot

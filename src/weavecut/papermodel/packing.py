@@ -277,7 +277,7 @@ def _try(grid, mask, test, axis: int, keys, tries: int):
 def _places(k: int, fits, offset, size, page, axis: int):
     """The cells (iy, ix) where a mask of ``size`` (rows, columns) may start on a page of
     ``page`` cells: those of the k x k blocks at the places ``fits`` leaves less ``offset``
-    (see :func:`block_core`; None: everywhere), least along ``axis`` first, then across."""
+    (see :func:`block_cores`; None: everywhere), least along ``axis`` first, then across."""
     last = [p - s for p, s in zip(page, size)]  # the farthest start
     fits = np.ones((last[0] + 1, last[1] + 1), dtype=bool) if fits is None else fits
     fits = fits if axis == 1 else fits.T  # (across, along)

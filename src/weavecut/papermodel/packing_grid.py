@@ -68,10 +68,11 @@ def raster(uv, edges, shapes) -> list:
 
 
 class Options(list):
-    """The turns (angle, mask, origin) of a piece or stack, with ``rank[axis]`` their order
+    """The turns (angle, mask, origin) of a piece or stack, the second half of them the first
+    turned by half a turn, in order (:func:`turned_masks`), with ``rank[axis]`` their order
     shortest along that axis first (0: y, 1: x), ``cells`` the fewest cells of any turn's
     mask (a page with fewer free cells holds no turn), and the turns' ``cores`` and their
-    ``offsets`` on the coarsest blocks (:func:`block_core`); :meth:`core` for the others."""
+    ``offsets`` on the coarsest blocks (:func:`block_cores`); :meth:`core` for the others."""
 
     def __init__(self, turns):
         super().__init__(turns)
@@ -80,32 +81,40 @@ class Options(list):
             order = sorted(range(len(turns)), key=lambda t: (turns[t][1].shape[axis], turns[t][0]))
             self.rank.append(np.argsort(order).tolist())
         self.cells = min((int(np.count_nonzero(m)) for _, m, _ in turns), default=0)
-        cores = [block_core(m, BLOCKS[0]) for _, m, _ in turns]
-        self.cores, self.offsets = [c for c, _ in cores], [o for _, o in cores]
         self._cores: dict = {}
+        cores = [self.core(BLOCKS[0], t) for t in range(len(turns))]
+        self.cores, self.offsets = [c for c, _ in cores], [o for _, o in cores]
 
     def core(self, k: int, t: int):
-        """(core, offset) of turn ``t`` on k x k blocks, made when first asked for."""
+        """(core, offset) of turn ``t`` on k x k blocks, made when first asked for (with its
+        half-turned twin's)."""
         if (k, t) not in self._cores:
-            self._cores[k, t] = block_core(self[t][1], k)
+            first, half = t % (len(self) // 2), len(self) // 2
+            self._cores[k, first], self._cores[k, first + half] = block_cores(self[first][1], k)
         return self._cores[k, t]
 
 
-def block_core(mask, k: int):
-    """(core, offset): the k x k blocks of cells that hold a cell of ``mask`` wherever it sits
-    on the grid of blocks (at each of the k * k parities of its place), trimmed to their
-    bounding box, which starts ``offset`` (rows, columns) blocks from the block of the mask's
-    first cell; core is None if there are none. A mask whose cell (0, 0) is at (iy, ix) thus
-    puts a cell into every block of its core placed at (iy // k, ix // k) + offset."""
+def block_cores(mask, k: int) -> list:
+    """[(core, offset)] of ``mask`` and of ``mask`` turned by half a turn (read backwards):
+    the k x k blocks of cells that hold a cell of the mask wherever it sits on the grid of
+    blocks (at each of the k * k parities of its place), trimmed to their bounding box, which
+    starts ``offset`` (rows, columns) blocks from the block of the mask's first cell; core is
+    None if there are none. A mask whose cell (0, 0) is at (iy, ix) thus puts a cell into every
+    block of its core placed at (iy // k, ix // k) + offset."""
     my, mx = mask.shape
     h, w = (my + 2 * k - 2) // k, (mx + 2 * k - 2) // k
     grid = np.zeros((k * h + 3 * k - 2, k * w + 3 * k - 2), dtype=bool)
     grid[2 * k - 2:2 * k - 2 + my, 2 * k - 2:2 * k - 2 + mx] = mask
-    # at parity p, block b holds the mask's rows k b - p ... k b - p + k - 1, which are rows
-    # k b + q ... k b + q + k - 1 of grid, q = 2 k - 2 - p: held at row k b + q
+    # held[r]: grid's rows r ... r + k - 1 (mask rows r - 2 k + 2 ...) hold a cell; all[r]:
+    # held[r ... r + k - 1] all do. Block b at parity p holds mask rows k b - p ... k b - p +
+    # k - 1: every parity, all[k b + k - 1]; read backwards, all[my + k - 2 - k b]
     held = _window(_window(grid, k, np.logical_or).T, k, np.logical_or).T
-    core = _window(_window(held, k, np.logical_and).T, k, np.logical_and).T
-    core = core[k - 1::k, k - 1::k][:h, :w]  # all of k b + k - 1 ... k b + 2 k - 2
+    every = _window(_window(held, k, np.logical_and).T, k, np.logical_and).T
+    return [_trimmed(every[k - 1::k, k - 1::k][:h, :w]),
+            _trimmed(every[my + k - 2::-k, mx + k - 2::-k][:h, :w])]
+
+
+def _trimmed(core):
     rows, cols = np.flatnonzero(core.any(axis=1)), np.flatnonzero(core.any(axis=0))
     if not len(rows):
         return None, (0, 0)
@@ -142,7 +151,7 @@ class Page:
         self._blocks = {}
 
     def fits(self, k: int, cores) -> list:
-        """For each core (of k x k blocks, see :func:`block_core`): the block places where it
+        """For each core (of k x k blocks, see :func:`block_cores`): the block places where it
         lies on free blocks only ((rows, columns) bool, trimmed to the places inside the page; no
         place holds a mask that the core does not fit), None for no core. All cores at once:
         one inverse FFT of the page's transform times each core's."""
