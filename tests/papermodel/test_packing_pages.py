@@ -159,19 +159,23 @@ def test_the_last_pages_piece_packed_first_saves_a_page():
 @pytest.mark.parametrize("cell", [0.75, 1.25])
 def test_the_quick_page_test_never_refuses_a_page_a_turn_fits(cell):
     """A page taken everywhere but the mask of a diamond turned by 45 degrees (a square, of fewer
-    cells than the diamond's own mask): the piece fits there, so the quick test (free cells,
-    free disc) must not say the page cannot hold it, whichever turn comes first, on a grid of
+    cells than the diamond's own mask): the piece fits there, so the quick tests (free cells,
+    blocks) must not say the page cannot hold it, whichever turn comes first, on a grid of
     cells smaller or larger than a millimetre."""
-    from weavecut.papermodel.packing import _best_spot, _mask, _Options, _Page
+    from weavecut.papermodel.packing import _best_spot
+    from weavecut.papermodel.packing_grid import Options, Page, turned_masks
     gap = 2.0
     diamond = shapely.Polygon([(0.0, -10.0), (10.0, 0.0), (0.0, 10.0), (-10.0, 0.0)])
-    turns = [(a, *_mask(diamond, a, gap, cell, 100.0, 100.0)) for a in (0.0, 45.0)]
+    turns = turned_masks(diamond, [0.0, 45.0], gap, cell, 100.0, 100.0)  # and 180, 225
+    assert [a for a, _, _ in turns] == [0.0, 45.0, 180.0, 225.0]
     assert turns[1][1].sum() < turns[0][1].sum()
-    page = _Page(60, 60, {})
-    page.cells[:] = 1.0
+    page = Page(60, 60, {})
+    page.taken[:] = True
     m = turns[1][1]
-    page.cells[5:5 + m.shape[0], 7:7 + m.shape[1]] -= m
-    options = _Options(turns, diamond, gap / 2 + cell * np.sqrt(0.5), cell)
-    (at, angle, _, _) = _best_spot(page, options)
-    assert at == (5, 7) and angle == 45.0
+    page.taken[5:5 + m.shape[0], 7:7 + m.shape[1]] &= ~m
+    page.free = int((~page.taken).sum())
+    options = Options(turns)
+    (iy, ix), angle, mask, _ = _best_spot(page, options)
+    assert angle in (45.0, 225.0)  # the square turns, the diamond's own do not fit
+    assert not page.taken[iy:iy + mask.shape[0], ix:ix + mask.shape[1]][mask].any()
     assert page.may_hold(options)

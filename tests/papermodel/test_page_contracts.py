@@ -294,32 +294,36 @@ def test_the_legend_shows_the_tab_entry_only_on_pages_with_label_tabs():
 
 
 def test_a_full_page_could_fit_nothing():
-    """The 2 x 2 block test refuses every mask on a page with no free cell, odd-sized too (the
+    """The block tests refuse every mask on a page with no free cell, odd-sized too (the
     cells beyond the page's edge are taken)."""
-    from weavecut.papermodel.packing import _core, _Page
-    for ny, nx in ((5, 5), (5, 6), (6, 5), (7, 9)):
-        page = _Page(ny, nx, {})
-        page.cells[:] = 1.0
-        for shape in ((1, 1), (2, 2), (1, 3), (3, 1)):
-            core = _core(np.ones(shape))
-            assert not page.could_fit(core), ((ny, nx), shape)
+    from weavecut.papermodel.packing_grid import Page, block_cores
+    for ny, nx in ((5, 5), (5, 6), (6, 5), (7, 9), (17, 23)):
+        page = Page(ny, nx, {})
+        page.taken[:] = True
+        for shape in ((1, 1), (2, 2), (1, 3), (3, 1), (5, 5), (9, 17)):
+            for k in (1, 2, 4, 8):
+                for core, _ in block_cores(np.ones(shape, dtype=bool), k):
+                    if core is not None and min(page.taken.shape) >= max(shape):
+                        assert not page.fits(k, [core])[0].any(), ((ny, nx), shape, k)
 
 
 def test_best_spot_tries_a_longer_turn_when_a_shorter_one_fits_nowhere():
     """Rows 1 and 3 of a 4 x 4 page taken: a 3-cell bar fits standing nowhere (though every
     2 x 2 block keeps a free cell) but fits lying in row 0; the spot is found and free."""
-    from weavecut.papermodel.packing import _best_spot, _Options, _Page
-    page = _Page(4, 4, {})
-    page.cells[[1, 3]] = 1.0
-    standing, lying = np.ones((3, 1)), np.ones((1, 3))
-    turns = [(90.0, standing, np.zeros(2)), (0.0, lying, np.zeros(2))]
-    opts = _Options(turns, shapely.box(0.0, 0.0, 3.0, 1.0), 0.1, 1.0)
-    assert opts.along[1][0] == 0  # the standing turn is tried first
+    from weavecut.papermodel.packing import _best_spot
+    from weavecut.papermodel.packing_grid import Options, Page
+    page = Page(4, 4, {})
+    page.taken[[1, 3]] = True
+    standing, lying = np.ones((3, 1), dtype=bool), np.ones((1, 3), dtype=bool)
+    turns = [(90.0, standing, np.zeros(2)), (0.0, lying, np.zeros(2)),
+             (270.0, standing, np.zeros(2)), (180.0, lying, np.zeros(2))]  # half-turned
+    opts = Options(turns)
+    assert opts.rank[1][0] == 0  # the standing turn is tried first
     spot = _best_spot(page, opts, axis=1)
     assert spot is not None
     (iy, ix), angle, mask, _ = spot
     assert angle == 0.0
-    assert page.cells[iy:iy + mask.shape[0], ix:ix + mask.shape[1]][mask > 0.5].max() < 0.5
+    assert not page.taken[iy:iy + mask.shape[0], ix:ix + mask.shape[1]][mask].any()
 
 
 def test_card_colour_swatches_lie_under_the_texts():

@@ -4,12 +4,13 @@ Every piece, turned by each allowed angle, becomes a mask on a grid of ``cell`` 
 whose centre lies within ``gap / 2 + cell / sqrt(2)`` of the piece. Two pieces whose masks share
 no cell are at least ``gap`` apart (a point nearer than ``gap / 2`` to both would put its
 cell in both masks), and a piece grown by ``gap / 2`` lies inside the union of its mask's cells,
-so a mask may reach ``gap / 2`` beyond the packing area. Where a mask fits on a page's occupancy
-grid is one FFT correlation per angle (the page's transform is kept and the masks' are cached,
-so each try is one inverse FFT). Cheaper tests that never refuse a place that fits come first:
-a page with too few free cells or no free disc as large as the piece's is skipped, a turn that
-fits nowhere on the page's 2 x 2 blocks is skipped, and turns go shortest along the filling
-axis first, so those longer than the best edge found are not tried.
+so a mask may reach ``gap / 2`` beyond the packing area. Where a mask fits on a page is
+narrowed by block tests that never refuse a place that fits (:mod:`.packing_grid`): one FFT
+correlation of every turn's core on 8 x 8 blocks of cells gives each turn's least possible
+edge along the filling axis, turns go least edge first and stop where none can beat the best
+place found, and a turn's core on 4 x 4 blocks leaves the places tried cell by cell, in order,
+the first that holds the mask being the turn's best (finer tests, down to an exact
+correlation, take over where many places fail). A page with too few free cells is skipped.
 
 Congruent pieces (the k copies of a module strip, the same ``kind``) are nested into a stack
 first. Stacks go largest first (by their pieces' convex hulls: a curled strip takes up more
@@ -29,12 +30,12 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 from numpy.typing import NDArray
-from scipy.fft import irfft2, next_fast_len, rfft2
-from scipy.ndimage import distance_transform_edt
 
 from ..numeric import affine, snap, transform
+from .packing_grid import BLOCKS, Options, Page, turned_masks
 
 ANGLE_STEP = 15.0  # degrees between the turns tried
+TRIES = 256  # places tried one by one before the next finer block test
 
 
 @dataclass(frozen=True)
@@ -49,30 +50,6 @@ class Place:
     def matrix(self) -> NDArray[np.float64]:
         """(3, 3) the affine map from the piece's frame to the packing area."""
         return affine(self.angle, self.shift)
-
-
-def _turned(shape, angle: float):
-    return shapely.transform(shape, transform(affine(angle)))
-
-
-def _mask(shape, angle: float, gap: float, cell: float, width: float, height: float):
-    """(mask, origin) of ``shape`` turned by ``angle``: origin is where cell (0, 0) of the mask
-    starts in the turned frame; None when the turned piece cannot fit the area at all."""
-    turned = _turned(shape, angle)
-    reach = gap / 2 + cell * np.sqrt(0.5)
-    x0, y0, x1, y1 = turned.bounds
-    nx = int(np.ceil((x1 - x0 + 2 * reach) / cell))
-    ny = int(np.ceil((y1 - y0 + 2 * reach) / cell))
-    if nx > width // cell or ny > height // cell:
-        return None
-    origin = np.array([x0 - reach, y0 - reach])
-    xs = origin[0] + (np.arange(nx) + 0.5) * cell
-    ys = origin[1] + (np.arange(ny) + 0.5) * cell
-    gx, gy = np.meshgrid(xs, ys)
-    grown = shapely.buffer(turned, reach / np.cos(np.pi / 16), quad_segs=4)  # holds the disc
-    shapely.prepare(grown)
-    mask = shapely.contains_xy(grown, gx, gy)
-    return mask.astype(np.float64), origin
 
 
 def nest_offset(shape, gap: float, step: float = 0.25) -> NDArray[np.float64]:
@@ -145,12 +122,7 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 0.
             stack = shapely.union_all([shapely.transform(shapes[members[0]],
                                                          lambda xy, j=j: xy + j * move)
                                        for j in range(len(members))])
-            half = [(a, _mask(stack, a, gap, cell, width, height)) for a in angles if a < 180]
-            # the turn by a + 180 is the turn by a read backwards (the grid is symmetric)
-            turns = [(a, *m) for a, m in half if m is not None] + [
-                (a + 180.0, m[0][::-1, ::-1], -m[1] - np.array(m[0].shape[::-1]) * cell)
-                for a, m in half if m is not None]
-            masks[key] = _Options(turns, stack, gap / 2 + cell * np.sqrt(0.5), cell)
+            masks[key] = Options(turned_masks(stack, angles, gap, cell, width, height))
         return masks[key]
 
     hulls = shapely.area(shapely.convex_hull(shapes))
@@ -204,7 +176,7 @@ def _fill(units, shapes, kinds, options, area, nx: int, ny: int, cell: float, fi
         return (not first.intersection(u[0]), area(u), u[0][0])
 
     queue = sorted(units, key=order)
-    pages: list[_Page] = []
+    pages: list[Page] = []
     full: set = set()
     out: list[Place | None] = [None] * len(shapes)
     while queue:  # stacks of pieces
@@ -229,7 +201,7 @@ def _fill(units, shapes, kinds, options, area, nx: int, ny: int, cell: float, fi
                                  f"area at no angle")
             if most is not None and len(pages) == most:
                 return None  # no better than a packing found before
-            pages.append(_Page(ny, nx, spectra))
+            pages.append(Page(ny, nx, spectra))
             spot = len(pages) - 1, _best_spot(pages[-1], opts, axis)
         number, ((iy, ix), angle, mask, origin) = spot
         pages[number].add(mask, iy, ix)
@@ -241,122 +213,79 @@ def _fill(units, shapes, kinds, options, area, nx: int, ny: int, cell: float, fi
     return out
 
 
-def _best_spot(grid: "_Page", options, axis: int = 1):
+def _best_spot(grid: Page, options, axis: int = 1):
     """((iy, ix), angle, mask, origin) of the place on ``grid``, among the turns in ``options``,
     whose far edge along ``axis`` (1: the right edge, filling columns from the left; 0: the top
-    edge, filling rows from the bottom) is least, then the one nearest the origin across it;
-    None if the piece fits nowhere. The turns go shortest along ``axis`` first, so the turns
-    that cannot beat the best edge found (they are longer than it) are left untried."""
+    edge, filling rows from the bottom) is least, then the one nearest the origin across it,
+    then the turn shortest along ``axis``; None if the piece fits nowhere.
+
+    The coarsest block test of every turn at once gives each turn's least possible edge; the
+    turns go least edge first and stop where none can beat the best place found. A turn's
+    places are those its next block test leaves, tried cell by cell in order; after ``TRIES``
+    that fail, the next finer test cuts down the rest, the last (on single cells) exact."""
     best, best_key = None, None
-    for t in options.along[axis]:  # the allowed turns
-        (angle, mask, origin), core = options[t], options.cores[t]
-        if best_key is not None and best_key < (mask.shape[axis], 0):
+    coarse = grid.fits(BLOCKS[0], options.cores)
+    bounds = []
+    for t, fits in enumerate(coarse):
+        edge = 0  # the least place along axis the coarse test leaves
+        if fits is not None:
+            lines = np.flatnonzero(fits.any(axis=1 - axis))  # block rows (axis 0) or columns
+            if not len(lines):
+                continue
+            edge = max(BLOCKS[0] * (int(lines[0]) - options.offsets[t][axis]), 0)
+        bounds.append((edge + options[t][1].shape[axis], options.rank[axis][t], t))
+    for edge, r, t in sorted(bounds):
+        if best_key is not None and edge > best_key[0]:
             break
-        if not grid.could_fit(core):
-            continue
-        free = grid.correlate(mask) < 0.5
-        if not free.any():
-            continue
-        at = np.nonzero(free)  # (iy, ix) of the free places
-        j = np.lexsort((at[1 - axis], at[axis]))[0]
-        key = (int(at[axis][j] + mask.shape[axis]), int(at[1 - axis][j]))
-        if best_key is None or key < best_key:
-            best, best_key = ((int(at[0][j]), int(at[1][j])), angle, mask, origin), key
+        last = None  # the key of the last place tried
+        test = (1, None, (0, 0)) if coarse[t] is None else (  # the finest test with a core
+            BLOCKS[0], coarse[t], options.offsets[t])
+        for k in BLOCKS[1:]:
+            core, offset = options.core(k, t)
+            if (fits := grid.fits(k, [core])[0]) is not None:
+                test = (k, fits, offset)
+            tries = TRIES if k > 1 else -1
+            last, at, more = _try(grid, options[t][1], test, axis, (r, best_key, last), tries)
+            if not more:
+                break
+        if at is not None:
+            best, best_key = (at, *options[t]), last
     return best
 
 
-class _Options(list):
-    """The turns (angle, mask, origin) of ``shape`` (a piece or stack), with ``along[axis]`` their
-    indices shortest along that axis first (0: y, 1: x), and what every turn needs of a page:
-    ``cells`` free cells (as many as its mask holds, at least the fewest of any turn), and a
-    free disc of ``radius`` cells.
-    The cells within
-    ``reach`` of the piece are in its mask, so the centres within ``r + reach`` of the centre of
-    its largest inscribed circle (radius ``r``) are, and the mask's cell nearest that centre is at
-    least ``(r + reach) / cell - sqrt(1 / 2)`` cells from any cell outside the mask, at any
-    turn."""
-
-    def __init__(self, turns, shape, reach: float, cell: float):
-        super().__init__(turns)
-        self.along = [sorted(range(len(turns)), key=lambda t: (turns[t][1].shape[axis],
-                                                               turns[t][0])) for axis in (0, 1)]
-        self.cores = [_core(m) for _, m, _ in self]
-        self.cells = min((float(m.sum()) for _, m, _ in turns), default=0.0)
-        with np.errstate(all="ignore"):  # GEOS on subnormal coordinates
-            r = float(shapely.length(shapely.maximum_inscribed_circle(shape, 0.1 * cell)))
-        r = min(np.nan_to_num(r), np.sqrt(shape.area / np.pi))  # no circle beats the area
-        self.radius = (r + reach) / cell - np.sqrt(0.5)
+def _try(grid, mask, test, axis: int, keys, tries: int):
+    """(last, at, more): the first place ``at`` (iy, ix) that holds ``mask`` among those
+    ``test`` leaves (see :func:`_places`), trying at most ``tries`` (-1: all) of those whose
+    key comes after ``last`` (None: from the first) and before ``bound``, ``keys`` being (rank,
+    bound, last) and a place's key (its edge along ``axis``, its place across, rank); None if
+    none holds it. ``last`` is the key last tried, ``more`` whether untried places remain."""
+    rank, bound, last = keys
+    for iy, ix in _places(*test, mask.shape, grid.taken.shape, axis):
+        key = ((iy, ix)[axis] + mask.shape[axis], (iy, ix)[1 - axis], rank)
+        if bound is not None and key >= bound:
+            break
+        if last is not None and key <= last:
+            continue  # tried before
+        if tries == 0:
+            return last, None, True
+        tries, last = tries - 1, key
+        if not (grid.taken[iy:iy + mask.shape[0], ix:ix + mask.shape[1]] & mask).any():
+            return key, (iy, ix), False
+    return last, None, False
 
 
-def _core(mask):
-    """The 2 x 2 blocks of cells that hold a cell of ``mask`` wherever it sits on the grid of
-    blocks (at each of the four parities of its place), trimmed to their bounding box; None if
-    there are none."""
-    my, mx = mask.shape
-    h, w = (my + 2) // 2, (mx + 2) // 2
-    core = np.ones((h, w), dtype=bool)
-    for py in (0, 1):  # the parities of the place
-        for px in (0, 1):
-            grid = np.zeros((2 * h, 2 * w), dtype=bool)
-            grid[py:py + my, px:px + mx] = mask > 0.5
-            core &= grid.reshape(h, 2, w, 2).any(axis=(1, 3))
-    rows, cols = np.flatnonzero(core.any(axis=1)), np.flatnonzero(core.any(axis=0))
-    if not len(rows):
-        return None
-    return core[rows[0]:rows[-1] + 1, cols[0]:cols[-1] + 1].astype(np.float64)
-
-
-def _inscribed(mask) -> float:
-    """The largest distance (cells) from a cell of ``mask`` to the nearest cell outside it."""
-    return float(distance_transform_edt(np.pad(mask, 1)).max())
-
-
-class _Page:
-    """A page's occupancy grid and its Fourier transform, kept in step (one FFT per placed
-    piece, one inverse FFT per mask tried)."""
-
-    def __init__(self, ny: int, nx: int, spectra: dict):
-        self.cells = np.zeros((ny, nx), dtype=np.float32)
-        self.spectra = spectra  # mask spectra, shared by the pages of one packing
-        self.shape = (next_fast_len(ny), next_fast_len(nx))  # no wrap where it is read
-        self._fft = self._room = self._blocks = None
-
-    def may_hold(self, options: _Options) -> bool:
-        """False when no turn in ``options`` can fit anywhere: too few free cells, or no free
-        disc as large as the one every turn holds (a mask that fits leaves its disc free)."""
-        if self.cells.size - self.cells.sum() < options.cells:
-            return False
-        if self._room is None:
-            self._room = _inscribed(self.cells < 0.5)
-        return self._room >= options.radius - 1e-9
-
-    def could_fit(self, core) -> bool:
-        """False when a mask whose :func:`_core` is ``core`` fits nowhere, found on the grid of
-        2 x 2 blocks (a quarter of the work): a block is taken when all its cells are, and a
-        mask that fits leaves every block of its core with a free cell."""
-        if core is None:
-            return True
-        if self._blocks is None:
-            ny, nx = self.cells.shape
-            taken = np.pad(self.cells >= 0.5, ((0, ny % 2), (0, nx % 2)), constant_values=True)
-            blocks = _Page(*(np.array(taken.shape) // 2), self.spectra)
-            blocks.cells = taken.reshape(len(taken) // 2, 2, -1, 2).all(axis=(1, 3)).astype(
-                np.float32)
-            self._blocks = blocks
-        return bool((self._blocks.correlate(core) < 0.5).any())
-
-    def add(self, mask, iy: int, ix: int) -> None:
-        self.cells[iy:iy + mask.shape[0], ix:ix + mask.shape[1]] += mask
-        self._fft = self._room = self._blocks = None
-
-    def correlate(self, mask):
-        """sum over (i, j) of cells[y + i, x + j] * mask[i, j] for every (y, x) where the mask
-        lies inside the page."""
-        if self._fft is None:
-            self._fft = rfft2(self.cells, self.shape)
-        key = id(mask)  # masks live as long as the packing
-        if key not in self.spectra:
-            self.spectra[key] = (mask, np.conj(rfft2(mask.astype(np.float32), self.shape)))
-        full = irfft2(self._fft * self.spectra[key][1], self.shape)
-        ny, nx = self.cells.shape
-        return full[:ny - mask.shape[0] + 1, :nx - mask.shape[1] + 1]
+def _places(k: int, fits, offset, size, page, axis: int):
+    """The cells (iy, ix) where a mask of ``size`` (rows, columns) may start on a page of
+    ``page`` cells: those of the k x k blocks at the places ``fits`` leaves less ``offset``
+    (see :func:`block_cores`; None: everywhere), least along ``axis`` first, then across."""
+    last = [p - s for p, s in zip(page, size)]  # the farthest start
+    fits = np.ones((last[0] + 1, last[1] + 1), dtype=bool) if fits is None else fits
+    fits = fits if axis == 1 else fits.T  # (across, along)
+    for b in np.flatnonzero(fits.any(axis=0)).tolist():
+        across = (np.flatnonzero(fits[:, b]) - offset[1 - axis])[:, None] * k + np.arange(k)
+        across = across[(across >= 0) & (across <= last[1 - axis])].tolist()
+        for along in range(max((b - offset[axis]) * k, 0), (b - offset[axis] + 1) * k):
+            if along > last[axis]:
+                return
+            for c in across:
+                yield (c, along) if axis == 1 else (along, c)
