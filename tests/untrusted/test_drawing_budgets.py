@@ -1,0 +1,150 @@
+"""Hostile drawings: budgets before the work (elements after ``<use>``, path data, points after
+flattening, DXF lines and entities, curve numbers, cells of a meshed outline), and the internal
+errors a drawing once caused.
+
+The corpus (``corpus/*.svg``, ``corpus/*.dxf``) holds the small cases, each starting with what
+it must give (SVG: ``<?expect ...?>`` and ``<?options ...?>``; DXF: 999 comment groups
+``expect: ...`` and ``options: ...``); the large ones are made here. Every case runs under
+``bounded``: had its guard gone, it would run for minutes or take gigabytes.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import re
+import resource
+import signal
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+
+from weavecut.mesh_geometry import signed_areas
+from weavecut.readers.drawing import read_drawing
+
+from .helpers import files_under, refused, run
+
+CORPUS = Path(__file__).with_name("corpus")
+DRAWINGS = sorted([*CORPUS.glob("*.svg"), *CORPUS.glob("*.dxf")])
+
+
+class Overran(BaseException):
+    """Raised by ``bounded`` (a BaseException, so no ``except Exception`` turns it into a
+    clean refusal)."""
+
+
+@contextlib.contextmanager
+def bounded(seconds: float = 60, memory: int = 3 * 2**30):
+    """Run the block for at most ``seconds`` and with at most ``memory`` bytes more address
+    space than now: a missing guard fails the test instead of hanging or swapping the machine
+    (these inputs took minutes or tens of GB unguarded; refused, each takes well under one)."""
+    def overran(signum, frame):
+        raise Overran(f"still running after {seconds} s")
+
+    limits = resource.getrlimit(resource.RLIMIT_AS)
+    status = Path("/proc/self/status")
+    used = (int(re.search(r"VmSize:\s*(\d+) kB", status.read_text())[1]) * 1024
+            if status.exists() else None)
+    previous = signal.signal(signal.SIGALRM, overran)
+    signal.setitimer(signal.ITIMER_REAL, seconds)
+    if used is not None:
+        resource.setrlimit(resource.RLIMIT_AS, (used + memory, limits[1]))
+    try:
+        yield
+    finally:
+        resource.setrlimit(resource.RLIMIT_AS, limits)
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+def header(path: Path) -> dict[str, str]:
+    """``expect`` and ``options`` from the first lines of a corpus drawing."""
+    found = (re.fullmatch(r"(?:<\?)?(expect|options):? (.*?)(?:\?>)?", line)
+             for line in path.read_text(encoding="utf-8").splitlines()[:8])
+    return {m[1]: m[2] for m in found if m}
+
+
+def refused_quickly(path: Path, *options: str, needles=()) -> str:
+    with bounded():
+        result = run("stats", path, "--levels", "0", *options)
+    return refused(result, path.name, *needles)
+
+
+def refused_when_made(folder: Path, name: str, text: str, needle: str) -> None:
+    path = folder / name
+    path.write_text(text)
+    refused_quickly(path, needles=[needle])
+    assert files_under(folder) == {name}
+
+
+@pytest.mark.parametrize("path", DRAWINGS, ids=lambda p: p.name)
+def test_corpus_drawing(path):
+    meta = header(path)
+    assert "expect" in meta and path.stat().st_size < 20_000
+    refused_quickly(path, *meta.get("options", "").split(), needles=[meta["expect"]])
+
+
+def test_corpus_headers_are_read(tmp_path):
+    """Every drawing states what it must give, and the SVG headers leave the XML well formed
+    (a ``--`` in an XML comment would make it unreadable for the wrong reason)."""
+    for path in DRAWINGS:
+        assert header(path)["expect"], path
+        if path.suffix == ".svg":
+            ET.parse(path)
+    svg, dxf_file = tmp_path / "a.svg", tmp_path / "a.dxf"
+    svg.write_text("<?expect --cell 1 mm?>\n<?options --mesh quad?>\n<!-- why -->\n<svg/>\n")
+    dxf_file.write_text("999\nexpect: degree 50\n999\noptions: --flatten 1mm\n0\nEOF\n")
+    assert header(svg) == {"expect": "--cell 1 mm", "options": "--mesh quad"}
+    assert header(dxf_file) == {"expect": "degree 50", "options": "--flatten 1mm"}
+
+
+# --- SVG --------------------------------------------------------------------------------
+
+SVG = ('<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" '
+       'viewBox="0 0 100 100">{}</svg>')
+LARGE_SVG = {  # made here: a file each of 0.3 to 60 MB
+    "path-1e6-segments.svg": (SVG.format('<path d="M0 0' + " l1 0 l0 1" * 500_000 + ' z"/>'),
+                              "more than 300,000 numbers and commands of path data"),
+    "rects-1e5.svg": (SVG.format('<rect width="1" height="1"/>' * 100_000),
+                      "more than 10,000 elements; at most 10,000 are read"),
+    "polygon-2e5-points.svg": (SVG.format('<polygon points="' + "1,2 " * 200_000 + '"/>'),
+                               "more than 300,000 numbers and commands of path data"),
+    "spaces-60MB.svg": (SVG.format('<path d="M0 0' + " " * 60_000_000 + 'L10 0 L10 10 Z"/>'),
+                        "more than 9,600,000 characters of path data"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(LARGE_SVG))
+def test_large_svg_is_refused_before_the_work(tmp_path, name):
+    refused_when_made(tmp_path, name, *LARGE_SVG[name])
+
+
+def test_a_long_tag_is_read_in_one_piece(tmp_path):
+    """50 MB of comment and 9 MB of spaces in a path: read at once, not 16 KiB at a time
+    (expat reads a tag across n reads n times over: minutes for this file)."""
+    path = tmp_path / "long.svg"
+    path.write_text(SVG.format('<!--' + "x" * 50_000_000 + '--><path d="M0 0' + " " * 9_000_000
+                               + 'L10 0 L10 10 Z"/>'))
+    with bounded():
+        result = run("stats", path, "--levels", "0", "--mesh", "none")
+    assert result.exit_code == 0, result.output
+    assert "1 faces, 3 vertices" in result.output
+
+
+def test_the_point_budget_is_for_the_whole_drawing(tmp_path):
+    """Circles of 448 points each at --flatten 0.001mm: one is well within the budget, the
+    224th passes it."""
+    path = tmp_path / "circles.svg"
+    path.write_text(SVG.format('<circle cx="50" cy="50" r="40"/>' * 300))
+    refused_quickly(path, "--flatten", "0.001mm", needles=["give 100,352 points; at most "
+                                                           "100,000 are read"])
+    path.write_text(SVG.format('<circle cx="50" cy="50" r="40"/>'))
+    assert run("stats", path, "--levels", "0", "--flatten", "0.001mm").exit_code == 0
+
+
+def test_a_1e_300_viewbox_of_a_1e_301_rect_reads_fine(tmp_path):
+    """Extreme but consistent numbers: the viewBox scales the rect up to 10 mm."""
+    path = tmp_path / "x.svg"
+    path.write_text('<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" '
+                    'viewBox="0 0 1e-300 1e-300"><rect width="1e-301" height="1e-301"/></svg>')
+    assert signed_areas(read_drawing(path, mesh="none")).sum() == pytest.approx(100.0)
