@@ -17,9 +17,13 @@ import signal
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+import ezdxf
+import numpy as np
 import pytest
+from ezdxf import path as dxfpath
 
 from weavecut.mesh_geometry import signed_areas
+from weavecut.readers import dxf
 from weavecut.readers.drawing import read_drawing
 
 from .helpers import files_under, refused, run
@@ -148,3 +152,69 @@ def test_a_1e_300_viewbox_of_a_1e_301_rect_reads_fine(tmp_path):
     path.write_text('<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm" '
                     'viewBox="0 0 1e-300 1e-300"><rect width="1e-301" height="1e-301"/></svg>')
     assert signed_areas(read_drawing(path, mesh="none")).sum() == pytest.approx(100.0)
+
+
+# --- DXF --------------------------------------------------------------------------------
+
+DXF = ("0\nSECTION\n2\nHEADER\n9\n$ACADVER\n1\nAC1015\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n"
+       "0\nSECTION\n2\nENTITIES\n{}0\nENDSEC\n0\nEOF\n")
+LINE = "0\nLINE\n8\n0\n10\n0\n20\n0\n11\n1\n21\n1\n"
+CIRCLE = "0\nCIRCLE\n8\n0\n10\n0\n20\n0\n40\n1\n"
+
+
+def fit_spline(n: int) -> str:
+    return ("0\nSPLINE\n100\nAcDbEntity\n8\n0\n100\nAcDbSpline\n70\n0\n71\n3\n"
+            f"74\n{n}\n" + "".join(f"11\n{k}\n21\n{k % 7}\n31\n0\n" for k in range(n)))
+
+
+LARGE_DXF = {  # made here: a file each of 0.3 to 26 MB
+    "lines-1e6.dxf": (DXF.format(LINE * 1_000_000), "12,000,022 lines of DXF text; at most "
+                                                     "500,000 are read"),
+    "circles-2e5.dxf": (DXF.format(CIRCLE * 200_000), "2,000,022 lines of DXF text"),
+    "circles-2e4.dxf": (DXF.format(CIRCLE * 20_000), "20,000 entities (LWPOLYLINE POLYLINE "
+                                                     "CIRCLE ELLIPSE SPLINE LINE ARC); at most "
+                                                     "10,000 are read"),
+    "fit-points-5000.dxf": (DXF.format(fit_spline(5000)), "the splines have more than 4,000 "
+                                                          "fit points in all"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(LARGE_DXF))
+def test_large_dxf_is_refused_before_the_work(tmp_path, name):
+    refused_when_made(tmp_path, name, *LARGE_DXF[name])
+
+
+def spline_text(scale: float) -> str:
+    points = [(0, 0), (40, 0), (40, 40), (0, 40), (0, 0)]
+    knots = [k * scale for k in (0, 0, 0, 0, 0.5, 1, 1, 1, 1)]
+    return ("0\nSPLINE\n100\nAcDbEntity\n8\n0\n100\nAcDbSpline\n70\n1\n71\n3\n72\n9\n73\n5\n"
+            + "".join(f"40\n{k!r}\n" for k in knots)
+            + "".join(f"10\n{x}\n20\n{y}\n30\n0\n" for x, y in points))
+
+
+def test_knots_of_1e300_read_as_the_same_spline(tmp_path):
+    """Knots are parameters: scaled by 1e300 they draw the same curve."""
+    rings = []
+    for scale in (1.0, 1e300):
+        path = tmp_path / "s.dxf"
+        path.write_text(DXF.format(spline_text(scale)))
+        rings.append(dxf.read_rings(path, 0.2)[0][0].points)
+    assert rings[0] == pytest.approx(rings[1])
+
+
+def test_the_flattening_estimate_follows_ezdxf():
+    """The points budget of a DXF is counted before ezdxf flattens: within a factor of two of
+    what it gives (it halves a curve until the chord is close enough)."""
+    msp = ezdxf.new().modelspace()
+    rng = np.random.default_rng(3)
+    entities = [msp.add_circle((0, 0), r) for r in (0.5, 50, 500)]
+    entities += [msp.add_ellipse((0, 0), (r, 0), 0.3) for r in (1, 300)]
+    entities += [msp.add_open_spline(rng.uniform(-50, 50, (12, 2)), degree=d) for d in (2, 3, 5)]
+    entities.append(msp.add_lwpolyline([(0, 0, 0.5), (10, 0, 2), (10, 10, -1), (0, 10)],
+                                       format="xyb", close=True))
+    for tolerance in (1.0, 0.2, 0.01, 1e-4):
+        for entity in entities:
+            p = dxfpath.make_path(entity)
+            estimate = dxf._flattened_count(p, tolerance, 1.0, "here")
+            actual = len(list(p.flattening(tolerance)))
+            assert estimate / 2 <= actual <= 2 * estimate, (entity.dxftype(), tolerance)

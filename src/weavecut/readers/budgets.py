@@ -29,6 +29,14 @@ MAX_POINTS = 100_000
 """Points of all outlines after curves are flattened: each ring is checked, nested and welded
 by shapely and scipy, which a 100,000-point ring keeps within seconds (a self-touching one
 costs GEOS about 0.2 ms a point); at the default 0.2 mm a 1 m circle has 111 points."""
+MAX_FIT_POINTS = 4_000
+"""Fit points of all DXF splines: ezdxf interpolates them with a dense solve (4,000 points
+take 2 s, 16,000 a minute)."""
+MAX_DXF_LINES = 500_000
+"""Lines of DXF text: ezdxf parses about 70,000 tags (two lines each) a second before any
+entity can be counted; a LWPOLYLINE of 100,000 vertices fits."""
+MAX_DEGREE = 10
+"""SPLINE degree: ezdxf evaluates orders up to 11; CAD programs draw degree 3 (rarely 5)."""
 MAX_COORDINATE = 1e6
 """mm (1 km, the largest length an option takes): beyond it, squares of coordinates lose
 every digit a weld or an area needs, and 1e300 overflows."""
