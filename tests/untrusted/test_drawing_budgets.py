@@ -11,6 +11,7 @@ it must give (SVG: ``<?expect ...?>`` and ``<?options ...?>``; DXF: 999 comment 
 from __future__ import annotations
 
 import contextlib
+import math
 import re
 import resource
 import signal
@@ -20,11 +21,14 @@ from pathlib import Path
 import ezdxf
 import numpy as np
 import pytest
+import shapely
 from ezdxf import path as dxfpath
 
+from weavecut.errors import MeshError
 from weavecut.mesh_geometry import signed_areas
-from weavecut.readers import dxf
+from weavecut.readers import dxf, outline_mesh
 from weavecut.readers.drawing import read_drawing
+from weavecut.readers.tessellations import _lattice
 
 from .helpers import files_under, refused, run
 
@@ -218,3 +222,61 @@ def test_the_flattening_estimate_follows_ezdxf():
             estimate = dxf._flattened_count(p, tolerance, 1.0, "here")
             actual = len(list(p.flattening(tolerance)))
             assert estimate / 2 <= actual <= 2 * estimate, (entity.dxftype(), tolerance)
+
+
+# --- meshing an outline ---------------------------------------------------------------------
+
+def test_an_over_budget_mesh_is_refused_before_any_cell_is_made(monkeypatch):
+    """The estimate comes first: the tessellation is never started."""
+    def never(*args):
+        raise AssertionError("cells were made")
+
+    monkeypatch.setattr(outline_mesh, "_relaxed_cells", never)
+    monkeypatch.setattr(outline_mesh, "_triangles", never)
+    square, sliver = shapely.box(0, 0, 100, 100), shapely.box(0, 0, 100, 0.3)
+    for kind, region, cell, needle in [
+            ("quad", square, 0.2, "would give about 250,000 faces (10,000 mm²) and 2,005 "
+                                  "outline points; at most 10,000 in all"),
+            ("tri", square, 0.2, "250,000 faces"),
+            ("voronoi", sliver, 0.001, "30,000,000 faces"),
+            ("hex", square, 0.0, "--cell 0 mm is not a positive length"),
+            ("hex", shapely.Polygon([(0, 0), (10, 10), (10, 0), (0, 10)]), None,
+             "the outline encloses no area")]:
+        with pytest.raises(MeshError, match=re.escape(needle)):
+            outline_mesh.mesh_outline(region, kind, cell)
+
+
+def test_a_thin_diagonal_outline_is_refused_by_its_bounding_box():
+    """A band 1414 mm long and 0.5 mm wide at 45 degrees: 873 cells of 0.9 mm inside it, 1.2
+    million over its bounding box."""
+    band = shapely.LineString([(0, 0), (1000, 1000)]).buffer(0.25, cap_style="flat")
+    with pytest.raises(MeshError, match=r"^--cell 0.9 mm would lay 1,239,891 cells over the "
+                                        r"outline's bounding box \(1000 x 1000 mm\) for 873 "
+                                        r"inside it; at most 1,000,000: give a larger --cell$"):
+        outline_mesh.mesh_outline(band, "quad", 0.9)
+
+
+def test_the_lattice_covers_the_bounding_box_only():
+    """The lattice points inside an outline are those of the old lattice over a square twice
+    the largest side around it (16 million points for a 100 x 0.01 mm sliver), in the same
+    order: meshes of valid drawings do not change."""
+    def old(kind, region, spacing):
+        x0, y0, x1, y1 = region.bounds
+        a = np.array([spacing, 0.0])
+        b = (np.array([0.0, spacing]) if kind == "quad"
+             else spacing * np.array([0.5, math.sqrt(3) / 2]))
+        n = int(math.ceil(2 * max(x1 - x0, y1 - y0) / spacing)) + 2
+        i, j = np.meshgrid(np.arange(-n, n + 1), np.arange(-n, n + 1))
+        points = i.reshape(-1, 1) * a + j.reshape(-1, 1) * b + (a + b) / 2 + (x0, y0)
+        return points[shapely.contains_xy(region, *points.T)]
+
+    rng = np.random.default_rng(7)
+    regions = [shapely.box(0, 0, 100, 0.5), shapely.box(-3, 7, 4, 90),
+               shapely.Point(5, 5).buffer(40),
+               shapely.box(0, 0, 50, 50).difference(shapely.box(10, 10, 20, 20)),
+               *(shapely.Polygon(rng.uniform(-50, 50, (3, 2))) for _ in range(12))]
+    for region in regions:
+        for kind in ("quad", "hex"):
+            for spacing in (0.7, 3.7, 13.0, 60.0):
+                got, want = _lattice(kind, region, spacing), old(kind, region, spacing)
+                assert got.shape == want.shape and (got == want).all(), (kind, spacing)

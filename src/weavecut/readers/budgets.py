@@ -40,6 +40,14 @@ MAX_DEGREE = 10
 MAX_COORDINATE = 1e6
 """mm (1 km, the largest length an option takes): beyond it, squares of coordinates lose
 every digit a weld or an area needs, and 1e300 overflows."""
+MAX_CELLS = 10_000
+"""Faces plus outline points of a meshed outline: the mesher clips, cuts and merges cells one
+by one, about 1.5 ms each (4 ms for voronoi), so 15 to 40 s; the snub levels multiply the faces
+anyway (mesh coarser and add a level)."""
+MAX_GRID = 1_000_000
+"""Lattice points or random seeds laid over an outline's bounding box before it is clipped (a
+thin diagonal outline fills little of its box): 16 MB and under a second."""
+
 
 def amount(n: float) -> str:
     """``n`` for a message: '12,345', or '1.2e+40' when it has too many digits to read."""
