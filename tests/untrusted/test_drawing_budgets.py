@@ -23,6 +23,8 @@ import numpy as np
 import pytest
 import shapely
 from ezdxf import path as dxfpath
+from hypothesis import HealthCheck, event, given, settings
+from hypothesis import strategies as st
 
 from weavecut.errors import MeshError
 from weavecut.mesh_geometry import signed_areas
@@ -30,6 +32,7 @@ from weavecut.readers import dxf, outline_mesh
 from weavecut.readers.drawing import read_drawing
 from weavecut.readers.tessellations import _lattice
 
+from . import strategies as ws
 from .helpers import files_under, refused, run
 
 CORPUS = Path(__file__).with_name("corpus")
@@ -280,3 +283,26 @@ def test_the_lattice_covers_the_bounding_box_only():
             for spacing in (0.7, 3.7, 13.0, 60.0):
                 got, want = _lattice(kind, region, spacing), old(kind, region, spacing)
                 assert got.shape == want.shape and (got == want).all(), (kind, spacing)
+
+
+# --- any hostile drawing ------------------------------------------------------------------
+
+@settings(max_examples=max(10, settings.default.max_examples // 2),
+          suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large,
+                                 HealthCheck.function_scoped_fixture])
+@given(ws.hostile_drawings(), st.sampled_from([[], ["--mesh", "none"], ["--flatten", "1e-6mm"],
+                                               ["--mesh", "quad", "--cell", "0.5mm"]]))
+def test_hostile_drawing_is_read_or_refused_in_one_line(tmp_path, drawing, options):
+    """Hostile numbers, deep <use>, many elements: read fine or refused in one line, within
+    the bound, never an internal error (nor 'out of memory' from a small drawing)."""
+    suffix, text = drawing
+    path = tmp_path / f"hostile{suffix}"
+    path.write_text(text)
+    with bounded():
+        result = run("stats", path, "--levels", "0", *options)
+    event(f"{suffix} exit {result.exit_code}")
+    if result.exit_code == 0:
+        assert "Traceback" not in result.output and "internal error" not in result.output
+        return
+    line = refused(result)
+    assert "out of memory" not in line, line
