@@ -62,8 +62,9 @@ def test_refusals_are_one_line(kind):
     with pytest.raises(MeshError, match=r"^the outline \(100 mm²\) is smaller than one cell "
                                         r"\(14.2 mm across\); give a smaller --cell$"):
         outline_mesh.mesh_outline(square, kind, 14.2)
-    with pytest.raises(MeshError, match=r"^--cell 0.009 mm would give about 1,234,568 faces; "
-                                        r"give a larger --cell$"):
+    with pytest.raises(MeshError, match=r"^--cell 0.009 mm would give about 1,234,568 faces "
+                                        r"\(100 mm²\) and [\d,]+ outline points; at most "
+                                        r"10,000 in all: give a larger --cell$"):
         outline_mesh.mesh_outline(square, kind, 0.009)
 
 

@@ -4,10 +4,10 @@ DXF outlines as faces, or one outline meshed inside); ``mesh_io`` opens the file
 Modules: ``obj`` (with ``obj_tokens``) and ``mesh_json`` parse mesh files within
 ``MAX_FACES`` and ``MAX_VERTICES``; ``svg`` and ``dxf`` read closed outlines in mm, ``rings``
 checks them, finds holes and welds faces, ``outline_mesh`` meshes an outline (from the cells
-``tessellations`` lays out), ``drawing`` puts them together (``drawing.read_drawing``). This
-module holds only the names they share, so that ``mesh_io`` and the command line load without
-the drawing readers (svgelements, ezdxf's reader and scipy's spatial tools take a while to
-import).
+``tessellations`` lays out), ``drawing`` puts them together (``drawing.read_drawing``), all
+within the limits of ``budgets``. This module holds only the names they share, so that
+``mesh_io`` and the command line load without the drawing readers (svgelements, ezdxf's reader
+and scipy's spatial tools take a while to import).
 """
 
 from __future__ import annotations

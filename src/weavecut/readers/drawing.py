@@ -54,6 +54,8 @@ def read_drawing(path: str | Path, *, flatten: float = DEFAULT_FLATTEN,
     try:
         if pieces:
             found = enclosed_faces(found, pieces, flatten)
+            if not found:  # lines of no length
+                raise MeshFileError("its lines and arcs enclose no face")
         rings = checked(found, flatten)
         parent = nesting(rings, flatten)
         outer = np.flatnonzero(parent < 0)

@@ -28,6 +28,7 @@ from ..mesh import Mesh
 from ..mesh_geometry import corner_angles, signed_areas
 from ..validation import validate
 from . import KINDS
+from .budgets import MAX_CELLS, MAX_GRID, amount
 from .rings import close_groups, split_t_junctions, weld
 from .tessellations import SPACING, _densified, _relaxed_cells, _triangles
 
@@ -64,13 +65,15 @@ def mesh_outline(region, kind: str = "hex", cell: float | None = None,
     """
     if kind not in KINDS:
         raise MeshError(f"unknown mesh kind {kind!r}; choose one of {', '.join(KINDS)}")
+    if not region.area > 0:
+        raise MeshError("the outline encloses no area")
     cell = default_cell(region) if cell is None else cell
+    if not 0 < cell < math.inf:
+        raise MeshError(f"--cell {cell:g} mm is not a positive length")
     if region.area < 0.5 * cell ** 2:
         raise MeshError(f"the outline ({region.area:.4g} mm²) is smaller than one cell "
                         f"({cell:.4g} mm across); give a smaller --cell")
-    if region.area > 1e6 * cell ** 2:
-        raise MeshError(f"--cell {cell:.4g} mm would give about {region.area / cell**2:,.0f} "
-                        "faces; give a larger --cell")
+    _check_budget(region, kind, cell, tolerance)
     if runs:
         region = _rings_mapped(region, lambda ring: _even_runs(ring, EDGE.get(kind, 0.6) * cell))
     if kind == "tri":
@@ -101,6 +104,25 @@ def mesh_outline(region, kind: str = "hex", cell: float | None = None,
             return mesh
         error = MeshError(f"the faces leave {gaps} gap(s) between them")
     raise MeshError(f"meshing the outline failed ({error}); try another --cell")
+
+
+def _check_budget(region, kind: str, cell: float, tolerance: float) -> None:
+    """Refuse, before any cell is made, an outline whose faces and outline points (simplified
+    to the tolerance, then cut to a cell's edge) would pass MAX_CELLS, or whose bounding box
+    would hold more than MAX_GRID cells (lattice points or seeds are laid over all of it)."""
+    faces = region.area / cell ** 2
+    outline = (shapely.get_num_coordinates(shapely.simplify(region, tolerance / 2))
+               + region.length / (EDGE.get(kind, 1.0) * cell))
+    if faces + outline > MAX_CELLS:
+        raise MeshError(f"--cell {cell:.4g} mm would give about {amount(faces)} faces "
+                        f"({region.area:,.6g} mm²) and {amount(outline)} outline points; at "
+                        f"most {MAX_CELLS:,} in all: give a larger --cell")
+    x0, y0, x1, y1 = region.bounds
+    grid = (x1 - x0 + 2 * cell) * (y1 - y0 + 2 * cell) / cell ** 2
+    if grid > MAX_GRID:
+        raise MeshError(f"--cell {cell:.4g} mm would lay {amount(grid)} cells over the "
+                        f"outline's bounding box ({x1 - x0:.4g} x {y1 - y0:.4g} mm) for "
+                        f"{amount(faces)} inside it; at most {MAX_GRID:,}: give a larger --cell")
 
 
 def _without_straight_corners(mesh: Mesh) -> Mesh:

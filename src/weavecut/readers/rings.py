@@ -30,7 +30,9 @@ class Ring(NamedTuple):
 def checked(rings: list[Ring], tolerance: float) -> list[Ring]:
     """Rings without repeated points, counter-clockwise, each simple and of non-zero area.
 
-    Raises MeshFileError naming the first ring that crosses itself or encloses nothing.
+    Raises MeshFileError naming the first ring that crosses itself (a bow tie or a figure
+    eight too, whose signed area can be 0) or encloses nothing (an area, or for a ring that
+    crosses itself the area of its convex hull, of at most ``tolerance`` squared).
     """
     out = []
     for ring in rings:
@@ -38,11 +40,13 @@ def checked(rings: list[Ring], tolerance: float) -> list[Ring]:
         step = np.hypot(*(p - np.roll(p, 1, axis=0)).T)
         p = p[step > tolerance * 1e-6] if (step > tolerance * 1e-6).sum() >= 3 else p
         polygon = shapely.Polygon(p) if len(p) >= 3 else None
-        if polygon is not None and not polygon.is_valid and polygon.area > tolerance ** 2:
+        if polygon is None or polygon.convex_hull.area <= tolerance ** 2:
+            raise MeshFileError(f"{ring.label} encloses no area")
+        if not polygon.is_valid:
             x, y = map(float, shapely.is_valid_reason(polygon).split("[")[-1].rstrip("]").split())
             raise MeshFileError(f"{ring.label} crosses itself near ({x:.4g}, {y:.4g}) mm (y up); "
                                 "a face must be a simple closed outline")
-        if polygon is None or abs(shapely.area(shapely.make_valid(polygon))) <= tolerance ** 2:
+        if polygon.area <= tolerance ** 2:
             raise MeshFileError(f"{ring.label} encloses no area")
         ccw = shapely.is_ccw(polygon.exterior)
         out.append(Ring(ring.label, p if ccw else p[::-1]))

@@ -36,8 +36,12 @@ def _lattice(kind: str, region, spacing: float) -> np.ndarray:
         a, b = np.array([spacing, 0.0]), np.array([0.0, spacing])
     else:
         a, b = np.array([spacing, 0.0]), spacing * np.array([0.5, math.sqrt(3) / 2])
-    n = int(math.ceil(2 * max(x1 - x0, y1 - y0) / spacing)) + 2
-    i, j = np.meshgrid(np.arange(-n, n + 1), np.arange(-n, n + 1))
+    # rows over the bounding box, each as wide as the box (a triangular row shifts by half)
+    rows = np.arange(-1, math.ceil((y1 - y0) / b[1]) + 2)
+    width = math.ceil((x1 - x0) / spacing) + 5
+    i = (np.floor(-rows * b[0] / spacing).astype(np.int64)[:, None] - 2
+         + np.arange(width)).reshape(-1)
+    j = np.repeat(rows, width)
     # the lower left corner of the bounding box is a cell corner (a box fits whole cells)
     points = i.reshape(-1, 1) * a + j.reshape(-1, 1) * b + (a + b) / 2 + (x0, y0)
     return points[shapely.contains_xy(region, *points.T)]
