@@ -12,7 +12,6 @@ import numpy as np
 import shapely
 import shapely.ops
 
-from ..numeric import transform
 from ..layout.contrast import text_colour_on
 from ..layout.drawing import Layer, Polylines, Sheet, Style, Text, polygons_from_shapely
 from ..layout.labels import (
@@ -22,14 +21,14 @@ from ..layout.labels import (
     largest_fit,
     text_box,
     text_width,
-    unit_box,
+    unit_boxes,
 )
 from ..weave.model import Weave
 from .crossings import DOT, callout_shapes, crossing_label, crossing_meaning, too_small
 from .pages import GAP, page_layers, page_span
 from .modules import copy_letter
 from .pattern import pattern
-from .strip_labels import arrow_polygon, turn_to
+from .strip_labels import unit_arrows
 from .symmetry import rotate, tile_centres
 from .wording import LINE, TEXT, page_index, paragraphs
 
@@ -131,7 +130,7 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
             order.append(0 if end else 1)
     tiles = np.array([w[0] for w in wanted], dtype=np.int64)
     text = [plan.labels[w[1]] for w in wanted]
-    size = largest_fit(regions[tiles], [unit_box(t, 0.0) for t in text], centres[tiles],
+    size = largest_fit(regions[tiles], unit_boxes(text, np.zeros(len(text))), centres[tiles],
                        MIN_CAP, 3.5)
     ids, taken, boxes, leaders = [], [], [], []
     arrow_tiles: dict[int, tuple] = {}
@@ -163,14 +162,13 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
             arrow_tiles[t] = d
             used.add(t)
     ts = list(arrow_tiles)
-    unit = [shapely.transform(arrow_polygon((0.5, 0.0), (1.0, 0.0), 1.0),
-                              transform(turn_to(arrow_tiles[t]))) for t in ts]
+    unit = unit_arrows([arrow_tiles[t] for t in ts])
     length = largest_fit(regions[ts], unit, centres[ts], 1.5, 0.6 * across) if ts else []
     arrows: dict[str, list] = {}
     for t, u, z in zip(ts, unit, list(length)):
         if np.isfinite(z):
             arrows.setdefault(text_colour_on(fills[t]), []).append(
-                shapely.transform(u, lambda xy, z=z, c=centres[t]: xy * z + c))
+                shapely.Polygon(u * z + centres[t]))
     obstacles = taken + [a for v in arrows.values() for a in v]
     frame = shapely.box(*box)
     for t, label in missing:  # leader lines
