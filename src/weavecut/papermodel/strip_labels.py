@@ -117,6 +117,7 @@ class _Tiles:
         keep_out[hit] = shapely.buffer(shapely.geometrycollections(
             [g for group in shapes for g in group], indices=np.searchsorted(hit, owner)), PAD)
         t = np.flatnonzero(np.isin(self.of, hit))
+        t = t[shapely.intersects(self.regions[t], keep_out[self.of[t]])]  # the others keep theirs
         self.regions[t] = shapely.difference(self.regions[t], keep_out[self.of[t]])
         if recentre:
             self.centres[t] = inner_centres(self.regions[t])
