@@ -99,20 +99,15 @@ def _clip_layer(layer: Layer, window, shift) -> Layer:
     for shape in layer.shapes:
         if isinstance(shape, Polygons):
             polys = shape.to_shapely()
-            clipped = shapely.intersection(polys, window)
-            keep = ~shapely.is_empty(clipped) & (shapely.area(clipped) > 0)
+            parts, owner = shapely.get_parts(shapely.intersection(polys, window),
+                                             return_index=True)
+            keep = (shapely.get_type_id(parts) == 3) & (shapely.area(parts) > 0)
             if not keep.any():
                 continue
-            parts, fills = [], []
-            base = shape.fills or (None,) * len(polys)
-            for geom, fill in zip(clipped[keep], np.asarray(base, dtype=object)[keep]):
-                for g in shapely.get_parts(geom):
-                    if g.geom_type == "Polygon" and g.area > 0:
-                        parts.append(g)
-                        fills.append(fill)
-            moved = shapely.transform(np.array(parts, dtype=object), lambda xy: xy + shift)
-            shapes.append(polygons_from_shapely(moved, shape.style,
-                                                fills if shape.fills else None))
+            fills = np.asarray(shape.fills, dtype=object)[owner[keep]].tolist() \
+                if shape.fills else None
+            moved = shapely.transform(parts[keep], lambda xy: xy + shift)
+            shapes.append(polygons_from_shapely(moved, shape.style, fills))
         elif isinstance(shape, Polylines):
             lines = shapely.linestrings(shape.coords, indices=np.repeat(
                 np.arange(len(shape.offsets) - 1), np.diff(shape.offsets)))
