@@ -107,9 +107,10 @@ def labels(texts: list[str], centres: NDArray[np.float64], heights: NDArray[np.f
     return turned + np.asarray(centres, dtype=float)[point_owner], offsets, owner
 
 
-def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, max_height: float
+def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, max_height
                ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """The largest cap height (up to ``max_height``) at which each text fits inside its polygon
+    """The largest cap height (up to ``max_height``, a number or one per text) at which each
+    text fits inside its polygon
     with ``margin`` mm to spare: centred on the polygon's pole of inaccessibility, its centroid
     or half-way between, level or along the polygon's long axis, whichever fits largest (the
     first on a tie).
@@ -142,7 +143,8 @@ def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, m
     c, s = np.cos(rad), np.sin(rad)
     x, y = np.tile(level[..., 0], (len(spots), 1)), np.tile(level[..., 1], (len(spots), 1))
     h = largest_fit(np.tile(inner, len(spots)), np.stack([c * x - s * y, s * x + c * y], -1),
-                    np.concatenate([at for at, _ in spots]), 0.0, max_height)
+                    np.concatenate([at for at, _ in spots]), 0.0,
+                    np.tile(np.broadcast_to(np.asarray(max_height, dtype=float), (n,)), len(spots)))
     h = np.nan_to_num(h, nan=0.0).reshape(len(spots), n)
     best_h, best_a, centres = np.zeros(n), np.zeros(n), pole.copy()
     for (at, angle), fit in zip(spots, h):  # in order: the first of equal fits wins
