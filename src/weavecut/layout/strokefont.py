@@ -56,19 +56,27 @@ def text_strokes(text: str, height: float) -> tuple[NDArray[np.float64], NDArray
     offsets : (L + 1,) int64, polyline l is ``coords[offsets[l]:offsets[l + 1]]``
     width : the advance of the whole text, mm
     """
+    coords, offsets, width = _unit_strokes(text)
+    return coords * height, offsets.copy(), width * height
+
+
+@lru_cache(maxsize=4096)
+def _unit_strokes(text: str) -> tuple[NDArray[np.float64], NDArray[np.int64], float]:
+    """:func:`text_strokes` at cap height 1 (kept: labels repeat their texts)."""
     strokes, x = [], 0.0
     for char in text:
         glyph, advance = _glyph(char)
         strokes.extend(s + (x, 0.0) for s in glyph)
         x += advance
-    coords = np.concatenate(strokes) * height if strokes else np.zeros((0, 2))
-    offsets = np.r_[0, np.cumsum([len(s) for s in strokes])].astype(np.int64)
-    return coords, offsets, x * height
+    coords = np.concatenate(strokes) if strokes else np.zeros((0, 2))
+    coords.flags.writeable = False
+    return coords, np.r_[0, np.cumsum([len(s) for s in strokes])].astype(np.int64), x
 
 
+@lru_cache(maxsize=4096)
 def ink_box(text: str) -> tuple[float, float, float, float]:
     """(x0, y0, x1, y1) of the strokes of ``text`` at cap height 1."""
-    coords, _, _ = text_strokes(text, 1.0)
+    coords, _, _ = _unit_strokes(text)
     return (*coords.min(axis=0), *coords.max(axis=0)) if len(coords) else (0.0, 0.0, 0.0, 0.0)
 
 
