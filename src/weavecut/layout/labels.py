@@ -128,16 +128,27 @@ def largest_fit(regions, shapes, centres, low: float, high) -> np.ndarray:
 
     In closed form: as the scale grows from 0 the shape first leaves its region where a corner
     of one meets an edge of the other, so the answer is the least scale of such a contact, over
-    every pair of a region's edge and a shape's edge; snapped down to ``GRID``."""
+    every pair of a region's edge and a shape's edge; snapped down to ``GRID``. Equal fits (a
+    module's copies ask for many) are worked out once."""
     regions = np.asarray(regions, dtype=object)
     centres = np.asarray(centres, dtype=float).reshape(-1, 2)
     n = len(regions)
     if n == 0:
         return np.zeros(0)
     w = np.asarray(shapes, dtype=float).reshape(n, -1, 2)
-    of, ra, rb, start, count = _edges(regions)
     top = np.broadcast_to(np.asarray(high, dtype=float), (n,))
-    # every region edge of every fit (rows) that the shape can reach at ``high``, against
+    of, distinct = _distinct(regions)
+    _, first, back = np.unique(np.column_stack([of, centres, w.reshape(n, -1), top]), axis=0,
+                               return_index=True, return_inverse=True)
+    return _least_scales(distinct, of[first], w[first], centres[first], low,
+                         top[first])[back.reshape(-1)]
+
+
+def _least_scales(distinct, of, w, centres, low: float, top) -> np.ndarray:
+    """:func:`largest_fit` of the regions ``distinct[of]``."""
+    n = len(of)
+    ra, rb, start, count = _edges(distinct)
+    # every region edge of every fit (rows) that the shape can reach at ``top``, against
     # every corner of its shape (columns)
     fit = np.repeat(np.arange(n), count[of])
     e = np.arange(len(fit)) - np.repeat(np.cumsum(count[of]) - count[of], count[of])
@@ -166,37 +177,48 @@ def largest_fit(regions, shapes, centres, low: float, high) -> np.ndarray:
     if len(fit):
         least[some] = np.minimum.reduceat(scale.min(axis=1), (np.cumsum(rows) - rows)[some])
     least = np.floor(least * (1.0 - 1e-9) / GRID) * GRID
-    inside = shapely.contains_xy(regions, centres[:, 0], centres[:, 1])
+    inside = shapely.contains_xy(distinct[of], centres[:, 0], centres[:, 1])
     return np.where(inside & (least >= low), np.minimum(least, top), np.nan)
 
 
+def _distinct(geoms) -> tuple[np.ndarray, np.ndarray]:
+    """(which of the distinct geometries each of ``geoms`` equals, the distinct geometries):
+    equal means the same coordinates (the same WKB); each object is read once."""
+    geoms = np.asarray(geoms, dtype=object)
+    by_id: dict[int, int] = {}
+    of = np.array([by_id.setdefault(id(g), len(by_id)) for g in geoms], dtype=np.int64)
+    objects = geoms[np.unique(of, return_index=True)[1]]
+    by_wkb: dict[bytes, int] = {}
+    same = np.array([by_wkb.setdefault(b, len(by_wkb)) for b in shapely.to_wkb(objects)],
+                    dtype=np.int64)
+    return same[of], objects[np.unique(same, return_index=True)[1]]
+
+
 def _edges(geoms):
-    """(the distinct geometry of each item, edge starts, edge ends, each distinct geometry's
-    first edge and number of edges) of the polygons ``geoms`` (each object read once)."""
-    index: dict[int, int] = {}
-    of = np.array([index.setdefault(id(g), len(index)) for g in geoms], dtype=np.int64)
-    distinct = np.asarray(geoms, dtype=object)[np.unique(of, return_index=True)[1]]
-    parts, part_of = shapely.get_parts(distinct, return_index=True)
+    """(edge starts, edge ends, each geometry's first edge and number of edges) of the
+    polygons ``geoms``."""
+    parts, part_of = shapely.get_parts(geoms, return_index=True)
     rings, ring_of = shapely.get_rings(parts, return_index=True)
     xy, at = shapely.get_coordinates(rings, return_index=True)
     same = at[:-1] == at[1:]  # consecutive corners of one ring: an edge
-    count = np.bincount(part_of[ring_of[at[:-1][same]]], minlength=len(distinct))
-    return of, xy[:-1][same], xy[1:][same], np.cumsum(count) - count, count
+    count = np.bincount(part_of[ring_of[at[:-1][same]]], minlength=len(geoms))
+    return xy[:-1][same], xy[1:][same], np.cumsum(count) - count, count
 
 
 def inner_centres(regions) -> np.ndarray:
     """(n, 2) the centre of the largest circle inside every region (where a label has most
-    room); empty regions give the origin."""
+    room); empty regions give the origin. Equal regions are worked out once."""
     regions = np.asarray(regions, dtype=object)
     if len(regions) == 0:
         return np.zeros((0, 2))
-    tolerance = np.maximum(np.sqrt(shapely.area(regions)) * 0.01, 1e-3)
-    ok = ~shapely.is_empty(regions)
-    out = np.zeros((len(regions), 2))
+    of, distinct = _distinct(regions)
+    tolerance = np.maximum(np.sqrt(shapely.area(distinct)) * 0.01, 1e-3)
+    ok = ~shapely.is_empty(distinct)
+    out = np.zeros((len(distinct), 2))
     if ok.any():
-        lines = shapely.maximum_inscribed_circle(regions[ok], tolerance[ok])
+        lines = shapely.maximum_inscribed_circle(distinct[ok], tolerance[ok])
         out[ok] = shapely.get_coordinates(shapely.get_point(lines, 0))
-    return out
+    return out[of]
 
 
 def wrap(text: str, width: float, size: float) -> list[str]:
