@@ -116,7 +116,8 @@ def _pairs(offsets):
 
 def _points(coords, height: float) -> list[str]:
     xy = np.round(np.column_stack([coords[:, 0], height - coords[:, 1]]), DECIMALS) + 0.0
-    return [f"{_decimal(x)},{_decimal(y)}" for x, y in xy.tolist()]
+    text = [_decimal(v) for v in xy.ravel().tolist()]
+    return [f"{x},{y}" for x, y in zip(text[::2], text[1::2])]
 
 
 def _n(x: float) -> str:
@@ -125,5 +126,9 @@ def _n(x: float) -> str:
 
 def _decimal(x: float) -> str:
     """``x`` (rounded to ``DECIMALS``, no negative zero) in fixed point without trailing
-    zeros: every decimal kept however large ``x`` is (``:g`` keeps six digits: 1234.57)."""
-    return f"{x:.{DECIMALS}f}".rstrip("0").rstrip(".")
+    zeros: every decimal kept however large ``x`` is (``:g`` keeps six digits: 1234.57). The
+    shortest repr of a float rounded to 3 decimals is that (below 1e16), but for ".0"."""
+    text = repr(x)
+    if "e" in text:  # 1e+16 and up, and below 1e-4 (not rounded to DECIMALS)
+        return f"{x:.{DECIMALS}f}".rstrip("0").rstrip(".")
+    return text[:-2] if text.endswith(".0") else text

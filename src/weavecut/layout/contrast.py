@@ -8,6 +8,8 @@
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from ..numeric import dot
@@ -37,6 +39,8 @@ def contrast_ratio(a: str, b: str) -> float:
     return (la + 0.05) / (lb + 0.05)
 
 
+@lru_cache(maxsize=1024)
 def text_colour_on(fill: str) -> str:
-    """Black or white, whichever has the higher contrast on ``fill``."""
+    """Black or white, whichever has the higher contrast on ``fill`` (kept: a book asks for
+    its few fills again and again)."""
     return BLACK if contrast_ratio(BLACK, fill) >= contrast_ratio(WHITE, fill) else WHITE

@@ -20,7 +20,7 @@ import numpy as np
 import shapely
 from reportlab.pdfbase.pdfmetrics import stringWidth
 
-from ..numeric import affine, transform
+from ..numeric import GRID, dot
 from .drawing import Text
 
 MIN_CAP = 2.5
@@ -36,40 +36,77 @@ def text_width(text: str, size: float) -> float:
     return stringWidth(text, "Helvetica", size / CAP_RATIO) * WIDEN
 
 
-def _box_in_frame(text: str, size: float, anchor: str) -> tuple[float, float, float, float]:
-    w = text_width(text, size)
-    x0 = {"start": 0.0, "middle": -w / 2, "end": -w}[anchor]
-    below = DESCENT if DESCENDERS.intersection(text) else 0.05
-    return (x0, -below * size, x0 + w, size)
+@lru_cache(maxsize=4096)
+def _unit_extent(text: str) -> tuple[float, float]:
+    """(width, depth below the baseline) of ``text`` at cap height 1."""
+    return text_width(text, 1.0), DESCENT if DESCENDERS.intersection(text) else 0.05
 
 
-def _turn(xy, angle_deg: float, origin) -> np.ndarray:
-    return transform(affine(angle_deg, np.asarray(origin, dtype=float)))(xy)
+def _frames(texts, sizes, anchors) -> tuple[np.ndarray, ...]:
+    """(x0, y0, x1, y1), each (n,): the boxes of ``texts`` in their own frames (baseline start
+    at the origin)."""
+    extent = np.array([_unit_extent(t) for t in texts], dtype=float).reshape(-1, 2)
+    sizes = np.broadcast_to(np.asarray(sizes, dtype=float), (len(extent),))
+    w = extent[:, 0] * sizes
+    anchors = np.broadcast_to(np.asarray(anchors), (len(extent),))
+    x0 = np.where(anchors == "start", 0.0, np.where(anchors == "middle", -w / 2, -w))
+    return x0, -extent[:, 1] * sizes, x0 + w, sizes
+
+
+def _turned(xy, angles, origins) -> np.ndarray:
+    """(n, k, 2) the points ``xy`` (n, k, 2) turned by ``angles`` degrees (n,) and moved to
+    ``origins`` (n, 2), as :func:`~weavecut.numeric.affine` does (quarter turns exact)."""
+    a = np.radians(np.asarray(angles, dtype=float))[:, None]
+    c, s = np.cos(a), np.sin(a)
+    c, s = np.where(np.abs(c) < 2.5e-16, 0.0, c), np.where(np.abs(s) < 2.5e-16, 0.0, s)
+    o = np.asarray(origins, dtype=float).reshape(-1, 1, 2)
+    x, y = xy[..., 0], xy[..., 1]
+    return np.stack([c * x + -s * y + o[..., 0], s * x + c * y + o[..., 1]], axis=-1)
+
+
+def _corners(x0, y0, x1, y1) -> np.ndarray:
+    return np.stack([np.stack([x0, y0], -1), np.stack([x1, y0], -1), np.stack([x1, y1], -1),
+                     np.stack([x0, y1], -1)], axis=1)
+
+
+def text_boxes(texts) -> np.ndarray:
+    """(n,) the rectangles ``texts`` cover on the sheet (mm), turned with them."""
+    if not len(texts):
+        return np.zeros(0, dtype=object)
+    frame = _frames([t.text for t in texts], [t.size for t in texts], [t.anchor for t in texts])
+    return shapely.polygons(_turned(_corners(*frame), [t.angle for t in texts],
+                                    [(t.x, t.y) for t in texts]))
 
 
 def text_box(t: Text) -> shapely.Polygon:
     """The rectangle ``t`` covers on the sheet (mm), turned with it."""
-    x0, y0, x1, y1 = _box_in_frame(t.text, t.size, t.anchor)
-    corners = np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]])
-    return shapely.Polygon(_turn(corners, t.angle, (t.x, t.y)))
+    return text_boxes([t])[0]
 
 
-@lru_cache(maxsize=4096)
-def unit_box(text: str, angle: float) -> shapely.Polygon:
-    """``text``'s box at cap height 1, centred on the origin, turned by ``angle`` degrees (kept:
-    labels ask for the same few boxes many times)."""
-    x0, y0, x1, y1 = _box_in_frame(text, 1.0, "middle")
+def unit_boxes(texts, angles) -> np.ndarray:
+    """(n, 4, 2) the corners of every text's box at cap height 1, centred on the origin, turned
+    by its angle (degrees): the shapes :func:`largest_fit` scales."""
+    x0, y0, x1, y1 = _frames(texts, 1.0, "middle")
     mid = (y0 + y1) / 2
-    corners = np.array([[x0, y0 - mid], [x1, y0 - mid], [x1, y1 - mid], [x0, y1 - mid]])
-    return shapely.Polygon(_turn(corners, angle, (0.0, 0.0)))
+    return _turned(_corners(x0, y0 - mid, x1, y1 - mid), angles, np.zeros((len(x0), 2)))
+
+
+def centred_texts(centres, texts, sizes, angles, fills) -> list[Text]:
+    """A ``Text`` per text whose box is centred on its centre, turned by its angle (degrees)."""
+    if not len(texts):
+        return []
+    x0, y0, x1, y1 = _frames(texts, sizes, "middle")
+    base = _turned(np.stack([np.zeros_like(y0), -(y0 + y1) / 2], -1)[:, None], angles,
+                   centres)[:, 0]
+    return [Text(x, y, t, z, "middle", a, f) for (x, y), t, z, a, f in
+            zip(base.tolist(), texts, np.asarray(sizes, dtype=float).tolist(),
+                np.asarray(angles, dtype=float).tolist(), fills)]
 
 
 def centred_text(centre, text: str, size: float, angle: float = 0.0,
                  fill: str = "#000000") -> Text:
     """A ``Text`` whose box is centred on ``centre``, turned by ``angle`` degrees."""
-    x0, y0, x1, y1 = _box_in_frame(text, size, "middle")
-    base = _turn([[0.0, -(y0 + y1) / 2]], angle, centre)[0]
-    return Text(float(base[0]), float(base[1]), text, size, "middle", float(angle), fill)
+    return centred_texts([centre], [text], [size], [angle], [fill])[0]
 
 
 def upright(t: Text) -> Text:
@@ -83,49 +120,105 @@ def upright(t: Text) -> Text:
     return centred_text((centre.x, centre.y), t.text, t.size, angle % 360.0 - 180.0, t.fill)
 
 
-def largest_fit(regions, shapes, centres, low: float, high, steps: int = 12) -> np.ndarray:
-    """(n,) the largest scale in [low, high] (``high`` a number or one per shape) at which ``shapes[i]`` (unit shapes centred on the
-    origin), scaled and moved to ``centres[i]``, lies inside ``regions[i]``; NaN where it does
-    not fit even at ``low``. All n are bisected at once."""
+def largest_fit(regions, shapes, centres, low: float, high) -> np.ndarray:
+    """(n,) the largest scale in [low, high] (``high`` a number or one per shape) at which
+    ``shapes[i]`` (the corners (k, 2) of a polygon round the origin: shapes is (n, k, 2)),
+    scaled and moved to ``centres[i]``, lies inside ``regions[i]``; NaN where it does not fit
+    even at ``low`` (or the centre is outside).
+
+    In closed form: as the scale grows from 0 the shape first leaves its region where a corner
+    of one meets an edge of the other, so the answer is the least scale of such a contact, over
+    every pair of a region's edge and a shape's edge; snapped down to ``GRID``. Equal fits (a
+    module's copies ask for many) are worked out once."""
     regions = np.asarray(regions, dtype=object)
-    shapes = np.asarray(shapes, dtype=object)
     centres = np.asarray(centres, dtype=float).reshape(-1, 2)
     n = len(regions)
     if n == 0:
         return np.zeros(0)
-    shapely.prepare(regions)
-    owner = np.repeat(np.arange(n), shapely.get_num_coordinates(shapes))
-
-    def fits(scale):
-        placed = shapely.transform(shapes, lambda xy: xy * scale[owner, None] + centres[owner])
-        return shapely.contains(regions, placed)
-
+    w = np.asarray(shapes, dtype=float).reshape(n, -1, 2)
     top = np.broadcast_to(np.asarray(high, dtype=float), (n,))
-    lo = np.full(n, float(low))
-    hi = top.copy()
-    ok_hi = fits(hi)
-    ok_lo = fits(lo)
-    for _ in range(steps):  # bisection steps, all labels at once
-        mid = (lo + hi) / 2
-        ok = fits(mid)
-        lo = np.where(ok, mid, lo)
-        hi = np.where(ok, hi, mid)
-    return np.where(ok_hi, top, np.where(ok_lo, lo, np.nan))
+    of, distinct = _distinct(regions)
+    _, first, back = np.unique(np.column_stack([of, centres, w.reshape(n, -1), top]), axis=0,
+                               return_index=True, return_inverse=True)
+    return _least_scales(distinct, of[first], w[first], centres[first], low,
+                         top[first])[back.reshape(-1)]
+
+
+def _least_scales(distinct, of, w, centres, low: float, top) -> np.ndarray:
+    """:func:`largest_fit` of the regions ``distinct[of]``."""
+    n = len(of)
+    ra, rb, start, count = _edges(distinct)
+    # every region edge of every fit (rows) that the shape can reach at ``top``, against
+    # every corner of its shape (columns)
+    fit = np.repeat(np.arange(n), count[of])
+    e = np.arange(len(fit)) - np.repeat(np.cumsum(count[of]) - count[of], count[of])
+    e += start[of][fit]
+    q, d = ra[e] - centres[fit], rb[e] - ra[e]
+    t = np.clip(-dot(q, d) / np.maximum(dot(d, d), 1e-300), 0.0, 1.0)
+    near = q + t[:, None] * d  # the edge's point nearest the centre
+    reach = top * np.sqrt(dot(w, w).max(axis=1))
+    keep = dot(near, near) <= (reach[fit] * (1.0 + 1e-9)) ** 2
+    fit, (qx, qy), (dx, dy) = fit[keep], q[keep].T, d[keep].T
+    rows = np.bincount(fit, minlength=n)
+    wx, wy = w[fit, :, 0], w[fit, :, 1]
+    qw = qx[:, None] * wy - qy[:, None] * wx  # q x w
+    ww = (w[:, :, 0] * np.roll(w[:, :, 1], -1, 1) - w[:, :, 1] * np.roll(w[:, :, 0], -1, 1))[fit]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # a shape's corner w on a region's edge: s w = q + t d, 0 <= t <= 1
+        wd = wx * dy[:, None] - wy * dx[:, None]
+        s, t = (qx * dy - qy * dx)[:, None] / wd, qw / wd
+        scale = np.where((s > 0.0) & (t >= -1e-9) & (t <= 1.0 + 1e-9), s, np.inf)
+        # a region's corner on a shape's edge w w': q = s w + u (w' - w), 0 <= u <= s
+        s, u = (np.roll(qw, -1, 1) - qw) / ww, -qw / ww
+        scale = np.minimum(scale, np.where((s > 0.0) & (u >= -1e-9 * s) & (u <= s * (1 + 1e-9)),
+                                           s, np.inf))
+    least = np.full(n, np.inf)
+    some = rows > 0
+    if len(fit):
+        least[some] = np.minimum.reduceat(scale.min(axis=1), (np.cumsum(rows) - rows)[some])
+    least = np.floor(least * (1.0 - 1e-9) / GRID) * GRID
+    inside = shapely.contains_xy(distinct[of], centres[:, 0], centres[:, 1])
+    return np.where(inside & (least >= low), np.minimum(least, top), np.nan)
+
+
+def _distinct(geoms) -> tuple[np.ndarray, np.ndarray]:
+    """(which of the distinct geometries each of ``geoms`` equals, the distinct geometries):
+    equal means the same coordinates (the same WKB); each object is read once."""
+    geoms = np.asarray(geoms, dtype=object)
+    by_id: dict[int, int] = {}
+    of = np.array([by_id.setdefault(id(g), len(by_id)) for g in geoms], dtype=np.int64)
+    objects = geoms[np.unique(of, return_index=True)[1]]
+    by_wkb: dict[bytes, int] = {}
+    same = np.array([by_wkb.setdefault(b, len(by_wkb)) for b in shapely.to_wkb(objects)],
+                    dtype=np.int64)
+    return same[of], objects[np.unique(same, return_index=True)[1]]
+
+
+def _edges(geoms):
+    """(edge starts, edge ends, each geometry's first edge and number of edges) of the
+    polygons ``geoms``."""
+    parts, part_of = shapely.get_parts(geoms, return_index=True)
+    rings, ring_of = shapely.get_rings(parts, return_index=True)
+    xy, at = shapely.get_coordinates(rings, return_index=True)
+    same = at[:-1] == at[1:]  # consecutive corners of one ring: an edge
+    count = np.bincount(part_of[ring_of[at[:-1][same]]], minlength=len(geoms))
+    return xy[:-1][same], xy[1:][same], np.cumsum(count) - count, count
 
 
 def inner_centres(regions) -> np.ndarray:
     """(n, 2) the centre of the largest circle inside every region (where a label has most
-    room); empty regions give the origin."""
+    room); empty regions give the origin. Equal regions are worked out once."""
     regions = np.asarray(regions, dtype=object)
     if len(regions) == 0:
         return np.zeros((0, 2))
-    tolerance = np.maximum(np.sqrt(shapely.area(regions)) * 0.01, 1e-3)
-    ok = ~shapely.is_empty(regions)
-    out = np.zeros((len(regions), 2))
+    of, distinct = _distinct(regions)
+    tolerance = np.maximum(np.sqrt(shapely.area(distinct)) * 0.01, 1e-3)
+    ok = ~shapely.is_empty(distinct)
+    out = np.zeros((len(distinct), 2))
     if ok.any():
-        lines = shapely.maximum_inscribed_circle(regions[ok], tolerance[ok])
+        lines = shapely.maximum_inscribed_circle(distinct[ok], tolerance[ok])
         out[ok] = shapely.get_coordinates(shapely.get_point(lines, 0))
-    return out
+    return out[of]
 
 
 def wrap(text: str, width: float, size: float) -> list[str]:

@@ -21,6 +21,8 @@ import numpy as np
 import shapely
 from numpy.typing import NDArray
 
+from .labels import largest_fit
+
 FONT = "futural"  # Hershey Simplex Roman: single strokes, the engravers' font
 _CAP, _BASE = -12, 9  # raw cap and base lines (raw y points down)
 
@@ -54,19 +56,27 @@ def text_strokes(text: str, height: float) -> tuple[NDArray[np.float64], NDArray
     offsets : (L + 1,) int64, polyline l is ``coords[offsets[l]:offsets[l + 1]]``
     width : the advance of the whole text, mm
     """
+    coords, offsets, width = _unit_strokes(text)
+    return coords * height, offsets.copy(), width * height
+
+
+@lru_cache(maxsize=4096)
+def _unit_strokes(text: str) -> tuple[NDArray[np.float64], NDArray[np.int64], float]:
+    """:func:`text_strokes` at cap height 1 (kept: labels repeat their texts)."""
     strokes, x = [], 0.0
     for char in text:
         glyph, advance = _glyph(char)
         strokes.extend(s + (x, 0.0) for s in glyph)
         x += advance
-    coords = np.concatenate(strokes) * height if strokes else np.zeros((0, 2))
-    offsets = np.r_[0, np.cumsum([len(s) for s in strokes])].astype(np.int64)
-    return coords, offsets, x * height
+    coords = np.concatenate(strokes) if strokes else np.zeros((0, 2))
+    coords.flags.writeable = False
+    return coords, np.r_[0, np.cumsum([len(s) for s in strokes])].astype(np.int64), x
 
 
+@lru_cache(maxsize=4096)
 def ink_box(text: str) -> tuple[float, float, float, float]:
     """(x0, y0, x1, y1) of the strokes of ``text`` at cap height 1."""
-    coords, _, _ = text_strokes(text, 1.0)
+    coords, _, _ = _unit_strokes(text)
     return (*coords.min(axis=0), *coords.max(axis=0)) if len(coords) else (0.0, 0.0, 0.0, 0.0)
 
 
@@ -105,10 +115,10 @@ def labels(texts: list[str], centres: NDArray[np.float64], heights: NDArray[np.f
     return turned + np.asarray(centres, dtype=float)[point_owner], offsets, owner
 
 
-def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float,
-               max_height: float, steps: int = 14
+def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, max_height
                ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """The largest cap height (up to ``max_height``) at which each text fits inside its polygon
+    """The largest cap height (up to ``max_height``, a number or one per text) at which each
+    text fits inside its polygon
     with ``margin`` mm to spare: centred on the polygon's pole of inaccessibility, its centroid
     or half-way between, level or along the polygon's long axis, whichever fits largest (the
     first on a tie).
@@ -129,17 +139,26 @@ def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float,
     pole = shapely.get_coordinates(shapely.get_point(circles, 0))
     middle = shapely.get_coordinates(shapely.centroid(polygons))
     boxes = np.array([ink_box(t) for t in texts], dtype=float).reshape(-1, 4)
-    half = np.column_stack([boxes[:, 2] - boxes[:, 0], boxes[:, 3] - boxes[:, 1]]) / 2
+    hx, hy = (boxes[:, 2] - boxes[:, 0]) / 2, (boxes[:, 3] - boxes[:, 1]) / 2
+    level = np.stack([np.stack([-hx, -hy], -1), np.stack([hx, -hy], -1),
+                      np.stack([hx, hy], -1), np.stack([-hx, hy], -1)], axis=1)
     long_axis = _long_axes(polygons)
-    best_h, best_a, centres = np.zeros(len(texts)), np.zeros(len(texts)), pole.copy()
-    for at in (pole, (pole + middle) / 2, middle):
-        for angle in (np.zeros(len(texts)), long_axis):
-            turned = _turned(inner, at, -angle)
-            shapely.prepare(turned)
-            h = _fit(turned, at, half, max_height, steps)
-            better = h > best_h + 1e-9
-            best_h, best_a = np.where(better, h, best_h), np.where(better, angle, best_a)
-            centres[better] = at[better]
+    n = len(texts)
+    # every label at every (centre, angle) at once: pole, half-way, centroid; level, long axis
+    spots = [(at, angle) for at in (pole, (pole + middle) / 2, middle)
+             for angle in (np.zeros(n), long_axis)]
+    rad = np.radians(np.concatenate([a for _, a in spots]))[:, None]
+    c, s = np.cos(rad), np.sin(rad)
+    x, y = np.tile(level[..., 0], (len(spots), 1)), np.tile(level[..., 1], (len(spots), 1))
+    h = largest_fit(np.tile(inner, len(spots)), np.stack([c * x - s * y, s * x + c * y], -1),
+                    np.concatenate([at for at, _ in spots]), 0.0,
+                    np.tile(np.broadcast_to(np.asarray(max_height, dtype=float), (n,)), len(spots)))
+    h = np.nan_to_num(h, nan=0.0).reshape(len(spots), n)
+    best_h, best_a, centres = np.zeros(n), np.zeros(n), pole.copy()
+    for (at, angle), fit in zip(spots, h):  # in order: the first of equal fits wins
+        better = fit > best_h + 1e-9
+        best_h, best_a = np.where(better, fit, best_h), np.where(better, angle, best_a)
+        centres[better] = at[better]
     return best_h, centres, best_a
 
 
@@ -151,35 +170,3 @@ def _long_axes(polygons) -> NDArray[np.float64]:
     long = np.where((np.hypot(*e1.T) >= np.hypot(*e2.T))[:, None], e1, e2)
     angle = np.degrees(np.arctan2(long[:, 1], long[:, 0]))
     return np.where(angle <= -90, angle + 180, np.where(angle > 90, angle - 180, angle))
-
-
-def _turned(polys, centres, angles):
-    """Every polygon turned by its angle (degrees) about its centre."""
-    _, index = shapely.get_coordinates(polys, return_index=True)
-    rad = np.radians(angles[index])
-    c, s = np.cos(rad), np.sin(rad)
-
-    def turn(xy):
-        d = xy - centres[index]
-        return np.column_stack([c * d[:, 0] - s * d[:, 1], s * d[:, 0] + c * d[:, 1]]) + \
-            centres[index]
-
-    return shapely.transform(polys, turn)
-
-
-def _fit(inner, centres, half, max_height: float, steps: int) -> NDArray[np.float64]:
-    """Bisection on the height of level boxes, all labels at once."""
-    lo, hi = np.zeros(len(centres)), np.full(len(centres), float(max_height))
-    full = _fits(inner, centres, half * hi[:, None])
-    lo[full] = hi[full]
-    for _ in range(steps):
-        mid = (lo + hi) / 2
-        ok = _fits(inner, centres, half * mid[:, None])
-        lo, hi = np.where(ok, mid, lo), np.where(ok, hi, mid)
-    return lo
-
-
-def _fits(inner, centres, half) -> NDArray[np.bool_]:
-    boxes = shapely.box(centres[:, 0] - half[:, 0], centres[:, 1] - half[:, 1],
-                        centres[:, 0] + half[:, 0], centres[:, 1] + half[:, 1])
-    return shapely.contains(inner, boxes) & ~shapely.is_empty(inner)

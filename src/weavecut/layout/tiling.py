@@ -98,6 +98,7 @@ def tile(drawing: Drawing, page: tuple[float, float] = (210.0, 297.0), overlap: 
     step_x, step_y = pw - overlap, ph - overlap
     cols, rows = _grid(big, page, overlap, margin)
     check_pages(drawing, page, cols * rows)
+    geoms = [[_geoms(shape) for shape in layer.shapes] for layer in big.layers]
     pages = []
     for r in range(rows):  # pages, a handful
         for c in range(cols):
@@ -105,38 +106,50 @@ def tile(drawing: Drawing, page: tuple[float, float] = (210.0, 297.0), overlap: 
             y0 = big.height - ph - r * step_y  # row 1 at the top
             window = shapely.box(x0, y0, x0 + pw, y0 + ph)
             shift = np.array([margin - x0, margin - y0])
-            layers = [_clip_layer(layer, window, shift) for layer in big.layers]
+            layers = [_clip_layer(layer, g, window, shift) for layer, g in zip(big.layers, geoms)]
             layers.append(_marks(page, margin, overlap, r, c, rows, cols, drawing.title))
             pages.append(Sheet(page[0], page[1], tuple(layers), f"page r{r + 1} c{c + 1}"))
     return replace(drawing, sheets=tuple(pages))
 
 
-def _clip_layer(layer: Layer, window, shift) -> Layer:
+def _geoms(shape):
+    """(shapely geometries, their bounds (n, 4)) of a Polygons or Polylines shape; None for
+    text."""
+    if isinstance(shape, Polygons):
+        geoms = shape.to_shapely()
+    elif isinstance(shape, Polylines):
+        geoms = shapely.linestrings(shape.coords, indices=np.repeat(
+            np.arange(len(shape.offsets) - 1), np.diff(shape.offsets)))
+    else:
+        return None
+    return geoms, shapely.bounds(geoms)
+
+
+def _clip_layer(layer: Layer, geoms, window, shift) -> Layer:
+    """``layer`` clipped to ``window`` and moved by ``shift``; ``geoms`` (:func:`_geoms` of
+    every shape) is clipped where its bounds reach the window."""
+    x0, y0, x1, y1 = window.bounds
     shapes = []
-    for shape in layer.shapes:
+    for shape, got in zip(layer.shapes, geoms):
+        if got is not None:
+            b = got[1]
+            near = np.flatnonzero((b[:, 0] <= x1) & (b[:, 2] >= x0) & (b[:, 1] <= y1)
+                                  & (b[:, 3] >= y0))
+            parts, owner = shapely.get_parts(shapely.intersection(got[0][near], window),
+                                             return_index=True)
+            owner = near[owner]
         if isinstance(shape, Polygons):
-            polys = shape.to_shapely()
-            clipped = shapely.intersection(polys, window)
-            keep = ~shapely.is_empty(clipped) & (shapely.area(clipped) > 0)
+            keep = (shapely.get_type_id(parts) == 3) & (shapely.area(parts) > 0)
             if not keep.any():
                 continue
-            parts, fills = [], []
-            base = shape.fills or (None,) * len(polys)
-            for geom, fill in zip(clipped[keep], np.asarray(base, dtype=object)[keep]):
-                for g in shapely.get_parts(geom):
-                    if g.geom_type == "Polygon" and g.area > 0:
-                        parts.append(g)
-                        fills.append(fill)
-            moved = shapely.transform(np.array(parts, dtype=object), lambda xy: xy + shift)
-            shapes.append(polygons_from_shapely(moved, shape.style,
-                                                fills if shape.fills else None))
+            fills = np.asarray(shape.fills, dtype=object)[owner[keep]].tolist() \
+                if shape.fills else None
+            moved = shapely.transform(parts[keep], lambda xy: xy + shift)
+            shapes.append(polygons_from_shapely(moved, shape.style, fills))
         elif isinstance(shape, Polylines):
-            lines = shapely.linestrings(shape.coords, indices=np.repeat(
-                np.arange(len(shape.offsets) - 1), np.diff(shape.offsets)))
-            clipped = shapely.get_parts(shapely.intersection(lines, window))
-            clipped = clipped[(shapely.get_type_id(clipped) == 1) & ~shapely.is_empty(clipped)]
-            if len(clipped):
-                coords, idx = shapely.get_coordinates(clipped, return_index=True)
+            parts = parts[(shapely.get_type_id(parts) == 1) & ~shapely.is_empty(parts)]
+            if len(parts):
+                coords, idx = shapely.get_coordinates(parts, return_index=True)
                 offsets = np.r_[0, np.cumsum(np.bincount(idx))].astype(np.int64)
                 shapes.append(Polylines(coords + shift, offsets, shape.style))
         elif isinstance(shape, Text):

@@ -10,9 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 import shapely
-import shapely.ops
 
-from ..numeric import transform
 from ..layout.contrast import text_colour_on
 from ..layout.drawing import Layer, Polylines, Sheet, Style, Text, polygons_from_shapely
 from ..layout.labels import (
@@ -22,14 +20,14 @@ from ..layout.labels import (
     largest_fit,
     text_box,
     text_width,
-    unit_box,
+    unit_boxes,
 )
 from ..weave.model import Weave
 from .crossings import DOT, callout_shapes, crossing_label, crossing_meaning, too_small
 from .pages import GAP, page_layers, page_span
 from .modules import copy_letter
-from .pattern import pattern
-from .strip_labels import arrow_polygon, turn_to
+from .pattern import label_spots, pattern
+from .strip_labels import unit_arrows
 from .symmetry import rotate, tile_centres
 from .wording import LINE, TEXT, page_index, paragraphs
 
@@ -73,7 +71,8 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
                      f"{page_span(book.extra_pages[2:])}.")
     texts, bottom = paragraphs(lines, x0, y1, x1 - x0)
     box = (x0, y0, x1, bottom - GAP)
-    on_sheet, fit, centres, paint, fills = pattern(weave, turn, box, book.colours)
+    on_sheet, fit, paint, fills = pattern(weave, turn, box, book.colours)
+    centres = label_spots(on_sheet)
     ids, boxes, leaders, arrows, obstacles = _strand_labels(weave, book, on_sheet, centres,
                                                             fills, box)
     called, at, size = [], [], tile_mm(on_sheet)
@@ -131,7 +130,7 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
             order.append(0 if end else 1)
     tiles = np.array([w[0] for w in wanted], dtype=np.int64)
     text = [plan.labels[w[1]] for w in wanted]
-    size = largest_fit(regions[tiles], [unit_box(t, 0.0) for t in text], centres[tiles],
+    size = largest_fit(regions[tiles], unit_boxes(text, np.zeros(len(text))), centres[tiles],
                        MIN_CAP, 3.5)
     ids, taken, boxes, leaders = [], [], [], []
     arrow_tiles: dict[int, tuple] = {}
@@ -163,14 +162,13 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
             arrow_tiles[t] = d
             used.add(t)
     ts = list(arrow_tiles)
-    unit = [shapely.transform(arrow_polygon((0.5, 0.0), (1.0, 0.0), 1.0),
-                              transform(turn_to(arrow_tiles[t]))) for t in ts]
+    unit = unit_arrows([arrow_tiles[t] for t in ts])
     length = largest_fit(regions[ts], unit, centres[ts], 1.5, 0.6 * across) if ts else []
     arrows: dict[str, list] = {}
     for t, u, z in zip(ts, unit, list(length)):
         if np.isfinite(z):
             arrows.setdefault(text_colour_on(fills[t]), []).append(
-                shapely.transform(u, lambda xy, z=z, c=centres[t]: xy * z + c))
+                shapely.Polygon(u * z + centres[t]))
     obstacles = taken + [a for v in arrows.values() for a in v]
     frame = shapely.box(*box)
     for t, label in missing:  # leader lines
@@ -200,24 +198,29 @@ def _crossing_spot(tile, obstacles):
 
 def _free_spot(at, label: str, obstacles, frame, size: float):
     """(text, white plate, leader line) near ``at``: neither the plate nor its leader line
-    touches an obstacle; None if there is no such place."""
+    touches an obstacle; None if there is no such place. The spots are tried ring by ring
+    outwards, each ring round from 15 degrees: the first free one wins."""
     plate_pad = 0.8
-    w = text_width(label, MIN_CAP) + 2 * plate_pad
-    h = MIN_CAP * 1.3 + 2 * plate_pad
-    tree = shapely.STRtree(obstacles) if obstacles else None
-    for r in np.arange(1.0, 8.0, 0.75) * max(size, h):
-        for a in np.radians(np.arange(0, 360, 30) + 15):
-            c = np.asarray(at) + r * np.array([np.cos(a), np.sin(a)])
-            plate = shapely.box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
-            if not frame.contains(plate):
-                continue
-            near = shapely.ops.nearest_points(plate, shapely.Point(at))[0]
-            leader = shapely.LineString([(near.x, near.y), tuple(at)])
-            if tree is not None and (len(tree.query(plate, predicate="intersects"))
-                                     or len(tree.query(leader, predicate="intersects"))):
-                continue
-            return centred_text(c, label, MIN_CAP, 0.0, "#000000"), plate, leader
-    return None
+    half = np.array([text_width(label, MIN_CAP) / 2 + plate_pad, MIN_CAP * 0.65 + plate_pad])
+    at = np.asarray(at, dtype=float)
+    r = (np.arange(1.0, 8.0, 0.75) * max(size, 2 * half[1]))[:, None]
+    a = np.radians(np.arange(0, 360, 30) + 15)[None, :]
+    c = np.stack([at[0] + r * np.cos(a), at[1] + r * np.sin(a)], axis=-1).reshape(-1, 2)
+    x0, y0, x1, y1 = frame.bounds
+    c = c[(c[:, 0] - half[0] >= x0) & (c[:, 1] - half[1] >= y0) & (c[:, 0] + half[0] <= x1)
+          & (c[:, 1] + half[1] <= y1)]
+    plates = shapely.box(*(c - half).T, *(c + half).T)
+    leaders = shapely.linestrings(np.stack([np.clip(at, c - half, c + half),
+                                            np.broadcast_to(at, c.shape)], axis=1))
+    if obstacles and len(c):
+        tree = shapely.STRtree(obstacles)
+        free = np.ones(len(c), dtype=bool)
+        free[tree.query(plates, predicate="intersects")[0]] = False
+        free[np.flatnonzero(free)[tree.query(leaders[free], predicate="intersects")[0]]] = False
+        c, plates, leaders = c[free], plates[free], leaders[free]
+    if not len(c):
+        return None
+    return centred_text(c[0], label, MIN_CAP, 0.0, "#000000"), plates[0], leaders[0]
 
 
 def weaving_steps(weave: Weave, book, turn: float) -> tuple[list[str], list[np.ndarray]]:
@@ -341,7 +344,7 @@ def weaving_sheet(weave: Weave, book, turn: float, title: str, total: int) -> Sh
         texts.append(Text(bx, by + cell_h - TEXT, caption, TEXT))
         if cell_h - LINE > 10:
             box = (bx, by, bx + cell_w, by + cell_h - LINE)
-            shapes.append(pattern(weave, turn, box, book.colours, shown.copy())[3])
+            shapes.append(pattern(weave, turn, box, book.colours, shown.copy())[2])
     layers = [Layer("diagrams", "paint", tuple(shapes)), Layer("steps", "label", tuple(texts))]
     layers += page_layers(area, title, "How to weave: numbered steps; the diagrams show the "
                           "weave growing", 2, total)

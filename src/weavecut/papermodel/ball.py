@@ -17,7 +17,7 @@ import shapely
 
 from ..layout.contrast import text_colour_on
 from ..layout.drawing import Drawing, Layer, Sheet, Text, polygons_from_shapely
-from ..layout.labels import MIN_CAP, centred_text, inner_centres, largest_fit, unit_box
+from ..layout.labels import MIN_CAP, centred_text, inner_centres, largest_fit, unit_boxes
 from ..layout.weave_figure import tile_rings
 from ..surface import face_normals
 from ..weave.colour import Palette, strand_colours
@@ -27,7 +27,7 @@ from .pages import FOLD, GAP, PageArea, _fits, page_layers, page_span
 from .pattern import OUTLINE
 from ..numeric import affine, dot, snap
 from .modules import copy_letter
-from .strip_labels import label_strip
+from .strip_labels import label_strips
 from .strips import Strip, flat_angle, outline_of, tint
 from .unfold import OVERLAP, Unfolding, UnfoldError, dashed, flatten, unfold
 from .wording import TEXT, page_index, paragraphs
@@ -212,7 +212,7 @@ def ball_book(weaves: list[Weave], pal: Palette, page=(210.0, 297.0),
     warnings = () if width >= WARN_STRIP else (
         f"strips are {width:.1f} mm wide: thin strips tear easily; {WARN_STRIP:g} mm or more "
         "is easier to weave",)
-    pieces = [label_strip(p, tile_mm) for p in pieces]
+    pieces = label_strips(pieces, tile_mm)
     small = min((t.size for p in pieces for t in p.texts), default=MIN_CAP)
     if small < MIN_CAP - 1e-6:
         raise SizeError(f"some labels would be {small:.1f} mm tall on a {diameter / 10:g} cm "
@@ -276,7 +276,7 @@ def _views(weave: Weave, colours, labels, box, cells):
         regions = shapely.buffer(shapes[good], -0.4, join_style="mitre")
         at = inner_centres(regions)
         text = [labels[t] for t in top[keep][good].tolist()]
-        size = largest_fit(regions, [unit_box(t, 0.0) for t in text], at, MIN_CAP, 5.0)
+        size = largest_fit(regions, unit_boxes(text, np.zeros(len(text))), at, MIN_CAP, 5.0)
         ids += [centred_text(c, t, float(z), 0.0, text_colour_on(f))
                 for c, t, z, f in zip(at, text, size, fill[good].tolist()) if np.isfinite(z)]
         captions.append(Text(cx, cy - cell / 2 - TEXT - 0.5, name, TEXT, "middle"))

@@ -28,7 +28,7 @@ from .crossings import crossing_pages, left_out_crossings
 from .packing import pack
 from .pages import GAP, PageArea, page_layers, page_span, split_strip, strip_layers
 from .modules import ModulePlan, book_colours, plan_modules
-from .strip_labels import label_strip
+from .strip_labels import label_strips
 from .strips import Strip, build_strips, octagon_size, strip_width
 from .wording import strip_runs
 
@@ -272,7 +272,7 @@ def labelled_pieces(weave: Weave, plan: ModulePlan, colours, tile_size: float, l
             parts = split_strip(s, longest, widest)
             pieces += parts
             kinds += [(m + i) * 64 + n for n in range(len(parts))]
-    return [label_strip(p, tile_size) for p in pieces], kinds
+    return label_strips(pieces, tile_size), kinds
 
 
 def _reads(pieces: list[Strip]) -> bool:

@@ -20,7 +20,7 @@ from ..layout.drawing import Layer, Polylines, Style, Text, polygons_from_shapel
 from ..layout.labels import MIN_CAP, centred_text, text_box, text_width
 from ..weave.model import Weave
 from .pages import GAP
-from .pattern import pattern
+from .pattern import label_spots, pattern
 from .strips import model_tiles
 from .wording import paragraphs
 
@@ -174,9 +174,8 @@ def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float) ->
     texts, bottom = paragraphs([note], x0, y1, x1 - x0)
     room = max((text_width(s, MIN_CAP) for s in labels), default=0.0) + 2 * PLATE_PAD + 3 * GAP
     frame = (x0, y0, x1, bottom - GAP)
-    on_sheet, _, centres, paint, _ = pattern(weave, turn, (x0 + room, y0, x1 - room, frame[3]),
-                                             colours)
-    spots = centres[[c[0] for c in crossings]]
+    on_sheet, _, paint, _ = pattern(weave, turn, (x0 + room, y0, x1 - room, frame[3]), colours)
+    spots = label_spots(on_sheet[[c[0] for c in crossings]])
     middle = (x0 + x1) / 2
     side = spots[:, 0] >= middle
     n = max(1, -(-max(side.sum(), (~side).sum()) // column_room(frame)))

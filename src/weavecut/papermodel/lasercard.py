@@ -30,7 +30,7 @@ from ..layout.drawing import (
     polygons_from_shapely,
     polylines_from_lines,
 )
-from ..layout.labels import MIN_CAP, text_box
+from ..layout.labels import MIN_CAP, text_boxes
 from ..layout.lasersetup import Laser
 from .packing import pack
 from .pages import GAP
@@ -65,23 +65,36 @@ class CardCut:
     smallest_label: float
 
 
-def engraved_labels(strip: Strip, margin: float = ENGRAVE_MARGIN
-                    ) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.int64], float]:
-    """Single-stroke labels of ``strip`` where the printed ones are, each as large as fits (up
-    to the printed size) in its printed box (printed boxes do not overlap), ``margin`` inside
-    the strip. Returns (coords, offsets, the label of every polyline, smallest height)."""
-    texts = [t for t in strip.texts if isinstance(t, Text)]
-    if not texts:
-        return np.zeros((0, 2)), np.zeros(1, dtype=np.int64), np.zeros(0, dtype=np.int64), np.inf
-    inner = shapely.buffer(strip.cut, -margin, join_style="mitre")
-    regions = shapely.intersection(np.array([text_box(t) for t in texts], dtype=object), inner)
-    heights, centres, angles = strokefont.fit_labels(
-        regions, [t.text for t in texts], 0.0, max(t.size for t in texts))
-    heights = np.minimum(heights, [t.size for t in texts])
-    keep = heights >= MIN_ENGRAVED
-    coords, offsets, owner = strokefont.labels([t.text for t, k in zip(texts, keep) if k],
-                                               centres[keep], heights[keep], angles[keep])
-    return coords, offsets, owner, float(heights[keep].min()) if keep.any() else np.inf
+def engraved_labels(strips: list[Strip], margin: float = ENGRAVE_MARGIN
+                    ) -> list[tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.int64],
+                                    float]]:
+    """Per strip, single-stroke labels where the printed ones are, each as large as fits (up to
+    the printed size) in its printed box (printed boxes do not overlap), ``margin`` inside the
+    strip: (coords, offsets, the label of every polyline, smallest height). All strips' labels
+    are fitted at once."""
+    texts = [[t for t in s.texts if isinstance(t, Text)] for s in strips]
+    owner = np.repeat(np.arange(len(strips)), [len(t) for t in texts])
+    flat = [t for group in texts for t in group]
+    heights = np.zeros(0)
+    if flat:
+        inner = shapely.buffer([s.cut for s in strips], -margin, join_style="mitre")
+        regions = shapely.intersection(text_boxes(flat), inner[owner])
+        cap = np.array([max(t.size for t in group) if group else 0.0 for group in texts])
+        heights, centres, angles = strokefont.fit_labels(regions, [t.text for t in flat], 0.0,
+                                                         cap[owner])
+        heights = np.minimum(heights, [t.size for t in flat])
+    out = []
+    for k, group in enumerate(texts):  # strips
+        mine = np.flatnonzero(owner == k)
+        keep = mine[heights[mine] >= MIN_ENGRAVED]
+        if not group:
+            out.append((np.zeros((0, 2)), np.zeros(1, dtype=np.int64), np.zeros(0, dtype=np.int64),
+                        np.inf))
+            continue
+        coords, offsets, which = strokefont.labels([flat[i].text for i in keep.tolist()],
+                                                   centres[keep], heights[keep], angles[keep])
+        out.append((coords, offsets, which, float(heights[keep].min()) if len(keep) else np.inf))
+    return out
 
 
 def marks(strip: Strip, margin: float = ENGRAVE_MARGIN) -> list[NDArray[np.float64]]:
@@ -134,7 +147,7 @@ def card_sheets(pieces: list[Strip], colours, las: Laser, kerf: float,
                  for p, pl in zip(group, places)]
         for s in range(max(pl.page for pl in places) + 1):  # this colour's sheets
             here = [m for m, pl in zip(moved, places) if pl.page == s]
-            labels = [engraved_labels(m) for m in here]
+            labels = engraved_labels(here)
             smallest = min([smallest] + [h for *_, h in labels])
             lines = [c[a:b] for c, o, *_ in labels for a, b in zip(o[:-1], o[1:])]
             lines += [r for m in here for r in marks(m)]

@@ -16,10 +16,8 @@ OUTLINE = Style("#333333", 0.1)
 
 
 def pattern(weave: Weave, turn: float, box, colours, show=None):
-    """(tiles on the sheet, fit, label spots, paint shape, fills) for the pattern fitted into
-    ``box``; with ``show`` (S,) bool only those strands are coloured (the others white). A
-    tile's label spot is the centre of the largest circle inside it: the mean of its corners
-    lies outside a non-convex or twisted tile of an irregular mesh."""
+    """(tiles on the sheet, fit, paint shape, fills) for the pattern fitted into ``box``; with
+    ``show`` (S,) bool only those strands are coloured (the others white)."""
     tiles = model_tiles(weave)
     centre = weave.mesh.vertices.mean(axis=0)
     turned = shapely.transform(tiles, lambda xy: rotate(xy, turn, centre))
@@ -33,6 +31,10 @@ def pattern(weave: Weave, turn: float, box, colours, show=None):
     top = np.where((over >= 0) & show[np.maximum(over, 0)], over,
                    np.where((under >= 0) & show[np.maximum(under, 0)], under, -1))
     fills = [colours[s] if s >= 0 else "#ffffff" for s in top.tolist()]
-    centres = inner_centres(shapely.make_valid(on_sheet, method="structure",
-                                               keep_collapsed=False))
-    return on_sheet, fit, centres, polygons_from_shapely(list(on_sheet), OUTLINE, fills), fills
+    return on_sheet, fit, polygons_from_shapely(list(on_sheet), OUTLINE, fills), fills
+
+
+def label_spots(tiles) -> np.ndarray:
+    """(n, 2) each tile's label spot: the centre of the largest circle inside it (the mean of
+    its corners lies outside a non-convex or twisted tile of an irregular mesh)."""
+    return inner_centres(shapely.make_valid(tiles, method="structure", keep_collapsed=False))

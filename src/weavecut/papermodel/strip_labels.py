@@ -1,8 +1,9 @@
-"""Labels on a paper strip: its ID, the names in its under tiles, direction arrows, label tabs.
+"""Labels on paper strips: each one's ID, the names in its under tiles, direction arrows, label tabs.
 
 Every label is fitted into its tile (less ``PAD``) as large as it goes up to a cap, or spread
 over the neighbouring tiles on a plate; an ID that no own tile holds goes on a label tab cut
-with the strip (``label_flap``). ``strips`` makes the unlabelled strips.
+with the strip (``label_flap``). ``strips`` makes the unlabelled strips. The strips of a book
+are labelled together: each step is one call over the tiles of every strip.
 """
 
 from __future__ import annotations
@@ -11,18 +12,18 @@ from dataclasses import replace
 
 import numpy as np
 import shapely
-from numpy.typing import NDArray
 
-from ..numeric import affine_matrix, dot, snap, transform
+from ..numeric import dot, snap
 from ..layout.contrast import text_colour_on
 from ..layout.drawing import Text
 from ..layout.labels import (
     MIN_CAP,
     centred_text,
+    centred_texts,
     inner_centres,
     largest_fit,
-    text_box,
-    unit_box,
+    text_boxes,
+    unit_boxes,
 )
 from .strips import Strip
 
@@ -35,97 +36,174 @@ NAME_SIZE = 3.0  # largest cap height of the ID printed in an under tile (well b
 
 
 def label_strip(strip: Strip, tile_mm: float) -> Strip:
-    """``strip`` with its labels: its ID in its largest own tile (and in the other half of a
+    """``strip`` with its labels (:func:`label_strips` of one strip)."""
+    return label_strips([strip], tile_mm)[0]
+
+
+def label_strips(strips: list[Strip], tile_mm: float) -> list[Strip]:
+    """Every strip with its labels: its ID in its largest own tile (and in the other half of a
     long strip), the ID of the strand on top in every under tile, and direction arrows in own
     tiles that hold no ID. Every label is fitted into its tile (less ``PAD``) as large as it goes
     up to a cap, or spread over the neighbouring tiles on a plate; a name that still cannot
     reach ``MIN_CAP`` is left out (the assembly sheet shows that crossing); an ID no own tile
     holds goes on a label tab (:func:`label_flap`), or is kept at the size that fits (so the
     caller can name the tile size that works)."""
-    band = None if strip.glue is None else shapely.union_all(strip.glue)
-    regions = shapely.intersection(strip.tiles, strip.outline)
-    if band is not None:
-        regions = shapely.difference(regions, band)
-    regions = shapely.buffer(regions, -PAD, join_style="mitre")
-    centres = inner_centres(regions)
-    own = np.flatnonzero(strip.over & ~shapely.is_empty(regions))
-    under = np.flatnonzero(~strip.over & ~shapely.is_empty(regions))
-    # the strip's ID: largest own tile; a long strip also in the largest of its other half
-    id_tiles: list[int] = []
-    # the first tile of a piece with a mark keeps its room for the mark
-    cand = own[own != 0] if strip.mark and (own != 0).any() else own
-    if len(cand):
-        id_size, _ = _fit_text(regions[cand], centres[cand],
-                               [strip.label.partition(" ")[0]] * len(cand), ID_SIZE)
-        rank = np.lexsort((np.arange(len(cand)), -snap(shapely.area(regions[cand]))))
-        first = rank[0] if id_size[rank[0]] >= MIN_CAP else int(np.argmax(snap(id_size)))
-        id_tiles = [int(cand[first])]
-        if len(cand) >= 6:
-            half = cand > cand[first] if cand[first] < cand[len(cand) // 2] else cand < cand[first]
-            id_tiles += [int(cand[r]) for r in rank.tolist() if half[r]
-                         and id_size[r] >= MIN_CAP][:1]
+    if not strips:
+        return []
+    lay = _Tiles(strips)
+    own, under, ids, id_tiles = _owners(lay)
     # IDs first (spread onto the neighbours if they must), a piece's number ("2/3") in another
     # own tile, then the names round them
-    name, _, part = strip.label.partition(" ")
-    wanted = [(i, name, ID_SIZE) for i in id_tiles]
-    if part and id_tiles:
-        spare = [int(cand[r]) for r in rank.tolist() if int(cand[r]) not in id_tiles]
-        if spare:
-            wanted.append((spare[0], part, NAME_SIZE))
-        else:  # one own tile: it says both ("B 2/3")
-            wanted[0] = (id_tiles[0], strip.label, ID_SIZE)
-    if strip.mark:
-        wanted.append((0, strip.mark, NAME_SIZE))
-    texts, plates, plate_fills = _place(strip, wanted[:1], regions, centres, band)
-    if len(wanted) > 1:
-        more = _place(strip, wanted[1:], regions, centres, band,
-                      [*plates, *(text_box(t) for t in texts)])
-        texts += more[0]
-        plates = np.array([*plates, *more[1]], dtype=object)
-        plate_fills += more[2]
-    id_wanted = wanted
-    taken = [*plates, *(text_box(t) for t in texts)]
-    if taken:
-        regions = shapely.difference(regions, shapely.buffer(shapely.union_all(taken), PAD))
-        centres = inner_centres(regions)
-    wanted = [(int(i), strip.names[i], NAME_SIZE) for i in under
-              if strip.names[i] and not shapely.is_empty(regions[i])]
-    more, more_plates, more_fills = _place(strip, wanted, regions, centres, band, taken)
-    texts += more
-    plates = np.array([*plates, *more_plates], dtype=object)
-    plate_fills += more_fills
-    wanted = id_wanted + wanted
+    first = _place(lay, [w[:1] for w in ids], [[] for _ in strips])
+    taken = [[*p, *text_boxes(t)] for t, p, _ in first]
+    second = _place(lay, [w[1:] for w in ids], taken)
+    placed = [(a + b, c + d, e + f) for (a, c, e), (b, d, f) in zip(first, second)]
+    taken = [[*p, *text_boxes(t)] for t, p, _ in placed]
+    lay.clear_of(taken, recentre=True)
+    empty = shapely.is_empty(lay.regions)
+    names = [[(int(i), strip.names[i], NAME_SIZE) for i in under[s].tolist()
+              if strip.names[i] and not empty[lay.first[s] + i]]
+             for s, strip in enumerate(strips)]
+    placed = [(a + b, c + d, e + f) for (a, c, e), (b, d, f) in
+              zip(placed, _place(lay, names, taken))]
     # an under tile too small for the name (a border tile at 23 cm): the assembly sheet shows
     # that crossing, the strip leaves it out
-    left_out = tuple(w[0] for t, w in zip(texts, wanted) if t.size < MIN_CAP
-                     and w not in id_wanted)
-    texts = [t for t, w in zip(texts, wanted) if t.size >= MIN_CAP or w in id_wanted]
-    if len(plates):
-        regions = shapely.difference(regions, shapely.buffer(shapely.union_all(plates), PAD))
-    # arrows: the first and the last own tile without an ID, pointing the way the strand goes
-    arrows = []
-    free = [i for i in own.tolist() if i not in id_tiles and not shapely.is_empty(regions[i])]
-    ends = sorted({free[0], free[-1]}) if free else []
-    if ends:
-        pts = np.array([(c.x, c.y) for c in shapely.centroid(strip.tiles)])
-        dirs = [pts[min(i + 1, len(pts) - 1)] - pts[max(i - 1, 0)] for i in ends]
-        unit = [arrow_polygon((0.5, 0.0), (1.0, 0.0), 1.0) for _ in ends]
-        unit = [shapely.transform(u, transform(turn_to(d))) for u, d in zip(unit, dirs)]
-        length = largest_fit(regions[ends], unit, centres[ends], 2.0, 0.45 * tile_mm)
-        arrows = [shapely.transform(u, lambda xy, z=z, c=centres[i]: xy * z + c)
-                  for u, z, i in zip(unit, length.tolist(), ends) if np.isfinite(z)]
-    if texts and texts[0].size < MIN_CAP and id_wanted:  # no own tile reads: a label tab
-        tabbed = label_flap(strip, texts[0].text)
-        if tabbed is not None:
-            strip, texts[0] = tabbed
-    if band is not None:  # "glue" on the band, where it fits
-        zone = shapely.buffer(shapely.intersection(band, strip.outline), -PAD, join_style="mitre")
-        c = inner_centres([zone])
-        size, angle = _fit_text([zone], c, [strip.tab], NAME_SIZE)
-        if size[0] >= MIN_CAP:
-            texts.append(centred_text(c[0], strip.tab, float(size[0]), float(angle[0])))
-    return replace(strip, texts=tuple(texts), arrows=np.array(arrows, dtype=object),
-                   plates=plates, plate_fills=plate_fills, left_out=left_out)
+    left_out = [tuple(w[0] for t, w in zip(texts, ids[s] + names[s]) if t.size < MIN_CAP
+                      and w not in ids[s]) for s, (texts, _, _) in enumerate(placed)]
+    texts = [[t for t, w in zip(texts, ids[s] + names[s]) if t.size >= MIN_CAP or w in ids[s]]
+             for s, (texts, _, _) in enumerate(placed)]
+    lay.clear_of([p for _, p, _ in placed], recentre=False)
+    arrows = _arrows(lay, own, id_tiles, tile_mm)
+    out = []
+    for s, strip in enumerate(strips):
+        if texts[s] and texts[s][0].size < MIN_CAP and ids[s]:  # no own tile reads: a tab
+            tabbed = label_flap(strip, texts[s][0].text)
+            if tabbed is not None:
+                strip, texts[s][0] = tabbed
+        out.append(replace(strip, arrows=np.array(arrows[s], dtype=object),
+                           plates=np.array(placed[s][1], dtype=object),
+                           plate_fills=tuple(placed[s][2]), left_out=left_out[s]))
+    return [replace(s, texts=tuple(t)) for s, t in zip(out, _glue_words(lay, texts))]
+
+
+class _Tiles:
+    """Every tile of every strip in one array (``first[s]`` is strip s's first), with the room
+    a label has in it (``regions``: the tile on its strip, less its glue band, less ``PAD``) and
+    the centre of that room."""
+
+    def __init__(self, strips: list[Strip]):
+        self.strips = strips
+        count = np.array([len(s.tiles) for s in strips])
+        self.first = np.cumsum(count) - count
+        self.of = np.repeat(np.arange(len(strips)), count)
+        self.tiles = np.concatenate([s.tiles for s in strips])
+        self.bands = np.array([None if s.glue is None else shapely.union_all(s.glue)
+                               for s in strips], dtype=object)
+        self.outlines = np.array([s.outline for s in strips], dtype=object)
+        regions = shapely.intersection(self.tiles, self.outlines[self.of])
+        banded = np.flatnonzero(np.not_equal(self.bands, None)[self.of])
+        regions[banded] = shapely.difference(regions[banded], self.bands[self.of[banded]])
+        self.regions = shapely.buffer(regions, -PAD, join_style="mitre")
+        self.centres = inner_centres(self.regions)
+
+    def clear_of(self, shapes, recentre: bool) -> None:
+        """Takes ``shapes[s]`` (polygons on strip s) and ``PAD`` round them out of the strips'
+        regions; with ``recentre`` the changed regions get new centres."""
+        owner = np.array([s for s, g in enumerate(shapes) for _ in g], dtype=np.int64)
+        if not len(owner):
+            return
+        hit = np.unique(owner)
+        keep_out = np.full(len(shapes), None, dtype=object)
+        keep_out[hit] = shapely.buffer(shapely.geometrycollections(
+            [g for group in shapes for g in group], indices=np.searchsorted(hit, owner)), PAD)
+        t = np.flatnonzero(np.isin(self.of, hit))
+        t = t[shapely.intersects(self.regions[t], keep_out[self.of[t]])]  # the others keep theirs
+        self.regions[t] = shapely.difference(self.regions[t], keep_out[self.of[t]])
+        if recentre:
+            self.centres[t] = inner_centres(self.regions[t])
+
+
+def _owners(lay: _Tiles):
+    """(own tiles, under tiles, wanted IDs, the IDs' tiles) per strip: the ID goes in the largest own tile that
+    holds it (a long strip's also in the largest of its other half), a piece's number in
+    another own tile, and the first tile of a piece with a mark keeps its room for the mark."""
+    empty = shapely.is_empty(lay.regions)
+    area = snap(shapely.area(lay.regions))
+    own, under, cand = [], [], []
+    for s, strip in enumerate(lay.strips):
+        lo = lay.first[s]
+        free = ~empty[lo:lo + len(strip.tiles)]
+        o = np.flatnonzero(strip.over & free)
+        own.append(o)
+        under.append(np.flatnonzero(~strip.over & free))
+        cand.append(o[o != 0] if strip.mark and (o != 0).any() else o)
+    at = np.concatenate([lay.first[s] + c for s, c in enumerate(cand)]).astype(np.int64)
+    size, _ = _fit_text(lay.regions[at], lay.centres[at], [
+        s.label.partition(" ")[0] for s, c in zip(lay.strips, cand) for _ in c], ID_SIZE)
+    sizes = np.split(size, np.cumsum([len(c) for c in cand])[:-1])
+    wanted, id_tiles = [], []
+    for s, strip in enumerate(lay.strips):
+        c, size = cand[s], sizes[s]
+        tiles: list[int] = []
+        if len(c):
+            rank = np.lexsort((np.arange(len(c)), -area[lay.first[s] + c])).tolist()
+            top = rank[0] if size[rank[0]] >= MIN_CAP else int(np.argmax(snap(size)))
+            tiles = [int(c[top])]
+            if len(c) >= 6:
+                half = c > c[top] if c[top] < c[len(c) // 2] else c < c[top]
+                tiles += [int(c[r]) for r in rank if half[r] and size[r] >= MIN_CAP][:1]
+        name, _, part = strip.label.partition(" ")
+        w = [(i, name, ID_SIZE) for i in tiles]
+        if part and tiles:
+            spare = [int(c[r]) for r in rank if int(c[r]) not in tiles]
+            if spare:
+                w.append((spare[0], part, NAME_SIZE))
+            else:  # one own tile: it says both ("B 2/3")
+                w[0] = (tiles[0], strip.label, ID_SIZE)
+        if strip.mark:
+            w.append((0, strip.mark, NAME_SIZE))
+        wanted.append(w)
+        id_tiles.append(tiles)
+    return own, under, wanted, id_tiles
+
+
+def _arrows(lay: _Tiles, own, id_tiles, tile_mm: float) -> list[list]:
+    """Per strip, arrows in the first and the last own tile without an ID, pointing the way
+    the strand goes, as long as they fit."""
+    empty = shapely.is_empty(lay.regions)
+    mid = shapely.get_coordinates(shapely.centroid(lay.tiles))
+    at, dirs, owner = [], [], []
+    for s, strip in enumerate(lay.strips):
+        lo, n = lay.first[s], len(strip.tiles)
+        free = [i for i in own[s].tolist() if i not in id_tiles[s] and not empty[lo + i]]
+        for i in (sorted({free[0], free[-1]}) if free else []):
+            at.append(lo + i)
+            dirs.append(mid[lo + min(i + 1, n - 1)] - mid[lo + max(i - 1, 0)])
+            owner.append(s)
+    out: list[list] = [[] for _ in lay.strips]
+    if at:
+        unit = unit_arrows(dirs)
+        length = largest_fit(lay.regions[at], unit, lay.centres[at], 2.0, 0.45 * tile_mm)
+        ok = np.isfinite(length)
+        shapes = shapely.polygons(unit[ok] * length[ok, None, None] + lay.centres[at][ok, None])
+        for s, a in zip(np.asarray(owner)[ok].tolist(), shapes):
+            out[s].append(a)
+    return out
+
+
+def _glue_words(lay: _Tiles, texts):
+    """``texts`` per strip, with the strip's ``tab`` ("glue") on its glue band where it fits."""
+    banded = np.flatnonzero(np.not_equal(lay.bands, None))
+    if len(banded):
+        zones = shapely.buffer(shapely.intersection(lay.bands[banded], lay.outlines[banded]),
+                               -PAD, join_style="mitre")
+        c = inner_centres(zones)
+        tabs = [lay.strips[s].tab for s in banded.tolist()]
+        size, angle = _fit_text(zones, c, tabs, NAME_SIZE)
+        for s, xy, tab, z, a in zip(banded.tolist(), c, tabs, size.tolist(), angle.tolist()):
+            if z >= MIN_CAP:
+                texts[s].append(centred_text(xy, tab, z, a))
+    return texts
 
 
 FLAP_MARGIN = 0.6  # mm between a label tab's text and its edges
@@ -140,8 +218,7 @@ def label_flap(strip: Strip, text: str) -> tuple[Strip, Text] | None:
     (the edge the strand leaves by, shared with no other tile of the strip; not a glue band's),
     just large enough for the text along or across the edge plus ``FLAP_MARGIN``, outside every
     tile of the strip; the smallest tab that fits wins."""
-    x0, y0, x1, y1 = unit_box(text, 0.0).bounds
-    along, high = (x1 - x0) * MIN_CAP, (y1 - y0) * MIN_CAP
+    along, high = (np.ptp(unit_boxes([text], [0.0])[0], axis=0) * MIN_CAP).tolist()
     n = len(strip.tiles)
     ends = [i for i in sorted({0, n - 1}) if not (strip.glue is not None and i == n - 1)]
     body = shapely.union_all(strip.tiles)
@@ -198,44 +275,78 @@ def _tab_base(base: float, edge: float) -> float:
     return max(base, edge + 2 * FLAP_STEP)
 
 
-def _place(strip: Strip, wanted, regions, centres, band, taken=()):
-    """(texts, plates, plate fills) for ``wanted`` (tile, text, largest size) labels: each
-    fitted into its tile; one that does not reach ``MIN_CAP`` there, or lies on something in
-    ``taken``, is spread over its neighbouring tiles on a plate of its tile's fill, clear of
-    ``taken`` and of the labels placed before it."""
-    if not wanted:
-        return [], np.zeros(0, dtype=object), ()
-    idx = np.array([w[0] for w in wanted])
-    size, angle = _fit_text(regions[idx], centres[idx], [w[1] for w in wanted],
-                            np.array([w[2] for w in wanted]))
-    texts = [centred_text(centres[i], t, float(z), float(a), text_colour_on(strip.fills[i]))
-             for (i, t, _), z, a in zip(wanted, size, angle)]
-    plates, fills = [], []
-    clash = shapely.intersects(np.array([text_box(t) for t in texts], dtype=object)[:, None],
-                               np.array([*taken, None], dtype=object)[None, :]).any(axis=1)
+def _place(lay: _Tiles, wanted, taken):
+    """(texts, plates, plate fills) per strip for its ``wanted`` (tile, text, largest size)
+    labels: each fitted into its tile; one that does not reach ``MIN_CAP`` there, or lies on
+    something in its ``taken``, is spread over its neighbouring tiles on a plate of its tile's
+    fill, clear of ``taken`` and of the labels placed before it. Each strip's cramped labels go
+    one at a time, the strips' together."""
+    strips = lay.strips
+    flat = [(s, i, text, high) for s, w in enumerate(wanted) for i, text, high in w]
+    out = [([], [], []) for _ in strips]
+    if not flat:
+        return out
+    owner, tile, text, high = (list(v) for v in zip(*flat))
+    at = lay.first[owner] + np.array(tile)
+    size, angle = _fit_text(lay.regions[at], lay.centres[at], text, np.array(high))
+    ink = [text_colour_on(strips[s].fills[i]) for s, i in zip(owner, tile)]
+    texts = centred_texts(lay.centres[at], text, size, angle, ink)
+    boxes = text_boxes(texts)
+    pairs = [(k, g) for k, s in enumerate(owner) for g in taken[s]]
+    clash = np.zeros(len(flat), dtype=bool)
+    if pairs:
+        k, g = zip(*pairs)
+        clash[np.asarray(k)[shapely.intersects(boxes[list(k)], np.array(g, dtype=object))]] = True
+    queues: list[list[int]] = [[] for _ in strips]
     for k in np.flatnonzero((size < MIN_CAP) | clash).tolist():  # the few cramped labels
-        i, text, _ = wanted[k]
-        wide = shapely.intersection(shapely.union_all(strip.tiles[max(i - 1, 0):i + 2]),
-                                    strip.outline)
-        blocked = [band, *taken, *plates, *(text_box(t) for j, t in enumerate(texts)
-                                            if j != k and t.size >= MIN_CAP)]
-        blocked = [g for g in blocked if g is not None]
-        if blocked:
-            wide = shapely.difference(wide, shapely.buffer(shapely.union_all(blocked), PAD))
+        queues[owner[k]].append(k)
+    mine = [[] for _ in strips]
+    for k, s in enumerate(owner):
+        mine[s].append(k)
+    for r in range(max(map(len, queues))):  # the first cramped label of every strip, ...
+        ks = [q[r] for q in queues if len(q) > r]
+        ss = [owner[k] for k in ks]
+        around = np.full((len(ks), 3), None, dtype=object)
+        for row, k in enumerate(ks):
+            s, i = owner[k], tile[k]
+            near = lay.first[s] + np.arange(max(i - 1, 0), min(i + 2, len(strips[s].tiles)))
+            around[row, :len(near)] = lay.tiles[near]
+        wide = shapely.intersection(shapely.union_all(around, axis=1), lay.outlines[ss])
+        blocked = [[g for g in (lay.bands[s], *taken[s], *out[s][1]) if g is not None]
+                   + [boxes[j] for j in mine[s] if j != k and texts[j].size >= MIN_CAP]
+                   for k, s in zip(ks, ss)]
+        rows = [row for row, b in enumerate(blocked) if b]
+        if rows:
+            keep_out = shapely.buffer(shapely.geometrycollections(
+                [g for row in rows for g in blocked[row]],
+                indices=np.repeat(np.arange(len(rows)), [len(blocked[row]) for row in rows])), PAD)
+            wide[rows] = shapely.difference(wide[rows], keep_out)
         wide = shapely.buffer(wide, -PAD - PLATE, join_style="mitre")
-        zone = shapely.intersection(wide, shapely.buffer(strip.tiles[i], 2 * MIN_CAP))
-        inner = inner_centres([zone])[0]
-        mid = shapely.get_coordinates(shapely.centroid(zone)).reshape(-1, 2)[:1]
-        spots = np.vstack([inner, mid, (inner + mid) / 2]) if len(mid) else inner[None]
-        z, a = _fit_text([wide] * len(spots), spots, [text] * len(spots), MIN_CAP)
-        best = int(np.argmax(snap(z)))
-        near, z, a = spots[best:best + 1], z[best:best + 1], a[best:best + 1]
-        if z[0] >= MIN_CAP - 1e-9:
-            texts[k] = centred_text(near[0], text, float(z[0]), float(a[0]),
-                                    text_colour_on(strip.fills[i]))
-            plates.append(shapely.buffer(text_box(texts[k]), PLATE, join_style="mitre"))
-            fills.append(strip.fills[i])
-    return texts, np.array(plates, dtype=object), tuple(fills)
+        zone = shapely.intersection(wide, shapely.buffer(lay.tiles[at[ks]], 2 * MIN_CAP))
+        inner = inner_centres(zone)
+        full = ~shapely.is_empty(zone)
+        mid = np.zeros_like(inner)
+        mid[full] = shapely.get_coordinates(shapely.centroid(zone[full]))
+        spots = [np.vstack([c, m, (c + m) / 2]) if f else c[None]
+                 for c, m, f in zip(inner, mid, full.tolist())]
+        row_of = np.repeat(np.arange(len(ks)), [len(p) for p in spots])
+        spots = np.vstack(spots)
+        z, a = _fit_text(wide[row_of], spots, [text[ks[row]] for row in row_of], MIN_CAP)
+        best = [pick[int(np.argmax(snap(z[pick])))] for pick in
+                np.split(np.arange(len(z)), np.cumsum(np.bincount(row_of))[:-1])]
+        done = [(k, b) for k, b in zip(ks, best) if z[b] >= MIN_CAP - 1e-9]
+        if done:
+            k, b = (list(v) for v in zip(*done))
+            now = centred_texts(spots[b], [text[j] for j in k], z[b], a[b], [ink[j] for j in k])
+            new = text_boxes(now)
+            for j, t, box, plate in zip(k, now, new, shapely.buffer(new, PLATE,
+                                                                    join_style="mitre")):
+                texts[j], boxes[j] = t, box
+                out[owner[j]][1].append(plate)
+                out[owner[j]][2].append(strips[owner[j]].fills[tile[j]])
+    for k, s in enumerate(owner):
+        out[s][0].append(texts[k])
+    return out
 
 
 def arrow_polygon(tip, direction, length: float) -> shapely.Polygon:
@@ -250,23 +361,27 @@ def arrow_polygon(tip, direction, length: float) -> shapely.Polygon:
     return shapely.Polygon(pts)
 
 
-def turn_to(d) -> NDArray[np.float64]:
-    """(3, 3) the turn taking the x axis to the direction ``d``."""
-    d = np.asarray(d, dtype=float) / max(float(np.hypot(*d)), 1e-12)
-    return affine_matrix(d[0], -d[1], d[1], d[0])
+def unit_arrows(directions) -> np.ndarray:
+    """(n, 7, 2) the corners of an arrow 1 long centred on the origin, pointing along each
+    of ``directions`` (n, 2)."""
+    ring = np.asarray(arrow_polygon((0.5, 0.0), (1.0, 0.0), 1.0).exterior.coords)[:-1]
+    d = np.asarray(directions, dtype=float).reshape(-1, 2)
+    d = d / np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-12)[:, None]
+    c, s = d[:, :1], d[:, 1:]
+    return np.stack([c * ring[:, 0] - s * ring[:, 1], s * ring[:, 0] + c * ring[:, 1]], axis=-1)
 
 
-def _fit_text(regions, centres, texts, high: float):
+def _fit_text(regions, centres, texts, high):
     """(size, angle) of the largest fit of every text in its region, along or across the strip
     (cap heights below ``MIN_CAP`` are kept: the caller reports them)."""
     n = len(texts)
     if n == 0:
         return np.zeros(0), np.zeros(0)
-    regions = np.asarray(regions, dtype=object)
     reps = len(ANGLES)
-    shapes = [unit_box(t, a) for a in ANGLES for t in texts]
-    fits = largest_fit(np.tile(regions, reps), shapes, np.tile(np.asarray(centres), (reps, 1)),
-                       0.2, np.tile(np.broadcast_to(np.asarray(high, float), (n,)), reps), 10)
+    shapes = unit_boxes(list(texts) * reps, np.repeat(ANGLES, n))
+    fits = largest_fit(np.tile(np.asarray(regions, dtype=object), reps), shapes,
+                       np.tile(np.asarray(centres), (reps, 1)), 0.2,
+                       np.tile(np.broadcast_to(np.asarray(high, float), (n,)), reps))
     sizes = np.nan_to_num(fits.reshape(reps, n).T, nan=0.0)
     pick = snap(sizes).argmax(axis=1)  # the first angle of equal sizes
     return sizes[np.arange(n), pick], np.asarray(ANGLES)[pick]
