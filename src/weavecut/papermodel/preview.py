@@ -25,7 +25,7 @@ def pattern_preview(weaves: list[Weave], pal: Palette, turn: float = 0.0,
     plan = plan_modules(weave, heading=-np.pi / 2 - turn)
     colours = book_colours(weaves, plan, pal, layout)
     box = (MARGIN, MARGIN, MARGIN + WIDTH, MARGIN + WIDTH)
-    on_sheet, _, _, paint, _ = pattern(weave, turn, box, colours)
+    on_sheet, _, paint, _ = pattern(weave, turn, box, colours)
     x1, y1 = shapely.total_bounds(on_sheet)[2:]  # the fit fills the box's width or height
     sheet = Sheet(float(x1 + MARGIN), float(y1 + MARGIN), (Layer("pattern", "paint", (paint,)),),
                   "preview")
