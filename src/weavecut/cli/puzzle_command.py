@@ -90,7 +90,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
 
     from ..mesh_io import read_valid_mesh
     from ..puzzle import files as pf
-    from ..readers.drawing import READERS
+    from ..readers import SUFFIXES as DRAWINGS  # not the readers themselves: a mesh needs none
     from ..puzzle import workshop
     from ..puzzle.colouring import colour_puzzle, palette_names
     from ..puzzle.frame import fits, split_frame
@@ -111,7 +111,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     drawing = ctx.meta.setdefault(DRAWING_KEY, {})
     drawing["runs"] = True
     read_at = None
-    if Path(input_mesh).suffix.lower() in READERS and drawing.get("mesh") != "none":
+    if Path(input_mesh).suffix.lower() in DRAWINGS and drawing.get("mesh") != "none":
         def read_at(cell):
             return check_layout(read_valid_mesh(input_mesh, **{**drawing, "cell": cell}),
                                 "the puzzle", connected=True)
