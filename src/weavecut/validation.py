@@ -15,11 +15,9 @@ from __future__ import annotations
 import numpy as np
 import shapely
 from numpy.typing import NDArray
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
-from scipy.spatial import cKDTree
 
 from .errors import MeshError
+from .graphs import components
 from .mesh import ZERO_BASED, Mesh, Numbering, Topology, outer_vertices
 from .mesh_geometry import face_perimeters, signed_areas
 from .surface import signed_volume, vector_areas
@@ -182,7 +180,7 @@ def _polygons(mesh: Mesh, faces: NDArray[np.int64]) -> NDArray[np.object_]:
 
 
 def _check_boundary_vertices_outside(mesh: Mesh, corners: _Corners, boundary, n: Numbering):
-    """No boundary vertex lies inside a face: a k-d tree of the boundary vertices finds the faces
+    """No boundary vertex lies inside a face: a tree of the boundary vertices finds the faces
     whose circumscribing circle (centred on the vertex mean) holds one, GEOS decides those."""
     starts = mesh.face_offsets[:-1]
     k = mesh.face_sizes
@@ -190,14 +188,12 @@ def _check_boundary_vertices_outside(mesh: Mesh, corners: _Corners, boundary, n:
     cy = np.add.reduceat(corners.y, starts) / k
     dist = np.hypot(corners.x - np.repeat(cx, k), corners.y - np.repeat(cy, k))
     radius = np.maximum.reduceat(dist, starts) * (1 + 1e-9)
-    tree = cKDTree(mesh.vertices[boundary])
-    centres = np.column_stack([cx, cy])
-    nearest, _ = tree.query(centres, distance_upper_bound=radius.max())
-    near = np.flatnonzero(nearest <= radius)
+    points = shapely.STRtree(shapely.points(mesh.vertices[boundary]))
+    near = np.unique(points.query(shapely.points(cx, cy), predicate="dwithin",
+                                  distance=radius)[0])
     if not len(near):
         return
     # boxes first (a thin face's circle holds many boundary vertices, its box few), then GEOS
-    points = shapely.STRtree(shapely.points(mesh.vertices[boundary]))
     which, hit = points.query(_polygons(mesh, near), predicate="contains_properly")
     if len(hit):
         face, point = near[which], boundary[hit]
@@ -225,9 +221,7 @@ def check_layout(mesh: Mesh, what: str, connected: bool = False) -> Mesh:
         twin = mesh.topology.twin
         inner = twin >= 0
         face = mesh.half_edge_face
-        graph = coo_matrix((np.ones(inner.sum()), (face[inner], face[twin[inner]])),
-                           shape=(mesh.n_faces, mesh.n_faces))
-        parts = connected_components(graph, directed=False)[0]
+        parts = components(mesh.n_faces, face[inner], face[twin[inner]])[0]
         if parts > 1:
             raise MeshError(f"the mesh has {parts} separate parts; {what} needs one piece")
     return mesh

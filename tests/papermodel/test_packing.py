@@ -117,3 +117,11 @@ def test_the_finer_block_tests_find_the_same_places(spec):
         assert pack(shapes, 150.0, 130.0, 2.0) == quick
     finally:
         packing.TRIES = tries
+
+
+def test_fast_fft_sizes_are_scipys():
+    from scipy.fft import next_fast_len
+
+    from weavecut.papermodel.packing_grid import fast_len
+
+    assert [fast_len(n) for n in range(1, 3000)] == [next_fast_len(n) for n in range(1, 3000)]

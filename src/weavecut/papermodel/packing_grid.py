@@ -10,9 +10,29 @@ from __future__ import annotations
 
 import numpy as np
 import shapely
-from scipy.fft import irfft2, next_fast_len, rfft2
+from numpy.fft import irfft2, rfft2
 
 from ..numeric import affine
+
+
+def fast_len(n: int) -> int:
+    """The least size >= ``n`` whose prime factors are 2, 3, 5, 7 and 11, which pocketfft
+    transforms fastest (``scipy.fft.next_fast_len``'s answer, without importing scipy).
+
+    Examples
+    --------
+    >>> [fast_len(n) for n in (1, 13, 17, 97, 1000)]
+    [1, 14, 18, 98, 1000]
+    """
+    m = n
+    while True:
+        k = m
+        for p in (2, 3, 5, 7, 11):
+            while k % p == 0:
+                k //= p
+        if k == 1:
+            return m
+        m += 1
 
 BLOCKS = (8, 4, 2, 1)  # the block tests' sizes (cells), coarsest first; 1: cell by cell
 
@@ -165,7 +185,7 @@ class Page:
             blocks = columns[::k].copy()
             for i in range(1, k):
                 blocks &= columns[i::k]
-            shape = tuple(next_fast_len(n) for n in blocks.shape)  # no wrap where it is read
+            shape = tuple(fast_len(n) for n in blocks.shape)  # no wrap where it is read
             self._blocks[k] = blocks, shape, rfft2(blocks.astype(np.float32), shape)
         blocks, shape, page = self._blocks[k]
         key = (k, shape, *map(id, cores))

@@ -13,8 +13,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 from numpy.typing import NDArray
-from scipy.spatial import cKDTree
 
 from ..weave.model import Weave
 
@@ -77,16 +77,23 @@ def tile_centres(weave: Weave) -> NDArray[np.float64]:
                             for k in (0, 1)]) / count[:, None]
 
 
-def _match(tree: cKDTree, points: NDArray[np.float64], tol: float) -> NDArray[np.int64] | None:
+def _tree(points: NDArray[np.float64]) -> shapely.STRtree:
+    return shapely.STRtree(shapely.points(points))
+
+
+def _match(tree: shapely.STRtree, points: NDArray[np.float64],
+           tol: float) -> NDArray[np.int64] | None:
     """Index of the tree point at every point, or None when some point has no match."""
-    dist, idx = tree.query(points, distance_upper_bound=tol)
-    if not np.isfinite(dist).all():
+    found = tree.query_nearest(shapely.points(points), max_distance=tol, all_matches=False)
+    if found.shape[1] != len(points):
         return None
-    return idx.astype(np.int64)
+    idx = np.empty(len(points), dtype=np.int64)
+    idx[found[0]] = found[1]
+    return idx
 
 
-def _weave_map(weave: Weave, centres: NDArray[np.float64], tree: cKDTree, angle: float,
-               centre: NDArray[np.float64], tol: float):
+def _weave_map(weave: Weave, centres: NDArray[np.float64], tree: shapely.STRtree,
+               angle: float, centre: NDArray[np.float64], tol: float):
     """(tile_perm, strand_perm) of the turn by ``angle`` if it is a symmetry of the weave."""
     tile_perm = _match(tree, rotate(centres, angle, centre), tol)
     if tile_perm is None or len(np.unique(tile_perm)) != weave.n_tiles:
@@ -137,9 +144,9 @@ def rotation_group(weave: Weave, rtol: float = 1e-7) -> Symmetry:
     d = v - centre
     angles = np.mod(np.arctan2(d[same, 1], d[same, 0]) - np.arctan2(d[far, 1], d[far, 0]),
                     2 * np.pi)
-    vtree = cKDTree(v)
+    vtree = _tree(v)
     centres = tile_centres(weave)
-    ttree = cKDTree(centres)
+    ttree = _tree(centres)
     kept = []
     for angle in np.unique(np.round(angles, 9)).tolist():  # a few candidates, not mesh elements
         if angle < 1e-9:

@@ -20,10 +20,9 @@ from dataclasses import replace
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
 
 from ..errors import MeshError
+from ..graphs import components
 from ..mesh import Mesh
 from ..subdivision.hierarchy import Level
 from .model import Weave
@@ -33,8 +32,7 @@ from .paths import rank_paths
 def _graph_components(n: int, a: NDArray, b: NDArray) -> NDArray[np.int64]:
     """Connected-component label of n nodes joined by edges (a, b), numbered in the order of
     each component's smallest node."""
-    graph = coo_matrix((np.ones(len(a), dtype=np.int8), (a, b)), shape=(n, n))
-    return connected_components(graph, directed=False)[1].astype(np.int64)
+    return components(n, a, b)[1]
 
 
 def snub_weave(mesh: Mesh) -> Weave:
