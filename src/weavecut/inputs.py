@@ -5,6 +5,7 @@ Every builder returns a valid counter-clockwise mesh; ``get("name[:param]")`` pa
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -140,17 +141,34 @@ def hex_grid(param: str | None = None) -> Mesh:
     return mesh.moved(mesh.vertices - mesh.vertices.mean(axis=0))
 
 
+def _hull(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(planes, triangles) of the convex hull of a few dozen points in 3D: every triple of
+    points whose plane has all the points on one side; a plane is its outward unit normal and
+    offset, ``normal . x + offset <= 0`` inside (as qhull's ``equations``)."""
+    tri = np.array(list(itertools.combinations(range(len(points)), 3)))
+    a, b, c = points[tri].transpose(1, 0, 2)
+    normal = np.cross(b - a, c - a)
+    length = np.sqrt(dot(normal, normal))
+    tri, a, normal = tri[length > 1e-9], a[length > 1e-9], normal[length > 1e-9]
+    normal /= length[length > 1e-9][:, None]
+    offset = -dot(normal, a)
+    side = dot(points[None], normal[:, None]) + offset[:, None]  # (triples, points)
+    sign = np.where((side <= 1e-9).all(axis=1), 1.0, np.where((side >= -1e-9).all(axis=1),
+                                                                 -1.0, 0.0))
+    planes = np.column_stack([normal, offset]) * sign[:, None]
+    return planes[sign != 0], tri[sign != 0]
+
+
 def _convex_solid(points) -> Mesh:
     """The convex polyhedron with ``points`` as corners, scaled to unit circumradius: the
     convex hull's coplanar triangles merged into faces, counter-clockwise seen from outside."""
-    from scipy.spatial import ConvexHull  # loaded when a solid is asked for
     points = np.asarray(points, dtype=np.float64)
     points /= np.linalg.norm(points, axis=1)[:, None]
-    hull = ConvexHull(points)
-    planes, face = np.unique(np.round(hull.equations, 9), axis=0, return_inverse=True)
+    equations, simplices = _hull(points)
+    planes, face = np.unique(np.round(equations, 9), axis=0, return_inverse=True)
     face = face.reshape(-1)
     corner_face = np.repeat(face, 3)
-    pairs = np.unique(np.column_stack([corner_face, hull.simplices.reshape(-1)]), axis=0)
+    pairs = np.unique(np.column_stack([corner_face, simplices.reshape(-1)]), axis=0)
     f, v = pairs.T
     normal = planes[f, :3]
     centre = np.add.reduceat(points[v], np.flatnonzero(np.r_[True, f[1:] != f[:-1]]))

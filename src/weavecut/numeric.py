@@ -132,3 +132,50 @@ def snap(values: ArrayLike, grid: float = GRID) -> NDArray[np.int64]:
     """Integer keys of ``values`` on a ``grid``: what a decision (a sort, a tie, a
     comparison) looks at, so that last-bit noise cannot flip it."""
     return np.rint(np.asarray(values, dtype=float) / grid).astype(np.int64)
+
+
+def root(f, a: float, b: float, xtol: float, rtol: float, iterations: int = 100) -> float:
+    """x in [a, b] with ``f(x) = 0`` to within ``xtol + rtol |x|``, where ``f(a)`` and ``f(b)``
+    differ in sign: Brent's method, step for step as ``scipy.optimize.brentq`` takes it (the
+    same floats, so the same answer), without importing scipy.
+
+    Each step tries the secant (or inverse quadratic) step from the best point; a step that
+    is not short enough, or a point whose value does not fall, bisects the bracket instead.
+
+    >>> round(root(lambda x: x * x - 2.0, 0.0, 2.0, 1e-12, 1e-15), 12)
+    1.414213562373
+    """
+    pre, cur, fpre, fcur = float(a), float(b), float(f(a)), float(f(b))
+    if fpre == 0:
+        return pre
+    if fcur == 0:
+        return cur
+    if (fpre < 0) == (fcur < 0):
+        raise ValueError("f(a) and f(b) must differ in sign")
+    blk = fblk = spre = scur = 0.0
+    for _ in range(iterations):
+        if fpre != 0 and fcur != 0 and (fpre < 0) != (fcur < 0):
+            blk, fblk = pre, fpre  # the bracket's other end
+            spre = scur = cur - pre
+        if abs(fblk) < abs(fcur):  # cur: the best point so far
+            pre, cur, blk = cur, blk, cur
+            fpre, fcur, fblk = fcur, fblk, fcur
+        delta = (xtol + rtol * abs(cur)) / 2
+        sbis = (blk - cur) / 2
+        if fcur == 0 or abs(sbis) < delta:
+            return cur
+        if abs(spre) > delta and abs(fcur) < abs(fpre):
+            if pre == blk:  # secant
+                stry = -fcur * (cur - pre) / (fcur - fpre)
+            else:  # inverse quadratic
+                dpre = (fpre - fcur) / (pre - cur)
+                dblk = (fblk - fcur) / (blk - cur)
+                stry = -fcur * (fblk * dblk - fpre * dpre) / (dblk * dpre * (fblk - fpre))
+            spre, scur = (scur, stry) if 2 * abs(stry) < min(abs(spre), 3 * abs(sbis) - delta) \
+                else (sbis, sbis)
+        else:
+            spre = scur = sbis
+        pre, fpre = cur, fcur
+        cur += scur if abs(scur) > delta else (delta if sbis > 0 else -delta)
+        fcur = float(f(cur))
+    raise RuntimeError(f"no root within {iterations} steps")

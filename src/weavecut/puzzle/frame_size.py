@@ -20,6 +20,7 @@ import numpy as np
 import shapely
 
 from ..errors import WeaveCutError
+from ..numeric import root
 
 
 MEASURES = ("diagonal", "width")  # what --size measures of the frame's outer outline
@@ -70,8 +71,6 @@ def frame_scale(base: shapely.Polygon, grow, size: float, measure: str = "diagon
     offset by the fixed frame width (and, for the pentagon, the scaled ring depth); its
     diagonal and width grow monotonically with the scale, so a bracketing root search finds
     it to far below 0.01 mm."""
-    from scipy.optimize import brentq
-
     def excess(scale: float) -> float:
         return extent(grow(scale), measure) - size
 
@@ -81,4 +80,4 @@ def frame_scale(base: shapely.Polygon, grow, size: float, measure: str = "diagon
         raise WeaveCutError(f"a frame of {size:g} mm {measure} leaves no room for the pieces "
                             f"inside a {frame_width:g} mm frame; use a larger --size or a "
                             "narrower --frame")
-    return float(brentq(excess, low, high, xtol=1e-12 * high, rtol=1e-14))
+    return root(excess, low, high, xtol=1e-12 * high, rtol=1e-14)

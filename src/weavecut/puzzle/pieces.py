@@ -42,11 +42,9 @@ from functools import cached_property
 import numpy as np
 import shapely
 from numpy.typing import NDArray
-from scipy.sparse import coo_matrix
-from scipy.sparse.csgraph import connected_components
-from scipy.spatial import cKDTree
 
 from ..errors import MeshError, TurnedOverError, WeaveCutError
+from ..graphs import components
 from ..mesh import Mesh
 from ..subdivision.hierarchy import Level
 from ..weave.model import Weave
@@ -321,14 +319,14 @@ def _non_overlapping(cells, claimed, level_mesh: Mesh, to_mm) -> NDArray[np.bool
 
 
 def _snap(points: NDArray[np.float64], tol: float) -> NDArray[np.float64]:
-    """Points closer than ``tol`` merged onto the first of their cluster."""
-    pairs = cKDTree(points).query_pairs(tol, output_type="ndarray")
-    if not len(pairs):
+    """Points within ``tol`` (inclusive) merged onto the first of their cluster."""
+    geoms = shapely.points(points)
+    i, j = shapely.STRtree(geoms).query(geoms, predicate="dwithin", distance=tol)
+    pair = i < j
+    if not pair.any():
         return points
     n = len(points)
-    graph = coo_matrix((np.ones(len(pairs), dtype=np.int8), (pairs[:, 0], pairs[:, 1])),
-                       shape=(n, n))
-    label = connected_components(graph, directed=False)[1]
+    label = components(n, i[pair], j[pair])[1]
     first = np.full(label.max() + 1, n, dtype=np.int64)
     np.minimum.at(first, label, np.arange(n))
     return points[first[label]]
