@@ -47,11 +47,18 @@ def affine_matrix(a: float, b: float, c: float, d: float, xoff: float = 0.0,
     return np.array([[a, b, xoff], [c, d, yoff], [0.0, 0.0, 1.0]])
 
 
+def cos_sin(angles: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(cos, sin) of ``angles`` in degrees, with the last-bit residues of quarter turns made
+    zero, so a turn by 90 degrees is exact."""
+    a = np.radians(np.asarray(angles, dtype=float))
+    c, s = np.cos(a), np.sin(a)
+    return np.where(np.abs(c) < 2.5e-16, 0.0, c), np.where(np.abs(s) < 2.5e-16, 0.0, s)
+
+
 def affine(angle: float = 0.0, shift=(0.0, 0.0), scale: float = 1.0) -> NDArray[np.float64]:
     """(3, 3) the map xy -> scale * turn(xy, ``angle`` degrees) + ``shift``; quarter turns
     are exact."""
-    a = np.radians(angle)
-    c, s = (0.0 if abs(v) < 2.5e-16 else float(v) * scale for v in (np.cos(a), np.sin(a)))
+    c, s = (float(v) * scale for v in cos_sin(angle))
     return affine_matrix(c, -s, s, c, shift[0], shift[1])
 
 

@@ -20,7 +20,7 @@ import numpy as np
 import shapely
 from reportlab.pdfbase.pdfmetrics import stringWidth
 
-from ..numeric import GRID, dot
+from ..numeric import GRID, cos_sin, dot
 from .drawing import Text
 
 MIN_CAP = 2.5
@@ -55,10 +55,8 @@ def _frames(texts, sizes, anchors) -> tuple[np.ndarray, ...]:
 
 def _turned(xy, angles, origins) -> np.ndarray:
     """(n, k, 2) the points ``xy`` (n, k, 2) turned by ``angles`` degrees (n,) and moved to
-    ``origins`` (n, 2), as :func:`~weavecut.numeric.affine` does (quarter turns exact)."""
-    a = np.radians(np.asarray(angles, dtype=float))[:, None]
-    c, s = np.cos(a), np.sin(a)
-    c, s = np.where(np.abs(c) < 2.5e-16, 0.0, c), np.where(np.abs(s) < 2.5e-16, 0.0, s)
+    ``origins`` (n, 2), quarter turns exact (:func:`~weavecut.numeric.cos_sin`)."""
+    c, s = (v[:, None] for v in cos_sin(angles))
     o = np.asarray(origins, dtype=float).reshape(-1, 1, 2)
     x, y = xy[..., 0], xy[..., 1]
     return np.stack([c * x + -s * y + o[..., 0], s * x + c * y + o[..., 1]], axis=-1)
