@@ -55,6 +55,19 @@ def cos_sin(angles: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]
     return np.where(np.abs(c) < 2.5e-16, 0.0, c), np.where(np.abs(s) < 2.5e-16, 0.0, s)
 
 
+def turn(xy: ArrayLike, angles: ArrayLike, shift: ArrayLike = 0.0) -> NDArray[np.float64]:
+    """The points ``xy`` (..., 2) turned about the origin by ``angles`` degrees (broadcast
+    against ``xy[..., 0]``: one per point, per row, ...), quarter turns exact, plus ``shift``.
+
+    >>> turn([[1.0, 2.0]], 90.0, (10.0, 0.0)).tolist()
+    [[8.0, 1.0]]
+    """
+    xy = np.asarray(xy, dtype=float)
+    c, s = cos_sin(angles)
+    x, y = xy[..., 0], xy[..., 1]
+    return np.stack([c * x - s * y, s * x + c * y], axis=-1) + np.asarray(shift, dtype=float)
+
+
 def affine(angle: float = 0.0, shift=(0.0, 0.0), scale: float = 1.0) -> NDArray[np.float64]:
     """(3, 3) the map xy -> scale * turn(xy, ``angle`` degrees) + ``shift``; quarter turns
     are exact."""

@@ -20,7 +20,7 @@ import numpy as np
 import shapely
 from reportlab.pdfbase.pdfmetrics import stringWidth
 
-from ..numeric import GRID, cos_sin, dot
+from ..numeric import GRID, dot, turn
 from .drawing import Text
 
 MIN_CAP = 2.5
@@ -53,15 +53,6 @@ def _frames(texts, sizes, anchors) -> tuple[np.ndarray, ...]:
     return x0, -extent[:, 1] * sizes, x0 + w, sizes
 
 
-def _turned(xy, angles, origins) -> np.ndarray:
-    """(n, k, 2) the points ``xy`` (n, k, 2) turned by ``angles`` degrees (n,) and moved to
-    ``origins`` (n, 2), quarter turns exact (:func:`~weavecut.numeric.cos_sin`)."""
-    c, s = (v[:, None] for v in cos_sin(angles))
-    o = np.asarray(origins, dtype=float).reshape(-1, 1, 2)
-    x, y = xy[..., 0], xy[..., 1]
-    return np.stack([c * x + -s * y + o[..., 0], s * x + c * y + o[..., 1]], axis=-1)
-
-
 def _corners(x0, y0, x1, y1) -> np.ndarray:
     return np.stack([np.stack([x0, y0], -1), np.stack([x1, y0], -1), np.stack([x1, y1], -1),
                      np.stack([x0, y1], -1)], axis=1)
@@ -72,8 +63,8 @@ def text_boxes(texts) -> np.ndarray:
     if not len(texts):
         return np.zeros(0, dtype=object)
     frame = _frames([t.text for t in texts], [t.size for t in texts], [t.anchor for t in texts])
-    return shapely.polygons(_turned(_corners(*frame), [t.angle for t in texts],
-                                    [(t.x, t.y) for t in texts]))
+    return shapely.polygons(turn(_corners(*frame), np.array([t.angle for t in texts])[:, None],
+                                 np.array([(t.x, t.y) for t in texts])[:, None]))
 
 
 def text_box(t: Text) -> shapely.Polygon:
@@ -86,7 +77,7 @@ def unit_boxes(texts, angles) -> np.ndarray:
     by its angle (degrees): the shapes :func:`largest_fit` scales."""
     x0, y0, x1, y1 = _frames(texts, 1.0, "middle")
     mid = (y0 + y1) / 2
-    return _turned(_corners(x0, y0 - mid, x1, y1 - mid), angles, np.zeros((len(x0), 2)))
+    return turn(_corners(x0, y0 - mid, x1, y1 - mid), np.asarray(angles, dtype=float)[:, None])
 
 
 def centred_texts(centres, texts, sizes, angles, fills) -> list[Text]:
@@ -94,8 +85,7 @@ def centred_texts(centres, texts, sizes, angles, fills) -> list[Text]:
     if not len(texts):
         return []
     x0, y0, x1, y1 = _frames(texts, sizes, "middle")
-    base = _turned(np.stack([np.zeros_like(y0), -(y0 + y1) / 2], -1)[:, None], angles,
-                   centres)[:, 0]
+    base = turn(np.stack([np.zeros_like(y0), -(y0 + y1) / 2], -1), angles, centres)
     return [Text(x, y, t, z, "middle", a, f) for (x, y), t, z, a, f in
             zip(base.tolist(), texts, np.asarray(sizes, dtype=float).tolist(),
                 np.asarray(angles, dtype=float).tolist(), fills)]

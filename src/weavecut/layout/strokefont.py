@@ -21,6 +21,7 @@ import numpy as np
 import shapely
 from numpy.typing import NDArray
 
+from ..numeric import turn
 from .labels import largest_fit
 
 FONT = "futural"  # Hershey Simplex Roman: single strokes, the engravers' font
@@ -108,11 +109,8 @@ def labels(texts: list[str], centres: NDArray[np.float64], heights: NDArray[np.f
     offsets = np.r_[0, np.cumsum(counts)].astype(np.int64)
     owner = np.array(owner, dtype=np.int64)
     point_owner = np.repeat(owner, np.diff(offsets))
-    rad = np.radians(angles[point_owner])
-    c, s = np.cos(rad), np.sin(rad)
-    turned = np.column_stack([c * coords[:, 0] - s * coords[:, 1],
-                              s * coords[:, 0] + c * coords[:, 1]])
-    return turned + np.asarray(centres, dtype=float)[point_owner], offsets, owner
+    return turn(coords, angles[point_owner], np.asarray(centres, dtype=float)[point_owner]), \
+        offsets, owner
 
 
 def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, max_height
@@ -147,10 +145,9 @@ def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, m
     # every label at every (centre, angle) at once: pole, half-way, centroid; level, long axis
     spots = [(at, angle) for at in (pole, (pole + middle) / 2, middle)
              for angle in (np.zeros(n), long_axis)]
-    rad = np.radians(np.concatenate([a for _, a in spots]))[:, None]
-    c, s = np.cos(rad), np.sin(rad)
-    x, y = np.tile(level[..., 0], (len(spots), 1)), np.tile(level[..., 1], (len(spots), 1))
-    h = largest_fit(np.tile(inner, len(spots)), np.stack([c * x - s * y, s * x + c * y], -1),
+    boxes = turn(np.tile(level, (len(spots), 1, 1)),
+                 np.concatenate([a for _, a in spots])[:, None])
+    h = largest_fit(np.tile(inner, len(spots)), boxes,
                     np.concatenate([at for at, _ in spots]), 0.0,
                     np.tile(np.broadcast_to(np.asarray(max_height, dtype=float), (n,)), len(spots)))
     h = np.nan_to_num(h, nan=0.0).reshape(len(spots), n)

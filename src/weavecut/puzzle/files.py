@@ -19,6 +19,7 @@ from ..layout import strokefont
 from ..layout.lasersetup import DEFAULT_LASER, Laser, laser  # noqa: F401 (the puzzle's API)
 from ..layout.drawing import Drawing, Layer, Polygons, Polylines, Sheet, Style
 from ..errors import WeaveCutError
+from ..numeric import turn
 from .pieces import Puzzle
 
 TRAVEL_SPEED = 300.0  # mm/s head moves between cuts, for the time estimate
@@ -201,10 +202,7 @@ def separate_cut(puzzle: Puzzle, las: Laser, kerf: float, sheet: tuple[float, fl
     sheets, total, travel, n_paths = [], 0.0, 0.0, 0
 
     def move(coords, owner):  # owner: part index; rotate about the origin, then shift
-        rad = np.radians(placed_at.angle[owner])
-        c, s_ = np.cos(rad), np.sin(rad)
-        x, y = coords[:, 0], coords[:, 1]
-        return np.column_stack([c * x - s_ * y, s_ * x + c * y]) + placed_at.shift[owner]
+        return turn(coords, placed_at.angle[owner], placed_at.shift[owner])
 
     frame_text = _frame_text(frames, labels)
     for s in range(placed_at.n_sheets):
