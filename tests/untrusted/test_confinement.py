@@ -305,3 +305,17 @@ def test_a_printing_job_writes_json_only_when_it_prints_json(tmp_path):
     assert json.loads((tmp_path / "out" / "s.json").read_text())["levels"]
     refused(run("build", recipe, "-o", tmp_path / "out", "--set", "json=false"),
             "name it .txt", status=(1,))
+
+
+@pytest.mark.parametrize("written", WRITTEN, ids="-".join)
+@pytest.mark.parametrize("value, out", [("x" * 256, "out"), ("d/" + "é" * 128, "out"),
+                                        ("x", "o/" * 2100)])
+def test_names_too_long_for_a_file_system_are_refused_before_any_work(tmp_path, written, value,
+                                                                       out):
+    """A name over 255 bytes (or a path over 4,096) made the build's own checks fail with
+    ENAMETOOLONG, an internal error (found by hypothesis with the newest releases)."""
+    (tmp_path / "r.toml").write_text(job(*written, value))
+    for extra in ([], ["--dry-run"]):
+        refused(run("build", tmp_path / "r.toml", "-o", tmp_path / out, *extra),
+                "too long for a file system")
+    assert files_under(tmp_path) == {"r.toml"}

@@ -57,6 +57,7 @@ if TYPE_CHECKING:  # the kit page (and shapely) load when a job runs, not for --
     from .. import kitpage
 
 PAGE = "index.html"  # the kit page of the build
+NAME_MAX, PATH_MAX = 255, 4096  # bytes of a file name and of a path (Linux, macOS, NTFS)
 PRESET_OPTIONS = {"palette": "palettes", "material": "materials", "laser": "laser"}
 
 
@@ -248,6 +249,11 @@ class Planner:
             raise RecipeError(f"{where}: {key} {value!r} must be a relative path inside the "
                               "build folder (not absolute, no '..', no '~')")
         target = self.out_dir / rel
+        longest = max(len(os.fsencode(part)) for part in rel.parts)
+        if longest > NAME_MAX or len(os.fsencode(target)) > PATH_MAX:
+            raise RecipeError(f"{where}: {key} is too long for a file system: a name holds at "
+                              f"most {NAME_MAX} bytes (this one {longest}) and a path "
+                              f"{PATH_MAX:,}")
         if not _inside(target.resolve(), [self.out_dir.resolve()]):
             raise RecipeError(f"{where}: {key} {value!r} leads out of the build folder "
                               "through a symlink")
