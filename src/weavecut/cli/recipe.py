@@ -249,7 +249,7 @@ class Planner:
             raise RecipeError(f"{where}: {key} {value!r} must be a relative path inside the "
                               "build folder (not absolute, no '..', no '~')")
         target = self.out_dir / rel
-        longest = max(len(os.fsencode(part)) for part in rel.parts)
+        longest = max((len(os.fsencode(part)) for part in rel.parts), default=0)
         if longest > NAME_MAX or len(os.fsencode(target)) > PATH_MAX:
             raise RecipeError(f"{where}: {key} is too long for a file system: a name holds at "
                               f"most {NAME_MAX} bytes (this one {longest}) and a path "
