@@ -14,9 +14,9 @@ import shapely
 from PIL import Image
 
 from weavecut.errors import ExportError
-from weavecut.export import pdf, png
+from weavecut.export import pdf, png, svg
 from weavecut.layout.drawing import (
-    Drawing, Layer, Sheet, Style, Text, polygons_from_rings, polygons_from_shapely,
+    Drawing, Layer, Polygons, Sheet, Style, Text, polygons_from_rings, polygons_from_shapely,
 )
 
 from tests.test_readback import pdfinfo, program
@@ -171,3 +171,26 @@ def test_pdf_strokes_at_their_width(tmp_path):
     red = (row[:, 0] > 200) & (row[:, 1] < 100)
     thin, thick = red[:30 * PX].sum(), red[30 * PX:].sum()
     assert thin == pytest.approx(2 * 2, abs=1) and thick == pytest.approx(2 * 8, abs=1)
+
+
+def test_a_hole_wound_like_its_outline_stays_open_in_every_format(tmp_path):
+    """The fill rule is even-odd in every writer: a hole whose ring runs the same way as its
+    outline (as drawings read from files may have) is open in the SVG (rendered by rsvg), the
+    PDF (rendered by poppler) and the PNG, not only where shapely oriented the rings."""
+    outer = np.array([[5.0, 5], [25, 5], [25, 25], [5, 25]])
+    hole = np.array([[10.0, 10], [20, 10], [20, 20], [10, 20]])  # counter-clockwise, as outer
+    shape = Polygons(np.concatenate([outer, hole]), np.array([0, 4, 8]), Style(None, 0,
+                     hexc(TEAL)), np.array([0, 2]))
+    d = Drawing((Sheet(30, 30, (Layer("tiles", "paint", (shape,)),)),), "hole")
+    (tmp_path / "h.svg").write_bytes(svg.render(d))
+    (tmp_path / "h.pdf").write_bytes(pdf.render(d))
+    subprocess.run([program("rsvg-convert"), "-d", f"{DPI}", "-p", f"{DPI}", "-b", "white",
+                    "-o", str(tmp_path / "s.png"), str(tmp_path / "h.svg")], check=True)
+    subprocess.run([program("pdftoppm"), "-r", f"{DPI}", "-png", str(tmp_path / "h.pdf"),
+                    str(tmp_path / "p")], check=True)
+    images = {"png": np.asarray(Image.open(io.BytesIO(png.render(d, dpi=DPI))).convert("RGB"))}
+    for name, file in [("svg", "s.png"), ("pdf", "p-1.png")]:
+        images[name] = np.asarray(Image.open(tmp_path / file).convert("RGB"))
+    for name, img in images.items():
+        assert close(at(img, 7, 15, 30), TEAL), name       # the frame is filled
+        assert at(img, 15, 15, 30) == WHITE, name           # its hole is open

@@ -80,7 +80,7 @@ def _draw(c, shape) -> None:
                         path.lineTo(x, y)
                     path.close()
             c.drawPath(path, stroke=1 if style.stroke else 0, fill=1 if fill else 0,
-                       fillMode=1)  # even-odd: holes stay open
+                       fillMode=canvas.FILL_EVEN_ODD)  # holes stay open, however wound
 
 
 def _stroke(c, style: Style) -> None:
