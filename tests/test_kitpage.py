@@ -31,7 +31,7 @@ from weavecut.layout.contrast import MIN_CONTRAST, contrast_ratio, rgb
 from weavecut.layout.drawing import (Drawing, Layer, Sheet, Style, polygons_from_rings,
                                      polylines_from_lines)
 
-from .test_readback import program
+from .test_readback import pdfinfo, program
 
 SQUARE = [(10, 10), (60, 10), (60, 60), (10, 60)]
 
@@ -297,7 +297,7 @@ def test_the_index_links_every_page(built, tmp_path):
     folder = built[0]
     kitpage.write_index(tmp_path / "index.html", "builds", [folder / "index.html"])
     tree = parse((tmp_path / "index.html").read_text(encoding="utf-8"))
-    (href,) = [a.get("href") for a in tree.iter("a")]
+    (href,) = {a.get("href") for a in tree.iter("a")}  # its picture and its name
     assert (tmp_path / unquote(href)).resolve() == (folder / "index.html").resolve()
 
 
@@ -316,3 +316,50 @@ def test_every_file_a_command_wrote_is_on_its_page(tmp_path, args):
     linked = {unquote(a.get("href")) for a in tree.iter("a")}
     assert linked == {p.name for p in out.iterdir()} - {"page.html"}
     assert all(img.get("alt") for img in tree.iter("img"))
+
+
+def test_the_index_shows_each_build_as_a_card(tmp_path):
+    """build/index.html: per build its picture (one that loads), what it makes and the figures
+    a maker plans with, read from each kit page's data block and checked here against the files
+    themselves (pdfinfo's page count, the puzzle's summary); a page without a block still gets
+    its link."""
+    pz, sq, bare = tmp_path / "pz", tmp_path / "sq", tmp_path / "bare"
+    for folder in (pz, sq, bare):
+        folder.mkdir()
+    assert cli_run("puzzle", "--levels", "2", "--size", "20cm", "-o", pz,
+                   "--html", pz / "index.html").exit_code == 0
+    assert cli_run("strands", "square-grid", "-o", sq / "strands.pdf",
+                   "--html", sq / "index.html").exit_code == 0
+    (bare / "index.html").write_text("<!DOCTYPE html><title>old</title>")
+    out = tmp_path / "site"
+    out.mkdir()
+    kitpage.write_index(out / "index.html", "builds",
+                        [pz / "index.html", sq / "index.html", bare / "index.html"])
+    tree = parse((out / "index.html").read_text(encoding="utf-8"))
+    cards = {}
+    for li in tree.iter("li"):
+        (link,) = {a.get("href") for a in li.iter("a")}
+        cards[(out / unquote(link)).resolve().parent.name] = li
+        for img in li.iter("img"):
+            src = img.get("src")
+            if src.startswith("data:"):
+                head, data = src.split(",", 1)
+                assert head in ("data:image/png;base64", "data:image/svg+xml;base64")
+                assert base64.b64decode(data)[:5] in (b"\x89PNG\r", b"<svg ", b"<?xml")
+            else:
+                assert (out / unquote(src)).is_file(), src
+            assert img.get("alt")
+    assert set(cards) == {"pz", "sq", "bare"}
+
+    def said(name):
+        return [" ".join("".join(p.itertext()).split()) for p in cards[name].iter("p")]
+
+    pages = lambda folder: sum(int(pdfinfo(p)["Pages"]) for p in folder.glob("*.pdf"))  # noqa
+    summary = json.loads((pz / "puzzle-summary.json").read_text())
+    shared = summary["modes"]["shared"]
+    assert said("pz")[0] == "two-sided jigsaw puzzle to laser-cut"
+    assert f"{pages(pz)} printed pages" in said("pz")[1]
+    assert (f"shared cut: {shared['cut_length_m']:.1f} m on {shared['sheets']} sheet"
+            in said("pz")[1])
+    assert said("sq") == ["woven paper model", f"{pages(sq)} printed pages"]
+    assert list(cards["pz"].iter("img")) and not said("bare")

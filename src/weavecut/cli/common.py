@@ -167,8 +167,8 @@ def html_option(f):
             result = f(*args, **kwargs)
         if Path(os.path.abspath(html)) in record.files:
             raise click.BadParameter("the page would replace an output", param_hint="'--html'")
-        run = kitpage.Run.of(record, command_line())
-        kitpage.write(html, f"weave-cut {click.get_current_context().info_name}", [run])
+        name = click.get_current_context().info_name
+        kitpage.write(html, f"weave-cut {name}", [kitpage.Run.of(record, command_line(), name)])
         return result
 
     return click.option("--html", type=click.Path(dir_okay=False), metavar="PAGE",

@@ -378,7 +378,7 @@ class Planner:
         except click.ClickException as exc:  # no usage line of the nested command
             raise RecipeError(f"{job.where}: {exc.format_message()}") from exc
         self.remember(job, record.files)
-        return kitpage.Run.of(record, job.command_line())
+        return kitpage.Run.of(record, job.command_line(), job.command.name)
 
     def remember(self, job: Job, written) -> None:
         """Record the files ``job`` wrote in the manifest, and remove the files it wrote last

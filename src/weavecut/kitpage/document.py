@@ -2,8 +2,9 @@
 
 For every output a picture first, then its name, what it is for ("print at 100 % on A4",
 "cut: ..."), its size in mm, page count and figures; for every command its command line and
-summary. No script, no network: generated pictures are ``data:`` URIs, the outputs are linked
-by relative paths, the style sheet is inline (screen, phones down to 390 px, and print).
+summary. No script runs, no network: generated pictures are ``data:`` URIs, the outputs are
+linked by relative paths, the style sheet is inline (screen, phones down to 390 px, and print).
+A JSON data block (:mod:`.overview`) gives the index of builds the kit's card.
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ from .. import __version__, presets
 from ..layout.drawing import Drawing, Polygons, Polylines
 from ..text import clean
 from ..units import PAPER_SIZES
-from . import previews
+from . import overview, previews
 
 # colours of the page: (text, background) pairs the tests hold to WCAG contrast >= 4.5
 INK, MUTED, LINK, PAPER, CARD = "#1a1a1a", "#52575c", "#0b57a4", "#ffffff", "#f3f4f5"
@@ -63,16 +64,18 @@ HAIRLINE = 0.011  # mm: laser presets draw cuts 0.01 mm wide (or 0), for a laser
 @dataclass(frozen=True)
 class Run:
     """One command and what it wrote: ``files`` maps each path to the Drawing it shows (None
-    for other files), in the order written; ``said`` is the summary the command printed."""
+    for other files), in the order written; ``said`` is the summary the command printed;
+    ``name`` the command's name (``strands``, ``puzzle``, ...)."""
 
     command: str
     files: dict
     said: tuple[str, ...] = ()
+    name: str = ""
 
     @classmethod
-    def of(cls, record, command: str) -> Run:
+    def of(cls, record, command: str, name: str = "") -> Run:
         """A Run from a ``fileio.Record``."""
-        return cls(command, dict(record.files), tuple(record.said))
+        return cls(command, dict(record.files), tuple(record.said), name)
 
 
 def page(title: str, runs: list[Run], folder: Path) -> str:
@@ -81,26 +84,43 @@ def page(title: str, runs: list[Run], folder: Path) -> str:
     n = sum(len(r.files) for r in runs)
     body = "".join(_run(k, r, Path(os.path.abspath(folder))) for k, r in enumerate(runs, 1))
     return _document(title, f"{n} file{'s' * (n != 1)} from {len(runs)} "
-                     f"command{'s' * (len(runs) != 1)}, made by weave-cut {__version__}.", body)
+                     f"command{'s' * (len(runs) != 1)}, made by weave-cut {__version__}.", body,
+                     overview.block(runs, body, _length))
 
 
 def index(title: str, pages: list[Path], folder: Path) -> str:
-    """A page linking other kit pages (``make run``'s ``build/index.html``)."""
-    items = "".join(f'<li><a href="{_href(p, folder)}">{_e(p.parent.name)}</a></li>'
-                    for p in pages)
-    return _document(title, f"{len(pages)} builds, one page each.",
-                     f'<h2>Builds</h2><ul class="said">{items}</ul>')
+    """A page of cards linking other kit pages (``make run``'s ``build/index.html``): each
+    build's picture, what it makes and its figures, as its page's data block says."""
+    cards = "".join(_build_card(p, overview.read(p), folder) for p in pages)
+    return _document(title, f"{len(pages)} builds, one page each: open one to see its files.",
+                     f'<section class="many" aria-labelledby="builds"><h2 id="builds">Builds'
+                     f'</h2><ul class="cards">{cards}</ul></section>')
 
 
-def _document(title: str, lead: str, body: str) -> str:
+def _build_card(page: Path, data: dict, folder: Path) -> str:
+    link = _href(page, folder)
+    name = page.parent.name
+    picture = data.get("picture") if isinstance(data.get("picture"), str) else ""
+    if picture and not picture.startswith("data:"):
+        picture = _href(Path(picture), folder)
+    img = f'<a href="{link}">{_img(picture, f"{name}: its first picture")}</a>' if picture else ""
+    items = [i for i in data.get("items", []) if isinstance(i, dict)]
+    what = "".join(f'<p class="for">{_e(i.get("kind", ""))}</p>'
+                   f'<p class="facts">{_e(" · ".join(map(str, i.get("facts", []))))}</p>'
+                   for i in items)
+    return f'<li class="card">{img}<h3><a href="{link}">{_e(name)}</a></h3>{what}</li>'
+
+
+
+def _document(title: str, lead: str, body: str, data: str = "") -> str:
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
             "<meta name=\"viewport\" content=\"width=device-width,initial-scale=1\">"
-            f"<title>{_e(title)}</title><style>{STYLE}</style></head>\n<body><header>"
+            f"<title>{_e(title)}</title><style>{STYLE}</style>{data}</head>\n<body><header>"
             f"<h1>{_e(title)}</h1><p>{_e(lead)}</p></header>\n<main>{body}</main></body></html>\n")
 
 
 def _run(k: int, run: Run, folder: Path) -> str:
-    figures = _run_figures(run)
+    figures = overview.run_figures(run)
     said = [_unprefixed(line, run.files) for text in run.said for line in text.splitlines()
             if line.strip() and not line.startswith("files: ")]  # the cards list the files
     groups: dict[Path, list[Path]] = {}
@@ -269,19 +289,6 @@ def _length(shape) -> float:
 def _bytes(paths: list[Path]) -> str:
     size = sum(p.stat().st_size for p in paths if p.is_file())
     return f"{size / 1e6:.1f} MB" if size >= 1e6 else f"{max(1, round(size / 1e3))} kB"
-
-
-def _run_figures(run: Run) -> dict:
-    """The figures a command wrote as JSON (the puzzle's laser and speed), merged."""
-    figures = {}
-    for path in run.files:
-        if path.suffix.lower() == ".json" and path.is_file() and path.stat().st_size < 2**20:
-            try:
-                doc = json.loads(path.read_bytes())
-            except ValueError:
-                continue
-            figures.update(doc if isinstance(doc, dict) else {})
-    return figures
 
 
 def _purpose(suffixes: list[str], drawing: Drawing | None, figures: dict) -> str:
