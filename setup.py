@@ -2,7 +2,8 @@
 
 The code is in ``src/``; the presets stay in ``templates/`` at the top of the checkout, where
 users look for them, and install as the package ``weavecut.templates`` (its TOML files are
-package data, read with ``importlib.resources``). Folders are found, not listed, so a new
+package data, read with ``importlib.resources``); the example recipes and their drawings in
+``examples/`` install as ``weavecut.examples``, so ``build star-paper-model`` works anywhere. Folders are found, not listed, so a new
 subpackage or preset kind ships without touching this file.
 """
 
@@ -11,6 +12,7 @@ from setuptools import find_namespace_packages, find_packages, setup
 TEMPLATES = ["weavecut.templates",
              *(f"weavecut.templates.{kind}" for kind in find_namespace_packages("templates"))]
 
-setup(packages=find_packages("src") + TEMPLATES,
-      package_dir={"": "src", "weavecut.templates": "templates"},
-      package_data={"weavecut.templates": ["*/*.toml", "recipes/*.svg"]})
+setup(packages=find_packages("src") + TEMPLATES + ["weavecut.examples"],
+      package_dir={"": "src", "weavecut.templates": "templates", "weavecut.examples": "examples"},
+      package_data={"weavecut.templates": ["*/*.toml", "recipes/*.svg"],
+                    "weavecut.examples": ["*.toml", "*.svg", "*.dxf", "*.obj", "*.json"]})

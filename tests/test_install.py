@@ -22,7 +22,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-SOURCES = ("src", "templates", "pyproject.toml", "setup.py", "README.md")
+SOURCES = ("src", "templates", "examples", "pyproject.toml", "setup.py", "README.md")
 
 
 def _pip(python: Path | str, *args: str, cwd: Path) -> None:
@@ -86,7 +86,10 @@ def test_wheel_holds_every_module_and_preset(wheel):
                for p in (ROOT / "src" / "weavecut").rglob("*.py")}
     presets = {"weavecut/templates/" + p.relative_to(ROOT / "templates").as_posix()
                for p in (ROOT / "templates").rglob("*.toml")}
+    examples = {"weavecut/examples/" + p.name for p in (ROOT / "examples").iterdir()
+                if p.suffix in (".toml", ".svg", ".dxf", ".obj", ".json")}
     assert presets and modules - names == set() and presets - names == set()
+    assert examples and examples - names == set()
     assert "weavecut/templates/__init__.py" in names
 
 
@@ -126,3 +129,10 @@ def test_recipe_by_name(weave_cut, tmp_path):
                    if not p.name.startswith("."))  # not the build manifest
     assert built == ["index.html", "pentagon-level4.dxf", "pentagon-level4.svg",
                      "square-grid-level3.dxf", "square-grid-level3.svg"]
+
+
+def test_example_recipe_by_name(weave_cut, tmp_path):
+    """The examples ship with their drawings: the star paper model builds from its name."""
+    weave_cut("-q", "build", "star-paper-model", "-o", "star")
+    assert (tmp_path / "star" / "star-paper-model.pdf").read_bytes().startswith(b"%PDF")
+    assert (tmp_path / "star" / "star-level1-weave.svg").is_file()

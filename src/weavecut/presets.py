@@ -29,10 +29,21 @@ def templates_dir() -> Path:
     return Path(env) if env else Path(resources.files("weavecut.templates"))
 
 
+def folders(kind: str) -> list[Path]:
+    """Where presets of ``kind`` are, first first: ``templates/<kind>``; recipes also in
+    ``examples/`` (installed as the package ``weavecut.examples``, with their drawings)."""
+    found = [templates_dir() / kind]
+    if kind == "recipes":
+        try:
+            found.append(Path(resources.files("weavecut.examples")))
+        except ModuleNotFoundError:  # the sources on PYTHONPATH, not installed
+            pass
+    return [f for f in found if f.is_dir()]
+
+
 def names(kind: str) -> list[str]:
     """The preset names of one kind, sorted."""
-    folder = templates_dir() / kind
-    return sorted(p.stem for p in folder.glob("*.toml")) if folder.is_dir() else []
+    return sorted({p.stem for folder in folders(kind) for p in folder.glob("*.toml")})
 
 
 def find(kind: str, name: str) -> Path:
@@ -40,7 +51,8 @@ def find(kind: str, name: str) -> Path:
     path = Path(name)
     if path.suffix == ".toml":
         return path
-    path = templates_dir() / kind / f"{name}.toml"
+    path = next((f / f"{name}.toml" for f in folders(kind) if (f / f"{name}.toml").is_file()),
+                Path())
     if not (path.is_file() and name in names(kind)):
         raise PresetError(f"unknown {kind[:-1] if kind.endswith('s') else kind} {name!r}"
                           f"{nearest(name, names(kind))}; "

@@ -1,6 +1,6 @@
 """Regenerate the generated example meshes (the hand-drawn ones are edited by hand).
 
-    python examples/make_examples.py
+    python tools/make_examples.py
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ from weavecut.inputs import _weld
 from weavecut.mesh_io import write_mesh
 from weavecut.validation import validate
 
-HERE = Path(__file__).parent
+HERE = Path(__file__).resolve().parents[1] / "examples"
 
 
 def voronoi_patch(n: int = 18, seed: int = 7):
