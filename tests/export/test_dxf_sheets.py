@@ -114,7 +114,7 @@ def test_closed_rings_open_lines_and_odd_parity_fills():
     assert hatch.rgb == (0, 255, 0) and hatch.dxf.color == 3  # green is ACI 3
 
 
-@pytest.mark.parametrize("role, colour", [("cut", 1), ("score", 5), ("engrave", 3),
+@pytest.mark.parametrize("role, colour", [("cut", 1), ("score", 5), ("engrave", 7),
                                           ("paint", 8), ("label", 7), ("guide", 9)])
 def test_layer_colours_by_role_and_hidden_layers_off(role, colour):
     shown = Layer("shown", role, (polylines_from_lines([[(0, 0), (1, 1)]]),))
@@ -221,3 +221,33 @@ def test_same_bytes_every_time_and_ezdxf_left_as_found():
     drawing = Drawing((Sheet(20, 20, everything()), Sheet(10, 10, everything())), "t")
     assert dxf.render(drawing) == dxf.render(drawing)
     assert ezdxf.options.write_fixed_meta_data_for_testing == before
+
+
+@pytest.mark.parametrize("laser", ["lightburn", "epilog-uls", "ponoko"])
+def test_every_laser_line_has_its_preset_colour_in_the_dxf(laser, tmp_path):
+    """A puzzle with engraved numbers, as a CAD or laser program resolves each entity's colour
+    (its true colour, else its layer's colour index; index 7 is black on a white sheet): cut,
+    score and engrave lines are the colours the laser preset names for them (the summary and
+    README.txt say so)."""
+    from click.testing import CliRunner
+
+    from weavecut import presets
+    from weavecut.cli import cli
+
+    result = CliRunner().invoke(cli, ["-q", "puzzle", "--levels", "2", "--size", "20cm",
+                                      "--numbers", "--laser", laser, "-o", str(tmp_path)])
+    assert result.exit_code == 0, result.output
+    preset = presets.load("laser", laser)
+    seen = set()
+    for path in tmp_path.glob("*.dxf"):
+        doc = ezdxf.readfile(path)
+        for e in doc.modelspace():
+            role = e.dxf.layer.split("-")[0]
+            if e.has_dxf_attrib("true_color"):
+                rgb = tuple(e.rgb)
+            else:
+                aci = doc.layers.get(e.dxf.layer).dxf.color
+                rgb = (0, 0, 0) if aci == 7 else tuple(colors.aci2rgb(aci))
+            assert "#%02x%02x%02x" % rgb == preset[role]["colour"].lower(), (path.name, role)
+            seen.add(role)
+    assert seen == {"cut", "score", "engrave"}

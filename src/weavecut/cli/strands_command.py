@@ -99,6 +99,7 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
       weave-cut strands square-grid --size 27cm --laser-card --palette maritime-4 -o card/
       weave-cut strands pentagon-flower --preview -o look.svg
     """
+    from ..papermodel.assembly import finished_size
     from ..papermodel.book import preset_for, strand_book, tile_size_for
     from ..papermodel.checks import report
     from ..weave.snub_weave import snub_weaves
@@ -183,7 +184,10 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
                                "rotation_order": plan.k, "copies": plan.k,
                                "module_strips": int(plan.copies.shape[1]),
                                "extra_strips": len(plan.extras),
-                               "strands": int(weaves[-1].n_strands), **nonconvex, **extra},
+                               "strands": int(weaves[-1].n_strands),
+                               "model_mm": [round(float(v), 1)
+                                            for v in finished_size(weaves[-1], book)],
+                               **nonconvex, **extra},
                               indent=2, allow_nan=False))
     else:
         summary(f"{output}: {len(book.drawing.sheets)} pages ({len(book.strip_pages)} of "

@@ -29,7 +29,9 @@ from ..layout.drawing import Drawing, Layer, Polygons, Polylines, Text
 SUFFIX = "dxf"
 DECIMALS = 6  # mm: 1 nm, far below any cutter; the last bits of a float never reach the file
 VERSION = "R2004"
-ROLE_COLOURS = {"cut": 1, "score": 5, "engrave": 3, "paint": 8, "label": 7, "guide": 9}
+# a layer's colour index by role: red cuts, blue scores, black (7: black on white) engraving,
+# as the laser presets (templates/laser/) colour the lines themselves
+ROLE_COLOURS = {"cut": 1, "score": 5, "engrave": 7, "paint": 8, "label": 7, "guide": 9}
 LASER_ROLES = {"cut", "score", "engrave"}
 ALIGN = {"start": "BOTTOM_LEFT", "middle": "BOTTOM_CENTER", "end": "BOTTOM_RIGHT"}
 

@@ -34,6 +34,11 @@ from .wording import LINE, TEXT, page_index, paragraphs
 ALONG = 6  # an extra ID every this many own tiles along a strand
 
 
+def finished_size(weave: Weave, book) -> np.ndarray:
+    """(width, height) in mm of the woven model as printed at ``book``'s scale."""
+    return np.ptp(weave.mesh.vertices, axis=0) * book.scale
+
+
 def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str,
                    total: int, crossings=()) -> tuple[Sheet, int]:
     """(page 1, how many of ``crossings`` found no room): what to print, which page holds which
@@ -43,7 +48,7 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
     plan, area = book.plan, book.area
     k, m = plan.k, plan.copies.shape[1]
     x0, y0, x1, y1 = area.box
-    size_mm = np.ptp(weave.mesh.vertices, axis=0) * book.scale
+    size_mm = finished_size(weave, book)
     strips = page_span(book.strip_pages, short=True)
     copies = (f": {k} copies (A-{copy_letter(k - 1)}) of a module of {m} strips"
               + (f" + {len(plan.extras)} extras (X)" if len(plan.extras) else "")
