@@ -19,13 +19,16 @@ import hashlib
 import inspect
 import json
 import os
+import re
+import shlex
 import sys
 from pathlib import Path
 
+import click
 import pytest
 
 from weavecut.cli import cli
-from weavecut.cli.outputs import is_folder, path_options
+from weavecut.cli.outputs import is_folder, path_options, problem, written
 from weavecut.cli.recipe import Planner
 from weavecut.manifest import MANIFEST
 
@@ -282,3 +285,69 @@ def test_a_symlink_in_the_way_is_never_replaced(world):
         refused(run("subdivide", "pentagon", "-o", world / "out" / "s.svg", *force),
                 "is a symlink")
     assert target.read_text() == "mine" and (world / "out" / "s.svg").is_symlink()
+
+
+# --- the examples people copy -----------------------------------------------------------------
+
+ROOT = Path(__file__).resolve().parents[1]
+PLACEHOLDERS = re.compile(r"^(INPUT|DIR|RECIPE|PAGE|FILE|NAME|KEY=VALUE|\[.*|.*\.\.\.)$")
+
+
+def examples() -> list[str]:
+    """Every ``weave-cut COMMAND ...`` line of the README (code spans and blocks, continued
+    lines joined) and of every command's --help."""
+    text = (ROOT / "README.md").read_text(encoding="utf-8").replace("\\\n", " ")
+    lines = re.findall(r"`(weave-cut [a-z][^`\n]*)`", text)
+    lines += re.findall(r"^(weave-cut [a-z][^\n]*)$", text, re.M)
+    for name in sorted(cli.commands):
+        lines += re.findall(r"^\s+(weave-cut [a-z][^\n]*)$", cli.commands[name].help or "",
+                            re.M)
+    found = []
+    for line in lines:
+        words = shlex.split(line.split("#")[0])
+        words = words[:next((i for i, w in enumerate(words) if w in (">", "|")), len(words))]
+        if (words[1] in cli.commands and len(words) > 2  # (not a command named in prose)
+                and not any(PLACEHOLDERS.match(w) for w in words[2:])):
+            found.append(shlex.join(words[1:]))
+    return sorted(set(found))
+
+
+EXAMPLES = examples()
+
+
+def test_the_examples_are_found():
+    assert "puzzle -o puzzle --material poplar-3mm --numbers" in EXAMPLES
+    assert {e.split()[0] for e in EXAMPLES} == set(cli.commands) - {"inputs"}  # (no args)
+
+
+@pytest.mark.parametrize("line", EXAMPLES)
+def test_every_example_command_follows_the_rules_in_a_fresh_folder(tmp_path, monkeypatch, line):
+    """Every command the README or a --help shows parses (lengths with units, names that
+    exist) and writes where the rules let it in an empty folder (no folder above an output
+    missing, no folder named like a file): copied into a terminal, it works."""
+    monkeypatch.chdir(tmp_path)
+    name, *args = shlex.split(line)
+    for i, word in enumerate(args[:-1]):
+        if word == "--allow-read":
+            (tmp_path / args[i + 1]).mkdir()
+    command = cli.commands[name]
+    try:
+        ctx = command.make_context(name, list(args))
+    except click.ClickException as exc:
+        pytest.fail(f"weave-cut {line}: {exc.format_message()}")
+    for option, path in written(command, ctx.params):
+        made = {os.path.abspath(p) for o, p in written(command, ctx.params)
+                if is_folder(o, ctx.params)}
+        assert problem(path, is_folder(option, ctx.params),
+                       os.path.dirname(os.path.abspath(path)) in made) is None, line
+
+
+def test_a_page_into_the_folder_the_command_makes_is_no_missing_folder(world):
+    """`puzzle -o kit --html kit/index.html` (the README's): kit is made by the run itself."""
+    kit = world / "out" / "kit"
+    result = run("puzzle", "-n", "2", "--preview", "-o", kit, "--html", kit / "index.html")
+    assert result.exit_code == 0, result.output
+    assert files_under(kit) == {"index.html", "puzzle-preview.svg", MANIFEST}
+    refused(run("puzzle", "-n", "2", "--preview", "-o", kit, "--html",
+                world / "out" / "elsewhere" / "index.html"), "elsewhere' does not exist",
+            status=(2,))

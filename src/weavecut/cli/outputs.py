@@ -152,8 +152,10 @@ def writing(ctx: click.Context | None):
             yield
         return
     command, values = ctx.command, ctx.params
-    for p, path in written(command, values):
-        message = problem(path, is_folder(p, values))
+    made = {os.path.abspath(path) for p, path in written(command, values) if is_folder(p, values)}
+    for p, path in written(command, values):  # (a page into the -o folder: made by then)
+        inside = os.path.dirname(os.path.abspath(path)) in made
+        message = problem(path, is_folder(p, values), parent_made=inside)
         if message:
             raise click.BadParameter(message, ctx=ctx, param=p)
     folders = roots(command, values)

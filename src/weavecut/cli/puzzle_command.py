@@ -86,7 +86,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     squares there make pentagons that turn over.
     \b
     Examples:
-      weave-cut puzzle -o build/puzzle --material poplar-3mm --numbers
+      weave-cut puzzle -o puzzle --material poplar-3mm --numbers
       weave-cut puzzle heart.svg --cell 39mm --levels 2 --size 30cm -o heart
       weave-cut puzzle --levels 3 --palette puzzle --preview -o look
     """
