@@ -55,7 +55,10 @@ def is_folder(param: click.Parameter, values: dict) -> bool:
     """Whether path option ``param`` names a folder, with the command's ``values``."""
     flag = getattr(param.type, "folder_with", None)
     if flag is not None:
-        return click.BOOL.convert(values.get(flag) or False, None, None)
+        try:
+            return click.BOOL.convert(values.get(flag) or False, None, None)
+        except click.BadParameter:  # a recipe's 'maybe': refused as the flag's value later
+            return False
     return not param.type.file_okay
 
 
