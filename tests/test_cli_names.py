@@ -95,7 +95,8 @@ def test_every_numeric_option_that_speaks_of_a_size_is_a_length_or_says_why_not(
     """A length typed as a plain number (a new --gap FLOAT "in mm") would take '3' as 3 mm:
     such an option is found by its help and fails here until it is a Length."""
     numeric = (click.types.IntParamType, click.types.FloatParamType)
-    words = re.compile(r"\b(mm|cm|side|size|width|height|distance|margin|kerf|diameter|length)\b",
+    words = re.compile(r"\b(mm|cm|side|size|width|height|distance|margin|kerf|diameter|length|"
+                       r"thickness|gap|radius|spacing|offset|frame)\b",
                        re.I)
     found = {(n, p.name) for n in cli.commands for p in cli.commands[n].params
              if isinstance(p.type, numeric) and words.search(getattr(p, "help", "") or "")}
