@@ -40,10 +40,12 @@ $(OUT)/index.html: $(BUILT)
 # a recipe is rebuilt when it or the package changed; each recipe has its own folder, which
 # belongs to make (--force: replace files a weave-cut without a manifest left there)
 $(OUT)/%/.built: templates/recipes/%.toml $(STAMP) $(SRC) $(wildcard templates/recipes/*.svg)
+	@mkdir -p $(OUT)  # weave-cut makes the output folder, not the folders above it
 	$(WC) -q build $< -o $(OUT)/$* --force > /dev/null
 	touch $@
 
 $(OUT)/%/.built: examples/%.toml $(STAMP) $(SRC) examples/*.obj examples/*.json examples/*.svg examples/*.dxf
+	@mkdir -p $(OUT)
 	$(WC) -q build $< -o $(OUT)/$* --force > /dev/null
 	touch $@
 

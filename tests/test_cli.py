@@ -146,7 +146,7 @@ def test_same_bytes_across_runs_and_hash_seeds(tmp_path, suffix):
     (["subdivide", "pentagon", "--levels", "-1", "-o", "{d}/x.svg"], 2, "--levels"),
     (["subdivide", "pentagon", "--size", "-5mm", "-o", "{d}/x.svg"], 2, "must be > 0"),
     (["subdivide", "pentagon", "--size", "big", "-o", "{d}/x.svg"], 2, "is not a length"),
-    (["subdivide", "pentagon", "-o", "{d}/missing/x.svg"], 1, "does not exist"),
+    (["subdivide", "pentagon", "-o", "{d}/missing/x.svg"], 2, "does not exist; create it"),
     (["subdivide", "pentagon", "-o", "{d}"], 2, "directory"),
     (["subdivide", "{d}/missing.obj", "-o", "{d}/x.svg"], 1, "cannot read"),
     (["stats", "ngon:2"], 1, "ngon takes a number from 3"),

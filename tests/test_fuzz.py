@@ -19,6 +19,7 @@ from hypothesis import strategies as st
 
 from tests.strategies import examples
 from weavecut.cli import cli
+from weavecut.manifest import MANIFEST
 
 OBJ_CASES = {
     "empty": b"",
@@ -196,7 +197,7 @@ def test_interrupt_leaves_earlier_outputs_and_no_partial_files(tmp_path):
         err = _rest(main)
         assert "interrupted; no output was left half-written" in err, err
         assert "Traceback" not in err
-        assert sorted(p.name for p in tmp_path.iterdir()) == ["done.svg"]
+        assert sorted(p.name for p in tmp_path.iterdir()) == [MANIFEST, "done.svg"]
     assert done.read_bytes() == before
 
 

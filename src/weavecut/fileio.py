@@ -12,6 +12,12 @@ command) both finish, as if run one after the other; the bound keeps a stopped o
 writer from hanging the other. The lock is taken at the first write, not at the start, so a
 run refused for its input never waits, and a folder that does not exist yet is locked as soon
 as it is made.
+
+The outermost block may also carry a ``guard`` (``manifest.Ledger``: which existing files
+weave-cut may replace): every write in this process is checked by it first
+(``guard.check(path)``), every file written or noted is told to it (``guard.wrote(path)``),
+and it records them (``guard.record(strict)``) before the locks are released, so another
+weave-cut waiting for the folder finds them listed.
 """
 
 from __future__ import annotations
@@ -59,7 +65,11 @@ def recording():
 
 
 def note(path: str | os.PathLike | None = None, drawing=None, said: str | None = None) -> None:
-    """Note a written ``path`` (and the ``drawing`` it shows) or a summary line, if recording."""
+    """Note a written ``path`` (and the ``drawing`` it shows) or a summary line, if recording;
+    a written path is also told to the running command's guard (``writing_into``)."""
+    guard = active_guard()
+    if guard is not None and path is not None:
+        guard.wrote(path)
     record = _RECORD.get()
     if record is None:
         return
@@ -119,30 +129,52 @@ class _Locks:
     claimed: set[str] = field(default_factory=set)
     depth: int = 0
     pid: int = 0
+    guard: object | None = None  # the outermost block's guard (manifest.Ledger)
 
 
 _LOCKS = _Locks()
 
 
 @contextlib.contextmanager
-def writing_into(folders):
+def writing_into(folders, guard=None):
     """Lock each of ``folders`` at the first write into it or below (``make_folder``,
     ``write_atomic``) and hold the locks until the outermost block ends. Nested blocks (the
-    jobs of a build) add their folders; a forked worker writes under its parent's locks."""
+    jobs of a build) add their folders; a forked worker writes under its parent's locks.
+    The outermost block's ``guard`` checks and records every write (a nested block's is
+    ignored: a build's jobs write under the build's rule and its ``--force``)."""
     if _LOCKS.depth == 0:
         _LOCKS.pid = os.getpid()
+        _LOCKS.guard = guard
     _LOCKS.depth += 1
     _LOCKS.roots += [os.path.abspath(f) for f in folders]
+    done = False
     try:
         yield
+        done = True
     finally:
-        _LOCKS.depth -= 1
-        if _LOCKS.depth == 0:
-            for fd in _LOCKS.held.values():
-                os.close(fd)
-            _LOCKS.roots.clear()
-            _LOCKS.held.clear()
-            _LOCKS.claimed.clear()
+        try:
+            if _LOCKS.depth == 1 and _LOCKS.guard is not None:
+                _LOCKS.guard.record(strict=done)  # still under the locks
+        finally:
+            _LOCKS.depth -= 1
+            if _LOCKS.depth == 0:
+                for fd in _LOCKS.held.values():
+                    os.close(fd)
+                _LOCKS.roots.clear()
+                _LOCKS.held.clear()
+                _LOCKS.claimed.clear()
+                _LOCKS.guard = None
+
+
+def active_guard():
+    """The running command's guard (``writing_into``), or None (also in a worker process)."""
+    return _LOCKS.guard if _LOCKS.pid == os.getpid() else None
+
+
+def claim(path: str | os.PathLike) -> None:
+    """Lock now every folder of the running command that ``path`` lies in (waiting for
+    another weave-cut writing there), as its first write there would."""
+    _claim(path)
 
 
 def _claim(path: str | os.PathLike) -> None:
@@ -217,14 +249,19 @@ def _tell(message: str) -> None:
         pass
 
 
-def write_atomic(path: str | os.PathLike, data: bytes) -> None:
+def write_atomic(path: str | os.PathLike, data: bytes, *, noted: bool = True) -> None:
     """Write ``data`` to ``path`` through a temporary file in the same folder, then rename.
 
     The temporary name is short (``.wc-XXXXXXXX.part``), so any name the file system takes
-    for ``path`` also works for it.
+    for ``path`` also works for it. The running command's guard checks ``path`` first and is
+    told of it after (``writing_into``); ``noted=False`` is for weave-cut's own bookkeeping
+    (the manifest), which is neither an output nor checked as one.
     """
     path = Path(path)
     check_writable(path)
+    guard = active_guard() if noted else None
+    if guard is not None:
+        guard.check(path)
     check_file_size(len(data), str(path))
     folder = path.parent if str(path.parent) else Path(".")
     if not folder.is_dir():
@@ -239,7 +276,8 @@ def write_atomic(path: str | os.PathLike, data: bytes) -> None:
             f.write(data)
         os.chmod(tmp, 0o644)
         os.replace(tmp, path)
-        note(path)
+        if noted:
+            note(path)
     except OSError as exc:
         _unlink_quietly(tmp)
         raise ExportError(f"cannot write {path}: {exc.strerror}") from exc

@@ -15,6 +15,7 @@ import numpy as np
 from .errors import MeshError
 from .mesh import Mesh
 from .numeric import dot
+from .text import nearest
 
 MAX_GRID = 2000
 
@@ -264,7 +265,8 @@ def get(spec: str) -> Mesh:
     """
     name, _, param = spec.partition(":")
     if name not in INPUTS:
-        raise MeshError(f"unknown input {name!r}; built-in inputs: {', '.join(INPUTS)}")
+        raise MeshError(f"unknown input {name!r}{nearest(name, INPUTS)}; built-in inputs: "
+                        f"{', '.join(INPUTS)}")
     entry = INPUTS[name]
     if param and not entry.parameter:
         raise MeshError(f"input {name!r} takes no parameter, got {param!r}")

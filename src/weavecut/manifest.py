@@ -1,7 +1,15 @@
 """The manifest of an output folder: which files weave-cut wrote there, with their SHA-256, and
-which files each job of a build wrote (``.weave-cut-manifest.json``). A build replaces only the
-files listed with their current hash (or with ``--force``) and removes a job's stale files; the
-kit page's writer adds itself."""
+which files each job of a build wrote (``.weave-cut-manifest.json``).
+
+One rule for every command (``Ledger``): an existing file is replaced only if weave-cut wrote
+it, that is if the manifest of the output folder lists it with its current hash, or with
+``--force``; a symlink never. Every command records what it wrote in the manifest of its
+output folder (a folder option's folder, a file option's folder). This is how git keeps an
+untracked file from being overwritten by a checkout, and pip knows the files it may remove
+(RECORD, with hashes): a rerun replaces weave-cut's own files without being asked, a file the
+maker put there or edited since is refused with its name, and no one learns to type
+``--force`` every time. A build also removes a job's stale files; the kit page's writer adds
+itself."""
 
 from __future__ import annotations
 
@@ -13,8 +21,8 @@ import re
 import stat
 from pathlib import Path, PurePosixPath
 
-from .errors import WeaveCutError
-from .fileio import folder_lock, write_atomic
+from .errors import ExportError, WeaveCutError
+from .fileio import check_writable, claim, folder_lock, write_atomic
 
 MANIFEST = ".weave-cut-manifest.json"
 
@@ -52,16 +60,17 @@ def read_manifest(out_dir: Path) -> tuple[dict[str, str], dict[str, list[str]]]:
         files, outputs = _checked(doc)
     except RecursionError:
         raise ManifestError(f"{path}: unreadable manifest (nested too deep); remove it and "
-                            "build with --force") from None
+                            "run again with --force") from None
     except (OSError, ValueError) as exc:
-        raise ManifestError(f"{path}: unreadable manifest ({exc}); remove it and build with "
-                            "--force") from exc
+        raise ManifestError(f"{path}: unreadable manifest ({exc}); remove it and run again "
+                            "with --force") from exc
     real = os.path.realpath(out_dir)
     for folder in {os.path.dirname(name) for name in files}:
         if not _inside(os.path.realpath(os.path.join(real, folder)), real):
             name = next(n for n in sorted(files) if os.path.dirname(n) == folder)
             raise ManifestError(f"{path}: lists {name!r}, which is not inside {out_dir} (a "
-                                "symlink leads out); remove the manifest and build with --force")
+                                "symlink leads out); remove the manifest and run again with "
+                                "--force")
     return files, outputs
 
 
@@ -128,4 +137,90 @@ def record_manifest(out_dir: Path, entries: dict[str, str],
         doc = {"format": "weave-cut-manifest", "version": 2, "files": dict(sorted(files.items())),
                "outputs": {k: sorted(v) for k, v in sorted(wrote.items())}}
         text = json.dumps(doc, indent=1, allow_nan=False) + "\n"
-        write_atomic(out_dir / MANIFEST, text.encode())
+        write_atomic(out_dir / MANIFEST, text.encode(), noted=False)
+
+
+class Ledger:
+    """The one rule for replacing files, for a command writing into ``roots`` (its output
+    folders: a folder option's folder, a file option's folder; a build's jobs write under the
+    build's). ``check(path)`` before a file is replaced: not a link, a folder, a device or an
+    input, and weave-cut wrote it (listed with its current hash in the manifest of a root that
+    holds it, or written in this run), unless ``force``. A refusal is confirmed under the
+    folder's lock, as another weave-cut may be writing there and lists its files before it
+    lets go. ``wrote(path)`` for every file written; ``record`` lists them in the manifest of
+    the innermost root that holds each (the file's own folder if none does)."""
+
+    def __init__(self, roots, force: bool = False) -> None:
+        real = {os.path.realpath(r) for r in roots}
+        self.roots = sorted(real, key=lambda r: (-len(r), r))  # innermost first
+        self.force = force
+        self.written: set[str] = set()
+        self._listed: dict[str, dict[str, str]] = {}
+
+    def open(self) -> None:
+        """Read the manifest of every root now: an unreadable one is refused before any work
+        (with ``--force`` too: it would be rewritten at the end)."""
+        for root in self.roots:
+            self._manifest(root)
+
+    def _manifest(self, root: str, again: bool = False) -> dict[str, str]:
+        if again or root not in self._listed:
+            self._listed[root] = read_manifest(Path(root))[0]
+        return self._listed[root]
+
+    @staticmethod
+    def _real(path) -> str:
+        """``path`` with its folder resolved (not a final symlink)."""
+        path = os.path.abspath(path)
+        return os.path.join(os.path.realpath(os.path.dirname(path)), os.path.basename(path))
+
+    def _holders(self, real: str) -> list[str]:
+        return [r for r in self.roots if real.startswith(r.rstrip(os.sep) + os.sep)]
+
+    def ours(self, path, again: bool = False) -> bool:
+        """Whether weave-cut wrote the file at ``path`` as it is now."""
+        real = self._real(path)
+        if real in self.written:
+            return True
+        digest = file_hash(Path(real))
+        return digest is not None and any(
+            self._manifest(root, again).get(os.path.relpath(real, root)) == digest
+            for root in self._holders(real) or [os.path.dirname(real)])
+
+    def check(self, path, shown: str | None = None) -> None:
+        """Raise ExportError unless ``path`` may be written (``shown``: the name in the
+        message)."""
+        shown = str(path) if shown is None else shown
+        if not os.path.lexists(path):
+            return
+        if os.path.islink(path):
+            if os.path.isfile(path):
+                check_writable(path)  # a link to an input: said as such
+            raise ExportError(f"{shown} is a symlink; weave-cut does not replace links")
+        check_writable(path)
+        if self.force or self.ours(path):
+            return
+        claim(path)  # wait for another weave-cut writing there, then look again
+        if not self.ours(path, again=True):
+            raise ExportError(f"{shown} exists and weave-cut did not write it (it is not listed "
+                              f"in {MANIFEST}, or was changed since); use --force to replace "
+                              "it")
+
+    def wrote(self, path) -> None:
+        self.written.add(self._real(path))
+
+    def record(self, strict: bool = True) -> None:
+        """List every file written in the manifest of its root; ``strict=False`` (the command
+        failed) keeps quiet about a failure here, so the command's own error is the one said."""
+        by_root: dict[str, dict[str, str]] = {}
+        for real in sorted(self.written):
+            root = (self._holders(real) or [os.path.dirname(real)])[0]
+            digest = file_hash(Path(real))
+            if digest is not None and os.path.basename(real) != MANIFEST:
+                by_root.setdefault(root, {})[os.path.relpath(real, root)] = digest
+        try:
+            for root, entries in by_root.items():
+                record_manifest(Path(root), entries)
+        except (WeaveCutError, OSError):
+            if strict:
+                raise

@@ -82,16 +82,16 @@ def page_size(value: str) -> tuple[float, float]:
     key = value.strip().lower()
     if key in units.PAPER_SIZES or "x" in key:
         return units.page_size(value)
-    try:
+    if key in names("pages"):  # a preset's own problem is said as such (PresetError)
         doc = load("pages", key)
         return (units.to_mm(doc["width"]), units.to_mm(doc["height"]))
-    except (PresetError, KeyError, TypeError) as exc:
-        raise ValueError(f"{key!r} is not a page size: use a4, a3, letter, a preset "
-                         f"({', '.join(names('pages'))}) or WxH like 200x300mm") from exc
+    raise ValueError(f"{key!r} is not a page size"
+                     f"{nearest(key, [*units.PAPER_SIZES, *names('pages')])}: use a4, a3, "
+                     f"letter, a preset ({', '.join(names('pages'))}) or WxH like 200x300mm")
 
 
 def _stroke(role: str) -> Table:
-    return Table({"colour": Colour(), "width": Number(0, 10, unit="mm")}, ("colour",),
+    return Table({"colour": Colour(), "width": Length(0, 10)}, ("colour",),
                  label=role)
 
 

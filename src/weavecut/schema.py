@@ -17,7 +17,6 @@ its own values, now knowing that they parse.
 
 from __future__ import annotations
 
-import difflib
 import math
 import os
 import re
@@ -28,6 +27,7 @@ from dataclasses import dataclass
 
 from . import units
 from .errors import WeaveCutError
+from .text import nearest  # noqa: F401  (here for the schema's users)
 
 MAX_BYTES = 256 * 1024
 MAX_DEPTH = 8
@@ -35,12 +35,6 @@ MAX_DEPTH = 8
 
 class SchemaError(WeaveCutError, ValueError):
     """A TOML file is unreadable, too large or too deep, or breaks its schema."""
-
-
-def nearest(word: str, choices) -> str:
-    """' (did you mean X?)' for the closest of ``choices``, or ''."""
-    match = difflib.get_close_matches(word, sorted(choices), n=1, cutoff=0.6)
-    return f" (did you mean {match[0]!r}?)" if match else ""
 
 
 # --- bounded reading ----------------------------------------------------------------------
@@ -173,7 +167,7 @@ class Number:
 
 @dataclass(frozen=True)
 class Length(Number):
-    """A length: a number of millimetres or a string with a unit ('0.15mm', '2in')."""
+    """A length with its unit ('0.15mm', '2in'; ``units.length``)."""
 
     unit: str = "mm"
 
@@ -181,7 +175,7 @@ class Length(Number):
         if isinstance(value, bool) or not isinstance(value, (int, float, str)):
             return f"expected a length like '3mm', got {_kind(value)}"
         try:
-            mm = units.to_mm(value)
+            mm = units.length(value)
         except ValueError as exc:
             return str(exc)
         return self.bounds(mm, repr(value))

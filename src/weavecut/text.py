@@ -6,6 +6,7 @@ keeps them as lone surrogates); neither is allowed in XML 1.0 nor encodable as U
 
 from __future__ import annotations
 
+import difflib
 import re
 from dataclasses import replace
 
@@ -21,6 +22,18 @@ def clean(text: str) -> str:
     ('m\\ufffd.obj', 'caf\\ufffd.obj', 'plain')
     """
     return _UNSAFE.sub("\ufffd", text)
+
+
+def nearest(word: str, choices) -> str:
+    """' (did you mean X?)' for the closest of ``choices`` to a name a person typed, or ''.
+
+    Examples
+    --------
+    >>> nearest("squre-grid", ["pentagon", "square-grid"]), nearest("xyz", ["pentagon"])
+    (" (did you mean 'square-grid'?)", '')
+    """
+    match = difflib.get_close_matches(word, sorted(choices), n=1, cutoff=0.6)
+    return f" (did you mean {match[0]!r}?)" if match else ""
 
 
 def clean_drawing(drawing):

@@ -336,11 +336,11 @@ def test_strands_cutter_and_laser_card_commands(tmp_path):
     res = runner.invoke(main, ["strands", "square-grid:2x2", "--tile-size", "20mm", "--cutter",
                                str(fine), "-o", str(tmp_path / "fine.pdf")])
     assert res.exit_code == 0 and "drag knife tears below 50 mm" in res.output
-    for args, message in ((["--cutter", "nope"], "unknown cutter"),
-                          (["--cutter", "cricut", "--laser-card"], "not both"),
-                          (["--material", "card-300gsm"], "--laser-card")):
-        res = runner.invoke(main, ["strands", "square-grid:2x2", *args, "-o",
-                                   str(tmp_path / "x.pdf")])
+    for args, message in ((["--cutter", "nope", "-o", "x.pdf"], "unknown cutter"),
+                          (["--cutter", "cricut", "--laser-card", "-o", "x"], "not both"),
+                          (["--material", "card-300gsm", "-o", "x.pdf"], "--laser-card")):
+        res = runner.invoke(main, ["strands", "square-grid:2x2", *args[:-1],
+                                   str(tmp_path / args[-1])])
         assert res.exit_code != 0 and message in res.output and "Traceback" not in res.output
 
 

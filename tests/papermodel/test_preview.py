@@ -13,6 +13,7 @@ from tests.papermodel.test_strands import small_book, weaves
 from tests.svg_readback import LABEL, SVG_NS, assert_svg_shows
 from weavecut import inputs
 from weavecut.cli import cli
+from weavecut.manifest import MANIFEST
 from weavecut.papermodel.preview import MARGIN, WIDTH, pattern_preview
 from weavecut.puzzle.colouring import colour_puzzle
 from weavecut.puzzle.guides import guide, preview
@@ -57,7 +58,7 @@ def test_strands_preview_writes_the_pattern_only(tmp_path):
     out = tmp_path / "look.svg"
     result = CliRunner().invoke(cli, ["strands", "square-grid", "--preview", "-o", str(out)])
     assert result.exit_code == 0, result.output
-    assert list(tmp_path.iterdir()) == [out]
+    assert sorted(tmp_path.iterdir()) == [tmp_path / MANIFEST, out]  # and what wrote it
     text = out.read_text()
     assert text.count("<svg") == 1 and "preview" in text
     # the preset's level and turn (square-grid: 2, 45 degrees), the default palette
@@ -95,7 +96,7 @@ def test_puzzle_preview_is_the_painted_front_and_back_without_numbers(tmp_path):
     result = CliRunner().invoke(cli, ["puzzle", "--levels", "3", "--size", "30cm", "--preview",
                                       "-o", str(out)])
     assert result.exit_code == 0, result.output
-    assert [p.name for p in out.iterdir()] == ["puzzle-preview.svg"]
+    assert sorted(p.name for p in out.iterdir()) == [MANIFEST, "puzzle-preview.svg"]
     root = ET.fromstring((out / "puzzle-preview.svg").read_bytes())
     assert [g.get(LABEL) for g in root.iter(f"{SVG_NS}g")] == [
         name for sheet in drawing.sheets

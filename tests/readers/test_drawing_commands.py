@@ -68,7 +68,8 @@ def test_strands_of_a_drawing(tmp_path, name, options):
 def test_bad_drawing_options_are_one_line(tmp_path):
     result = run("subdivide", EXAMPLES / "plate.dxf", "--layer", "NOPE", "-o", tmp_path / "x.svg")
     assert result.exit_code == 1
-    assert "no outlines on layer 'NOPE'; layers: GRID, NOTES, OUTLINE" in result.output
+    assert "no outlines on layer 'NOPE' (did you mean 'NOTES'?); layers: GRID, NOTES, OUTLINE" \
+        in result.output
     assert not list(tmp_path.iterdir())
     result = run("subdivide", EXAMPLES / "heart.svg", "--mesh", "pentagons", "-o",
                  tmp_path / "x.svg")

@@ -29,7 +29,9 @@ MATERIAL_CASES = {
     ("kerf", '"-1mm"'): "kerf: '-1mm' must be >= 0 mm",
     ("kerf", "nan"): "kerf: nan is not a finite length",
     ("kerf", "inf"): "kerf: inf is not a finite length",
-    ("kerf", '"0.15"'): None,  # a bare number is millimetres: fine
+    ("kerf", '"0.15"'): "kerf: '0.15' has no unit",  # mm or cm? (issue #29)
+    ("kerf", "0.15"): "kerf: '0.15' has no unit",
+    ("kerf", "0"): None,  # zero in every unit
     ("kerf", '"6mm"'): "kerf: '6mm' must be <= 5 mm",
     ("kerf", "true"): "kerf: expected a length",
     ("sheet", "5"): "sheet: expected a size",
@@ -102,13 +104,16 @@ def test_page_presets_and_bad_preset_names(tmp_path, monkeypatch):
     root = tmp_path / "templates"
     (root / "pages").mkdir(parents=True)
     (root / "pages" / "huge.toml").write_text("width = 1e400\nheight = 10\n")
-    (root / "pages" / "ok.toml").write_text("width = '100mm'\nheight = 200\n")
+    (root / "pages" / "ok.toml").write_text("width = '100mm'\nheight = '20cm'\n")
+    (root / "pages" / "bare.toml").write_text("width = 100\nheight = 200\n")
     monkeypatch.setenv("WEAVECUT_TEMPLATES", str(root))
     refused(run("strands", "square-grid", "--page", "huge", "-o", tmp_path / "s.pdf"),
             status=(2,))
     with pytest.raises(presets.PresetError, match="unknown palette"):
         presets.load("palettes", "../pages/ok")
-    assert presets.load("pages", "ok")["height"] == 200
+    assert presets.load("pages", "ok")["height"] == "20cm"
+    refused(run("strands", "square-grid", "--page", "bare", "-o", tmp_path / "s.pdf"),
+            "width: '100' has no unit", status=(2,))
 
 
 def test_every_shipped_preset_passes_its_schema():

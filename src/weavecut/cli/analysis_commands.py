@@ -12,12 +12,14 @@ import numpy as np
 from click.shell_completion import CompletionItem
 
 from .. import export
+from ..text import nearest
 from ..analysis import convexity as cv
 from ..analysis import deepzoom
 from ..analysis import fractal as fr
 from ..analysis import levels as lv
 from .common import (
     CONTEXT,
+    force_option,
     input_argument,
     load_mesh,
     page_option,
@@ -27,6 +29,7 @@ from .common import (
     write_png,
 )
 from .mesh_commands import level_options, run_scheme
+from .outputs import check_suffix
 
 
 snub_options = level_options(6, with_scheme=False)
@@ -38,9 +41,8 @@ def _hierarchy(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex
 
 
 def _suffix_check(output: str | None, allowed: tuple[str, ...]) -> None:
-    if output is not None and Path(output).suffix.lower().lstrip(".") not in allowed:
-        raise click.BadParameter(f"{output!r}: use a {' or '.join('.' + a for a in allowed)} "
-                                 "file", param_hint="'-o'")
+    if output is not None:
+        check_suffix(output, ("." + a for a in allowed))
 
 
 class CurveType(click.ParamType):
@@ -98,6 +100,7 @@ def _output_option(suffixes: str):
 @click.option("--json", "as_json", is_flag=True, help="Print JSON (all numbers, all boxes).")
 @_output_option(".svg, .dxf, .pdf or .png")
 @page_option
+@force_option
 @reports_errors
 def fractal_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex, curve,
                     born, as_json, output, page) -> None:
@@ -202,6 +205,7 @@ def _print_fractal(r: dict) -> None:
 @click.option("--jobs", "-j", type=click.IntRange(1, 256), default=None,
               help="Processes rendering tiles (with --tiles; default: one per core).")
 @click.option("--json", "as_json", is_flag=True, help="Print pixels reached per level as JSON.")
+@force_option
 @reports_errors
 def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex, size,
                    window, output, tiles, tile_size, jobs, as_json) -> None:
@@ -262,7 +266,7 @@ def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonco
             f"the last at level {int(image[hit].max()) if hit.any() else '-'}")
 
 
-def _levels_beside(values: dict, output: Path) -> list[Path]:
+def _levels_beside(values: dict) -> list[Path]:
     """The existing files a run with ``values`` writes into its ``--tiles`` folder (the
     descriptor and the pyramid's tiles), and any symlink there: ``build`` checks them before
     the first job runs."""
@@ -283,6 +287,7 @@ levels_command.beside = _levels_beside
 @click.option("--json", "as_json", is_flag=True, help="Print JSON.")
 @_output_option(".svg, .dxf, .pdf or .png: the last level, non-convex faces red")
 @page_option
+@force_option
 @reports_errors
 def convexity_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex,
                       as_json, output, page) -> None:
@@ -337,6 +342,7 @@ def _complete_figures(ctx, param, incomplete: str) -> list[CompletionItem]:
 @click.option("-o", "--output", type=click.Path(dir_okay=False),
               help="Output file (.svg, .dxf, .pdf, .png; .png for raster figures).")
 @page_option
+@force_option
 @reports_errors
 def figure_command(name, list_all, output, page) -> None:
     """Reproduce one of the paper's figures.
@@ -357,10 +363,11 @@ def figure_command(name, list_all, output, page) -> None:
             click.echo(f"{key:{width}}  {description}")
         return
     if name not in gallery.FIGURES:
-        raise click.BadParameter(f"unknown figure {name!r}; see weave-cut figure --list",
-                                 param_hint="'NAME'")
+        raise click.BadParameter(f"unknown figure {name!r}{nearest(name, gallery.FIGURES)}; "
+                                 "see weave-cut figure --list", param_hint="'NAME'")
     if output is None:
         raise click.UsageError("give an output file with -o")
+    _suffix_check(output, tuple(export.formats()))  # before the figure is drawn
     result = gallery.FIGURES[name][1]()
     if isinstance(result, bytes):
         _suffix_check(output, ("png",))

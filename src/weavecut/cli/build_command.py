@@ -10,7 +10,8 @@ import click
 from ..fileio import make_folder, protect
 from ..manifest import file_hash, record_manifest
 from ..schema import RECIPE, nearest, read_toml
-from .common import CONTEXT, complete_preset, reports_errors
+from .common import CONTEXT, complete_preset, force_option, reports_errors
+from .outputs import forced
 from .recipe import PAGE, Planner, RecipeError, find_recipe
 
 
@@ -23,14 +24,13 @@ from .recipe import PAGE, Planner, RecipeError, find_recipe
 @click.option("--allow-read", multiple=True, metavar="DIR",
               type=click.Path(file_okay=False, exists=True, path_type=Path),
               help="Also read inputs from DIR (default: the recipe's folder only; repeatable).")
-@click.option("--force", is_flag=True,
-              help="Replace existing files that a previous build did not write.")
+@force_option
 @click.option("--dry-run", is_flag=True,
               help="Check the recipe and print every job and output path without running.")
 @click.pass_context
 @reports_errors
 def build_command(ctx: click.Context, recipe: str, output_dir: str, overrides: tuple[str, ...],
-                  allow_read: tuple[Path, ...], force: bool, dry_run: bool) -> None:
+                  allow_read: tuple[Path, ...], dry_run: bool) -> None:
     """Run every job of RECIPE (a .toml file, or a recipe name from templates/recipes) into a
     folder. The whole recipe is checked before the first job runs.
 
@@ -51,7 +51,7 @@ def build_command(ctx: click.Context, recipe: str, output_dir: str, overrides: t
     RECIPE.check(doc, str(path), RecipeError)
     out_dir = Path(output_dir).absolute()
     planner = Planner(ctx.parent.command, ctx.parent, path, out_dir, output_dir, allow_read,
-                      force)
+                      forced())
     known = {k for job in doc["job"] for c in [planner.commands().get(job["command"])] if c
              for k in planner.options(c)}
     for key in parsed:

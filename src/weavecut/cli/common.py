@@ -20,16 +20,18 @@ import numpy as np
 
 from .. import __version__, inputs, units
 from ..errors import MeshError, WeaveCutError
-from ..fileio import note, protect, recording, writing_into
+from ..fileio import note, protect, recording
 from ..mesh import Mesh
 from ..readers import DEFAULT_FLATTEN, MESH_CHOICES
-from ..text import clean
+from ..text import clean, nearest
+from .outputs import force_option, path_options, writing  # noqa: F401  (one place)
 
 CONTEXT = {"help_option_names": ["-h", "--help"], "max_content_width": 100}
 
 
 class Length(click.ParamType):
-    """'50cm', '0.15mm', '2in' or a bare number of millimetres -> float mm (> 0)."""
+    """A length with its unit ('50cm', '0.15mm', '2in'; zero may go without) -> float mm
+    (``units.length``: a bare number is refused, in an option as in a recipe)."""
 
     name = "length"
 
@@ -40,7 +42,7 @@ class Length(click.ParamType):
         if isinstance(value, bool):
             self.fail(f"{value!r} is not a length", param, ctx)
         try:
-            mm = units.to_mm(value)
+            mm = units.length(value)
         except ValueError as exc:
             self.fail(str(exc), param, ctx)
         if mm < self.minimum or (mm == self.minimum and not self.inclusive):
@@ -49,6 +51,17 @@ class Length(click.ParamType):
         if mm > 1e6:
             self.fail(f"{value!r} is larger than a kilometre", param, ctx)
         return mm
+
+
+class Choice(click.Choice):
+    """click's Choice, whose refusal also says which choice was probably meant."""
+
+    def convert(self, value, param, ctx):
+        try:
+            return super().convert(value, param, ctx)
+        except click.BadParameter as exc:
+            exc.message = exc.message.rstrip(".") + nearest(str(value), self.choices)
+            raise
 
 
 class Finite(click.FloatRange):
@@ -67,6 +80,9 @@ class PageSize(click.ParamType):
     def convert(self, value, param, ctx):
         if isinstance(value, tuple):
             return value
+        if not isinstance(value, str):  # a number in a recipe
+            self.fail(f"{value!r} is not a page size: use a4, a3, letter, a preset or WxH "
+                      "like 200x300mm", param, ctx)
         from .. import presets
 
         try:
@@ -100,39 +116,15 @@ def write_png(data: bytes, output: str, title: str) -> None:
     write_atomic(output, with_text(data, [("Title", title), *provenance().items()]))
 
 
-def path_options(command: click.Command) -> list[click.Option]:
-    """The options of ``command`` that name a file or folder it writes: every ``click.Path``
-    that need not exist. A recipe confines each to its build folder (``recipe.Planner``), and
-    the command locks the folder of each (``reports_errors``)."""
-    return [p for p in command.params if isinstance(p, click.Option)
-            and isinstance(p.type, click.Path) and not p.type.exists]
-
-
-def _output_folders() -> list[str]:
-    """The folders the running command writes into (a folder option's value, a file option's
-    folder; both for an option that takes either); refuses an empty path."""
-    ctx = click.get_current_context(silent=True)
-    folders = []
-    for p in path_options(ctx.command) if ctx else ():
-        value = ctx.params.get(p.name)
-        for path in value if isinstance(value, (tuple, list)) else [value]:
-            if path is None:
-                continue
-            if not str(path):
-                raise click.BadParameter("an empty path names no file or folder", param=p)
-            folders += [path] if p.type.dir_okay else []
-            folders += [os.path.dirname(os.path.abspath(path))] if p.type.file_okay else []
-    return folders
-
-
 def reports_errors(f):
-    """Turn a WeaveCutError (or a ValueError from option checks) into a one-line exit 1; the
-    folders the command writes into are locked at the first write (``fileio.writing_into``)."""
+    """Turn a WeaveCutError (or a ValueError from option checks) into a one-line exit 1; where
+    the command writes is checked before any work, and its folders are locked at the first
+    write (``outputs.writing``)."""
 
     @functools.wraps(f)
     def wrapper(*args, **kwargs):
         try:
-            with writing_into(_output_folders()):
+            with writing(click.get_current_context(silent=True)):
                 return f(*args, **kwargs)
         except WeaveCutError as exc:
             raise click.ClickException(str(exc)) from exc
@@ -275,7 +267,7 @@ def drawing_options(f):
                      "polylines; points closer than this merge.", **kept),
         click.option("--layer", default=None, help="Drawings: read only this DXF layer or "
                      "SVG (Inkscape) layer.", **kept),
-        click.option("--mesh", type=click.Choice(MESH_CHOICES), default="auto",
+        click.option("--mesh", type=Choice(MESH_CHOICES), default="auto",
                      show_default=True, help="Drawings: mesh the inside of the outline (auto: "
                      "when there is a single outline; none: faces as drawn).", **kept),
         click.option("--cell", type=Length(), default=None, help="Drawings: face size when "

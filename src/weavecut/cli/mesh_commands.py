@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 from collections import Counter
-from pathlib import Path
 
 import click
 import numpy as np
@@ -15,8 +14,10 @@ from ..analysis.stats import level_stats, surface_stats
 from ..subdivision import SCHEMES, snub, subdivide
 from .common import (
     CONTEXT,
+    Choice,
     Length,
     allow_nonconvex_option,
+    force_option,
     check_levels,
     flag_nonconvex,
     input_argument,
@@ -27,6 +28,7 @@ from .common import (
     reports_errors,
     write_drawing,
 )
+from .outputs import check_suffix
 
 MESH_SUFFIXES = (".obj", ".json")
 
@@ -37,14 +39,14 @@ def level_options(default_levels: int = 1, with_scheme: bool = True):
         click.option("--levels", "-n", type=click.IntRange(0, 40), default=default_levels,
                      show_default=True, help="Number of refinement steps."),
         click.option("--no-smooth", is_flag=True, help="Skip operation 4 (smoothing)."),
-        click.option("--chirality", type=click.Choice(snub.CHIRALITIES), default="left",
+        click.option("--chirality", type=Choice(snub.CHIRALITIES), default="left",
                      show_default=True, help="Side the first Z edge turns to."),
-        click.option("--centre", type=click.Choice(snub.CENTRES), default="vertex",
+        click.option("--centre", type=Choice(snub.CENTRES), default="vertex",
                      show_default=True, help="Face centre: vertex mean or area centroid."),
         allow_nonconvex_option,
     ]
     if with_scheme:
-        options.insert(1, click.option("--scheme", type=click.Choice(sorted(SCHEMES)),
+        options.insert(1, click.option("--scheme", type=Choice(sorted(SCHEMES)),
                                        default="snub", show_default=True,
                                        help="Subdivision scheme."))
 
@@ -58,7 +60,7 @@ def level_options(default_levels: int = 1, with_scheme: bool = True):
 
 scheme_options = level_options()
 project_option = click.option(
-    "--project", type=click.Choice(snub.PROJECTIONS), default=None,
+    "--project", type=Choice(snub.PROJECTIONS), default=None,
     help="Snub on a surface: move every new vertex onto the input's circumsphere.")
 
 
@@ -121,6 +123,7 @@ def inputs_command(as_json: bool) -> None:
 @page_option
 @click.option("-o", "--output", type=click.Path(dir_okay=False), required=True,
               help="Output file: .svg, .dxf, .pdf, .png (drawings) or .obj, .json (the mesh).")
+@force_option
 @reports_errors
 def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
                       allow_nonconvex, project, size, earlier_levels, page, output) -> None:
@@ -140,11 +143,7 @@ def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
     from ..layout.mesh_figure import mesh_drawing
     from ..mesh_io import write_mesh
 
-    suffix = Path(output).suffix.lower()
-    if suffix not in MESH_SUFFIXES and suffix.lstrip(".") not in export.formats():
-        raise click.BadParameter(
-            f"unknown format {suffix!r}; use {', '.join(MESH_SUFFIXES)} or "
-            f"{', '.join('.' + f for f in export.formats())}", param_hint="'-o'")
+    suffix = check_suffix(output, [*MESH_SUFFIXES, *("." + f for f in export.formats())])
     hierarchy = run_scheme(input_mesh, levels, scheme, no_smooth, chirality, centre,
                            allow_nonconvex, project,
                            flat=None if suffix in MESH_SUFFIXES else f"a {suffix} drawing")

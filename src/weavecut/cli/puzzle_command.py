@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 
 from pathlib import Path
 
@@ -16,8 +17,9 @@ from ..subdivision import subdivide
 from ..units import PAPER_SIZES
 from ..weave.colour import palette
 from ..fileio import make_folder, write_atomic
-from .common import (CONTEXT, DRAWING_KEY, Finite, Length, PageSize, complete_inputs,
-                     complete_preset, drawing_options, flag_nonconvex, html_option, load_mesh,
+from .common import (CONTEXT, DRAWING_KEY, Choice, Finite, Length, PageSize, complete_inputs,
+                     complete_preset, drawing_options, flag_nonconvex, force_option,
+                     html_option, load_mesh,
                      provenance, reports_errors, summary)
 
 
@@ -26,14 +28,15 @@ from .common import (CONTEXT, DRAWING_KEY, Finite, Length, PageSize, complete_in
                 shell_complete=complete_inputs)
 @drawing_options
 @click.option("-o", "--output", "out_dir", required=True,
-              type=click.Path(file_okay=False), help="Folder for the files (created).")
+              type=click.Path(file_okay=False), help="Folder for the files (made if it is "
+              "not there; the folder above it must exist).")
 @click.option("--levels", "-n", type=click.IntRange(2, 7), default=4, show_default=True,
               help="Refinement level t of the pieces (the front shows t-1).")
 @click.option("--size", type=Length(), default="50cm", show_default=True,
               help="Width of the finished puzzle (the frame's outer outline); for the "
               "pentagon its diagonal, the largest corner-to-corner distance (the paper's "
               "50 cm).")
-@click.option("--mode", type=click.Choice(["shared", "separate", "both"]), default="both",
+@click.option("--mode", type=Choice(["shared", "separate", "both"]), default="both",
               show_default=True, help="shared: one board, shared edges cut once (no kerf "
               "compensation possible); separate: kerf-offset pieces nested on sheets, the frame "
               "split into dovetailed parts when it is larger than a sheet.")
@@ -53,7 +56,7 @@ from .common import (CONTEXT, DRAWING_KEY, Finite, Length, PageSize, complete_in
               "(engrave layer); the guides always show them.")
 @click.option("--speed", type=Finite(min=0, min_open=True, max=10_000), default=None,
               help="Cutting speed in mm/s for the time estimate (default: the material's).")
-@click.option("--page", type=click.Choice(sorted(PAPER_SIZES)), default="a4",
+@click.option("--page", type=Choice(sorted(PAPER_SIZES)), default="a4",
               show_default=True, help="Printer page for the colour keys and tiled guides.")
 @click.option("--palette", "palette_name", default="puzzle", show_default=True,
               shell_complete=complete_preset("palettes"),
@@ -63,6 +66,7 @@ from .common import (CONTEXT, DRAWING_KEY, Finite, Length, PageSize, complete_in
 @click.option("--preview", is_flag=True, help="Only draw the painted front and back "
               "(puzzle-preview.svg in -o): no cut files, guides or README, in a fraction of a "
               "second.")
+@force_option
 @reports_errors
 @html_option
 def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, sheet, laser_name,
@@ -82,7 +86,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     squares there make pentagons that turn over.
     \b
     Examples:
-      weave-cut puzzle -o build/puzzle --material poplar-3mm --numbers
+      weave-cut puzzle -o puzzle --material poplar-3mm --numbers
       weave-cut puzzle heart.svg --cell 39mm --levels 2 --size 30cm -o heart
       weave-cut puzzle --levels 3 --palette puzzle --preview -o look
     """
@@ -192,3 +196,14 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
         click.echo(text)
     else:
         summary(workshop.summary_text(info))
+
+
+def _beside(values: dict) -> list[Path]:
+    """The existing files a run may replace in its -o folder (puzzle-*, README.txt): checked
+    before any work (``outputs.may_replace``)."""
+    folder = Path(values["out_dir"])
+    return sorted(p for p in (*folder.glob("puzzle-*"), folder / "README.txt")
+                  if os.path.lexists(p))
+
+
+puzzle_command.beside = _beside

@@ -18,14 +18,18 @@ problem is one line naming the recipe, the job and the key:
 - the input: a built-in name, or a file in the recipe's folder (and below) or in a folder given
   with ``--allow-read``; preset files (``palette = "my.toml"``) likewise;
 - every path a job writes (``output``, and every other option that names a file or folder
-  written, such as ``levels``'s ``tiles``: ``common.path_options``): a relative path inside
+  written, such as ``levels``'s ``tiles``: ``outputs.path_options``): a relative path inside
   ``-o DIR`` (no ``..``, not absolute, no ``~``, not through a symlink out of it), checked by
   ``Planner.output``; never an input, a device or a FIFO, and never an existing file that
   weave-cut did not write there (recorded with its hash in ``.weave-cut-manifest.json``) unless
-  ``--force``. That holds for every file a job may write: a folder output's ``COMMAND-*``
-  files, the files a command says it writes beside its output (``strands --cutter``'s cut
-  files) and the files the job wrote last time. A job that prints (``stats``) writes what it
-  prints as ``.txt`` (or ``.json`` with ``json = true``), never as a page a browser renders.
+  ``--force`` (``manifest.Ledger``, the rule of every command; a recipe cannot say
+  ``force``). That holds for every file a job may write: its file outputs, the files its
+  command says it writes beside them or into its folder outputs (``outputs.may_replace``:
+  ``strands --cutter``'s cut files, ``puzzle``'s folder) and the files the job wrote last
+  time. A folder output is not named like a file, and no output is named like the manifest
+  (``outputs.problem``, as on the command line; a build makes its own subfolders). A job
+  that prints (``stats``) writes what it prints as ``.txt`` (or ``.json`` with
+  ``json = true``), never as a page a browser renders.
 
 The manifest records every file each job wrote, by the job's output; a file a job wrote last
 time and not this time (a cut file of a page the model no longer has) is removed.
@@ -39,7 +43,6 @@ import contextlib
 import io
 import os
 import shlex
-import stat
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -48,16 +51,16 @@ import click
 
 from .. import inputs, presets
 from ..errors import WeaveCutError
-from ..fileio import check_writable, make_folder, recording, write_atomic
-from ..manifest import MANIFEST, file_hash, read_manifest, record_manifest
+from ..fileio import make_folder, recording, write_atomic
+from ..manifest import MANIFEST, Ledger, file_hash, read_manifest, record_manifest
 from ..schema import SchemaError, nearest
-from .common import path_options, say
+from .common import say
+from .outputs import is_folder, may_replace, path_options, problem, too_long
 
 if TYPE_CHECKING:  # the kit page (and shapely) load when a job runs, not for --help
     from .. import kitpage
 
 PAGE = "index.html"  # the kit page of the build
-NAME_MAX, PATH_MAX = 255, 4096  # bytes of a file name and of a path (Linux, macOS, NTFS)
 PRESET_OPTIONS = {"palette": "palettes", "material": "materials", "laser": "laser"}
 
 
@@ -146,7 +149,8 @@ class Planner:
         """Recipe keys (dashed long names) of ``command``'s options, -o as 'output'."""
         out = {}
         for p in command.params:
-            if isinstance(p, click.Option) and p.name != "html":  # build writes the page
+            if isinstance(p, click.Option) and p.name not in ("html", "force"):  # build
+                # writes the page; only the build's own --force lets a file be replaced
                 out["output" if "-o" in p.opts else _key(p)] = p
         return out
 
@@ -191,7 +195,11 @@ class Planner:
         first = writes[0] if writes else None
         if prints:
             self.check_printed(command, targets[first], values, where)
-        folder = bool(paths) and getattr(options[first].type, "dir_okay", False)
+        for k in writes if not prints else ():
+            message = problem(targets[k], is_folder(options[k], values), parent_made=True)
+            if message:
+                raise RecipeError(f"{where}: {k}: {message.replace(str(targets[k]), shown[k])}")
+        folder = bool(paths) and is_folder(options[first], values)
         job = Job(where, f"job {n} ({name})", command, values, targets.get(first),
                   shown.get(first), prints, tuple(reads), paths, folder)
         self.convert(job)
@@ -249,11 +257,8 @@ class Planner:
             raise RecipeError(f"{where}: {key} {value!r} must be a relative path inside the "
                               "build folder (not absolute, no '..', no '~')")
         target = self.out_dir / rel
-        longest = max((len(os.fsencode(part)) for part in rel.parts), default=0)
-        if longest > NAME_MAX or len(os.fsencode(target)) > PATH_MAX:
-            raise RecipeError(f"{where}: {key} is too long for a file system: a name holds at "
-                              f"most {NAME_MAX} bytes (this one {longest}) and a path "
-                              f"{PATH_MAX:,}")
+        if too_long(target):
+            raise RecipeError(f"{where}: {key} is {too_long(target)}")
         if not _inside(target.resolve(), [self.out_dir.resolve()]):
             raise RecipeError(f"{where}: {key} {value!r} leads out of the build folder "
                               "through a symlink")
@@ -324,40 +329,24 @@ class Planner:
         self.check_replace(self.out_dir / PAGE, str(self.recipe))
 
     def check_replace(self, path: Path, where: str) -> None:
-        """``path`` may be written: no link, no folder or device, and weave-cut wrote it (or
-        ``--force``)."""
-        if not os.path.lexists(path):
-            return
-        if path.is_symlink():
-            raise RecipeError(f"{where}: {path} is a symlink; weave-cut does not replace links")
+        """``path`` may be written: the rule of every command (``manifest.Ledger``)."""
         try:
-            check_writable(path)
+            Ledger([self.out_dir], self.force).check(path, f"{self.shown_dir}/{self.rel(path)}")
         except WeaveCutError as exc:
             raise RecipeError(f"{where}: {exc}") from exc
-        if not self.force and self.ours.get(self.rel(path)) != file_hash(path):
-            raise RecipeError(f"{where}: {self.shown_dir}/{self.rel(path)} exists and weave-cut "
-                              f"did not write it (it is not in {MANIFEST}); use --force to "
-                              "replace it")
 
     def replaced(self, job: Job) -> list[Path]:
-        """Existing files ``job`` may replace or remove: its output (a folder output: its
-        COMMAND-* files), the files its command writes beside the output (the command's
-        ``beside(values, output)``), and the files it wrote last time."""
+        """Existing files ``job`` may replace or remove: those of every command
+        (``outputs.may_replace``; a printing job's output), and the files it wrote last
+        time."""
         last = [self.out_dir / p for p in self.wrote.get(self.rel(job.output), ())]
-        beside = getattr(job.command, "beside", None)
-        found = beside(job.values, job.output) if beside and not job.prints else []
-        try:
-            st = os.lstat(job.output)
-        except OSError:
-            st = None
-        if st is not None and job.folder and stat.S_ISDIR(st.st_mode):  # puzzle, --laser-card
-            found += job.output.glob(f"{job.command.name}-*")
-        elif st is not None:
-            found.append(job.output)
+        found = [job.output] if job.prints else may_replace(job.command, job.values)
         return sorted({p for p in [*found, *last] if os.path.lexists(p)})
 
     def rel(self, path: Path) -> str:
-        return path.resolve().relative_to(self.out_dir.resolve()).as_posix()
+        """``path`` relative to the build folder (a final symlink not followed)."""
+        real = path.parent.resolve() / path.name if path.is_symlink() else path.resolve()
+        return real.relative_to(self.out_dir.resolve()).as_posix()
 
     def run(self, job: Job, n: int, total: int) -> kitpage.Run:
         """Run ``job``; what it wrote, for the kit page."""

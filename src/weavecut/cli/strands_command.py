@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import math
-import re
 from pathlib import Path
 
 import click
@@ -13,21 +12,13 @@ import numpy as np
 from .. import export
 from ..subdivision import snub, subdivide
 from ..weave.colour import palette
-from .common import (CONTEXT, Finite, Length, PageSize, complete_preset,
-                     flag_nonconvex, input_argument, load_mesh, provenance, reports_errors,
-                     html_option, summary)
+from .common import (CONTEXT, Choice, Finite, Length, PageSize, complete_preset,
+                     flag_nonconvex, force_option, input_argument, load_mesh, provenance,
+                     reports_errors, html_option, summary)
 from .mesh_commands import project_option
+from .outputs import OutputPath, check_suffix
 
 FORMATS = ("pdf", "svg")
-
-
-class PrintLength(Length):
-    """A length that must carry its unit ("20mm", "23cm"): a bare number is refused."""
-
-    def convert(self, value, param, ctx):
-        if isinstance(value, str) and re.fullmatch(r"\s*[-+]?[\d.]+(e[-+]?\d+)?\s*", value, re.I):
-            self.fail(f"{value!r} has no unit: write it like '20mm', '2.5cm' or '1in'", param, ctx)
-        return super().convert(value, param, ctx)
 
 
 @click.command("strands", context_settings=CONTEXT)
@@ -36,13 +27,13 @@ class PrintLength(Length):
               help="Snub steps [default: 2; pentagon-flower 3].")
 @click.option("--page", type=PageSize(), default="a4", show_default=True,
               help="a4, letter, a3 or WxH like 300x200mm.")
-@click.option("--tile-size", type=PrintLength(), default=None,
+@click.option("--tile-size", type=Length(), default=None,
               help="Distance across an octagon, with a unit: the print's true scale "
                    "[default: 20mm]. Strips under 8 mm wide are refused (they tear).")
-@click.option("--size", "model_size", type=PrintLength(), default=None,
+@click.option("--size", "model_size", type=Length(), default=None,
               help="Width of the finished model, with a unit (e.g. 23cm); sets the tile size. "
                    "A ball's diameter [default: octagons 40 mm across].")
-@click.option("--layout", type=click.Choice(("mixed", "module")), default="mixed", show_default=True,
+@click.option("--layout", type=Choice(("mixed", "module")), default="mixed", show_default=True,
               help="mixed: every copy's strips packed densely together; module: the paper's "
                    "way, the module's pages printed once per direction.")
 @click.option("--margin", type=Length(), default="10mm", show_default=True,
@@ -54,7 +45,7 @@ class PrintLength(Length):
 @click.option("--turn", type=Finite(-3600, 3600), default=None,
               help="Degrees the pattern is turned on the assembly sheet; module strands head "
                    "down in it [default: 45 for square-grid, else 0].")
-@click.option("--chirality", type=click.Choice(snub.CHIRALITIES), default="left",
+@click.option("--chirality", type=Choice(snub.CHIRALITIES), default="left",
               show_default=True, help="Side the first Z edge turns to.")
 @project_option
 @click.option("--cutter", "cutter_name", default=None, shell_complete=complete_preset("cutters"),
@@ -71,14 +62,15 @@ class PrintLength(Length):
 @click.option("--laser", "laser_name", default="lightburn", show_default=True,
               shell_complete=complete_preset("laser"),
               help="With --laser-card: colour conventions (templates/laser).")
-@click.option("-o", "--output", type=click.Path(), required=True,
-              help="Output: .pdf (one page per sheet) or .svg (a layer per page); a folder "
-                   "with --laser-card.")
+@click.option("-o", "--output", type=OutputPath(folder_with="laser_card"), required=True,
+              help="Output: .pdf (one page per sheet) or .svg (a layer per page); with "
+                   "--laser-card a folder (made if it is not there).")
 @click.option("--json", "as_json", is_flag=True,
               help="Print the plan and the page checks (ink, smallest label) as JSON.")
 @click.option("--preview", is_flag=True,
               help="Only draw the finished pattern in the strips' colours into -o (.svg, .pdf "
                    "or .png): no strips, no pages, in a fraction of a second. Flat models.")
+@force_option
 @reports_errors
 @html_option
 def strands_command(input_mesh, levels, page, tile_size, model_size, layout, margin,
@@ -104,13 +96,11 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
     from ..papermodel.checks import report
     from ..weave.snub_weave import snub_weaves
 
-    fmt = Path(output).suffix.lower().lstrip(".")
     if preview and (cutter_name is not None or laser_card or as_json):
         raise click.BadParameter("--preview draws the pattern only; give it without --cutter, "
                                  "--laser-card and --json", param_hint="'--preview'")
-    if fmt not in FORMATS + (("png",) if preview else ()) and not laser_card:
-        raise click.BadParameter(f"unknown format {Path(output).suffix!r}; use .pdf or .svg"
-                                 + (" or .png" if preview else ""), param_hint="'-o'")
+    if not laser_card:
+        check_suffix(output, ("." + f for f in FORMATS + (("png",) if preview else ())))
     if cutter_name is not None and laser_card:
         raise click.BadParameter("give --cutter (print and cut) or --laser-card, not both",
                                  param_hint="'--cutter'")
@@ -199,9 +189,13 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
                    f"feature {extra['cutter']['min_feature_mm']:.1f} mm" if extra else ""))
 
 
-def _beside(values: dict, output: Path) -> list[Path]:
-    """The existing files a run with ``values`` writes beside ``output`` (its cut files):
-    ``build`` checks them before the first job runs."""
+def _beside(values: dict) -> list[Path]:
+    """The existing files a run with ``values`` may replace besides a file -o: the cut files
+    beside it (--cutter), the cut sheets and assembly in the -o folder (--laser-card);
+    checked before any work (``outputs.may_replace``)."""
+    output = Path(values["output"])
+    if values.get("laser_card") not in (None, False, "false"):
+        return sorted(output.glob("strands-*"))
     if values.get("cutter_name") is None:
         return []
     from ..papermodel.printcut import existing_cut_files

@@ -13,9 +13,11 @@ from ..weave.colour import palette, strand_colours
 from ..weave.report import weave_summaries
 from .common import (
     CONTEXT,
+    Choice,
     Length,
     complete_preset,
     flag_nonconvex,
+    force_option,
     input_argument,
     page_option,
     html_option,
@@ -25,6 +27,7 @@ from .common import (
     write_png,
 )
 from .mesh_commands import project_option, run_scheme, scheme_options
+from .outputs import check_suffix
 
 DRAWINGS = ("svg", "pdf", "png", "dxf")
 MODELS = ("obj", "glb", "png")  # of a weave on a surface in space
@@ -40,7 +43,7 @@ MODELS = ("obj", "glb", "png")  # of a weave on a surface in space
               help="Draw the octagons (tiles) of this coarser level over the picture.")
 @click.option("--middle-edges", is_flag=True, help="Highlight the Z middle edges (snub).")
 @click.option("--crossings", is_flag=True, help="Mark at each crossing which strand is on top.")
-@click.option("--style", type=click.Choice(["tiles", "ribbons"]), default="tiles",
+@click.option("--style", type=Choice(["tiles", "ribbons"]), default="tiles",
               show_default=True, help="Tiles coloured by strand, or knotwork ribbons.")
 @click.option("--face-split", is_flag=True,
               help="Use the general face-split weave instead of the scheme's own.")
@@ -54,6 +57,7 @@ MODELS = ("obj", "glb", "png")  # of a weave on a surface in space
 @click.option("-o", "--output", type=click.Path(dir_okay=False), default=None,
               help="Picture: .svg, .pdf, .png or .dxf; of a surface (a woven ball): a 3-D "
                    "model, .obj or .glb, or .png views (--size is then its diameter).")
+@force_option
 @reports_errors
 @html_option
 def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allow_nonconvex,
@@ -76,11 +80,8 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
 
     if output is None and not as_json:
         raise click.UsageError("give -o OUTPUT for a picture, or --json for the counts")
-    suffix = Path(output).suffix.lower().lstrip(".") if output else ""
-    if output and suffix not in DRAWINGS + MODELS:
-        raise click.BadParameter(f"unknown format {Path(output).suffix!r}; use "
-                                 + ", ".join("." + d for d in DRAWINGS + MODELS[:2]),
-                                 param_hint="'-o'")
+    suffix = check_suffix(output, ("." + d for d in DRAWINGS + MODELS[:2])).lstrip(".") \
+        if output else ""
     if levels < 1 and scheme == "snub":
         raise click.BadParameter("the snub weave needs --levels 1 or more", param_hint="'--levels'")
     if outline_level is not None and outline_level >= levels:

@@ -22,7 +22,7 @@ class Laser:
 
     def style(self, role: str) -> Style:
         entry = self.styles.get(role, {})
-        return Style(entry.get("colour", "#000000"), float(entry.get("width", 0.01)))
+        return Style(entry.get("colour", "#000000"), to_mm(entry.get("width", "0.01mm")))
 
 
 def laser(name: str = DEFAULT_LASER) -> Laser:

@@ -27,6 +27,7 @@ from ezdxf.math import Vec3
 from ezdxf.recover import bytes_loader
 
 from ..errors import MeshFileError
+from ..text import nearest
 from . import budgets
 from .rings import Ring
 
@@ -58,7 +59,8 @@ def read_rings(path: Path, flatten: float,
         layers = sorted({e.dxf.layer for e in doc.modelspace()})
         entities = [e for e in entities if e.dxf.layer == layer]
         if not entities:
-            raise MeshFileError(f"{path}: no outlines on layer {layer!r}; layers: "
+            raise MeshFileError(f"{path}: no outlines on layer {layer!r}"
+                                f"{nearest(layer, layers)}; layers: "
                                 f"{', '.join(layers) or 'none'}")
     rings, pieces = [], []
     total = fitted = 0

@@ -27,6 +27,7 @@ import numpy as np
 import svgelements as se
 
 from ..errors import MeshFileError
+from ..text import nearest
 from . import budgets
 from .rings import Ring
 
@@ -67,8 +68,9 @@ def read_rings(path: Path, flatten: float,
                             f"{str(exc)[:120]})") from None
     shapes = list(_shapes(document, layer))
     if layer is not None and not shapes:
-        raise MeshFileError(f"{path}: no shapes in a layer or group named {layer!r}; layers: "
-                            f"{', '.join(_layer_names(document)) or 'none'}")
+        names = _layer_names(document)
+        raise MeshFileError(f"{path}: no shapes in a layer or group named {layer!r}"
+                            f"{nearest(layer, names)}; layers: {', '.join(names) or 'none'}")
     rings, pieces = [], []
     tolerance = flatten / MM_PER_PX
     to_mm = np.array([MM_PER_PX, -MM_PER_PX]) * _unit_fix(document)
