@@ -120,7 +120,8 @@ def _run(args: tuple[str, ...]) -> dict[str, Drawing]:
 def _catch(caught: dict[str, Drawing]):
     """``export.write`` keeps the Drawing by file name instead of writing it."""
     write = export.write
-    export.write = lambda d, path, file_format=None: caught.__setitem__(Path(path).name, d)
+    export.write = (lambda d, path, file_format=None, job=None:
+                    caught.__setitem__(Path(path).name, d))
     try:
         yield
     finally:
