@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import shlex
 import sys
+import tomllib
 from pathlib import Path
 
 import pytest
@@ -17,9 +18,10 @@ from click.testing import CliRunner
 from tests import lightburn_readback as lr
 from weavecut import __version__
 from weavecut.cli import cli
-from weavecut.layout.lasersetup import material
+from weavecut.presets import templates_dir
 
-HEART = Path(__file__).resolve().parents[1] / "templates" / "recipes" / "heart.svg"
+TEMPLATES = templates_dir()
+HEART = TEMPLATES / "recipes" / "heart.svg"
 FORMATS = ("--formats", "svg,dxf,lbrn2")
 KITS = {  # name: (the command's arguments, its material)
     "puzzle": (("puzzle", "--numbers", *FORMATS), "poplar-3mm"),
@@ -65,7 +67,9 @@ def test_every_project_holds_what_the_dxf_of_its_sheet_holds(kits, name):
 @pytest.mark.parametrize("name", KITS)
 def test_layers_run_in_order_with_the_materials_settings(kits, name):
     _, _, projects = kits[name]
-    ops = material(KITS[name][1])["operations"]
+    preset = tomllib.loads((TEMPLATES / "materials" / f"{KITS[name][1]}.toml").read_text())
+    ops = {role: (preset[role].get("speed", preset["cut_speed"]), preset[role]["power"],
+                  preset[role].get("passes", 1)) for role in ("cut", "score", "engrave")}
     for doc in projects.values():
         layers = sorted(doc["cutSettings"], key=lambda c: c["priority"])
         assert [c["priority"] for c in layers] == list(range(len(layers)))
@@ -75,9 +79,9 @@ def test_layers_run_in_order_with_the_materials_settings(kits, name):
         assert cuts == sorted(cuts)  # cut-1-inner, cut-2-hole, cut-3-outer: the outline last
         assert len({c["index"] for c in layers}) == len(layers)
         for c in layers:
-            op = ops[c["name"].split("-")[0]]
+            speed, power, passes = ops[c["name"].split("-")[0]]  # as the TOML says
             assert (c["type"], c["speed"], c["minPower"], c["maxPower"], c["numPasses"]) == \
-                ("Cut", op.speed, op.power, op.power, op.passes), c
+                ("Cut", speed, power, power, passes), c
         assert doc["uiPrefs"]["Optimize_ByPriority"] == "1"
 
 

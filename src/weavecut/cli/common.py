@@ -83,7 +83,7 @@ page_option = click.option(
 
 class Formats(click.ParamType):
     """'svg,dxf,lbrn2': the files a laser command writes per sheet (``presets.LASER_FORMATS``,
-    comma-separated, or a list in a recipe) -> a tuple in that order."""
+    comma-separated) -> a tuple in that order."""
 
     name = "formats"
 
