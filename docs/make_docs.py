@@ -1,7 +1,9 @@
 """Redraw the README's images (``make docs``).
 
 Every image is the Drawing a weave-cut command makes (run in this process, its files caught
-before they are written), rasterised at a width fit for a README. The PNG records a digest of
+before they are written), rasterised at a width fit for a README; a LightBurn project is drawn
+by its independent reader instead (lbrnts's SVG of the written .lbrn2, rasterised by
+rsvg-convert: ``tests/lightburn``, installed with ``npm ci --prefix tests/lightburn``). The PNG records a digest of
 that Drawing (``drawing-sha256``: geometry, styles, layers and sizes, rounded to 0.1 µm, not
 the metadata), so ``tests/test_docs.py`` can tell, without drawing a pixel, when the code
 draws an image differently from the picture in the README.
@@ -16,6 +18,7 @@ import dataclasses
 import functools
 import hashlib
 import shlex
+import subprocess
 import sys
 import tempfile
 from dataclasses import dataclass
@@ -35,7 +38,7 @@ ROOT = Path(__file__).resolve().parents[1]
 @dataclass(frozen=True)
 class Image:
     """``args`` make the file ``caught`` (``{out}`` is a scratch folder); its sheet ``sheet``
-    becomes a PNG ``width`` pixels wide."""
+    becomes a PNG ``width`` pixels wide (a .lbrn2 as lbrnts draws it)."""
 
     args: tuple[str, ...]
     caught: str
@@ -95,6 +98,8 @@ IMAGES = {
     "examples/previews/heart-puzzle-front.png": Image(
         HEART_PUZZLE, "puzzle-front-guide.svg", 400),
     "examples/previews/heart-puzzle-cut.png": Image(HEART_PUZZLE, "puzzle-shared-cut.dxf", 400),
+    "docs/lightburn-heart.png": Image(
+        (*HEART_PUZZLE, "--formats", "lbrn2"), "puzzle-shared-cut.lbrn2", 480),
     "docs/puzzle-closeup.png": Image(
         ("figure", "jigsaw-closeup", "-o", "{out}/j.svg"), "j.svg", 640),
 }
@@ -108,19 +113,30 @@ def drawing(image: Image) -> Drawing:
 
 @functools.lru_cache(maxsize=None)
 def _run(args: tuple[str, ...]) -> dict[str, Drawing]:
-    """The Drawings a command writes, by file name (commands that make two images run once)."""
+    """The Drawings a command writes, by file name (commands that make two images run once);
+    the laser settings a project is written with go to ``JOBS[args]``."""
     caught: dict[str, Drawing] = {}
-    with tempfile.TemporaryDirectory() as out, contextlib.chdir(ROOT), _catch(caught):
+    with tempfile.TemporaryDirectory() as out, contextlib.chdir(ROOT), \
+            _catch(caught, JOBS.setdefault(args, {})):
         argv = [a.format(out=out) for a in args]
         cli.main(args=["-q", *argv], prog_name="weave-cut", standalone_mode=False)
     return caught
 
 
+JOBS: dict[tuple[str, ...], dict] = {}
+
+
 @contextlib.contextmanager
-def _catch(caught: dict[str, Drawing]):
-    """``export.write`` keeps the Drawing by file name instead of writing it."""
+def _catch(caught: dict[str, Drawing], jobs: dict):
+    """``export.write`` keeps the Drawing (and the LaserJob) by file name instead of writing
+    it."""
     write = export.write
-    export.write = lambda d, path, file_format=None: caught.__setitem__(Path(path).name, d)
+
+    def keep(d, path, file_format=None, job=None):
+        caught[Path(path).name] = d
+        jobs[Path(path).name] = job
+
+    export.write = keep
     try:
         yield
     finally:
@@ -158,12 +174,27 @@ def make(path: str) -> None:
     image = IMAGES[path]
     d = drawing(image)
     sheet = d.sheets[0]
-    data = png.render(d, dpi=image.width / (sheet.width / 25.4))
+    if image.caught.endswith(".lbrn2"):
+        data = _lbrnts_png(d, JOBS[image.args][image.caught], image.width)
+    else:
+        data = png.render(d, dpi=image.width / (sheet.width / 25.4))
     command = "weave-cut " + shlex.join(a.format(out=".") for a in image.args)
     write_atomic(ROOT / path, png.with_text(data, [
         ("generator", f"weave-cut {__version__}"), ("command", command),
         ("drawing-sha256", digest(d))]))
     print(f"{path}: {command}")
+
+
+def _lbrnts_png(d: Drawing, job, width: int) -> bytes:
+    """The LightBurn project of ``d`` as lbrnts draws it (its SVG), rasterised by rsvg-convert."""
+    with tempfile.TemporaryDirectory() as tmp:
+        project, picture = Path(tmp) / "p.lbrn2", Path(tmp) / "p.svg"
+        export.write(d, project, job=job)
+        reader = ROOT / "tests" / "lightburn"
+        subprocess.run(["node", str(reader / "read.mjs"), "--svg", str(project), str(picture)],
+                       check=True, cwd=reader)
+        return subprocess.run(["rsvg-convert", "-w", str(width), str(picture)], check=True,
+                              capture_output=True).stdout
 
 
 if __name__ == "__main__":

@@ -5,8 +5,8 @@ cross-machine test (``test_determinism.py``) runs this under several and compare
 byte for byte. Prints what ran it (numpy's BLAS and its kernel, numpy's SIMD features) as JSON.
 
 The set covers each kind of output: woven balls at two levels and the cube (surfaces in space,
-where an SVD and a least-squares fit used to decide), both flat paper models, the puzzle, a
-drawing input (SVG, DXF) and classic schemes.
+where an SVD and a least-squares fit used to decide), both flat paper models, the puzzle (with
+its LightBurn projects), a drawing input (SVG, DXF) and classic schemes.
 """
 
 from __future__ import annotations
@@ -25,7 +25,8 @@ COMMANDS = (
     ("woven-ball.obj", "weave", "dodecahedron", "--levels", "2", "--project", "sphere"),
     ("square-grid.pdf", "strands", "square-grid", "--size", "27cm"),
     ("pentagon-flower.svg", "strands", "pentagon-flower", "--size", "23cm"),
-    ("puzzle", "puzzle", "--levels", "3", "--size", "30cm", "--numbers"),
+    ("puzzle", "puzzle", "--levels", "3", "--size", "30cm", "--numbers", "--formats",
+     "svg,dxf,lbrn2"),
     ("heart.svg", "weave", str(EXAMPLES / "heart.svg"), "--cell", "10mm", "--levels", "2",
      "--outline-level", "1"),
     ("plate.dxf", "subdivide", str(EXAMPLES / "plate.dxf"), "--levels", "2"),

@@ -14,7 +14,7 @@ from pathlib import Path
 
 from . import units
 from .schema import (ABOUT, Choice, Colour, Length, ListOf, Number, SchemaError, Sheet, Table,
-                     Text, nearest, read_toml)
+                     Text, Whole, nearest, read_toml)
 
 
 class PresetError(SchemaError):
@@ -95,6 +95,17 @@ def _stroke(role: str) -> Table:
                  label=role)
 
 
+LASER_FORMATS = ("svg", "dxf", "lbrn2")  # the files a laser command may write per sheet
+
+
+def _operation(role: str) -> Table:
+    """A laser operation's settings in a material preset (a LightBurn layer's): speed (the
+    cut's is the material's ``cut_speed``), power (per cent of the laser's) and passes."""
+    speed = {} if role == "cut" else {"speed": Number(0, 10_000, open_lo=True, unit="mm/s")}
+    return Table({**speed, "power": Number(0, 100, open_lo=True, unit="%"),
+                  "passes": Whole(1, 100)}, label=role)
+
+
 SCHEMAS: dict[str, Table] = {
     "palettes": Table({**ABOUT, "colours": ListOf(Colour(), 1, 256),
                        "families": ListOf(ListOf(Colour(), 1, 16), 1, 256),
@@ -102,9 +113,11 @@ SCHEMAS: dict[str, Table] = {
                       one_of=("colours", "families")),
     "materials": Table({**ABOUT, "thickness": Length(0, 100, open_lo=True),
                         "kerf": Length(0, 5), "sheet": Sheet(page_size),
-                        "cut_speed": Number(0, 10_000, open_lo=True, unit="mm/s")},
+                        "cut_speed": Number(0, 10_000, open_lo=True, unit="mm/s"),
+                        **{r: _operation(r) for r in ("cut", "score", "engrave")}},
                        ("thickness", "kerf", "sheet", "cut_speed")),
-    "laser": Table({**ABOUT, **{r: _stroke(r) for r in ("cut", "score", "engrave")}},
+    "laser": Table({**ABOUT, **{r: _stroke(r) for r in ("cut", "score", "engrave")},
+                    "formats": ListOf(Choice(LASER_FORMATS), 1, len(LASER_FORMATS))},
                    ("cut", "score", "engrave")),
     "pages": Table({**ABOUT, "width": Length(0, 10_000, open_lo=True),
                     "height": Length(0, 10_000, open_lo=True)}, ("width", "height")),

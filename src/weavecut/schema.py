@@ -166,6 +166,16 @@ class Number:
 
 
 @dataclass(frozen=True)
+class Whole(Number):
+    """A whole number (an int, not a float) in [lo, hi]: a count such as a laser's passes."""
+
+    def problem(self, value) -> str | None:
+        if isinstance(value, bool) or not isinstance(value, int):
+            return f"expected a whole number, got {_kind(value)}"
+        return self.bounds(value, repr(value))
+
+
+@dataclass(frozen=True)
 class Length(Number):
     """A length with its unit ('0.15mm', '2in'; ``units.length``)."""
 

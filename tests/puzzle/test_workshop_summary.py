@@ -14,6 +14,7 @@ import pytest
 import shapely
 
 from weavecut import inputs, presets
+from weavecut.layout.lasersetup import Operation
 from weavecut.puzzle import files as pf
 from weavecut.puzzle import workshop
 from weavecut.puzzle.colouring import UNPAINTED, colour_puzzle
@@ -57,13 +58,20 @@ def test_material_reads_the_preset_in_mm(tmp_path):
     mat = workshop.material("poplar-3mm")
     doc = presets.load("materials", "poplar-3mm")
     assert mat == {"name": "poplar-3mm", "description": doc["description"], "thickness": 3.0,
-                   "kerf": 0.15, "sheet": (800.0, 500.0), "cut_speed": 20.0}
+                   "kerf": 0.15, "sheet": (800.0, 500.0), "cut_speed": 20.0,
+                   "operations": {"cut": Operation(20.0, 100.0, 1),
+                                  "score": Operation(100.0, 20.0, 1),
+                                  "engrave": Operation(150.0, 15.0, 1)}}
     # a material file without a name or description is called by its path
     path = tmp_path / "own.toml"
     path.write_text('thickness = "0.4cm"\nkerf = "0.2mm"\nsheet = "300x200mm"\n'
                     "cut_speed = 12\n", encoding="utf-8")
     own = workshop.material(str(path))
     assert own["name"] == own["description"] == str(path)
+    # without operation tables: the cut at cut_speed, score and engrave 5 x faster
+    assert own["operations"] == {"cut": Operation(12.0, 60.0, 1),
+                                 "score": Operation(60.0, 20.0, 1),
+                                 "engrave": Operation(60.0, 15.0, 1)}
     named = tmp_path / "named.toml"
     named.write_text('name = "my birch"\ndescription = "birch, 4 mm"\n' + path.read_text(),
                      encoding="utf-8")

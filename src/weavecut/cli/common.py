@@ -97,6 +97,31 @@ page_option = click.option(
          "1:1, centred, or tiled over pages with overlap marks when larger.")
 
 
+class Formats(click.ParamType):
+    """'svg,dxf,lbrn2': the files a laser command writes per sheet (``presets.LASER_FORMATS``,
+    comma-separated) -> a tuple in that order."""
+
+    name = "formats"
+
+    def convert(self, value, param, ctx):
+        from ..presets import LASER_FORMATS
+
+        items = value if isinstance(value, (list, tuple)) else str(value).split(",")
+        items = [str(item).strip().lower().lstrip(".") for item in items]
+        bad = [item for item in items if item not in LASER_FORMATS]
+        if bad or not items:
+            self.fail(f"{bad[0] if bad else value!r} is not a laser file format; give one or "
+                      f"more of {','.join(LASER_FORMATS)}, comma-separated", param, ctx)
+        return tuple(f for f in LASER_FORMATS if f in items)
+
+
+formats_option = click.option(
+    "--formats", type=Formats(), default=None,
+    help="Files written per sheet, comma-separated: svg, dxf, lbrn2 (a LightBurn project: a "
+         "layer per operation with the material's speed, power and passes, run in order) "
+         "[default: the laser preset's formats, else svg,dxf].")
+
+
 def write_drawing(drawing, output: str, page: tuple[float, float]) -> None:
     """Write ``drawing`` with its provenance to ``output``; a PDF goes onto ``page``s."""
     from .. import export

@@ -19,8 +19,8 @@ from ..weave.colour import palette
 from ..fileio import make_folder, write_atomic
 from .common import (CONTEXT, DRAWING_KEY, Choice, Finite, Length, PageSize, complete_inputs,
                      complete_preset, drawing_options, flag_nonconvex, force_option,
-                     html_option, load_mesh,
-                     provenance, reports_errors, summary)
+                     formats_option, html_option, load_mesh, provenance, reports_errors,
+                     summary)
 
 
 @click.command("puzzle", context_settings=CONTEXT)
@@ -50,6 +50,7 @@ from .common import (CONTEXT, DRAWING_KEY, Choice, Finite, Length, PageSize, com
 @click.option("--laser", "laser_name", default="lightburn", show_default=True,
               shell_complete=complete_preset("laser"),
               help="Colour conventions (templates/laser): lightburn, epilog-uls, ponoko.")
+@formats_option
 @click.option("--frame", "frame_width", type=Length(), default="20mm", show_default=True,
               help="Frame width beyond the hexagon ring.")
 @click.option("--numbers", is_flag=True, help="Engrave piece numbers as single strokes "
@@ -70,11 +71,13 @@ from .common import (CONTEXT, DRAWING_KEY, Choice, Finite, Length, PageSize, com
 @reports_errors
 @html_option
 def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, sheet, laser_name,
-                   frame_width, numbers, speed, page, palette_name, as_json, preview) -> None:
+                   formats, frame_width, numbers, speed, page, palette_name, as_json,
+                   preview) -> None:
     """Write the jigsaw puzzle's workshop folder: cut files, painting guides, README.txt.
 
     \b
-    Files: puzzle-shared-cut.{svg,dxf}, puzzle-separate-sheet-N.{svg,dxf},
+    Files: puzzle-shared-cut.{svg,dxf}, puzzle-separate-sheet-N.{svg,dxf} (and .lbrn2 with
+    --formats),
     puzzle-{front,back}-guide.svg (1:1) and -PAGE.pdf (colour key, then tiled pages),
     puzzle-summary.json, README.txt (what goes where, the order of work).
     \b
@@ -101,12 +104,16 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     from ..puzzle.guides import colour_key, guide, printed
     from ..puzzle.guides import preview as painted_preview
     from ..puzzle.pieces import build_puzzle
+    from ..layout.lasersetup import kerf_note, laser_job, output_formats
 
     mat = workshop.material(material)
     kerf = mat["kerf"] if kerf is None else kerf
     sheet = mat["sheet"] if sheet is None else sheet
     speed = mat["cut_speed"] if speed is None else speed
     las = pf.laser(laser_name)
+    formats = output_formats(formats, laser_name)
+    job = laser_job(mat, kerf_note(kerf, "the separate sheets' outlines (not the shared-edge "
+                                   "cut's, whose edges are cut once)"))
     pal = palette(palette_name)
     from ..validation import check_layout
 
@@ -154,7 +161,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
         board = pf.placement(puzzle)[:2]
         if fits(np.array([shapely.box(0, 0, *board)], dtype=object), sheet, 0.0)[0]:
             results["shared"] = pf.shared_cut(puzzle, las, engraved)
-            for fmt in ("svg", "dxf"):
+            for fmt in formats:
                 files[f"puzzle-shared-cut.{fmt}"] = results["shared"].drawing
         else:
             note = (f"the shared-edge cut needs one {board[0]:.0f} x {board[1]:.0f} mm board, "
@@ -168,7 +175,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
         results["separate"] = pf.separate_cut(puzzle, las, kerf, sheet, numbers=engraved,
                                               frame_parts=frame_parts)
         for n, one in enumerate(pf.split_sheets(results["separate"].drawing), start=1):
-            for fmt in ("svg", "dxf"):
+            for fmt in formats:
                 files[f"puzzle-separate-sheet-{n}.{fmt}"] = one
     guide_numbers = pf.piece_numbers(puzzle, max_height=6.0, margin=0.6, least=0.8)
     for side in ("front", "back"):
@@ -187,7 +194,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     folder = make_folder(out_dir)
     meta = provenance()
     for name, drawing in files.items():
-        export.write(drawing.with_metadata(**meta), folder / name)
+        export.write(drawing.with_metadata(**meta), folder / name, job=job)
     write_atomic(folder / "README.txt", workshop.readme(info, page).encode("utf-8"))
     write_atomic(folder / "puzzle-summary.json", (text + "\n").encode("utf-8"))
     for w in warnings:

@@ -13,7 +13,8 @@ from .. import export
 from ..subdivision import snub, subdivide
 from ..weave.colour import palette
 from .common import (CONTEXT, Choice, Finite, Length, PageSize, complete_preset,
-                     flag_nonconvex, force_option, input_argument, load_mesh, provenance,
+                     flag_nonconvex, force_option, formats_option, input_argument, load_mesh,
+                     provenance,
                      reports_errors, html_option, summary)
 from .mesh_commands import project_option
 from .outputs import OutputPath, check_suffix
@@ -62,6 +63,7 @@ FORMATS = ("pdf", "svg")
 @click.option("--laser", "laser_name", default="lightburn", show_default=True,
               shell_complete=complete_preset("laser"),
               help="With --laser-card: colour conventions (templates/laser).")
+@formats_option
 @click.option("-o", "--output", type=OutputPath(folder_with="laser_card"), required=True,
               help="Output: .pdf (one page per sheet) or .svg (a layer per page); with "
                    "--laser-card a folder (made if it is not there).")
@@ -75,7 +77,7 @@ FORMATS = ("pdf", "svg")
 @html_option
 def strands_command(input_mesh, levels, page, tile_size, model_size, layout, margin,
                     palette_name, turn, chirality, project, cutter_name, laser_card, material,
-                    laser_name, output, as_json, preview) -> None:
+                    laser_name, formats, output, as_json, preview) -> None:
     """Printable paper strips for weaving INPUT by hand: an assembly sheet, a page of weaving
     steps, then one strip per strand, grouped into modules by the pattern's rotational symmetry.
     A closed surface in space gives a woven ball: every loop one strip, unfolded pentagon by
@@ -106,6 +108,9 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
                                  param_hint="'--cutter'")
     if material is not None and not laser_card:
         raise click.BadParameter("--material goes with --laser-card", param_hint="'--material'")
+    if formats is not None and not laser_card:
+        raise click.BadParameter("--formats goes with --laser-card (a cutter's cut files are "
+                                 "SVG and DXF)", param_hint="'--formats'")
     if tile_size is not None and model_size is not None:
         raise click.BadParameter("give --tile-size or --size, not both", param_hint="'--size'")
     preset = preset_for(input_mesh)
@@ -161,7 +166,7 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
     for warning in book.warnings:
         click.echo(f"weave-cut: warning: {warning}", err=True)
     if mat is not None:
-        return _laser_card(book, mat, laser_name, output, title, as_json)
+        return _laser_card(book, mat, laser_name, formats, output, title, as_json)
     extra = {}
     if machine is not None:
         extra = _print_and_cut(book, machine, output)
@@ -261,12 +266,13 @@ def _print_and_cut(book, machine, output: str) -> dict:
                        **report.as_dict()}}
 
 
-def _laser_card(book, mat: dict, laser_name: str, out_dir: str, title: str,
+def _laser_card(book, mat: dict, laser_name: str, formats, out_dir: str, title: str,
                 as_json: bool) -> None:
-    """Write the card sheets (an SVG and a DXF each) and strands-assembly.pdf into ``out_dir``."""
+    """Write the card sheets (an SVG and a DXF each, or ``formats``) and strands-assembly.pdf
+    into ``out_dir``."""
     from ..fileio import make_folder
     from ..layout.drawing import Drawing
-    from ..layout.lasersetup import laser
+    from ..layout.lasersetup import kerf_note, laser, laser_job, output_formats
     from ..papermodel.lasercard import card_colour_sheet, card_sheets
 
     cut = card_sheets([p for _, p in book.pieces], book.colours, laser(laser_name), mat["kerf"],
@@ -278,9 +284,10 @@ def _laser_card(book, mat: dict, laser_name: str, out_dir: str, title: str,
                        title).with_metadata(**provenance())
     export.write(assembly, folder / "strands-assembly.pdf")
     for n, (drawing, colour) in enumerate(zip(cut.sheets, cut.colours), start=1):
-        for suffix in (".svg", ".dxf"):
-            path = folder / f"strands-card-{n:02d}-{colour.lstrip('#')}{suffix}"
-            export.write(drawing.with_metadata(**provenance()), path)
+        for fmt in output_formats(formats, laser_name):
+            path = folder / f"strands-card-{n:02d}-{colour.lstrip('#')}.{fmt}"
+            export.write(drawing.with_metadata(**provenance()), path,
+                         job=laser_job(mat, kerf_note(mat["kerf"], "the strips' outlines")))
             files.append(str(path))
     n_colours = len(set(cut.colours))
     minutes = cut.report.length / mat["cut_speed"] / 60  # cutting only, at the material's speed

@@ -291,6 +291,15 @@ def _bytes(paths: list[Path]) -> str:
     return f"{size / 1e6:.1f} MB" if size >= 1e6 else f"{max(1, round(size / 1e3))} kB"
 
 
+def _which(suffixes: list[str]) -> str:
+    """' (SVG or DXF)', ' (SVG, DXF or LightBurn)': the laser files of a card, when several."""
+    names = [name for suffix, name in ((".svg", "SVG"), (".dxf", "DXF"), (".lbrn2", "LightBurn"))
+             if suffix in suffixes]
+    if len(names) < 2:
+        return ""
+    return f" ({', '.join(names[:-1])} or {names[-1]})"
+
+
 def _purpose(suffixes: list[str], drawing: Drawing | None, figures: dict) -> str:
     """What a card's files are for, in a few words."""
     if ".pdf" in suffixes:
@@ -305,13 +314,12 @@ def _purpose(suffixes: list[str], drawing: Drawing | None, figures: dict) -> str
     laser, speed = figures.get("laser"), figures.get("speed_mm_s")
     what = _cut_for(drawing)
     if what.startswith("card"):
-        return f"laser-cut from {what} (SVG or DXF)"
+        return f"laser-cut from {what}{_which(suffixes)}"
     if what:
         return f"the desktop cutter cuts this on {what} (SVG or DXF)"
     if "cut" in roles and isinstance(laser, str):  # a laser file of the puzzle
         at = f" at {speed:g} mm/s" if isinstance(speed, (int, float)) else ""
-        return f"cut: {_laser_description(laser)}{at}" + (" (SVG or DXF)" if ".dxf" in suffixes
-                                                           else "")
+        return f"cut: {_laser_description(laser)}{at}{_which(suffixes)}"
     if ".dxf" in suffixes:
         return DXF_FOR
     if ".json" in suffixes:

@@ -11,6 +11,7 @@ import numpy as np
 import shapely
 
 from ..layout.lasersetup import material  # noqa: F401 (the puzzle's API)
+from ..presets import LASER_FORMATS
 from .colouring import Colouring
 from .files import TRAVEL_SPEED, CutResult
 from ..errors import MeshError, TurnedOverError, WeaveCutError
@@ -226,17 +227,25 @@ def readme(info: dict, page: str) -> str:
     files = info.get("files", [])
     laser = []
     if "shared" in modes:
-        laser.append("  puzzle-shared-cut.svg / .dxf - everything from one board, every shared "
-                     "edge cut once.\n    Layers in order: engrave-numbers (engrave, lowest "
+        laser.append(_fit(f"  puzzle-shared-cut{_suffixes(files, 'puzzle-shared-cut')} - "
+                          "everything from one board, every shared edge cut once.")
+                     + "\n    Layers in order: engrave-numbers (engrave, lowest "
                      "power), score-ring (score: low power,\n    fast), cut-1-inner, "
                      "cut-2-hole, cut-3-outer (cut: full power). Keep the order: the\n    "
                      "outline last, so nothing shifts before its inner cuts are done.")
     if "separate" in modes:
         n = modes["separate"]["sheets"]
-        laser.append(f"  puzzle-separate-sheet-1..{n}.svg / .dxf - pieces and frame nested on "
-                     f"{n} sheet(s),\n    each outline offset by half the kerf so the pieces fit "
+        laser.append(_fit(f"  puzzle-separate-sheet-1..{n}"
+                          f"{_suffixes(files, 'puzzle-separate-sheet-1')} - pieces and frame "
+                          f"nested on {n} sheet(s),")
+                     + "\n    each outline offset by half the kerf so the pieces fit "
                      "snugly. Layers in order:\n    engrave-numbers (engrave), cut-1-inner, "
                      "cut-2-outer (cut).")
+    if any(name.endswith(".lbrn2") for name in files):
+        laser.append("  The .lbrn2 files are LightBurn projects (File > Open) with these layers, "
+                     "in this order,\n    each with the material's speed, power and passes; "
+                     "a project's note says how it\n    was made. Test the settings on a "
+                     "scrap first.")
     if info.get("frame_parts", 1) > 1:
         laser.append(f"  The frame comes in {info['frame_parts']} parts (F1, F2, ... "
                      "engraved, counter-clockwise),\n    joined by dovetails: F1 joins F2, "
@@ -287,6 +296,21 @@ Warnings:
 {warnings}
 Files:
 {''.join(f'  {name}{chr(10)}' for name in files)}"""
+
+
+def _fit(line: str, width: int = 92) -> str:
+    """``line``, broken at the last space before ``width`` columns (the rest indented 4)."""
+    if len(line) <= width:
+        return line
+    cut = line.rindex(" ", 0, width)
+    return line[:cut] + "\n    " + line[cut + 1:]
+
+
+def _suffixes(files: list[str], stem: str) -> str:
+    """'.svg / .dxf' and so on: the laser formats written of ``stem`` (svg and dxf when the
+    file list is not given)."""
+    written = [f for f in LASER_FORMATS if f"{stem}.{f}" in files] or ["svg", "dxf"]
+    return "." + " / .".join(written)
 
 
 def _modes_text(info: dict) -> str:
