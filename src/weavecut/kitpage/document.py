@@ -9,7 +9,6 @@ A JSON data block (:mod:`.overview`) gives the index of builds the kit's card.
 
 from __future__ import annotations
 
-import json
 import os
 import re
 from dataclasses import dataclass
