@@ -52,6 +52,10 @@ class LocalQueue:
         """The process ids of the running jobs."""
         return sorted(self._running)
 
+    def queued(self) -> int:
+        """How many jobs wait for a free worker."""
+        return self._queued
+
     def retry_after(self) -> int:
         """Seconds until the jobs waiting now have probably started."""
         return max(1, math.ceil(self._mean * (self._queued + 1) / self.workers))

@@ -1,0 +1,154 @@
+"""The embedded queue: every job in its own child with a CPU and a memory limit; a job over
+either answers 422 and the queue goes on; at most ``waiting`` jobs wait; a cancelled job's
+child is killed and its folder removed."""
+
+from __future__ import annotations
+
+import asyncio
+import os
+
+import pytest
+
+from weavecut.web.jobs import JobSpec, QueueFull, run_job
+from weavecut.web.local_queue import LocalQueue, job_folders
+from weavecut.web.queues import open_queue
+
+QUICK = JobSpec("preview", "strands", ("square-grid",))
+SLOW = JobSpec("kit", "puzzle", ("--levels", "5"))  # tens of seconds of CPU
+
+
+def run(coroutine):
+    return asyncio.run(coroutine)
+
+
+async def until(condition, what: str) -> None:
+    """Wait (in steps of 10 ms, at most a minute) until ``condition()``."""
+    for _ in range(6000):
+        if condition():
+            return
+        await asyncio.sleep(0.01)
+    raise AssertionError(f"never: {what}")
+
+
+def gone(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return True
+    return False
+
+
+def test_open_queue_without_a_url_is_the_embedded_queue(tmp_path):
+    queue = open_queue(None, workers=1, cpu_seconds=30, memory_mb=500, waiting=0)
+    assert isinstance(queue, LocalQueue)
+    run(queue.close())
+
+
+def test_a_job_in_a_child_gives_what_it_gives_in_process(tmp_path):
+    async def main():
+        queue = LocalQueue(workers=1, cpu_seconds=60, memory_mb=1000, waiting=1, folder=tmp_path)
+        try:
+            return await queue.run(QUICK), await queue.run(
+                JobSpec("kit", "strands", ("square-grid", "--size", "27")))
+        finally:
+            await queue.close()
+
+    preview, refused = run(main())
+    assert preview == run_job(QUICK)
+    assert (refused.status, refused.error) == (400, run_job(
+        JobSpec("kit", "strands", ("square-grid", "--size", "27"))).error)
+    assert job_folders(tmp_path) == []
+
+
+def then_quick(tmp_path, cpu_seconds: int, memory_mb: int, *specs: JobSpec) -> list:
+    """The results of ``specs`` and then of a quick job, in turn on one queue."""
+    async def main():
+        queue = LocalQueue(workers=1, cpu_seconds=cpu_seconds, memory_mb=memory_mb, waiting=2,
+                           folder=tmp_path)
+        try:
+            return [await queue.run(spec) for spec in (*specs, QUICK)]
+        finally:
+            await queue.close()
+
+    results = run(main())
+    assert results[-1].ok and results[-1].body == run_job(QUICK).body  # the queue goes on
+    assert job_folders(tmp_path) == []
+    return results[:-1]
+
+
+def test_over_its_cpu_limit_a_job_answers_422_and_the_queue_goes_on(tmp_path):
+    [cpu] = then_quick(tmp_path, 1, 2000, JobSpec("kit", "puzzle", ()))  # about 3 s of CPU
+    assert (cpu.status, cpu.error.split(";")[0]) == (422, "the kit took more than 1 s of CPU")
+
+
+def test_over_its_memory_limit_a_job_answers_422_and_the_queue_goes_on(tmp_path):
+    memory, estimate = then_quick(
+        tmp_path, 120, 60,
+        # no estimate refuses it: an allocation fails (a MemoryError) under RLIMIT_AS
+        JobSpec("kit", "strands", ("pentagon-flower",)),
+        # refused by weave-cut's own estimate, which reads the limit
+        JobSpec("kit", "levels", ("pentagon", "--levels", "9", "--size", "2048")))
+    assert (memory.status, memory.error) == (
+        422, "the kit needed more than the 60 MB of memory a job may use")
+    assert estimate.status == 422 and "address-space limit" in estimate.error
+
+
+def test_a_full_queue_raises_queue_full_with_a_retry_time(tmp_path):
+    async def main():
+        queue = LocalQueue(workers=1, cpu_seconds=120, memory_mb=2000, waiting=1,
+                           folder=tmp_path)
+        running = asyncio.create_task(queue.run(SLOW))
+        await until(lambda: queue.pids(), "the first job runs")
+        waiting = asyncio.create_task(queue.run(QUICK))
+        await until(lambda: queue.queued() == 1, "the second job waits")
+        try:
+            with pytest.raises(QueueFull) as full:
+                await queue.run(QUICK)
+        finally:
+            running.cancel()
+            results = await asyncio.gather(running, waiting, return_exceptions=True)
+            await queue.close()
+        return full.value, results
+
+    full, (first, second) = run(main())
+    assert full.retry_after >= 1 and "try again" in str(full)
+    assert isinstance(first, asyncio.CancelledError)
+    assert second.ok  # the waiting job ran once the first was cancelled
+
+
+def test_cancelling_the_awaiting_task_kills_the_child_and_removes_its_folder(tmp_path):
+    async def main():
+        queue = LocalQueue(workers=2, cpu_seconds=120, memory_mb=2000, waiting=0,
+                           folder=tmp_path)
+        task = asyncio.create_task(queue.run(SLOW))
+        await until(lambda: queue.pids(), "the job runs")
+        pid = queue.pids()[0]
+        assert not gone(pid) and len(job_folders(tmp_path)) == 1
+        task.cancel()
+        with pytest.raises(asyncio.CancelledError):
+            await task
+        try:
+            return pid, await queue.run(QUICK)
+        finally:
+            await queue.close()
+
+    pid, after = run(main())
+    assert gone(pid)
+    assert job_folders(tmp_path) == [] and after.ok
+
+
+def test_workers_bound_the_jobs_that_run_at_once(tmp_path):
+    async def main():
+        queue = LocalQueue(workers=2, cpu_seconds=120, memory_mb=2000, waiting=5,
+                           folder=tmp_path)
+        tasks = [asyncio.create_task(queue.run(SLOW)) for _ in range(3)]
+        await until(lambda: len(queue.pids()) == 2 and queue.queued() == 1, "two run")
+        most = len(queue.pids())
+        for task in tasks:
+            task.cancel()
+        await asyncio.gather(*tasks, return_exceptions=True)
+        await queue.close()
+        return most
+
+    assert run(main()) == 2
+    assert job_folders(tmp_path) == []
