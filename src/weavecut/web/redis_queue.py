@@ -4,8 +4,9 @@ redis://HOST:PORT/DB`` enqueues, ``weave-cut worker --queue redis://...`` on any
 The server side (``RedisQueue``) bounds the jobs waiting in the queue (QueueFull beyond
 ``waiting``), enqueues ``perform(spec, cpu_seconds, memory_mb)`` with a wall-clock timeout
 and a time to live in the queue, and waits for the result on RQ's result stream. A client
-that leaves cancels its job: a waiting job is cancelled, a running one stopped (RQ's
-stop-job command: the worker kills its work horse), both best effort.
+that leaves cancels its job: a waiting job leaves the queue (RQ's cancel), a running one is
+stopped (RQ's stop-job command: the worker kills its work horse), and one that a worker has
+just taken is stopped by its horse, which looks at ``cancel_key`` twice a second.
 
 The worker side (``JobWorker``, RQ's forking Worker) loads weave-cut once (``warm``) and
 forks a work horse per job, as RQ does; the horse forks the job's own child with its CPU and
@@ -23,9 +24,11 @@ import asyncio
 import math
 import os
 import re
+import select
 import shutil
 import signal
 import tempfile
+import time
 from pathlib import Path
 
 from rq import Queue, Worker, get_current_job
@@ -56,11 +59,19 @@ def job_folder(job_id: str) -> Path:
     return Path(tempfile.gettempdir()) / f"weave-cut-rq-{job_id}"
 
 
+def cancel_key(job_id: str) -> str:
+    """The Redis key that says job ``job_id``'s client left."""
+    return f"weave-cut:cancelled:{job_id}"
+
+
 def perform(spec: JobSpec, cpu_seconds: int, memory_mb: int) -> JobResult:
-    """Run ``spec`` in a child of this work horse, with limits; its result."""
+    """Run ``spec`` in a child of this work horse, with limits; its result. The child is
+    killed when the job's client leaves (``cancel_key``, looked at twice a second)."""
     cpu = _least(cpu_seconds, WORKER_LIMITS[0])
     memory = _least(memory_mb, WORKER_LIMITS[1])
     current = get_current_job()
+    if current is not None and current.connection.exists(cancel_key(current.id)):
+        return failed(499, "the client left before the job started")
     jobdir = job_folder(current.id if current else f"local-{os.getpid()}")
     jobdir.mkdir(mode=0o700)
     try:
@@ -73,15 +84,48 @@ def perform(spec: JobSpec, cpu_seconds: int, memory_mb: int) -> JobResult:
             finally:
                 os._exit(code)
         try:
-            _, status = os.waitpid(pid, 0)
+            if current is not None:
+                current.meta["child"] = pid
+                current.save_meta()
+            status = _wait(pid, lambda: current is not None
+                           and current.connection.exists(cancel_key(current.id)))
         except BaseException:  # RQ's timeout, or the horse is stopped: the child goes too
             os.kill(pid, signal.SIGKILL)
             os.waitpid(pid, 0)
             raise
+        if status is None:
+            return failed(499, "the client left; the job was stopped")
         return outcome(spec, jobdir, -os.WTERMSIG(status) if os.WIFSIGNALED(status)
                        else os.WEXITSTATUS(status), cpu, memory)
     finally:
         shutil.rmtree(jobdir, ignore_errors=True)
+
+
+def _wait(pid: int, cancelled) -> int | None:
+    """The wait status of child ``pid``, or None if ``cancelled()`` turned true first (the
+    child is then killed). Woken by the child's end (a pidfd, Linux), else looks every
+    0.1 s."""
+    fd = os.pidfd_open(pid) if hasattr(os, "pidfd_open") else None
+    try:
+        looks = 0
+        while True:
+            if fd is not None:
+                if select.select([fd], [], [], 0.5)[0]:
+                    break
+            else:
+                done, status = os.waitpid(pid, os.WNOHANG)
+                if done:
+                    return status
+                time.sleep(0.1)
+            looks += 1
+            if (fd is not None or looks % 5 == 0) and cancelled():
+                os.kill(pid, signal.SIGKILL)
+                os.waitpid(pid, 0)
+                return None
+    finally:
+        if fd is not None:
+            os.close(fd)
+    return os.waitpid(pid, 0)[1]
 
 
 class JobWorker(Worker):
@@ -164,9 +208,12 @@ class RedisQueue:
         return failed(500, f"the worker could not run the job: {last}")
 
     def _cancel(self, job: Job) -> None:
+        """Take a waiting job out of the queue; stop one that runs (RQ's stop-job, and
+        ``cancel_key``, which the job's horse looks at, for one a worker took meanwhile)."""
         from rq.command import send_stop_job_command
 
         try:
+            self.connection.set(cancel_key(job.id), 1, ex=QUEUED_TTL + self.timeout + 60)
             status = job.get_status()
             if status in (JobStatus.QUEUED, JobStatus.DEFERRED, JobStatus.SCHEDULED):
                 job.cancel()
@@ -176,12 +223,13 @@ class RedisQueue:
             pass
 
     def _forget(self, job: Job) -> None:
-        """Remove a job the server is done with, and its results, from Redis."""
+        """Remove a job that has ended, and its results, from Redis (RQ's TTLs remove the
+        others)."""
         try:
-            if job.get_status() not in (JobStatus.STARTED,):
+            if job.get_status() in (JobStatus.FINISHED, JobStatus.FAILED):
                 job.delete()
-                self.connection.delete(Result.get_key(job.id))
-        except Exception:  # noqa: BLE001 - best effort: RQ's TTLs remove it anyway
+                self.connection.delete(Result.get_key(job.id), cancel_key(job.id))
+        except Exception:  # noqa: BLE001 - best effort
             pass
 
     async def close(self) -> None:
