@@ -89,24 +89,40 @@ def test_a_damaged_or_foreign_file_is_a_miss(tmp_path):
         raise AssertionError(f"{bad!r} became a path")
 
 
+def sized(key: str, size: int) -> JobResult:
+    """A result that says how it was made, so a torn one shows."""
+    return JobResult(True, key.encode()[:4] * size, "application/zip", {"key": key,
+                                                                        "size": size})
+
+
 def _hammer(folder: str, worker: int, rounds: int, max_bytes: int, queue) -> None:
-    """Put and get in turn; report any result that came back different from what was put."""
+    """Put and read in turn; count every file found that is not a whole result, and every
+    result got back different from what was put."""
     cache = Cache(folder, max_bytes)
     bad = 0
     for n in range(rounds):
         key = KEYS[(n + worker) % len(KEYS)]
-        cache.put(key, result_of(key, 50 + (n * 37 + worker) % 400))
-        got = cache.get(KEYS[(n * 3 + worker) % len(KEYS)])
-        if got is not None and got.body[:4] != got.summary["key"].encode()[:4]:
+        cache.put(key, sized(key, 5_000 + (n * 7919 + worker * 104729) % 40_000))
+        other = KEYS[(n * 3 + worker) % len(KEYS)]
+        try:
+            data = cache.path(other).read_bytes()
+        except FileNotFoundError:
+            continue
+        try:
+            got = JobResult.from_bytes(data)
+        except ValueError:
+            bad += 1
+            continue
+        if got != sized(other, got.summary["size"]):
             bad += 1
     queue.put(bad)
 
 
 def test_concurrent_puts_and_gets_from_processes_never_tear_a_result(tmp_path):
-    max_bytes = 2_000
+    max_bytes = 400_000
     context = multiprocessing.get_context("fork")
     queue = context.Queue()
-    workers = [context.Process(target=_hammer, args=(str(tmp_path), w, 150, max_bytes, queue))
+    workers = [context.Process(target=_hammer, args=(str(tmp_path), w, 300, max_bytes, queue))
                for w in range(4)]
     for w in workers:
         w.start()
@@ -118,7 +134,6 @@ def test_concurrent_puts_and_gets_from_processes_never_tear_a_result(tmp_path):
     assert cache.size() <= max_bytes
     for _, key, _ in cache.entries():
         got = cache.get(key)
-        assert got is not None and got.summary == {"key": key}
-        assert got.body == result_of(key, len(got.body) // 4).body
+        assert got is not None and got == sized(key, got.summary["size"])
     leftovers = [p for p in tmp_path.rglob("*") if p.is_file() and p.name not in KEYS]
     assert leftovers == []  # no temporary file of an atomic write is left

@@ -127,14 +127,15 @@ def test_cancelling_the_awaiting_task_kills_the_child_and_removes_its_folder(tmp
         task.cancel()
         with pytest.raises(asyncio.CancelledError):
             await task
+        killed, folders = gone(pid), job_folders(tmp_path)  # at once, not at close()
         try:
-            return pid, await queue.run(QUICK)
+            return killed, folders, await queue.run(QUICK)
         finally:
             await queue.close()
 
-    pid, after = run(main())
-    assert gone(pid)
-    assert job_folders(tmp_path) == [] and after.ok
+    killed, folders, after = run(main())
+    assert killed and folders == []
+    assert after.ok
 
 
 def test_workers_bound_the_jobs_that_run_at_once(tmp_path):
