@@ -1,10 +1,12 @@
 """Web jobs: what starting a job costs, and a kit's latency through each queue, cold and
 cached.
 
-- Start: a job that does almost nothing (``stats pentagon --levels 1`` as a preview), run in
+- Start: jobs that do almost nothing (``stats pentagon --levels 1``, which needs numpy only,
+  and the square grid's ``strands --preview``, which needs the paper model's libraries), run in
   this process (the work), in a child forked from the embedded queue's warm parent, and as a
   fresh ``python -m weavecut`` process (what a queue without a warm parent would pay); the
-  median of ``--repeat`` runs each.
+  median of ``--repeat`` runs each, wall and CPU time (the CPU time of the forked child
+  before the job starts is its start cost; on a busy machine the wall times stretch).
 - Kits: the square-grid paper model (``strands square-grid --size 27cm``) and the puzzle
   (``puzzle --levels 3``) through the embedded queue and through RQ (a redis-server on a free
   loopback port and ``--workers`` ``weave-cut worker`` processes, when redis-server is
@@ -17,6 +19,8 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import os
+import resource
 import shutil
 import socket
 import statistics
@@ -30,7 +34,8 @@ from weavecut.web.cache import Cache
 from weavecut.web.jobs import JobSpec, command_line, run_job
 from weavecut.web.queues import open_queue
 
-TINY = JobSpec("preview", "stats", ("pentagon", "--levels", "1"))
+TINY = JobSpec("preview", "stats", ("pentagon", "--levels", "1"))  # numpy only
+SMALL = JobSpec("preview", "strands", ("square-grid",))  # the paper model's libraries
 KITS = {"paper model": JobSpec("kit", "strands", ("square-grid", "--size", "27cm")),
         "puzzle": JobSpec("kit", "puzzle", ("--levels", "3"))}
 
@@ -57,30 +62,65 @@ async def timed_async(fn, repeat: int) -> list[float]:
     return out
 
 
-def start_costs(repeat: int) -> None:
-    run_job(TINY)  # load the commands
-    work = timed(lambda: run_job(TINY), repeat)
+def _traced_child_main(spec, jobdir, cpu_seconds, memory_mb):
+    """``limits.child_main``, recording the child's CPU time before and during the job."""
+    import resource
+
+    from weavecut.web import limits
+
+    before = resource.getrusage(resource.RUSAGE_SELF)
+    limits.child_main(spec, jobdir, cpu_seconds, memory_mb)
+    after = resource.getrusage(resource.RUSAGE_SELF)
+    cpu = [r.ru_utime + r.ru_stime for r in (before, after)]
+    Path(jobdir, "..", f"cpu-{os.getpid()}").write_text(f"{cpu[0]} {cpu[1] - cpu[0]}")
+
+
+def cpu_of(argv: list[str], folder: str) -> tuple[float, float]:
+    """Wall and CPU seconds (user + system) of one run of ``argv``."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    subprocess.run(argv, cwd=folder, check=True, stdout=subprocess.DEVNULL)
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return wall, after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime
+
+
+def start_costs(spec: JobSpec, repeat: int) -> None:
+    from weavecut.web import local_queue
+
+    run_job(spec)  # load the commands
+    work = timed(lambda: run_job(spec), repeat)
+    work_cpu = []
+    for _ in range(repeat):
+        t0 = time.process_time()
+        run_job(spec)
+        work_cpu.append(time.process_time() - t0)
+    folder = tempfile.mkdtemp()
 
     async def forked():
-        queue = open_queue(None, workers=1, cpu_seconds=60, memory_mb=1000, waiting=1)
-        await queue.run(TINY)  # the warm parent starts
+        local_queue.child_main = _traced_child_main
+        queue = local_queue.LocalQueue(workers=1, cpu_seconds=60, memory_mb=1000, waiting=1,
+                                       folder=folder)
+        await queue.run(spec)  # the warm parent starts
         try:
-            return await timed_async(lambda: queue.run(TINY), repeat)
+            return await timed_async(lambda: queue.run(spec), repeat)
         finally:
             await queue.close()
 
     child = asyncio.run(forked())
-    folder = tempfile.mkdtemp()
-    argv = [sys.executable, "-m", "weavecut", *command_line(TINY)]
-    fresh = timed(lambda: subprocess.run(argv, cwd=folder, check=True,
-                                         stdout=subprocess.DEVNULL), repeat)
+    child_cpu = [tuple(map(float, p.read_text().split())) for p in Path(folder).glob("cpu-*")]
+    argv = [sys.executable, "-m", "weavecut", *command_line(spec)]
+    fresh, fresh_cpu = zip(*(cpu_of(argv, folder) for _ in range(repeat)))
     shutil.rmtree(folder)
-    print(f"a tiny job ({' '.join(command_line(TINY))}), median of {repeat}:")
-    print(f"  in this process (the work)        {median_ms(work)}")
-    print(f"  forked from the warm parent       {median_ms(child)}   start overhead "
-          f"{median_ms([c - w for c, w in zip(sorted(child), sorted(work))])}")
-    print(f"  a fresh python -m weavecut        {median_ms(fresh)}   start overhead "
-          f"{median_ms([f - w for f, w in zip(sorted(fresh), sorted(work))])}")
+    job = statistics.median(work_cpu)
+    print(f"a job ({' '.join(command_line(spec))}), median of {repeat} (load average "
+          f"{os.getloadavg()[0]:.1f} on {os.cpu_count()} cores):")
+    print(f"  in this process (the work)        wall {median_ms(work)}   CPU "
+          f"{median_ms(work_cpu)}")
+    print(f"  forked from the warm parent       wall {median_ms(child)}   CPU before the job "
+          f"{median_ms([c for c, _ in child_cpu])}, in it {median_ms([j for _, j in child_cpu])}")
+    print(f"  a fresh python -m weavecut        wall {median_ms(list(fresh))}   CPU "
+          f"{median_ms(list(fresh_cpu))}, less the job's {median_ms([c - job for c in fresh_cpu])}")
 
 
 async def kit_latency(url: str | None, label: str, workers: int, cache_dir: Path) -> None:
@@ -136,7 +176,8 @@ def main() -> int:
     parser.add_argument("--repeat", type=int, default=15)
     parser.add_argument("--workers", type=int, default=2)
     args = parser.parse_args()
-    start_costs(args.repeat)
+    for spec in (TINY, SMALL):
+        start_costs(spec, args.repeat)
     folder = Path(tempfile.mkdtemp())
     print("kits (the cache: a Cache on local disk):")
     try:
