@@ -30,6 +30,20 @@ async def until(condition, what: str) -> None:
     raise AssertionError(f"never: {what}")
 
 
+def limited(tmp_path, workers: int, waiting: int) -> LocalQueue:
+    """A queue whose limits a slow job stays within, with its job folders in ``tmp_path``."""
+    return LocalQueue(workers=workers, cpu_seconds=120, memory_mb=2000, waiting=waiting,
+                      folder=tmp_path)
+
+
+async def running(queue: LocalQueue) -> asyncio.Task:
+    """A task that runs a slow job on ``queue``, once the job's child has started."""
+    before = len(queue.pids())
+    task = asyncio.create_task(queue.run(SLOW))
+    await until(lambda: len(queue.pids()) > before, "the job runs")
+    return task
+
+
 def gone(pid: int) -> bool:
     try:
         os.kill(pid, 0)
@@ -46,7 +60,7 @@ def test_open_queue_without_a_url_is_the_embedded_queue(tmp_path):
 
 def test_a_job_in_a_child_gives_what_it_gives_in_process(tmp_path):
     async def main():
-        queue = LocalQueue(workers=1, cpu_seconds=60, memory_mb=1000, waiting=1, folder=tmp_path)
+        queue = limited(tmp_path, workers=1, waiting=1)
         try:
             return await queue.run(QUICK), await queue.run(
                 JobSpec("kit", "strands", ("square-grid", "--size", "27")))
@@ -95,18 +109,16 @@ def test_over_its_memory_limit_a_job_answers_422_and_the_queue_goes_on(tmp_path)
 
 def test_a_full_queue_raises_queue_full_with_a_retry_time(tmp_path):
     async def main():
-        queue = LocalQueue(workers=1, cpu_seconds=120, memory_mb=2000, waiting=1,
-                           folder=tmp_path)
-        running = asyncio.create_task(queue.run(SLOW))
-        await until(lambda: queue.pids(), "the first job runs")
+        queue = limited(tmp_path, workers=1, waiting=1)
+        first = await running(queue)
         waiting = asyncio.create_task(queue.run(QUICK))
         await until(lambda: queue.queued() == 1, "the second job waits")
         try:
             with pytest.raises(QueueFull) as full:
                 await queue.run(QUICK)
         finally:
-            running.cancel()
-            results = await asyncio.gather(running, waiting, return_exceptions=True)
+            first.cancel()
+            results = await asyncio.gather(first, waiting, return_exceptions=True)
             await queue.close()
         return full.value, results
 
@@ -118,10 +130,8 @@ def test_a_full_queue_raises_queue_full_with_a_retry_time(tmp_path):
 
 def test_cancelling_the_awaiting_task_kills_the_child_and_removes_its_folder(tmp_path):
     async def main():
-        queue = LocalQueue(workers=2, cpu_seconds=120, memory_mb=2000, waiting=0,
-                           folder=tmp_path)
-        task = asyncio.create_task(queue.run(SLOW))
-        await until(lambda: queue.pids(), "the job runs")
+        queue = limited(tmp_path, workers=2, waiting=0)
+        task = await running(queue)
         pid = queue.pids()[0]
         assert not gone(pid) and len(job_folders(tmp_path)) == 1
         task.cancel()
@@ -140,8 +150,7 @@ def test_cancelling_the_awaiting_task_kills_the_child_and_removes_its_folder(tmp
 
 def test_workers_bound_the_jobs_that_run_at_once(tmp_path):
     async def main():
-        queue = LocalQueue(workers=2, cpu_seconds=120, memory_mb=2000, waiting=5,
-                           folder=tmp_path)
+        queue = limited(tmp_path, workers=2, waiting=5)
         tasks = [asyncio.create_task(queue.run(SLOW)) for _ in range(3)]
         await until(lambda: len(queue.pids()) == 2 and queue.queued() == 1, "two run")
         most = len(queue.pids())

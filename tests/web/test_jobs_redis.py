@@ -7,8 +7,6 @@ except in CI (.ci/run installs it)."""
 from __future__ import annotations
 
 import asyncio
-import os
-import shutil
 import socket
 import subprocess
 import sys
@@ -16,20 +14,13 @@ import time
 
 import pytest
 
+from tests.test_readback import program
+from tests.web.test_jobs_queue import gone
 from weavecut.web.jobs import JobSpec, QueueFull, run_job
 from weavecut.web.queues import open_queue
 
 redis = pytest.importorskip("redis")
 rq = pytest.importorskip("rq")
-
-
-def program(name: str) -> str:
-    path = shutil.which(name)
-    if path is None:
-        if os.environ.get("CI"):
-            pytest.fail(f"{name} is missing; .ci/run installs it")
-        pytest.skip(f"{name} is not installed")
-    return path
 
 
 def free_port() -> int:
@@ -144,14 +135,6 @@ def test_a_queue_that_no_worker_serves_fills_up_and_a_leaving_client_cancels(ser
     full, left = asyncio.run(main())
     assert full.retry_after >= 1
     assert left == 0  # the cancelled jobs left the queue
-
-
-def gone(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return True
-    return False
 
 
 def test_a_running_job_whose_client_leaves_is_stopped(server):
