@@ -41,13 +41,14 @@ from typing import Protocol
 import click
 
 from .. import __version__
+from ..cli.recipe import NOT_IN_RECIPES
 from ..fileio import recording
 
 log = logging.getLogger(__name__)
 
 KINDS = ("preview", "kit")
 PAGE = "index.html"  # the kit page, beside the outputs (as ``build`` writes it)
-NOT_JOBS = frozenset({"build", "serve", "worker"})  # a recipe reads files; the others serve
+NOT_JOBS = NOT_IN_RECIPES  # build reads a recipe's files; serve and worker serve
 ADDED = ("--output", "--json", "--preview", "--html", "--force", "--quiet")  # set by the job
 FOLDER_FLAGS = frozenset({"--laser-card"})  # flags that make -o a folder
 NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9._-]{0,99}")  # an upload's or an output's name
@@ -78,7 +79,8 @@ class JobSpec:
         doc = {"kind": self.kind, "command": self.command, "args": list(self.args),
                "files": sorted([n, hashlib.sha256(b).hexdigest()] for n, b in self.files),
                "output": self.output, "version": __version__}
-        text = json.dumps(doc, sort_keys=True, separators=(",", ":"), ensure_ascii=True)
+        text = json.dumps(doc, sort_keys=True, separators=(",", ":"), ensure_ascii=True,
+                          allow_nan=False)
         return hashlib.sha256(text.encode("ascii")).hexdigest()
 
 
@@ -100,8 +102,8 @@ class JobResult:
         """One line of JSON (everything but the body), then the body."""
         head = {"ok": self.ok, "media_type": self.media_type, "summary": self.summary,
                 "error": self.error, "status": self.status}
-        return json.dumps(head, sort_keys=True, ensure_ascii=True).encode("ascii") + b"\n" \
-            + self.body
+        return json.dumps(head, sort_keys=True, ensure_ascii=True,
+                          allow_nan=False).encode("ascii") + b"\n" + self.body
 
     @classmethod
     def from_bytes(cls, data: bytes) -> JobResult:
@@ -228,7 +230,9 @@ def _check_args(spec: JobSpec) -> None:
 # --- running it ----------------------------------------------------------------------------
 
 def run_job(spec: JobSpec) -> JobResult:
-    """Run ``spec`` in a temporary folder in this process; its result (never raises)."""
+    """Run ``spec`` in a temporary folder in this process; its result (never raises). It
+    sets the process's working folder and ``sys.argv`` while the command runs, so one job
+    at a time per process (the queues run each in a process of its own)."""
     try:
         how = plan(spec)
     except ValueError as exc:
