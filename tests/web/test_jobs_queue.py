@@ -162,3 +162,33 @@ def test_workers_bound_the_jobs_that_run_at_once(tmp_path):
 
     assert run(main()) == 2
     assert job_folders(tmp_path) == []
+
+
+def _sleeps(spec, jobdir, cpu_seconds, memory_mb):
+    """A job that waits instead of computing (no CPU limit stops it)."""
+    import time
+
+    time.sleep(20)  # far beyond the 1 s the test allows
+
+
+def test_a_job_past_its_wall_clock_time_is_killed_and_answers_422(tmp_path, monkeypatch):
+    from weavecut.web import local_queue
+
+    monkeypatch.setattr(local_queue, "child_main", _sleeps)
+    monkeypatch.setattr(local_queue, "wall_seconds", lambda cpu: 1)
+
+    async def main():
+        queue = limited(tmp_path, workers=1, waiting=0)
+        pids = []
+        task = asyncio.create_task(queue.run(QUICK))
+        await until(lambda: queue.pids(), "the job runs")
+        pids += queue.pids()
+        try:
+            return await task, pids
+        finally:
+            await queue.close()
+
+    result, [pid] = run(main())
+    assert (result.status, result.error.split(";")[0]) == (
+        422, "the preview took more than 1 s")
+    assert gone(pid) and job_folders(tmp_path) == []

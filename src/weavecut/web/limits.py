@@ -28,6 +28,17 @@ from .jobs import OUT_OF_MEMORY, JobResult, JobSpec, failed, run_job
 RESULT = "result"  # the file the child writes its result to, in the job's folder
 
 
+def wall_seconds(cpu_seconds: int) -> int:
+    """The wall-clock time a job may take: twice its CPU time and half a minute (a job that
+    waits, rather than computes, is stopped too); an hour without a CPU limit."""
+    return 2 * cpu_seconds + 30 if cpu_seconds > 0 else 3600
+
+
+def too_long(spec: JobSpec, seconds: int) -> JobResult:
+    return failed(422, f"the {kind_of(spec)} took more than {seconds} s; try fewer levels or a "
+                  "smaller size, or run it with the weave-cut command")
+
+
 def kind_of(spec: JobSpec) -> str:
     return "preview" if spec.kind == "preview" else "kit"
 

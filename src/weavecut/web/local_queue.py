@@ -8,8 +8,12 @@ libraries). The child sets its CPU and memory limits (``limits.child_main``). At
 which a retry may find room (from the mean run time of the last jobs).
 
 Cancelling the task that awaits ``run`` (the client left) kills the child (SIGKILL) and
-removes its folder. A child that dies by its limit answers a JobResult (422), and the queue
-goes on.
+removes its folder, as does a job past its wall-clock time (``limits.wall_seconds``). A child
+that dies by its limit answers a JobResult (422), and the queue goes on.
+
+Like every forkserver, the children import the server's main module as ``__mp_main__``: a
+script that opens the queue keeps its work under ``if __name__ == "__main__":`` (the
+``weave-cut`` console script and ``python -m weavecut`` do).
 """
 
 from __future__ import annotations
@@ -24,7 +28,7 @@ import threading
 from pathlib import Path
 
 from .jobs import JobResult, JobSpec, QueueFull, failed
-from .limits import child_main, outcome
+from .limits import child_main, outcome, too_long, wall_seconds
 
 FIRST_GUESS = 5.0  # seconds a job takes, until jobs have been timed
 
@@ -99,7 +103,9 @@ class LocalQueue:
             ended = loop.create_future()
             loop.add_reader(process.sentinel, lambda: ended.done() or ended.set_result(None))
             try:
-                await ended
+                await asyncio.wait_for(ended, wall_seconds(self.cpu_seconds))
+            except asyncio.TimeoutError:  # waiting, not computing: killed below
+                return too_long(spec, wall_seconds(self.cpu_seconds))
             finally:
                 loop.remove_reader(process.sentinel)
             process.join()  # it has ended: this reads its exit status

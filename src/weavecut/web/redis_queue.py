@@ -37,7 +37,7 @@ from rq.job import Job, JobStatus
 from rq.results import Result
 
 from .jobs import JobResult, JobSpec, QueueFull, failed
-from .limits import child_main, outcome
+from .limits import child_main, outcome, too_long, wall_seconds
 
 QUEUE = "weave-cut"
 RESULT_TTL = 600  # seconds RQ keeps a result the server did not collect
@@ -148,7 +148,7 @@ class RedisQueue:
         self.cpu_seconds, self.memory_mb, self.waiting = cpu_seconds, memory_mb, waiting
         self.connection = Redis.from_url(url)
         self.queue = Queue(QUEUE, connection=self.connection)
-        self.timeout = 2 * cpu_seconds + 30 if cpu_seconds > 0 else 3600  # wall clock, s
+        self.timeout = wall_seconds(cpu_seconds)
         self._enqueue = asyncio.Lock()  # the count and the enqueue of one server, in turn
         self._mean = FIRST_GUESS
 
@@ -173,7 +173,7 @@ class RedisQueue:
         except Exception as exc:  # noqa: BLE001 - Redis unreachable: an answer, not a crash
             return failed(503, f"the job queue cannot be reached: {type(exc).__name__}: {exc}")
         try:
-            result = await self._wait(job, started + QUEUED_TTL + self.timeout + 60)
+            result = await self._wait(spec, job, started + QUEUED_TTL + self.timeout + 60)
             self._mean = 0.8 * self._mean + 0.2 * (loop.time() - started)
             return result
         except asyncio.CancelledError:
@@ -182,12 +182,12 @@ class RedisQueue:
         finally:
             await asyncio.shield(asyncio.to_thread(self._forget, job))
 
-    async def _wait(self, job: Job, deadline: float) -> JobResult:
+    async def _wait(self, spec: JobSpec, job: Job, deadline: float) -> JobResult:
         loop = asyncio.get_running_loop()
         while True:
             result = await asyncio.to_thread(job.latest_result, 1)  # blocks up to 1 s
             if result is not None:
-                return self._answer(result)
+                return self._answer(spec, result)
             try:
                 status = await asyncio.to_thread(job.get_status)
             except NoSuchJobError:
@@ -197,13 +197,12 @@ class RedisQueue:
                 return failed(503, f"no weave-cut worker took the job (is one running for "
                               f"{self.url}?); try again later")
 
-    def _answer(self, result: Result) -> JobResult:
+    def _answer(self, spec: JobSpec, result: Result) -> JobResult:
         if result.type == Result.Type.SUCCESSFUL and isinstance(result.return_value, JobResult):
             return result.return_value
         text = (result.exc_string or "").strip()
         if "JobTimeoutException" in text:
-            return failed(422, f"the job took more than {self.timeout} s; try fewer levels or "
-                          "a smaller size, or run it with the weave-cut command")
+            return too_long(spec, self.timeout)
         last = text.splitlines()[-1] if text else "no result"
         return failed(500, f"the worker could not run the job: {last}")
 
