@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 from weavecut.cli import cli
 from weavecut.cli.common import path_options
 from weavecut.cli.outputs import is_folder
-from weavecut.cli.recipe import Planner
+from weavecut.cli.recipe import NOT_IN_RECIPES, Planner
 from weavecut.manifest import MANIFEST
 
 from . import strategies as ws
@@ -33,7 +33,7 @@ def written_keys() -> list[tuple[str, str]]:
     path options, and ``output`` of a command that prints."""
     found = []
     for name in sorted(cli.commands):
-        if name == "build":
+        if name in NOT_IN_RECIPES:
             continue
         command = cli.commands[name]
         options = Planner.options(command)
@@ -60,8 +60,8 @@ def job(command: str, key: str, value) -> str:
 def test_the_walk_finds_every_kind_of_written_path():
     assert ("levels", "tiles") in WRITTEN and ("levels", "output") in WRITTEN
     assert ("puzzle", "output") in WRITTEN and ("stats", "output") in WRITTEN
-    with_o = {n for n in cli.commands if n != "build" and "output" in Planner.options(
-        cli.commands[n])}
+    with_o = {n for n in cli.commands
+              if n not in NOT_IN_RECIPES and "output" in Planner.options(cli.commands[n])}
     assert {n for n, k in WRITTEN if k == "output"} >= with_o
 
 

@@ -254,3 +254,12 @@ def test_recipe_by_name_and_dry_run_lists_every_output(tmp_path):
         "weave-cut stats pentagon --json > out/s.json",
         "weave-cut subdivide pentagon -o out/p.svg"]
     refused(run("build", "jigsaw-50cm-popler"), "did you mean 'jigsaw-50cm-poplar'")
+
+
+@pytest.mark.parametrize("command", ["build", "worker"])
+def test_a_recipe_job_neither_builds_nor_serves(tmp_path, command):
+    """A recipe cannot start a queue worker (it would serve until stopped) or a build."""
+    recipe = tmp_path / "r.toml"
+    recipe.write_text(f'[[job]]\ncommand = "{command}"\noutput = "x.txt"\n')
+    refused(run("build", recipe, "-o", tmp_path / "out"), f"unknown command {command!r}")
+    assert files_under(tmp_path) == {"r.toml"}

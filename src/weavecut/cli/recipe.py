@@ -12,7 +12,8 @@ A recipe is TOML with one ``[[job]]`` table per output::
 A recipe is untrusted input. Every job is checked before the first one runs, and the first
 problem is one line naming the recipe, the job and the key:
 
-- the command and its keys (a misspelt key gets the nearest one), and every value through the
+- the command (any but ``build``, ``serve`` and ``worker``) and its keys (a misspelt key gets
+  the nearest one), and every value through the
   option's own type; values reach the command as typed values, never as argv, so no value can
   become an option;
 - the input: a built-in name, or a file in the recipe's folder (and below) or in a folder given
@@ -61,6 +62,9 @@ if TYPE_CHECKING:  # the kit page (and shapely) load when a job runs, not for --
     from .. import kitpage
 
 PAGE = "index.html"  # the kit page of the build
+# commands that are no job of a recipe: one builds recipes, the others serve (a web app, a
+# queue's worker) until stopped
+NOT_IN_RECIPES = frozenset({"build", "serve", "worker"})
 PRESET_OPTIONS = {"palette": "palettes", "material": "materials", "laser": "laser"}
 
 
@@ -142,7 +146,7 @@ class Planner:
         self.written: set[str] = set()  # by the jobs run so far
 
     def commands(self) -> dict[str, click.Command]:
-        return {n: c for n, c in self.group.commands.items() if n != "build"}
+        return {n: c for n, c in self.group.commands.items() if n not in NOT_IN_RECIPES}
 
     @staticmethod
     def options(command: click.Command) -> dict[str, click.Parameter]:
