@@ -2,7 +2,8 @@
 
 The code is in ``src/``; the presets stay in ``templates/`` at the top of the checkout, where
 users look for them, and install as the package ``weavecut.templates`` (its TOML files are
-package data, read with ``importlib.resources``). Folders are found, not listed, so a new
+package data, read with ``importlib.resources``); the web app's style sheet, script and pictures
+(``weavecut/web/static/``) are package data too. Folders are found, not listed, so a new
 subpackage or preset kind ships without touching this file.
 """
 
@@ -13,4 +14,5 @@ TEMPLATES = ["weavecut.templates",
 
 setup(packages=find_packages("src") + TEMPLATES,
       package_dir={"": "src", "weavecut.templates": "templates"},
-      package_data={"weavecut.templates": ["*/*.toml", "recipes/*.svg"]})
+      package_data={"weavecut.templates": ["*/*.toml", "recipes/*.svg"],
+                    "weavecut.web": ["static/*.*", "static/products/*.webp"]})

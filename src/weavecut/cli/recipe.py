@@ -57,6 +57,7 @@ if TYPE_CHECKING:  # the kit page (and shapely) load when a job runs, not for --
     from .. import kitpage
 
 PAGE = "index.html"  # the kit page of the build
+NOT_IN_RECIPES = ("build", "serve", "worker")  # a recipe's job makes files, never a server
 NAME_MAX, PATH_MAX = 255, 4096  # bytes of a file name and of a path (Linux, macOS, NTFS)
 PRESET_OPTIONS = {"palette": "palettes", "material": "materials", "laser": "laser"}
 
@@ -139,7 +140,7 @@ class Planner:
         self.written: set[str] = set()  # by the jobs run so far
 
     def commands(self) -> dict[str, click.Command]:
-        return {n: c for n, c in self.group.commands.items() if n != "build"}
+        return {n: c for n, c in self.group.commands.items() if n not in NOT_IN_RECIPES}
 
     @staticmethod
     def options(command: click.Command) -> dict[str, click.Parameter]:
