@@ -40,6 +40,10 @@ PRIMARY = {  # shown first; the other options fold away under "More options"
     "subdivide": ("input", "levels", "scheme", "size", "earlier-levels"),
     "figure": ("name",),
 }
+STARTING = {  # what a page shows before anything is chosen (the argument has no default)
+    "strands": ("input", "square-grid"), "weave": ("input", "square-grid"),
+    "subdivide": ("input", "pentagon"), "figure": ("name", "square-grid-weaving"),
+}
 MAX_PARAMS = 64  # query parameters of one request
 MAX_VALUE = 200  # characters of one value
 PLACEHOLDER = "web-check"  # a required hidden option's value while the command checks a query
@@ -159,14 +163,25 @@ def _field(p: click.Parameter, k: str, where: str) -> Field:
     if isinstance(t, Length):
         unit = "with a unit: mm, cm or in" if type(t) is not Length else "mm, cm or in"
         return Field(kind="length", unit=unit, minimum=t.minimum, **base)
-    if isinstance(t, click.IntRange):
-        return Field(kind="integer", minimum=t.min, maximum=t.max, **base)
-    if isinstance(t, Finite):
-        return Field(kind="number", minimum=t.min, maximum=t.max, **base)
+    if isinstance(t, (click.IntRange, Finite)):
+        return Field(kind="integer" if isinstance(t, click.IntRange) else "number",
+                     minimum=t.min, maximum=t.max, unit=_range(t), **base)
     if isinstance(t, PageSize):
         pages = ("a4", "letter", "a3", *presets.names("pages"))
         return Field(kind="page", choices=tuple(Choice(n, n) for n in pages), **base)
     return Field(kind="text", **base)
+
+
+def _range(t: click.IntRange | click.FloatRange) -> str:
+    """'from 1 to 8', 'over 0, at most 10000' (click's bounds, open or closed)."""
+    def number(x) -> str:
+        return f"{x:g}" if isinstance(x, float) else str(x)
+
+    low = None if t.min is None else ("over " if t.min_open else "from ") + number(t.min)
+    high = None if t.max is None else ("below " if t.max_open else "to ") + number(t.max)
+    if low and high and not t.min_open and not t.max_open:
+        return f"{low} {high}"
+    return ", ".join(w for w in (low, high and high.replace("to ", "at most ")) if w)
 
 
 def _label(k: str) -> str:

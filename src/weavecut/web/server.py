@@ -130,6 +130,9 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
         query, error = None, None
         try:
             items = _items(request)
+            start = forms.STARTING.get(name)
+            if start and all(k != start[0] for k, _ in items):
+                items = [start, *items]
             for k, v in items:
                 raw.setdefault(k, v)
             query = forms.parse(name, items, store)
