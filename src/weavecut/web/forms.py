@@ -229,9 +229,10 @@ def parse(name: str, items: list[tuple[str, str]], uploads=None) -> Query:
             raise FormError(f"unknown parameter {k[:40]!r}{nearest(k, by_key)}; {why}")
         if k in raw:
             raise FormError(f"{k} is given twice", k)
-        if len(value) > MAX_VALUE or any(ord(c) < 32 or c in "/\\" for c in value):
-            raise FormError(f"{k}: a value of at most {MAX_VALUE} characters, no file path and "
-                            "no control character", k)
+        if (len(value) > MAX_VALUE or any(ord(c) < 32 or c in "/\\" for c in value)
+                or value.lower().endswith(".toml") or value.startswith((".", "~"))):
+            raise FormError(f"{k}: a value of at most {MAX_VALUE} characters, no file (the web "
+                            "app reads no file named by a request) and no control character", k)
         if value.strip():
             raw[k] = value.strip()
     args, files, values = [], [], {}
@@ -287,9 +288,7 @@ def _figure(value: str) -> str:
 
 
 def _preset(f: Field, value: str) -> None:
-    """A preset name (never a .toml file: the web app reads no file named by a request)."""
-    if value.lower().endswith(".toml") or value.startswith("."):
-        raise FormError(f"{f.key}: {value!r}: choose a preset by name", f.key)
+    """A preset by name (``parse`` refused a .toml file already)."""
     try:
         presets.find(PRESETS[f.key], value)
     except presets.PresetError as exc:
