@@ -167,6 +167,12 @@ class Chromium:
             self.call("Input.dispatchKeyEvent", type=kind, key=key, code=code,
                       windowsVirtualKeyCode=key_code)
 
+    def set_files(self, selector: str, paths: list[Path]) -> None:
+        """Choose ``paths`` in the file input ``selector`` (as a person's file dialog would)."""
+        root = self.call("DOM.getDocument")["root"]["nodeId"]
+        node = self.call("DOM.querySelector", nodeId=root, selector=selector)["nodeId"]
+        self.call("DOM.setFileInputFiles", nodeId=node, files=[str(p) for p in paths])
+
     def downloads_into(self, folder: Path) -> None:
         """Save downloads into ``folder`` (under their own names)."""
         self.call("Browser.setDownloadBehavior", behavior="allow", downloadPath=str(folder),
