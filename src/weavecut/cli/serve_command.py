@@ -73,7 +73,11 @@ def serve_command(host, port, open_browser, queue_url, workers, cache_dir) -> No
     if open_browser:
         threading.Timer(0.5, webbrowser.open, (url,)).start()
     server = uvicorn.Server(uvicorn.Config(app, log_level="warning", lifespan="on"))
-    server.run(sockets=[sock])
+    try:
+        server.run(sockets=[sock])
+    except KeyboardInterrupt:  # uvicorn stops cleanly, then raises the signal it caught
+        pass
+    click.echo("weave-cut: the web app stopped", err=True)
 
 
 def _listen(host: str, port: int) -> socket.socket:

@@ -67,6 +67,7 @@ class Choice:
     description: str = ""
     swatches: tuple[str, ...] = ()
     group: str = ""
+    parameter: str = ""  # a built-in input's parameter ("N", "WxH"), if it takes one
 
 
 @dataclass(frozen=True)
@@ -193,7 +194,8 @@ def _label(k: str) -> str:
 @functools.cache
 def input_choices() -> tuple[Choice, ...]:
     return tuple(Choice(n, n, e.description, group="Surfaces: woven balls" if n in
-                        inputs.SURFACES else "Flat") for n, e in inputs.INPUTS.items())
+                        inputs.SURFACES else "Flat", parameter=e.parameter)
+                 for n, e in inputs.INPUTS.items())
 
 
 @functools.cache

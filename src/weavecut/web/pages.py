@@ -124,6 +124,7 @@ def command_page(name: str, raw: dict[str, str], error: forms.FormError | None,
         + '<noscript><button class="button" type="submit">Update</button></noscript></form>'
         '<section class="result" aria-label="Preview and download">'
         '<figure class="preview"><div class="sheet" id="sheet">'
+        '<p class="waiting">The preview appears here.</p>'
         f'<img id="preview" alt="Preview of the {_e(TITLES.get(name, name)).lower()}">'
         f'<noscript><img alt="Preview" src="/{name}/preview.svg?{_e(qs)}"></noscript></div>'
         '<figcaption id="status" role="status" aria-live="polite">Preview</figcaption>'
@@ -176,8 +177,10 @@ def _field(f: forms.Field, value: str, message: str, uploads) -> str:
                         + "".join(f'<option value="{_e(c.value)}">' for c in f.choices)
                         + "</datalist>")
     if f.kind == "input":
+        takes = {c.value: c.parameter for c in f.choices}.get(value.partition(":")[0], "")
         control = (f'<div class="input-row">{control}<input type="text" id="{fid}-param" '
-                   f'class="param" aria-label="Size of the input: N or WxH" placeholder="N or WxH" '
+                   f'class="param" aria-label="Size of the input: {_e(takes or "N or WxH")}" '
+                   f'placeholder="{_e(takes)}"{"" if takes else " hidden"} '
                    f'value="{_e(value.partition(":")[2] if not value.startswith("upload:") else "")}" '
                    'autocomplete="off" spellcheck="false"></div><div class="upload">'
                    '<input type="file" id="f-upload" accept=".svg,.dxf,.obj,.json">'
@@ -200,7 +203,8 @@ def _select(f: forms.Field, value: str, fid: str, extra: str, uploads) -> str:
     for c in f.choices:
         groups.setdefault(c.group, []).append(
             f'<option value="{_e(c.value)}" data-description="{_e(c.description)}"'
-            f'{" selected" * (c.value == (chosen or f.default))}>{_e(c.label)}</option>')
+            + (f' data-param="{_e(c.parameter)}"' if c.parameter else "")
+            + f'{" selected" * (c.value == (chosen or f.default))}>{_e(c.label)}</option>')
     for g, items in groups.items():
         options.append(f'<optgroup label="{_e(g)}">{"".join(items)}</optgroup>' if g
                        else "".join(items))

@@ -70,7 +70,11 @@ def _argv(spec: JobSpec) -> tuple[list[str], str]:
         if spec.command == "strands":
             args = [a for a in args if not a.startswith(("--cutter=", "--material=", "--laser="))
                     and a != "--laser-card"]
-            return [spec.command, *args, "--preview", "-o", "preview.svg"], "preview.svg"
+            from ..inputs import SURFACES
+
+            ball = args and args[0].partition(":")[0] in SURFACES  # no --preview: the pages
+            return ([spec.command, *args, *([] if ball else ["--preview"]), "-o", "preview.svg"],
+                    "preview.svg")
         if spec.command == "puzzle":
             return [spec.command, *args, "--preview", "-o", "preview"], "preview/puzzle-preview.svg"
         return [spec.command, *args, "-o", "preview.svg"], "preview.svg"

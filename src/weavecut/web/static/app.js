@@ -24,7 +24,7 @@
     const control = field.querySelector(`[name="${key}"]`);
     let v = control.value.trim();
     if (kind === "input" && !v.startsWith("upload:")) {
-      const param = $("f-input-param").value.trim();
+      const param = $("f-input-param").hidden ? "" : $("f-input-param").value.trim();
       if (param) v += ":" + param;
     }
     return v;
@@ -140,6 +140,12 @@
       let about = hint.querySelector(".about");
       if (!about) { about = document.createElement("span"); about.className = "about"; hint.prepend(about, " "); }
       about.textContent = chosen.dataset.description || "";
+      const param = $("f-input-param");
+      if (select.name === "input" && param) {
+        param.hidden = !chosen.dataset.param;
+        param.placeholder = chosen.dataset.param || "";
+        if (param.hidden) param.value = "";
+      }
     });
   }
   form.addEventListener("input", later);
