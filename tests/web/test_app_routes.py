@@ -24,25 +24,17 @@ from weavecut.web import forms
 from tests.web_app import make_client
 
 
+VALUES = {"input": "hex-grid:2x2", "figure": "edge-renders", "flag": "on", "number": "7",
+          "length": "12mm", "page": "letter", "text": "cuts"}  # valid, none a default
+
+
 def value_for(f: forms.Field) -> str:
     """A valid value of field ``f`` that is not its default."""
-    if f.kind == "input":
-        return "hex-grid:2x2"
-    if f.kind == "figure":
-        return "edge-renders"
-    if f.kind == "flag":
-        return "on"
     if f.kind in ("choice", "preset"):
         return next(c.value for c in reversed(f.choices) if c.value != f.default)
     if f.kind == "integer":
         return str(f.minimum + 1 if str(f.minimum + 1) != f.default else f.minimum)
-    if f.kind == "number":
-        return "7"
-    if f.kind == "length":
-        return "12mm"
-    if f.kind == "page":
-        return "letter"
-    return "cuts"
+    return VALUES[f.kind]
 
 
 def parsed(name: str, args) -> click.Context:
