@@ -16,8 +16,9 @@ from starlette.testclient import TestClient
 from weavecut.web.server import create_app
 
 try:
-    from weavecut.web.jobs import Cache, open_queue
-except ImportError:
+    from weavecut.web.cache import Cache
+    from weavecut.web.queues import open_queue
+except ImportError:  # until the job queue's branch is merged
     from weavecut.web.standin import Cache, open_queue
 
 LINKS = [

@@ -6,12 +6,10 @@ fields from the keyboard; nothing wider than a phone."""
 
 from __future__ import annotations
 
-import html
 import io
 import json
 import os
 import re
-import shlex
 import subprocess
 import sys
 import time
@@ -21,6 +19,7 @@ from pathlib import Path
 import pytest
 
 from tests.test_readback import program
+from tests.web_app import cli_files
 
 ROOT = Path(__file__).resolve().parents[2]
 READY = "document.getElementById('status').textContent.includes('ready to download')"
@@ -50,16 +49,6 @@ def browser():
 
     with Chromium(program("chromium"), timeout=240) as chromium:
         yield chromium
-
-
-def cli_files(page: str, folder: Path) -> dict[str, bytes]:
-    """The files the CLI writes for the command line the kit page shows, run in ``folder``."""
-    line = html.unescape(re.search(r"weave-cut ((?:strands|puzzle) [^<]*)", page).group(1))
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
-    subprocess.run([sys.executable, "-m", "weavecut", *shlex.split(line)], cwd=folder,
-                   env=env, check=True, capture_output=True)
-    return {p.relative_to(folder).as_posix(): p.read_bytes()
-            for p in sorted(folder.rglob("*")) if p.is_file()}
 
 
 def test_make_the_paper_model_and_download_it(browser, server, tmp_path):
