@@ -5,6 +5,7 @@ what ``weave-cut build`` runs, and nothing unexpected shows a traceback."""
 
 from __future__ import annotations
 
+import asyncio
 import io
 import re
 import shlex
@@ -196,3 +197,55 @@ def test_pages_and_assets_name_no_other_host(recording):
     for text in texts:
         hosts = re.findall(r"(?:https?:)?//[a-z0-9.-]+\.[a-z]{2,}", text)
         assert set(hosts) <= {"http://www.w3.org"}, hosts
+
+
+class Slow:
+    """A queue whose job runs until it is cancelled."""
+
+    def __init__(self) -> None:
+        self.started, self.cancelled = asyncio.Event(), False
+
+    async def run(self, spec):
+        self.started.set()
+        try:
+            await asyncio.sleep(3600)
+        except asyncio.CancelledError:
+            self.cancelled = True
+            raise
+
+    async def close(self):
+        pass
+
+
+def test_a_client_that_leaves_cancels_its_job(tmp_path, cwd):
+    from weavecut.web.server import create_app
+    from tests.web_app import Cache
+
+    async def scenario() -> Slow:
+        queue = Slow()
+        app = create_app(queue, Cache(tmp_path / "app" / "results", 2**20), tmp_path / "app")
+        messages = [{"type": "http.request", "body": b"", "more_body": False}]
+        gone, sent = asyncio.Event(), []
+
+        async def receive():
+            if messages:
+                return messages.pop(0)
+            await gone.wait()
+            return {"type": "http.disconnect"}
+
+        async def send(message):
+            sent.append(message)
+
+        scope = {"type": "http", "method": "GET", "path": "/weave.zip", "raw_path": b"/weave.zip",
+                 "query_string": b"input=square-grid", "headers": [], "scheme": "http",
+                 "server": ("test", 80), "client": ("test", 1), "root_path": "",
+                 "http_version": "1.1", "asgi": {"version": "3.0"}}
+        served = asyncio.ensure_future(app(scope, receive, send))
+        await asyncio.wait_for(queue.started.wait(), 30)
+        assert not queue.cancelled
+        gone.set()
+        await asyncio.wait_for(served, 30)
+        await asyncio.sleep(0)
+        return queue
+
+    assert asyncio.run(scenario()).cancelled
