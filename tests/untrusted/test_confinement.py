@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 
 from weavecut.cli import cli
 from weavecut.cli.common import path_options
-from weavecut.cli.recipe import Planner
+from weavecut.cli.recipe import NOT_IN_RECIPES, Planner
 from weavecut.manifest import MANIFEST
 
 from . import strategies as ws
@@ -32,7 +32,7 @@ def written_keys() -> list[tuple[str, str]]:
     path options, and ``output`` of a command that prints."""
     found = []
     for name in sorted(cli.commands):
-        if name == "build":
+        if name in NOT_IN_RECIPES:
             continue
         command = cli.commands[name]
         options = Planner.options(command)

@@ -250,3 +250,11 @@ def test_a_client_that_leaves_cancels_its_job(tmp_path, cwd):
         return queue.cancelled
 
     assert asyncio.run(scenario())
+
+
+def test_a_recipe_cannot_start_a_server(tmp_path):
+    recipe = tmp_path / "r.toml"
+    recipe.write_text('[[job]]\ncommand = "serve"\nport = 0\n')
+    result = CliRunner().invoke(cli, ["build", str(recipe), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 1
+    assert "unknown command 'serve'" in result.output

@@ -72,4 +72,4 @@ def _toml(value: object) -> str:
         return "true" if value else "false"
     if isinstance(value, int):
         return str(value)
-    return json.dumps(str(value), ensure_ascii=False)  # a TOML basic string
+    return json.dumps(str(value), ensure_ascii=False, allow_nan=False)  # a TOML basic string

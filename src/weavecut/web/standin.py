@@ -41,7 +41,7 @@ class JobSpec:
 
     def key(self) -> str:
         h = hashlib.sha256(json.dumps([__version__, self.kind, self.command,
-                                       list(self.args)]).encode())
+                                       list(self.args)], allow_nan=False).encode())
         for name, data in self.files:
             h.update(name.encode() + b"\0" + hashlib.sha256(data).digest())
         return h.hexdigest()
@@ -188,7 +188,8 @@ class Cache:
     def put(self, key: str, result: JobResult) -> None:
         write_atomic(self.folder / f"{key}.body", result.body)
         write_atomic(self.folder / f"{key}.json", json.dumps(
-            {"media_type": result.media_type, "summary": result.summary}).encode())
+            {"media_type": result.media_type, "summary": result.summary},
+            allow_nan=False).encode())
         metas = sorted(self.folder.glob("*.json"), key=lambda p: p.stat().st_mtime)
         total = sum(p.stat().st_size for p in self.folder.iterdir())
         while total > self.max_bytes and len(metas) > 1:
