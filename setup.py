@@ -3,7 +3,9 @@
 The code is in ``src/``; the presets stay in ``templates/`` at the top of the checkout, where
 users look for them, and install as the package ``weavecut.templates`` (its TOML files are
 package data, read with ``importlib.resources``); the example recipes and their drawings in
-``examples/`` install as ``weavecut.examples``, so ``build star-paper-model`` works anywhere. Folders are found, not listed, so a new
+``examples/`` install as ``weavecut.examples``, so ``build star-paper-model`` works anywhere;
+the web app's style sheet, script and pictures (``weavecut/web/static/``) are package data
+too. Folders are found, not listed, so a new
 subpackage or preset kind ships without touching this file.
 """
 
@@ -15,4 +17,5 @@ TEMPLATES = ["weavecut.templates",
 setup(packages=find_packages("src") + TEMPLATES + ["weavecut.examples"],
       package_dir={"": "src", "weavecut.templates": "templates", "weavecut.examples": "examples"},
       package_data={"weavecut.templates": ["*/*.toml", "recipes/*.svg"],
-                    "weavecut.examples": ["*.toml", "*.svg", "*.dxf", "*.obj", "*.json"]})
+                    "weavecut.examples": ["*.toml", "*.svg", "*.dxf", "*.obj", "*.json"],
+                    "weavecut.web": ["static/*.*", "static/products/*.webp"]})

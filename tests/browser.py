@@ -1,6 +1,8 @@
 """A headless Chromium driven through the Chrome DevTools protocol (websocket-client): open a
-local page at a given width, screenshot it, and report what a reader would meet — images that
-did not load, console errors, links, a page wider than the screen.
+local page or address at a given width, screenshot it, and report what a reader would meet —
+images that did not load, console errors, links, a page wider than the screen; type into a
+field, click, press a key, wait for a condition in the page and save downloads (the web app's
+end-to-end test).
 
 Uses the system's ``chromium`` (Debian's package; ``.ci/run`` installs it); nothing is
 downloaded.
@@ -109,6 +111,79 @@ class Chromium:
         shot = base64.b64decode(self.call("Page.captureScreenshot", format="png")["data"])
         return Visit(report["images"], report["links"], report["scrollWidth"],
                      report["innerWidth"], shot, self.errors())
+
+    def goto(self, url: str, width: int, height: int = 900) -> None:
+        """Open ``url`` (any address, not only a file) ``width`` CSS pixels wide and wait for
+        its load event."""
+        self.call("Emulation.setDeviceMetricsOverride", width=width, height=height,
+                  deviceScaleFactor=1, mobile=width < 600)
+        self.events.clear()
+        self.call("Page.navigate", url=url)
+        self.wait_for("Page.loadEventFired")
+
+    def evaluate(self, expression: str):
+        """The value of a JavaScript expression in the open page (promises awaited)."""
+        answer = self.call("Runtime.evaluate", expression=expression, returnByValue=True,
+                           awaitPromise=True)
+        if "exceptionDetails" in answer:
+            raise RuntimeError(f"{expression}: {answer['exceptionDetails']['text']}")
+        return answer["result"].get("value")
+
+    def wait_until(self, expression: str, timeout: float | None = None):
+        """Poll ``expression`` until it is truthy; its value (TimeoutError after ``timeout``)."""
+        end = time.monotonic() + (self.timeout if timeout is None else timeout)
+        while True:
+            value = self.evaluate(expression)
+            if value:
+                return value
+            if time.monotonic() > end:
+                raise TimeoutError(f"{expression} still false after {timeout} s")
+            time.sleep(0.1)
+
+    def _centre(self, selector: str) -> tuple[float, float]:
+        box = self.evaluate(f"(() => {{ const e = document.querySelector({json.dumps(selector)});"
+                            " e.scrollIntoView({block: 'center'});"
+                            " const r = e.getBoundingClientRect();"
+                            " return [r.x + r.width / 2, r.y + r.height / 2]; })()")
+        return box[0], box[1]
+
+    def click(self, selector: str) -> None:
+        """Click the middle of the element ``selector`` with the mouse, as a person would."""
+        x, y = self._centre(selector)
+        for kind in ("mousePressed", "mouseReleased"):
+            self.call("Input.dispatchMouseEvent", type=kind, x=x, y=y, button="left",
+                      clickCount=1)
+
+    def type_into(self, selector: str, text: str) -> None:
+        """Focus the field ``selector``, select what it holds and type ``text`` over it (input
+        events as from a keyboard)."""
+        self.click(selector)
+        self.evaluate(f"document.querySelector({json.dumps(selector)}).select()")
+        self.call("Input.insertText", text=text)
+
+    def press(self, key: str, code: str, key_code: int) -> None:
+        """Press and release one key (e.g. "Tab", "Tab", 9) in the focused element."""
+        for kind in ("rawKeyDown", "keyUp"):
+            self.call("Input.dispatchKeyEvent", type=kind, key=key, code=code,
+                      windowsVirtualKeyCode=key_code)
+
+    def set_files(self, selector: str, paths: list[Path]) -> None:
+        """Choose ``paths`` in the file input ``selector`` (as a person's file dialog would)."""
+        root = self.call("DOM.getDocument")["root"]["nodeId"]
+        node = self.call("DOM.querySelector", nodeId=root, selector=selector)["nodeId"]
+        self.call("DOM.setFileInputFiles", nodeId=node, files=[str(p) for p in paths])
+
+    def downloads_into(self, folder: Path) -> None:
+        """Save downloads into ``folder`` (under their own names)."""
+        self.call("Browser.setDownloadBehavior", behavior="allow", downloadPath=str(folder),
+                  eventsEnabled=True)
+
+    def screenshot(self, width: int) -> bytes:
+        """The whole open page, ``width`` CSS pixels wide, as PNG."""
+        height = self.evaluate("document.documentElement.scrollHeight")
+        self.call("Emulation.setDeviceMetricsOverride", width=width, height=height,
+                  deviceScaleFactor=1, mobile=width < 600)
+        return base64.b64decode(self.call("Page.captureScreenshot", format="png")["data"])
 
     def errors(self) -> list[str]:
         """Console errors, uncaught exceptions and failed loads since the last navigation."""

@@ -12,7 +12,7 @@ import pytest
 
 HEAVY = ("shapely", "scipy", "ezdxf", "reportlab", "PIL", "svgwrite")
 COMMANDS = ("inputs", "subdivide", "stats", "weave", "puzzle", "strands", "fractal", "levels",
-            "convexity", "figure", "findings", "build", "worker")
+            "convexity", "figure", "findings", "build", "worker", "serve")
 
 
 def loaded_after(*args: str) -> set[str]:

@@ -43,5 +43,6 @@ cli.commands = LazyCommands({
     "figure": ".analysis_commands:figure_command",
     "findings": ".findings_command:findings_command",
     "build": ".build_command:build_command",
+    "serve": ".serve_command:serve_command",
     "worker": ".worker_command:worker_command",
 })

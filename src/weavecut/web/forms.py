@@ -1,0 +1,324 @@
+"""The web forms, generated from the click commands' own options, and a request's values
+checked by the command itself, so the form and the CLI cannot drift.
+
+``fields(name)`` lists a command's options as form fields: the query key is the long option
+name without dashes (``--tile-size`` -> ``tile-size``), the INPUT argument is ``input`` (a
+figure's NAME ``name``); label, help, default, choices, bounds and unit come from the click
+parameter. Options that make no sense on the web are hidden: where the output goes and how it
+is printed (``-o``, ``--json``, ``--html``, ``--preview``, ``--list``, ``--force``: the job
+adds what it needs) and every option naming a file.
+
+``parse(name, query)`` turns a query into the command's arguments: unknown keys are refused
+with the nearest key, every value is confined (no file paths; a preset is a preset name; the
+input is a built-in input or an uploaded drawing by its hash), then the command parses the
+arguments with its own types (``command.make_context``), so a bad value gets the CLI's own
+message. Values reach the command as ``--key=value`` words, so no value becomes an option.
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import click
+
+from .. import inputs, presets
+from ..cli.common import Finite, Length, PageSize
+from ..schema import nearest
+from .uploads import UploadError
+
+COMMANDS = ("strands", "puzzle", "weave", "subdivide", "figure")  # a page each, in this order
+HIDDEN = frozenset({"output", "output-dir", "force", "json", "preview", "html", "list"})
+PRESETS = {"palette": "palettes", "material": "materials", "laser": "laser",
+           "cutter": "cutters"}  # options whose value names a preset, by key
+PRIMARY = {  # shown first; the other options fold away under "More options"
+    "strands": ("input", "size", "levels", "palette", "page", "laser-card", "cutter"),
+    "puzzle": ("input", "size", "levels", "material", "palette", "mode", "numbers"),
+    "weave": ("input", "levels", "palette", "style", "outline-level", "size"),
+    "subdivide": ("input", "levels", "scheme", "size", "earlier-levels"),
+    "figure": ("name",),
+}
+STARTING = {  # what a page shows before anything is chosen (the argument has no default)
+    "strands": ("input", "square-grid"), "weave": ("input", "square-grid"),
+    "subdivide": ("input", "pentagon"), "figure": ("name", "square-grid-weaving"),
+}
+MAX_PARAMS = 64  # query parameters of one request
+MAX_VALUE = 200  # characters of one value
+PLACEHOLDER = "web-check"  # a required hidden option's value while the command checks a query
+UPLOAD = re.compile(r"upload:([0-9a-f]{64})")
+INPUT = re.compile(r"([a-z0-9-]{1,40})(?::([0-9]{1,5}(?:x[0-9]{1,5})?))?")
+
+
+class FormError(ValueError):
+    """A query the command refuses: the CLI's one-line ``message``, the form ``key`` it
+    belongs to (None: the whole form) and the HTTP status."""
+
+    def __init__(self, message: str, key: str | None = None, status: int = 400) -> None:
+        super().__init__(message)
+        self.message, self.key, self.status = message, key, status
+
+
+@dataclass(frozen=True)
+class Choice:
+    value: str
+    label: str
+    description: str = ""
+    swatches: tuple[str, ...] = ()
+    group: str = ""
+    parameter: str = ""  # a built-in input's parameter ("N", "WxH"), if it takes one
+
+
+@dataclass(frozen=True)
+class Field:
+    """One form field: a click parameter as the web shows it."""
+
+    key: str
+    label: str
+    kind: str  # input, figure, flag, choice, preset, length, integer, number, page, text
+    help: str
+    default: str | None
+    required: bool
+    group: str  # main, more, drawing
+    choices: tuple[Choice, ...] = ()
+    minimum: float | None = None
+    maximum: float | None = None
+    unit: str = ""
+    param: click.Parameter | None = field(default=None, compare=False, repr=False)
+
+
+@dataclass(frozen=True)
+class Query:
+    """A checked query: the command's arguments (``args``, as the job gets them), the uploaded
+    files they name and the values by key, in the form's order."""
+
+    command: str
+    args: tuple[str, ...]
+    files: tuple[tuple[str, Path], ...]  # uploads: (the name args use, the stored file)
+    values: dict
+
+    def job_files(self) -> tuple[tuple[str, bytes], ...]:
+        """``files`` as a job takes them: (name, bytes)."""
+        return tuple((name, path.read_bytes()) for name, path in self.files)
+
+
+def group() -> click.Group:
+    from ..cli.app import cli
+
+    return cli
+
+
+def command(name: str) -> click.Command:
+    """The click command of a page; FormError 404 for any other name."""
+    if name not in COMMANDS:
+        raise FormError(f"no page {name!r}{nearest(name, COMMANDS)}; the pages are "
+                        f"{', '.join(COMMANDS)}", status=404)
+    return group().commands[name]
+
+
+def key(param: click.Parameter) -> str:
+    """The query key of a parameter: its long option name without dashes, ``input``."""
+    if isinstance(param, click.Argument):
+        return "input" if param.name == "input_mesh" else param.name
+    return max(param.opts, key=len).lstrip("-")
+
+
+def is_hidden(param: click.Parameter) -> bool:
+    return key(param) in HIDDEN or isinstance(param.type, click.Path)
+
+
+@functools.cache
+def fields(name: str) -> tuple[Field, ...]:
+    """The visible fields of command ``name``, in the order of its parameters."""
+    primary = PRIMARY.get(name, ())
+    out = []
+    for p in command(name).params:
+        if is_hidden(p):
+            continue
+        k = key(p)
+        where = "main" if k in primary else ("drawing" if not p.expose_value else "more")
+        out.append(_field(p, k, where))
+    return tuple(out)
+
+
+def _field(p: click.Parameter, k: str, where: str) -> Field:
+    default = p.default  # click's UNSET, None, False: no default to show
+    default = str(default) if isinstance(default, (str, int, float)) and default is not False \
+        else None
+    text = getattr(p, "help", None) or ""
+    base = {"key": k, "label": _label(k), "help": text, "required": p.required or k == "name",
+            "group": where, "param": p, "default": default}
+    t = p.type
+    if isinstance(p, click.Argument):
+        if k == "input":
+            return Field(kind="input", choices=input_choices(), **base)
+        return Field(kind="figure", choices=figure_choices(), **base)
+    if getattr(p, "is_flag", False):
+        return Field(kind="flag", **base)
+    if k in PRESETS:
+        return Field(kind="preset", choices=preset_choices(PRESETS[k]), **base)
+    if isinstance(t, click.Choice):
+        return Field(kind="choice", choices=tuple(Choice(str(c), str(c)) for c in t.choices),
+                     **base)
+    if isinstance(t, Length):
+        unit = "with a unit: mm, cm or in" if type(t) is not Length else "mm, cm or in"
+        return Field(kind="length", unit=unit, minimum=t.minimum, **base)
+    if isinstance(t, (click.IntRange, Finite)):
+        return Field(kind="integer" if isinstance(t, click.IntRange) else "number",
+                     minimum=t.min, maximum=t.max, unit=_range(t), **base)
+    if isinstance(t, PageSize):
+        pages = ("a4", "letter", "a3", *presets.names("pages"))
+        return Field(kind="page", choices=tuple(Choice(n, n) for n in pages), **base)
+    return Field(kind="text", **base)
+
+
+def _range(t: click.IntRange | click.FloatRange) -> str:
+    """'from 1 to 8', 'over 0, at most 10000' (click's bounds, open or closed)."""
+    def number(x) -> str:
+        return f"{x:g}" if isinstance(x, float) else str(x)
+
+    low = None if t.min is None else ("over " if t.min_open else "from ") + number(t.min)
+    high = None if t.max is None else ("below " if t.max_open else "to ") + number(t.max)
+    if low and high and not t.min_open and not t.max_open:
+        return f"{low} {high}"
+    return ", ".join(w for w in (low, high and high.replace("to ", "at most ")) if w)
+
+
+def _label(k: str) -> str:
+    return {"laser-card": "Laser-cut card", "no-smooth": "No smoothing (skip operation 4)",
+            "allow-nonconvex": "Allow non-convex faces", "name": "Figure",
+            "input": "Input", "cell": "Cell size"}.get(k, k.replace("-", " ").capitalize())
+
+
+@functools.cache
+def input_choices() -> tuple[Choice, ...]:
+    return tuple(Choice(n, n, e.description, group="Surfaces: woven balls" if n in
+                        inputs.SURFACES else "Flat", parameter=e.parameter)
+                 for n, e in inputs.INPUTS.items())
+
+
+@functools.cache
+def figure_choices() -> tuple[Choice, ...]:
+    from ..figures.gallery import FIGURES
+
+    return tuple(Choice(n, n, d) for n, (d, _) in FIGURES.items())
+
+
+@functools.cache
+def preset_choices(kind: str) -> tuple[Choice, ...]:
+    out = []
+    for n in presets.names(kind):
+        doc = presets.load(kind, n)
+        colours = doc.get("colours") or [c for f in doc.get("families", ()) for c in f]
+        out.append(Choice(n, n, str(doc.get("description", "")), tuple(colours[:24])))
+    return tuple(out)
+
+
+def parse(name: str, items: list[tuple[str, str]], uploads=None) -> Query:
+    """Check a query against command ``name`` and return its arguments; FormError names the
+    key and carries the CLI's own message. ``uploads`` (``uploads.Store``) resolves
+    ``input=upload:ID``."""
+    cmd = command(name)
+    if len(items) > MAX_PARAMS:
+        raise FormError(f"{len(items):,} parameters; a form of {name} has at most {MAX_PARAMS}")
+    by_key = {f.key: f for f in fields(name)}
+    raw: dict[str, str] = {}
+    for k, value in items:
+        if k not in by_key:
+            why = ("the web app names and packs the files itself" if k in HIDDEN else
+                   f"{name} takes {', '.join(by_key)}")
+            raise FormError(f"unknown parameter {k[:40]!r}{nearest(k, by_key)}; {why}")
+        if k in raw:
+            raise FormError(f"{k} is given twice", k)
+        if (len(value) > MAX_VALUE or any(ord(c) < 32 or c in "/\\" for c in value)
+                or value.lower().endswith(".toml") or value.startswith((".", "~"))):
+            raise FormError(f"{k}: a value of at most {MAX_VALUE} characters, no file (the web "
+                            "app reads no file named by a request) and no control character", k)
+        if value.strip():
+            raw[k] = value.strip()
+    args, files, values = [], [], {}
+    for f in fields(name):
+        if f.key not in raw:
+            continue
+        value = values[f.key] = raw[f.key]
+        if f.kind == "input":
+            word, file = _input(value, uploads)
+            args.append(word)
+            files += [file] if file else []
+        elif f.kind == "figure":
+            args.append(_figure(value))
+        elif f.kind == "flag":
+            try:
+                on = click.BOOL.convert(value, f.param, None)
+            except click.BadParameter as exc:
+                raise FormError(exc.format_message(), f.key) from None
+            values[f.key] = on
+            args += [_long(f.param)] if on else []
+        else:
+            if f.kind == "preset":
+                _preset(f, value)
+            args.append(f"{_long(f.param)}={value}")
+    check(cmd, name, args)
+    return Query(name, tuple(args), tuple(files), values)
+
+
+def _long(param: click.Parameter) -> str:
+    return max(param.opts, key=len)
+
+
+def _input(value: str, uploads) -> tuple[str, tuple[str, Path] | None]:
+    found = UPLOAD.fullmatch(value)
+    if found:
+        try:
+            name, path = uploads.argument(found.group(1))
+        except UploadError as exc:
+            raise FormError(exc.message, "input", exc.status) from None
+        return name, (name, path)
+    spec = INPUT.fullmatch(value)
+    if spec is None or spec.group(1) not in inputs.INPUTS:
+        raise FormError(f"unknown input {value!r}{nearest(value, inputs.INPUTS)}; choose a "
+                        "built-in input or upload a drawing", "input")
+    return value, None
+
+
+def _figure(value: str) -> str:
+    names = [c.value for c in figure_choices()]
+    if value not in names:
+        raise FormError(f"unknown figure {value!r}{nearest(value, names)}", "name")
+    return value
+
+
+def _preset(f: Field, value: str) -> None:
+    """A preset by name (``parse`` refused a .toml file already)."""
+    try:
+        presets.find(PRESETS[f.key], value)
+    except presets.PresetError as exc:
+        raise FormError(str(exc), f.key) from None
+
+
+def check(cmd: click.Command, name: str, args: list[str]) -> None:
+    """Let the command parse ``args`` with its own types, as the CLI does (a required hidden
+    option, -o, gets a placeholder: parsing writes nothing); FormError with its message."""
+    fill = [f"{_long(p)}={PLACEHOLDER}" for p in cmd.params
+            if isinstance(p, click.Option) and p.required and is_hidden(p)]
+    root = click.Context(group(), info_name="weave-cut")
+    try:
+        with cmd.make_context(name, [*args, *fill], parent=root):
+            pass
+    except click.UsageError as exc:
+        param = getattr(exc, "param", None)
+        raise FormError(exc.format_message(), key(param) if param is not None else None) \
+            from None
+
+
+HINT = re.compile(r"'(?:-\w' / ')?--([a-z][a-z0-9-]*)'")
+
+
+def key_of_message(message: str, name: str) -> str | None:
+    """The form key a CLI message names (``Invalid value for '--size': ...``), if any."""
+    known = {f.key for f in fields(name)}
+    for found in HINT.finditer(message):
+        if found.group(1) in known:
+            return found.group(1)
+    return None

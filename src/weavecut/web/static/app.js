@@ -1,0 +1,188 @@
+// weave-cut serve: the live preview of a command's page. The form is the CLI's options; on
+// every change (debounced) the query is checked by the command (/CMD/check: messages next to
+// the fields, the command line, the recipe), then the preview is drawn (/CMD/preview.svg) and
+// the kit made (/CMD/summary.json: its figures; the download then comes from the cache). A
+// newer change aborts the requests of the older one (AbortController).
+"use strict";
+(function () {
+  const form = document.getElementById("form");
+  if (!form) return;
+  const command = form.dataset.command;
+  const $ = (id) => document.getElementById(id);
+  const preview = $("preview"), sheet = $("sheet"), status = $("status");
+  const download = $("download"), cmdline = $("cmdline"), recipe = $("recipe");
+  const figures = $("figures"), warnings = $("warnings");
+  let controller = null, timer = null, shownUrl = null;
+
+  function value(field) {
+    const kind = field.dataset.kind, key = field.dataset.key;
+    if (kind === "flag") return field.querySelector("input").checked ? "on" : "";
+    if (kind === "preset") {
+      const on = field.querySelector("input:checked");
+      return on ? on.value : "";
+    }
+    const control = field.querySelector(`[name="${key}"]`);
+    let v = control.value.trim();
+    if (kind === "input" && !v.startsWith("upload:")) {
+      const param = $("f-input-param").hidden ? "" : $("f-input-param").value.trim();
+      if (param) v += ":" + param;
+    }
+    return v;
+  }
+
+  function query() {
+    const params = new URLSearchParams();
+    for (const field of form.querySelectorAll(".field[data-key]")) {
+      const v = value(field);
+      if (v !== "" && v !== field.dataset.default) params.append(field.dataset.key, v);
+    }
+    return params.toString();
+  }
+
+  function showErrors(errors) {
+    for (const p of form.querySelectorAll(".error")) { p.hidden = true; p.textContent = ""; }
+    for (const c of form.querySelectorAll("[aria-invalid]")) c.removeAttribute("aria-invalid");
+    for (const [key, message] of Object.entries(errors || {})) {
+      const where = $("e-" + key) || $("e-form");
+      where.textContent = message;
+      where.hidden = false;
+      const control = $("f-" + key);
+      if (control) control.setAttribute("aria-invalid", "true");
+      const more = where.closest("details");
+      if (more) more.open = true;
+    }
+  }
+
+  function say(text, bad) {
+    status.textContent = text;
+    status.classList.toggle("bad", !!bad);
+  }
+
+  async function refused(response) {
+    const message = await response.text();
+    const key = response.headers.get("X-Field");
+    if (response.status === 400 || response.status === 422) {
+      showErrors({[key || "form"]: message});
+    }
+    say(response.status === 503 ? "The server is busy; trying again shortly." : message, true);
+    if (response.status === 503) {
+      const wait = parseInt(response.headers.get("Retry-After") || "5", 10);
+      timer = setTimeout(update, Math.min(wait, 30) * 1000);
+    }
+  }
+
+  function showFigures(data) {
+    figures.replaceChildren(...data.figures.map(([label, text]) => {
+      const row = document.createElement("div");
+      const dt = document.createElement("dt"), dd = document.createElement("dd");
+      dt.textContent = label; dd.textContent = text;
+      row.append(dt, dd);
+      return row;
+    }));
+    warnings.replaceChildren(...data.warnings.map((w) => {
+      const li = document.createElement("li");
+      li.textContent = "Warning: " + w;
+      return li;
+    }));
+  }
+
+  async function update() {
+    clearTimeout(timer);
+    if (controller) controller.abort();
+    controller = new AbortController();
+    const signal = controller.signal;
+    const qs = query();
+    history.replaceState(null, "", `/${command}${qs ? "?" + qs : ""}${location.hash}`);
+    download.href = `/${command}.zip?${qs}`;
+    try {
+      const checked = await fetch(`/${command}/check?${qs}`, {signal});
+      const found = await checked.json();
+      showErrors(found.errors);
+      cmdline.textContent = found.command_line || "";
+      recipe.textContent = found.recipe || "";
+      download.setAttribute("aria-disabled", String(!found.ok));
+      if (!found.ok) { say("Fix the marked field to see the preview.", true); return; }
+      sheet.classList.add("busy");
+      say("Drawing the preview…");
+      const drawn = await fetch(`/${command}/preview.svg?${qs}`, {signal});
+      if (!drawn.ok) { sheet.classList.remove("busy"); return refused(drawn); }
+      const url = URL.createObjectURL(await drawn.blob());
+      preview.src = url;
+      preview.dataset.query = qs;
+      if (shownUrl) URL.revokeObjectURL(shownUrl);
+      shownUrl = url;
+      sheet.classList.remove("busy");
+      say("Preview ready; making the kit…");
+      figures.replaceChildren();
+      warnings.replaceChildren();
+      const made = await fetch(`/${command}/summary.json?${qs}`, {signal});
+      if (!made.ok) return refused(made);
+      showFigures(await made.json());
+      say("The kit is ready to download.");
+      download.dataset.ready = qs;
+    } catch (err) {
+      if (err.name === "AbortError") return;
+      sheet.classList.remove("busy");
+      say("The server did not answer; is weave-cut serve still running?", true);
+    }
+  }
+
+  function later() {
+    clearTimeout(timer);
+    download.dataset.ready = "";
+    timer = setTimeout(update, 350);
+  }
+
+  for (const select of form.querySelectorAll("select")) {  // the chosen item's description
+    select.addEventListener("change", () => {
+      const hint = $("h-" + select.name), chosen = select.selectedOptions[0];
+      if (!hint || !chosen) return;
+      let about = hint.querySelector(".about");
+      if (!about) { about = document.createElement("span"); about.className = "about"; hint.prepend(about, " "); }
+      about.textContent = chosen.dataset.description || "";
+      const param = $("f-input-param");
+      if (select.name === "input" && param) {
+        param.hidden = !chosen.dataset.param;
+        param.placeholder = chosen.dataset.param || "";
+        if (param.hidden) param.value = "";
+      }
+    });
+  }
+  form.addEventListener("input", later);
+  form.addEventListener("change", later);
+  form.addEventListener("submit", (e) => { e.preventDefault(); update(); });
+
+  const file = $("f-upload");
+  if (file) {
+    file.addEventListener("change", async (e) => {
+      e.stopPropagation();
+      const chosen = file.files[0];
+      if (!chosen) return;
+      say(`Reading ${chosen.name}…`);
+      try {
+        const sent = await fetch("/upload", {method: "POST", body: chosen});
+        if (!sent.ok) {
+          showErrors({input: await sent.text()});
+          say("The drawing was not accepted.", true);
+          return;
+        }
+        const {id} = await sent.json();
+        const option = document.createElement("option");
+        option.value = "upload:" + id;
+        option.textContent = `${chosen.name} (your drawing)`;
+        $("uploads").append(option);
+        $("f-input").value = option.value;
+        $("f-input-param").value = "";
+        const more = $("drawing-options");
+        if (more) more.open = true;
+        update();
+      } catch (err) {
+        say("The upload failed; is weave-cut serve still running?", true);
+      } finally {
+        file.value = "";
+      }
+    });
+  }
+  if (location.hash === "#input" && file) file.focus();
+  update();
+})();

@@ -1,0 +1,106 @@
+"""Drawings and meshes people upload: size-bounded, the format sniffed from the bytes, read
+with the same bounded readers the CLI uses (``mesh_io.read_valid_mesh``), and kept under
+their SHA-256 in the app's folder, never under a name from the request.
+
+``input=upload:ID`` names one in a query; a job gets its bytes under the bare name
+``upload-ID.svg`` (``.dxf``, ``.obj``, ``.json``) in its own folder.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import re
+import tempfile
+import threading
+from pathlib import Path
+
+from ..errors import WeaveCutError
+from ..fileio import write_atomic
+
+MAX_BYTES = 8 * 2**20  # a hand-made drawing is kilobytes; an OBJ of 100,000 faces about 5 MiB
+FORMATS = (".svg", ".dxf", ".obj", ".json")
+_READING = threading.BoundedSemaphore(1)  # one upload read at a time (a thread each)
+_OBJ_LINE = re.compile(rb"\s*(v|vt|vn|f|l|o|g|s|usemtl|mtllib)\s")
+
+
+class UploadError(ValueError):
+    """An upload refused: ``status`` 400 (unreadable), 413 (too large) or 404 (unknown id)."""
+
+    def __init__(self, message: str, status: int = 400) -> None:
+        super().__init__(message)
+        self.message, self.status = message, status
+
+
+def sniff(data: bytes) -> str:
+    """The suffix of the format ``data`` is in, by its bytes (never by a name or header)."""
+    head = data[:4096].lstrip(b"\xef\xbb\xbf \t\r\n")
+    if head.startswith(b"AutoCAD Binary DXF"):
+        return ".dxf"
+    if head.startswith(b"<") and b"<svg" in head:
+        return ".svg"
+    if head.startswith(b"{"):
+        return ".json"
+    lines = [w.strip() for w in head.splitlines()[:12]]
+    if any(a == b"0" and b == b"SECTION" for a, b in zip(lines, lines[1:])):
+        return ".dxf"
+    if any(_OBJ_LINE.match(line) for line in head.splitlines() if not line.startswith(b"#")):
+        return ".obj"
+    raise UploadError("not a drawing or mesh weave-cut reads: upload an SVG or DXF drawing, "
+                      "or an OBJ or weave-cut JSON mesh")
+
+
+def check(data: bytes, suffix: str) -> None:
+    """Read ``data`` as the CLI reads a file of ``suffix`` (its bounded readers and the mesh
+    checks); UploadError with the reader's message, the temporary path said as 'the file'."""
+    from ..mesh_io import read_valid_mesh
+
+    with tempfile.TemporaryDirectory(prefix="weavecut-upload-") as tmp:
+        path = Path(tmp) / f"upload{suffix}"
+        path.write_bytes(data)
+        try:
+            read_valid_mesh(path, allow_nonconvex=True)
+        except WeaveCutError as exc:
+            raise UploadError(str(exc).replace(str(path), f"the {suffix[1:].upper()} file")
+                              .replace(tmp, "")) from None
+        except (ValueError, KeyError, IndexError, TypeError, OSError, RecursionError) as exc:
+            # a reader's own parser giving up on malformed bytes
+            raise UploadError(f"the {suffix[1:].upper()} file cannot be read "
+                              f"({type(exc).__name__})") from None
+
+
+class Store:
+    """Uploads kept in ``folder``, each as ``SHA256.SUFFIX``."""
+
+    def __init__(self, folder: Path) -> None:
+        self.folder = Path(folder)
+
+    def add(self, data: bytes) -> str:
+        """Check ``data`` and keep it; its id (the SHA-256 hex of the bytes)."""
+        if len(data) > MAX_BYTES:
+            raise UploadError(f"{len(data):,} bytes; an upload is at most "
+                              f"{MAX_BYTES >> 20} MiB", 413)
+        if not data:
+            raise UploadError("the upload is empty")
+        suffix = sniff(data)
+        ident = hashlib.sha256(data).hexdigest()
+        if self.find(ident) is None:
+            with _READING:
+                check(data, suffix)
+            self.folder.mkdir(parents=True, exist_ok=True)
+            write_atomic(self.folder / f"{ident}{suffix}", data)
+        return ident
+
+    def find(self, ident: str) -> Path | None:
+        if not re.fullmatch(r"[0-9a-f]{64}", ident):
+            return None
+        found = [self.folder / f"{ident}{s}" for s in FORMATS
+                 if (self.folder / f"{ident}{s}").is_file()]
+        return found[0] if found else None
+
+    def argument(self, ident: str) -> tuple[str, Path]:
+        """The INPUT word of upload ``ident`` (the bare name a job writes it under) and the
+        file it is kept in."""
+        path = self.find(ident)
+        if path is None:
+            raise UploadError(f"no upload {ident[:12]}; upload the drawing again")
+        return f"upload-{ident}{path.suffix}", path

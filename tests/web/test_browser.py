@@ -1,0 +1,117 @@
+"""The web app end to end in Debian's Chromium (tests/browser.py over the DevTools protocol),
+against ``weave-cut serve`` started as a user starts it: open the start page, choose the paper
+model, change its size, wait for the preview to change, download the ZIP and compare its files
+with the CLI's for the same options; upload a drawing and make a puzzle of it; reach the
+fields from the keyboard; nothing wider than a phone."""
+
+from __future__ import annotations
+
+import io
+import json
+import os
+import re
+import subprocess
+import sys
+import time
+import zipfile
+from pathlib import Path
+
+import pytest
+
+from tests.test_readback import program
+from tests.web_app import cli_files
+
+ROOT = Path(__file__).resolve().parents[2]
+READY = "document.getElementById('status').textContent.includes('ready to download')"
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("serve")
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
+    proc = subprocess.Popen([sys.executable, "-m", "weavecut", "serve", "--port", "0",
+                             "--cache", str(folder / "cache")], cwd=folder, env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    line = proc.stdout.readline()
+    found = re.search(r"http://[^ ]+/", line)
+    assert found, line + proc.stderr.read()
+    yield found.group(0)
+    proc.terminate()
+    proc.wait(timeout=20)
+    proc.stdout.close()
+    proc.stderr.close()
+
+
+@pytest.fixture(scope="module")
+def browser():
+    pytest.importorskip("websocket", reason="websocket-client is a test dependency")
+    from tests.browser import Chromium
+
+    with Chromium(program("chromium"), timeout=240) as chromium:
+        yield chromium
+
+
+def test_make_the_paper_model_and_download_it(browser, server, tmp_path):
+    browser.goto(server, 1280)
+    assert browser.evaluate("[...document.images].every(i => i.complete && i.naturalWidth)")
+    browser.click('a[href^="/strands?input=square-grid"]')
+    browser.wait_until("location.pathname === '/strands' && !!document.getElementById('form')")
+    browser.wait_until(READY, 240)
+    before = browser.evaluate("document.getElementById('preview').src")
+    assert browser.evaluate("document.getElementById('preview').naturalWidth") > 0
+    browser.type_into("#f-size", "25cm")
+    browser.wait_until("document.getElementById('preview').src !== " + json.dumps(before)
+                       + " && document.getElementById('preview').dataset.query"
+                       ".includes('size=25cm')", 120)
+    assert "size=25cm" in browser.evaluate("location.search")  # the link carries it
+    browser.wait_until(READY, 240)
+    shown = browser.evaluate("document.getElementById('cmdline').textContent")
+    assert "--size 25cm" in shown
+    downloads = tmp_path / "downloads"
+    downloads.mkdir()
+    browser.downloads_into(downloads)
+    browser.click("#download")
+    end = time.monotonic() + 120
+    while not (downloads / "weave-cut-strands.zip").is_file() or any(
+            downloads.glob("*.crdownload")):
+        assert time.monotonic() < end, sorted(downloads.iterdir())
+        time.sleep(0.2)
+    kit = zipfile.ZipFile(io.BytesIO((downloads / "weave-cut-strands.zip").read_bytes()))
+    files = {n: kit.read(n) for n in kit.namelist()}
+    cli = tmp_path / "cli"
+    cli.mkdir()
+    assert files == cli_files(files["index.html"].decode(), cli)
+    assert browser.errors() == []
+
+
+def test_a_puzzle_of_an_uploaded_drawing(browser, server):
+    browser.goto(server + "puzzle?cell=39mm&levels=2&size=30cm", 1280)
+    browser.wait_until(READY, 240)
+    browser.set_files("#f-upload", [ROOT / "templates" / "recipes" / "heart.svg"])
+    browser.wait_until("document.getElementById('f-input').value.startsWith('upload:')", 60)
+    browser.wait_until("document.getElementById('preview').dataset.query.includes('upload')"
+                       " && " + READY, 240)
+    assert browser.evaluate("document.getElementById('cmdline').textContent").startswith(
+        "weave-cut puzzle upload-")
+    figures = browser.evaluate("document.getElementById('figures').textContent")
+    assert "Pieces" in figures
+    assert browser.errors() == []
+
+
+def test_the_fields_are_reached_from_the_keyboard(browser, server):
+    browser.goto(server + "strands?input=square-grid", 1280)
+    seen = []
+    for _ in range(40):
+        browser.press("Tab", "Tab", 9)
+        seen.append(browser.evaluate("document.activeElement.id || "
+                                     "document.activeElement.textContent.slice(0, 20)"))
+        if seen[-1] == "f-size":
+            break
+    assert seen[-1] == "f-size", seen
+    assert "f-input" in seen and "f-upload" in seen
+
+
+@pytest.mark.parametrize("path", ["", "strands?input=square-grid", "puzzle", "figure"])
+def test_nothing_is_wider_than_a_phone(browser, server, path):
+    browser.goto(server + path, 390)
+    assert browser.evaluate("document.documentElement.scrollWidth <= window.innerWidth")
