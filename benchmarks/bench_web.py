@@ -15,11 +15,8 @@ from starlette.testclient import TestClient
 
 from weavecut.web.server import create_app
 
-try:
-    from weavecut.web.cache import Cache
-    from weavecut.web.queues import open_queue
-except ImportError:  # until the job queue's branch is merged
-    from weavecut.web.standin import Cache, open_queue
+from weavecut.web.cache import Cache
+from weavecut.web.queues import open_queue
 
 LINKS = [
     "/strands/preview.svg?input=square-grid&size=27cm",

@@ -12,12 +12,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-try:
-    from weavecut.web.cache import Cache
-    from weavecut.web.jobs import JobResult
-    from weavecut.web.queues import open_queue
-except ImportError:  # until the job queue's branch is merged
-    from weavecut.web.standin import Cache, JobResult, open_queue  # noqa: F401
+from weavecut.web.cache import Cache  # noqa: F401
+from weavecut.web.jobs import JobResult
+from weavecut.web.queues import open_queue  # noqa: F401
 
 
 class Recording:

@@ -51,11 +51,8 @@ def serve_command(host, port, open_browser, queue_url, workers, cache_dir) -> No
 
     from ..web.server import create_app
 
-    try:
-        from ..web.cache import Cache
-        from ..web.queues import open_queue
-    except ImportError:  # until the job queue's branch is merged
-        from ..web.standin import Cache, open_queue
+    from ..web.cache import Cache
+    from ..web.queues import open_queue
 
     folder = Path(cache_dir) if cache_dir else default_cache()
     try:

@@ -33,10 +33,7 @@ from starlette.staticfiles import StaticFiles
 from . import forms, pages, summary
 from .uploads import MAX_BYTES, Store, UploadError
 
-try:
-    from .jobs import JobSpec, QueueFull
-except ImportError:  # until the job queue's branch is merged
-    from .standin import JobSpec, QueueFull
+from .jobs import JobSpec, QueueFull
 
 STATIC = Path(__file__).resolve().parent / "static"
 MAX_QUERY = 8192  # characters of a query string
