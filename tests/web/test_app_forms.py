@@ -14,7 +14,7 @@ from click.testing import CliRunner
 from weavecut.cli import cli
 from weavecut.web.forms import COMMANDS
 
-HIDDEN = {"help", "output", "json", "preview", "html", "list"}  # the web's own policy
+HIDDEN = {"help", "output", "force", "json", "preview", "html", "list"}  # the web's own policy
 OPTION = re.compile(r"^  (?:-\w, )?--([a-z][a-z0-9-]*)(.*)$")
 
 
