@@ -35,7 +35,8 @@ class PrintLength(Length):
 @click.option("--levels", "-n", type=click.IntRange(1, 8), default=None,
               help="Snub steps [default: 2; pentagon-flower 3].")
 @click.option("--page", type=PageSize(), default="a4", show_default=True,
-              help="a4, letter, a3 or WxH like 300x200mm.")
+              help="a4, letter, a3 or WxH like 300x200mm (with --laser-card: the "
+                   "instructions' pages; --material sets the card's).")
 @click.option("--tile-size", type=PrintLength(), default=None,
               help="Distance across an octagon, with a unit: the print's true scale "
                    "[default: 20mm]. Strips under 8 mm wide are refused (they tear).")
