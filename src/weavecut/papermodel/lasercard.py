@@ -67,6 +67,7 @@ class CardCut:
     dots : (N,) per sheet, the engraved rings' centres as (n, 2)
     report : cut length, outlines, duplicates, smallest feature over every sheet
     smallest_label : mm, the smallest engraved label
+    fill : the share of the sheets' area inside their margins that the strips cover
     """
 
     sheets: tuple[Drawing, ...]
@@ -77,14 +78,7 @@ class CardCut:
     dots: tuple[NDArray, ...]
     report: CutReport
     smallest_label: float
-
-    @property
-    def fill(self) -> float:
-        """The share of the sheets' area inside the margins that the strips cover."""
-        width, height = self.sheets[0].sheets[0].width, self.sheets[0].sheets[0].height
-        covered = sum(p.cut.area for group in self.pieces for p in group)
-        room = (width - 2 * SHEET_MARGIN) * (height - 2 * SHEET_MARGIN) * len(self.sheets)
-        return covered / max(room, 1e-12)
+    fill: float
 
 
 class Engraved(NamedTuple):
@@ -282,5 +276,8 @@ def card_sheets(pieces: list[Strip], colours, las: Laser, kerf: float,
             texts_all.append(tuple((e.coords, e.offsets, e.which) for e in labels))
             scores_all.append(tuple(line for group in scores for line in group))
             dots_all.append(np.concatenate(dots))
+    covered = sum(p.cut.area for p in pieces)
+    room = (width - 2 * margin) * (height - 2 * margin) * len(drawings)
     return CardCut(tuple(drawings), tuple(sheet_colours), tuple(placed_all), tuple(texts_all),
-                   tuple(scores_all), tuple(dots_all), report, float(smallest))
+                   tuple(scores_all), tuple(dots_all), report, float(smallest),
+                   covered / max(room, 1e-12))
