@@ -63,8 +63,7 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
     else:
         lines.append(f"Print the strip pages once ({strips}). Where each strip is: "
                      + page_index(book) + ".")
-    lines.append("Each strand's ID is printed at both ends and along it; arrows show the way "
-                 "its strip reads. Weaving steps: page 2.")
+    lines.append(words.ids)
     if crossings:
         lines.append(f"{too_small(len(crossings))} to carry a name on their strip "
                      f"({words.unnamed_mark}): called out below, "

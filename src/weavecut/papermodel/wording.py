@@ -73,6 +73,7 @@ class Words:
     scale : after the model's size on page 1 (how to print)
     sources : page 1's sentence on where the strips come from and where each one is; None:
         the printed book's ("Print the strip pages once (p. 3-8). Where each strip is: ...")
+    ids : page 1's sentence on the pattern's IDs and arrows
     unnamed_mark : how a crossing too small to name looks on its strip ("... (X there)")
     unnamed_there : the same for the crossing pages ("there the strip X")
     drawn : what page 1's pattern is drawn at a fraction of
@@ -86,6 +87,7 @@ class Words:
 
     scale: str
     sources: str | None
+    ids: str
     unnamed_mark: str
     unnamed_there: str
     drawn: str
@@ -103,6 +105,8 @@ class Words:
 PRINTED = Words(
     scale=" Print at 100 % (no fit to page).",
     sources=None,
+    ids="Each strand's ID is printed at both ends and along it; arrows show the way its strip "
+        "reads. Weaving steps: page 2.",
     unnamed_mark="printed light with no name there",
     unnamed_there="is printed light with no name",
     drawn="its printed size",
@@ -128,6 +132,8 @@ PRINTED = Words(
 CARD = Words(
     scale="",
     sources=None,  # the card kit names its sheets (cardkit.card_words)
+    ids="The pattern below shows each strand's ID at both ends and along it, and arrows the way "
+        "its strip reads (the arrows engraved on the strip). Weaving steps: page 2.",
     unnamed_mark="an engraved dot and no name there",
     unnamed_there="has an engraved dot and no name",
     drawn="the model's size",
