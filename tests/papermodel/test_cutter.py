@@ -22,8 +22,9 @@ from weavecut import export, inputs, presets
 from weavecut.layout.drawing import Polygons, Text
 from weavecut.layout.labels import text_box
 from weavecut.layout.lasersetup import laser
-from weavecut.papermodel import lasercard, printcut
+from weavecut.papermodel import cardkit, lasercard, printcut
 from weavecut.papermodel.book import strand_book
+from weavecut.papermodel.pages import PageArea
 from weavecut.subdivision import subdivide
 from weavecut.units import to_mm
 from weavecut.weave.colour import palette
@@ -253,19 +254,37 @@ def test_engraved_text_lies_inside_its_strip_with_a_margin(tmp_path):
 
 
 def test_the_card_colour_page_names_every_strands_card():
+    """Page 3 of the card's instructions: "card #rrggbb: sheet 1" (or "sheets 1, 2") then
+    "strands A1, A3, ...": every strand once, under its colour, on the sheets that hold it."""
     book, cut = card()
-    page = lasercard.card_colour_sheet(cut, A4, "test")
+    page = cardkit.card_colour_sheet(cut, PageArea(*A4, 10.0), "test", laser())
     texts = [t.text for layer in page.layers for t in layer.shapes if isinstance(t, Text)]
     heads = [k for k, t in enumerate(texts) if t.startswith("card #")]
     assert len(heads) == len(set(book.colours))
     named = {}
-    for k in heads:  # "card #rrggbb: sheets 1, 2" then "strands A1, A2, ..."
-        colour = texts[k].split(":")[0].removeprefix("card ")
-        for label in texts[k + 1].removeprefix("strands ").split(", "):
+    for k in heads:
+        colour, _, sheets = texts[k].removeprefix("card ").partition(": ")
+        numbers = [int(n) for n in re.sub(r"sheets? ", "", sheets).split(", ")]
+        assert [cut.colours[n - 1] for n in numbers] == [colour] * len(numbers)
+        for label in strip_names(texts[k + 1].removeprefix("strands ")):
             assert label not in named
+            assert any(p.label.split(" ")[0] == label for n in numbers for p in cut.pieces[n - 1])
             named[label] = colour
     strips = {p.label.split(" ")[0]: book.colours[p.strand] for _, p in book.pieces}
     assert named == strips
+
+
+def strip_names(runs: str) -> list[str]:
+    """The strip IDs of "A1, A3-A5" (an independent reading of ``strip_runs``)."""
+    out = []
+    for part in runs.split(", "):
+        first, _, last = part.partition("-")
+        if not last:
+            out.append(first)
+            continue
+        head = first.rstrip("0123456789")
+        out += [f"{head}{n}" for n in range(int(first[len(head):]), int(last[len(head):]) + 1)]
+    return out
 
 
 @pytest.mark.parametrize("name, shows", [("lightburn", True), ("ponoko", False)])
@@ -302,10 +321,10 @@ def test_card_cut_lines_show_on_screen_where_the_laser_program_allows(name, show
     assert (near > 1000) == shows  # the outlines of every strip, a pixel wide
 
 
-def test_engraving_comes_before_the_cut():
+def test_engraving_and_scoring_come_before_the_cut():
     _, cut = card()
     roles = [layer.role for layer in cut.sheets[0].sheets[0].layers]
-    assert roles == ["engrave", "cut"]
+    assert roles == ["engrave", "score", "cut"]
 
 
 # --- the command ---------------------------------------------------------------------------

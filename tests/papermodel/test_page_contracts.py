@@ -327,16 +327,22 @@ def test_best_spot_tries_a_longer_turn_when_a_shorter_one_fits_nowhere():
 
 
 def test_card_colour_swatches_lie_under_the_texts():
-    """The card colour page paints its swatches first, so every text is drawn over them."""
-    from types import SimpleNamespace
-    from weavecut.papermodel.lasercard import card_colour_sheet
-    piece = SimpleNamespace
-    cut = SimpleNamespace(colours=("#aa0000", "#00aa00", "#aa0000"),
-                          pieces=([piece(label="A1 1/2")], [piece(label="B2")],
-                                  [piece(label="A1 2/2"), piece(label="C3")]))
-    sheet = card_colour_sheet(cut, (210.0, 297.0), "test")
-    shapes = sheet.layers[0].shapes
+    """The card colour page paints its swatches (and the strip drawn on it) first, so every
+    text is drawn over them; each colour's two lines ("card #rrggbb: sheet 1", "strands ...")
+    stand beside the swatch of that colour."""
+    from weavecut.layout.lasersetup import laser, material
+    from weavecut.papermodel.cardkit import card_kit
+
+    ws = list(snub_weaves(subdivide(inputs.get("square-grid:2x2"), 2)))
+    kit = card_kit(ws, "maritime-4", material("card-300gsm"), laser(), (210.0, 297.0), 10.0,
+                   20.0, 0.0, "test")
+    shapes = kit.instructions.sheets[2].layers[0].shapes
     painted = [i for i, s in enumerate(shapes) if isinstance(s, Polygons)]
     written = [i for i, s in enumerate(shapes) if isinstance(s, Text)]
-    assert len(painted) == 1 and len(written) == 2 + 2 * 2
-    assert painted[0] < min(written)
+    assert painted and max(painted) < min(written)
+    swatches = shapes[painted[0]]
+    heads = [s for s in shapes if isinstance(s, Text) and s.text.startswith("card #")]
+    assert len(heads) == swatches.n_polygons == len(set(kit.cut.colours))
+    for head, ring, fill in zip(heads, swatches.rings(), swatches.fills):
+        assert head.text.startswith(f"card {fill}:")
+        assert ring[:, 1].min() <= head.y <= ring[:, 1].max() and head.x > ring[:, 0].max()

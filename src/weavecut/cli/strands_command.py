@@ -27,7 +27,8 @@ FORMATS = ("pdf", "svg")
 @click.option("--levels", "-n", type=click.IntRange(1, 8), default=None,
               help="Snub steps [default: 2; pentagon-flower 3].")
 @click.option("--page", type=PageSize(), default="a4", show_default=True,
-              help="a4, letter, a3 or WxH like 300x200mm.")
+              help="a4, letter, a3 or WxH like 300x200mm (with --laser-card: the "
+                   "instructions' pages; --material sets the card's).")
 @click.option("--tile-size", type=Length(), default=None,
               help="Distance across an octagon, with a unit: the print's true scale "
                    "[default: 20mm]. Strips under 8 mm wide are refused (they tear).")
@@ -56,7 +57,7 @@ FORMATS = ("pdf", "svg")
 @click.option("--laser-card", is_flag=True,
               help="Laser-cut the strips from coloured card instead: -o is a folder of cut "
                    "sheets (strands-card-*.svg, .dxf), one set per strand colour, and "
-                   "strands-assembly.pdf.")
+                   "strands-assembly.pdf, the card's instructions on --page.")
 @click.option("--material", default=None, shell_complete=complete_preset("materials"),
               help="With --laser-card: the card (templates/materials) [default: card-300gsm, "
                    "A4 sheets; card-300gsm-letter, card-300gsm-12in].")
@@ -111,6 +112,10 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
     if formats is not None and not laser_card:
         raise click.BadParameter("--formats goes with --laser-card (a cutter's cut files are "
                                  "SVG and DXF)", param_hint="'--formats'")
+    if laser_card and layout != "mixed":
+        raise click.BadParameter("--layout module prints the module's pages once per "
+                                 "direction; --laser-card cuts every strip once: leave --layout "
+                                 "out", param_hint="'--layout'")
     if tile_size is not None and model_size is not None:
         raise click.BadParameter("give --tile-size or --size, not both", param_hint="'--size'")
     preset = preset_for(input_mesh)
@@ -145,19 +150,17 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
     nonconvex = flag_nonconvex(hierarchy)
     if model_size is not None:
         tile_size = tile_size_for(weaves[-1], model_size)
-    limit, machine, mat = None, None, None
+    if laser_card:
+        return _laser_card(weaves, palette_name or preset["palette"], material, laser_name,
+                           formats, page,
+                           margin, tile_size or 20.0, turn, title, output, as_json)
+    limit, machine = None, None
     if cutter_name is not None:
         from ..papermodel.printcut import cutter
 
         machine = cutter(cutter_name)
         machine.check(*page)
         margin, limit = max(margin, machine.margin), machine.limit(*page)
-    if laser_card:
-        from ..layout.lasersetup import material as card
-        from ..papermodel.lasercard import SHEET_MARGIN
-
-        mat = card(material or "card-300gsm")
-        page, margin = mat["sheet"], SHEET_MARGIN
     try:
         book = strand_book(weaves, pal, page, tile_size or 20.0, margin, turn, title=title,
                            layout=layout, limit=limit)
@@ -165,8 +168,6 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
         raise click.ClickException(str(exc)) from exc
     for warning in book.warnings:
         click.echo(f"weave-cut: warning: {warning}", err=True)
-    if mat is not None:
-        return _laser_card(book, mat, laser_name, formats, output, title, as_json)
     extra = {}
     if machine is not None:
         extra = _print_and_cut(book, machine, output)
@@ -266,41 +267,57 @@ def _print_and_cut(book, machine, output: str) -> dict:
                        **report.as_dict()}}
 
 
-def _laser_card(book, mat: dict, laser_name: str, formats, out_dir: str, title: str,
+def _laser_card(weaves, pal_name: str, material: str | None, laser_name: str, formats, page,
+                margin, tile_size: float, turn: float, title: str, out_dir: str,
                 as_json: bool) -> None:
-    """Write the card sheets (an SVG and a DXF each, or ``formats``) and strands-assembly.pdf
-    into ``out_dir``."""
+    """Write the card sheets (an SVG and a DXF each, or ``formats``) and strands-assembly.pdf,
+    the kit's own instructions, into ``out_dir``."""
     from ..fileio import make_folder
-    from ..layout.drawing import Drawing
-    from ..layout.lasersetup import kerf_note, laser, laser_job, output_formats
-    from ..papermodel.lasercard import card_colour_sheet, card_sheets
+    from ..layout.lasersetup import kerf_note, laser, laser_job, material as card, output_formats
+    from ..papermodel.cardkit import card_kit
+    from ..papermodel.checks import report
 
-    cut = card_sheets([p for _, p in book.pieces], book.colours, laser(laser_name), mat["kerf"],
-                      mat["sheet"], title)
+    mat = card(material or "card-300gsm")
+    try:
+        kit = card_kit(weaves, pal_name, mat, laser(laser_name), page, margin, tile_size, turn,
+                       title)
+    except ValueError as exc:
+        raise click.ClickException(str(exc)) from exc
+    for warning in kit.warnings:
+        click.echo(f"weave-cut: warning: {warning}", err=True)
+    cut = kit.cut
     folder = make_folder(out_dir)
-    sheets, files = book.drawing.sheets, []
-    colours = card_colour_sheet(cut, (sheets[0].width, sheets[0].height), title)
-    assembly = Drawing((*(sheets[n - 1] for n in book.extra_pages), colours),
-                       title).with_metadata(**provenance())
-    export.write(assembly, folder / "strands-assembly.pdf")
-    for n, (drawing, colour) in enumerate(zip(cut.sheets, cut.colours), start=1):
+    export.write(kit.instructions.with_metadata(**provenance()), folder / "strands-assembly.pdf")
+    files = []
+    job = laser_job(mat, kerf_note(mat["kerf"], "the strips' outlines"))
+    for drawing, name in zip(cut.sheets, kit.files):
         for fmt in output_formats(formats, laser_name):
-            path = folder / f"strands-card-{n:02d}-{colour.lstrip('#')}.{fmt}"
-            export.write(drawing.with_metadata(**provenance()), path,
-                         job=laser_job(mat, kerf_note(mat["kerf"], "the strips' outlines")))
-            files.append(str(path))
+            export.write(drawing.with_metadata(**provenance()), folder / f"{name}.{fmt}", job=job)
+            files.append(str(folder / f"{name}.{fmt}"))
     n_colours = len(set(cut.colours))
+    n_pieces = sum(len(p) for p in cut.pieces)
     minutes = cut.report.length / mat["cut_speed"] / 60  # cutting only, at the material's speed
+    pages = len(kit.instructions.sheets)
     if as_json:
         click.echo(json.dumps({"output": out_dir, "material": mat["name"],
                                "sheet_mm": list(mat["sheet"]), "sheets": len(cut.sheets),
-                               "card_colours": n_colours, "strips": len(book.pieces),
+                               "card_colours": n_colours, "strips": n_pieces,
+                               "sheet_fill": round(cut.fill, 3),
+                               "fewer_colours": dict(kit.fewer),
+                               "instruction_pages": pages,
+                               "score_lines": sum(len(s) for s in cut.scores),
+                               "engraved_dots": sum(len(d) for d in cut.dots),
+                               **{k: v for k, v in report(kit.book).items() if k in (
+                                   "smallest_text_mm", "smallest_contrast", "label_violations",
+                                   "names_left_out")}, "warnings": list(kit.warnings),
                                "smallest_label_mm": round(cut.smallest_label, 2),
                                "cut_minutes": round(minutes, 1), "files": files,
                                **cut.report.as_dict()}, indent=2, allow_nan=False))
     else:
+        fewer = kit.fewer and (f"; sheets {100 * cut.fill:.0f} % covered: --palette "
+                               f"{kit.fewer[0][0]} needs {kit.fewer[0][1]} card colours")
         summary(f"{out_dir}: {len(cut.sheets)} sheets of {mat['name']} in {n_colours} card "
-                f"colours, {len(book.pieces)} strip pieces, {cut.report.length / 1000:.1f} m of "
+                f"colours, {n_pieces} strip pieces, {cut.report.length / 1000:.1f} m of "
                 f"cuts (about {minutes:.0f} min), smallest feature "
-                f"{cut.report.min_feature:.1f} mm; strands-assembly.pdf says which colour each "
-                "strand is")
+                f"{cut.report.min_feature:.1f} mm{fewer or ''}; strands-assembly.pdf ({pages} "
+                "pages): what to cut from which card, how to weave")

@@ -29,7 +29,7 @@ from .modules import copy_letter
 from .pattern import label_spots, pattern
 from .strip_labels import unit_arrows
 from .symmetry import rotate, tile_centres
-from .wording import LINE, TEXT, page_index, paragraphs
+from .wording import LINE, PRINTED, TEXT, Words, page_index, paragraphs
 
 ALONG = 6  # an extra ID every this many own tiles along a strand
 
@@ -40,10 +40,11 @@ def finished_size(weave: Weave, book) -> np.ndarray:
 
 
 def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str,
-                   total: int, crossings=()) -> tuple[Sheet, int]:
-    """(page 1, how many of ``crossings`` found no room): what to print, which page holds which
-    strip, and the finished pattern with IDs; with ``crossings`` (tile, strand on top, strand
-    below) those the strips leave unnamed are called out on it too (:mod:`.crossings`)."""
+                   total: int, crossings=(), words: Words = PRINTED) -> tuple[Sheet, int]:
+    """(page 1, how many of ``crossings`` found no room): what to print (or cut), where each
+    strip is, and the finished pattern with IDs; with ``crossings`` (tile, strand on top, strand
+    below) those the strips leave unnamed are called out on it too (:mod:`.crossings`);
+    ``words`` name what the maker holds."""
 
     plan, area = book.plan, book.area
     k, m = plan.k, plan.copies.shape[1]
@@ -56,8 +57,10 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
               else ", one strip each")  # no turn maps the pattern onto itself: no copies
     lines = [f"{weave.n_strands} strands{copies}. Finished model about "
              f"{size_mm[0] / 10:.1f} x {size_mm[1] / 10:.1f} cm, octagons {tile_size:.1f} mm "
-             "across. Print at 100 % (no fit to page)."]
-    if book.layout == "module" and k > 1:
+             f"across.{words.scale}"]
+    if words.sources is not None:
+        lines.append(words.sources)
+    elif book.layout == "module" and k > 1:
         turns = "; ".join(f"print {j + 1} = copy {copy_letter(j)}: turned by {j * 360 / k:g} deg"
                           for j in range(k))
         lines.append(f"Print the strip pages ({strips}) {k} times, once per direction, and write "
@@ -65,11 +68,10 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
     else:
         lines.append(f"Print the strip pages once ({strips}). Where each strip is: "
                      + page_index(book) + ".")
-    lines.append("Each strand's ID is printed at both ends and along it; arrows show the way "
-                 "its strip reads. Weaving steps: page 2.")
+    lines.append(words.ids)
     if crossings:
-        lines.append(f"{too_small(len(crossings))} to carry a name on their strip (printed "
-                     "light with no name there): called out below, "
+        lines.append(f"{too_small(len(crossings))} to carry a name on their strip "
+                     f"({words.unnamed_mark}): called out below, "
                      f"{crossing_meaning(plan.labels, crossings[0])}.")
     elif book.extra_pages[-1] > 2:
         lines.append("Crossings too small to carry a name on their strip are called out on "
@@ -91,7 +93,7 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
             obstacles += [placed[1], shapely.buffer(placed[2], 0.3), shapely.buffer(
                 shapely.Point(spot), DOT)]
     callouts, named = callout_shapes(called, at) if called else ([], [])
-    note = f"pattern drawn at {100 * fit.scale / book.scale:.0f} % of its printed size"
+    note = f"pattern drawn at {100 * fit.scale / book.scale:.0f} % of {words.drawn}"
     texts.append(Text(x1, y0 - GAP - TEXT, note, TEXT, "end"))
     shapes = [paint]
     if boxes:
@@ -105,7 +107,8 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
               Layer("crossings", "label", tuple(named)), Layer("notes", "label", tuple(texts))]
     layers += page_layers(area, title, "Assembly sheet: the finished pattern with every "
                           "strand's ID (copy letter + number)", 1, total,
-                          book.colours[int(plan.copies[0, 0])] if m else "#3e9fb0")
+                          book.colours[int(plan.copies[0, 0])] if m else "#3e9fb0",
+                          legend=words.legend)
     return (Sheet(area.width, area.height, tuple(layers), "page 1: assembly"),
             len(crossings) - len(called))
 
@@ -228,36 +231,28 @@ def _free_spot(at, label: str, obstacles, frame, size: float):
     return centred_text(c[0], label, MIN_CAP, 0.0, "#000000"), plates[0], leaders[0]
 
 
-def weaving_steps(weave: Weave, book, turn: float) -> tuple[list[str], list[np.ndarray]]:
-    """(numbered steps, groups of strands in the order they are woven in)."""
+def weaving_steps(weave: Weave, book, turn: float,
+                  words: Words = PRINTED) -> tuple[list[str], list[np.ndarray]]:
+    """(numbered steps, groups of strands in the order they are woven in), ``words`` naming
+    what the maker holds."""
     plan = book.plan
     k = plan.k
     centres = tile_centres(weave)
     centre = plan.symmetry.centre
     glue = any(p.glue is not None for _, p in book.pieces)
     ids = plan.labels
-    steps = ["You need: the printed pages, scissors or a craft knife, tape or paper clips, a glue "
-             "stick and a piece of cardboard a little larger than the model.",
-             "Cut out every strip along its red line. Sort the strips by ID: the ID printed in "
-             "the strip's own colour is its name on page 1; a small ID in a light part names the "
-             "strand that lies on top there."]
+    steps = [words.need, words.cut]
     if any(p.flap is not None for _, p in book.pieces):
-        steps.append("Strips too small for their ID carry it on a small tab at one end: cut the "
-                     "tab out with the strip and cut it off along its dashed line once the strip "
-                     "is woven in.")
+        steps.append(words.tab)
     if any(p.left_out for _, p in book.pieces):
         from .crossings import crossing_meaning, left_out_crossings
         first = left_out_crossings(weave, plan, [p for _, p in book.pieces], book.layout)[0]
-        steps.append("A light part with no name is a crossing too small to name on the strip: "
-                     f"it is called out on {page_span(book.extra_pages[2:] or [1])} "
-                     f"({crossing_meaning(ids, first)}).")
+        steps.append(words.unnamed.format(where=page_span(book.extra_pages[2:] or [1]),
+                                          meaning=crossing_meaning(ids, first)))
     if glue:
         name, _, part = next(p.label for _, p in book.pieces if p.glue is not None).partition(" ")
         n = part.partition("/")[2]
-        steps.append(f"Some strips are printed in parts, numbered beside their ID (strip {name}: "
-                     f"\"1/{n}\" to \"{n}/{n}\"): spread glue on the grey band at the end of a "
-                     "part and stick it under the start of the next part before weaving, so the "
-                     "tiles line up.")
+        steps.append(words.glue.format(name=name, n=n))
     if k == 4:
         heads = plan.copies
         warp = np.concatenate([heads[0], heads[2]])
@@ -269,11 +264,10 @@ def weaving_steps(weave: Weave, book, turn: float) -> tuple[list[str], list[np.n
         steps += [
             "Lay page 1 in front of you: it is turned by 45 degrees, so the strands run up-down "
             "(the warp: copies A and C) and left-right (the weft: copies B and D).",
-            "Warp: lay the A and C strips side by side on the cardboard, coloured side up, in the "
-            "order page 1 shows, arrows as on page 1. Tape the top end of each one down.",
+            f"Warp: lay the A and C strips side by side on the cardboard, {words.face_up}, in "
+            "the order page 1 shows, arrows as on page 1. Tape the top end of each one down.",
             "Weft: take the next two B or D strips from the top and weave them across the warp "
-            "together, one beside the other: where a weft strip is printed light it goes under "
-            "the strand named there, where it shows its own colour it lies on top. Push the "
+            f"together, one beside the other: {words.weft_under}. Push the "
             "pair up against the strips above. Do not twist two strips round each other first "
             "and add the rest later: that does not hold.",
             f"Repeat step {len(steps) + 3} until every strip is in. Weft pairs from the top: "
@@ -302,8 +296,7 @@ def weaving_steps(weave: Weave, book, turn: float) -> tuple[list[str], list[np.n
              "other threads the next. " if k >= 3 else "")
             + "Work from the centre outwards on the cardboard, page 1 beside you.",
             "Start with the strands of group 1 (they cross the centre): lay them as page 1 shows "
-            "and weave them through each other. Where a strip is printed light it goes under the "
-            "strand named there; where it shows its own colour it lies on top. Tape or clip every "
+            f"and weave them through each other. {words.strip_under} Tape or clip every "
             "crossing as you make it so the first strands cannot slide apart.",
             "Add the next group: weave each new strand through every strand it crosses that is "
             "already in, then tape its ends. Join every strand of a group to its neighbours "
@@ -322,11 +315,12 @@ def _mean_y(weave, centres, s, turn) -> float:
     return float(rotate(centres[visits], turn, weave.mesh.vertices.mean(axis=0))[:, 1].mean())
 
 
-def weaving_sheet(weave: Weave, book, turn: float, title: str, total: int) -> Sheet:
+def weaving_sheet(weave: Weave, book, turn: float, title: str, total: int,
+                  words: Words = PRINTED) -> Sheet:
     """Page 2: how to weave, as numbered steps, with diagrams of the weave growing."""
     area = book.area
     x0, y0, x1, y1 = area.box
-    steps, groups = weaving_steps(weave, book, turn)
+    steps, groups = weaving_steps(weave, book, turn, words)
     texts, bottom = paragraphs(steps, x0, y1, x1 - x0, numbered=True)
     picks = sorted({0, 1, len(groups) // 2, len(groups) - 1}) if len(groups) > 1 else [0]
     n = len(picks)
@@ -352,6 +346,6 @@ def weaving_sheet(weave: Weave, book, turn: float, title: str, total: int) -> Sh
             shapes.append(pattern(weave, turn, box, book.colours, shown.copy())[2])
     layers = [Layer("diagrams", "paint", tuple(shapes)), Layer("steps", "label", tuple(texts))]
     layers += page_layers(area, title, "How to weave: numbered steps; the diagrams show the "
-                          "weave growing", 2, total)
+                          "weave growing", 2, total, legend=words.legend)
     return Sheet(area.width, area.height, tuple(layers), "page 2: weaving")
 

@@ -30,7 +30,7 @@ from .pages import GAP, PageArea, page_layers, page_span, split_strip, strip_lay
 from .modules import ModulePlan, book_colours, plan_modules
 from .strip_labels import label_strips
 from .strips import Strip, build_strips, octagon_size, strip_width
-from .wording import strip_runs
+from .wording import PRINTED, Words, strip_runs
 
 ON_COVER = 24  # at most this many unnamed crossings are tried on page 1
 CURL = 0.45  # a strip wider than this share of the page (a curl) is cut into pieces
@@ -128,6 +128,58 @@ def tile_size_width(weave: Weave, tile_size: float) -> float:
     return tile_size / octagon_size(weave) * float(np.ptp(weave.mesh.vertices[:, 0]))
 
 
+@dataclass(frozen=True, eq=False)
+class StripSet:
+    """Every strip piece of a model, labelled and checked, before any page or sheet is laid
+    out: what the printed book and the card sheets share.
+
+    Parameters
+    ----------
+    plan : the module plan (symmetry, copies, extras, labels)
+    colours : (S,) strand colours
+    pieces : every strip piece, labelled, each in its own frame (long axis along x)
+    kinds : per piece, equal for congruent pieces (the packer places them alike)
+    scale : mm per model unit
+    strip_width : mm, the median strip width
+    warnings : things the maker should know (thin strips)
+    """
+
+    plan: ModulePlan
+    colours: tuple[str, ...]
+    pieces: list[Strip]
+    kinds: list[int]
+    scale: float
+    strip_width: float
+    warnings: tuple[str, ...]
+
+
+def strip_set(weaves: list[Weave], pal: Palette, area: PageArea, tile_size: float,
+              turn: float = 0.0, layout: str = "mixed") -> StripSet:
+    """The labelled strip pieces of ``weaves[-1]`` at ``tile_size``, each short enough for
+    ``area``'s box (see :func:`strand_book` for the parameters).
+
+    Raises
+    ------
+    SizeError when strips would be narrower than 8 mm or a label smaller than 2.5 mm
+    """
+    if layout not in LAYOUTS:
+        raise ValueError(f"layout must be one of {LAYOUTS}, got {layout!r}")
+    weave = weaves[-1]
+    area.check()
+    plan = plan_modules(weave, heading=-np.pi / 2 - turn)
+    colours = book_colours(weaves, plan, pal, layout)
+    width, warnings = check_strip_width(weave, tile_size, lambda t: smallest_tile_size(
+        weave, plan, colours, t, layout, area))
+    pieces, kinds = labelled_pieces(weave, plan, colours, tile_size, layout, area)
+    if not _reads(pieces):
+        small = min(t.size for p in pieces for t in p.texts)
+        need = smallest_tile_size(weave, plan, colours, tile_size, layout, area)
+        raise SizeError(f"some labels would be {small:.1f} mm tall at --tile-size {tile_size:.1f}mm"
+                        f"; labels need {MIN_CAP:g} mm: {_use(weave, need)}")
+    return StripSet(plan, tuple(colours), pieces, kinds, tile_size / octagon_size(weave), width,
+                    warnings)
+
+
 def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (210.0, 297.0),
                 tile_size: float = 20.0, margin: float = 10.0, turn: float = 0.0,
                 title: str = "weave-cut strands", layout: str = "mixed",
@@ -154,22 +206,11 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
     ------
     SizeError when strips would be narrower than 8 mm or a label smaller than 2.5 mm
     """
-    if layout not in LAYOUTS:
-        raise ValueError(f"layout must be one of {LAYOUTS}, got {layout!r}")
     weave = weaves[-1]
     area = PageArea(page[0], page[1], margin, limit)
-    area.check()
-    plan = plan_modules(weave, heading=-np.pi / 2 - turn)
-    colours = book_colours(weaves, plan, pal, layout)
-    width, warnings = check_strip_width(weave, tile_size, lambda t: smallest_tile_size(
-        weave, plan, colours, t, layout, area))
-    scale = tile_size / octagon_size(weave)
-    pieces, kinds = labelled_pieces(weave, plan, colours, tile_size, layout, area)
-    if not _reads(pieces):
-        small = min(t.size for p in pieces for t in p.texts)
-        need = smallest_tile_size(weave, plan, colours, tile_size, layout, area)
-        raise SizeError(f"some labels would be {small:.1f} mm tall at --tile-size {tile_size:.1f}mm"
-                        f"; labels need {MIN_CAP:g} mm: {_use(weave, need)}")
+    made = strip_set(weaves, pal, area, tile_size, turn, layout)
+    plan, colours, pieces, kinds = made.plan, made.colours, made.pieces, made.kinds
+    width, warnings, scale = made.strip_width, made.warnings, made.scale
     left_out = sum(len(p.left_out) for p in pieces)
 
     if layout == "module":
@@ -200,22 +241,40 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
                            tuple(range(first, first + len(sheets))), tuple(range(1, first)),
                            scale, area, width, tile_size, notes), sheets, len(sheets) + first - 1)
 
-    # the unnamed crossings are called out on page 1 where they all fit, else on pages of
-    # their own after the weaving page (and the strip pages move up)
+    laid: dict = {}
+
+    def book_for(own: int) -> tuple[StrandBook, int, int]:
+        book, laid["sheets"], total = pages(own)
+        return book, total, 3
+
+    book, extra = front_pages(weave, plan, colours, area, crossings, book_for, tile_size, turn,
+                              title)
+    return replace(book, drawing=Drawing((*extra, *laid["sheets"]), title))
+
+
+def front_pages(weave: Weave, plan: ModulePlan, colours, area: PageArea, crossings, book_for,
+                tile_size: float, turn: float, title: str, words: Words = PRINTED):
+    """(book, sheets): the assembly sheet, the weaving page and the pages of the crossings the
+    strips leave unnamed (``crossings``, see :func:`.crossings.left_out_crossings`), which are
+    called out on page 1 where they all fit, else on pages of their own. ``book_for(own)``
+    gives (the book with ``own`` such pages, its page count, the first such page's number);
+    ``words`` name what the maker holds."""
     own_pages: list = []
     missing = len(crossings) > ON_COVER
     if not missing:
-        book, sheets, total = pages(0)
-        cover, missing = assembly_sheet(weave, book, tile_size, turn, title, total, crossings)
+        book, total, first = book_for(0)
+        cover, missing = assembly_sheet(weave, book, tile_size, turn, title, total, crossings,
+                                        words)
     if missing:
-        own_pages = crossing_pages(weave, plan, colours, area, crossings, turn)
-        book, sheets, total = pages(len(own_pages))
-        cover, _ = assembly_sheet(weave, book, tile_size, turn, title, total)
-    extra = [cover, weaving_sheet(weave, book, turn, title, total)]
-    extra += [Sheet(area.width, area.height, layers + tuple(page_layers(
+        own_pages = crossing_pages(weave, plan, colours, area, crossings, turn, words)
+        book, total, first = book_for(len(own_pages))
+        cover, _ = assembly_sheet(weave, book, tile_size, turn, title, total, words=words)
+    sheets = [cover, weaving_sheet(weave, book, turn, title, total, words)]
+    sheets += [Sheet(area.width, area.height, layers + tuple(page_layers(
         area, title, "Crossings the strips do not name: the strand named first lies on top", n,
-        total)), f"page {n}: crossings") for n, layers in enumerate(own_pages, start=3)]
-    return replace(book, drawing=Drawing((*extra, *sheets), title))
+        total, legend=words.legend)), f"page {n}: crossings")
+        for n, layers in enumerate(own_pages, start=first)]
+    return book, sheets
 
 
 def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitle, colours,

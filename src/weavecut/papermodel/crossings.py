@@ -22,7 +22,7 @@ from ..weave.model import Weave
 from .pages import GAP
 from .pattern import label_spots, pattern
 from .strips import model_tiles
-from .wording import paragraphs
+from .wording import PRINTED, Words, paragraphs
 
 PLATE_PAD = 0.8  # mm of white plate round a callout's text
 LEADER = Style("#000000", 0.25)
@@ -160,16 +160,18 @@ def callout_shapes(placed: list, spots) -> tuple[list, list[Text]]:
     return shapes, [p[0] for p, _ in placed_at]
 
 
-def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float) -> list[tuple]:
+def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float,
+                   words: Words = PRINTED) -> list[tuple]:
     """The layers of the pages naming every crossing in ``crossings``
     (:func:`left_out_crossings`), without the page furniture: the pattern between two columns
     of callouts, 3 GAP clear of the widest plate (room for the leaders); as many pages as the
-    columns need, the crossings of each side dealt out over them in turn from the top."""
+    columns need, the crossings of each side dealt out over them in turn from the top.
+    ``words`` say how such a crossing looks on its strip."""
     ids = plan.labels
     x0, y0, x1, y1 = area.box
     labels = [crossing_label(ids, over, under) for _, over, under in crossings]
     note = (f"{too_small(len(crossings))} to carry a name on their strip: there the "
-            "strip is printed light with no name. Each is called out once: "
+            f"strip {words.unnamed_there}. Each is called out once: "
             f"{crossing_meaning(ids, crossings[0])}.")
     texts, bottom = paragraphs([note], x0, y1, x1 - x0)
     room = max((text_width(s, MIN_CAP) for s in labels), default=0.0) + 2 * PLATE_PAD + 3 * GAP

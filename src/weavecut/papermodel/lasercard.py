@@ -2,18 +2,24 @@
 
 Every strip is cut from card of its strand's colour: the strips are grouped by colour and packed
 onto the material's sheets, one sheet set per colour. The cut layer holds each strip's outline
-(grown by half the kerf, so the strip comes out true to size), cut after the engraving; the
-engrave layer holds, in single strokes, what the printed strip shows: the strip's ID in its own
-tile, the ID of the strand on top in every under tile (the under-crossing marks) and the
-direction arrows' outlines, and the glue band's edge on a piece of a split strip. A label tab
+(grown by half the kerf, so the strip comes out true to size), cut last; the engrave layer
+holds, in single strokes, what the printed strip shows: the strip's ID in its own tile, the ID
+of the strand on top in every under tile (the under-crossing marks) and the direction arrows'
+outlines, and the glue band's edge on a piece of a split strip; the score layer the border
+between every two tiles of a strip, so that its tiles, on top and under in turn, show on the
+card as the printed tiles' colours show on paper (a light pass: the card creases there, where
+it bends over and under). An under tile whose name is left out (too small to engrave, or to
+print) gets an engraved dot, as the assembly sheet's callouts show such a crossing. A label tab
 (the ID of a strip too small to hold it) is cut with its strip, as on paper, its ID engraved on
-it and the line where it is cut off after weaving engraved too. Every engraved line keeps
-``ENGRAVE_MARGIN`` inside its strip.
+it and the line where it is cut off after weaving engraved too. Every engraved or scored line
+keeps ``ENGRAVE_MARGIN`` inside its strip, and the score lines keep ``SCORE_CLEAR`` off the
+engraved labels.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from typing import NamedTuple
 
 import numpy as np
 import shapely
@@ -30,7 +36,7 @@ from ..layout.drawing import (
     polygons_from_shapely,
     polylines_from_lines,
 )
-from ..layout.labels import MIN_CAP, text_boxes
+from ..layout.labels import MIN_CAP, inner_centres, text_boxes
 from ..layout.lasersetup import Laser
 from .packing import pack
 from .pages import GAP
@@ -40,6 +46,9 @@ from .strips import Strip
 ENGRAVE_MARGIN = 1.0  # mm between an engraved line and its strip's edge (card scorches there)
 MIN_ENGRAVED = 1.5  # mm: a smaller label is left out
 SHEET_MARGIN = 5.0  # mm of card round every sheet (where the laser bed's stops hold it)
+SCORE_CLEAR = 0.6  # mm between a score line and an engraved label
+DOT = 0.8  # mm, the radius of the engraved ring in an under tile that carries no name
+QUICK = {"cell": 1.5, "angle_step": 30.0}  # a card colour's first packing: grid mm, turns degrees
 
 
 @dataclass(frozen=True, eq=False)
@@ -50,28 +59,44 @@ class CardCut:
     ----------
     sheets : one Drawing per sheet (engrave layer, then the cut layer)
     colours : (N,) the card colour of every sheet
-    pieces : (N,) per sheet, the strips on it, moved to their places (true outlines)
+    pieces : (N,) per sheet, the strips on it, moved to their places (true outlines); a
+        strip's ``left_out`` holds every under tile that carries no engraved name (a dot)
     texts : (N,) per sheet, per strip, the engraved labels' strokes as (coords, offsets, the
         label of every polyline)
+    scores : (N,) per sheet, the score lines (tile borders) as (n, 2) arrays
+    dots : (N,) per sheet, the engraved rings' centres as (n, 2)
     report : cut length, outlines, duplicates, smallest feature over every sheet
     smallest_label : mm, the smallest engraved label
+    fill : the share of the sheets' area inside their margins that the strips cover
     """
 
     sheets: tuple[Drawing, ...]
     colours: tuple[str, ...]
     pieces: tuple[tuple[Strip, ...], ...]
     texts: tuple[tuple[tuple[NDArray, NDArray], ...], ...]
+    scores: tuple[tuple[NDArray, ...], ...]
+    dots: tuple[NDArray, ...]
     report: CutReport
     smallest_label: float
+    fill: float
 
 
-def engraved_labels(strips: list[Strip], margin: float = ENGRAVE_MARGIN
-                    ) -> list[tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.int64],
-                                    float]]:
+class Engraved(NamedTuple):
+    """A strip's engraved labels: strokes (coords, offsets, the label of every polyline), the
+    smallest height, and the labels left out (too small to engrave)."""
+
+    coords: NDArray[np.float64]
+    offsets: NDArray[np.int64]
+    which: NDArray[np.int64]
+    smallest: float
+    dropped: tuple[Text, ...]
+
+
+def engraved_labels(strips: list[Strip], margin: float = ENGRAVE_MARGIN) -> list[Engraved]:
     """Per strip, single-stroke labels where the printed ones are, each as large as fits (up to
     the printed size) in its printed box (printed boxes do not overlap), ``margin`` inside the
-    strip: (coords, offsets, the label of every polyline, smallest height). All strips' labels
-    are fitted at once."""
+    strip; a label under ``MIN_ENGRAVED`` is left out. All strips' labels are fitted at
+    once."""
     texts = [[t for t in s.texts if isinstance(t, Text)] for s in strips]
     owner = np.repeat(np.arange(len(strips)), [len(t) for t in texts])
     flat = [t for group in texts for t in group]
@@ -88,13 +113,82 @@ def engraved_labels(strips: list[Strip], margin: float = ENGRAVE_MARGIN
         mine = np.flatnonzero(owner == k)
         keep = mine[heights[mine] >= MIN_ENGRAVED]
         if not group:
-            out.append((np.zeros((0, 2)), np.zeros(1, dtype=np.int64), np.zeros(0, dtype=np.int64),
-                        np.inf))
+            out.append(Engraved(np.zeros((0, 2)), np.zeros(1, dtype=np.int64),
+                                np.zeros(0, dtype=np.int64), np.inf, ()))
             continue
         coords, offsets, which = strokefont.labels([flat[i].text for i in keep.tolist()],
                                                    centres[keep], heights[keep], angles[keep])
-        out.append((coords, offsets, which, float(heights[keep].min()) if len(keep) else np.inf))
+        out.append(Engraved(coords, offsets, which,
+                            float(heights[keep].min()) if len(keep) else np.inf,
+                            tuple(flat[i] for i in sorted(set(mine.tolist()) - set(keep.tolist())))))
     return out
+
+
+def unnamed_tiles(strip: Strip, dropped: tuple[Text, ...]) -> tuple[int, ...]:
+    """The under tiles of ``strip`` that carry no name on card: those the printed strip leaves
+    unnamed, and those whose name was too small to engrave (``dropped``: each the under tile
+    of its name nearest to it)."""
+    out = set(strip.left_out)
+    under = np.flatnonzero(~strip.over)
+    for t in dropped:  # labels left out, a few at most
+        mine = [int(i) for i in under if strip.names[i] == t.text]
+        if mine:
+            at = shapely.Point(t.x, t.y)
+            out.add(min(mine, key=lambda i: (strip.tiles[i].distance(at), i)))
+    return tuple(sorted(out))
+
+
+def score_lines(strips: list[Strip], engraved: list[Engraved],
+                margin: float = ENGRAVE_MARGIN) -> list[list[NDArray[np.float64]]]:
+    """Per strip, the borders between its consecutive tiles (not the one a glue band's edge
+    already marks), ``margin`` inside the strip and ``SCORE_CLEAR`` off its engraved labels
+    and arrows."""
+    pairs = [(k, i) for k, s in enumerate(strips)
+             for i in range(len(s.tiles) - 1 - (s.glue is not None))]
+    if not pairs:
+        return [[] for _ in strips]
+    owner = np.array([k for k, _ in pairs], dtype=np.int64)
+    first = np.array([strips[k].tiles[i] for k, i in pairs], dtype=object)
+    second = np.array([strips[k].tiles[i + 1] for k, i in pairs], dtype=object)
+    borders = shapely.intersection(shapely.boundary(first), shapely.boundary(second))
+    keep_out = []
+    for s, e in zip(strips, engraved):  # strips: their labels' hulls and their arrows
+        label = np.repeat(e.which, np.diff(e.offsets))
+        hulls = (shapely.convex_hull(shapely.multipoints(e.coords, indices=label)).tolist()
+                 if len(e.coords) else [])
+        keep_out.append(shapely.union_all([*hulls, *s.arrows.tolist()]))
+    inner = shapely.buffer([s.cut for s in strips], -margin, join_style="mitre")
+    room = shapely.difference(inner, shapely.buffer(keep_out, SCORE_CLEAR))
+    lines = shapely.line_merge(shapely.intersection(borders, room[owner]))
+    out: list[list[NDArray[np.float64]]] = [[] for _ in strips]
+    for k, line in zip(owner.tolist(), lines.tolist()):  # borders
+        out[k] += [np.asarray(g.coords) for g in shapely.get_parts(line).tolist()
+                   if g.geom_type == "LineString" and g.length > 1e-6]
+    return out
+
+
+def dot_centres(strip: Strip, tiles: tuple[int, ...], margin: float = ENGRAVE_MARGIN
+                ) -> NDArray[np.float64]:
+    """(n, 2) where the ring goes in each of ``tiles``: the centre of the largest circle in
+    the tile, ``margin`` inside the strip (clear of the tile's borders where the tile leaves
+    room, of the strip's edge where it does not)."""
+    if not tiles:
+        return np.zeros((0, 2))
+    inner = shapely.buffer(strip.cut, -margin, join_style="mitre")
+    mine = strip.tiles[list(tiles)]
+    room = shapely.buffer(shapely.intersection(mine, inner), -DOT - 0.2, join_style="mitre")
+    tight = shapely.is_empty(room)
+    room[tight] = shapely.intersection(mine[tight], shapely.buffer(inner, -DOT, join_style="mitre"))
+    room = room[~shapely.is_empty(room)]
+    return inner_centres(room) if len(room) else np.zeros((0, 2))
+
+
+def rings(centres: NDArray[np.float64], radius: float = DOT, n: int = 16
+          ) -> list[NDArray[np.float64]]:
+    """Closed ``n``-gon rings of ``radius`` round every centre (an engraved dot)."""
+    a = np.linspace(0.0, 2 * np.pi, n + 1)
+    circle = radius * np.column_stack([np.cos(a), np.sin(a)])
+    return [c + circle for c in np.asarray(centres).reshape(-1, 2)]
 
 
 def marks(strip: Strip, margin: float = ENGRAVE_MARGIN) -> list[NDArray[np.float64]]:
@@ -121,6 +215,18 @@ def colour_groups(pieces: list[Strip], colours) -> dict[str, list[Strip]]:
     return groups
 
 
+def pack_card(shapes, width: float, height: float, gap: float) -> list:
+    """:func:`.packing.pack` for one card colour: first on a coarse grid with coarse turns
+    (``QUICK``), which is enough where the strips fit one sheet (the fewest there is); else
+    packed as tightly as the paper strips, and the better of the two kept (fewer sheets; the
+    tight one on a tie)."""
+    quick = pack(shapes, width, height, gap, **QUICK)
+    if max(pl.page for pl in quick) == 0:
+        return quick
+    tight = pack(shapes, width, height, gap)
+    return quick if max(pl.page for pl in quick) < max(pl.page for pl in tight) else tight
+
+
 def card_sheets(pieces: list[Strip], colours, las: Laser, kerf: float,
                 sheet: tuple[float, float], title: str = "weave-cut strands: card",
                 margin: float = SHEET_MARGIN) -> CardCut:
@@ -137,59 +243,41 @@ def card_sheets(pieces: list[Strip], colours, las: Laser, kerf: float,
     width, height = sheet
     gap = max(GAP, kerf)
     cut_style, engrave_style = las.style("cut"), las.style("engrave")
-    drawings, sheet_colours, placed_all, texts_all = [], [], [], []
+    score_style = las.style("score")
+    drawings, sheet_colours, placed_all, texts_all, scores_all, dots_all = [], [], [], [], [], []
     report, smallest = cut_report([]), np.inf
     groups = colour_groups(pieces, colours)
     for colour, group in groups.items():  # card colours
-        places = pack([nesting.offset(np.array([p.cut], dtype=object), kerf)[0]
-                       for p in group], width - 2 * margin, height - 2 * margin, gap)
+        places = pack_card(nesting.offset(np.array([p.cut for p in group], dtype=object), kerf),
+                           width - 2 * margin, height - 2 * margin, gap)
         moved = [p.moved(matmul(affine(0.0, (margin, margin)), pl.matrix()), pl.angle)
                  for p, pl in zip(group, places)]
         for s in range(max(pl.page for pl in places) + 1):  # this colour's sheets
             here = [m for m, pl in zip(moved, places) if pl.page == s]
             labels = engraved_labels(here)
-            smallest = min([smallest] + [h for *_, h in labels])
+            here = [replace(m, left_out=unnamed_tiles(m, e.dropped)) for m, e in zip(here, labels)]
+            smallest = min([smallest] + [e.smallest for e in labels])
+            dots = [dot_centres(m, m.left_out) for m in here]
             lines = [c[a:b] for c, o, *_ in labels for a, b in zip(o[:-1], o[1:])]
-            lines += [r for m in here for r in marks(m)]
+            lines += [r for m in here for r in marks(m)] + rings(np.concatenate(dots))
+            scores = score_lines(here, labels)
             cuts = nesting.offset(np.array([m.cut for m in here], dtype=object), kerf)
             report = report + cut_report(cuts)
             n = len(drawings) + 1
             layers = (Layer("engrave", "engrave", (polylines_from_lines(lines, engrave_style),)),
+                      Layer("score", "score", (polylines_from_lines(
+                          [line for group in scores for line in group], score_style),)),
                       cut_layer(ordered_outlines(cuts, (0.0, height)), cut_style))
             drawings.append(Drawing((Sheet(width, height, layers, f"card {colour}, sheet {n}"),),
                                     f"{title}, sheet {n}: card {colour}",
                                     (("card", colour),)))
             sheet_colours.append(colour)
             placed_all.append(tuple(here))
-            texts_all.append(tuple((c, o, w) for c, o, w, _ in labels))
+            texts_all.append(tuple((e.coords, e.offsets, e.which) for e in labels))
+            scores_all.append(tuple(line for group in scores for line in group))
+            dots_all.append(np.concatenate(dots))
+    covered = sum(p.cut.area for p in pieces)
+    room = (width - 2 * margin) * (height - 2 * margin) * len(drawings)
     return CardCut(tuple(drawings), tuple(sheet_colours), tuple(placed_all), tuple(texts_all),
-                   report, float(smallest))
-
-
-def card_colour_sheet(cut: CardCut, size: tuple[float, float], title: str,
-                      margin: float = 15.0) -> Sheet:
-    """A page saying which card colour every strand is cut from, and on which sheets."""
-    width, height = size
-    shapes: list = [Text(margin, height - margin - 6.0, "Card colours: cut every strip from card "
-                         "of its strand's colour", 5.0),
-                    Text(margin, height - margin - 12.0, title, MIN_CAP)]
-    y = height - margin - 24.0
-    swatches, fills = [], []
-    for colour in dict.fromkeys(cut.colours):  # card colours, in order
-        numbers = [n + 1 for n, c in enumerate(cut.colours) if c == colour]
-        labels = sorted({p.label.split(" ")[0] for n in numbers for p in cut.pieces[n - 1]},
-                        key=lambda s: (s[0], len(s), s))
-        swatches.append(shapely.box(margin, y - 1.0, margin + 14.0, y + 7.0))
-        fills.append(colour)
-        shapes.append(Text(margin + 18.0, y + 3.5, f"card {colour}: sheets "
-                           f"{', '.join(map(str, numbers))}", 4.0))
-        shapes.append(Text(margin + 18.0, y - 1.0, "strands " + _listed(labels), MIN_CAP))
-        y -= 14.0
-    shapes.insert(0, polygons_from_shapely(swatches, Style("#333333", 0.2), fills))
-    return Sheet(width, height, (Layer("card colours", "label", tuple(shapes)),), "card colours")
-
-
-def _listed(labels: list[str], most: int = 24) -> str:
-    more = f" and {len(labels) - most} more" if len(labels) > most else ""
-    return ", ".join(labels[:most]) + more
-
+                   tuple(scores_all), tuple(dots_all), report, float(smallest),
+                   covered / max(room, 1e-12))

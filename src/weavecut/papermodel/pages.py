@@ -43,12 +43,15 @@ def page_span(pages, short: bool = False) -> str:
 @dataclass(frozen=True)
 class PageArea:
     """A page and the rectangle strips may use, all in mm; ``limit`` (x0, y0, x1, y1), when
-    given, bounds that rectangle further (the area a cutter reads)."""
+    given, bounds that rectangle further (the area a cutter reads). A sheet without
+    ``furniture`` (a sheet of card: no title, page number or legend) gives strips all of it
+    inside the margin."""
 
     width: float
     height: float
     margin: float
     limit: tuple[float, float, float, float] | None = None
+    furniture: bool = True
 
     @property
     def footer(self) -> float:
@@ -58,7 +61,8 @@ class PageArea:
     @property
     def box(self) -> tuple[float, float, float, float]:
         m = self.margin
-        box = (m, m + self.footer + GAP, self.width - m, self.height - m - HEADER - GAP)
+        box = ((m, m + self.footer + GAP, self.width - m, self.height - m - HEADER - GAP)
+               if self.furniture else (m, m, self.width - m, self.height - m))
         if self.limit is None:
             return box
         return (*np.maximum(box[:2], self.limit[:2]).tolist(),
@@ -211,10 +215,11 @@ LEGEND = (
 
 def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: int,
                 sample: str = "#3e9fb0", glue: bool = False, folds: bool = False,
-                tabs: bool = False) -> list[Layer]:
+                tabs: bool = False, legend: bool = True) -> list[Layer]:
     """Title, page number, a 100 mm scale bar and a legend for one page (all text at least
     ``MIN_CAP`` tall, in the margins outside the printable box); ``glue``, ``folds`` and ``tabs``
-    add their entries."""
+    add their entries. Without ``legend`` (pages that neither show printed strips nor need
+    printing at true scale) the bar and the legend are left out."""
     w, h, m = area.width, area.height, area.margin
     number_text = f"page {number} / {total}"
     room = w - 2 * m - text_width(number_text, 3.2) - 4
@@ -224,6 +229,8 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
     below = min(h - m - 8.5, text_box(head).bounds[1] - FURNITURE_GAP - SMALL)  # the subtitle
     texts = [head, Text(w - m, h - m - 4.0, number_text, 3.2, "end"),
              Text(m, below, _wrap(subtitle, w - 2 * m, 1)[0], SMALL)]
+    if not legend:
+        return [Layer("page", "label", tuple(texts))]
     bar, marks, caption = scale_bar(m, m + 1.5)
     shapes: list = [bar, marks, caption]
     # legend: right of the bar on wide pages, above its caption otherwise (FURNITURE_GAP clear

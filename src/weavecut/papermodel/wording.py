@@ -1,7 +1,10 @@
-"""The words on a strand book's pages: wrapped paragraphs of running text, and which page holds
-which strip ("p. 3: A1-A4, B2")."""
+"""The words on a strand book's pages: wrapped paragraphs of running text, which page holds
+which strip ("p. 3: A1-A4, B2"), and the sentences that depend on what the maker holds: strips
+printed on paper (``PRINTED``) or laser-cut from coloured card (``CARD``)."""
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 from ..layout.drawing import Text
 from ..layout.labels import text_width, wrap
@@ -58,3 +61,100 @@ def page_index(book) -> str:
         labels = {p.label.split(" ")[0] for k, p in book.pieces if k == n}
         parts.append(f"p. {n}: {strip_runs(labels)}")
     return "; ".join(parts)
+
+
+@dataclass(frozen=True)
+class Words:
+    """The sentences of a flat model's assembly and weaving pages that name what the maker
+    holds (the rest is the same for every product).
+
+    Parameters
+    ----------
+    scale : after the model's size on page 1 (how to print)
+    sources : page 1's sentence on where the strips come from and where each one is; None:
+        the printed book's ("Print the strip pages once (p. 3-8). Where each strip is: ...")
+    ids : page 1's sentence on the pattern's IDs and arrows
+    unnamed_mark : how a crossing too small to name looks on its strip ("... (X there)")
+    unnamed_there : the same for the crossing pages ("there the strip X")
+    drawn : what page 1's pattern is drawn at a fraction of
+    need, cut, tab, unnamed, glue : weaving steps: what to have, how to cut and sort, label
+        tabs, unnamed crossings (``{where}``, ``{meaning}``), strips in parts (``{name}``,
+        ``{n}``)
+    face_up : which side of a strip lies up
+    weft_under, strip_under : where a strip goes under (a weft strip; any strip)
+    legend : the pages carry the printed strips' scale bar and legend
+    """
+
+    scale: str
+    sources: str | None
+    ids: str
+    unnamed_mark: str
+    unnamed_there: str
+    drawn: str
+    need: str
+    cut: str
+    tab: str
+    unnamed: str
+    glue: str
+    face_up: str
+    weft_under: str
+    strip_under: str
+    legend: bool = True
+
+
+PRINTED = Words(
+    scale=" Print at 100 % (no fit to page).",
+    sources=None,
+    ids="Each strand's ID is printed at both ends and along it; arrows show the way its strip "
+        "reads. Weaving steps: page 2.",
+    unnamed_mark="printed light with no name there",
+    unnamed_there="is printed light with no name",
+    drawn="its printed size",
+    need="You need: the printed pages, scissors or a craft knife, tape or paper clips, a glue "
+         "stick and a piece of cardboard a little larger than the model.",
+    cut="Cut out every strip along its red line. Sort the strips by ID: the ID printed in the "
+        "strip's own colour is its name on page 1; a small ID in a light part names the strand "
+        "that lies on top there.",
+    tab="Strips too small for their ID carry it on a small tab at one end: cut the tab out with "
+        "the strip and cut it off along its dashed line once the strip is woven in.",
+    unnamed="A light part with no name is a crossing too small to name on the strip: it is "
+            "called out on {where} ({meaning}).",
+    glue="Some strips are printed in parts, numbered beside their ID (strip {name}: \"1/{n}\" to "
+         "\"{n}/{n}\"): spread glue on the grey band at the end of a part and stick it under the "
+         "start of the next part before weaving, so the tiles line up.",
+    face_up="coloured side up",
+    weft_under="where a weft strip is printed light it goes under the strand named there, where "
+               "it shows its own colour it lies on top",
+    strip_under="Where a strip is printed light it goes under the strand named there; where it "
+                "shows its own colour it lies on top.",
+)
+
+CARD = Words(
+    scale="",
+    sources=None,  # the card kit names its sheets (cardkit.card_words)
+    ids="The pattern below shows each strand's ID at both ends and along it, and arrows the way "
+        "its strip reads (the arrows engraved on the strip). Weaving steps: page 2.",
+    unnamed_mark="an engraved dot and no name there",
+    unnamed_there="has an engraved dot and no name",
+    drawn="the model's size",
+    need="You need: the card strips, tape or paper clips, a glue stick and a piece of cardboard "
+         "a little larger than the model.",
+    cut="Take the strips out of the card sheets and sort them by ID: the large engraved ID is the "
+        "strip's name on page 1. Score lines across a strip mark where one tile ends and the "
+        "next begins: its tiles lie on top and under in turn, and a small engraved ID in a tile "
+        "names the strand that lies on top there.",
+    tab="Strips too small for their ID carry it on a small tab at one end, cut with the strip: "
+        "cut the tab off along its engraved line once the strip is woven in.",
+    unnamed="A tile with an engraved dot and no name is a crossing too small to name on the "
+            "strip: the strip goes under there too, and the crossing is called out on {where} "
+            "({meaning}).",
+    glue="Some strips are cut in parts, numbered beside their ID (strip {name}: \"1/{n}\" to "
+         "\"{n}/{n}\"): spread glue on the end of a part beyond its engraved line and stick "
+         "it under the start of the next part before weaving, so the tiles line up.",
+    face_up="engraved side up",
+    weft_under="where a weft strip carries a small engraved ID it goes under the strand of that "
+               "ID, elsewhere it lies on top",
+    strip_under="Where a strip carries a small engraved ID it goes under the strand of that ID; "
+                "elsewhere it lies on top.",
+    legend=False,
+)
