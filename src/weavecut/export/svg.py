@@ -115,9 +115,16 @@ def _pairs(offsets):
 
 
 def _points(coords, height: float) -> list[str]:
+    """Every point as ``x,y`` (y flipped), each number as ``_decimal`` writes it: below 1e16
+    that is its ``repr`` without a trailing ".0", so one ``repr`` of the list serves all."""
     xy = np.round(np.column_stack([coords[:, 0], height - coords[:, 1]]), DECIMALS) + 0.0
-    text = [_decimal(v) for v in xy.ravel().tolist()]
-    return [f"{x},{y}" for x, y in zip(text[::2], text[1::2])]
+    if not len(xy):
+        return []
+    if not np.abs(xy).max() < 1e16:  # 1e+16 and up (or not finite): number by number
+        text = [_decimal(v) for v in xy.ravel().tolist()]
+        return [f"{x},{y}" for x, y in zip(text[::2], text[1::2])]
+    text = repr(xy.tolist()).replace(".0,", ",").replace(".0]", "]")
+    return text[2:-2].replace("], [", "\0").replace(", ", ",").split("\0")
 
 
 def _n(x: float) -> str:
