@@ -13,6 +13,7 @@ import numpy as np
 
 from ..layout.drawing import Drawing, Layer, Polygons, Text
 from . import dxf_skeleton as skeleton
+from .numbers import shortest
 
 DECIMALS = 6  # mm: 1 nm, far below any cutter; the last bits of a float never reach the file
 VERSION = "R2004"
@@ -128,11 +129,12 @@ def _lwpolylines(doc, shape, closed: bool, layer: Layer, name: str, dx: float) -
 
 def _points(coords, dx: float) -> list[str]:
     """Every point as ``x\\n 20\\ny`` (moved ``dx`` along x and rounded to ``DECIMALS``, no
-    negative zero), as ``repr`` writes floats (what ezdxf writes): one ``repr`` of the list."""
-    xy = mm(coords, dx)
-    if not len(xy):
-        return []
-    return repr(xy.tolist())[2:-2].replace("], [", "\0").replace(", ", "\n 20\n").split("\0")
+    negative zero), as ``repr`` writes floats (what ezdxf writes)."""
+    xy = (np.asarray(coords, dtype=float).reshape(-1, 2) + (dx, 0.0)).ravel()
+    text, slow = shortest(xy, DECIMALS, point_zero=True)
+    for i in slow.tolist():  # an exponent (below 1e-4, 1e16 and up), 1e9 and up, not finite
+        text[i] = repr(float(np.round(xy[i], DECIMALS)) + 0.0)
+    return list(map("\n 20\n".join, zip(text[0::2], text[1::2])))
 
 
 def mm(xy, dx: float) -> np.ndarray:
