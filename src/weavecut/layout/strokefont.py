@@ -22,9 +22,9 @@ import shapely
 from numpy.typing import NDArray
 
 from ..numeric import turn
+from .hershey_futural import FONT, GLYPHS  # Hershey Simplex Roman: the engravers' font
 from .labels import largest_fit
 
-FONT = "futural"  # Hershey Simplex Roman: single strokes, the engravers' font
 _CAP, _BASE = -12, 9  # raw cap and base lines (raw y points down)
 
 
@@ -39,12 +39,17 @@ def _font():
 
 @lru_cache(maxsize=256)
 def _glyph(char: str) -> tuple[tuple[NDArray[np.float64], ...], float]:
-    """Strokes of one character at cap height 1 (x from its left side), and its advance."""
-    glyph = next(iter(_font().glyphs_for_text(char)))
+    """Strokes of one character at cap height 1 (x from its left side), and its advance
+    (printable ASCII from ``hershey_futural``, other characters from the package)."""
+    if char in GLYPHS:
+        left, width, raw = GLYPHS[char]
+    else:
+        glyph = next(iter(_font().glyphs_for_text(char)))
+        left, width, raw = glyph.left_offset, glyph.char_width, glyph.strokes
     scale = 1.0 / (_BASE - _CAP)
-    strokes = tuple(np.array([((x - glyph.left_offset) * scale, (_BASE - y) * scale)
-                              for x, y in stroke]) for stroke in glyph.strokes if len(stroke) > 1)
-    return strokes, glyph.char_width * scale
+    strokes = tuple(np.array([((x - left) * scale, (_BASE - y) * scale) for x, y in stroke])
+                    for stroke in raw if len(stroke) > 1)
+    return strokes, width * scale
 
 
 def text_strokes(text: str, height: float) -> tuple[NDArray[np.float64], NDArray[np.int64],

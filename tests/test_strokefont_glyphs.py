@@ -1,0 +1,41 @@
+"""The stroke font's table of printable ASCII (``layout/hershey_futural.py``) is the
+Hershey-Fonts package's font today, and a glyph drawn from it is the glyph drawn from the
+package; engraving numbers loads no Hershey-Fonts."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import numpy as np
+from HersheyFonts import HersheyFonts
+
+from weavecut.layout import hershey_futural, strokefont
+
+
+def test_the_table_is_the_packages_font():
+    # after a Hershey-Fonts upgrade: python -m weavecut.layout.hershey_futural > (this file)
+    with open(hershey_futural.__file__, encoding="utf-8") as f:
+        assert f.read() == hershey_futural.source()
+
+
+def test_every_glyph_is_drawn_as_from_the_package():
+    font = HersheyFonts()
+    font.load_default_font("futural")
+    scale = 1 / 21
+    for code in range(32, 127):
+        (glyph,) = font.glyphs_for_text(chr(code))
+        strokes, advance = strokefont._glyph(chr(code))
+        want = [np.array([((x - glyph.left_offset) * scale, (9 - y) * scale) for x, y in s])
+                for s in glyph.strokes if len(s) > 1]
+        assert advance == glyph.char_width * scale
+        assert len(strokes) == len(want)
+        assert all(np.array_equal(a, b) for a, b in zip(strokes, want))
+
+
+def test_numbers_are_engraved_without_the_package():
+    code = ("import sys\n"
+            "from weavecut.layout.strokefont import text_strokes\n"
+            "coords, offsets, width = text_strokes('F12 Ab-9', 3.0)\n"
+            "assert len(coords) and 'HersheyFonts' not in sys.modules\n")
+    subprocess.run([sys.executable, "-c", code], check=True)
