@@ -108,6 +108,15 @@ def is_closed(path: NDArray) -> bool:
     return len(path) > 2 and bool(np.allclose(path[0], path[-1]))
 
 
+def are_closed(paths: list[NDArray]) -> NDArray[np.bool_]:
+    """``is_closed`` of every path, at once (``allclose`` is all of ``isclose``)."""
+    if not paths:
+        return np.zeros(0, dtype=bool)
+    ends = np.array([(p[0], p[-1]) for p in paths], dtype=float)
+    return (np.array([len(p) for p in paths]) > 2) & np.isclose(ends[:, 0], ends[:, 1]).all(
+        axis=1)
+
+
 TWO_OPT_WINDOW = 500  # longest run of paths 2-opt reverses
 
 
@@ -122,7 +131,7 @@ def order_paths(paths: list[NDArray], start=(0.0, 0.0), passes: int = 30
     todo = list(range(len(paths)))
     heads = np.array([p[0] for p in paths])
     tails = np.array([p[-1] for p in paths])
-    closed = np.array([is_closed(p) for p in paths])
+    closed = are_closed(paths)
     chosen: list[NDArray] = []
     alive = np.ones(len(paths), dtype=bool)
     for _ in todo:  # greedy nearest neighbour, one path per step
