@@ -8,7 +8,9 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from weavecut.layout.cutpaths import are_closed, is_closed, order_paths, travel_length
+from weavecut.layout.cutpaths import (_two_opt, are_closed, is_closed, order_paths,
+                                      travel_length)
+from weavecut.numeric import snap
 
 
 def test_travel_of_one_path_is_the_way_to_its_start():
@@ -45,3 +47,45 @@ def test_paths_closed_at_once_as_one_by_one(specs):
         p[-1] = p[0] + gap
         paths.append(p)
     assert are_closed(paths).tolist() == [is_closed(p) for p in paths]
+
+
+def two_opt_by_the_book(paths, start, passes, window):
+    """2-opt as first written: every run's gain measured anew from the paths' ends."""
+    n = len(paths)
+    if n < 3:
+        return paths
+    s, e = np.array([p[0] for p in paths]), np.array([p[-1] for p in paths])
+    order, flipped = np.arange(n), np.zeros(n, dtype=bool)
+    for _ in range(passes):
+        improved = False
+        for i in range(n - 1):
+            prev = start if i == 0 else e[i - 1]
+            j = np.arange(i + 1, min(n, i + 1 + window))
+            nxt = np.vstack([s[i + 1:], [np.nan, np.nan]])[1:len(j) + 1]
+            old = np.hypot(*(prev - s[i])) + np.where(j < n - 1, np.hypot(*(e[j] - nxt).T), 0.0)
+            new = np.hypot(*(prev - e[j]).T) + np.where(j < n - 1, np.hypot(*(s[i] - nxt).T), 0.0)
+            gain = snap(old - new)
+            k = int(np.argmax(gain))
+            if gain[k] > 0:
+                run = slice(i, int(j[k]) + 1)
+                order[run] = order[run][::-1].copy()
+                flipped[run] = ~flipped[run][::-1]
+                s[run], e[run] = e[run][::-1].copy(), s[run][::-1].copy()
+                improved = True
+        if not improved:
+            break
+    return [paths[o][::-1] if f else paths[o] for o, f in zip(order.tolist(), flipped.tolist())]
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.integers(0, 60), st.integers(1, 70), st.integers(0, 2**16), st.booleans())
+def test_two_opt_takes_the_runs_the_book_takes(n, window, seed, grid):
+    # the same runs reversed in the same order, to the last bit (grid: ties and equal gains)
+    rng = np.random.default_rng(seed)
+    size = (lambda: rng.integers(0, 6, size=(int(rng.integers(1, 4)), 2)).astype(float)) if grid \
+        else (lambda: rng.uniform(0, 100, size=(int(rng.integers(1, 4)), 2)))
+    paths = [size() for _ in range(n)]
+    start = rng.uniform(0, 100, 2)
+    got = _two_opt(paths, start, 30, window)
+    want = two_opt_by_the_book(paths, start, 30, window)
+    assert len(got) == len(want) and all(np.array_equal(a, b) for a, b in zip(got, want))
