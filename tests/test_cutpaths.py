@@ -37,16 +37,19 @@ def test_ordering_keeps_every_path_and_no_reversal_helps(n, seed):
 
 
 @settings(max_examples=100, deadline=None)
-@given(st.lists(st.tuples(st.integers(1, 5), st.sampled_from([0.0, 1e-9, 1e-6, 1e-3, 1.0]),
+@given(st.lists(st.tuples(st.integers(0, 5), st.sampled_from([0.0, 1e-9, 1e-6, 1e-3, 1.0]),
                           st.floats(-1e6, 1e6)), max_size=8))
 def test_paths_closed_at_once_as_one_by_one(specs):
     # loops that end where they start, a hair away, or not at all, near and far from 0
     paths = []
-    for n, gap, at in specs:
+    for n, gap, at in specs:  # (n = 0: a path without points)
         p = np.full((n, 2), at) + np.arange(n)[:, None] * [1.0, 2.0]
-        p[-1] = p[0] + gap
+        if n:
+            p[-1] = p[0] + gap
         paths.append(p)
     assert are_closed(paths).tolist() == [is_closed(p) for p in paths]
+    assert are_closed(paths, 2).tolist() == [len(p) > 1 and bool(np.allclose(p[0], p[-1]))
+                                             for p in paths]
 
 
 def two_opt_by_the_book(paths, start, passes, window):

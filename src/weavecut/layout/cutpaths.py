@@ -108,13 +108,15 @@ def is_closed(path: NDArray) -> bool:
     return len(path) > 2 and bool(np.allclose(path[0], path[-1]))
 
 
-def are_closed(paths: list[NDArray]) -> NDArray[np.bool_]:
-    """``is_closed`` of every path, at once (``allclose`` is all of ``isclose``)."""
+def are_closed(paths: list[NDArray], fewest: int = 3) -> NDArray[np.bool_]:
+    """For every path at once, whether it has at least ``fewest`` points and ends where it
+    starts (``is_closed`` by default; ``allclose`` is all of ``isclose``)."""
     if not paths:
         return np.zeros(0, dtype=bool)
-    ends = np.array([(p[0], p[-1]) for p in paths], dtype=float)
-    return (np.array([len(p) for p in paths]) > 2) & np.isclose(ends[:, 0], ends[:, 1]).all(
-        axis=1)
+    ends = np.array([(p[0], p[-1]) if len(p) else np.full((2, 2), np.nan) for p in paths],
+                    dtype=float)
+    return (np.array([len(p) for p in paths]) >= fewest) & np.isclose(
+        ends[:, 0], ends[:, 1]).all(axis=1)
 
 
 TWO_OPT_WINDOW = 500  # longest run of paths 2-opt reverses
