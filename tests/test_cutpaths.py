@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 
 from weavecut.layout.cutpaths import (_two_opt, are_closed, is_closed, order_paths,
                                       travel_length)
+from weavecut.layout.cutpaths import FAR
 from weavecut.numeric import snap
 
 
@@ -92,3 +93,40 @@ def test_two_opt_takes_the_runs_the_book_takes(n, window, seed, grid):
     got = _two_opt(paths, start, 30, window)
     want = two_opt_by_the_book(paths, start, 30, window)
     assert len(got) == len(want) and all(np.array_equal(a, b) for a, b in zip(got, want))
+
+
+def order_by_the_book(paths, start=(0.0, 0.0)):
+    """order_paths as first written: the nearest head and the nearest tail weighed apart."""
+    here = np.asarray(start, dtype=float)
+    heads, tails = np.array([p[0] for p in paths]), np.array([p[-1] for p in paths])
+    closed = np.array([is_closed(p) for p in paths])
+    chosen, alive = [], np.ones(len(paths), dtype=bool)
+    for _ in paths:
+        d_head = np.where(alive, snap(np.hypot(*(heads - here).T)), FAR)
+        d_tail = np.where(alive & ~closed, snap(np.hypot(*(tails - here).T)), FAR)
+        i_h, i_t = int(np.argmin(d_head)), int(np.argmin(d_tail))
+        i, path = (i_t, paths[i_t][::-1]) if d_tail[i_t] < d_head[i_h] else (i_h, paths[i_h])
+        if closed[i]:
+            j = int(np.argmin(snap(np.hypot(*(path[:-1] - here).T))))
+            path = np.concatenate([path[j:-1], path[:j + 1]])
+        alive[i] = False
+        chosen.append(path)
+        here = path[-1]
+    return two_opt_by_the_book(chosen, np.asarray(start, dtype=float), 30, 500)
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.integers(1, 40), st.integers(0, 2**16))
+def test_paths_ordered_as_the_book_orders_them(n, seed):
+    # on a coarse grid: ties between heads, tails and loops' corners everywhere
+    rng = np.random.default_rng(seed)
+    paths = []
+    for _ in range(n):
+        p = rng.integers(0, 5, size=(int(rng.integers(1, 5)), 2)).astype(float)
+        if rng.random() < 0.4:
+            p = np.vstack([p, p[:1]])  # a loop
+        paths.append(p)
+    got, end = order_paths(paths, (1.0, 2.0))
+    want = order_by_the_book(paths, (1.0, 2.0))
+    assert len(got) == len(want) and all(np.array_equal(a, b) for a, b in zip(got, want))
+    assert end == tuple(want[-1][-1])

@@ -130,24 +130,19 @@ def order_paths(paths: list[NDArray], start=(0.0, 0.0), passes: int = 30
     if not paths:
         return [], tuple(start)
     here = np.asarray(start, dtype=float)
-    todo = list(range(len(paths)))
-    heads = np.array([p[0] for p in paths])
-    tails = np.array([p[-1] for p in paths])
+    n = len(paths)
+    ends = np.array([p[0] for p in paths] + [p[-1] for p in paths])  # heads, then tails
     closed = are_closed(paths)
+    usable = np.concatenate([np.ones(n, dtype=bool), ~closed])  # a loop is entered at its head
     chosen: list[NDArray] = []
-    alive = np.ones(len(paths), dtype=bool)
-    for _ in todo:  # greedy nearest neighbour, one path per step
-        d_head = np.where(alive, snap(np.hypot(*(heads - here).T)), FAR)
-        d_tail = np.where(alive & ~closed, snap(np.hypot(*(tails - here).T)), FAR)
-        i_h, i_t = int(np.argmin(d_head)), int(np.argmin(d_tail))  # nearest; ties: first
-        if d_tail[i_t] < d_head[i_h]:
-            i, path = i_t, paths[i_t][::-1]
-        else:
-            i, path = i_h, paths[i_h]
+    for _ in range(n):  # greedy nearest neighbour, one path per step
+        d = np.where(usable, snap(_hypot(ends - here)), FAR)
+        k = int(np.argmin(d))  # the nearest end; ties: a head first, then the first path
+        i, path = (k, paths[k]) if k < n else (k - n, paths[k - n][::-1])
         if closed[i]:  # enter a loop at its nearest corner
             j = int(np.argmin(snap(np.hypot(*(path[:-1] - here).T))))
             path = np.concatenate([path[j:-1], path[:j + 1]])
-        alive[i] = False
+        usable[[i, n + i]] = False
         chosen.append(path)
         here = path[-1]
     chosen = _two_opt(chosen, np.asarray(start, dtype=float), passes)
