@@ -23,6 +23,7 @@ from ..layout.drawing import (Drawing, Layer, Polylines, Sheet, Style, Text,
                               polygons_from_rings, polygons_from_shapely)
 from ..layout.labels import text_width, wrap
 from ..layout.tiling import tile
+from ..numeric import distinct
 from .colouring import UNPAINTED, Colouring
 from .files import Labels, placement
 from .pieces import Puzzle
@@ -130,7 +131,7 @@ class Painted:
 
     def pieces(self, colour: str) -> NDArray[np.int64]:
         """Piece numbers (1-based) that carry ``colour``, ascending."""
-        return np.unique(self.piece[self.colours == colour]) + 1
+        return distinct(self.piece[self.colours == colour]) + 1
 
 
 @lru_cache(maxsize=2)
