@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import io
 
-import numpy as np
 from reportlab.lib.colors import HexColor
 from reportlab.lib.rl_accel import fp_str
 from reportlab.lib.units import mm
@@ -16,7 +15,6 @@ from reportlab.pdfgen import canvas
 from reportlab.pdfgen.pathobject import PDFPathObject
 
 from ..layout.drawing import Drawing, Polygons, Polylines, Style, Text
-from .numbers import fixed
 
 SUFFIX = "pdf"
 FONT = "Helvetica"
@@ -79,12 +77,8 @@ def _draw(c, shape) -> None:
 
 
 def _points(coords) -> list[str]:
-    """Every point as reportlab's path operators write it (``fp_str``), built for all at once
-    (``numbers.fixed``; ``fp_str`` itself for the few that leaves)."""
-    values = np.asarray(coords, dtype=float).ravel()
-    numbers, slow = fixed(values)
-    for i in slow.tolist():
-        numbers[i] = fp_str(float(values[i]))
+    """Every point as reportlab's path operators write it (``fp_str``): one call for all."""
+    numbers = fp_str(coords.ravel().tolist()).split(" ") if len(coords) else []
     return list(map(" ".join, zip(numbers[0::2], numbers[1::2])))
 
 
