@@ -39,3 +39,18 @@ def test_numbers_are_engraved_without_the_package():
             "coords, offsets, width = text_strokes('F12 Ab-9', 3.0)\n"
             "assert len(coords) and 'HersheyFonts' not in sys.modules\n")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_poles_are_kept_for_the_same_polygons_only():
+    import shapely
+
+    a = np.array([shapely.Point(0, 0).buffer(3), shapely.Point(20, 5).buffer(1)], dtype=object)
+    b = np.array([shapely.Point(7, 1).buffer(2), shapely.Point(-9, 4).buffer(5)], dtype=object)
+    fresh = [shapely.get_coordinates(shapely.get_point(
+        shapely.maximum_inscribed_circle(p, tolerance=0.01), 0)) for p in (a, b)]
+    for polygons, want in ((a, fresh[0]), (a.copy(), fresh[0]), (b, fresh[1]), (a, fresh[0]),
+                           (a[:1], fresh[0][:1])):
+        assert np.array_equal(strokefont._poles(polygons), want)
+    strokefont._poles(a)[:] = 99.0  # a caller's changes do not reach the kept poles
+    strokefont._poles(a)[:] = 99.0
+    assert np.array_equal(strokefont._poles(a), fresh[0])

@@ -118,6 +118,24 @@ def labels(texts: list[str], centres: NDArray[np.float64], heights: NDArray[np.f
         offsets, owner
 
 
+_last_poles: list = [((), np.zeros((0, 2)))]  # the last polygons asked and their poles
+
+
+def _poles(polygons: NDArray[np.object_]) -> NDArray[np.float64]:
+    """(N, 2) every polygon's pole of inaccessibility (the centre of its largest inscribed
+    circle, to 0.01 mm), kept for the last polygons asked: a puzzle fits its engraved and its
+    printed numbers into the same pieces. Geometries are immutable, and kept ones can neither
+    be freed nor have their ids reused, so the same objects have the same poles."""
+    geoms = tuple(np.asarray(polygons, dtype=object).ravel().tolist())
+    kept, poles = _last_poles[0]  # one read: another thread may replace it
+    if len(kept) == len(geoms) and all(a is b for a, b in zip(kept, geoms)):
+        return poles.copy()
+    circles = shapely.maximum_inscribed_circle(polygons, tolerance=0.01)
+    poles = shapely.get_coordinates(shapely.get_point(circles, 0))
+    _last_poles[0] = (geoms, poles)
+    return poles.copy()
+
+
 def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, max_height
                ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """The largest cap height (up to ``max_height``, a number or one per text) at which each
@@ -138,8 +156,7 @@ def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, m
     angles : (N,) float64, degrees counter-clockwise, in (-90, 90]
     """
     inner = shapely.buffer(polygons, -margin, join_style="mitre")
-    circles = shapely.maximum_inscribed_circle(polygons, tolerance=0.01)
-    pole = shapely.get_coordinates(shapely.get_point(circles, 0))
+    pole = _poles(polygons)
     middle = shapely.get_coordinates(shapely.centroid(polygons))
     boxes = np.array([ink_box(t) for t in texts], dtype=float).reshape(-1, 4)
     hx, hy = (boxes[:, 2] - boxes[:, 0]) / 2, (boxes[:, 3] - boxes[:, 1]) / 2
