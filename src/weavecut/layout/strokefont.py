@@ -99,20 +99,20 @@ def labels(texts: list[str], centres: NDArray[np.float64], heights: NDArray[np.f
     owner : (L,) int64 the label each polyline belongs to
     """
     angles = np.zeros(len(texts)) if angles is None else np.asarray(angles, dtype=float)
-    parts, counts, owner = [], [], []
-    for k, (text, h) in enumerate(zip(texts, np.asarray(heights, dtype=float))):
-        coords, offsets, _ = text_strokes(text, h)  # a label, not a mesh element
-        if not len(coords):
-            continue
-        x0, y0, x1, y1 = np.array(ink_box(text)) * h
-        parts.append(coords - ((x0 + x1) / 2, (y0 + y1) / 2))
-        counts.extend(np.diff(offsets).tolist())
-        owner.extend([k] * (len(offsets) - 1))
-    if not parts:
+    units = [_unit_strokes(text) for text in texts]  # kept per text: all labels at once
+    inked = [k for k, unit in enumerate(units) if len(unit[0])]
+    if not inked:
         return np.zeros((0, 2)), np.zeros(1, dtype=np.int64), np.zeros(0, dtype=np.int64)
-    coords = np.concatenate(parts)
+    h = np.asarray(heights, dtype=float)[inked]
+    x0, y0, x1, y1 = (np.array([ink_box(texts[k]) for k in inked]) * h[:, None]).T
+    points = [len(units[k][0]) for k in inked]
+    counts = np.concatenate([np.diff(units[k][1]) for k in inked])
+    # each label's strokes at its height, less its ink box's centre, as text_strokes has them
+    coords = np.concatenate([units[k][0] for k in inked]) * np.repeat(h, points)[:, None]
+    coords -= np.repeat(np.column_stack([(x0 + x1) / 2, (y0 + y1) / 2]), points, axis=0)
     offsets = np.r_[0, np.cumsum(counts)].astype(np.int64)
-    owner = np.array(owner, dtype=np.int64)
+    owner = np.repeat(np.array(inked, dtype=np.int64),
+                      [len(units[k][1]) - 1 for k in inked])
     point_owner = np.repeat(owner, np.diff(offsets))
     return turn(coords, angles[point_owner], np.asarray(centres, dtype=float)[point_owner]), \
         offsets, owner
