@@ -1,13 +1,13 @@
 """The SVG writer's document as svgwrite built it (main at bfa049d): the oracle for
 ``weavecut.export.svg._document``, which writes the same text without svgwrite. The numbers,
-styles and sheet placement are the writer's own (tested on their own)."""
+path data, styles and sheet placement are the writer's own (tested on their own)."""
 
 from __future__ import annotations
 
 import svgwrite
 
-from weavecut.export.svg import _n, _pairs, _points, _style
-from weavecut.layout.drawing import Drawing, Polygons, Polylines, Sheet, Style, Text
+from weavecut.export.svg import _n, _paths
+from weavecut.layout.drawing import Drawing, Sheet, Text
 
 
 def document(drawing: Drawing, page: Sheet, placed) -> bytes:
@@ -45,24 +45,9 @@ def _group(dwg, ident: str, label: str):
 def _elements(dwg, shape, height: float):
     if isinstance(shape, Text):
         yield _text(dwg, shape, height)
-    elif isinstance(shape, Polylines):
-        pts = _points(shape.coords, height)
-        d = " ".join("M" + " ".join(pts[a:b]) for a, b in _pairs(shape.offsets))
-        yield dwg.path(d=d, **_style(shape.style, closed=False))
-    elif isinstance(shape, Polygons):
-        pts = _points(shape.coords, height)
-        rings = ["M" + " ".join(pts[a:b]) + "Z" for a, b in _pairs(shape.ring_offsets)]
-        po = shape.polygon_rings().tolist()
-        paths = ["".join(rings[a:b]) for a, b in zip(po[:-1], po[1:])]
-        if shape.fills is None:
-            yield dwg.path(d="".join(paths), **_style(shape.style, closed=True))
-            return
-        by_fill: dict[str, list[str]] = {}
-        for d, fill in zip(paths, shape.fills):
-            by_fill.setdefault(fill, []).append(d)
-        for fill in sorted(by_fill):
-            style = Style(shape.style.stroke, shape.style.stroke_width, fill, shape.style.opacity)
-            yield dwg.path(d="".join(by_fill[fill]), **_style(style, closed=True))
+    else:
+        for d, style in _paths(shape, height):
+            yield dwg.path(d=d, **style)
 
 
 def _text(dwg, t: Text, height: float):

@@ -8,8 +8,6 @@ from __future__ import annotations
 
 import io
 import re
-import subprocess
-import sys
 
 import ezdxf
 import numpy as np
@@ -20,6 +18,8 @@ from hypothesis import strategies as st
 from weavecut.export import dxf, dxf_ezdxf, dxf_skeleton, dxf_text
 from weavecut.layout.drawing import Drawing, Layer, Polygons, Polylines, Sheet, Style, Text
 from weavecut.text import clean
+
+from tests.fresh import modules_after
 
 NAMES = ("cut", "Cut", "0", "DEFPOINTS", "paint 2", "a/b", "é字", "")
 COLOURS = ("#000000", "#ff0000", "#12ab9f")
@@ -103,17 +103,14 @@ def test_a_drawing_of_strokes_gets_ezdxfs_bytes(sheets, title):
 
 
 def test_a_cut_file_is_written_without_ezdxf_and_reads_back():
-    code = ("import sys, numpy as np\n"
-            "from weavecut.export import dxf\n"
-            "from weavecut.layout.drawing import Drawing, Layer, Polygons, Sheet, Style\n"
-            "ring = Polygons(np.array([[0, 0], [1, 0], [1, 1.5]]), np.array([0, 3]),"
-            " Style('#ff0000', 0))\n"
-            "data = dxf.render(Drawing((Sheet(9, 9, (Layer('c', 'cut', (ring,)),)),)))\n"
-            "assert 'ezdxf' not in sys.modules\n"
-            "sys.stdout.write(data.decode('cp1252'))\n")
-    text = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                          check=True).stdout
-    doc = ezdxf.read(io.StringIO(text))
+    assert "ezdxf" not in modules_after(
+        "import numpy as np\nfrom weavecut.export import dxf\n"
+        "from weavecut.layout.drawing import Drawing, Layer, Polygons, Sheet, Style\n"
+        "ring = Polygons(np.array([[0, 0], [1, 0], [1, 1.5]]), np.array([0, 3]))\n"
+        "dxf.render(Drawing((Sheet(9, 9, (Layer('c', 'cut', (ring,)),)),)))")
+    ring = Polygons(np.array([[0, 0], [1, 0], [1, 1.5]]), np.array([0, 3]), Style("#ff0000", 0))
+    data = dxf.render(Drawing((Sheet(9, 9, (Layer("c", "cut", (ring,)),)),)))
+    doc = ezdxf.read(io.StringIO(data.decode("cp1252")))
     (line,) = doc.modelspace().query("LWPOLYLINE")
     assert line.closed and line.get_points("xy") == [(0, 0), (1, 0), (1, 1.5)]
     assert line.dxf.layer == "c" and doc.layers.get("c").color == 1

@@ -94,24 +94,32 @@ def _escape(text: str, attribute: bool = False) -> str:
 def _elements(shape, height: float):
     if isinstance(shape, Text):
         yield _text(shape, height)
-    elif isinstance(shape, Polylines):
+    else:
+        for d, style in _paths(shape, height):
+            yield _element("path", {"d": d, **style})
+
+
+def _paths(shape, height: float):
+    """(path data, attributes) of each path of a Polylines or Polygons shape: one path for
+    all lines or all rings, or one per fill colour."""
+    if isinstance(shape, Polylines):
         pts = _points(shape.coords, height)
-        d = " ".join("M" + " ".join(pts[a:b]) for a, b in _pairs(shape.offsets))
-        yield _element("path", {"d": d, **_style(shape.style, closed=False)})
+        yield " ".join("M" + " ".join(pts[a:b]) for a, b in _pairs(shape.offsets)), _style(
+            shape.style, closed=False)
     elif isinstance(shape, Polygons):
         pts = _points(shape.coords, height)
         rings = ["M" + " ".join(pts[a:b]) + "Z" for a, b in _pairs(shape.ring_offsets)]
         po = shape.polygon_rings().tolist()
         paths = ["".join(rings[a:b]) for a, b in zip(po[:-1], po[1:])]
         if shape.fills is None:  # one path for the whole batch
-            yield _element("path", {"d": "".join(paths), **_style(shape.style, closed=True)})
+            yield "".join(paths), _style(shape.style, closed=True)
             return
         by_fill: dict[str, list[str]] = {}
         for d, fill in zip(paths, shape.fills):
             by_fill.setdefault(fill, []).append(d)
         for fill in sorted(by_fill):
             style = Style(shape.style.stroke, shape.style.stroke_width, fill, shape.style.opacity)
-            yield _element("path", {"d": "".join(by_fill[fill]), **_style(style, closed=True)})
+            yield "".join(by_fill[fill]), _style(style, closed=True)
 
 
 def _text(t: Text, height: float) -> str:
