@@ -4,11 +4,9 @@ by benchmarks/bench_startup.py, not here.)"""
 
 from __future__ import annotations
 
-import json
-import subprocess
-import sys
-
 import pytest
+
+from tests.fresh import modules_after
 
 HEAVY = ("shapely", "scipy", "ezdxf", "reportlab", "PIL", "svgwrite")
 COMMANDS = ("inputs", "subdivide", "stats", "weave", "puzzle", "strands", "fractal", "levels",
@@ -17,14 +15,11 @@ COMMANDS = ("inputs", "subdivide", "stats", "weave", "puzzle", "strands", "fract
 
 def loaded_after(*args: str) -> set[str]:
     """The modules a fresh interpreter holds after ``weave-cut ARGS``."""
-    code = ("import sys, json, contextlib, io\n"
-            "from weavecut.cli import main\n"
-            "with contextlib.redirect_stdout(io.StringIO()), contextlib.suppress(SystemExit):\n"
-            f"    main({list(args)!r})\n"
-            "print(json.dumps(sorted(sys.modules)))\n")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True).stdout
-    return set(json.loads(out))
+    return modules_after("import contextlib, io\n"
+                         "from weavecut.cli import main\n"
+                         "with contextlib.redirect_stdout(io.StringIO()), "
+                         "contextlib.suppress(SystemExit):\n"
+                         f"    main({list(args)!r})\n")
 
 
 @pytest.mark.parametrize("args", [["--help"], *([c, "--help"] for c in COMMANDS)],

@@ -11,7 +11,10 @@ import subprocess
 import numpy as np
 import pytest
 import shapely
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from PIL import Image
+from reportlab.pdfgen.pathobject import PDFPathObject
 
 from weavecut.export import pdf, png
 from weavecut.layout.drawing import (
@@ -131,3 +134,23 @@ def test_text_anchored_on_its_baseline_at_cap_height(anchor, tmp_path):
     assert y.max() == pytest.approx(15, abs=0.2)  # 5 mm capitals: Helvetica's are 0.72 em
     darkest = img.reshape(-1, 3)[img.reshape(-1, 3).sum(axis=1).argmin()]
     assert close(darkest, (0x70, 0, 0), 20)  # in its own colour
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.lists(st.lists(st.tuples(*[st.one_of(st.floats(-1e4, 1e4), st.sampled_from(
+    [0.0, -0.0, 1e-8, 0.5, -1.0, 123456.789]))] * 2), min_size=1, max_size=6), max_size=5),
+    st.booleans())
+def test_paths_are_what_reportlabs_path_operators_write(rings, close):
+    # the writer formats every number of a shape at once; reportlab's moveTo, lineTo and close
+    # on the same points are the oracle
+    coords = np.array([p for r in rings for p in r], dtype=float).reshape(-1, 2)
+    offsets = np.r_[0, np.cumsum([len(r) for r in rings])].tolist()
+    want = PDFPathObject()
+    for ring in rings:
+        want.moveTo(*np.array(ring[0], dtype=float))
+        for x, y in np.array(ring[1:], dtype=float).reshape(-1, 2).tolist():
+            want.lineTo(x, y)
+        if close:
+            want.close()
+    got = pdf._path(pdf._points(coords), zip(offsets[:-1], offsets[1:]), close)
+    assert got.getCode() == want.getCode()

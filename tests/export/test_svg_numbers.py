@@ -158,3 +158,16 @@ def test_several_polygons_in_one_path_and_strokes_around_each_fill():
     for p, fill in [(green, "#00ff00"), (yellow, "#ffff00")]:
         assert (p.get("fill"), p.get("stroke"), p.get("stroke-width")) == \
             (fill, "#0000ff", "0.4")
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.lists(st.tuples(*[st.one_of(st.floats(-1e6, 1e6), st.integers(-10**6, 10**6),
+                                      st.sampled_from([0.0, -0.0, 4e-4, -6e-4, 0.0005, 1e15,
+                                                       -2.5e16, 1e17]))] * 2),
+                max_size=20), st.floats(0, 1e5))
+def test_points_of_a_path_are_written_number_by_number_as_decimal_writes_them(xy, height):
+    # the path's points are formatted all at once; each number is what _decimal makes of it
+    coords = np.array(xy, dtype=float).reshape(-1, 2)
+    flipped = np.round(np.column_stack([coords[:, 0], height - coords[:, 1]]), 3) + 0.0
+    expected = [f"{svg._decimal(x)},{svg._decimal(y)}" for x, y in flipped.tolist()]
+    assert svg._points(coords, height) == expected

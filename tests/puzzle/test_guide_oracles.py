@@ -8,6 +8,7 @@ in every test."""
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -273,3 +274,13 @@ def test_colour_key_rows_stack_without_overlap_beside_their_swatches(page):
             assert all(b.bounds[0] == pytest.approx(name.bounds[0]) for b in following)
         assert min(min(b.bounds[1] for b in boxes), min(s.bounds[1] for s in swatches)) \
             >= margin - 1e-6
+
+
+def test_a_sides_paint_is_made_once_and_kept_read_only():
+    # the guide and the colour key of a side share it; another colouring gets its own
+    puzzle, colouring = _coloured()
+    first = painted(puzzle, colouring, "back")
+    assert painted(puzzle, colouring, "back") is first
+    assert not any(a.flags.writeable for a in (first.polygons, first.colours, first.piece))
+    other = replace(colouring, back=np.full(puzzle.n_pieces, "#123456", dtype=object))
+    assert set(painted(puzzle, other, "back").colours.tolist()) == {"#123456"}

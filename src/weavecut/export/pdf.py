@@ -9,8 +9,10 @@ from __future__ import annotations
 import io
 
 from reportlab.lib.colors import HexColor
+from reportlab.lib.rl_accel import fp_str
 from reportlab.lib.units import mm
 from reportlab.pdfgen import canvas
+from reportlab.pdfgen.pathobject import PDFPathObject
 
 from ..layout.drawing import Drawing, Polygons, Polylines, Style, Text
 
@@ -55,12 +57,8 @@ def _draw(c, shape) -> None:
         return
     if isinstance(shape, Polylines):
         _stroke(c, shape.style)
-        path = c.beginPath()
-        for line in shape.lines():
-            path.moveTo(*line[0])
-            for x, y in line[1:].tolist():
-                path.lineTo(x, y)
-        c.drawPath(path, stroke=1, fill=0)
+        o = shape.offsets.tolist()
+        c.drawPath(_path(_points(shape.coords), zip(o[:-1], o[1:]), False), stroke=1, fill=0)
         return
     if isinstance(shape, Polygons):
         groups: dict[str | None, list[int]] = {}
@@ -68,19 +66,34 @@ def _draw(c, shape) -> None:
         for i, fill in enumerate(fills):
             groups.setdefault(fill, []).append(i)
         po = shape.polygon_rings().tolist()
-        rings = shape.rings()
+        ro = shape.ring_offsets.tolist()
+        points = _points(shape.coords)
         for fill in sorted(groups, key=lambda f: f or ""):
             style = Style(shape.style.stroke, shape.style.stroke_width, fill, shape.style.opacity)
             _stroke(c, style)
-            path = c.beginPath()
-            for i in groups[fill]:
-                for ring in rings[po[i]:po[i + 1]]:
-                    path.moveTo(*ring[0])
-                    for x, y in ring[1:].tolist():
-                        path.lineTo(x, y)
-                    path.close()
-            c.drawPath(path, stroke=1 if style.stroke else 0, fill=1 if fill else 0,
+            rings = [(ro[r], ro[r + 1]) for i in groups[fill] for r in range(po[i], po[i + 1])]
+            c.drawPath(_path(points, rings, True), stroke=1 if style.stroke else 0,
+                       fill=1 if fill else 0,
                        fillMode=canvas.FILL_EVEN_ODD)  # holes stay open, however wound
+
+
+def _points(coords) -> list[str]:
+    """Every point as reportlab's path operators write it (``fp_str``): one call for all."""
+    numbers = fp_str(coords.ravel().tolist()).split(" ") if len(coords) else []
+    return list(map(" ".join, zip(numbers[0::2], numbers[1::2])))
+
+
+def _path(points: list[str], spans, close: bool) -> PDFPathObject:
+    """The path through ``points[a:b]`` for each span (a, b) with points, closed or not: what
+    ``moveTo``, ``lineTo`` and ``close`` would write, one string per span (and the ``n`` a
+    path's first operator brings)."""
+    code = []
+    for a, b in spans:
+        if b > a:
+            line = " l ".join(points[a + 1:b])
+            code.append(f"{points[a]} m" + (f" {line} l" if line else "")
+                        + (" h" if close else ""))
+    return PDFPathObject(["n", *code] if code else [])
 
 
 def _stroke(c, style: Style) -> None:

@@ -26,8 +26,10 @@ def rgb(colour: str) -> tuple[float, float, float]:
     return tuple(int(colour[i:i + 2], 16) / 255 for i in (1, 3, 5))
 
 
+@lru_cache(maxsize=4096)
 def relative_luminance(colour: str) -> float:
-    """WCAG 2 relative luminance of an sRGB colour, 0 (black) to 1 (white)."""
+    """WCAG 2 relative luminance of an sRGB colour, 0 (black) to 1 (white) (kept: guides and
+    books weigh their few paints again and again)."""
     c = np.array(rgb(colour))
     linear = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
     return float(dot(linear, [0.2126, 0.7152, 0.0722]))

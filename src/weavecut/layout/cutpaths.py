@@ -108,6 +108,17 @@ def is_closed(path: NDArray) -> bool:
     return len(path) > 2 and bool(np.allclose(path[0], path[-1]))
 
 
+def are_closed(paths: list[NDArray], fewest: int = 3) -> NDArray[np.bool_]:
+    """For every path at once, whether it has at least ``fewest`` points and ends where it
+    starts (``is_closed`` by default; ``allclose`` is all of ``isclose``)."""
+    if not paths:
+        return np.zeros(0, dtype=bool)
+    ends = np.array([(p[0], p[-1]) if len(p) else np.full((2, 2), np.nan) for p in paths],
+                    dtype=float)
+    return (np.array([len(p) for p in paths]) >= fewest) & np.isclose(
+        ends[:, 0], ends[:, 1]).all(axis=1)
+
+
 TWO_OPT_WINDOW = 500  # longest run of paths 2-opt reverses
 
 
@@ -119,24 +130,19 @@ def order_paths(paths: list[NDArray], start=(0.0, 0.0), passes: int = 30
     if not paths:
         return [], tuple(start)
     here = np.asarray(start, dtype=float)
-    todo = list(range(len(paths)))
-    heads = np.array([p[0] for p in paths])
-    tails = np.array([p[-1] for p in paths])
-    closed = np.array([is_closed(p) for p in paths])
+    n = len(paths)
+    ends = np.array([p[0] for p in paths] + [p[-1] for p in paths])  # heads, then tails
+    closed = are_closed(paths)
+    usable = np.concatenate([np.ones(n, dtype=bool), ~closed])  # a loop is entered at its head
     chosen: list[NDArray] = []
-    alive = np.ones(len(paths), dtype=bool)
-    for _ in todo:  # greedy nearest neighbour, one path per step
-        d_head = np.where(alive, snap(np.hypot(*(heads - here).T)), FAR)
-        d_tail = np.where(alive & ~closed, snap(np.hypot(*(tails - here).T)), FAR)
-        i_h, i_t = int(np.argmin(d_head)), int(np.argmin(d_tail))  # nearest; ties: first
-        if d_tail[i_t] < d_head[i_h]:
-            i, path = i_t, paths[i_t][::-1]
-        else:
-            i, path = i_h, paths[i_h]
+    for _ in range(n):  # greedy nearest neighbour, one path per step
+        d = np.where(usable, snap(_hypot(ends - here)), FAR)
+        k = int(np.argmin(d))  # the nearest end; ties: a head first, then the first path
+        i, path = (k, paths[k]) if k < n else (k - n, paths[k - n][::-1])
         if closed[i]:  # enter a loop at its nearest corner
             j = int(np.argmin(snap(np.hypot(*(path[:-1] - here).T))))
             path = np.concatenate([path[j:-1], path[:j + 1]])
-        alive[i] = False
+        usable[[i, n + i]] = False
         chosen.append(path)
         here = path[-1]
     chosen = _two_opt(chosen, np.asarray(start, dtype=float), passes)
@@ -147,35 +153,50 @@ def _two_opt(paths: list[NDArray], start: NDArray, passes: int,
              window: int = TWO_OPT_WINDOW) -> list[NDArray]:
     """Reverse runs of paths (each path reversed too) while that shortens the travel; runs are
     at most ``window`` paths long (every run on a sheet of fewer paths), so a pass over a
-    large sheet costs n x window instead of n**2."""
+    large sheet costs n x window instead of n**2. The way from each path to the next
+    (``link``) is kept, and only the links a reversal changes are measured again."""
     n = len(paths)
     if n < 3:
         return paths
-    s = np.array([p[0] for p in paths])  # where each path starts and ends, in travel order
-    e = np.array([p[-1] for p in paths])
+    ends = np.full((2, n + 1, 2), np.nan)  # where each path starts and ends, in travel order
+    ends[0, :n] = [p[0] for p in paths]
+    ends[1, :n] = [p[-1] for p in paths]
+    s, e = ends[0, :n], ends[1, :n]  # views, so that a reversal updates ``after`` too
+    after = ends[0, 1:]  # after[j]: where the path after path j starts (nan after the last)
+    link = np.zeros(n)  # from each path's end to the next path's start; 0 after the last
+    link[:-1] = _hypot(e[:-1] - s[1:])
     order = np.arange(n)
     flipped = np.zeros(n, dtype=bool)
     for _ in range(passes):
         improved = False
-        for i in range(n - 1):  # segment [i, j]; previous end is e[i-1] (or start)
+        for i in range(n - 1):  # segment [i, j] for j in i+1 .. stop-1; before it: prev
             prev = start if i == 0 else e[i - 1]
-            j = np.arange(i + 1, min(n, i + 1 + window))
-            nxt_start = np.vstack([s[i + 1:], [np.nan, np.nan]])[1:len(j) + 1]  # s[j + 1]
-            old = np.hypot(*(prev - s[i])) + np.where(
-                j < n - 1, np.hypot(*(e[j] - nxt_start).T), 0.0)
-            new = np.hypot(*(prev - e[j]).T) + np.where(
-                j < n - 1, np.hypot(*(s[i] - nxt_start).T), 0.0)
-            gain = snap(old - new)
+            stop = min(n, i + 1 + window)
+            d = prev - s[i]
+            old = link[i + 1:stop] + np.hypot(d[0], d[1])
+            d = prev - e[i + 1:stop]
+            new = np.hypot(d[:, 0], d[:, 1])
+            d = s[i] - after[i + 1:stop]
+            back = np.hypot(d[:, 0], d[:, 1])
+            if stop == n:  # a run to the last path leaves no way to a next one
+                back[-1] = 0.0
+            gain = snap(old - (new + back))
             k = int(np.argmax(gain))
             if gain[k] > 0:  # at least 1 nm shorter
-                run = slice(i, int(j[k]) + 1)  # reversed: each path's ends swap too
+                run = slice(i, i + 2 + k)  # reversed: each path's ends swap too
                 order[run] = order[run][::-1].copy()
                 flipped[run] = ~flipped[run][::-1]
                 s[run], e[run] = e[run][::-1].copy(), s[run][::-1].copy()
+                near = slice(max(i - 1, 0), min(run.stop, n - 1))  # the links it changed
+                link[near] = _hypot(e[near] - after[near])
                 improved = True
         if not improved:
             break
     return [paths[o][::-1] if f else paths[o] for o, f in zip(order.tolist(), flipped.tolist())]
+
+
+def _hypot(d: NDArray) -> NDArray:
+    return np.hypot(d[..., 0], d[..., 1])
 
 
 def travel_length(paths: list[NDArray], start=(0.0, 0.0)) -> float:

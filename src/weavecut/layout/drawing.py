@@ -155,17 +155,23 @@ def polylines_from_lines(lines, style: Style = Style()) -> Polylines:
 
 def polygons_from_shapely(geoms, style: Style = Style(), fills=None) -> Polygons:
     """Polygons from shapely Polygons (holes kept); rings are written counter-clockwise
-    for exteriors and clockwise for holes."""
-    geoms = [shapely.orient_polygons(g) if hasattr(shapely, "orient_polygons")
-             else shapely.geometry.polygon.orient(g) for g in geoms]
-    rings, counts = [], []
-    for g in geoms:
-        parts = [g.exterior, *g.interiors]
-        rings.extend(np.asarray(r.coords)[:-1] for r in parts)
-        counts.append(len(parts))
-    poly = polygons_from_rings(rings, style)
-    po = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
-    return replace(poly, polygon_offsets=po, fills=None if fills is None else tuple(fills))
+    for exteriors and clockwise for holes (an empty polygon: one ring without points)."""
+    geoms = list(geoms)
+    polys = np.empty(len(geoms), dtype=object)
+    polys[:] = geoms
+    polys = shapely.orient_polygons(polys)
+    po = np.r_[0, np.cumsum(shapely.get_num_interior_rings(polys) + 1)].astype(np.int64)
+    rings, owner = shapely.get_rings(polys, return_index=True)  # none for an empty polygon
+    first = np.searchsorted(owner, owner)  # the polygon's first ring among ``rings``
+    slot = po[owner] + np.arange(len(owner)) - first
+    n = shapely.get_num_coordinates(rings)
+    counts = np.zeros(po[-1], dtype=np.int64)
+    counts[slot] = np.maximum(n - 1, 0)  # the closing point is left out
+    keep = np.ones(n.sum(), dtype=bool)
+    keep[(np.cumsum(n) - 1)[n > 0]] = False
+    coords = shapely.get_coordinates(rings)[keep] if len(rings) else np.zeros((0, 2))
+    return Polygons(coords, np.r_[0, np.cumsum(counts)].astype(np.int64), style, po,
+                    None if fills is None else tuple(fills))
 
 
 def mesh_polygons(mesh, transform, style: Style = Style(), fills=None,

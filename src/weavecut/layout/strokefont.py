@@ -22,9 +22,9 @@ import shapely
 from numpy.typing import NDArray
 
 from ..numeric import turn
+from .hershey_futural import FONT, GLYPHS  # Hershey Simplex Roman: the engravers' font
 from .labels import largest_fit
 
-FONT = "futural"  # Hershey Simplex Roman: single strokes, the engravers' font
 _CAP, _BASE = -12, 9  # raw cap and base lines (raw y points down)
 
 
@@ -39,12 +39,17 @@ def _font():
 
 @lru_cache(maxsize=256)
 def _glyph(char: str) -> tuple[tuple[NDArray[np.float64], ...], float]:
-    """Strokes of one character at cap height 1 (x from its left side), and its advance."""
-    glyph = next(iter(_font().glyphs_for_text(char)))
+    """Strokes of one character at cap height 1 (x from its left side), and its advance
+    (printable ASCII from ``hershey_futural``, other characters from the package)."""
+    if char in GLYPHS:
+        left, width, raw = GLYPHS[char]
+    else:
+        glyph = next(iter(_font().glyphs_for_text(char)))
+        left, width, raw = glyph.left_offset, glyph.char_width, glyph.strokes
     scale = 1.0 / (_BASE - _CAP)
-    strokes = tuple(np.array([((x - glyph.left_offset) * scale, (_BASE - y) * scale)
-                              for x, y in stroke]) for stroke in glyph.strokes if len(stroke) > 1)
-    return strokes, glyph.char_width * scale
+    strokes = tuple(np.array([((x - left) * scale, (_BASE - y) * scale) for x, y in stroke])
+                    for stroke in raw if len(stroke) > 1)
+    return strokes, width * scale
 
 
 def text_strokes(text: str, height: float) -> tuple[NDArray[np.float64], NDArray[np.int64],
@@ -94,23 +99,41 @@ def labels(texts: list[str], centres: NDArray[np.float64], heights: NDArray[np.f
     owner : (L,) int64 the label each polyline belongs to
     """
     angles = np.zeros(len(texts)) if angles is None else np.asarray(angles, dtype=float)
-    parts, counts, owner = [], [], []
-    for k, (text, h) in enumerate(zip(texts, np.asarray(heights, dtype=float))):
-        coords, offsets, _ = text_strokes(text, h)  # a label, not a mesh element
-        if not len(coords):
-            continue
-        x0, y0, x1, y1 = np.array(ink_box(text)) * h
-        parts.append(coords - ((x0 + x1) / 2, (y0 + y1) / 2))
-        counts.extend(np.diff(offsets).tolist())
-        owner.extend([k] * (len(offsets) - 1))
-    if not parts:
+    units = [_unit_strokes(text) for text in texts]  # kept per text: all labels at once
+    inked = [k for k, unit in enumerate(units) if len(unit[0])]
+    if not inked:
         return np.zeros((0, 2)), np.zeros(1, dtype=np.int64), np.zeros(0, dtype=np.int64)
-    coords = np.concatenate(parts)
+    h = np.asarray(heights, dtype=float)[inked]
+    x0, y0, x1, y1 = (np.array([ink_box(texts[k]) for k in inked]) * h[:, None]).T
+    points = [len(units[k][0]) for k in inked]
+    counts = np.concatenate([np.diff(units[k][1]) for k in inked])
+    # each label's strokes at its height, less its ink box's centre, as text_strokes has them
+    coords = np.concatenate([units[k][0] for k in inked]) * np.repeat(h, points)[:, None]
+    coords -= np.repeat(np.column_stack([(x0 + x1) / 2, (y0 + y1) / 2]), points, axis=0)
     offsets = np.r_[0, np.cumsum(counts)].astype(np.int64)
-    owner = np.array(owner, dtype=np.int64)
+    owner = np.repeat(np.array(inked, dtype=np.int64),
+                      [len(units[k][1]) - 1 for k in inked])
     point_owner = np.repeat(owner, np.diff(offsets))
     return turn(coords, angles[point_owner], np.asarray(centres, dtype=float)[point_owner]), \
         offsets, owner
+
+
+_last_poles: list = [((), np.zeros((0, 2)))]  # the last polygons asked and their poles
+
+
+def _poles(polygons: NDArray[np.object_]) -> NDArray[np.float64]:
+    """(N, 2) every polygon's pole of inaccessibility (the centre of its largest inscribed
+    circle, to 0.01 mm), kept for the last polygons asked: a puzzle fits its engraved and its
+    printed numbers into the same pieces. Geometries are immutable, and kept ones can neither
+    be freed nor have their ids reused, so the same objects have the same poles."""
+    geoms = tuple(np.asarray(polygons, dtype=object).ravel().tolist())
+    kept, poles = _last_poles[0]  # one read: another thread may replace it
+    if len(kept) == len(geoms) and all(a is b for a, b in zip(kept, geoms)):
+        return poles.copy()
+    circles = shapely.maximum_inscribed_circle(polygons, tolerance=0.01)
+    poles = shapely.get_coordinates(shapely.get_point(circles, 0))
+    _last_poles[0] = (geoms, poles)
+    return poles.copy()
 
 
 def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, max_height
@@ -133,8 +156,7 @@ def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, m
     angles : (N,) float64, degrees counter-clockwise, in (-90, 90]
     """
     inner = shapely.buffer(polygons, -margin, join_style="mitre")
-    circles = shapely.maximum_inscribed_circle(polygons, tolerance=0.01)
-    pole = shapely.get_coordinates(shapely.get_point(circles, 0))
+    pole = _poles(polygons)
     middle = shapely.get_coordinates(shapely.centroid(polygons))
     boxes = np.array([ink_box(t) for t in texts], dtype=float).reshape(-1, 4)
     hx, hy = (boxes[:, 2] - boxes[:, 0]) / 2, (boxes[:, 3] - boxes[:, 1]) / 2

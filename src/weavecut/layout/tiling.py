@@ -14,6 +14,7 @@ from dataclasses import replace
 
 import numpy as np
 import shapely
+from numpy.typing import NDArray
 
 from .. import budget
 from .drawing import Drawing, Layer, Polygons, Polylines, Sheet, Style, Text, polygons_from_shapely
@@ -135,8 +136,8 @@ def _clip_layer(layer: Layer, geoms, window, shift) -> Layer:
             b = got[1]
             near = np.flatnonzero((b[:, 0] <= x1) & (b[:, 2] >= x0) & (b[:, 1] <= y1)
                                   & (b[:, 3] >= y0))
-            parts, owner = shapely.get_parts(shapely.intersection(got[0][near], window),
-                                             return_index=True)
+            clipped = _clip(got[0][near], b[near], window, isinstance(shape, Polylines))
+            parts, owner = shapely.get_parts(clipped, return_index=True)
             owner = near[owner]
         if isinstance(shape, Polygons):
             keep = (shapely.get_type_id(parts) == 3) & (shapely.area(parts) > 0)
@@ -156,6 +157,28 @@ def _clip_layer(layer: Layer, geoms, window, shift) -> Layer:
             if window.contains(shapely.Point(shape.x, shape.y)):
                 shapes.append(replace(shape, x=shape.x + shift[0], y=shape.y + shift[1]))
     return replace(layer, shapes=tuple(shapes))
+
+
+def _clip(geoms: NDArray[np.object_], bounds: NDArray[np.float64], window, lines: bool
+          ) -> NDArray[np.object_]:
+    """``shapely.intersection(geoms, window)`` (a box). GEOS gives a line strictly inside the
+    box back as it is when the line is simple and has no point twice in a row (it drops such
+    repeats and splits lines where they cross or touch themselves): those lines, open ones
+    only (to be safe: a closed one might come back starting elsewhere), are kept without
+    asking it (most of a guide's numbers and dashes; tests/test_tiling_clip.py)."""
+    out = geoms.copy()
+    cut = np.ones(len(geoms), dtype=bool)
+    if lines and len(geoms):
+        x0, y0, x1, y1 = window.bounds
+        within = np.flatnonzero((bounds[:, 0] > x0) & (bounds[:, 2] < x1)
+                                & (bounds[:, 1] > y0) & (bounds[:, 3] < y1))
+        coords, line = shapely.get_coordinates(geoms[within], return_index=True)
+        repeats = (coords[1:] == coords[:-1]).all(axis=1) & (line[1:] == line[:-1])
+        twice = np.bincount(line[1:][repeats], minlength=len(within)) > 0
+        kept = shapely.is_simple(geoms[within]) & ~shapely.is_closed(geoms[within]) & ~twice
+        cut[within[kept]] = False
+    out[cut] = shapely.intersection(geoms[cut], window)
+    return out
 
 
 def _marks(page, margin, overlap, r, c, rows, cols, title) -> Layer:

@@ -38,6 +38,7 @@ from numpy.typing import NDArray
 
 from .. import presets
 from ..mesh import edge_faces
+from ..numeric import distinct
 from ..layout.colour_difference import srgb_to_lab, ciede2000
 from ..weave.colour import Palette
 from ..weave.model import Weave
@@ -117,7 +118,7 @@ def colour_puzzle(puzzle: Puzzle, pal: Palette, family_names: list[str] | None =
     strand_pairs = face_strand[face_pairs]
     strand_pairs = strand_pairs[(strand_pairs >= 0).all(axis=1)
                                 & (strand_pairs[:, 0] != strand_pairs[:, 1])]
-    strand_pairs = np.unique(np.sort(strand_pairs, axis=1), axis=0).reshape(-1, 2)
+    strand_pairs = distinct(np.sort(strand_pairs, axis=1), axis=0).reshape(-1, 2)
     colours, names = strand_paint(parent, lineage, strand_pairs, pal, family_names)
     front_strands = np.array(colours + [UNPAINTED], dtype=object)
     face_colours = front_strands[face_strand]  # strand -1 -> UNPAINTED
@@ -131,7 +132,7 @@ def colour_puzzle(puzzle: Puzzle, pal: Palette, family_names: list[str] | None =
     front = np.column_stack([face_colours[first_face], face_colours[last_face]])
     touch = face_colours[face_pairs].astype(str)
     touch = touch[(touch[:, 0] != touch[:, 1]) & (touch != UNPAINTED).all(axis=1)]
-    touch = np.unique(np.sort(touch, axis=1), axis=0).reshape(-1, 2).astype(object)
+    touch = distinct(np.sort(touch, axis=1), axis=0).reshape(-1, 2).astype(object)
     return Colouring(front, back, tuple(front_strands[:-1]), tuple(back_strands.tolist()),
                      face_colours, names, touch)
 
@@ -262,7 +263,7 @@ def _initial_slots(plan: _Plan) -> NDArray[np.int64]:
     """Shade index (within the family) per main strand: each group's pair takes the family's
     next dark/light pair (2j, 2j + 1), the other strands the free shades after them."""
     slot = np.full(len(plan.main), -1, dtype=np.int64)
-    for f in np.unique(plan.family).tolist():  # three families
+    for f in distinct(plan.family).tolist():  # three families
         members = np.flatnonzero(plan.family == f)
         pair_members = members[plan.paired[members]]
         pair_members = pair_members[np.lexsort((plan.main[pair_members],
@@ -281,7 +282,7 @@ def _colour_index(plan: _Plan, slot: NDArray[np.int64]) -> NDArray[np.int64]:
         near = np.concatenate([plan.pairs[plan.pairs[:, 0] == s, 1],
                                plan.pairs[plan.pairs[:, 1] == s, 0]])
         near = out[near][out[near] >= 0]
-        candidates = np.unique(out[plan.main[members]])
+        candidates = distinct(out[plan.main[members]])
         if not len(near):
             out[s] = candidates.min()
             continue
@@ -339,7 +340,7 @@ def _trials(plan: _Plan, slot: NDArray[np.int64], k: int):
     mate = int(family[plan.paired[family] & (plan.group[family] == plan.group[k])
                       & (family != k)][0])
     yield swapped((k, mate))
-    for g in np.unique(plan.group[family[plan.paired[family]]]).tolist():
+    for g in distinct(plan.group[family[plan.paired[family]]]).tolist():
         if g != plan.group[k]:
             other = family[plan.paired[family] & (plan.group[family] == g)]
             yield swapped((k, int(other[0])), (mate, int(other[1])))

@@ -250,7 +250,7 @@ def _frame_text(frames: NDArray[np.object_], labels: list[str]) -> Labels | None
 
 def _closed(paths: list[NDArray], style: Style) -> Polygons:
     """Closed rings (drop the repeated last point) in cutting order."""
-    rings = [p[:-1] if len(p) > 1 and np.allclose(p[0], p[-1]) else p for p in paths]
+    rings = [p[:-1] if closed else p for p, closed in zip(paths, cutpaths.are_closed(paths, 2))]
     coords = np.concatenate(rings) if rings else np.zeros((0, 2))
     offsets = np.r_[0, np.cumsum([len(r) for r in rings])].astype(np.int64)
     return Polygons(coords, offsets, style)

@@ -12,6 +12,7 @@ paint with its swatch, name, hex code, the pieces that carry it and the area it 
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import lru_cache
 
 import numpy as np
 import shapely
@@ -22,6 +23,7 @@ from ..layout.drawing import (Drawing, Layer, Polylines, Sheet, Style, Text,
                               polygons_from_rings, polygons_from_shapely)
 from ..layout.labels import text_width, wrap
 from ..layout.tiling import tile
+from ..numeric import distinct
 from .colouring import UNPAINTED, Colouring
 from .files import Labels, placement
 from .pieces import Puzzle
@@ -129,11 +131,14 @@ class Painted:
 
     def pieces(self, colour: str) -> NDArray[np.int64]:
         """Piece numbers (1-based) that carry ``colour``, ascending."""
-        return np.unique(self.piece[self.colours == colour]) + 1
+        return distinct(self.piece[self.colours == colour]) + 1
 
 
+@lru_cache(maxsize=2)
 def painted(puzzle: Puzzle, colouring: Colouring, side: str) -> Painted:
-    """Every painted area of one side (ring hexagons stay unpainted)."""
+    """Every painted area of one side (ring hexagons stay unpainted); kept for the last
+    puzzle's two sides, which its guide and its colour key both paint (a puzzle and a
+    colouring are the same while they are the same objects: both are frozen)."""
     if side == "front":
         halves = piece_halves(puzzle)
         # an enneagon's 'halves' are its one pentagon twice: paint it once
@@ -148,7 +153,10 @@ def painted(puzzle: Puzzle, colouring: Colouring, side: str) -> Painted:
         polys[has] = shapely.difference(polys[has], hexes[has].astype(object))
         colours, piece = colouring.back, np.arange(puzzle.n_pieces)
     keep = colours != UNPAINTED
-    return Painted(polys[keep], colours[keep].astype(object), piece[keep].astype(np.int64))
+    out = (polys[keep], colours[keep].astype(object), piece[keep].astype(np.int64))
+    for a in out:  # shared by every caller
+        a.flags.writeable = False
+    return Painted(*out)
 
 
 def guide(puzzle: Puzzle, colouring: Colouring, side: str, numbers: Labels | None = None,

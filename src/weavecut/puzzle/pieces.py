@@ -172,7 +172,7 @@ def build_puzzle(hierarchy: tuple[Level, ...], size: float = 500.0,
     # enneagon, counter-clockwise: p1, four hexagon corners, p2, p3, p4, p0
     ennea = np.concatenate([hexes[:, 1:], pent[:, 2:], pent[:, :1]], axis=1)
     # boundary pentagons whose hexagon was dropped stay plain pentagons (never on the pentagon)
-    dropped = np.setdiff1d(np.flatnonzero(lone), lone_tiles)
+    dropped = np.flatnonzero(lone & ~np.isin(np.arange(len(lone)), lone_tiles))
     plain = to_model(level_mesh.vertices[mesh_faces[weave.tile_faces[weave.tile_offsets[
         dropped]]]])
     ring_cells = _unique_cells(cells[~claimed & keep], hexes)

@@ -1,0 +1,33 @@
+"""numeric.distinct is np.unique (values and dtype; rows with axis=0) for the arrays the puzzle
+asks it of: integers, colour strings as objects or unicode, and without importing numpy.ma."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from weavecut.numeric import distinct
+
+from tests.fresh import modules_after
+
+colours = st.sampled_from(["#000000", "#12ab9f", "#ff0000", "none"])
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.lists(st.integers(-5, 5), max_size=20), st.lists(colours, max_size=20),
+       st.lists(st.tuples(colours, colours), max_size=10))
+def test_the_same_as_np_unique(ints, names, pairs):
+    for values, axis in ((np.array(ints, dtype=np.int64), None),
+                         (np.array(names, dtype=object), None),
+                         (np.array(pairs, dtype=str).reshape(-1, 2), 0),
+                         (np.array(ints[: len(ints) // 2 * 2], dtype=np.int64).reshape(-1, 2), 0)):
+        got, want = distinct(values, axis=axis), np.unique(values, axis=axis)
+        assert got.dtype == want.dtype and got.shape == want.shape
+        assert got.tolist() == want.tolist()
+
+
+def test_numpy_ma_is_not_imported():
+    assert "numpy.ma" not in modules_after(
+        "import numpy as np\nfrom weavecut.numeric import distinct\n"
+        "distinct(np.array([3, 1, 3])); distinct(np.array([[1, 2], [1, 2]]), axis=0)")

@@ -1,0 +1,53 @@
+"""The stroke font's table of printable ASCII (``layout/hershey_futural.py``) is the
+Hershey-Fonts package's font today, and a glyph drawn from it is the glyph drawn from the
+package; engraving numbers loads no Hershey-Fonts."""
+
+from __future__ import annotations
+
+import numpy as np
+from HersheyFonts import HersheyFonts
+
+from weavecut.layout import hershey_futural, strokefont
+
+from tests.fresh import modules_after
+
+
+def test_the_table_is_the_packages_font():
+    # after a Hershey-Fonts upgrade: python -m weavecut.layout.hershey_futural > (this file)
+    with open(hershey_futural.__file__, encoding="utf-8") as f:
+        assert f.read() == hershey_futural.source()
+
+
+def test_every_glyph_is_drawn_as_from_the_package():
+    font = HersheyFonts()
+    font.load_default_font("futural")
+    scale = 1 / 21
+    for code in range(32, 127):
+        (glyph,) = font.glyphs_for_text(chr(code))
+        strokes, advance = strokefont._glyph(chr(code))
+        want = [np.array([((x - glyph.left_offset) * scale, (9 - y) * scale) for x, y in s])
+                for s in glyph.strokes if len(s) > 1]
+        assert advance == glyph.char_width * scale
+        assert len(strokes) == len(want)
+        assert all(np.array_equal(a, b) for a, b in zip(strokes, want))
+
+
+def test_numbers_are_engraved_without_the_package():
+    assert "HersheyFonts" not in modules_after(
+        "from weavecut.layout.strokefont import text_strokes\n"
+        "assert len(text_strokes('F12 Ab-9', 3.0)[0])")
+
+
+def test_poles_are_kept_for_the_same_polygons_only():
+    import shapely
+
+    a = np.array([shapely.Point(0, 0).buffer(3), shapely.Point(20, 5).buffer(1)], dtype=object)
+    b = np.array([shapely.Point(7, 1).buffer(2), shapely.Point(-9, 4).buffer(5)], dtype=object)
+    fresh = [shapely.get_coordinates(shapely.get_point(
+        shapely.maximum_inscribed_circle(p, tolerance=0.01), 0)) for p in (a, b)]
+    for polygons, want in ((a, fresh[0]), (a.copy(), fresh[0]), (b, fresh[1]), (a, fresh[0]),
+                           (a[:1], fresh[0][:1])):
+        assert np.array_equal(strokefont._poles(polygons), want)
+    strokefont._poles(a)[:] = 99.0  # a caller's changes do not reach the kept poles
+    strokefont._poles(a)[:] = 99.0
+    assert np.array_equal(strokefont._poles(a), fresh[0])
