@@ -59,7 +59,7 @@ def entity_by_entity(drawing: Drawing) -> bytes:
     doc = ezdxf.new("R2004", setup=False)
     doc.units = ezdxf.units.MM
     doc.header["$INSUNITS"], doc.header["$MEASUREMENT"], doc.header["$LWDISPLAY"] = 4, 1, 1
-    colours = {"cut": 1, "score": 5, "engrave": 3, "paint": 8, "label": 7, "guide": 9}
+    colours = {"cut": 1, "score": 5, "engrave": 7, "paint": 8, "label": 7, "guide": 9}
     dx = 0.0
     for n, sheet in enumerate(drawing.sheets):
         for layer in sheet.layers:

@@ -118,7 +118,7 @@ def _lwpolylines(doc, shape, closed: bool, layer: Layer, name: str, dx: float) -
     head = (f"330\n{skeleton.MODELSPACE}\n100\nAcDbEntity\n  8\n{doc.layer(layer, name)}\n"
             + "".join(f"{code}\n{value}\n" for code, value in
                       tags(layer, shape.style.stroke, shape.style.stroke_width))
-            + f"100\nAcDbPolyline\n 90\n")
+            + "100\nAcDbPolyline\n 90\n")
     points = _points(shape.coords, dx)
     o = (shape.ring_offsets if closed else shape.offsets).tolist()
     for a, b in zip(o[:-1], o[1:]):
