@@ -16,6 +16,7 @@ import shapely
 from weavecut.errors import MeshError
 from weavecut.mesh_geometry import corner_turns, signed_areas
 from weavecut.readers import outline_mesh, tessellations
+from weavecut.readers.pieces import convex_pieces, merged_small
 from weavecut.validation import validate
 
 KINDS = ("hex", "quad", "voronoi", "tri")
@@ -201,7 +202,7 @@ def test_a_gentle_bend_is_dropped_and_a_reflex_corner_cut_in_one_cell():
     vertex of two pieces)."""
     corners = np.array(L_SHAPE.exterior.coords)[:-1]
     bent = shapely.Polygon(np.insert(corners, 1, (25, 0.1), axis=0))
-    pieces = outline_mesh._convex_pieces(bent, 0.2)
+    pieces = convex_pieces(bent, 0.2)
     rings = [np.array(shapely.orient_polygons(p).exterior.coords)[:-1] for p in pieces]
     assert not any(np.hypot(*(r - (25, 0.1)).T).min() < 1e-9 for r in rings)
     assert sum(np.hypot(*(r - (20, 20)).T).min() < 1e-9 for r in rings) == 2
@@ -238,7 +239,7 @@ def test_pieces_under_the_minimum_size_merge_and_at_it_stay(side, pieces):
     """At cell 5 the smallest piece kept is a square of 0.6 * 5 = 3 mm: a 3 mm square beside
     a larger piece stays, a 2.9 mm one merges with it (their union is convex)."""
     small, large = shapely.box(0, 0, side, 3), shapely.box(side, 0, 10, 3)
-    merged = outline_mesh._merged_small([small, large], 5.0, 0.2)
+    merged = merged_small([small, large], 5.0, 0.2)
     assert len(merged) == pieces
     assert shapely.union_all(merged).equals(shapely.box(0, 0, 10, 3))
 
@@ -252,7 +253,7 @@ def test_a_small_piece_is_cut_anew_with_one_neighbour_never_joined_with_two():
     small = shapely.box(0, 0, 2, 2)
     right = shapely.Polygon([(2, 0), (10, 0), (10, 10), (2, 2)])
     top = shapely.Polygon([(0, 2), (2, 2), (10, 10), (0, 10)])
-    merged = outline_mesh._merged_small([small, right, top], 5.0, 0.2)
+    merged = merged_small([small, right, top], 5.0, 0.2)
     assert len(merged) == 3
     areas = shapely.area(merged)
     assert areas.min() > 1.2 * small.area and areas.max() <= top.area + small.area + 1e-9
