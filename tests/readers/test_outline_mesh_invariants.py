@@ -239,7 +239,7 @@ def test_pieces_under_the_minimum_size_merge_and_at_it_stay(side, pieces):
     """At cell 5 the smallest piece kept is a square of 0.6 * 5 = 3 mm: a 3 mm square beside
     a larger piece stays, a 2.9 mm one merges with it (their union is convex)."""
     small, large = shapely.box(0, 0, side, 3), shapely.box(side, 0, 10, 3)
-    merged = merged_small([small, large], 5.0, 0.2)
+    merged = merged_small([small, large], 5.0)
     assert len(merged) == pieces
     assert shapely.union_all(merged).equals(shapely.box(0, 0, 10, 3))
 
@@ -253,7 +253,7 @@ def test_a_small_piece_is_cut_anew_with_one_neighbour_never_joined_with_two():
     small = shapely.box(0, 0, 2, 2)
     right = shapely.Polygon([(2, 0), (10, 0), (10, 10), (2, 2)])
     top = shapely.Polygon([(0, 2), (2, 2), (10, 10), (0, 10)])
-    merged = merged_small([small, right, top], 5.0, 0.2)
+    merged = merged_small([small, right, top], 5.0)
     assert len(merged) == 3
     areas = shapely.area(merged)
     assert areas.min() > 1.2 * small.area and areas.max() <= top.area + small.area + 1e-9

@@ -88,7 +88,7 @@ def mesh_outline(region, kind: str = "hex", cell: float | None = None,
                                EDGE[kind] * cell)
     _, cells = _relaxed_cells(region, kind, cell)
     pieces = merged_small([q for c in shapely.get_parts(cells)
-                           for q in convex_pieces(c, tolerance)], cell, tolerance)
+                           for q in convex_pieces(c, tolerance)], cell)
     rings = [np.asarray(shapely.orient_polygons(p).exterior.coords)[:-1] for p in pieces]
     parts = shapely.get_parts(region)
     euler = len(parts) - sum(len(p.interiors) for p in parts)  # V - E + F of its meshes

@@ -67,7 +67,7 @@ def convex_pieces(polygon, tolerance: float) -> list:
     return [q for p in best for q in convex_pieces(p, tolerance)]
 
 
-def merged_small(pieces: list, cell: float, tolerance: float) -> list:
+def merged_small(pieces: list, cell: float) -> list:
     """Pieces smaller than MIN_SIZE * cell (side of the square of equal area), smallest first,
     merged into the neighbour with the longest shared edge whose union stays convex, or else
     cut anew (``_recut``) together with one neighbour, or with the two it shares most with,
@@ -104,7 +104,7 @@ def merged_small(pieces: list, cell: float, tolerance: float) -> list:
                      + [list(neighbours[np.argsort(-shared)[:2]])],
                      [list(g) for k in (2, 3) for g in combinations(touching, k)])
             for groups in tries:
-                recuts = [_recut([pieces[n] for n in (i, *g)], tolerance) for g in groups]
+                recuts = [_recut([pieces[n] for n in (i, *g)]) for g in groups]
                 gains = [shapely.area(r).min() if len(r) else 0.0 for r in recuts]
                 if max(gains, default=0.0) > 1.2 * areas[i]:
                     k = int(np.argmax(gains))
@@ -118,12 +118,15 @@ def merged_small(pieces: list, cell: float, tolerance: float) -> list:
             return pieces
 
 
-def _recut(pieces: list, tolerance: float) -> list:
+def _recut(pieces: list) -> list:
     """``pieces`` (a small one and its neighbours) joined and cut anew into convex pieces, as
     many as its neighbours or more (and two or more); else no pieces.
 
-    Pieces meet at T-junctions whose edges are collinear only to within rounding, so their
-    union may hold cracks or spikes of no width and holes of no area; these are dropped."""
+    No bend of the union is dropped (``convex_pieces`` with no tolerance): the pieces already
+    follow the outline to the tolerance, and a bend dropped on an edge shared with a piece
+    outside the group would overlap that piece. Pieces meet at T-junctions whose edges are
+    collinear only to within rounding, so the union may hold cracks or spikes of no width and
+    holes of no area; these are dropped."""
     together = shapely.union_all(pieces)
     if together.geom_type != "Polygon":
         return []
@@ -131,7 +134,7 @@ def _recut(pieces: list, tolerance: float) -> list:
     holes = [h for h in together.interiors if shapely.Polygon(h).area > small]
     together = shapely.Polygon(_without_spikes(np.asarray(together.exterior.coords)[:-1]),
                                holes)
-    parts = convex_pieces(together, tolerance) if together.is_valid else []
+    parts = convex_pieces(together, 0.0) if together.is_valid else []
     return parts if len(parts) >= max(2, len(pieces) - 1) else []
 
 
