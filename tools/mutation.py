@@ -110,8 +110,8 @@ PACKAGES: dict[str, Package] = {
     # drawing run the paper model for 10-20 s and guard strands, not the readers (read_drawing
     # is reached by the faster tests of the same drawings)
     "readers": Package(tuple(f"src/weavecut/readers/{m}.py" for m in (
-                           "__init__", "budgets", "drawing", "dxf", "outline_mesh", "rings", "svg",
-                           "tessellations")), ("tests/readers",),
+                           "__init__", "budgets", "drawing", "dxf", "outline_mesh", "pieces",
+                           "rings", "svg", "tessellations")), ("tests/readers",),
                        deselect="not strands_of_a_drawing"),
 }
 

@@ -15,7 +15,8 @@ import shapely
 
 from weavecut.errors import MeshError
 from weavecut.mesh_geometry import corner_turns, signed_areas
-from weavecut.readers import outline_mesh, tessellations
+from weavecut.readers import outline_mesh, pieces, tessellations
+from weavecut.readers.pieces import convex_pieces, merged_small
 from weavecut.validation import validate
 
 KINDS = ("hex", "quad", "voronoi", "tri")
@@ -201,7 +202,7 @@ def test_a_gentle_bend_is_dropped_and_a_reflex_corner_cut_in_one_cell():
     vertex of two pieces)."""
     corners = np.array(L_SHAPE.exterior.coords)[:-1]
     bent = shapely.Polygon(np.insert(corners, 1, (25, 0.1), axis=0))
-    pieces = outline_mesh._convex_pieces(bent, 0.2)
+    pieces = convex_pieces(bent, 0.2)
     rings = [np.array(shapely.orient_polygons(p).exterior.coords)[:-1] for p in pieces]
     assert not any(np.hypot(*(r - (25, 0.1)).T).min() < 1e-9 for r in rings)
     assert sum(np.hypot(*(r - (20, 20)).T).min() < 1e-9 for r in rings) == 2
@@ -238,7 +239,7 @@ def test_pieces_under_the_minimum_size_merge_and_at_it_stay(side, pieces):
     """At cell 5 the smallest piece kept is a square of 0.6 * 5 = 3 mm: a 3 mm square beside
     a larger piece stays, a 2.9 mm one merges with it (their union is convex)."""
     small, large = shapely.box(0, 0, side, 3), shapely.box(side, 0, 10, 3)
-    merged = outline_mesh._merged_small([small, large], 5.0, 0.2)
+    merged = merged_small([small, large], 5.0)
     assert len(merged) == pieces
     assert shapely.union_all(merged).equals(shapely.box(0, 0, 10, 3))
 
@@ -252,9 +253,54 @@ def test_a_small_piece_is_cut_anew_with_one_neighbour_never_joined_with_two():
     small = shapely.box(0, 0, 2, 2)
     right = shapely.Polygon([(2, 0), (10, 0), (10, 10), (2, 2)])
     top = shapely.Polygon([(0, 2), (2, 2), (10, 10), (0, 10)])
-    merged = outline_mesh._merged_small([small, right, top], 5.0, 0.2)
+    merged = merged_small([small, right, top], 5.0)
     assert len(merged) == 3
     areas = shapely.area(merged)
     assert areas.min() > 1.2 * small.area and areas.max() <= top.area + small.area + 1e-9
     assert shapely.union_all(merged).symmetric_difference(shapely.box(0, 0, 10, 10)).area < 1e-9
     assert (shapely.area(shapely.convex_hull(merged)) - areas < 1e-9).all()
+
+
+def test_snapping_onto_the_outline_never_shrinks_a_cell_under_the_smallest():
+    """A 20 x 10 rectangle cut at x = 3, the cut's top end (3, 10) an outline vertex: its
+    bottom end (3, 0) lies 3 mm from the outline vertex (0, 0) beside it, within the reach of
+    5 mm, and snapping it there halves the left cell (30 to 15 mm²). Allowed down to 10 mm²,
+    the move is made; with the smallest face at 25 mm² (half of a 10 mm cell) it is not."""
+    region = shapely.Polygon([(0, 0), (20, 0), (20, 10), (3, 10), (0, 10)])
+    cells = [np.array(c, float) for c in ([(0, 0), (3, 0), (3, 10), (0, 10)],
+                                          [(3, 0), (20, 0), (20, 10), (3, 10)])]
+    snapped = outline_mesh._snapped(cells, region, 5.0, 10.0)
+    assert [c.tolist() for c in snapped] == [[[0, 0], [0, 0], [3, 10], [0, 10]],
+                                            [[0, 0], [20, 0], [20, 10], [3, 10]]]
+    kept = outline_mesh._snapped(cells, region, 5.0, 25.0)
+    assert [c.tolist() for c in kept] == [c.tolist() for c in cells]
+
+
+def test_a_short_edge_is_not_collapsed_where_it_would_shrink_a_cell_under_the_smallest():
+    """The 0.2 mm inner edge (4, 5)-(4.2, 5) collapses to the mean of its five corners (three
+    cells meet at (4, 5), two at (4.2, 5)): (4.08, 5), which cuts the triangle (4, 0)
+    (4.08, 5) (4, 5), 0.2 mm², off each 30 mm² right cell: made when the smallest face is
+    29.7 mm², not when it is 29.9 mm² (then every corner stays where it was)."""
+    region = shapely.box(0, 0, 10, 10)
+    p, q = (4, 5), (4.2, 5)
+    cells = [np.array(c, float) for c in ([(0, 0), (4, 0), p, (4, 10), (0, 10)],
+                                          [(4, 0), (10, 0), (10, 5), q, p],
+                                          [p, q, (10, 5), (10, 10), (4, 10)])]
+    lower = [shapely.Polygon(c).area
+             for c in outline_mesh._short_inner_edges_merged(cells, region, 0.3, 29.7)]
+    assert lower == pytest.approx([40.4, 29.8, 29.8])
+    kept = outline_mesh._short_inner_edges_merged(cells, region, 0.3, 29.9)
+    assert [c.tolist() for c in kept] == [c.tolist() for c in cells]
+
+
+def test_a_spike_or_crack_of_no_width_is_dropped_from_a_ring():
+    """A 10 mm square whose bottom side runs out to (15, 0) and back (a spike, as a union of
+    pieces at a T-junction collinear only to within rounding leaves) and whose top side runs
+    in to (5, 6) and back a hair to the right (a crack): both tips go, and so do the crack's
+    ends (the top side steps back by 1e-13 mm between them); the corners stay in order."""
+    ring = np.array([(0, 0), (10, 0), (15, 1e-13), (10, 1e-13), (10, 10), (5, 10),
+                     (5, 6), (5 + 1e-13, 10), (0, 10)])
+    assert pieces._without_spikes(ring).tolist() == [
+        [0, 0], [10, 0], [10, 1e-13], [10, 10], [0, 10]]
+    square = np.array([(0, 0), (10, 0), (10, 10), (0, 10)], float)
+    assert pieces._without_spikes(square).tolist() == square.tolist()

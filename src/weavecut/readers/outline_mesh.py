@@ -5,13 +5,14 @@ Voronoi cells for ``quad``, ``hex`` and ``voronoi``, clipped to the outline; a c
 Delaunay triangulation for ``tri``); this module fits the cells to the outline.
 
 A clipped cell is convex unless the outline has a reflex corner inside it; such a cell is cut
-at that corner (``_convex_pieces``) until every piece is convex, and pieces under 0.6 ``cell``
-are merged into a neighbour or cut anew with it (``_merged_small``). Every outline vertex stays
-a vertex, so the boundary is the outline to the tolerance. The outline's edges are first cut to
-at most a cell's edge, where a cell edge meets the outline it moves onto the nearer outline
-vertex beside it, inner cell edges shorter than 0.15 ``cell`` collapse, and straight outline
-points of one face are dropped: short edges and 180-degree corners make sliver pentagons, which
-turn over after a few snub steps.
+at that corner (``pieces.convex_pieces``) until every piece is convex, and pieces under 0.6 ``cell``
+are merged into a neighbour or cut anew with one, two or three of them (``pieces.merged_small``).
+Every outline vertex stays a vertex, so the boundary is the outline to the tolerance. The
+outline's edges are first cut to at most a cell's edge, where a cell edge meets the outline it
+moves onto the nearer outline vertex beside it, inner cell edges shorter than 0.15 ``cell``
+collapse, and straight outline points of one face are dropped: short edges and 180-degree
+corners make sliver pentagons, which turn over after a few snub steps. None of these moves
+shrinks a face under half a cell (``SMALLEST``): a piece too small to cut.
 """
 
 from __future__ import annotations
@@ -21,7 +22,6 @@ import math
 import numpy as np
 import shapely
 from scipy.spatial import cKDTree
-from shapely.ops import split
 
 from ..errors import MeshError
 from ..mesh import Mesh
@@ -29,15 +29,15 @@ from ..mesh_geometry import corner_angles, signed_areas
 from ..validation import validate
 from . import KINDS
 from .budgets import MAX_CELLS, MAX_GRID, amount
-from .rings import close_groups, split_t_junctions, weld
+from .rings import close_groups, invalid_where, split_t_junctions, weld
+from .pieces import convex_pieces, merged_small
 from .tessellations import SPACING, _densified, _relaxed_cells, _triangles
 
 DEFAULT_FACES = 60  # faces when no --cell is given
 # outline edges are cut to at most a cell's edge (times cell), and cells meet them at vertices
 EDGE = {"quad": 1.0, "hex": SPACING["hex"] / math.sqrt(3), "voronoi": 0.6}
 SHORT = 0.15  # inner cell edges shorter than this (times cell) collapse
-GENTLE = math.sin(math.radians(15))  # reflex turns below 15 degrees are bends of the outline
-MIN_SIZE = 0.6  # smaller pieces (times cell) merge into a neighbour
+SMALLEST = 0.5  # tidying never shrinks a face under this (times cell): too small to cut
 CORNER = 30.0  # degrees: where the outline turns by more, ``runs`` keeps a corner
 
 
@@ -65,6 +65,10 @@ def mesh_outline(region, kind: str = "hex", cell: float | None = None,
     """
     if kind not in KINDS:
         raise MeshError(f"unknown mesh kind {kind!r}; choose one of {', '.join(KINDS)}")
+    if not region.is_valid:
+        what, (x, y) = invalid_where(region)
+        raise MeshError(f"the outline is invalid ({what.lower()} near ({x:.4g}, {y:.4g}) mm, "
+                        "y up): its rings must not cross themselves or one another")
     if not region.area > 0:
         raise MeshError("the outline encloses no area")
     cell = default_cell(region) if cell is None else cell
@@ -83,14 +87,15 @@ def mesh_outline(region, kind: str = "hex", cell: float | None = None,
     region = _densified_region(region if runs else shapely.simplify(region, tolerance / 2),
                                EDGE[kind] * cell)
     _, cells = _relaxed_cells(region, kind, cell)
-    pieces = _merged_small([q for c in shapely.get_parts(cells)
-                            for q in _convex_pieces(c, tolerance)], cell, tolerance)
+    pieces = merged_small([q for c in shapely.get_parts(cells)
+                           for q in convex_pieces(c, tolerance)], cell)
     rings = [np.asarray(shapely.orient_polygons(p).exterior.coords)[:-1] for p in pieces]
     parts = shapely.get_parts(region)
     euler = len(parts) - sum(len(p.interiors) for p in parts)  # V - E + F of its meshes
     for snap, short in ((EDGE[kind], SHORT), (EDGE[kind], 0.0), (0.0, 0.0)):  # tidiest valid
-        tidy = _short_inner_edges_merged(_snapped(rings, region, snap * cell), region,
-                                         short * cell)
+        smallest = (SMALLEST * cell) ** 2
+        tidy = _short_inner_edges_merged(_snapped(rings, region, snap * cell, smallest),
+                                         region, short * cell, smallest)
         try:
             mesh = validate(_without_straight_corners(
                 split_t_junctions(weld(tidy, 1e-9 * cell)[0], 1e-9 * cell)))
@@ -139,18 +144,39 @@ def _without_straight_corners(mesh: Mesh) -> Mesh:
     return Mesh(mesh.vertices[used], np.concatenate([[0], np.cumsum(sizes)]), corners)
 
 
-def _short_inner_edges_merged(rings: list[np.ndarray], region, short: float) -> list[np.ndarray]:
+def _short_inner_edges_merged(rings: list[np.ndarray], region, short: float,
+                              smallest: float = 0.0) -> list[np.ndarray]:
     """Inner cell corners closer than ``short`` to one another meet at their mean (a short
-    Voronoi edge would become a sliver pentagon after a snub step); outline points stay."""
-    sizes = [len(r) for r in rings]
-    points = np.concatenate(rings)
+    Voronoi edge would become a sliver pentagon after a snub step); outline points stay, and
+    so do the corners of a cell that this would shrink under ``smallest`` (an area)."""
     if short == 0:
         return rings
+    sizes = [len(r) for r in rings]
+    points = np.concatenate(rings)
     inner = shapely.distance(region.boundary, shapely.points(points)) > 1e-9 * short
-    label = close_groups(points, short, movable=inner)
-    count = np.bincount(label)
-    mean = np.column_stack([np.bincount(label, weights=points[:, k]) for k in (0, 1)])
-    return np.split(mean[label] / count[label, None], np.cumsum(sizes)[:-1])
+    _, same = np.unique(points, axis=0, return_inverse=True)  # one decision per point
+    same = same.reshape(-1)
+    ring = np.repeat(np.arange(len(sizes)), sizes)
+    for _ in range(8):
+        label = close_groups(points, short, movable=inner)
+        count = np.bincount(label)
+        mean = np.column_stack([np.bincount(label, weights=points[:, k]) for k in (0, 1)])
+        moved = mean[label] / count[label, None]
+        shrunk = _shrunk(points, moved, sizes, smallest)
+        if not len(shrunk):
+            return np.split(moved, np.cumsum(sizes)[:-1])
+        inner &= ~np.isin(same, same[np.isin(ring, shrunk)])
+    return rings
+
+
+def _shrunk(points: np.ndarray, moved: np.ndarray, sizes: list[int],
+            smallest: float) -> np.ndarray:
+    """Rings (of ``sizes`` points each) that ``moved`` leaves smaller than ``points`` did and
+    than ``smallest`` (an area), by more than rounding."""
+    offsets = np.concatenate([[0], np.cumsum(sizes)])
+    corners = np.arange(len(points))
+    before, after = (signed_areas(Mesh(p, offsets, corners)) for p in (points, moved))
+    return np.flatnonzero(after < np.minimum(before, smallest) * (1 - 1e-9))
 
 
 def _densified_region(region, side: float):
@@ -192,10 +218,12 @@ def _even_runs(ring: np.ndarray, side: float, corner: float = CORNER) -> np.ndar
                             np.interp(at, along, closed[:, 1])])
 
 
-def _snapped(rings: list[np.ndarray], region, reach: float) -> list[np.ndarray]:
+def _snapped(rings: list[np.ndarray], region, reach: float,
+             smallest: float = 0.0) -> list[np.ndarray]:
     """Move every point where a cell edge meets the outline onto the nearer of the outline
     vertices beside it when that is nearer than ``reach``: no sliver edge, no sliver pentagon
-    after a few snub steps."""
+    after a few snub steps. No move bends a cell inward, pinches it, or shrinks it under
+    ``smallest`` (an area)."""
     sizes = [len(r) for r in rings]
     points = np.concatenate(rings)
     outline = shapely.get_coordinates(shapely.get_rings(shapely.get_parts(region)))
@@ -226,7 +254,8 @@ def _snapped(rings: list[np.ndarray], region, reach: float) -> list[np.ndarray]:
         distinct = np.bincount(np.unique(ring * len(moved) + vertex) // len(moved),
                                minlength=len(sizes))
         pinched = np.flatnonzero(distinct < runs)  # a ring through one point twice
-        undo = np.isin(ring, np.concatenate([ring[reflex], pinched])) & snap
+        shrunk = _shrunk(points, moved, sizes, smallest)
+        undo = np.isin(ring, np.concatenate([ring[reflex], pinched, shrunk])) & snap
         undo |= np.isin(vertex, _bow_ties(vertex, vertex[after_index])) & snap
         if not undo.any():
             return np.split(moved, np.cumsum(sizes)[:-1])
@@ -250,95 +279,3 @@ def quality(mesh: Mesh, cell: float) -> dict[str, float]:
     return {"faces": mesh.n_faces, "min_angle": float(angles.min()),
             "max_angle": float(angles.max()), "min_size": float(sizes.min()),
             "median_size": float(np.median(sizes)), "max_size": float(sizes.max())}
-
-
-def _convex_pieces(polygon, tolerance: float) -> list:
-    """``polygon`` cut at its reflex corners until every piece is convex.
-
-    A reflex bend under 15 degrees less than ``tolerance`` deep (a gentle S-bend) is dropped
-    instead, which moves the boundary by less than the tolerance. At a real reflex corner r the
-    cut runs to another corner of the cell or along one of 9 rays spread over the corner's
-    angle: of the cuts that leave both pieces convex at r, the one whose smaller piece is
-    largest.
-    """
-    if polygon.is_empty or polygon.area == 0:
-        return []
-    if polygon.interiors:  # a hole inside one cell: cut across the middle of the hole first
-        hx0, _, hx1, _ = shapely.Polygon(polygon.interiors[0]).bounds
-        _, y0, _, y1 = polygon.bounds
-        x = (hx0 + hx1) / 2  # strictly inside the hole's span: the line crosses the hole
-        halves = shapely.get_parts(split(polygon, shapely.LineString([(x, y0), (x, y1)])))
-        return [q for p in halves for q in _convex_pieces(p, tolerance)]
-    ring = np.asarray(shapely.orient_polygons(polygon).exterior.coords)[:-1]
-    before, after = ring - np.roll(ring, 1, axis=0), np.roll(ring, -1, axis=0) - ring
-    turn = before[:, 0] * after[:, 1] - before[:, 1] * after[:, 0]
-    lengths = np.hypot(*before.T) * np.hypot(*after.T)
-    reflex = np.flatnonzero(turn < -1e-6 * lengths)  # turning back by more than 1e-6 rad
-    if len(reflex) == 0:
-        return [polygon]
-    depth = -turn[reflex] / np.hypot(*(before + after)[reflex].T)
-    depth[-turn[reflex] > GENTLE * lengths[reflex]] = np.inf  # a corner, not a bend
-    if depth.min() <= tolerance:
-        return _convex_pieces(shapely.Polygon(np.delete(ring, reflex[np.argmin(depth)], axis=0)),
-                              tolerance)
-    k = reflex[0]
-    # cut to another corner, or along one of 9 rays spread over the reflex angle
-    a0 = math.atan2(after[k, 1], after[k, 0])
-    a1 = math.atan2(-before[k, 1], -before[k, 0])
-    fan = a0 + np.linspace(0.1, 0.9, 9) * np.mod(a1 - a0, 2 * np.pi)
-    rays = ring[k] + 4 * polygon.length * np.column_stack([np.cos(fan), np.sin(fan)])
-    ends = np.vstack([np.delete(ring, [k - 1, k, (k + 1) % len(ring)], axis=0), rays])
-    d = ends - ring[k]
-    in_cone = ((after[k, 0] * d[:, 1] - after[k, 1] * d[:, 0] >= 0)
-               & (before[k, 0] * d[:, 1] - before[k, 1] * d[:, 0] >= 0))
-    best, best_area = None, 0.0
-    for end in ends[in_cone]:
-        parts = shapely.get_parts(split(polygon, shapely.LineString([ring[k], end])))
-        smaller = shapely.area(parts).min() if len(parts) > 1 else 0.0
-        if smaller > best_area:
-            best, best_area = parts, smaller
-    if best is None:
-        raise MeshError("could not cut a cell at a reflex corner of the outline; try "
-                        "another --cell")
-    return [q for p in best for q in _convex_pieces(p, tolerance)]
-
-
-def _merged_small(pieces: list, cell: float, tolerance: float) -> list:
-    """Pieces smaller than MIN_SIZE * cell (side of the square of equal area), smallest first,
-    merged into the neighbour with the longest shared edge whose union stays convex, or else
-    cut anew (``_convex_pieces``) together with one neighbour, or with the two it shares most
-    with, where that leaves two or more pieces whose smallest is over 1.2 times the small
-    one's area. A recut never joins them into one piece (only a single neighbour, whose union
-    with the small piece is convex, takes it whole), so a face never swallows two neighbours."""
-    pieces = list(pieces)
-    while True:
-        areas = shapely.area(pieces)
-        for i in np.argsort(areas, kind="stable"):
-            if areas[i] >= (MIN_SIZE * cell) ** 2:
-                return pieces
-            neighbours = shapely.STRtree(pieces).query(pieces[i], predicate="intersects")
-            neighbours = neighbours[neighbours != i]
-            unions = shapely.union(pieces[i], np.take(pieces, neighbours))
-            shared = shapely.length(shapely.intersection(
-                pieces[i].boundary, shapely.boundary(np.take(pieces, neighbours))))
-            convex = ((shapely.area(shapely.convex_hull(unions)) - shapely.area(unions)
-                       <= 1e-9 * shapely.area(unions)) & (shapely.get_type_id(unions) == 3))
-            if (shared * convex).max(initial=0) > 0:
-                k = int(np.argmax(shared * convex))
-                pieces[neighbours[k]] = unions[k]
-                del pieces[i]
-                break
-            # else cut the piece anew with one neighbour, or with the two it shares most with
-            groups = [[j] for j in neighbours[shared > 0]]
-            groups.append(list(neighbours[np.argsort(-shared)[:2]]))
-            together = [shapely.union_all(np.take(pieces, [i, *g])) for g in groups]
-            recuts = [_convex_pieces(u, tolerance) if u.geom_type == "Polygon" else []
-                      for u in together]
-            gains = [shapely.area(r).min() if len(r) > 1 else 0.0 for r in recuts]
-            if max(gains, default=0.0) > 1.2 * areas[i]:
-                k = int(np.argmax(gains))
-                pieces = [p for n, p in enumerate(pieces) if n not in (i, *groups[k])]
-                pieces += recuts[k]
-                break
-        else:
-            return pieces

@@ -43,7 +43,7 @@ def checked(rings: list[Ring], tolerance: float) -> list[Ring]:
         if polygon is None or polygon.convex_hull.area <= tolerance ** 2:
             raise MeshFileError(f"{ring.label} encloses no area")
         if not polygon.is_valid:
-            x, y = map(float, shapely.is_valid_reason(polygon).split("[")[-1].rstrip("]").split())
+            _, (x, y) = invalid_where(polygon)
             raise MeshFileError(f"{ring.label} crosses itself near ({x:.4g}, {y:.4g}) mm (y up); "
                                 "a face must be a simple closed outline")
         if polygon.area <= tolerance ** 2:
@@ -51,6 +51,14 @@ def checked(rings: list[Ring], tolerance: float) -> list[Ring]:
         ccw = shapely.is_ccw(polygon.exterior)
         out.append(Ring(ring.label, p if ccw else p[::-1]))
     return out
+
+
+def invalid_where(polygon) -> tuple[str, tuple[float, float]]:
+    """Why GEOS finds ``polygon`` invalid (its words, such as "Self-intersection") and the
+    point it names."""
+    what, _, where = shapely.is_valid_reason(polygon).partition("[")
+    x, y = map(float, where.rstrip("]").split()[:2])
+    return what, (x, y)
 
 
 def nesting(rings: list[Ring], tolerance: float) -> np.ndarray:
