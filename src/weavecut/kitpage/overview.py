@@ -26,7 +26,8 @@ def block(runs, body: str, cut_length) -> str:
     front = [src for src, alt in images if "front-guide" in alt]  # a puzzle: its painted face
     data = {"items": items(runs, cut_length),
             "picture": (front or [src for src, _ in images] or [""])[0]}
-    text = json.dumps(data, sort_keys=True, ensure_ascii=False).replace("<", "\\u003c")
+    text = json.dumps(data, sort_keys=True, ensure_ascii=False, allow_nan=False).replace(
+        "<", "\\u003c")
     return f'<script type="application/json" id="weave-cut-kit">{text}</script>'
 
 
