@@ -1,7 +1,8 @@
 """Whole kit commands, as a maker runs them, against the same commands of a frozen commit
 (prints a table; asserts nothing).
 
-    .venv/bin/python benchmarks/bench_kits.py [--repeat 3] [--base COMMIT]   (or: make bench-kits)
+    .venv/bin/python benchmarks/bench_kits.py [--repeat 3] [--base COMMIT] [--only NAME]
+    (or: make bench-kits)
 
 Each command runs in a fresh process (interpreter start and imports included, as
 ``/usr/bin/time`` counts them), the frozen commit's and this checkout's alternately, ``repeat``
@@ -76,12 +77,18 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeat", type=int, default=3)
     parser.add_argument("--base", default=BASE, help="the frozen commit (default %(default)s)")
+    parser.add_argument("--only", metavar="NAME", action="append", default=[],
+                        help="only the kits whose name holds NAME (repeatable), e.g. 'pentagon'")
     args = parser.parse_args()
+    kits = [k for k in KITS if not args.only or any(o in k[0] for o in args.only)]
+    if not kits:
+        parser.error(f"no kit's name holds {' or '.join(map(repr, args.only))}: "
+                     f"{', '.join(k[0] for k in KITS)}")
     sources = {"before": frozen_source(args.base), "now": ROOT / "src"}
     print(f"| command | before ({args.base}), CPU s best / median | now | ratio (target) | "
           "pages before / now |\n| --- | --- | --- | --- | --- |", flush=True)
     with tempfile.TemporaryDirectory() as tmp:
-        for name, cmd, output, target in KITS:
+        for name, cmd, output, target in kits:
             times: dict[str, list[float]] = {"before": [], "now": []}
             outs = {k: Path(tmp) / k / output for k in sources}
             for _ in range(args.repeat):
