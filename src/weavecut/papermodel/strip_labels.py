@@ -25,6 +25,7 @@ from ..layout.labels import (
     text_boxes,
     unit_boxes,
 )
+from ..layout.labels import _unit_extent
 from .strips import Strip
 
 
@@ -96,14 +97,20 @@ class _Tiles:
         count = np.array([len(s.tiles) for s in strips])
         self.first = np.cumsum(count) - count
         self.of = np.repeat(np.arange(len(strips)), count)
-        self.tiles = np.concatenate([s.tiles for s in strips])
-        self.bands = np.array([None if s.glue is None else shapely.union_all(s.glue)
-                               for s in strips], dtype=object)
-        self.outlines = np.array([s.outline for s in strips], dtype=object)
-        regions = shapely.intersection(self.tiles, self.outlines[self.of])
-        banded = np.flatnonzero(np.not_equal(self.bands, None)[self.of])
-        regions[banded] = shapely.difference(regions[banded], self.bands[self.of[banded]])
-        self.regions = shapely.buffer(regions, -PAD, join_style="mitre")
+        # congruent strips (a module's copies: the same shapes in their own frames) share their
+        # tiles, outline, glue band and regions, each worked out once
+        same = _congruent(strips)
+        twin = self.first[same[self.of]] + np.arange(len(self.of)) - self.first[self.of]
+        self.tiles = np.concatenate([s.tiles for s in strips])[twin]
+        self.bands = np.array([None if s.glue is None or same[i] != i else
+                               shapely.union_all(s.glue) for i, s in enumerate(strips)],
+                              dtype=object)[same]
+        self.outlines = np.array([s.outline for s in strips], dtype=object)[same]
+        mine, back = np.unique(twin, return_inverse=True)
+        regions = shapely.intersection(self.tiles[mine], self.outlines[self.of[mine]])
+        banded = np.flatnonzero(np.not_equal(self.bands, None)[self.of[mine]])
+        regions[banded] = shapely.difference(regions[banded], self.bands[self.of[mine][banded]])
+        self.regions = shapely.buffer(regions, -PAD, join_style="mitre")[back.reshape(-1)]
         self.centres = inner_centres(self.regions)
 
     def clear_of(self, shapes, recentre: bool) -> None:
@@ -121,6 +128,17 @@ class _Tiles:
         self.regions[t] = shapely.difference(self.regions[t], keep_out[self.of[t]])
         if recentre:
             self.centres[t] = inner_centres(self.regions[t])
+
+
+def _congruent(strips: list[Strip]) -> np.ndarray:
+    """(strips,) for each strip the first one of the same shape: the same outline, tiles and
+    glue band, coordinate for coordinate."""
+    geoms = [np.array([s.outline, *s.tiles, *(() if s.glue is None else s.glue)], dtype=object)
+             for s in strips]
+    wkb = np.split(shapely.to_wkb(np.concatenate(geoms)), np.cumsum([len(g) for g in geoms]))
+    first: dict = {}
+    return np.array([first.setdefault((len(s.tiles), *w), i)
+                     for i, (s, w) in enumerate(zip(strips, wkb))], dtype=np.int64)
 
 
 def _owners(lay: _Tiles):
@@ -331,7 +349,11 @@ def _place(lay: _Tiles, wanted, taken):
                  for c, m, f in zip(inner, mid, full.tolist())]
         row_of = np.repeat(np.arange(len(ks)), [len(p) for p in spots])
         spots = np.vstack(spots)
-        z, a = _fit_text(wide[row_of], spots, [text[ks[row]] for row in row_of], MIN_CAP)
+        words = [text[ks[row]] for row in row_of]
+        z, a = np.zeros(len(spots)), np.zeros(len(spots))
+        hope = _may_reach(wide, row_of, spots, words, MIN_CAP)
+        z[hope], a[hope] = _fit_text(wide[row_of[hope]], spots[hope],
+                                     [w for w, h in zip(words, hope.tolist()) if h], MIN_CAP)
         best = [pick[int(np.argmax(snap(z[pick])))] for pick in
                 np.split(np.arange(len(z)), np.cumsum(np.bincount(row_of))[:-1])]
         done = [(k, b) for k, b in zip(ks, best) if z[b] >= MIN_CAP - 1e-9]
@@ -369,6 +391,20 @@ def unit_arrows(directions) -> np.ndarray:
     d = d / np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-12)[:, None]
     c, s = d[:, :1], d[:, 1:]
     return np.stack([c * ring[:, 0] - s * ring[:, 1], s * ring[:, 0] + c * ring[:, 1]], axis=-1)
+
+
+def _may_reach(regions, of, centres, texts, size: float) -> np.ndarray:
+    """(n,) False where text i centred on ``centres[i]`` cannot reach cap height ``size`` in
+    ``regions[of[i]]`` at any angle: the centre lies outside, or nearer the edge than the
+    circle a text box of that size holds (half its height or width, the smaller)."""
+    inside = shapely.contains_xy(regions[of], centres[:, 0], centres[:, 1])
+    room = np.zeros(len(of))
+    if inside.any():
+        room[inside] = shapely.distance(shapely.boundary(regions)[of[inside]],
+                                        shapely.points(centres[inside]))
+    extent = np.array([_unit_extent(t) for t in texts], dtype=float).reshape(-1, 2)
+    least = np.minimum(extent[:, 0], 1.0 + extent[:, 1])  # the box's side at cap height 1
+    return inside & (2.0 * room >= size * least * (1.0 - 1e-6))
 
 
 def _fit_text(regions, centres, texts, high):
