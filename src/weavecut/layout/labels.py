@@ -107,11 +107,28 @@ def upright(t: Text) -> Text:
     """``t`` turned by 180 degrees about its box centre if it would read upside down, so that its
     angle lies in (-90, 90]; the box covers the same rectangle either way (a turned text is
     anchored at its middle)."""
-    angle = (t.angle + 180.0) % 360.0 - 180.0
-    if -90.0 < angle <= 90.0 + 1e-9:
-        return Text(t.x, t.y, t.text, t.size, t.anchor, angle, t.fill)
-    centre = text_box(t).centroid
-    return centred_text((centre.x, centre.y), t.text, t.size, angle % 360.0 - 180.0, t.fill)
+    return uprights([t])[0]
+
+
+def uprights(texts) -> list[Text]:
+    """:func:`upright` of each of ``texts``, the turned ones' boxes worked out at once."""
+    out: list = []
+    flip = []  # (index, angle) of the texts turned by half a turn
+    for i, t in enumerate(texts):
+        angle = (t.angle + 180.0) % 360.0 - 180.0
+        if -90.0 < angle <= 90.0 + 1e-9:
+            out.append(Text(t.x, t.y, t.text, t.size, t.anchor, angle, t.fill))
+        else:
+            out.append(None)
+            flip.append((i, angle % 360.0 - 180.0))
+    if flip:
+        turned = [texts[i] for i, _ in flip]
+        centres = shapely.get_coordinates(shapely.centroid(text_boxes(turned)))
+        for (i, _), t in zip(flip, centred_texts(centres, [t.text for t in turned],
+                                                 [t.size for t in turned], [a for _, a in flip],
+                                                 [t.fill for t in turned])):
+            out[i] = t
+    return out
 
 
 def largest_fit(regions, shapes, centres, low: float, high) -> np.ndarray:

@@ -19,7 +19,7 @@ from ..numeric import affine, matmul, snap, transform
 from ..weave.model import Weave
 from ..layout.contrast import text_colour_on
 from ..layout.drawing import Text
-from ..layout.labels import upright
+from ..layout.labels import uprights
 from .modules import ModulePlan
 from .symmetry import tile_centres
 from ..layout.weave_figure import tile_rings
@@ -112,21 +112,50 @@ class Strip:
     def moved(self, matrix: NDArray[np.float64], angle: float = 0.0) -> Strip:
         """The strip through the affine ``matrix`` (3, 3), a turn by ``angle`` degrees plus a
         shift; its texts turn with it and are then set upright."""
-        f = transform(matrix)
-        texts = []
-        for t in self.texts:
-            x, y = f(np.array([[t.x, t.y]]))[0]
-            texts.append(upright(replace(t, x=float(x), y=float(y), angle=t.angle + angle)))
-        return replace(self, outline=shapely.transform(self.outline, f),
-                       tiles=shapely.transform(self.tiles, f),
-                       arrows=shapely.transform(self.arrows, f),
-                       glue=None if self.glue is None else shapely.transform(self.glue, f),
-                       plates=shapely.transform(self.plates, f),
-                       folds=shapely.transform(self.folds, f),
-                       flap=None if self.flap is None else shapely.transform(self.flap, f),
-                       flap_edge=None if self.flap_edge is None
-                       else shapely.transform(self.flap_edge, f),
-                       texts=tuple(texts), frame=matmul(matrix, self.frame))
+        return moved_strips([self], [matrix], [angle])[0]
+
+
+GEOMETRY = ("outline", "tiles", "arrows", "glue", "plates", "folds", "flap", "flap_edge")
+
+
+def moved_strips(strips, matrices, angles) -> list[Strip]:
+    """:meth:`Strip.moved` of every strip by its matrix and angle, all at once (one transform
+    of every strip's shapes, the texts set upright together)."""
+    parts, where = [], []  # every shape, and (strip, field, how many; None: a single shape)
+    for s, strip in enumerate(strips):
+        for name in GEOMETRY:
+            value = getattr(strip, name)
+            if value is not None:
+                one = isinstance(value, shapely.Geometry)
+                parts.extend([value] if one else value)
+                where.append((s, name, None if one else len(value)))
+    m = np.asarray(matrices, dtype=float).reshape(-1, 3, 3)
+    shapes = np.array(parts, dtype=object)
+    owner = np.repeat(np.repeat([s for s, _, _ in where],
+                                [1 if k is None else k for _, _, k in where]),
+                      shapely.get_num_coordinates(shapes)) if len(shapes) else np.zeros(0, int)
+    moved = iter(shapely.transform(shapes, lambda xy: _apply(m[owner], xy)))
+    fields: list[dict] = [{} for _ in strips]
+    for s, name, k in where:
+        fields[s][name] = next(moved) if k is None else np.array(
+            [next(moved) for _ in range(k)], dtype=object)
+    texts = [t for strip in strips for t in strip.texts]
+    xy = _apply(np.repeat(m, [len(strip.texts) for strip in strips], axis=0),
+                np.array([(t.x, t.y) for t in texts], dtype=float).reshape(-1, 2))
+    turn = np.repeat(np.asarray(angles, dtype=float), [len(strip.texts) for strip in strips])
+    texts = iter(uprights([replace(t, x=x, y=y, angle=t.angle + a) for t, (x, y), a in
+                           zip(texts, xy.tolist(), turn.tolist())]))
+    return [replace(strip, **fields[s], texts=tuple(next(texts) for _ in strip.texts),
+                    frame=matmul(matrix, strip.frame))
+            for s, (strip, matrix) in enumerate(zip(strips, m))]
+
+
+def _apply(m, xy) -> NDArray[np.float64]:
+    """Each point of ``xy`` (N, 2) through its own affine matrix ``m`` (N, 3, 3), as
+    :func:`~weavecut.numeric.transform` maps it."""
+    x, y = xy[:, 0], xy[:, 1]
+    return np.stack([m[:, 0, 0] * x + m[:, 0, 1] * y + m[:, 0, 2],
+                     m[:, 1, 0] * x + m[:, 1, 1] * y + m[:, 1, 2]], axis=-1)
 
 
 def model_tiles(weave: Weave) -> NDArray[np.object_]:
