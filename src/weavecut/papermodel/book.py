@@ -29,7 +29,7 @@ from .packing import pack
 from .pages import GAP, PageArea, page_layers, page_span, split_strip, strip_layers
 from .modules import ModulePlan, book_colours, plan_modules
 from .strip_labels import label_strips
-from .strips import Strip, build_strips, moved_strips, octagon_size, strip_width
+from .strips import Strip, build_copies, build_strips, moved_strips, octagon_size, strip_width
 from .wording import strip_runs
 
 ON_COVER = 24  # at most this many unnamed crossings are tried on page 1
@@ -262,8 +262,8 @@ def labelled_pieces(weave: Weave, plan: ModulePlan, colours, tile_size: float, l
     m = plan.copies.shape[1]
     pieces, kinds = [], []
     names = None if layout == "mixed" else _module_names(plan)
-    for j in (range(plan.k) if layout == "mixed" else [0]):  # module copies
-        strips = build_strips(weave, plan, colours, scale, plan.copies[0], j, names)
+    for strips in build_copies(weave, plan, colours, scale, plan.copies[0],
+                               range(plan.k) if layout == "mixed" else [0], names):
         for i, s in enumerate(strips):
             parts = split_strip(s, longest, widest)
             pieces += parts

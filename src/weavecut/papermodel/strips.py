@@ -198,23 +198,33 @@ def build_strips(weave: Weave, plan: ModulePlan, colours: list[str], scale: floa
     as their images under the turn by j * 2 pi / k (so every copy has the same layout).
     ``labels`` replaces the plan's strand IDs (the paper's module prints: no copy letter).
     """
+    return build_copies(weave, plan, colours, scale, strands, [copy], labels)[0]
+
+
+def build_copies(weave: Weave, plan: ModulePlan, colours: list[str], scale: float, strands,
+                 copies, labels: tuple[str, ...] | None = None) -> list[list[Strip]]:
+    """:func:`build_strips` of each of ``copies``: the strips' shapes are made once, every
+    copy colours and names them as its images."""
     tiles = model_tiles(weave)
     centres = tile_centres(weave)
     tile_mm = octagon_size(weave) * scale
-    image = plan.symmetry.strand_powers()[copy]
-    names = plan.labels if labels is None else labels
-    names = [names[t] for t in image.tolist()]
-    cols = [colours[t] for t in image.tolist()]
-    c = plan.symmetry.centre
-    back = matmul(matmul(affine(0.0, c), affine(-np.degrees(copy * plan.symmetry.angle))),
-                  affine(0.0, -c))
-    out = []
+    shapes = []
     for s in np.asarray(strands).tolist():  # strands, not mesh elements
         visits, over = weave.strand(s)
         if plan.reversed[s]:
             visits, over = visits[::-1], over[::-1]
-        strip = _strip(weave, s, visits, over, tiles, centres, names, cols, scale, tile_mm)
-        out.append(replace(strip, strand=int(image[s]), frame=matmul(strip.frame, back)))
+        shapes.append((s, visits, over, *_strip_shape(visits, tiles, centres, scale, tile_mm)))
+    out = []
+    for copy in copies:
+        image = plan.symmetry.strand_powers()[copy]
+        names = plan.labels if labels is None else labels
+        names = [names[t] for t in image.tolist()]
+        cols = [colours[t] for t in image.tolist()]
+        c = plan.symmetry.centre
+        back = matmul(matmul(affine(0.0, c), affine(-np.degrees(copy * plan.symmetry.angle))),
+                      affine(0.0, -c))
+        out.append([replace(_strip(weave, *shape, names, cols), strand=int(image[shape[0]]),
+                            frame=matmul(shape[-1], back)) for shape in shapes])
     return out
 
 
@@ -237,7 +247,9 @@ def flat_angle(outline) -> float:
     return float(-np.degrees(np.arctan2(long[1], long[0])))
 
 
-def _strip(weave, s, visits, over, tiles, centres, labels, colours, scale, tile_mm) -> Strip:
+def _strip_shape(visits, tiles, centres, scale, tile_mm):
+    """(outline, tiles, frame) of the strip of the tiles ``visits``: in mm, long axis along
+    x, walking towards +x, and the map from model units to it."""
     # a twisted tile of an irregular mesh becomes the polygons it encloses
     shapes = shapely.make_valid(tiles[visits], method="structure", keep_collapsed=False)
     pts = centres[visits]
@@ -248,11 +260,13 @@ def _strip(weave, s, visits, over, tiles, centres, labels, colours, scale, tile_
     x0, y0 = shapely.transform(outline, transform(turn)).bounds[:2]
     frame = matmul(affine(0.0, (-x0, -y0)), turn)
     place = transform(frame)
+    return shapely.transform(outline, place), shapely.transform(shapes, place), frame
 
+
+def _strip(weave, s, visits, over, outline, shapes, frame, labels, colours) -> Strip:
     over_strand = weave.tile_over[visits]
     fills = tuple(colours[s] if o else tint(colours[t]) for o, t in
                   zip(over.tolist(), over_strand.tolist()))
     names = tuple(labels[t] for t in over_strand.tolist())
-    return Strip(int(s), labels[s], shapely.transform(outline, place),
-                 shapely.transform(shapes, place), fills, np.asarray(over, dtype=bool), names,
+    return Strip(int(s), labels[s], outline, shapes, fills, np.asarray(over, dtype=bool), names,
                  frame, arrow_ink=text_colour_on(colours[s]))
