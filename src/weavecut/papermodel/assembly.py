@@ -213,6 +213,7 @@ def _free_spot(at, label: str, obstacles, frame, size: float):
     leaders = shapely.linestrings(np.stack([np.clip(at, c - half, c + half),
                                             np.broadcast_to(at, c.shape)], axis=1))
     first = None
+    obstacles = obstacles if isinstance(obstacles, Obstacles) else Obstacles(obstacles)
     for ring in range(0, len(c), RING):  # the nearest spots first
         free = np.flatnonzero(~obstacles.hits(plates[ring:ring + RING])) + ring if obstacles \
             else np.arange(ring, min(ring + RING, len(c)))

@@ -348,11 +348,12 @@ def _may_reach(regions, of, centres, texts, size: float) -> np.ndarray:
     inside = shapely.contains_xy(regions[of], centres[:, 0], centres[:, 1])
     room = np.zeros(len(of))
     if inside.any():
-        room[inside] = shapely.distance(shapely.boundary(regions)[of[inside]],
-                                        shapely.points(centres[inside]))
+        with np.errstate(all="ignore"):  # a degenerate edge's distance: NaN, kept below
+            room[inside] = shapely.distance(shapely.boundary(regions)[of[inside]],
+                                            shapely.points(centres[inside]))
     box = unit_corners(texts)
     least = np.minimum(box[:, 1, 0] - box[:, 0, 0], box[:, 2, 1] - box[:, 1, 1])  # shorter side
-    return inside & (2.0 * room >= size * least * (1.0 - 1e-6))
+    return inside & ~(2.0 * room < size * least * (1.0 - 1e-6))
 
 
 def _fit_text(regions, centres, texts, high):
