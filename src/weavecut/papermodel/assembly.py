@@ -214,9 +214,9 @@ def _free_spot(at, label: str, obstacles, frame, size: float):
                                             np.broadcast_to(at, c.shape)], axis=1))
     first = None
     obstacles = obstacles if isinstance(obstacles, Obstacles) else Obstacles(obstacles)
-    for ring in range(0, len(c), RING):  # the nearest spots first
-        free = np.flatnonzero(~obstacles.hits(plates[ring:ring + RING])) + ring if obstacles \
-            else np.arange(ring, min(ring + RING, len(c)))
+    for ring in range(0, len(c), SPOTS):  # the nearest spots first
+        free = np.flatnonzero(~obstacles.hits(plates[ring:ring + SPOTS])) + ring if obstacles \
+            else np.arange(ring, min(ring + SPOTS, len(c)))
         free = free[~obstacles.hits(leaders[free])] if obstacles else free
         if len(free):
             first = int(free[0])
@@ -226,7 +226,8 @@ def _free_spot(at, label: str, obstacles, frame, size: float):
     return centred_text(c[first], label, MIN_CAP, 0.0, "#000000"), plates[first], leaders[first]
 
 
-RING = 12  # spots tested at once, nearest first
+SPOTS = 36  # spots tested at once (three rings), nearest first
+REINDEX = 12  # obstacles added before the index is made again
 
 
 class Obstacles(list):
@@ -235,7 +236,7 @@ class Obstacles(list):
 
     def hits(self, shapes) -> np.ndarray:
         """(n,) whether each of ``shapes`` touches an obstacle."""
-        if len(self) - getattr(self, "_indexed", -RING - 1) > RING:
+        if len(self) - getattr(self, "_indexed", -REINDEX - 1) > REINDEX:
             self._tree, self._indexed = shapely.STRtree(list(self)), len(self)
         hit = np.zeros(len(shapes), dtype=bool)
         if len(shapes) and self._indexed:
