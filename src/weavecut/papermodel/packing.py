@@ -243,8 +243,8 @@ def _best_spot(grid: Page, options, axis: int = 1):
             t, :ny - core.shape[0] + 1, :nx - core.shape[1] + 1], options.offsets[t])
         for k in BLOCKS[1:]:
             core, offset = options.core(k, t)
-            if (fits := grid.fits(k, [core])[0]) is not None:
-                test = (k, fits, offset)
+            if core is not None:
+                test = (k, _finer(grid, k, core, offset, test), offset)
             tries = TRIES if k > 1 else -1
             last, at, more = _try(grid, options[t][1], test, axis, (r, best_key, last), tries)
             if not more:
@@ -252,6 +252,26 @@ def _best_spot(grid: Page, options, axis: int = 1):
         if at is not None:
             best, best_key = (at, *options[t]), last
     return best
+
+
+def _finer(grid: Page, k: int, core, offset, coarser):
+    """The block places where ``core`` (at ``offset``) lies on free k x k blocks among those
+    the ``coarser`` test (k, fits, offset) leaves: read directly at those places when they are
+    few, else everywhere by FFT (both leave every place that fits)."""
+    step, fits, at = coarser
+    if fits is not None:
+        r, c = np.nonzero(fits)
+        m = step // k
+        if len(r) * m * m * np.count_nonzero(core) <= DIRECT:
+            d = np.arange(m)
+            rows = ((r - at[0]) * m + offset[0])[:, None, None] + d[:, None]
+            columns = ((c - at[1]) * m + offset[1])[:, None, None] + d
+            rows, columns = (a.ravel() for a in np.broadcast_arrays(rows, columns))
+            return grid.fits_at(k, core, rows, columns)
+    return grid.fits(k, [core])[0]
+
+
+DIRECT = 8192  # a finer test reads the blocks under a core at a few places up to this often
 
 
 def _try(grid, mask, test, axis: int, keys, tries: int):

@@ -180,10 +180,21 @@ class Page:
         return [None if c is None else f[:ny - c.shape[0] + 1, :nx - c.shape[1] + 1]
                 for f, c in zip(free, cores)]
 
-    def places(self, k: int, cores) -> np.ndarray:
-        """(cores, rows, columns) bool: :meth:`fits` of every core on one grid of the page's
-        blocks, False beyond the places inside the page (everywhere for no core). All cores
-        at once: one inverse FFT of the page's transform times each core's."""
+    def fits_at(self, k: int, core, rows, columns) -> np.ndarray:
+        """:meth:`fits` of ``core`` read at the block places (``rows``, ``columns``) only,
+        False elsewhere: the blocks under the core's cells at each place, at once."""
+        blocks = self.blocks(k)
+        out = np.zeros((blocks.shape[0] - core.shape[0] + 1, blocks.shape[1] - core.shape[1] + 1),
+                       dtype=bool)
+        keep = (rows >= 0) & (columns >= 0) & (rows < out.shape[0]) & (columns < out.shape[1])
+        rows, columns = rows[keep], columns[keep]
+        cy, cx = np.nonzero(core)
+        out[rows, columns] = ~blocks[rows[:, None] + cy, columns[:, None] + cx].any(axis=1)
+        return out
+
+    def blocks(self, k: int) -> np.ndarray:
+        """The page's k x k blocks (rows, columns) bool: True where all their cells are taken
+        (the cells beyond the page's edge are)."""
         if k not in self._blocks:
             ny, nx = self.taken.shape
             taken = np.ones((ny + -ny % k, nx + -nx % k), dtype=bool)  # beyond the page: taken
@@ -194,9 +205,18 @@ class Page:
             blocks = columns[::k].copy()
             for i in range(1, k):
                 blocks &= columns[i::k]
+            self._blocks[k] = blocks, None
+        return self._blocks[k][0]
+
+    def places(self, k: int, cores) -> np.ndarray:
+        """(cores, rows, columns) bool: :meth:`fits` of every core on one grid of the page's
+        blocks, False beyond the places inside the page (everywhere for no core). All cores
+        at once: one inverse FFT of the page's transform times each core's."""
+        blocks = self.blocks(k)
+        if self._blocks[k][1] is None:
             shape = tuple(fast_len(n) for n in blocks.shape)  # no wrap where it is read
-            self._blocks[k] = blocks, shape, rfft2(blocks.astype(np.float32), shape)
-        blocks, shape, page = self._blocks[k]
+            self._blocks[k] = blocks, (shape, rfft2(blocks.astype(np.float32), shape))
+        shape, page = self._blocks[k][1]
         ny, nx = blocks.shape
         key = (k, shape, *map(id, cores))
         if key not in self.spectra:
