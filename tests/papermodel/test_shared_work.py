@@ -136,3 +136,48 @@ def test_obstacles_answer_as_tested_one_by_one(boxes, seed):
                             *(rng.uniform(0, 50, (5, 2)) + 2.0).T)
         brute = shapely.intersects(probe[:, None], np.array(obstacles)[None, :]).any(axis=1)
         np.testing.assert_array_equal(obstacles.hits(probe), brute)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.sampled_from([2, 4, 8]), st.floats(0.2, 0.8))
+def test_a_finer_test_read_directly_agrees_with_the_fft(seed, k, share):
+    """The blocks under a core read at given places say what the FFT correlation says there
+    (and nothing elsewhere), on a page with odd edges."""
+    from weavecut.papermodel.packing_grid import Page, block_cores
+    rng = np.random.default_rng(seed)
+    page = Page(int(rng.integers(20, 60)), int(rng.integers(20, 60)), {})
+    page.taken[:] = rng.random(page.taken.shape) < share
+    mask = rng.random((int(rng.integers(3, 19)), int(rng.integers(3, 19)))) < 0.9
+    for core, _ in block_cores(mask, k):
+        if core is None:
+            continue
+        fft = page.fits(k, [core])[0]
+        rows = rng.integers(-2, fft.shape[0] + 2, 50)
+        columns = rng.integers(-2, fft.shape[1] + 2, 50)
+        direct = page.fits_at(k, core, rows, columns)
+        inside = (rows >= 0) & (columns >= 0) & (rows < fft.shape[0]) & (columns < fft.shape[1])
+        expect = np.zeros_like(fft)
+        expect[rows[inside], columns[inside]] = fft[rows[inside], columns[inside]]
+        np.testing.assert_array_equal(direct, expect)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.lists(st.tuples(st.floats(-50, 50), st.floats(-50, 50), st.floats(1, 9),
+                          st.booleans()), min_size=1, max_size=12))
+def test_polygons_from_shapely_read_ring_by_ring(specs):
+    """Every ring of every polygon, read at once, is the ring read one by one: exterior
+    counter-clockwise then holes clockwise, the closing corner dropped, in order."""
+    from weavecut.layout.drawing import polygons_from_shapely
+    shapes = [shapely.Point(x, y).buffer(r, quad_segs=3).difference(
+        shapely.Point(x, y).buffer(r / 2, quad_segs=2)) if hole
+        else shapely.box(x, y, x + r, y + r / 3) for x, y, r, hole in specs]
+    got = polygons_from_shapely(shapes, fills=["#ffffff"] * len(shapes))
+    rings, counts = [], []
+    for g in shapes:
+        g = shapely.orient_polygons(g)
+        parts = [g.exterior, *g.interiors]
+        rings += [np.asarray(p.coords)[:-1] for p in parts]
+        counts.append(len(parts))
+    np.testing.assert_array_equal(got.coords, np.concatenate(rings))
+    np.testing.assert_array_equal(got.ring_offsets, np.cumsum([0] + [len(r) for r in rings]))
+    np.testing.assert_array_equal(got.polygon_offsets, np.cumsum([0] + counts))

@@ -156,14 +156,28 @@ def polylines_from_lines(lines, style: Style = Style()) -> Polylines:
 def polygons_from_shapely(geoms, style: Style = Style(), fills=None) -> Polygons:
     """Polygons from shapely Polygons (holes kept); rings are written counter-clockwise
     for exteriors and clockwise for holes."""
-    geoms = [shapely.orient_polygons(g) if hasattr(shapely, "orient_polygons")
-             else shapely.geometry.polygon.orient(g) for g in geoms]
-    rings, counts = [], []
-    for g in geoms:
-        parts = [g.exterior, *g.interiors]
-        rings.extend(np.asarray(r.coords)[:-1] for r in parts)
-        counts.append(len(parts))
-    poly = polygons_from_rings(rings, style)
+    shapes = np.empty(len(geoms), dtype=object)
+    shapes[:] = list(geoms)
+    if hasattr(shapely, "orient_polygons") and (shapely.get_type_id(shapes) == 3).all() \
+            and not shapely.is_empty(shapes).any():  # polygons, none empty
+        # every ring of every polygon at once (exterior first), its closing corner dropped
+        rings, owner = shapely.get_rings(shapely.orient_polygons(shapes), return_index=True)
+        xy, ring = shapely.get_coordinates(rings, return_index=True)
+        size = np.bincount(ring, minlength=len(rings)) - 1
+        keep = np.ones(len(xy), dtype=bool)
+        keep[np.cumsum(size + 1) - 1] = False
+        poly = Polygons(xy[keep], np.concatenate([[0], np.cumsum(size)]).astype(np.int64),
+                        style, None, None)
+        counts = np.bincount(owner, minlength=len(shapes))
+    else:
+        shapes = [shapely.orient_polygons(g) if hasattr(shapely, "orient_polygons")
+                  else shapely.geometry.polygon.orient(g) for g in shapes]
+        rings, counts = [], []
+        for g in shapes:
+            parts = [g.exterior, *g.interiors]
+            rings.extend(np.asarray(r.coords)[:-1] for r in parts)
+            counts.append(len(parts))
+        poly = polygons_from_rings(rings, style)
     po = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
     return replace(poly, polygon_offsets=po, fills=None if fills is None else tuple(fills))
 
