@@ -75,9 +75,15 @@ def text_box(t: Text) -> shapely.Polygon:
 def unit_boxes(texts, angles) -> np.ndarray:
     """(n, 4, 2) the corners of every text's box at cap height 1, centred on the origin, turned
     by its angle (degrees): the shapes :func:`largest_fit` scales."""
+    return turn(unit_corners(texts), np.asarray(angles, dtype=float)[:, None])
+
+
+def unit_corners(texts) -> np.ndarray:
+    """(n, 4, 2) the corners of every text's box at cap height 1, centred on the origin, not
+    turned (lower left, lower right, upper right, upper left)."""
     x0, y0, x1, y1 = _frames(texts, 1.0, "middle")
     mid = (y0 + y1) / 2
-    return turn(_corners(x0, y0 - mid, x1, y1 - mid), np.asarray(angles, dtype=float)[:, None])
+    return _corners(x0, y0 - mid, x1, y1 - mid)
 
 
 def centred_texts(centres, texts, sizes, angles, fills) -> list[Text]:
@@ -101,11 +107,28 @@ def upright(t: Text) -> Text:
     """``t`` turned by 180 degrees about its box centre if it would read upside down, so that its
     angle lies in (-90, 90]; the box covers the same rectangle either way (a turned text is
     anchored at its middle)."""
-    angle = (t.angle + 180.0) % 360.0 - 180.0
-    if -90.0 < angle <= 90.0 + 1e-9:
-        return Text(t.x, t.y, t.text, t.size, t.anchor, angle, t.fill)
-    centre = text_box(t).centroid
-    return centred_text((centre.x, centre.y), t.text, t.size, angle % 360.0 - 180.0, t.fill)
+    return uprights([t])[0]
+
+
+def uprights(texts) -> list[Text]:
+    """:func:`upright` of each of ``texts``, the turned ones' boxes worked out at once."""
+    out: list = []
+    flip = []  # (index, angle) of the texts turned by half a turn
+    for i, t in enumerate(texts):
+        angle = (t.angle + 180.0) % 360.0 - 180.0
+        if -90.0 < angle <= 90.0 + 1e-9:
+            out.append(Text(t.x, t.y, t.text, t.size, t.anchor, angle, t.fill))
+        else:
+            out.append(None)
+            flip.append((i, angle % 360.0 - 180.0))
+    if flip:
+        turned = [texts[i] for i, _ in flip]
+        centres = shapely.get_coordinates(shapely.centroid(text_boxes(turned)))
+        for (i, _), t in zip(flip, centred_texts(centres, [t.text for t in turned],
+                                                 [t.size for t in turned], [a for _, a in flip],
+                                                 [t.fill for t in turned])):
+            out[i] = t
+    return out
 
 
 def largest_fit(regions, shapes, centres, low: float, high) -> np.ndarray:
@@ -126,27 +149,41 @@ def largest_fit(regions, shapes, centres, low: float, high) -> np.ndarray:
     w = np.asarray(shapes, dtype=float).reshape(n, -1, 2)
     top = np.broadcast_to(np.asarray(high, dtype=float), (n,))
     of, distinct = _distinct(regions)
-    _, first, back = np.unique(np.column_stack([of, centres, w.reshape(n, -1), top]), axis=0,
-                               return_index=True, return_inverse=True)
-    return _least_scales(distinct, of[first], w[first], centres[first], low,
-                         top[first])[back.reshape(-1)]
+    first, back = _distinct_rows(np.column_stack([of, centres, w.reshape(n, -1), top]))
+    return _least_scales(distinct, of[first], w[first], centres[first], low, top[first])[back]
+
+
+def _distinct_rows(rows) -> tuple[np.ndarray, np.ndarray]:
+    """(first, back): the first of each distinct row of ``rows`` (2-D, the same bytes), and
+    which of those each row is."""
+    rows = np.ascontiguousarray(rows)
+    flat = rows.view(np.dtype((np.void, rows.dtype.itemsize * rows.shape[1]))).ravel()
+    _, first, back = np.unique(flat, return_index=True, return_inverse=True)
+    return first, back.reshape(-1)
 
 
 def _least_scales(distinct, of, w, centres, low: float, top) -> np.ndarray:
     """:func:`largest_fit` of the regions ``distinct[of]``."""
     n = len(of)
     ra, rb, start, count = _edges(distinct)
-    # every region edge of every fit (rows) that the shape can reach at ``top``, against
-    # every corner of its shape (columns)
-    fit = np.repeat(np.arange(n), count[of])
-    e = np.arange(len(fit)) - np.repeat(np.cumsum(count[of]) - count[of], count[of])
-    e += start[of][fit]
-    q, d = ra[e] - centres[fit], rb[e] - ra[e]
+    # the point of every region edge nearest a centre, once per region and centre (a site;
+    # the fits of a text's turns share one) ...
+    site, at = _distinct_rows(np.column_stack([of, centres]))
+    span = count[of[site]]
+    home = np.cumsum(span) - span  # the site's first edge in the rows below
+    e = np.arange(span.sum()) - np.repeat(home - start[of[site]], span)
+    q, d = ra[e] - centres[site][np.repeat(np.arange(len(site)), span)], rb[e] - ra[e]
     t = np.clip(-dot(q, d) / np.maximum(dot(d, d), 1e-300), 0.0, 1.0)
     near = q + t[:, None] * d  # the edge's point nearest the centre
+    near = dot(near, near)
+    # ... then every region edge of every fit that the shape can reach at ``top``, against
+    # every corner of its shape (columns)
+    fit = np.repeat(np.arange(n), count[of])
+    e = np.arange(len(fit)) - np.repeat(np.cumsum(count[of]) - count[of] - home[at], count[of])
     reach = top * np.sqrt(dot(w, w).max(axis=1))
-    keep = dot(near, near) <= (reach[fit] * (1.0 + 1e-9)) ** 2
-    fit, (qx, qy), (dx, dy) = fit[keep], q[keep].T, d[keep].T
+    keep = near[e] <= (reach[fit] * (1.0 + 1e-9)) ** 2
+    fit, e = fit[keep], e[keep]
+    (qx, qy), (dx, dy) = q[e].T, d[e].T
     rows = np.bincount(fit, minlength=n)
     wx, wy = w[fit, :, 0], w[fit, :, 1]
     qw = qx[:, None] * wy - qy[:, None] * wx  # q x w

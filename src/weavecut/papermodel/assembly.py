@@ -177,7 +177,7 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
         if np.isfinite(z):
             arrows.setdefault(text_colour_on(fills[t]), []).append(
                 shapely.Polygon(u * z + centres[t]))
-    obstacles = taken + [a for v in arrows.values() for a in v]
+    obstacles = Obstacles(taken + [a for v in arrows.values() for a in v])
     frame = shapely.box(*box)
     for t, label in missing:  # leader lines
         spot = _free_spot(centres[t], label, obstacles, frame, across)
@@ -220,15 +220,39 @@ def _free_spot(at, label: str, obstacles, frame, size: float):
     plates = shapely.box(*(c - half).T, *(c + half).T)
     leaders = shapely.linestrings(np.stack([np.clip(at, c - half, c + half),
                                             np.broadcast_to(at, c.shape)], axis=1))
-    if obstacles and len(c):
-        tree = shapely.STRtree(obstacles)
-        free = np.ones(len(c), dtype=bool)
-        free[tree.query(plates, predicate="intersects")[0]] = False
-        free[np.flatnonzero(free)[tree.query(leaders[free], predicate="intersects")[0]]] = False
-        c, plates, leaders = c[free], plates[free], leaders[free]
-    if not len(c):
+    first = None
+    obstacles = obstacles if isinstance(obstacles, Obstacles) else Obstacles(obstacles)
+    for ring in range(0, len(c), SPOTS):  # the nearest spots first
+        free = np.flatnonzero(~obstacles.hits(plates[ring:ring + SPOTS])) + ring if obstacles \
+            else np.arange(ring, min(ring + SPOTS, len(c)))
+        free = free[~obstacles.hits(leaders[free])] if obstacles else free
+        if len(free):
+            first = int(free[0])
+            break
+    if first is None:
         return None
-    return centred_text(c[0], label, MIN_CAP, 0.0, "#000000"), plates[0], leaders[0]
+    return centred_text(c[first], label, MIN_CAP, 0.0, "#000000"), plates[first], leaders[first]
+
+
+SPOTS = 36  # spots tested at once (three rings), nearest first
+REINDEX = 12  # obstacles added before the index is made again
+
+
+class Obstacles(list):
+    """The shapes later labels keep clear of (a list): :meth:`hits` reads a spatial index of
+    them, made again only when many were added since (those are tested one by one)."""
+
+    def hits(self, shapes) -> np.ndarray:
+        """(n,) whether each of ``shapes`` touches an obstacle."""
+        if len(self) - getattr(self, "_indexed", -REINDEX - 1) > REINDEX:
+            self._tree, self._indexed = shapely.STRtree(list(self)), len(self)
+        hit = np.zeros(len(shapes), dtype=bool)
+        if len(shapes) and self._indexed:
+            hit[self._tree.query(shapes, predicate="intersects")[0]] = True
+        if len(shapes) and len(self) > self._indexed:
+            new = np.array(self[self._indexed:], dtype=object)
+            hit |= shapely.intersects(np.asarray(shapes)[:, None], new[None, :]).any(axis=1)
+        return hit
 
 
 def weaving_steps(weave: Weave, book, turn: float,

@@ -29,7 +29,7 @@ from .packing import pack
 from .pages import GAP, PageArea, page_layers, page_span, split_strip, strip_layers
 from .modules import ModulePlan, book_colours, plan_modules
 from .strip_labels import label_strips
-from .strips import Strip, build_strips, octagon_size, strip_width
+from .strips import Strip, build_copies, build_strips, moved_strips, octagon_size, strip_width
 from .wording import PRINTED, Words, strip_runs
 
 ON_COVER = 24  # at most this many unnamed crossings are tried on page 1
@@ -286,8 +286,9 @@ def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitl
     if places is None:
         places = pack([p.cut for p in pieces], x1 - x0, y1 - y0, GAP, kinds=kinds)
     n_strip = max(pl.page for pl in places) + 1 if places else 0
-    placed = tuple((first + pl.page, p.moved(matmul(affine(0.0, (x0, y0)), pl.matrix()), pl.angle))
-                   for p, pl in zip(pieces, places))
+    moved = moved_strips(pieces, [matmul(affine(0.0, (x0, y0)), pl.matrix()) for pl in places],
+                         [pl.angle for pl in places])
+    placed = tuple((first + pl.page, p) for p, pl in zip(moved, places))
     total = n_strip + first - 1
     sheets = []
     for n in range(first, first + n_strip):  # pages
@@ -320,8 +321,8 @@ def labelled_pieces(weave: Weave, plan: ModulePlan, colours, tile_size: float, l
     m = plan.copies.shape[1]
     pieces, kinds = [], []
     names = None if layout == "mixed" else _module_names(plan)
-    for j in (range(plan.k) if layout == "mixed" else [0]):  # module copies
-        strips = build_strips(weave, plan, colours, scale, plan.copies[0], j, names)
+    for strips in build_copies(weave, plan, colours, scale, plan.copies[0],
+                               range(plan.k) if layout == "mixed" else [0], names):
         for i, s in enumerate(strips):
             parts = split_strip(s, longest, widest)
             pieces += parts

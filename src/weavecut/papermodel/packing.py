@@ -224,26 +224,27 @@ def _best_spot(grid: Page, options, axis: int = 1):
     places are those its next block test leaves, tried cell by cell in order; after ``TRIES``
     that fail, the next finer test cuts down the rest, the last (on single cells) exact."""
     best, best_key = None, None
-    coarse = grid.fits(BLOCKS[0], options.cores)
+    free = grid.places(BLOCKS[0], options.cores)  # every turn's coarse places at once
+    lines = free.any(axis=2 - axis)  # block rows (axis 0) or columns any place is on
+    first = np.where(lines.any(axis=1), lines.argmax(axis=1), -1).tolist()
     bounds = []
-    for t, fits in enumerate(coarse):
-        edge = 0  # the least place along axis the coarse test leaves
-        if fits is not None:
-            lines = np.flatnonzero(fits.any(axis=1 - axis))  # block rows (axis 0) or columns
-            if not len(lines):
-                continue
-            edge = max(BLOCKS[0] * (int(lines[0]) - options.offsets[t][axis]), 0)
-        bounds.append((edge + options[t][1].shape[axis], options.rank[axis][t], t))
+    for t, (line, core, offset) in enumerate(zip(first, options.cores, options.offsets)):
+        if core is not None and line < 0:
+            continue  # no place
+        edge = 0 if core is None else max(BLOCKS[0] * (line - offset[axis]), 0)
+        bounds.append((edge + int(options.sizes[t, axis]), options.rank[axis][t], t))
+    ny, nx = free.shape[1:]
     for edge, r, t in sorted(bounds):
         if best_key is not None and edge > best_key[0]:
             break
         last = None  # the key of the last place tried
-        test = (1, None, (0, 0)) if coarse[t] is None else (  # the finest test with a core
-            BLOCKS[0], coarse[t], options.offsets[t])
+        core = options.cores[t]  # the finest test with a core
+        test = (1, None, (0, 0)) if core is None else (BLOCKS[0], free[
+            t, :ny - core.shape[0] + 1, :nx - core.shape[1] + 1], options.offsets[t])
         for k in BLOCKS[1:]:
             core, offset = options.core(k, t)
-            if (fits := grid.fits(k, [core])[0]) is not None:
-                test = (k, fits, offset)
+            if core is not None:
+                test = (k, _finer(grid, k, core, offset, test), offset)
             tries = TRIES if k > 1 else -1
             last, at, more = _try(grid, options[t][1], test, axis, (r, best_key, last), tries)
             if not more:
@@ -251,6 +252,26 @@ def _best_spot(grid: Page, options, axis: int = 1):
         if at is not None:
             best, best_key = (at, *options[t]), last
     return best
+
+
+def _finer(grid: Page, k: int, core, offset, coarser):
+    """The block places where ``core`` (at ``offset``) lies on free k x k blocks among those
+    the ``coarser`` test (k, fits, offset) leaves: read directly at those places when they are
+    few, else everywhere by FFT (both leave every place that fits)."""
+    step, fits, at = coarser
+    if fits is not None:
+        r, c = np.nonzero(fits)
+        m = step // k
+        if len(r) * m * m * np.count_nonzero(core) <= DIRECT:
+            d = np.arange(m)
+            rows = ((r - at[0]) * m + offset[0])[:, None, None] + d[:, None]
+            columns = ((c - at[1]) * m + offset[1])[:, None, None] + d
+            rows, columns = (a.ravel() for a in np.broadcast_arrays(rows, columns))
+            return grid.fits_at(k, core, rows, columns)
+    return grid.fits(k, [core])[0]
+
+
+DIRECT = 8192  # a finer test reads the blocks under a core at a few places up to this often
 
 
 def _try(grid, mask, test, axis: int, keys, tries: int):

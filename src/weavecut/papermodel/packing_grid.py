@@ -104,6 +104,7 @@ class Options(list):
         self._cores: dict = {}
         cores = [self.core(BLOCKS[0], t) for t in range(len(turns))]
         self.cores, self.offsets = [c for c, _ in cores], [o for _, o in cores]
+        self.sizes = np.array([m.shape for _, m, _ in turns], dtype=np.int64).reshape(-1, 2)
 
     def core(self, k: int, t: int):
         """(core, offset) of turn ``t`` on k x k blocks, made when first asked for (with its
@@ -173,8 +174,27 @@ class Page:
     def fits(self, k: int, cores) -> list:
         """For each core (of k x k blocks, see :func:`block_cores`): the block places where it
         lies on free blocks only ((rows, columns) bool, trimmed to the places inside the page; no
-        place holds a mask that the core does not fit), None for no core. All cores at once:
-        one inverse FFT of the page's transform times each core's."""
+        place holds a mask that the core does not fit), None for no core (:meth:`places`)."""
+        free = self.places(k, cores)
+        ny, nx = free.shape[1:]
+        return [None if c is None else f[:ny - c.shape[0] + 1, :nx - c.shape[1] + 1]
+                for f, c in zip(free, cores)]
+
+    def fits_at(self, k: int, core, rows, columns) -> np.ndarray:
+        """:meth:`fits` of ``core`` read at the block places (``rows``, ``columns``) only,
+        False elsewhere: the blocks under the core's cells at each place, at once."""
+        blocks = self.blocks(k)
+        out = np.zeros((blocks.shape[0] - core.shape[0] + 1, blocks.shape[1] - core.shape[1] + 1),
+                       dtype=bool)
+        keep = (rows >= 0) & (columns >= 0) & (rows < out.shape[0]) & (columns < out.shape[1])
+        rows, columns = rows[keep], columns[keep]
+        cy, cx = np.nonzero(core)
+        out[rows, columns] = ~blocks[rows[:, None] + cy, columns[:, None] + cx].any(axis=1)
+        return out
+
+    def blocks(self, k: int) -> np.ndarray:
+        """The page's k x k blocks (rows, columns) bool: True where all their cells are taken
+        (the cells beyond the page's edge are)."""
         if k not in self._blocks:
             ny, nx = self.taken.shape
             taken = np.ones((ny + -ny % k, nx + -nx % k), dtype=bool)  # beyond the page: taken
@@ -185,17 +205,29 @@ class Page:
             blocks = columns[::k].copy()
             for i in range(1, k):
                 blocks &= columns[i::k]
+            self._blocks[k] = blocks, None
+        return self._blocks[k][0]
+
+    def places(self, k: int, cores) -> np.ndarray:
+        """(cores, rows, columns) bool: :meth:`fits` of every core on one grid of the page's
+        blocks, False beyond the places inside the page (everywhere for no core). All cores
+        at once: one inverse FFT of the page's transform times each core's."""
+        blocks = self.blocks(k)
+        if self._blocks[k][1] is None:
             shape = tuple(fast_len(n) for n in blocks.shape)  # no wrap where it is read
-            self._blocks[k] = blocks, shape, rfft2(blocks.astype(np.float32), shape)
-        blocks, shape, page = self._blocks[k]
+            self._blocks[k] = blocks, (shape, rfft2(blocks.astype(np.float32), shape))
+        shape, page = self._blocks[k][1]
+        ny, nx = blocks.shape
         key = (k, shape, *map(id, cores))
         if key not in self.spectra:
             stack = np.zeros((len(cores), *shape), dtype=np.float32)
             for s, c in zip(stack, cores):
                 if c is not None:
                     s[:c.shape[0], :c.shape[1]] = c
-            self.spectra[key] = cores, np.conj(rfft2(stack, shape))  # keeps the cores alive
-        taken = irfft2(page * self.spectra[key][1], shape)
-        ny, nx = blocks.shape
-        return [None if c is None else t[:ny - c.shape[0] + 1, :nx - c.shape[1] + 1] < 0.5
-                for t, c in zip(taken, cores)]
+            size = np.array([(ny + 1, nx + 1) if c is None else c.shape for c in cores],
+                            dtype=np.int64).reshape(-1, 2)
+            inside = (np.arange(ny)[:, None] <= ny - size[:, :1, None]) & \
+                (np.arange(nx) <= nx - size[:, 1:, None])  # the places inside the page
+            self.spectra[key] = cores, np.conj(rfft2(stack, shape)), inside  # keeps cores alive
+        _, spectrum, inside = self.spectra[key]
+        return (irfft2(page * spectrum, shape)[:, :ny, :nx] < 0.5) & inside

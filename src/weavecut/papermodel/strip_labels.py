@@ -2,8 +2,9 @@
 
 Every label is fitted into its tile (less ``PAD``) as large as it goes up to a cap, or spread
 over the neighbouring tiles on a plate; an ID that no own tile holds goes on a label tab cut
-with the strip (``label_flap``). ``strips`` makes the unlabelled strips. The strips of a book
-are labelled together: each step is one call over the tiles of every strip.
+with the strip (``label_flap``, :mod:`.label_tabs`). ``strips`` makes the unlabelled strips. The
+strips of a book are labelled together: each step is one call over the tiles of every strip, and
+congruent strips (a module's copies) share what depends on their shape alone.
 """
 
 from __future__ import annotations
@@ -13,9 +14,8 @@ from dataclasses import replace
 import numpy as np
 import shapely
 
-from ..numeric import dot, snap
+from ..numeric import snap, turn
 from ..layout.contrast import text_colour_on
-from ..layout.drawing import Text
 from ..layout.labels import (
     MIN_CAP,
     centred_text,
@@ -23,8 +23,9 @@ from ..layout.labels import (
     inner_centres,
     largest_fit,
     text_boxes,
-    unit_boxes,
+    unit_corners,
 )
+from .label_tabs import label_flap, tab_fill
 from .strips import Strip
 
 
@@ -74,12 +75,18 @@ def label_strips(strips: list[Strip], tile_mm: float) -> list[Strip]:
              for s, (texts, _, _) in enumerate(placed)]
     lay.clear_of([p for _, p, _ in placed], recentre=False)
     arrows = _arrows(lay, own, id_tiles, tile_mm)
-    out = []
+    out, tabs = [], {}  # tabs: the first answer of label_flap for a shape and a text size
     for s, strip in enumerate(strips):
         if texts[s] and texts[s][0].size < MIN_CAP and ids[s]:  # no own tile reads: a tab
-            tabbed = label_flap(strip, texts[s][0].text)
-            if tabbed is not None:
-                strip, texts[s][0] = tabbed
+            word = texts[s][0].text
+            key = (int(lay.same[s]), unit_corners([word]).tobytes())
+            if key not in tabs:
+                tabs[key] = label_flap(strip, word)
+            if tabs[key] is not None:  # a congruent strip's tab, for a text as large
+                tab, label = tabs[key]
+                fill = tab_fill(strip)
+                strip = replace(strip, flap=tab.flap, flap_edge=tab.flap_edge, flap_fill=fill)
+                texts[s][0] = replace(label, text=word, fill=text_colour_on(fill))
         out.append(replace(strip, arrows=np.array(arrows[s], dtype=object),
                            plates=np.array(placed[s][1], dtype=object),
                            plate_fills=tuple(placed[s][2]), left_out=left_out[s]))
@@ -96,14 +103,20 @@ class _Tiles:
         count = np.array([len(s.tiles) for s in strips])
         self.first = np.cumsum(count) - count
         self.of = np.repeat(np.arange(len(strips)), count)
-        self.tiles = np.concatenate([s.tiles for s in strips])
-        self.bands = np.array([None if s.glue is None else shapely.union_all(s.glue)
-                               for s in strips], dtype=object)
-        self.outlines = np.array([s.outline for s in strips], dtype=object)
-        regions = shapely.intersection(self.tiles, self.outlines[self.of])
-        banded = np.flatnonzero(np.not_equal(self.bands, None)[self.of])
-        regions[banded] = shapely.difference(regions[banded], self.bands[self.of[banded]])
-        self.regions = shapely.buffer(regions, -PAD, join_style="mitre")
+        # congruent strips (a module's copies: the same shapes in their own frames) share their
+        # tiles, outline, glue band and regions, each worked out once
+        self.same = same = _congruent(strips)
+        twin = self.first[same[self.of]] + np.arange(len(self.of)) - self.first[self.of]
+        self.tiles = np.concatenate([s.tiles for s in strips])[twin]
+        self.bands = np.array([None if s.glue is None or same[i] != i else
+                               shapely.union_all(s.glue) for i, s in enumerate(strips)],
+                              dtype=object)[same]
+        self.outlines = np.array([s.outline for s in strips], dtype=object)[same]
+        mine, back = np.unique(twin, return_inverse=True)
+        regions = shapely.intersection(self.tiles[mine], self.outlines[self.of[mine]])
+        banded = np.flatnonzero(np.not_equal(self.bands, None)[self.of[mine]])
+        regions[banded] = shapely.difference(regions[banded], self.bands[self.of[mine][banded]])
+        self.regions = shapely.buffer(regions, -PAD, join_style="mitre")[back.reshape(-1)]
         self.centres = inner_centres(self.regions)
 
     def clear_of(self, shapes, recentre: bool) -> None:
@@ -121,6 +134,17 @@ class _Tiles:
         self.regions[t] = shapely.difference(self.regions[t], keep_out[self.of[t]])
         if recentre:
             self.centres[t] = inner_centres(self.regions[t])
+
+
+def _congruent(strips: list[Strip]) -> np.ndarray:
+    """(strips,) for each strip the first one of the same shape: the same outline, tiles and
+    glue band, coordinate for coordinate."""
+    geoms = [np.array([s.outline, *s.tiles, *(() if s.glue is None else s.glue)], dtype=object)
+             for s in strips]
+    wkb = np.split(shapely.to_wkb(np.concatenate(geoms)), np.cumsum([len(g) for g in geoms]))
+    first: dict = {}
+    return np.array([first.setdefault((len(s.tiles), *w), i)
+                     for i, (s, w) in enumerate(zip(strips, wkb))], dtype=np.int64)
 
 
 def _owners(lay: _Tiles):
@@ -206,75 +230,6 @@ def _glue_words(lay: _Tiles, texts):
     return texts
 
 
-FLAP_MARGIN = 0.6  # mm between a label tab's text and its edges
-FLAP_STEP = 1.5  # mm, the least step between a label tab's corner and its edge's end
-FLAP_REACH = 1.5  # a label tab's base may reach past its edge (along its line) up to this share
-END_FACING = 0.9  # cosine: a strand's end edge faces the way the strand leaves its last tile
-
-
-def label_flap(strip: Strip, text: str) -> tuple[Strip, Text] | None:
-    """(``strip`` with a label tab, the tab's ``text`` at ``MIN_CAP``), or None where no end
-    edge takes one. The tab is a rectangle on a free end edge of the strip's first or last tile
-    (the edge the strand leaves by, shared with no other tile of the strip; not a glue band's),
-    just large enough for the text along or across the edge plus ``FLAP_MARGIN``, outside every
-    tile of the strip; the smallest tab that fits wins."""
-    along, high = (np.ptp(unit_boxes([text], [0.0])[0], axis=0) * MIN_CAP).tolist()
-    n = len(strip.tiles)
-    ends = [i for i in sorted({0, n - 1}) if not (strip.glue is not None and i == n - 1)]
-    body = shapely.union_all(strip.tiles)
-    best = None
-    for i in ends:  # two ends
-        tile = strip.tiles[i]
-        if tile.geom_type != "Polygon":
-            continue
-        ring = np.asarray(tile.exterior.coords)
-        a, b = ring[:-1], ring[1:]
-        mid = (a + b) / 2
-        length = np.hypot(*(b - a).T)
-        unit = (b - a) / np.maximum(length, 1e-12)[:, None]
-        normal = np.column_stack([unit[:, 1], -unit[:, 0]])
-        centre = np.asarray(tile.centroid.coords[0])
-        normal *= np.sign(dot(normal, mid - centre))[:, None]
-        others = shapely.union_all(np.delete(strip.tiles, i))
-        free = shapely.distance(shapely.points(mid), others) > 1e-6 * max(strip.length, 1.0) \
-            if n > 1 else np.ones(len(mid), dtype=bool)
-        if n > 1:
-            nb = np.asarray(strip.tiles[1 if i == 0 else n - 2].centroid.coords[0])
-            away = (centre - nb) / max(float(np.hypot(*(centre - nb))), 1e-12)
-            facing = dot(normal, away) >= END_FACING
-        else:
-            facing = np.ones(len(mid), dtype=bool)
-        for e in np.flatnonzero(free & facing).tolist():  # an edge or two
-            # text along the edge, or across it: (base on the edge, depth, text angle)
-            for base, depth, direction in ((along, high, unit[e]), (high, along, normal[e])):
-                base, depth = base + 2 * FLAP_MARGIN, depth + 2 * FLAP_MARGIN
-                if base > FLAP_REACH * length[e]:
-                    continue
-                base = _tab_base(base, float(length[e]))
-                p, q = mid[e] - unit[e] * base / 2, mid[e] + unit[e] * base / 2
-                flap = shapely.Polygon([p, q, q + normal[e] * depth, p + normal[e] * depth])
-                if shapely.intersection(flap, body).area > 1e-6 * flap.area:
-                    continue
-                if best is None or flap.area < best[0].area - 1e-9:
-                    angle = float(np.degrees(np.arctan2(direction[1], direction[0])))
-                    best = (flap, shapely.LineString([p, q]), mid[e] + normal[e] * depth / 2,
-                            angle)
-    if best is None:
-        return None
-    flap, edge, centre, angle = best
-    fill = next((f for f, o in zip(strip.fills, strip.over.tolist()) if o), "#ffffff")
-    label = centred_text(centre, text, MIN_CAP, angle, text_colour_on(fill))
-    return replace(strip, flap=flap, flap_edge=edge, flap_fill=fill), label
-
-
-def _tab_base(base: float, edge: float) -> float:
-    """A label tab's ``base`` widened so that its corners meet its ``edge``'s ends, or pass them
-    by at least ``FLAP_STEP``: no step a cutter's knife tears at."""
-    if base <= edge:
-        return edge if base > edge - 2 * FLAP_STEP else base
-    return max(base, edge + 2 * FLAP_STEP)
-
-
 def _place(lay: _Tiles, wanted, taken):
     """(texts, plates, plate fills) per strip for its ``wanted`` (tile, text, largest size)
     labels: each fitted into its tile; one that does not reach ``MIN_CAP`` there, or lies on
@@ -311,7 +266,8 @@ def _place(lay: _Tiles, wanted, taken):
             s, i = owner[k], tile[k]
             near = lay.first[s] + np.arange(max(i - 1, 0), min(i + 2, len(strips[s].tiles)))
             around[row, :len(near)] = lay.tiles[near]
-        wide = shapely.intersection(shapely.union_all(around, axis=1), lay.outlines[ss])
+        wide = _once(lambda a, o: shapely.intersection(shapely.union_all(a, axis=1), o), around,
+                     lay.outlines[ss])  # congruent strips share their tiles and outlines
         blocked = [[g for g in (lay.bands[s], *taken[s], *out[s][1]) if g is not None]
                    + [boxes[j] for j in mine[s] if j != k and texts[j].size >= MIN_CAP]
                    for k, s in zip(ks, ss)]
@@ -322,7 +278,8 @@ def _place(lay: _Tiles, wanted, taken):
                 indices=np.repeat(np.arange(len(rows)), [len(blocked[row]) for row in rows])), PAD)
             wide[rows] = shapely.difference(wide[rows], keep_out)
         wide = shapely.buffer(wide, -PAD - PLATE, join_style="mitre")
-        zone = shapely.intersection(wide, shapely.buffer(lay.tiles[at[ks]], 2 * MIN_CAP))
+        zone = shapely.intersection(wide, _once(lambda t: shapely.buffer(t, 2 * MIN_CAP),
+                                                lay.tiles[at[ks]]))
         inner = inner_centres(zone)
         full = ~shapely.is_empty(zone)
         mid = np.zeros_like(inner)
@@ -331,7 +288,11 @@ def _place(lay: _Tiles, wanted, taken):
                  for c, m, f in zip(inner, mid, full.tolist())]
         row_of = np.repeat(np.arange(len(ks)), [len(p) for p in spots])
         spots = np.vstack(spots)
-        z, a = _fit_text(wide[row_of], spots, [text[ks[row]] for row in row_of], MIN_CAP)
+        words = [text[ks[row]] for row in row_of]
+        z, a = np.zeros(len(spots)), np.zeros(len(spots))
+        hope = _may_reach(wide, row_of, spots, words, MIN_CAP)
+        z[hope], a[hope] = _fit_text(wide[row_of[hope]], spots[hope],
+                                     [w for w, h in zip(words, hope.tolist()) if h], MIN_CAP)
         best = [pick[int(np.argmax(snap(z[pick])))] for pick in
                 np.split(np.arange(len(z)), np.cumsum(np.bincount(row_of))[:-1])]
         done = [(k, b) for k, b in zip(ks, best) if z[b] >= MIN_CAP - 1e-9]
@@ -347,6 +308,15 @@ def _place(lay: _Tiles, wanted, taken):
     for k, s in enumerate(owner):
         out[s][0].append(texts[k])
     return out
+
+
+def _once(op, *columns):
+    """``op(*columns)`` (a vectorised operation on object arrays, a row per item; a column may
+    be 2-D) worked out once per distinct row of the same objects."""
+    ids = np.column_stack([np.array([id(g) for g in np.ravel(c)], dtype=np.int64).reshape(
+        len(c), -1) for c in columns])
+    _, first, back = np.unique(ids, axis=0, return_index=True, return_inverse=True)
+    return op(*(c[first] for c in columns))[back.reshape(-1)]
 
 
 def arrow_polygon(tip, direction, length: float) -> shapely.Polygon:
@@ -371,6 +341,21 @@ def unit_arrows(directions) -> np.ndarray:
     return np.stack([c * ring[:, 0] - s * ring[:, 1], s * ring[:, 0] + c * ring[:, 1]], axis=-1)
 
 
+def _may_reach(regions, of, centres, texts, size: float) -> np.ndarray:
+    """(n,) False where text i centred on ``centres[i]`` cannot reach cap height ``size`` in
+    ``regions[of[i]]`` at any angle: the centre lies outside, or nearer the edge than the
+    circle a text box of that size holds (half its height or width, the smaller)."""
+    inside = shapely.contains_xy(regions[of], centres[:, 0], centres[:, 1])
+    room = np.zeros(len(of))
+    if inside.any():
+        with np.errstate(all="ignore"):  # a degenerate edge's distance: NaN, kept below
+            room[inside] = shapely.distance(shapely.boundary(regions)[of[inside]],
+                                            shapely.points(centres[inside]))
+    box = unit_corners(texts)
+    least = np.minimum(box[:, 1, 0] - box[:, 0, 0], box[:, 2, 1] - box[:, 1, 1])  # shorter side
+    return inside & ~(2.0 * room < size * least * (1.0 - 1e-6))
+
+
 def _fit_text(regions, centres, texts, high):
     """(size, angle) of the largest fit of every text in its region, along or across the strip
     (cap heights below ``MIN_CAP`` are kept: the caller reports them)."""
@@ -378,7 +363,7 @@ def _fit_text(regions, centres, texts, high):
     if n == 0:
         return np.zeros(0), np.zeros(0)
     reps = len(ANGLES)
-    shapes = unit_boxes(list(texts) * reps, np.repeat(ANGLES, n))
+    shapes = turn(unit_corners(texts)[None], np.asarray(ANGLES)[:, None, None]).reshape(-1, 4, 2)
     fits = largest_fit(np.tile(np.asarray(regions, dtype=object), reps), shapes,
                        np.tile(np.asarray(centres), (reps, 1)), 0.2,
                        np.tile(np.broadcast_to(np.asarray(high, float), (n,)), reps))

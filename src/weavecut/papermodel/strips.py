@@ -19,7 +19,7 @@ from ..numeric import affine, matmul, snap, transform
 from ..weave.model import Weave
 from ..layout.contrast import text_colour_on
 from ..layout.drawing import Text
-from ..layout.labels import upright
+from ..layout.labels import uprights
 from .modules import ModulePlan
 from .symmetry import tile_centres
 from ..layout.weave_figure import tile_rings
@@ -112,21 +112,50 @@ class Strip:
     def moved(self, matrix: NDArray[np.float64], angle: float = 0.0) -> Strip:
         """The strip through the affine ``matrix`` (3, 3), a turn by ``angle`` degrees plus a
         shift; its texts turn with it and are then set upright."""
-        f = transform(matrix)
-        texts = []
-        for t in self.texts:
-            x, y = f(np.array([[t.x, t.y]]))[0]
-            texts.append(upright(replace(t, x=float(x), y=float(y), angle=t.angle + angle)))
-        return replace(self, outline=shapely.transform(self.outline, f),
-                       tiles=shapely.transform(self.tiles, f),
-                       arrows=shapely.transform(self.arrows, f),
-                       glue=None if self.glue is None else shapely.transform(self.glue, f),
-                       plates=shapely.transform(self.plates, f),
-                       folds=shapely.transform(self.folds, f),
-                       flap=None if self.flap is None else shapely.transform(self.flap, f),
-                       flap_edge=None if self.flap_edge is None
-                       else shapely.transform(self.flap_edge, f),
-                       texts=tuple(texts), frame=matmul(matrix, self.frame))
+        return moved_strips([self], [matrix], [angle])[0]
+
+
+GEOMETRY = ("outline", "tiles", "arrows", "glue", "plates", "folds", "flap", "flap_edge")
+
+
+def moved_strips(strips, matrices, angles) -> list[Strip]:
+    """:meth:`Strip.moved` of every strip by its matrix and angle, all at once (one transform
+    of every strip's shapes, the texts set upright together)."""
+    parts, where = [], []  # every shape, and (strip, field, how many; None: a single shape)
+    for s, strip in enumerate(strips):
+        for name in GEOMETRY:
+            value = getattr(strip, name)
+            if value is not None:
+                one = isinstance(value, shapely.Geometry)
+                parts.extend([value] if one else value)
+                where.append((s, name, None if one else len(value)))
+    m = np.asarray(matrices, dtype=float).reshape(-1, 3, 3)
+    shapes = np.array(parts, dtype=object)
+    owner = np.repeat(np.repeat([s for s, _, _ in where],
+                                [1 if k is None else k for _, _, k in where]),
+                      shapely.get_num_coordinates(shapes)) if len(shapes) else np.zeros(0, int)
+    moved = iter(shapely.transform(shapes, lambda xy: _apply(m[owner], xy)))
+    fields: list[dict] = [{} for _ in strips]
+    for s, name, k in where:
+        fields[s][name] = next(moved) if k is None else np.array(
+            [next(moved) for _ in range(k)], dtype=object)
+    texts = [t for strip in strips for t in strip.texts]
+    xy = _apply(np.repeat(m, [len(strip.texts) for strip in strips], axis=0),
+                np.array([(t.x, t.y) for t in texts], dtype=float).reshape(-1, 2))
+    turn = np.repeat(np.asarray(angles, dtype=float), [len(strip.texts) for strip in strips])
+    texts = iter(uprights([replace(t, x=x, y=y, angle=t.angle + a) for t, (x, y), a in
+                           zip(texts, xy.tolist(), turn.tolist())]))
+    return [replace(strip, **fields[s], texts=tuple(next(texts) for _ in strip.texts),
+                    frame=matmul(matrix, strip.frame))
+            for s, (strip, matrix) in enumerate(zip(strips, m))]
+
+
+def _apply(m, xy) -> NDArray[np.float64]:
+    """Each point of ``xy`` (N, 2) through its own affine matrix ``m`` (N, 3, 3), as
+    :func:`~weavecut.numeric.transform` maps it."""
+    x, y = xy[:, 0], xy[:, 1]
+    return np.stack([m[:, 0, 0] * x + m[:, 0, 1] * y + m[:, 0, 2],
+                     m[:, 1, 0] * x + m[:, 1, 1] * y + m[:, 1, 2]], axis=-1)
 
 
 def model_tiles(weave: Weave) -> NDArray[np.object_]:
@@ -169,23 +198,33 @@ def build_strips(weave: Weave, plan: ModulePlan, colours: list[str], scale: floa
     as their images under the turn by j * 2 pi / k (so every copy has the same layout).
     ``labels`` replaces the plan's strand IDs (the paper's module prints: no copy letter).
     """
+    return build_copies(weave, plan, colours, scale, strands, [copy], labels)[0]
+
+
+def build_copies(weave: Weave, plan: ModulePlan, colours: list[str], scale: float, strands,
+                 copies, labels: tuple[str, ...] | None = None) -> list[list[Strip]]:
+    """:func:`build_strips` of each of ``copies``: the strips' shapes are made once, every
+    copy colours and names them as its images."""
     tiles = model_tiles(weave)
     centres = tile_centres(weave)
     tile_mm = octagon_size(weave) * scale
-    image = plan.symmetry.strand_powers()[copy]
-    names = plan.labels if labels is None else labels
-    names = [names[t] for t in image.tolist()]
-    cols = [colours[t] for t in image.tolist()]
-    c = plan.symmetry.centre
-    back = matmul(matmul(affine(0.0, c), affine(-np.degrees(copy * plan.symmetry.angle))),
-                  affine(0.0, -c))
-    out = []
+    shapes = []
     for s in np.asarray(strands).tolist():  # strands, not mesh elements
         visits, over = weave.strand(s)
         if plan.reversed[s]:
             visits, over = visits[::-1], over[::-1]
-        strip = _strip(weave, s, visits, over, tiles, centres, names, cols, scale, tile_mm)
-        out.append(replace(strip, strand=int(image[s]), frame=matmul(strip.frame, back)))
+        shapes.append((s, visits, over, *_strip_shape(visits, tiles, centres, scale, tile_mm)))
+    out = []
+    for copy in copies:
+        image = plan.symmetry.strand_powers()[copy]
+        names = plan.labels if labels is None else labels
+        names = [names[t] for t in image.tolist()]
+        cols = [colours[t] for t in image.tolist()]
+        c = plan.symmetry.centre
+        back = matmul(matmul(affine(0.0, c), affine(-np.degrees(copy * plan.symmetry.angle))),
+                      affine(0.0, -c))
+        out.append([replace(_strip(weave, *shape, names, cols), strand=int(image[shape[0]]),
+                            frame=matmul(shape[-1], back)) for shape in shapes])
     return out
 
 
@@ -208,7 +247,9 @@ def flat_angle(outline) -> float:
     return float(-np.degrees(np.arctan2(long[1], long[0])))
 
 
-def _strip(weave, s, visits, over, tiles, centres, labels, colours, scale, tile_mm) -> Strip:
+def _strip_shape(visits, tiles, centres, scale, tile_mm):
+    """(outline, tiles, frame) of the strip of the tiles ``visits``: in mm, long axis along
+    x, walking towards +x, and the map from model units to it."""
     # a twisted tile of an irregular mesh becomes the polygons it encloses
     shapes = shapely.make_valid(tiles[visits], method="structure", keep_collapsed=False)
     pts = centres[visits]
@@ -219,11 +260,13 @@ def _strip(weave, s, visits, over, tiles, centres, labels, colours, scale, tile_
     x0, y0 = shapely.transform(outline, transform(turn)).bounds[:2]
     frame = matmul(affine(0.0, (-x0, -y0)), turn)
     place = transform(frame)
+    return shapely.transform(outline, place), shapely.transform(shapes, place), frame
 
+
+def _strip(weave, s, visits, over, outline, shapes, frame, labels, colours) -> Strip:
     over_strand = weave.tile_over[visits]
     fills = tuple(colours[s] if o else tint(colours[t]) for o, t in
                   zip(over.tolist(), over_strand.tolist()))
     names = tuple(labels[t] for t in over_strand.tolist())
-    return Strip(int(s), labels[s], shapely.transform(outline, place),
-                 shapely.transform(shapes, place), fills, np.asarray(over, dtype=bool), names,
+    return Strip(int(s), labels[s], outline, shapes, fills, np.asarray(over, dtype=bool), names,
                  frame, arrow_ink=text_colour_on(colours[s]))
