@@ -14,9 +14,11 @@ from click.testing import CliRunner
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
+from weavecut import inputs
 from weavecut.cli import cli
 from weavecut.errors import WeaveCutError
 from weavecut.puzzle.frame_size import extent
+from weavecut.puzzle import pieces
 from weavecut.puzzle.guides import piece_halves
 from weavecut.puzzle.pieces import build_puzzle
 from weavecut.readers.drawing import read_drawing
@@ -217,3 +219,18 @@ def test_a_star_meshed_in_hexagons_is_refused_naming_mesh_tri(tmp_path):
     assert result.exit_code == 1
     assert "--mesh tri" in result.output and len(result.output.strip().splitlines()) == 1
     assert not (tmp_path / "out").exists()
+
+
+def test_the_frame_is_grown_once_per_scale(monkeypatch):
+    # the scale search asks its lower end twice and ends at the scale whose frame is kept
+    scales = []
+
+    def counted(envelope, frame_width, scale):
+        scales.append(scale)
+        return ring_offset(envelope, frame_width, scale)
+
+    ring_offset = pieces.ring_offset
+    monkeypatch.setattr(pieces, "ring_offset", counted)
+    puzzle = build_puzzle(subdivide(inputs.get("square-grid:2x2"), 2), 200.0, 10.0, "width")
+    assert len(scales) == len(set(scales)) > 2
+    assert extent(puzzle.outer, "width") == pytest.approx(200.0, abs=1e-6)

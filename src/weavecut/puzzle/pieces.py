@@ -37,7 +37,7 @@ from __future__ import annotations
 import math
 
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 import numpy as np
 import shapely
@@ -188,6 +188,7 @@ def build_puzzle(hierarchy: tuple[Level, ...], size: float = 500.0,
     else:
         base = _one_region(np.concatenate(_shapes(snapped, parts, octagon_sizes)[::2]))
         grow = lambda s: ring_offset(base, frame_width, s)  # noqa: E731
+    grow = lru_cache(maxsize=2)(grow)  # the root search ends where the outline is wanted
     scale = frame_scale(base, grow, size, measure, frame_width)
     pieces, hexes, ring = _shapes(snapped * scale, parts, octagon_sizes)
     _one_region(pieces)
