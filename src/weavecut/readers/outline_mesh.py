@@ -65,12 +65,12 @@ def mesh_outline(region, kind: str = "hex", cell: float | None = None,
     """
     if kind not in KINDS:
         raise MeshError(f"unknown mesh kind {kind!r}; choose one of {', '.join(KINDS)}")
+    if not region.area > 0:
+        raise MeshError("the outline encloses no area")
     if not region.is_valid:
         what, (x, y) = invalid_where(region)
         raise MeshError(f"the outline is invalid ({what.lower()} near ({x:.4g}, {y:.4g}) mm, "
                         "y up): its rings must not cross themselves or one another")
-    if not region.area > 0:
-        raise MeshError("the outline encloses no area")
     cell = default_cell(region) if cell is None else cell
     if not 0 < cell < math.inf:
         raise MeshError(f"--cell {cell:g} mm is not a positive length")
