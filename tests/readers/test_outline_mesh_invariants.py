@@ -304,3 +304,25 @@ def test_a_spike_or_crack_of_no_width_is_dropped_from_a_ring():
         [0, 0], [10, 0], [10, 1e-13], [10, 10], [0, 10]]
     square = np.array([(0, 0), (10, 0), (10, 10), (0, 10)], float)
     assert pieces._without_spikes(square).tolist() == square.tolist()
+
+
+GEAR_ANGLES = np.linspace(0, 2 * np.pi, 80, endpoint=False)
+GEAR = shapely.Polygon(np.where(np.arange(80) % 2, 100.0, 80.0)[:, None]
+                       * np.column_stack([np.cos(GEAR_ANGLES), np.sin(GEAR_ANGLES)]))
+
+
+@pytest.mark.parametrize("kind, smallest", [("voronoi", 0.0), ("quad", 0.5)])
+def test_a_gear_with_teeth_about_a_cell_wide(kind, smallest):
+    """A gear of 40 teeth (radii 80 and 100 mm) in 12 mm cells. In Voronoi cells some small
+    pieces' unions with their neighbours have a reflex corner that no cut leaves convex: such a
+    group is passed over (the mesher once stopped there with "could not cut a cell"). In
+    squares a piece nothing helped is helped once a neighbour has changed: every face ends
+    over half a cell (0.60; skipping the piece for good left one of 0.35). Either mesh is
+    valid, convex and covers the gear."""
+    mesh = validate(outline_mesh.mesh_outline(GEAR, kind, 12.0))
+    union = shapely.union_all(faces_of(mesh))
+    assert shapely.symmetric_difference(union, GEAR).area <= 0.2 * GEAR.boundary.length
+    p = mesh.vertices[mesh.face_indices]
+    edges = np.hypot(*(p[mesh.next_half_edge] - p).T)
+    assert (corner_turns(mesh) / (edges * edges[mesh.prev_half_edge])).min() > -1e-9
+    assert np.sqrt(signed_areas(mesh)).min() / 12.0 >= smallest

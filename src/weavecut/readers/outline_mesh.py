@@ -5,14 +5,15 @@ Voronoi cells for ``quad``, ``hex`` and ``voronoi``, clipped to the outline; a c
 Delaunay triangulation for ``tri``); this module fits the cells to the outline.
 
 A clipped cell is convex unless the outline has a reflex corner inside it; such a cell is cut
-at that corner (``pieces.convex_pieces``) until every piece is convex, and pieces under 0.6 ``cell``
-are merged into a neighbour or cut anew with one, two or three of them (``pieces.merged_small``).
-Every outline vertex stays a vertex, so the boundary is the outline to the tolerance. The
-outline's edges are first cut to at most a cell's edge, where a cell edge meets the outline it
-moves onto the nearer outline vertex beside it, inner cell edges shorter than 0.15 ``cell``
-collapse, and straight outline points of one face are dropped: short edges and 180-degree
-corners make sliver pentagons, which turn over after a few snub steps. None of these moves
-shrinks a face under half a cell (``SMALLEST``): a piece too small to cut.
+at that corner (``pieces.convex_pieces``) until every piece is convex, and pieces under 0.6
+``cell`` are merged into a neighbour or cut anew with one, two or three of them
+(``pieces.merged_small``). Every outline vertex stays a vertex, so the boundary is the
+outline to the tolerance. The outline's edges are first cut to at most a cell's edge, where a
+cell edge meets the outline it moves onto the nearer outline vertex beside it, inner cell
+edges shorter than 0.15 ``cell`` collapse, and straight outline points of one face are
+dropped: short edges and 180-degree corners make sliver pentagons, which turn over after a
+few snub steps. None of these moves shrinks a face under half a cell (``SMALLEST``): a piece
+too small to cut.
 """
 
 from __future__ import annotations
@@ -29,8 +30,8 @@ from ..mesh_geometry import corner_angles, signed_areas
 from ..validation import validate
 from . import KINDS
 from .budgets import MAX_CELLS, MAX_GRID, amount
-from .rings import close_groups, invalid_where, split_t_junctions, weld
 from .pieces import convex_pieces, merged_small
+from .rings import close_groups, invalid_where, split_t_junctions, weld
 from .tessellations import SPACING, _densified, _relaxed_cells, _triangles
 
 DEFAULT_FACES = 60  # faces when no --cell is given
@@ -219,7 +220,7 @@ def _even_runs(ring: np.ndarray, side: float, corner: float = CORNER) -> np.ndar
 
 
 def _snapped(rings: list[np.ndarray], region, reach: float,
-             smallest: float = 0.0) -> list[np.ndarray]:
+             smallest: float) -> list[np.ndarray]:
     """Move every point where a cell edge meets the outline onto the nearer of the outline
     vertices beside it when that is nearer than ``reach``: no sliver edge, no sliver pentagon
     after a few snub steps. No move bends a cell inward, pinches it, or shrinks it under

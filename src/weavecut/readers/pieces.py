@@ -77,6 +77,7 @@ def merged_small(pieces: list, cell: float) -> list:
     recut leaves as many pieces as neighbours or more (only a single neighbour, whose union
     with the small piece is convex, takes it whole), so a face never swallows two."""
     pieces = list(pieces)
+    hopeless = set()  # a piece with the same neighbours as when nothing helped it
     while True:
         areas = shapely.area(pieces)
         for i in np.argsort(areas, kind="stable"):
@@ -84,6 +85,9 @@ def merged_small(pieces: list, cell: float) -> list:
                 return pieces
             neighbours = shapely.STRtree(pieces).query(pieces[i], predicate="intersects")
             neighbours = neighbours[neighbours != i]
+            key = (pieces[i].wkb, *sorted(shapely.to_wkb(np.take(pieces, neighbours))))
+            if key in hopeless:
+                continue
             unions = shapely.union(pieces[i], np.take(pieces, neighbours))
             shared = shapely.length(shapely.intersection(
                 pieces[i].boundary, shapely.boundary(np.take(pieces, neighbours))))
@@ -112,7 +116,8 @@ def merged_small(pieces: list, cell: float) -> list:
                     pieces += recuts[k]
                     break
             else:
-                continue
+                hopeless.add(key)
+                continue  # nothing helped this piece: the next smallest
             break
         else:
             return pieces
@@ -134,7 +139,12 @@ def _recut(pieces: list) -> list:
     holes = [h for h in together.interiors if shapely.Polygon(h).area > small]
     together = shapely.Polygon(_without_spikes(np.asarray(together.exterior.coords)[:-1]),
                                holes)
-    parts = convex_pieces(together, 0.0) if together.is_valid else []
+    if not together.is_valid:
+        return []
+    try:
+        parts = convex_pieces(together, 0.0)
+    except MeshError:  # no cut at a reflex corner: this group cannot be cut anew
+        return []
     return parts if len(parts) >= max(2, len(pieces) - 1) else []
 
 
