@@ -35,9 +35,12 @@ def default_cache() -> Path:
                    "'weave-cut worker' on any machine [default: worker processes here].")
 @click.option("--workers", type=click.IntRange(1, 256), default=None,
               help="Kits made at once [default: the number of cores].")
+@click.option("--waiting", type=click.IntRange(0, 100_000), default=WAITING, show_default=True,
+              help="Kits that may wait for a worker; one more is answered 503 with "
+                   "Retry-After (busy, try again).")
 @click.option("--cache", "cache_dir", default=None, metavar="DIR",
               help="Folder for uploads and finished kits [default: ~/.cache/weave-cut/web].")
-def serve_command(host, port, open_browser, queue_url, workers, cache_dir) -> None:
+def serve_command(host, port, open_browser, queue_url, workers, waiting, cache_dir) -> None:
     """Serve the web app: a page per product with its options, a live preview, and the kit
     as a ZIP (the same files as the command line's). Prints the address; Ctrl-C stops it.
 
@@ -63,7 +66,7 @@ def serve_command(host, port, open_browser, queue_url, workers, cache_dir) -> No
             from exc
     sock = _listen(host, port)
     queue = open_queue(queue_url, workers=workers or os.cpu_count() or 1,
-                       cpu_seconds=JOB_CPU_SECONDS, memory_mb=JOB_MEMORY_MB, waiting=WAITING)
+                       cpu_seconds=JOB_CPU_SECONDS, memory_mb=JOB_MEMORY_MB, waiting=waiting)
     app = create_app(queue, cache, folder, list(LOOPBACK) if host in LOOPBACK else None)
     shown = socket.gethostname() if host in ("0.0.0.0", "::") else host
     url = f"http://{f'[{shown}]' if ':' in shown else shown}:{sock.getsockname()[1]}/"
