@@ -12,9 +12,8 @@ import subprocess
 import sys
 from pathlib import Path
 
-from weavecut.web.cache import Cache  # noqa: F401
+from weavecut.web.cache import Cache
 from weavecut.web.jobs import JobResult
-from weavecut.web.queues import open_queue  # noqa: F401
 
 
 class Recording:

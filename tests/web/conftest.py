@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import pytest
 
-from tests.web_app import Recording, make_client, open_queue
+from tests.web_app import Recording, make_client
+from weavecut.web.queues import open_queue
 
 
 @pytest.fixture

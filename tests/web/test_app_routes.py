@@ -222,7 +222,7 @@ class Slow:
 
 def test_a_client_that_leaves_cancels_its_job(tmp_path, cwd):
     from weavecut.web.server import create_app
-    from tests.web_app import Cache
+    from weavecut.web.cache import Cache
 
     async def scenario() -> Slow:
         queue = Slow()
