@@ -27,6 +27,7 @@ from .pages import FOLD, GAP, PageArea, _fits, page_layers, page_span
 from .pattern import OUTLINE
 from ..numeric import affine, dot, snap
 from .modules import copy_letter
+from .notches import MIN_CUT, NotchError, widen_notches
 from .strip_labels import label_strips
 from .strips import Strip, flat_angle, outline_of, tint
 from .unfold import OVERLAP, Unfolding, UnfoldError, dashed, flatten, unfold
@@ -160,11 +161,12 @@ def strand_pieces(weave: Weave, u: Unfolding, colours, labels, scale: float,
     for i, (a, b) in enumerate(runs):  # pieces of one strand
         band = closed or i + 1 < n
         inside = fold & (u.face_visit[:-1] >= a) & (u.face_visit[1:] <= b)
+        outline = widen_notches(outline_of(tiles[a:b + 1], eps))
+        paper = shapely.intersection(tiles[a:b + 1], outline)  # less the widened notches
         piece = Strip(s, labels[s] if n == 1 else f"{labels[s]} {i + 1}/{n}",
-                      outline_of(tiles[a:b + 1], eps), tiles[a:b + 1], fills[a:b + 1],
-                      u.over[a:b + 1], names[a:b + 1], np.eye(3),
-                      arrow_ink=text_colour_on(colours[s]),
-                      glue=tiles[b:b + 1] if band else None, folds=lines[inside],
+                      outline, paper, fills[a:b + 1], u.over[a:b + 1], names[a:b + 1],
+                      np.eye(3), arrow_ink=text_colour_on(colours[s]),
+                      glue=paper[-1:] if band else None, folds=lines[inside],
                       fold_inks=tuple(inks[inside].tolist()),
                       tab=f"glue {i + 1}", mark=str(i) if i else (str(n) if closed else ""))
         flat = piece.moved(affine(flat_angle(piece.outline)))
@@ -200,8 +202,13 @@ def ball_book(weaves: list[Weave], pal: Palette, page=(210.0, 297.0),
     labels = tuple(copy_letter(i) for i in range(weave.n_strands))
     flat = flatten(weave)
     unfoldings = tuple(unfold(weave, s, flat) for s in range(weave.n_strands))
-    pieces = [p for u in unfoldings
-              for p in strand_pieces(weave, u, colours, labels, scale, area)]
+    try:
+        pieces = [p for u in unfoldings
+                  for p in strand_pieces(weave, u, colours, labels, scale, area)]
+    except NotchError as exc:  # notches widen with the ball: one this much larger needs none
+        raise SizeError(f"{exc} on a {diameter / 10:g} cm ball (scissors need {MIN_CUT:g} mm):"
+                        f" use --size {math.ceil(diameter * MIN_CUT / exc.mouth / 10)}cm or "
+                        "more") from None
     widths = shapely.minimum_rotated_rectangle(np.concatenate([p.tiles for p in pieces]))
     rect = shapely.get_coordinates(shapely.get_exterior_ring(widths)).reshape(-1, 5, 2)
     sides = np.linalg.norm(rect[:, 1:3] - rect[:, 0:2], axis=-1)

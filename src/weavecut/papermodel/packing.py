@@ -52,13 +52,16 @@ class Place:
         return affine(self.angle, self.shift)
 
 
-def nest_offset(shape, gap: float, step: float = 0.25) -> NDArray[np.float64]:
+def nest_offset(shape, gap: float, step: float = 0.25,
+                longest: float = np.inf) -> NDArray[np.float64]:
     """(dx, dy): the move that nests a copy of ``shape`` (long axis along x) ``gap`` mm clear of
     it most tightly: for every slide dx along the axis a clear dy across it, bisected to within
     ``step`` of one that is not, and of those the one whose pair has the smallest convex hull
-    (congruent wavy strips nest)."""
+    (congruent wavy strips nest). Slides go up to ``longest`` mm beyond the shape's length (a
+    pair slid further than the page is long would lie only aslant on it)."""
     x0, y0, x1, y1 = shape.bounds
     slide = min(x1 - x0, 30.0)
+    slide = slide if slide <= longest else max(float(np.floor(longest)), 0.0)
     dxs = np.arange(-slide, slide + 1e-9, 1.0)
     low, high = np.zeros_like(dxs), np.full_like(dxs, y1 - y0 + gap)  # overlapping, clear
 
@@ -112,7 +115,9 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 0.
     units = []  # (members, move between members)
     for g in np.argsort(first, kind="stable").tolist():  # kinds of piece
         members = np.flatnonzero(inverse == g).tolist()
-        move = nest_offset(shapes[members[0]], gap) if len(members) > 1 else np.zeros(2)
+        x0, _, x1, _ = shapes[members[0]].bounds
+        move = nest_offset(shapes[members[0]], gap, longest=max(width, height) - gap - (x1 - x0)) \
+            if len(members) > 1 else np.zeros(2)
         units.append((members, move))
     masks: dict[tuple, list] = {}
 
