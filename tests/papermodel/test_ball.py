@@ -124,10 +124,12 @@ def test_every_strand_is_printed_once_in_pieces_that_cover_its_tiles_once(book):
         tiles = [t for p in parts for t in (p.tiles[:-1] if p.glue is not None else p.tiles)]
         visits, _ = weave.strand(s)
         assert len(tiles) == len(visits)
-        # the areas of the printed tiles are the areas of the unfolded visits, each once
+        # the areas of the printed tiles are the areas of the unfolded visits, each once, less
+        # the thin wedges notches opened to scissors' width take (notches.py; about 1.4 % here)
         u = b.unfoldings[s]
-        want = np.sort(shapely.area(u.tile_polygons()[:-1]) * b.scale ** 2)
-        assert np.allclose(np.sort(shapely.area(np.array(tiles))), want, rtol=1e-9)
+        want = shapely.area(u.tile_polygons()[:-1]) * b.scale ** 2
+        got = shapely.area(np.array(tiles))
+        assert (got <= want * (1 + 1e-9)).all() and (got >= 0.97 * want).all()
 
 
 def test_glue_tabs_are_numbered_in_matching_pairs(book):
