@@ -45,22 +45,25 @@ KITS = (
 
 
 def frozen_source(commit: str) -> Path:
-    """``src/`` of ``commit``, extracted once under build/bench-base/."""
+    """``src/`` of ``commit``, extracted once under build/bench-base/ with its ``templates/``
+    (the presets that code reads: today's may have keys it does not know)."""
     folder = ROOT / "build" / "bench-base" / commit
-    if not (folder / "src" / "weavecut").is_dir():
+    if not (folder / "src" / "weavecut").is_dir() or not (folder / "templates").is_dir():
         shutil.rmtree(folder, ignore_errors=True)
         folder.mkdir(parents=True)
-        archive = subprocess.run(["git", "-C", str(ROOT), "archive", commit, "src"],
-                                 check=True, capture_output=True).stdout
+        archive = subprocess.run(["git", "-C", str(ROOT), "archive", commit, "src",
+                                  "templates"], check=True, capture_output=True).stdout
         subprocess.run(["tar", "-x", "-C", str(folder)], input=archive, check=True)
     return folder / "src"
 
 
 def cpu_of(src: Path, args: list[str], out: Path) -> float:
-    """CPU seconds (user + system) of one run of ``weave-cut -q ARGS -o OUT`` with ``src``."""
+    """CPU seconds (user + system) of one run of ``weave-cut -q ARGS -o OUT`` with ``src`` and
+    the ``templates/`` beside it."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     subprocess.run([sys.executable, "-c", RUN, "-q", *args, "-o", str(out)], check=True,
-                   env={"PYTHONPATH": str(src), "PATH": "/usr/bin:/bin"},
+                   env={"PYTHONPATH": str(src), "PATH": "/usr/bin:/bin",
+                        "WEAVECUT_TEMPLATES": str(src.parent / "templates")},
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
