@@ -6,6 +6,7 @@ the same bytes. Hidden layers are left out.
 
 from __future__ import annotations
 
+import functools
 import io
 
 from reportlab.lib.colors import HexColor
@@ -18,6 +19,13 @@ from ..layout.drawing import Drawing, Polygons, Polylines, Style, Text
 
 SUFFIX = "pdf"
 FONT = "Helvetica"
+
+
+@functools.lru_cache(maxsize=None)
+def _colour(hex_colour: str) -> HexColor:
+    """reportlab's colour of ``#rrggbb``, parsed once (a page sets a few colours hundreds of
+    times)."""
+    return HexColor(hex_colour)
 
 
 def render(drawing: Drawing) -> bytes:
@@ -47,7 +55,7 @@ def render(drawing: Drawing) -> bytes:
 def _draw(c, shape) -> None:
     if isinstance(shape, Text):
         c.saveState()
-        c.setFillColor(HexColor(shape.fill))
+        c.setFillColor(_colour(shape.fill))
         c.setFont(FONT, shape.size / 0.72)
         c.translate(shape.x, shape.y)
         c.rotate(shape.angle)
@@ -98,10 +106,10 @@ def _path(points: list[str], spans, close: bool) -> PDFPathObject:
 
 def _stroke(c, style: Style) -> None:
     if style.stroke:
-        c.setStrokeColor(HexColor(style.stroke))
+        c.setStrokeColor(_colour(style.stroke))
         c.setLineWidth(style.stroke_width)
     if style.fill:
-        c.setFillColor(HexColor(style.fill))
+        c.setFillColor(_colour(style.fill))
     c.setLineJoin(1)
     c.setStrokeAlpha(style.opacity)
     c.setFillAlpha(style.opacity)
