@@ -31,9 +31,9 @@ class NotchError(WeaveCutError, ValueError):
 
 def _segment_distance(p, a, b) -> float:
     """Distance of point ``p`` from the segment ``a`` ``b``."""
-    d = b - a
-    t = float(np.clip(np.dot(p - a, d) / max(np.dot(d, d), 1e-300), 0.0, 1.0))
-    return float(np.hypot(*(p - a - t * d)))
+    (dx, dy), (ex, ey) = b - a, p - a
+    t = min(max((ex * dx + ey * dy) / max(dx * dx + dy * dy, 1e-300), 0.0), 1.0)
+    return float(np.hypot(ex - t * dx, ey - t * dy))
 
 
 def mouth(ring, k: int) -> float:
@@ -115,7 +115,7 @@ def widen_notches(outline: shapely.Polygon, minimum: float = MIN_CUT) -> shapely
     for k in range(n):  # corners of one outline
         v, p, q = ring[k], ring[k - 1], ring[(k + 1) % n]
         u, w = p - v, q - v
-        if _cross(v - p, w) >= 0 or np.dot(u, w) <= np.cos(V) * np.hypot(*u) * np.hypot(*w) \
+        if _cross(v - p, w) >= 0 or u[0] * w[0] + u[1] * w[1] <= np.cos(V) * np.hypot(*u) * np.hypot(*w) \
                 or mouth(ring, k) >= minimum:
             continue  # a convex corner (the ring runs anticlockwise), no V, or wide enough
         wider = _widen(ring, k, minimum)
