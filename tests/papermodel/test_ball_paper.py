@@ -23,7 +23,7 @@ from weavecut.papermodel import notches
 from weavecut.papermodel.ball import ball_book
 from weavecut.papermodel.book import SizeError
 from weavecut.papermodel.notches import MIN_CUT, NotchError, widen_notches
-from weavecut.papermodel.packing import nest_offset, pack
+from weavecut.papermodel.packing import pack
 from weavecut.papermodel.pages import GAP, occupied
 from weavecut.subdivision import subdivide
 from weavecut.weave.colour import palette

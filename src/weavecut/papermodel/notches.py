@@ -17,6 +17,7 @@ from ..errors import WeaveCutError
 
 MIN_CUT = 3.0  # mm: the narrowest notch or neck scissors cut cleanly in paper
 V = np.radians(60.0)  # a notch: a corner cut in from outside, its sides closer than this
+STEP = np.radians(0.25)  # turns tried one after another to open a notch, then ...
 TURNS = 40  # halvings of the turn that widens a notch (far below a micrometre)
 
 
@@ -85,13 +86,15 @@ def _widen(ring, k: int, minimum: float):
         a, b = points
         return min(_segment_distance(a, v, b), _segment_distance(b, v, a)) >= minimum
 
-    low, high = 0.0, np.radians(0.5)
-    while opened(high) is not None and not wide(opened(high)):  # a few doublings
-        low, high = high, 2 * high
-        if high > np.pi / 2:
-            return None
-    if opened(high) is None:
-        return None
+    high = STEP
+    while True:  # a few steps, to the first turn that opens it wide enough
+        points = opened(high)
+        if points is None or high > np.pi / 2:
+            return None  # a side reached the far end of the edge beyond it first
+        if wide(points):
+            break
+        high += STEP
+    low = high - STEP
     for _ in range(TURNS):
         mid = (low + high) / 2
         points = opened(mid)
@@ -115,8 +118,8 @@ def widen_notches(outline: shapely.Polygon, minimum: float = MIN_CUT) -> shapely
     for k in range(n):  # corners of one outline
         v, p, q = ring[k], ring[k - 1], ring[(k + 1) % n]
         u, w = p - v, q - v
-        if _cross(v - p, w) >= 0 or u[0] * w[0] + u[1] * w[1] <= np.cos(V) * np.hypot(*u) * np.hypot(*w) \
-                or mouth(ring, k) >= minimum:
+        narrow = u[0] * w[0] + u[1] * w[1] > np.cos(V) * np.hypot(*u) * np.hypot(*w)
+        if _cross(v - p, w) >= 0 or not narrow or mouth(ring, k) >= minimum:
             continue  # a convex corner (the ring runs anticlockwise), no V, or wide enough
         wider = _widen(ring, k, minimum)
         if wider is None:
