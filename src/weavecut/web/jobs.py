@@ -24,6 +24,7 @@ process with CPU and memory limits (``limits``); ``cache`` keeps results by ``Jo
 from __future__ import annotations
 
 import contextlib
+import functools
 import hashlib
 import io
 import json
@@ -75,10 +76,11 @@ class JobSpec:
 
     def key(self) -> str:
         """sha256 hex of the canonical JSON of the spec, its uploads by their hashes, and
-        weave-cut's version: equal keys, equal results."""
+        the code that runs it (``code_version``: weave-cut's version, a hash of its files and
+        presets): equal keys, equal results; a changed source file or preset, a new key."""
         doc = {"kind": self.kind, "command": self.command, "args": list(self.args),
                "files": sorted([n, hashlib.sha256(b).hexdigest()] for n, b in self.files),
-               "output": self.output, "version": __version__}
+               "output": self.output, "version": code_version()}
         text = json.dumps(doc, sort_keys=True, separators=(",", ":"), ensure_ascii=True,
                           allow_nan=False)
         return hashlib.sha256(text.encode("ascii")).hexdigest()
@@ -117,6 +119,31 @@ class JobResult:
             raise ValueError("not a job result: wrong header")
         return cls(bool(doc["ok"]), body, str(doc["media_type"]), dict(doc["summary"]),
                    str(doc["error"]), int(doc["status"]))
+
+
+def tree_hash(folders) -> str:
+    """sha256 hex of the files under ``folders`` (their paths relative to their folder, in
+    sorted order, and their bytes), leaving out compiled Python (``__pycache__``, ``.pyc``)."""
+    digest = hashlib.sha256()
+    for n, folder in enumerate(Path(f) for f in folders):
+        found = sorted((p.relative_to(folder).as_posix(), p) for p in folder.rglob("*")
+                       if p.is_file() and "__pycache__" not in p.parts and p.suffix != ".pyc")
+        for name, path in found:
+            data = path.read_bytes()
+            digest.update(f"{n}:{name}:{len(data)}\n".encode("utf-8", "surrogateescape"))
+            digest.update(data)
+    return digest.hexdigest()
+
+
+@functools.cache
+def code_version() -> str:
+    """What a job's result depends on besides its spec: weave-cut's version and a hash of the
+    installed package's files and of the presets folder (``presets.templates_dir``), read once
+    per process (2 MB, some milliseconds), so a development change does not serve old kits."""
+    from .. import presets
+
+    package = Path(__file__).resolve().parent.parent
+    return f"{__version__}+{tree_hash([package, presets.templates_dir()])}"
 
 
 def failed(status: int, message: str) -> JobResult:
