@@ -9,7 +9,9 @@ and returns:
 - a kit: every file the command wrote, with its kit page, as a ZIP whose entries are sorted
   by name, dated 1980-01-01, rw-r--r--, with no extra fields, so the same job gives the same
   bytes; the files are byte for byte those of the same command typed in an empty folder
-  (``command_line(spec)`` gives it);
+  (``command_line(spec)`` gives it); a command without ``--html`` (``subdivide``,
+  ``figure``) gets its kit page written after it (``weavecut.kitpage``), so every download
+  explains itself;
 - a preview: the picture ``--preview`` draws (``strands``, ``puzzle``), else the command's
   own drawing;
 
@@ -31,6 +33,7 @@ import json
 import logging
 import os
 import re
+import shlex
 import shutil
 import sys
 import tempfile
@@ -268,12 +271,14 @@ def run_job(spec: JobSpec) -> JobResult:
     try:
         for name, data in spec.files:
             (folder / name).write_bytes(data)
-        code, error, out, err, said = _invoke(list(how.argv), folder)
+        code, error, out, err, record = _invoke(list(how.argv), folder)
         if code:
             return failed(code, error)
+        if spec.kind == "kit" and not how.prints and "--html" not in how.argv:
+            _kit_page(spec, how, folder, record)
         warnings = [line.removeprefix("weave-cut: warning: ") for line in err.splitlines()
                     if line.startswith("weave-cut: warning: ")]
-        return _collect(spec, how, folder, out, warnings, said)
+        return _collect(spec, how, folder, out, warnings, list(record.said))
     except Exception as exc:  # noqa: BLE001 - a job answers, never raises
         log.exception("web job %s failed", spec.key())
         return failed(500, f"internal error: {type(exc).__name__}: {exc}")
@@ -281,9 +286,9 @@ def run_job(spec: JobSpec) -> JobResult:
         shutil.rmtree(folder, ignore_errors=True)
 
 
-def _invoke(argv: list[str], folder: Path) -> tuple[int, str, str, str, list[str]]:
+def _invoke(argv: list[str], folder: Path) -> tuple[int, str, str, str, object]:
     """Run ``weave-cut ARGV`` in ``folder`` as ``weavecut.cli.main`` does: (HTTP status or 0,
-    message, stdout, stderr, summary lines said)."""
+    message, stdout, stderr, the ``fileio.Record`` of the files written and lines said)."""
     from ..cli.app import cli
 
     out, err = io.StringIO(), io.StringIO()
@@ -307,7 +312,17 @@ def _invoke(argv: list[str], folder: Path) -> tuple[int, str, str, str, list[str
     finally:
         os.chdir(cwd)
         sys.argv = args
-    return code, message, out.getvalue(), err.getvalue(), list(record.said)
+    return code, message, out.getvalue(), err.getvalue(), record
+
+
+def _kit_page(spec: JobSpec, how: Plan, folder: Path, record) -> None:
+    """The kit page of a command that writes none (no ``--html``): what ``--html`` writes,
+    for the files the command wrote and the command line that wrote them."""
+    from .. import kitpage
+
+    line = "weave-cut " + " ".join(shlex.quote(a) for a in how.argv)
+    kitpage.write(folder / PAGE, f"weave-cut {spec.command}",
+                  [kitpage.Run.of(record, line, spec.command)])
 
 
 def _collect(spec: JobSpec, how: Plan, folder: Path, out: str, warnings: list[str],
