@@ -55,6 +55,7 @@ PAGE = "index.html"  # the kit page, beside the outputs (as ``build`` writes it)
 NOT_JOBS = NOT_IN_RECIPES  # build reads a recipe's files; serve and worker serve
 ADDED = ("--output", "--json", "--preview", "--html", "--force", "--quiet")  # set by the job
 FOLDER_FLAGS = frozenset({"--laser-card"})  # flags that make -o a folder
+DRAWING_FORMATS = ("svg", "pdf", "dxf", "png")  # a drawing's -o (``export``), by the web's order
 NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9._-]{0,99}")  # an upload's or an output's name
 ZIP_DATE = (1980, 1, 1, 0, 0, 0)  # the earliest date a ZIP entry can hold
 MAX_BODY = 200 << 20  # bytes of a kit a web job returns; larger kits belong to the CLI
@@ -193,16 +194,41 @@ def _opts(command: click.Command) -> set[str]:
     return {o for p in command.params for o in p.opts}
 
 
-def default_output(spec: JobSpec) -> str:
+def output_formats(command: str, args=()) -> tuple[str, ...]:
+    """The formats the kit of ``command`` with ``args`` may be written in: the suffixes its -o
+    takes, as the command's own lists say, the default first; () where -o is a folder
+    (``puzzle``, ``strands --laser-card``: their files are chosen with ``--formats``)."""
+    cmd = _command(command)
+    option = next((p for p in cmd.params if "-o" in p.opts), None) if cmd else None
+    if option is None or not getattr(option.type, "file_okay", True) \
+            or FOLDER_FLAGS & set(args):
+        return ()
+    if command == "strands":
+        from ..cli.strands_command import FORMATS
+        return FORMATS
+    if command == "weave":  # a 3-D model of a surface's weave, a drawing of a flat one
+        from ..cli.weave_command import DRAWINGS, MODELS
+        return DRAWINGS + tuple(m for m in MODELS if m not in DRAWINGS)
+    if command == "figure":
+        from ..figures.gallery import FIGURES
+        name = next((a for a in args if not a.startswith("-")), "")
+        return ("png",) if "(PNG)" in FIGURES.get(name, ("",))[0] else DRAWING_FORMATS
+    if command == "subdivide":
+        from ..cli.mesh_commands import MESH_SUFFIXES
+        return DRAWING_FORMATS + tuple(s.lstrip(".") for s in MESH_SUFFIXES)
+    return ("png",) if command == "levels" else ("svg",)
+
+
+def default_output(spec: JobSpec, file_format: str = "") -> str:
     """The kit's -o: a folder named after the command where -o takes a folder (``puzzle``,
-    ``strands --laser-card``), else COMMAND.pdf for ``strands``, COMMAND.png for ``levels``
-    (a raster), COMMAND.svg otherwise."""
-    command = _command(spec.command)
-    option = next((p for p in command.params if "-o" in p.opts), None) if command else None
-    if option is not None and not getattr(option.type, "file_okay", True) \
-            or FOLDER_FLAGS & set(spec.args):
+    ``strands --laser-card``), else a file in ``file_format`` (by default the first of
+    ``output_formats``) named after the command, or after the figure (``figure``)."""
+    offered = output_formats(spec.command, spec.args)
+    if not offered:
         return spec.command
-    return spec.command + {"strands": ".pdf", "levels": ".png"}.get(spec.command, ".svg")
+    stem = next((a for a in spec.args if not a.startswith("-")), spec.command) \
+        if spec.command == "figure" else spec.command
+    return f"{stem}.{file_format or offered[0]}"
 
 
 def plan(spec: JobSpec) -> Plan:

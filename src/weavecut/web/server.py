@@ -160,7 +160,8 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
             query = forms.parse(name, _items(request), store)
         except forms.FormError as exc:
             return _refused(name, exc)
-        spec = JobSpec(kind, name, query.args, await run_in_threadpool(query.job_files))
+        spec = JobSpec(kind, name, query.args, await run_in_threadpool(query.job_files),
+                       query.output if kind == "kit" else "")
         key = spec.key()
         result = await run_in_threadpool(cache.get, key)
         if result is not None:

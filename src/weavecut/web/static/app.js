@@ -17,6 +17,9 @@
   function value(field) {
     const kind = field.dataset.kind, key = field.dataset.key;
     if (kind === "flag") return field.querySelector("input").checked ? "on" : "";
+    if (kind === "formats") {
+      return [...field.querySelectorAll("input:checked")].map((c) => c.value).join(",");
+    }
     if (kind === "preset") {
       const on = field.querySelector("input:checked");
       return on ? on.value : "";
@@ -33,6 +36,7 @@
   function query() {
     const params = new URLSearchParams();
     for (const field of form.querySelectorAll(".field[data-key]")) {
+      if (field.hidden) continue;  // counts only with (or without) a flag, as data-needs says
       const v = value(field);
       if (v !== "" && v !== field.dataset.default) params.append(field.dataset.key, v);
     }
@@ -127,7 +131,15 @@
     }
   }
 
+  function follow() {  // show a field only with (or without) the flag it needs
+    for (const field of form.querySelectorAll(".field[data-needs]")) {
+      const needs = field.dataset.needs, flag = $("f-" + needs.replace("!", ""));
+      if (flag) field.hidden = flag.checked === needs.startsWith("!");
+    }
+  }
+
   function later() {
+    follow();
     clearTimeout(timer);
     download.dataset.ready = "";
     timer = setTimeout(update, 350);
