@@ -50,7 +50,7 @@ from ..fileio import recording
 
 log = logging.getLogger(__name__)
 
-KINDS = ("preview", "kit")
+KINDS = ("preview", "kit", "read")  # read: an upload read as the CLI reads it (``uploads``)
 PAGE = "index.html"  # the kit page, beside the outputs (as ``build`` writes it)
 NOT_JOBS = NOT_IN_RECIPES  # build reads a recipe's files; serve and worker serve
 ADDED = ("--output", "--json", "--preview", "--html", "--force", "--quiet")  # set by the job
@@ -233,7 +233,7 @@ def default_output(spec: JobSpec, file_format: str = "") -> str:
 
 def plan(spec: JobSpec) -> Plan:
     """The command line of ``spec`` (raises ValueError with the reason it is refused)."""
-    if spec.kind not in KINDS:
+    if spec.kind not in KINDS[:2]:
         raise ValueError(f"unknown job kind {spec.kind!r}; choose one of {', '.join(KINDS)}")
     command = _command(spec.command)
     if command is None:
@@ -289,6 +289,10 @@ def run_job(spec: JobSpec) -> JobResult:
     """Run ``spec`` in a temporary folder in this process; its result (never raises). It
     sets the process's working folder and ``sys.argv`` while the command runs, so one job
     at a time per process (the queues run each in a process of its own)."""
+    if spec.kind == "read":
+        from .uploads import read_job
+
+        return read_job(spec)
     try:
         how = plan(spec)
     except ValueError as exc:
