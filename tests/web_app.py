@@ -13,12 +13,13 @@ import sys
 from pathlib import Path
 
 from weavecut.web.cache import Cache
-from weavecut.web.jobs import JobResult, run_job
+from weavecut.web.jobs import JobResult
+from weavecut.web.uploads import read_job
 
 
 class Recording:
     """A queue that records every job and answers a tiny preview, running nothing but the
-    reading of uploads (``run_job``, in this process)."""
+    reading of uploads (``read_job``, in this process)."""
 
     def __init__(self) -> None:
         self.specs = []
@@ -26,7 +27,7 @@ class Recording:
     async def run(self, spec):
         self.specs.append(spec)
         if spec.kind == "read":
-            return run_job(spec)
+            return read_job(spec)
         body = b"<svg xmlns='http://www.w3.org/2000/svg'/>"
         return JobResult(True, body, "image/svg+xml", {"strands": 1})
 

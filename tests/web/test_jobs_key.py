@@ -10,7 +10,8 @@ from pathlib import Path
 
 import weavecut
 from weavecut.web import jobs
-from weavecut.web.jobs import JobSpec, code_version, tree_hash
+from weavecut.web.jobs import JobSpec, code_version
+from weavecut.web.version import tree_hash
 
 SPEC = JobSpec("kit", "subdivide", ("pentagon", "--levels=2"))
 

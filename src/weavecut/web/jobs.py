@@ -26,7 +26,6 @@ process with CPU and memory limits (``limits``); ``cache`` keeps results by ``Jo
 from __future__ import annotations
 
 import contextlib
-import functools
 import hashlib
 import io
 import json
@@ -44,13 +43,14 @@ from typing import Protocol
 
 import click
 
-from .. import __version__
 from ..cli.recipe import NOT_IN_RECIPES
 from ..fileio import recording
+from .version import code_version
 
 log = logging.getLogger(__name__)
 
-KINDS = ("preview", "kit", "read")  # read: an upload read as the CLI reads it (``uploads``)
+KINDS = ("preview", "kit", "read")  # read: an upload read as the CLI reads it
+# (``uploads.read_job``; ``limits.child_main`` runs it, ``run_job`` the other two)
 PAGE = "index.html"  # the kit page, beside the outputs (as ``build`` writes it)
 NOT_JOBS = NOT_IN_RECIPES  # build reads a recipe's files; serve and worker serve
 ADDED = ("--output", "--json", "--preview", "--html", "--force", "--quiet")  # set by the job
@@ -123,31 +123,6 @@ class JobResult:
             raise ValueError("not a job result: wrong header")
         return cls(bool(doc["ok"]), body, str(doc["media_type"]), dict(doc["summary"]),
                    str(doc["error"]), int(doc["status"]))
-
-
-def tree_hash(folders) -> str:
-    """sha256 hex of the files under ``folders`` (their paths relative to their folder, in
-    sorted order, and their bytes), leaving out compiled Python (``__pycache__``, ``.pyc``)."""
-    digest = hashlib.sha256()
-    for n, folder in enumerate(Path(f) for f in folders):
-        found = sorted((p.relative_to(folder).as_posix(), p) for p in folder.rglob("*")
-                       if p.is_file() and "__pycache__" not in p.parts and p.suffix != ".pyc")
-        for name, path in found:
-            data = path.read_bytes()
-            digest.update(f"{n}:{name}:{len(data)}\n".encode("utf-8", "surrogateescape"))
-            digest.update(data)
-    return digest.hexdigest()
-
-
-@functools.cache
-def code_version() -> str:
-    """What a job's result depends on besides its spec: weave-cut's version and a hash of the
-    installed package's files and of the presets folder (``presets.templates_dir``), read once
-    per process (2 MB, some milliseconds), so a development change does not serve old kits."""
-    from .. import presets
-
-    package = Path(__file__).resolve().parent.parent
-    return f"{__version__}+{tree_hash([package, presets.templates_dir()])}"
 
 
 def failed(status: int, message: str) -> JobResult:
@@ -289,10 +264,6 @@ def run_job(spec: JobSpec) -> JobResult:
     """Run ``spec`` in a temporary folder in this process; its result (never raises). It
     sets the process's working folder and ``sys.argv`` while the command runs, so one job
     at a time per process (the queues run each in a process of its own)."""
-    if spec.kind == "read":
-        from .uploads import read_job
-
-        return read_job(spec)
     try:
         how = plan(spec)
     except ValueError as exc:

@@ -74,7 +74,12 @@ def child_main(spec: JobSpec, jobdir: str, cpu_seconds: int, memory_mb: int) -> 
     set_limits(cpu_seconds, memory_mb)
     keep_freed_memory()  # as the command line does
     tempfile.tempdir = jobdir
-    result = run_job(spec)
+    if spec.kind == "read":
+        from .uploads import read_job
+
+        result = read_job(spec)
+    else:
+        result = run_job(spec)
     if result.error == OUT_OF_MEMORY and memory_mb > 0:
         result = replace(result, error=f"the {kind_of(spec)} needed more than the {memory_mb} "
                          "MB of memory a job may use")
