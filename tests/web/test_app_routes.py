@@ -261,3 +261,12 @@ def test_a_recipe_cannot_start_a_server(tmp_path):
     result = CliRunner().invoke(cli, ["build", str(recipe), "-o", str(tmp_path / "out")])
     assert result.exit_code == 1
     assert "unknown command 'serve'" in result.output
+
+
+def test_a_balls_preview_is_the_ball_from_the_front_and_the_back(served):
+    response = served.get("/strands/preview.svg?input=dodecahedron&levels=1&project=sphere"
+                          "&size=12cm")
+    assert response.status_code == 200, response.text
+    assert response.headers["content-type"].startswith("image/svg+xml")
+    text = response.text
+    assert text.count("<svg") == 1 and ">front<" in text and ">back<" in text
