@@ -37,7 +37,7 @@ import shutil
 import sys
 import tempfile
 import zipfile
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Protocol
 
@@ -55,6 +55,9 @@ PAGE = "index.html"  # the kit page, beside the outputs (as ``build`` writes it)
 NOT_JOBS = NOT_IN_RECIPES  # build reads a recipe's files; serve and worker serve
 ADDED = ("--output", "--json", "--preview", "--html", "--force", "--quiet")  # set by the job
 FOLDER_FLAGS = frozenset({"--laser-card"})  # flags that make -o a folder
+NOT_PREVIEWED = {  # options a command's --preview refuses, left out of a preview job: they
+    "strands": ("--cutter", "--laser-card", "--material", "--laser", "--formats")}  # change
+# how the strips are cut, not the pattern the preview draws
 DRAWING_FORMATS = ("svg", "pdf", "dxf", "png")  # a drawing's -o (``export``), by the web's order
 NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9._-]{0,99}")  # an upload's or an output's name
 ZIP_DATE = (1980, 1, 1, 0, 0, 0)  # the earliest date a ZIP entry can hold
@@ -215,6 +218,9 @@ def plan(spec: JobSpec) -> Plan:
         raise ValueError(f"unknown command {spec.command!r}")
     _check_args(spec)
     opts = _opts(command)
+    if spec.kind == "preview":  # the pattern is the same with or without the cutter or card
+        spec = replace(spec, args=tuple(a for a in spec.args if a.partition("=")[0]
+                                        not in NOT_PREVIEWED.get(spec.command, ())))
     output = spec.output or default_output(spec)
     folder = not Path(output).suffix
     extra: list[str] = []

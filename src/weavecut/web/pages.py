@@ -108,7 +108,7 @@ def command_page(name: str, raw: dict[str, str], error: forms.FormError | None,
                                   1)
         groups[f.group].append(field)
     general = error.message if error is not None and error.key is None else ""
-    about = (cmd.help or "").split("\n\n")[0].replace("\n", " ")
+    about = " ".join((cmd.help or "").split("\n\n")[0].split()).replace("INPUT", "the input")
     qs = urlencode([(k, v) for k, v in raw.items()])
     from .equivalents import command_line, recipe
 
