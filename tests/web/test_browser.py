@@ -115,3 +115,24 @@ def test_the_fields_are_reached_from_the_keyboard(browser, server):
 def test_nothing_is_wider_than_a_phone(browser, server, path):
     browser.goto(server + path, 390)
     assert browser.evaluate("document.documentElement.scrollWidth <= window.innerWidth")
+
+
+def test_the_laser_card_and_its_files_per_sheet_from_the_keyboard_on_a_phone(browser, server):
+    browser.goto(server + "strands?input=square-grid&size=27cm&palette=maritime-4", 390)
+    browser.wait_until("!!document.getElementById('f-laser-card')", 60)
+    visible = ("(k => !document.querySelector(`[data-key=${k}]`).hidden)")
+    assert browser.evaluate(visible + "('format')") and not browser.evaluate(
+        visible + "('formats')")
+    browser.evaluate("document.getElementById('f-laser-card').focus(), 0")
+    browser.press(" ", "Space", 32)  # the check box, from the keyboard
+    browser.wait_until(visible + "('formats') && !" + visible + "('format')", 10)
+    browser.evaluate("document.querySelector('input[name=formats][value=lbrn2]').focus(), 0")
+    browser.press(" ", "Space", 32)
+    browser.wait_until("location.search.includes('formats=lbrn2')", 10)
+    assert "format=" not in browser.evaluate("location.search").replace("formats=", "")
+    browser.wait_until("document.getElementById('cmdline').textContent"
+                       ".includes('--laser-card --formats lbrn2')", 60)
+    # the command line wraps on a phone: nothing to scroll sideways
+    assert browser.evaluate("(p => p.scrollWidth <= p.clientWidth)"
+                            "(document.getElementById('cmdline').parentElement)")
+    assert browser.errors() == []

@@ -35,8 +35,9 @@ HIDDEN = frozenset({"output", "output-dir", "force", "json", "preview", "html", 
 PRESETS = {"palette": "palettes", "material": "materials", "laser": "laser",
            "cutter": "cutters"}  # options whose value names a preset, by key
 PRIMARY = {  # shown first; the other options fold away under "More options"
-    "strands": ("input", "size", "levels", "palette", "page", "laser-card", "cutter"),
-    "puzzle": ("input", "size", "levels", "material", "palette", "mode", "numbers"),
+    "strands": ("input", "size", "levels", "palette", "page", "laser-card", "cutter",
+                "material", "formats"),  # the last two shown with the laser card only
+    "puzzle": ("input", "size", "levels", "material", "palette", "mode", "numbers", "formats"),
     "weave": ("input", "levels", "palette", "style", "outline-level", "size"),
     "subdivide": ("input", "levels", "scheme", "size", "earlier-levels"),
     "figure": ("name",),
@@ -226,7 +227,8 @@ def _range(t: click.IntRange | click.FloatRange) -> str:
 def _label(k: str) -> str:
     return {"laser-card": "Laser-cut card", "no-smooth": "No smoothing (skip operation 4)",
             "allow-nonconvex": "Allow non-convex faces", "name": "Figure",
-            "input": "Input", "cell": "Cell size"}.get(k, k.replace("-", " ").capitalize())
+            "input": "Input", "cell": "Cell size", "formats": "Files per sheet"}.get(
+        k, k.replace("-", " ").capitalize())
 
 
 @functools.cache
