@@ -97,3 +97,9 @@ def test_a_raster_figure_is_png_and_the_link_keeps_the_choice(recording):
     assert re.search(r'data-needs="laser-card" data-key="formats"', card)
     paper = recording.get("/strands?input=square-grid").text
     assert re.search(r'data-needs="laser-card" hidden data-key="formats"', paper)
+
+
+def test_a_format_the_input_cannot_take_is_refused_next_to_the_format(served):
+    response = served.get("/weave/summary.json?input=square-grid&levels=1&format=obj")
+    assert response.status_code == 422 and "needs a surface in space" in response.text
+    assert response.headers["x-field"] == "format"

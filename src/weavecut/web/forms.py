@@ -376,4 +376,6 @@ def key_of_message(message: str, name: str) -> str | None:
     for found in HINT.finditer(message):
         if found.group(1) in known:
             return found.group(1)
+    if re.search(r"'-o'|\.[a-z0-9]+ (?:woven model|drawing)\b", message) and format_field(name):
+        return FORMAT  # the output's format: the only part of -o the form chooses
     return None
