@@ -136,3 +136,16 @@ def test_the_laser_card_and_its_files_per_sheet_from_the_keyboard_on_a_phone(bro
     assert browser.evaluate("(p => p.scrollWidth <= p.clientWidth)"
                             "(document.getElementById('cmdline').parentElement)")
     assert browser.errors() == []
+
+
+def test_an_upload_that_is_no_drawing_says_so_and_the_message_stays(browser, server, tmp_path):
+    picture = tmp_path / "heart.png"
+    picture.write_bytes(b"\x89PNG\r\n\x1a\n" + bytes(200))  # what a person may try first
+    browser.goto(server + "puzzle", 390)
+    browser.wait_until("!!document.getElementById('f-upload')", 60)
+    browser.set_files("#f-upload", [picture])
+    browser.wait_until("!document.getElementById('e-input').hidden", 60)
+    time.sleep(1.5)  # past the form's debounce: nothing redraws over the message
+    assert "not a drawing" in browser.evaluate("document.getElementById('e-input').textContent")
+    assert not browser.evaluate("document.getElementById('e-input').hidden")
+    assert "not accepted" in browser.evaluate("document.getElementById('status').textContent")

@@ -165,7 +165,8 @@
   form.addEventListener("submit", (e) => { e.preventDefault(); update(); });
 
   const file = $("f-upload");
-  if (file) {
+  if (file) {  // choosing a file is no change of the form: the upload's answer decides
+    file.addEventListener("input", (e) => e.stopPropagation());
     file.addEventListener("change", async (e) => {
       e.stopPropagation();
       const chosen = file.files[0];
