@@ -149,3 +149,10 @@ def test_an_upload_that_is_no_drawing_says_so_and_the_message_stays(browser, ser
     assert "not a drawing" in browser.evaluate("document.getElementById('e-input').textContent")
     assert not browser.evaluate("document.getElementById('e-input').hidden")
     assert "not accepted" in browser.evaluate("document.getElementById('status').textContent")
+
+
+def test_a_kit_without_figures_says_so_once_made(browser, server):
+    browser.goto(server + "subdivide?input=pentagon&levels=2", 1280)
+    before = "getComputedStyle(document.getElementById('figures'), '::before').content"
+    browser.wait_until(READY, 120)
+    assert "prints no figures" in browser.evaluate(before)

@@ -118,10 +118,12 @@
       sheet.classList.remove("busy");
       say("Preview ready; making the kit…");
       figures.replaceChildren();
+      figures.classList.remove("made");
       warnings.replaceChildren();
       const made = await fetch(`/${command}/summary.json?${qs}`, {signal});
       if (!made.ok) return refused(made);
       showFigures(await made.json());
+      figures.classList.add("made");
       say("The kit is ready to download.");
       download.dataset.ready = qs;
     } catch (err) {
