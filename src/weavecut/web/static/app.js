@@ -173,6 +173,9 @@
       e.stopPropagation();
       const chosen = file.files[0];
       if (!chosen) return;
+      clearTimeout(timer);  // the upload's answer replaces what the form was drawing
+      if (controller) controller.abort();
+      sheet.classList.remove("busy");
       say(`Reading ${chosen.name}…`);
       try {
         const sent = await fetch("/upload", {method: "POST", body: chosen});
