@@ -69,7 +69,7 @@ def test_the_kit_is_the_clis_files_in_the_formats_chosen(served, tmp_path, url, 
 
 @pytest.mark.parametrize(("url", "field", "says"), [
     ("/strands/check?input=square-grid&format=dxf", "format", "unknown format 'dxf'"),
-    ("/strands/check?input=square-grid&laser-card=on&format=pdf", "format", "formats"),
+    ("/strands/check?input=square-grid&laser-card=on&format=svg", "format", "formats"),
     ("/figure/check?name=level-image&format=svg", "format", "use png"),
     ("/puzzle/check?format=svg", "form", "unknown parameter 'format'"),
 ])
@@ -103,3 +103,9 @@ def test_a_format_the_input_cannot_take_is_refused_next_to_the_format(served):
     response = served.get("/weave/summary.json?input=square-grid&levels=1&format=obj")
     assert response.status_code == 422 and "needs a surface in space" in response.text
     assert response.headers["x-field"] == "format"
+
+
+def test_the_default_format_beside_the_laser_card_is_no_choice(recording):
+    # a form sent without its script sends the hidden select's default too
+    found = recording.get("/strands/check?input=square-grid&laser-card=on&format=pdf").json()
+    assert found["ok"] and found["command_line"].endswith("--laser-card -o strands")

@@ -53,7 +53,8 @@ NEEDS = {  # fields that count only with a flag on ("laser-card") or off ("!lase
 FORMAT = "format"  # the kit's file format: the suffix of the -o the job gives (not an option)
 FORMAT_LABELS = {"pdf": "PDF: print it", "svg": "SVG: view it, or edit it in Inkscape",
                  "dxf": "DXF: CAD or laser software", "png": "PNG: a picture",
-                 "obj": "OBJ: the 3-D model (a surface's)", "glb": "GLB: the 3-D model, coloured", "json": "JSON: weave-cut's mesh",
+                 "obj": "OBJ: the 3-D model (a surface's)",
+                 "glb": "GLB: the 3-D model, coloured", "json": "JSON: weave-cut's mesh",
                  "lbrn2": "LightBurn project (.lbrn2): layers set for your laser"}
 MAX_PARAMS = 64  # query parameters of one request
 MAX_VALUE = 200  # characters of one value
@@ -183,8 +184,7 @@ def _field(p: click.Parameter, k: str, where: str, needs: str) -> Field:
         else None
     text = getattr(p, "help", None) or ""
     base = {"key": k, "label": _label(k), "help": text, "required": p.required or k == "name",
-            "group": where, "param": p, "default": default,
-            "needs": needs}
+            "group": where, "param": p, "default": default, "needs": needs}
     t = p.type
     if isinstance(p, click.Argument):
         if k == "input":
@@ -307,6 +307,8 @@ def _output(name: str, args: list[str], raw: dict[str, str], values: dict) -> st
     """The kit's -o in the ``format`` chosen (the command's default without one)."""
     chosen = raw.get(FORMAT, "")
     offered = output_formats(name, args)
+    if chosen and not offered and chosen == format_field(name).default:
+        chosen = ""  # the default is no choice (a form sent without its script sends it)
     if chosen:
         values[FORMAT] = chosen
         if not offered:
