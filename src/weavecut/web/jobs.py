@@ -212,7 +212,7 @@ def default_output(spec: JobSpec, file_format: str = "") -> str:
 def plan(spec: JobSpec) -> Plan:
     """The command line of ``spec`` (raises ValueError with the reason it is refused)."""
     if spec.kind not in KINDS[:2]:
-        raise ValueError(f"unknown job kind {spec.kind!r}; choose one of {', '.join(KINDS)}")
+        raise ValueError(f"unknown job kind {spec.kind!r}; choose one of {', '.join(KINDS[:2])}")
     command = _command(spec.command)
     if command is None:
         raise ValueError(f"unknown command {spec.command!r}")
