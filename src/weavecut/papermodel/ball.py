@@ -246,8 +246,8 @@ def _kinds(pieces: list[Strip]) -> list[int]:
 def _views(weave: Weave, colours, labels, box, cells, columns: int = 3, rows: int = 2):
     """(painted tiles, fills, IDs, captions): views of the ball in a ``columns`` x ``rows``
     grid inside ``box``, one per cell (caption, towards the viewer, up, shown (S,) bool):
-    every tile that faces the viewer in the colour of the strand on top if that strand is shown, light where a
-    shown strand passes under a hidden one, white elsewhere."""
+    every tile that faces the viewer in the colour of the strand on top if that strand is
+    shown, light where a shown strand passes under a hidden one, white elsewhere."""
     coords, _ = tile_rings(weave)
     rings = coords.reshape(-1, 8, 3) - weave.mesh.vertices.mean(axis=0)
     normals = np.add.reduceat(face_normals(weave.mesh)[weave.tile_faces], weave.tile_offsets[:-1])
