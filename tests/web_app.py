@@ -14,16 +14,20 @@ from pathlib import Path
 
 from weavecut.web.cache import Cache
 from weavecut.web.jobs import JobResult
+from weavecut.web.uploads import read_job
 
 
 class Recording:
-    """A queue that records every job and answers a tiny preview, running nothing."""
+    """A queue that records every job and answers a tiny preview, running nothing but the
+    reading of uploads (``read_job``, in this process)."""
 
     def __init__(self) -> None:
         self.specs = []
 
     async def run(self, spec):
         self.specs.append(spec)
+        if spec.kind == "read":
+            return read_job(spec)
         body = b"<svg xmlns='http://www.w3.org/2000/svg'/>"
         return JobResult(True, body, "image/svg+xml", {"strands": 1})
 

@@ -71,12 +71,46 @@ def test_strands_preview_writes_the_pattern_only(tmp_path):
     (["square-grid", "--preview", "--cutter", "silhouette", "-o", "x.pdf"], "without --cutter"),
     (["square-grid", "--preview", "-o", "x.dxf"], "or .png"),
     (["square-grid", "-o", "x.png"], "use .pdf or .svg"),
-    (["dodecahedron", "--project", "sphere", "--preview", "-o", "x.svg"], "flat models"),
+    (["dodecahedron", "--project", "sphere", "--cutter", "silhouette", "-o", "x.pdf"],
+     "flat models"),
 ])
 def test_strands_preview_refuses_what_it_does_not_draw(tmp_path, args, says):
     result = CliRunner().invoke(cli, ["strands", *args[:-1], str(tmp_path / args[-1])])
     assert result.exit_code != 0 and says in result.output
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_balls_preview_is_its_front_and_back_as_the_assembly_sheet_paints_them(tmp_path):
+    from collections import Counter
+
+    from weavecut.papermodel.ball import ball_book, ball_preview
+    from weavecut.weave.snub_weave import snub_weaves
+
+    ws = snub_weaves(subdivide(inputs.get("dodecahedron"), 1, project="sphere"))
+    pal = palette("maritime-12")
+    look = ball_preview(ws, pal).sheets
+    book = ball_book(ws, pal, diameter=120.0)
+    assert len(look) == 1 and look[0].width <= 210  # one sheet, about a screen's width
+
+    def layer(sheet, name):
+        return next(x for x in sheet.layers if x.name == name)
+
+    assert [t.text for t in layer(look[0], "captions").shapes] == ["front", "back"]
+    fills = list(layer(look[0], "views").shapes[0].fills)
+    cover = list(layer(book.drawing.sheets[0], "views").shapes[0].fills)  # page 1's six views
+    assert not Counter(fills) - Counter(cover)  # tiles painted as page 1 paints them
+    half = len(fills) // 2  # a dodecahedron is centrally symmetric: as many tiles each side
+    assert len(fills) == 2 * half and fills[:half] == cover[:half]  # page 1's front view
+    assert set(fills) == set(book.colours) and len(book.colours) == 6  # every strand
+    tiles = len(ws[-1].tile_offsets) - 1
+    assert 0.8 * tiles <= len(fills) <= tiles  # front and back see nearly every tile once
+    ids = {t.text for t in layer(look[0], "ids").shapes}
+    assert ids and ids <= {chr(ord("A") + i) for i in range(6)}  # IDs where a tile faces you
+    out = tmp_path / "ball.svg"
+    result = CliRunner().invoke(cli, ["strands", "dodecahedron", "--levels", "1", "--project",
+                                      "sphere", "--preview", "-o", str(out)])
+    assert result.exit_code == 0, result.output
+    assert out.read_text().count("<svg") == 1 and "front" in out.read_text()
 
 
 def test_puzzle_preview_is_the_painted_front_and_back_without_numbers(tmp_path):

@@ -58,6 +58,7 @@ def test_the_form_has_every_option_of_the_command(recording, name):
     expected = set(options) - HIDDEN
     expected |= {"input"} if "INPUT" in usage else set()
     expected |= {"name"} if "[NAME]" in usage else set()
+    expected |= {"format"} if options.get("output", ("DIRECTORY",))[0] != "DIRECTORY" else set()
     assert set(fields(page(recording, name))) == expected
 
 

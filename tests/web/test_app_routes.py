@@ -261,3 +261,25 @@ def test_a_recipe_cannot_start_a_server(tmp_path):
     result = CliRunner().invoke(cli, ["build", str(recipe), "-o", str(tmp_path / "out")])
     assert result.exit_code == 1
     assert "unknown command 'serve'" in result.output
+
+
+def test_a_balls_preview_is_the_ball_from_the_front_and_the_back(served):
+    response = served.get("/strands/preview.svg?input=dodecahedron&levels=1&project=sphere"
+                          "&size=12cm")
+    assert response.status_code == 200, response.text
+    assert response.headers["content-type"].startswith("image/svg+xml")
+    text = response.text
+    assert text.count("<svg") == 1 and ">front<" in text and ">back<" in text
+
+
+@pytest.mark.parametrize("query", ["laser-card=on&palette=maritime-4&formats=lbrn2",
+                                   "cutter=silhouette"])
+def test_the_preview_of_strips_cut_by_machine_is_their_pattern(served, query):
+    # --preview refuses --cutter and --laser-card: the preview job leaves them out (they
+    # change how the strips are cut, not the pattern); the kit keeps them
+    response = served.get(f"/strands/preview.svg?input=square-grid&{query}")
+    assert response.status_code == 200, response.text
+    plain = served.get("/strands/preview.svg?input=square-grid&" + "&".join(
+        p for p in query.split("&") if p.startswith("palette")))
+    strip = re.compile(rb"<metadata.*?</metadata>|<title>.*?</title>", re.S)
+    assert strip.sub(b"", response.content) == strip.sub(b"", plain.content)

@@ -115,3 +115,44 @@ def test_the_fields_are_reached_from_the_keyboard(browser, server):
 def test_nothing_is_wider_than_a_phone(browser, server, path):
     browser.goto(server + path, 390)
     assert browser.evaluate("document.documentElement.scrollWidth <= window.innerWidth")
+
+
+def test_the_laser_card_and_its_files_per_sheet_from_the_keyboard_on_a_phone(browser, server):
+    browser.goto(server + "strands?input=square-grid&size=27cm&palette=maritime-4", 390)
+    browser.wait_until("!!document.getElementById('f-laser-card')", 60)
+    visible = ("(k => !document.querySelector(`[data-key=${k}]`).hidden)")
+    assert browser.evaluate(visible + "('format')") and not browser.evaluate(
+        visible + "('formats')")
+    browser.evaluate("document.getElementById('f-laser-card').focus(), 0")
+    browser.press(" ", "Space", 32)  # the check box, from the keyboard
+    browser.wait_until(visible + "('formats') && !" + visible + "('format')", 10)
+    browser.evaluate("document.querySelector('input[name=formats][value=lbrn2]').focus(), 0")
+    browser.press(" ", "Space", 32)
+    browser.wait_until("location.search.includes('formats=lbrn2')", 10)
+    assert "format=" not in browser.evaluate("location.search").replace("formats=", "")
+    browser.wait_until("document.getElementById('cmdline').textContent"
+                       ".includes('--laser-card --formats lbrn2')", 60)
+    # the command line wraps on a phone: nothing to scroll sideways
+    assert browser.evaluate("(p => p.scrollWidth <= p.clientWidth)"
+                            "(document.getElementById('cmdline').parentElement)")
+    assert browser.errors() == []
+
+
+def test_an_upload_that_is_no_drawing_says_so_and_the_message_stays(browser, server, tmp_path):
+    picture = tmp_path / "heart.png"
+    picture.write_bytes(b"\x89PNG\r\n\x1a\n" + bytes(200))  # what a person may try first
+    browser.goto(server + "puzzle", 390)
+    browser.wait_until("!!document.getElementById('f-upload')", 60)
+    browser.set_files("#f-upload", [picture])
+    browser.wait_until("!document.getElementById('e-input').hidden", 60)
+    time.sleep(1.5)  # past the form's debounce: nothing redraws over the message
+    assert "not a drawing" in browser.evaluate("document.getElementById('e-input').textContent")
+    assert not browser.evaluate("document.getElementById('e-input').hidden")
+    assert "not accepted" in browser.evaluate("document.getElementById('status').textContent")
+
+
+def test_a_kit_without_figures_says_so_once_made(browser, server):
+    browser.goto(server + "subdivide?input=pentagon&levels=2", 1280)
+    before = "getComputedStyle(document.getElementById('figures'), '::before').content"
+    browser.wait_until(READY, 120)
+    assert "prints no figures" in browser.evaluate(before)

@@ -16,7 +16,7 @@ import pytest
 from hypothesis import given, strategies as st
 
 from weavecut import __version__
-from weavecut.web.jobs import JobResult, JobSpec, command_line, run_job
+from weavecut.web.jobs import JobResult, JobSpec, code_version, command_line, run_job
 
 ROOT = Path(__file__).resolve().parents[2]
 HEART = (ROOT / "examples" / "heart.svg").read_bytes()
@@ -178,7 +178,8 @@ def test_key_is_sha256_of_the_canonical_json():
     spec = JobSpec("kit", "stats", ("pentagon",), files=(("a.svg", b"x"),))
     doc = ('{"args":["pentagon"],"command":"stats","files":[["a.svg","'
            + hashlib.sha256(b"x").hexdigest() + '"]],"kind":"kit","output":"","version":"'
-           + __version__ + '"}')
+           + code_version() + '"}')
+    assert code_version().startswith(__version__ + "+")
     assert spec.key() == hashlib.sha256(doc.encode()).hexdigest()
 
 

@@ -72,7 +72,8 @@ FORMATS = ("pdf", "svg")
               help="Print the plan and the page checks (ink, smallest label) as JSON.")
 @click.option("--preview", is_flag=True,
               help="Only draw the finished pattern in the strips' colours into -o (.svg, .pdf "
-                   "or .png): no strips, no pages, in a fraction of a second. Flat models.")
+                   "or .png): no strips, no pages, in a fraction of a second; a ball from the "
+                   "front and the back.")
 @force_option
 @reports_errors
 @html_option
@@ -128,11 +129,11 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
         if layout != "mixed" or turn is not None:
             raise click.UsageError("--layout and --turn are for flat models; a ball prints "
                                    "every strip once")
-        if cutter_name is not None or laser_card or preview:
-            raise click.UsageError("--cutter, --laser-card and --preview are for flat models "
-                                   "so far; print a ball's strips and cut them by hand")
+        if cutter_name is not None or laser_card:
+            raise click.UsageError("--cutter and --laser-card are for flat models so far; "
+                                   "print a ball's strips and cut them by hand")
         return ball(mesh, input_mesh, levels, page, tile_size, model_size, margin, pal,
-                    chirality, project, output, as_json)
+                    chirality, project, output, as_json, preview)
     if project:
         raise click.BadParameter(f"{input_mesh} is flat; --project sphere is for surfaces "
                                  "in space", param_hint="'--project'")
@@ -215,18 +216,24 @@ BALL_TILE = 40.0  # mm across an octagon: a ball's default size
 
 
 def ball(mesh, input_mesh, levels, page, tile_size, diameter, margin, pal, chirality, project,
-         output, as_json) -> None:
-    """``strands`` of a surface in space: a woven ball's strips, ``diameter`` mm across."""
-    from ..papermodel.ball import ball_book
+         output, as_json, preview=False) -> None:
+    """``strands`` of a surface in space: a woven ball's strips, ``diameter`` mm across (with
+    ``preview``: the ball from the front and the back only)."""
+    from ..papermodel.ball import ball_book, ball_preview
     from ..papermodel.checks import report
     from ..weave.snub_weave import snub_weaves
 
     hierarchy = subdivide(mesh, levels, chirality=chirality, project=project)
     weaves = snub_weaves(hierarchy)
     weave = weaves[-1]
-    book = ball_book(weaves, pal, page, diameter, margin,
-                     title=f"weave-cut strands: {input_mesh}, level {levels}"
-                           + (f", projected to the {project}" if project else ""),
+    title = (f"weave-cut strands: {input_mesh}, level {levels}"
+             + (f", projected to the {project}" if project else ""))
+    if preview:
+        export.write(ball_preview(weaves, pal, f"{title}: preview")
+                     .with_metadata(**provenance()), output)
+        return summary(f"{output}: the ball from the front and the back, its "
+                       f"{weave.n_strands} strands as the strips are coloured")
+    book = ball_book(weaves, pal, page, diameter, margin, title=title,
                      tile_size=tile_size or BALL_TILE)
     for warning in book.warnings:
         click.echo(f"weave-cut: warning: {warning}", err=True)

@@ -33,6 +33,7 @@ from .strips import Strip, flat_angle, outline_of, tint
 from .unfold import OVERLAP, Unfolding, UnfoldError, dashed, flatten, unfold
 from .wording import TEXT, page_index, paragraphs
 
+PREVIEW, PREVIEW_MARGIN = 200.0, 5.0  # mm: the width of the quick look's two views, margin
 MIN_FOLD = math.radians(1.0)  # joints flatter than this are not drawn as folds
 VALLEY = (0.5, 1.0)  # mm dash and gap of a valley fold (a mountain fold: unfold.DASH)
 # (name, towards the viewer, up): six views, every tile seen head-on in one of them
@@ -249,11 +250,11 @@ def _kinds(pieces: list[Strip]) -> list[int]:
     return [index.setdefault(k, len(index)) for k in keys]
 
 
-def _views(weave: Weave, colours, labels, box, cells):
-    """(painted tiles, fills, IDs, captions): views of the ball in a 3 x 2 grid inside
-    ``box``, one per cell (caption, towards the viewer, up, shown (S,) bool): every tile that
-    faces the viewer in the colour of the strand on top if that strand is shown, light where a
-    shown strand passes under a hidden one, white elsewhere."""
+def _views(weave: Weave, colours, labels, box, cells, columns: int = 3, rows: int = 2):
+    """(painted tiles, fills, IDs, captions): views of the ball in a ``columns`` x ``rows``
+    grid inside ``box``, one per cell (caption, towards the viewer, up, shown (S,) bool):
+    every tile that faces the viewer in the colour of the strand on top if that strand is
+    shown, light where a shown strand passes under a hidden one, white elsewhere."""
     coords, _ = tile_rings(weave)
     rings = coords.reshape(-1, 8, 3) - weave.mesh.vertices.mean(axis=0)
     normals = np.add.reduceat(face_normals(weave.mesh)[weave.tile_faces], weave.tile_offsets[:-1])
@@ -262,14 +263,14 @@ def _views(weave: Weave, colours, labels, box, cells):
     own = np.asarray(colours, dtype=object)[top]
     light = np.array([tint(c) for c in np.asarray(colours)[under]], dtype=object)
     x0, y0, x1, y1 = box
-    cell = min((x1 - x0) / 3, (y1 - y0 - 2 * (TEXT + 2)) / 2)
+    cell = min((x1 - x0) / columns, (y1 - y0 - rows * (TEXT + 2)) / rows)
     scale = (cell - 2 * GAP) / (2 * radius(weave))
     polys, fills, ids, captions = [], [], [], []
     for k, (name, toward, up, shown) in enumerate(cells):  # six views
         d, u = np.array(toward, float), np.array(up, float)
         r = np.cross(u, d)
-        cx = x0 + (k % 3 + 0.5) * (x1 - x0) / 3
-        cy = y1 - (k // 3) * (cell + TEXT + 2) - cell / 2
+        cx = x0 + (k % columns + 0.5) * (x1 - x0) / columns
+        cy = y1 - (k // columns) * (cell + TEXT + 2) - cell / 2
         facing = dot(normals, d)
         keep = np.flatnonzero(facing > 0.05)
         keep = keep[np.argsort(snap(dot(rings[keep].mean(axis=1), d)), kind="stable")]  # far first
@@ -290,10 +291,29 @@ def _views(weave: Weave, colours, labels, box, cells):
     return polys, fills, ids, captions
 
 
-def _view_layers(weave, book, labels, box, cells) -> list[Layer]:
-    polys, fills, ids, captions = _views(weave, book.colours, labels, box, cells)
+def _view_layers(weave, colours, labels, box, cells, columns: int = 3,
+                 rows: int = 2) -> list[Layer]:
+    polys, fills, ids, captions = _views(weave, colours, labels, box, cells, columns, rows)
     return [Layer("views", "paint", (polygons_from_shapely(polys, OUTLINE, fills),)),
             Layer("ids", "label", tuple(ids)), Layer("captions", "label", tuple(captions))]
+
+
+def ball_preview(weaves: list[Weave], pal: Palette,
+                 title: str = "weave-cut strands: preview") -> Drawing:
+    """A quick look at a woven ball (``strands --preview``): the front and the back views of
+    the assembly sheet, large, every tile in the colour of the strand on top there, with its
+    ID; no unfolding, no strips, no pages."""
+    weave = weaves[-1]
+    labels = tuple(copy_letter(i) for i in range(weave.n_strands))
+    every = np.ones(weave.n_strands, dtype=bool)
+    side = PREVIEW / 2
+    box = (PREVIEW_MARGIN, PREVIEW_MARGIN, PREVIEW_MARGIN + PREVIEW,
+           PREVIEW_MARGIN + side + TEXT + 2)
+    layers = _view_layers(weave, strand_colours(weaves, pal), labels, box,
+                          [(*VIEWS[0], every), (*VIEWS[2], every)], columns=2, rows=1)
+    sheet = Sheet(PREVIEW + 2 * PREVIEW_MARGIN, box[3] + PREVIEW_MARGIN, tuple(layers),
+                  "preview")
+    return Drawing((sheet,), title)
 
 
 def assembly_sheet(weave: Weave, book: BallBook, labels, title: str, total: int) -> Sheet:
@@ -317,7 +337,7 @@ def assembly_sheet(weave: Weave, book: BallBook, labels, title: str, total: int)
              "ID. Weaving steps: page 2."]
     texts, bottom = paragraphs(lines, x0, y1, x1 - x0)
     every = np.ones(n, dtype=bool)
-    layers = _view_layers(weave, book, labels, (x0, y0, x1, bottom - GAP),
+    layers = _view_layers(weave, book.colours, labels, (x0, y0, x1, bottom - GAP),
                           [(*v, every) for v in VIEWS])
     layers.append(Layer("notes", "label", tuple(texts)))
     layers += page_layers(area, title, "Assembly sheet: the woven ball from six sides, every "
@@ -354,7 +374,7 @@ def weaving_sheet(weave: Weave, book: BallBook, labels, title: str, total: int) 
         for m in stages:
             name = f"{labels[0]}-{labels[m - 1]}" if m > 1 else labels[0]
             cells.append((f"{name}, {side[0]}", side[1], side[2], np.arange(n) < m))
-    layers = _view_layers(weave, book, labels, (x0, y0, x1, bottom - GAP), cells)
+    layers = _view_layers(weave, book.colours, labels, (x0, y0, x1, bottom - GAP), cells)
     layers.append(Layer("steps", "label", tuple(texts)))
     layers += page_layers(area, title, "Weaving steps", 2, total, book.colours[0])
     return Sheet(area.width, area.height, tuple(layers), "page 2: weaving")

@@ -10,18 +10,8 @@ from .forms import Query, fields
 
 
 def output(query: Query) -> str:
-    """The -o a person would give for this kit (a file, or a folder with a slash)."""
-    if query.command == "strands":
-        return "strands-card/" if query.values.get("laser-card") else "strands.pdf"
-    if query.command == "puzzle":
-        return "puzzle/"
-    if query.command == "figure":
-        from ..figures.gallery import FIGURES
-
-        name = query.values.get("name", "figure")
-        raster = "(PNG)" in FIGURES.get(name, ("",))[0]
-        return f"{name}.{'png' if raster else 'svg'}"
-    return f"{query.command}.svg"
+    """The -o a person would give for this kit: the job's (a folder with a slash)."""
+    return query.output + ("" if "." in query.output else "/")
 
 
 def _words(query: Query) -> list[tuple[str, object]]:

@@ -25,8 +25,9 @@ from pathlib import Path
 import click
 
 from .. import inputs, presets
-from ..cli.common import Finite, Length, PageSize
+from ..cli.common import Finite, Formats, Length, PageSize
 from ..schema import nearest
+from .jobs import JobSpec, default_output, output_formats
 from .uploads import UploadError
 
 COMMANDS = ("strands", "puzzle", "weave", "subdivide", "figure")  # a page each, in this order
@@ -34,8 +35,9 @@ HIDDEN = frozenset({"output", "output-dir", "force", "json", "preview", "html", 
 PRESETS = {"palette": "palettes", "material": "materials", "laser": "laser",
            "cutter": "cutters"}  # options whose value names a preset, by key
 PRIMARY = {  # shown first; the other options fold away under "More options"
-    "strands": ("input", "size", "levels", "palette", "page", "laser-card", "cutter"),
-    "puzzle": ("input", "size", "levels", "material", "palette", "mode", "numbers"),
+    "strands": ("input", "size", "levels", "palette", "page", "laser-card", "cutter",
+                "material", "formats"),  # the last two shown with the laser card only
+    "puzzle": ("input", "size", "levels", "material", "palette", "mode", "numbers", "formats"),
     "weave": ("input", "levels", "palette", "style", "outline-level", "size"),
     "subdivide": ("input", "levels", "scheme", "size", "earlier-levels"),
     "figure": ("name",),
@@ -44,6 +46,16 @@ STARTING = {  # what a page shows before anything is chosen (the argument has no
     "strands": ("input", "square-grid"), "weave": ("input", "square-grid"),
     "subdivide": ("input", "pentagon"), "figure": ("name", "square-grid-weaving"),
 }
+NEEDS = {  # fields that count only with a flag on ("laser-card") or off ("!laser-card")
+    "strands": {"material": "laser-card", "laser": "laser-card", "formats": "laser-card",
+                "format": "!laser-card"},
+}
+FORMAT = "format"  # the kit's file format: the suffix of the -o the job gives (not an option)
+FORMAT_LABELS = {"pdf": "PDF: print it", "svg": "SVG: view it, or edit it in Inkscape",
+                 "dxf": "DXF: CAD or laser software", "png": "PNG: a picture",
+                 "obj": "OBJ: the 3-D model (a surface's)",
+                 "glb": "GLB: the 3-D model, coloured", "json": "JSON: weave-cut's mesh",
+                 "lbrn2": "LightBurn project (.lbrn2): layers set for your laser"}
 MAX_PARAMS = 64  # query parameters of one request
 MAX_VALUE = 200  # characters of one value
 PLACEHOLDER = "web-check"  # a required hidden option's value while the command checks a query
@@ -85,6 +97,7 @@ class Field:
     minimum: float | None = None
     maximum: float | None = None
     unit: str = ""
+    needs: str = ""  # a flag's key this field counts with ("!key": without), from NEEDS
     param: click.Parameter | None = field(default=None, compare=False, repr=False)
 
 
@@ -97,6 +110,7 @@ class Query:
     args: tuple[str, ...]
     files: tuple[tuple[str, Path], ...]  # uploads: (the name args use, the stored file)
     values: dict
+    output: str = ""  # the kit's -o (``jobs.default_output`` in the chosen ``format``)
 
     def job_files(self) -> tuple[tuple[str, bytes], ...]:
         """``files`` as a job takes them: (name, bytes)."""
@@ -138,17 +152,39 @@ def fields(name: str) -> tuple[Field, ...]:
             continue
         k = key(p)
         where = "main" if k in primary else ("drawing" if not p.expose_value else "more")
-        out.append(_field(p, k, where))
+        out.append(_field(p, k, where, NEEDS.get(name, {}).get(k, "")))
     return tuple(out)
 
 
-def _field(p: click.Parameter, k: str, where: str) -> Field:
+@functools.cache
+def format_field(name: str) -> Field | None:
+    """The kit's file format, where command ``name`` writes a file (the suffixes its -o
+    takes: ``jobs.output_formats``); None where it writes a folder (``puzzle``)."""
+    offered = output_formats(command(name).name)
+    if not offered:
+        return None
+    own = name == "figure"  # a raster figure is PNG only: its own format by default
+    text = ("The format of the file the kit holds"
+            + (": the figure's own (SVG, or PNG for a raster figure) if none is chosen."
+               if own else f" [default: {offered[0]}]."))
+    return Field(FORMAT, "File format", "choice", text, None if own else offered[0], False,
+                 "main", tuple(Choice(s, FORMAT_LABELS.get(s, s.upper())) for s in offered),
+                 needs=NEEDS.get(name, {}).get(FORMAT, ""))
+
+
+def form_fields(name: str) -> tuple[Field, ...]:
+    """``fields(name)`` and the file format (``format_field``), as the page shows them."""
+    extra = format_field(name)
+    return fields(name) + ((extra,) if extra else ())
+
+
+def _field(p: click.Parameter, k: str, where: str, needs: str) -> Field:
     default = p.default  # click's UNSET, None, False: no default to show
     default = str(default) if isinstance(default, (str, int, float)) and default is not False \
         else None
     text = getattr(p, "help", None) or ""
     base = {"key": k, "label": _label(k), "help": text, "required": p.required or k == "name",
-            "group": where, "param": p, "default": default}
+            "group": where, "param": p, "default": default, "needs": needs}
     t = p.type
     if isinstance(p, click.Argument):
         if k == "input":
@@ -167,6 +203,9 @@ def _field(p: click.Parameter, k: str, where: str) -> Field:
     if isinstance(t, (click.IntRange, Finite)):
         return Field(kind="integer" if isinstance(t, click.IntRange) else "number",
                      minimum=t.min, maximum=t.max, unit=_range(t), **base)
+    if isinstance(t, Formats):
+        return Field(kind="formats", choices=tuple(
+            Choice(f, FORMAT_LABELS.get(f, f)) for f in presets.LASER_FORMATS), **base)
     if isinstance(t, PageSize):
         pages = ("a4", "letter", "a3", *presets.names("pages"))
         return Field(kind="page", choices=tuple(Choice(n, n) for n in pages), **base)
@@ -188,7 +227,8 @@ def _range(t: click.IntRange | click.FloatRange) -> str:
 def _label(k: str) -> str:
     return {"laser-card": "Laser-cut card", "no-smooth": "No smoothing (skip operation 4)",
             "allow-nonconvex": "Allow non-convex faces", "name": "Figure",
-            "input": "Input", "cell": "Cell size"}.get(k, k.replace("-", " ").capitalize())
+            "input": "Input", "cell": "Cell size", "formats": "Files per sheet"}.get(
+        k, k.replace("-", " ").capitalize())
 
 
 @functools.cache
@@ -222,21 +262,21 @@ def parse(name: str, items: list[tuple[str, str]], uploads=None) -> Query:
     cmd = command(name)
     if len(items) > MAX_PARAMS:
         raise FormError(f"{len(items):,} parameters; a form of {name} has at most {MAX_PARAMS}")
-    by_key = {f.key: f for f in fields(name)}
+    by_key = {f.key: f for f in form_fields(name)}
     raw: dict[str, str] = {}
     for k, value in items:
         if k not in by_key:
             why = ("the web app names and packs the files itself" if k in HIDDEN else
                    f"{name} takes {', '.join(by_key)}")
             raise FormError(f"unknown parameter {k[:40]!r}{nearest(k, by_key)}; {why}")
-        if k in raw:
+        if k in raw and not (by_key[k].kind == "formats" and value.strip()):
             raise FormError(f"{k} is given twice", k)
         if (len(value) > MAX_VALUE or any(ord(c) < 32 or c in "/\\" for c in value)
                 or value.lower().endswith(".toml") or value.startswith((".", "~"))):
             raise FormError(f"{k}: a value of at most {MAX_VALUE} characters, no file (the web "
                             "app reads no file named by a request) and no control character", k)
-        if value.strip():
-            raw[k] = value.strip()
+        if value.strip():  # a form's checkboxes send formats=svg&formats=dxf: svg,dxf
+            raw[k] = ",".join(filter(None, (raw.get(k), value.strip())))
     args, files, values = [], [], {}
     for f in fields(name):
         if f.key not in raw:
@@ -260,7 +300,24 @@ def parse(name: str, items: list[tuple[str, str]], uploads=None) -> Query:
                 _preset(f, value)
             args.append(f"{_long(f.param)}={value}")
     check(cmd, name, args)
-    return Query(name, tuple(args), tuple(files), values)
+    return Query(name, tuple(args), tuple(files), values, _output(name, args, raw, values))
+
+
+def _output(name: str, args: list[str], raw: dict[str, str], values: dict) -> str:
+    """The kit's -o in the ``format`` chosen (the command's default without one)."""
+    chosen = raw.get(FORMAT, "")
+    offered = output_formats(name, args)
+    if chosen and not offered and chosen == format_field(name).default:
+        chosen = ""  # the default is no choice (a form sent without its script sends it)
+    if chosen:
+        values[FORMAT] = chosen
+        if not offered:
+            raise FormError("format: this kit is a folder of files for each sheet; choose "
+                            "them with formats (svg, dxf, lbrn2)", FORMAT)
+        if chosen not in offered:
+            raise FormError(f"unknown format {chosen!r}{nearest(chosen, offered)}; use "
+                            f"{', '.join(offered)}", FORMAT)
+    return default_output(JobSpec("kit", name, tuple(args)), chosen)
 
 
 def _long(param: click.Parameter) -> str:
@@ -321,4 +378,6 @@ def key_of_message(message: str, name: str) -> str | None:
     for found in HINT.finditer(message):
         if found.group(1) in known:
             return found.group(1)
+    if re.search(r"'-o'|\.[a-z0-9]+ (?:woven model|drawing)\b", message) and format_field(name):
+        return FORMAT  # the output's format: the only part of -o the form chooses
     return None

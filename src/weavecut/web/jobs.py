@@ -9,7 +9,9 @@ and returns:
 - a kit: every file the command wrote, with its kit page, as a ZIP whose entries are sorted
   by name, dated 1980-01-01, rw-r--r--, with no extra fields, so the same job gives the same
   bytes; the files are byte for byte those of the same command typed in an empty folder
-  (``command_line(spec)`` gives it);
+  (``command_line(spec)`` gives it); a command without ``--html`` (``subdivide``,
+  ``figure``) gets its kit page written after it (``weavecut.kitpage``), so every download
+  explains itself;
 - a preview: the picture ``--preview`` draws (``strands``, ``puzzle``), else the command's
   own drawing;
 
@@ -30,27 +32,33 @@ import json
 import logging
 import os
 import re
+import shlex
 import shutil
 import sys
 import tempfile
 import zipfile
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Protocol
 
 import click
 
-from .. import __version__
 from ..cli.recipe import NOT_IN_RECIPES
 from ..fileio import recording
+from .version import code_version
 
 log = logging.getLogger(__name__)
 
-KINDS = ("preview", "kit")
+KINDS = ("preview", "kit", "read")  # read: an upload read as the CLI reads it
+# (``uploads.read_job``; ``limits.child_main`` runs it, ``run_job`` the other two)
 PAGE = "index.html"  # the kit page, beside the outputs (as ``build`` writes it)
 NOT_JOBS = NOT_IN_RECIPES  # build reads a recipe's files; serve and worker serve
 ADDED = ("--output", "--json", "--preview", "--html", "--force", "--quiet")  # set by the job
 FOLDER_FLAGS = frozenset({"--laser-card"})  # flags that make -o a folder
+NOT_PREVIEWED = {  # options a command's --preview refuses, left out of a preview job: they
+    "strands": ("--cutter", "--laser-card", "--material", "--laser", "--formats")}  # change
+# how the strips are cut, not the pattern the preview draws
+DRAWING_FORMATS = ("svg", "pdf", "dxf", "png")  # a drawing's -o (``export``), by the web's order
 NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9._-]{0,99}")  # an upload's or an output's name
 ZIP_DATE = (1980, 1, 1, 0, 0, 0)  # the earliest date a ZIP entry can hold
 MAX_BODY = 200 << 20  # bytes of a kit a web job returns; larger kits belong to the CLI
@@ -75,10 +83,11 @@ class JobSpec:
 
     def key(self) -> str:
         """sha256 hex of the canonical JSON of the spec, its uploads by their hashes, and
-        weave-cut's version: equal keys, equal results."""
+        the code that runs it (``code_version``: weave-cut's version, a hash of its files and
+        presets): equal keys, equal results; a changed source file or preset, a new key."""
         doc = {"kind": self.kind, "command": self.command, "args": list(self.args),
                "files": sorted([n, hashlib.sha256(b).hexdigest()] for n, b in self.files),
-               "output": self.output, "version": __version__}
+               "output": self.output, "version": code_version()}
         text = json.dumps(doc, sort_keys=True, separators=(",", ":"), ensure_ascii=True,
                           allow_nan=False)
         return hashlib.sha256(text.encode("ascii")).hexdigest()
@@ -163,27 +172,55 @@ def _opts(command: click.Command) -> set[str]:
     return {o for p in command.params for o in p.opts}
 
 
-def default_output(spec: JobSpec) -> str:
+def output_formats(command: str, args=()) -> tuple[str, ...]:
+    """The formats the kit of ``command`` with ``args`` may be written in: the suffixes its -o
+    takes, as the command's own lists say, the default first; () where -o is a folder
+    (``puzzle``, ``strands --laser-card``: their files are chosen with ``--formats``)."""
+    cmd = _command(command)
+    option = next((p for p in cmd.params if "-o" in p.opts), None) if cmd else None
+    if option is None or not getattr(option.type, "file_okay", True) \
+            or FOLDER_FLAGS & set(args):
+        return ()
+    if command == "strands":
+        from ..cli.strands_command import FORMATS
+        return FORMATS
+    if command == "weave":  # a 3-D model of a surface's weave, a drawing of a flat one
+        from ..cli.weave_command import DRAWINGS, MODELS
+        return DRAWINGS + tuple(m for m in MODELS if m not in DRAWINGS)
+    if command == "figure":
+        from ..figures.gallery import FIGURES
+        name = next((a for a in args if not a.startswith("-")), "")
+        return ("png",) if "(PNG)" in FIGURES.get(name, ("",))[0] else DRAWING_FORMATS
+    if command == "subdivide":
+        from ..cli.mesh_commands import MESH_SUFFIXES
+        return DRAWING_FORMATS + tuple(s.lstrip(".") for s in MESH_SUFFIXES)
+    return ("png",) if command == "levels" else ("svg",)
+
+
+def default_output(spec: JobSpec, file_format: str = "") -> str:
     """The kit's -o: a folder named after the command where -o takes a folder (``puzzle``,
-    ``strands --laser-card``), else COMMAND.pdf for ``strands``, COMMAND.png for ``levels``
-    (a raster), COMMAND.svg otherwise."""
-    command = _command(spec.command)
-    option = next((p for p in command.params if "-o" in p.opts), None) if command else None
-    if option is not None and not getattr(option.type, "file_okay", True) \
-            or FOLDER_FLAGS & set(spec.args):
+    ``strands --laser-card``), else a file in ``file_format`` (by default the first of
+    ``output_formats``) named after the command, or after the figure (``figure``)."""
+    offered = output_formats(spec.command, spec.args)
+    if not offered:
         return spec.command
-    return spec.command + {"strands": ".pdf", "levels": ".png"}.get(spec.command, ".svg")
+    stem = next((a for a in spec.args if not a.startswith("-")), spec.command) \
+        if spec.command == "figure" else spec.command
+    return f"{stem}.{file_format or offered[0]}"
 
 
 def plan(spec: JobSpec) -> Plan:
     """The command line of ``spec`` (raises ValueError with the reason it is refused)."""
-    if spec.kind not in KINDS:
-        raise ValueError(f"unknown job kind {spec.kind!r}; choose one of {', '.join(KINDS)}")
+    if spec.kind not in KINDS[:2]:
+        raise ValueError(f"unknown job kind {spec.kind!r}; choose one of {', '.join(KINDS[:2])}")
     command = _command(spec.command)
     if command is None:
         raise ValueError(f"unknown command {spec.command!r}")
     _check_args(spec)
     opts = _opts(command)
+    if spec.kind == "preview":  # the pattern is the same with or without the cutter or card
+        spec = replace(spec, args=tuple(a for a in spec.args if a.partition("=")[0]
+                                        not in NOT_PREVIEWED.get(spec.command, ())))
     output = spec.output or default_output(spec)
     folder = not Path(output).suffix
     extra: list[str] = []
@@ -241,12 +278,14 @@ def run_job(spec: JobSpec) -> JobResult:
     try:
         for name, data in spec.files:
             (folder / name).write_bytes(data)
-        code, error, out, err, said = _invoke(list(how.argv), folder)
+        code, error, out, err, record = _invoke(list(how.argv), folder)
         if code:
             return failed(code, error)
+        if spec.kind == "kit" and not how.prints and "--html" not in how.argv:
+            _kit_page(spec, how, folder, record)
         warnings = [line.removeprefix("weave-cut: warning: ") for line in err.splitlines()
                     if line.startswith("weave-cut: warning: ")]
-        return _collect(spec, how, folder, out, warnings, said)
+        return _collect(spec, how, folder, out, warnings, list(record.said))
     except Exception as exc:  # noqa: BLE001 - a job answers, never raises
         log.exception("web job %s failed", spec.key())
         return failed(500, f"internal error: {type(exc).__name__}: {exc}")
@@ -254,9 +293,9 @@ def run_job(spec: JobSpec) -> JobResult:
         shutil.rmtree(folder, ignore_errors=True)
 
 
-def _invoke(argv: list[str], folder: Path) -> tuple[int, str, str, str, list[str]]:
+def _invoke(argv: list[str], folder: Path) -> tuple[int, str, str, str, object]:
     """Run ``weave-cut ARGV`` in ``folder`` as ``weavecut.cli.main`` does: (HTTP status or 0,
-    message, stdout, stderr, summary lines said)."""
+    message, stdout, stderr, the ``fileio.Record`` of the files written and lines said)."""
     from ..cli.app import cli
 
     out, err = io.StringIO(), io.StringIO()
@@ -280,7 +319,17 @@ def _invoke(argv: list[str], folder: Path) -> tuple[int, str, str, str, list[str
     finally:
         os.chdir(cwd)
         sys.argv = args
-    return code, message, out.getvalue(), err.getvalue(), list(record.said)
+    return code, message, out.getvalue(), err.getvalue(), record
+
+
+def _kit_page(spec: JobSpec, how: Plan, folder: Path, record) -> None:
+    """The kit page of a command that writes none (no ``--html``): what ``--html`` writes,
+    for the files the command wrote and the command line that wrote them."""
+    from .. import kitpage
+
+    line = "weave-cut " + " ".join(shlex.quote(a) for a in how.argv)
+    kitpage.write(folder / PAGE, f"weave-cut {spec.command}",
+                  [kitpage.Run.of(record, line, spec.command)])
 
 
 def _collect(spec: JobSpec, how: Plan, folder: Path, out: str, warnings: list[str],

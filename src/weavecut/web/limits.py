@@ -35,12 +35,16 @@ def wall_seconds(cpu_seconds: int) -> int:
 
 
 def too_long(spec: JobSpec, seconds: int) -> JobResult:
-    return failed(422, f"the {kind_of(spec)} took more than {seconds} s; try fewer levels or a "
-                  "smaller size, or run it with the weave-cut command")
+    return failed(422, f"the {kind_of(spec)} took more than {seconds} s; {_hint(spec)}")
+
+
+def _hint(spec: JobSpec) -> str:
+    return ("simplify the drawing or mesh" if spec.kind == "read" else
+            "try fewer levels or a smaller size, or run it with the weave-cut command")
 
 
 def kind_of(spec: JobSpec) -> str:
-    return "preview" if spec.kind == "preview" else "kit"
+    return {"preview": "preview", "read": "reading of the upload"}.get(spec.kind, "kit")
 
 
 def set_limits(cpu_seconds: int, memory_mb: int) -> None:
@@ -70,7 +74,12 @@ def child_main(spec: JobSpec, jobdir: str, cpu_seconds: int, memory_mb: int) -> 
     set_limits(cpu_seconds, memory_mb)
     keep_freed_memory()  # as the command line does
     tempfile.tempdir = jobdir
-    result = run_job(spec)
+    if spec.kind == "read":
+        from .uploads import read_job
+
+        result = read_job(spec)
+    else:
+        result = run_job(spec)
     if result.error == OUT_OF_MEMORY and memory_mb > 0:
         result = replace(result, error=f"the {kind_of(spec)} needed more than the {memory_mb} "
                          "MB of memory a job may use")
@@ -87,8 +96,7 @@ def outcome(spec: JobSpec, jobdir: str | Path, exitcode: int | None, cpu_seconds
         pass
     what = kind_of(spec)
     if exitcode == -signal.SIGXCPU and cpu_seconds > 0:  # its default action ends the child
-        return failed(422, f"the {what} took more than {cpu_seconds} s of CPU; try fewer "
-                      "levels or a smaller size, or run it with the weave-cut command")
+        return failed(422, f"the {what} took more than {cpu_seconds} s of CPU; {_hint(spec)}")
     how = (f"signal {signal.Signals(-exitcode).name}" if exitcode is not None and exitcode < 0
            else f"status {exitcode}")
     hint = f" (it may have run out of the {memory_mb} MB of memory a job may use)" \

@@ -98,11 +98,17 @@ def command_page(name: str, raw: dict[str, str], error: forms.FormError | None,
     and ``uploads`` (id, label) offered as inputs."""
     cmd = forms.command(name)
     groups = {"main": [], "more": [], "drawing": []}
-    for f in forms.fields(name):
+    for f in forms.form_fields(name):
         message = error.message if error is not None and error.key == f.key else ""
-        groups[f.group].append(_field(f, raw.get(f.key, ""), message, uploads))
+        field = _field(f, raw.get(f.key, ""), message, uploads)
+        if f.needs:  # shown only with (or without) a flag: the script follows the flag
+            on = _on(raw.get(f.needs.lstrip("!"), ""))
+            field = field.replace(' data-key=', f' data-needs="{_e(f.needs)}"'
+                                  + " hidden" * (on == f.needs.startswith("!")) + ' data-key=',
+                                  1)
+        groups[f.group].append(field)
     general = error.message if error is not None and error.key is None else ""
-    about = (cmd.help or "").split("\n\n")[0].replace("\n", " ")
+    about = " ".join((cmd.help or "").split("\n\n")[0].split()).replace("INPUT", "the input")
     qs = urlencode([(k, v) for k, v in raw.items()])
     from .equivalents import command_line, recipe
 
@@ -153,12 +159,20 @@ def _field(f: forms.Field, value: str, message: str, uploads) -> str:
     attrs = (f'data-key="{f.key}" data-default="{_e(f.default or "")}" data-kind="{f.kind}"')
     error = f'<p class="error" id="{eid}" role="alert"{"" if message else " hidden"}>{_e(message)}</p>'
     if f.kind == "flag":
-        checked = " checked" if value.lower() in ("1", "true", "on", "yes", "y", "t") else ""
+        checked = " checked" if _on(value) else ""
         return (f'<div class="field flag" {attrs}><input type="checkbox" id="{fid}" '
                 f'name="{f.key}"{checked} {describe}{invalid}><label for="{fid}">{_e(f.label)}'
                 f'</label><p class="hint" id="{hid}">{hint}</p>{error}</div>')
     if f.kind == "preset":
         return _presets(f, value, attrs, hint, hid, error, describe)
+    if f.kind == "formats":
+        chosen = set(value.split(","))
+        boxes = "".join(
+            f'<label class="check"><input type="checkbox" name="{f.key}" value="{_e(c.value)}"'
+            f'{" checked" * (c.value in chosen)}> {_e(c.label)}</label>' for c in f.choices)
+        return (f'<fieldset class="field formats" {attrs} {describe}><legend>{_e(f.label)}'
+                f'</legend><div class="checks">{boxes}</div><p class="hint" id="{hid}">{hint}'
+                f'</p>{error}</fieldset>')
     label = f'<label for="{fid}">{_e(f.label)}</label>'
     if f.kind in ("input", "figure", "choice"):
         control = _select(f, value, fid, describe + invalid, uploads)
@@ -188,6 +202,11 @@ def _field(f: forms.Field, value: str, message: str, uploads) -> str:
                    '<span class="note">SVG, DXF or OBJ, up to 8 MiB</span></div>')
     return (f'<div class="field {f.kind}" {attrs}>{label}{control}'
             f'<p class="hint" id="{hid}">{hint}</p>{error}</div>')
+
+
+def _on(value: str) -> bool:
+    """A flag's query value as the form shows it (``click.BOOL``'s true words)."""
+    return value.lower() in ("1", "true", "on", "yes", "y", "t")
 
 
 def _select(f: forms.Field, value: str, fid: str, extra: str, uploads) -> str:

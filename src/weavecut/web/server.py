@@ -4,7 +4,8 @@ Routes: ``GET /`` (start page), ``GET /{command}`` (form and preview; options in
 the CLI's long option names), ``GET /{command}/check`` (the query checked by the command:
 field messages, the command line, the recipe; JSON), ``GET /{command}/preview.svg``,
 ``GET /{command}/summary.json`` (the kit's figures), ``GET /{command}.zip`` (the kit),
-``POST /upload`` (a drawing as the request body; ``{"id": SHA256}`` for ``input=upload:ID``)
+``POST /upload`` (a drawing as the request body, read by a job like a kit; ``{"id": SHA256}``
+for ``input=upload:ID``)
 and ``/static/``. A bad value answers 400 with the CLI's own message (header ``X-Field``: the
 form key it belongs to), an unknown command 404, a full queue 503 with Retry-After, anything
 unexpected a plain 500 (the traceback goes to the log, never to the browser).
@@ -31,7 +32,7 @@ from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
 from . import forms, pages, summary
-from .uploads import MAX_BYTES, Store, UploadError
+from .uploads import MAX_BYTES, Store, UploadError, read_spec
 
 from .jobs import JobSpec, QueueFull
 
@@ -160,7 +161,8 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
             query = forms.parse(name, _items(request), store)
         except forms.FormError as exc:
             return _refused(name, exc)
-        spec = JobSpec(kind, name, query.args, await run_in_threadpool(query.job_files))
+        spec = JobSpec(kind, name, query.args, await run_in_threadpool(query.job_files),
+                       query.output if kind == "kit" else "")
         key = spec.key()
         result = await run_in_threadpool(cache.get, key)
         if result is not None:
@@ -223,10 +225,24 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
             if len(data) > MAX_BYTES:
                 return PlainTextResponse(f"more than {MAX_BYTES >> 20} MiB; an upload is at "
                                          f"most {MAX_BYTES >> 20} MiB", 413)
+        data = bytes(data)
         try:
-            ident = await run_in_threadpool(store.add, bytes(data))
+            ident, suffix = store.screen(data)  # the size and the first bytes only
         except UploadError as exc:
             return PlainTextResponse(exc.message, exc.status)
+        if store.find(ident) is None:  # read in a job process, under a job's limits
+            try:
+                result = await _unless_gone(request, queue.run(read_spec(data, suffix)))
+            except QueueFull as exc:
+                return PlainTextResponse("the server is busy making kits; upload again in a "
+                                         "moment", 503,
+                                         headers={"Retry-After": str(exc.retry_after)})
+            if result is None:
+                return Response(status_code=499)
+            if not result.ok:  # the reader's message; its process ended (>= 500): refused
+                return PlainTextResponse(result.error, result.status if result.status < 500
+                                         else 422)
+            await run_in_threadpool(store.keep, data)
         return JSONResponse({"id": ident})
 
     async def http_error(request: Request, exc: HTTPException) -> Response:

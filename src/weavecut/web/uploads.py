@@ -1,6 +1,9 @@
-"""Drawings and meshes people upload: size-bounded, the format sniffed from the bytes, read
-with the same bounded readers the CLI uses (``mesh_io.read_valid_mesh``), and kept under
-their SHA-256 in the app's folder, never under a name from the request.
+"""Drawings and meshes people upload: size-bounded, the format sniffed from the bytes (the
+first 4 KiB, in the server), read with the same bounded readers the CLI uses
+(``mesh_io.read_valid_mesh``) in a job process with the CPU and memory limits of a kit (a
+"read" job, ``read_job``: a reader that crashes or runs out of memory ends that process, not
+the server), and kept under their SHA-256 in the app's folder only once they read, never
+under a name from the request.
 
 ``input=upload:ID`` names one in a query; a job gets its bytes under the bare name
 ``upload-ID.svg`` (``.dxf``, ``.obj``, ``.json``) in its own folder.
@@ -11,15 +14,15 @@ from __future__ import annotations
 import hashlib
 import re
 import tempfile
-import threading
 from pathlib import Path
 
 from ..errors import WeaveCutError
 from ..fileio import write_atomic
+from .jobs import JobResult, JobSpec, failed
 
 MAX_BYTES = 8 * 2**20  # a hand-made drawing is kilobytes; an OBJ of 100,000 faces about 5 MiB
 FORMATS = (".svg", ".dxf", ".obj", ".json")
-_READING = threading.BoundedSemaphore(1)  # one upload read at a time (a thread each)
+READ = "read"  # the kind of job that reads an upload
 _OBJ_LINE = re.compile(rb"\s*(v|vt|vn|f|l|o|g|s|usemtl|mtllib)\s")
 
 
@@ -68,24 +71,50 @@ def check(data: bytes, suffix: str) -> None:
                               f"({type(exc).__name__})") from None
 
 
+def read_job(spec: JobSpec) -> JobResult:
+    """Read the one file of a "read" job as ``check`` does (in the job's process, under its
+    limits): ok with the format in its summary, or the reader's message (400; 413 when the
+    reader ran out of the memory a job may use)."""
+    if len(spec.files) != 1 or Path(spec.files[0][0]).suffix not in FORMATS:
+        return failed(400, "a read job reads one .svg, .dxf, .obj or .json file")
+    name, data = spec.files[0]
+    suffix = Path(name).suffix
+    try:
+        check(data, suffix)
+    except UploadError as exc:
+        return failed(exc.status, exc.message)
+    except MemoryError:
+        return failed(413, f"the {suffix[1:].upper()} file needs more memory to read than an "
+                      "upload may use; simplify the drawing or mesh")
+    return JobResult(True, b"", "text/plain; charset=utf-8", {"format": suffix[1:]})
+
+
+def read_spec(data: bytes, suffix: str) -> JobSpec:
+    """The job that reads ``data`` as a file of ``suffix``."""
+    return JobSpec(READ, "upload", (), ((f"upload{suffix}", data),))
+
+
 class Store:
     """Uploads kept in ``folder``, each as ``SHA256.SUFFIX``."""
 
     def __init__(self, folder: Path) -> None:
         self.folder = Path(folder)
 
-    def add(self, data: bytes) -> str:
-        """Check ``data`` and keep it; its id (the SHA-256 hex of the bytes)."""
+    def screen(self, data: bytes) -> tuple[str, str]:
+        """(id, suffix) of ``data``: its SHA-256 hex and its format by its first bytes;
+        UploadError if it is empty, too large or no format weave-cut reads. The bytes are not
+        read as a drawing here: a "read" job does (``read_spec``), then ``keep``."""
         if len(data) > MAX_BYTES:
             raise UploadError(f"{len(data):,} bytes; an upload is at most "
                               f"{MAX_BYTES >> 20} MiB", 413)
         if not data:
             raise UploadError("the upload is empty")
-        suffix = sniff(data)
-        ident = hashlib.sha256(data).hexdigest()
+        return hashlib.sha256(data).hexdigest(), sniff(data)
+
+    def keep(self, data: bytes) -> str:
+        """Keep ``data``, which a read job has read; its id."""
+        ident, suffix = self.screen(data)
         if self.find(ident) is None:
-            with _READING:
-                check(data, suffix)
             self.folder.mkdir(parents=True, exist_ok=True)
             write_atomic(self.folder / f"{ident}{suffix}", data)
         return ident

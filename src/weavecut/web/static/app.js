@@ -17,6 +17,9 @@
   function value(field) {
     const kind = field.dataset.kind, key = field.dataset.key;
     if (kind === "flag") return field.querySelector("input").checked ? "on" : "";
+    if (kind === "formats") {
+      return [...field.querySelectorAll("input:checked")].map((c) => c.value).join(",");
+    }
     if (kind === "preset") {
       const on = field.querySelector("input:checked");
       return on ? on.value : "";
@@ -33,6 +36,7 @@
   function query() {
     const params = new URLSearchParams();
     for (const field of form.querySelectorAll(".field[data-key]")) {
+      if (field.hidden) continue;  // counts only with (or without) a flag, as data-needs says
       const v = value(field);
       if (v !== "" && v !== field.dataset.default) params.append(field.dataset.key, v);
     }
@@ -114,10 +118,12 @@
       sheet.classList.remove("busy");
       say("Preview ready; making the kit…");
       figures.replaceChildren();
+      figures.classList.remove("made");
       warnings.replaceChildren();
       const made = await fetch(`/${command}/summary.json?${qs}`, {signal});
       if (!made.ok) return refused(made);
       showFigures(await made.json());
+      figures.classList.add("made");
       say("The kit is ready to download.");
       download.dataset.ready = qs;
     } catch (err) {
@@ -127,7 +133,15 @@
     }
   }
 
+  function follow() {  // show a field only with (or without) the flag it needs
+    for (const field of form.querySelectorAll(".field[data-needs]")) {
+      const needs = field.dataset.needs, flag = $("f-" + needs.replace("!", ""));
+      if (flag) field.hidden = flag.checked === needs.startsWith("!");
+    }
+  }
+
   function later() {
+    follow();
     clearTimeout(timer);
     download.dataset.ready = "";
     timer = setTimeout(update, 350);
@@ -153,11 +167,15 @@
   form.addEventListener("submit", (e) => { e.preventDefault(); update(); });
 
   const file = $("f-upload");
-  if (file) {
+  if (file) {  // choosing a file is no change of the form: the upload's answer decides
+    file.addEventListener("input", (e) => e.stopPropagation());
     file.addEventListener("change", async (e) => {
       e.stopPropagation();
       const chosen = file.files[0];
       if (!chosen) return;
+      clearTimeout(timer);  // the upload's answer replaces what the form was drawing
+      if (controller) controller.abort();
+      sheet.classList.remove("busy");
       say(`Reading ${chosen.name}…`);
       try {
         const sent = await fetch("/upload", {method: "POST", body: chosen});
