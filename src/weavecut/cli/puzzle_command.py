@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import functools
+
 import json
 import os
 
@@ -123,6 +125,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     drawing["runs"] = True
     read_at = None
     if Path(input_mesh).suffix.lower() in DRAWINGS and drawing.get("mesh") != "none":
+        @functools.cache  # the defaults and the warnings try the same cells again
         def read_at(cell):
             return check_layout(read_valid_mesh(input_mesh, **{**drawing, "cell": cell}),
                                 "the puzzle", connected=True)

@@ -17,7 +17,7 @@ from .files import TRAVEL_SPEED, CutResult
 from ..errors import MeshError, TurnedOverError, WeaveCutError
 from ..mesh import Mesh
 from ..mesh_geometry import signed_areas
-from ..subdivision import subdivide
+from ..subdivision import Hierarchy, subdivide
 from .frame_size import diameter, extent
 from .pieces import KIND_NAMES, OCTAGON, Puzzle, build_puzzle
 
@@ -132,11 +132,14 @@ def drawing_defaults(read_at: Callable[[float | None], Mesh], size: float, frame
     finished = area * (size / (x1 - x0)) ** 2  # mm² of the pieces, a little less in fact
     best = last = None
     turned = False
+    deepest: dict[float, Hierarchy] = {}  # a cell's levels, reused for any lower level
     for level in levels or DEFAULT_LEVELS:
         for faces in DEFAULT_FACES:
             cell = round(math.sqrt(area / faces), 1)
             try:
-                hierarchy = subdivide(read_at(cell), level)
+                if len(deepest.get(cell, ())) <= level:
+                    deepest[cell] = subdivide(read_at(cell), level)
+                hierarchy = deepest[cell][:level + 1]
                 if finished / (hierarchy[-1].mesh.n_faces / 2) < MIN_MEAN_AREA:
                     continue  # far too many pieces for their room
                 puzzle = build_puzzle(hierarchy, size, frame_width, "width")

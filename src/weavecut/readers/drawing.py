@@ -4,6 +4,7 @@ holes found (``rings``), then the faces welded as drawn or the outline meshed in
 
 from __future__ import annotations
 
+import importlib
 import re
 from collections.abc import Callable
 from pathlib import Path
@@ -14,10 +15,11 @@ import shapely
 from ..errors import MeshError, MeshFileError
 from ..mesh import Mesh
 from ..validation import validate
-from . import DEFAULT_FLATTEN, DEFAULT_KIND, MESH_CHOICES, dxf, outline_mesh, svg
+from . import DEFAULT_FLATTEN, DEFAULT_KIND, MESH_CHOICES, outline_mesh
 from .rings import Ring, checked, enclosed_faces, nesting, split_t_junctions, weld
 
-READERS = {".svg": svg.read_rings, ".dxf": dxf.read_rings}
+READERS = {".svg": "svg", ".dxf": "dxf"}  # the module of each; imported when one is read (ezdxf
+# takes longer to import than an SVG takes to read)
 MAX_BYTES = 64 * 2**20  # an untrusted drawing is read whole into memory
 
 
@@ -48,7 +50,8 @@ def read_drawing(path: str | Path, *, flatten: float = DEFAULT_FLATTEN,
     if path.stat().st_size > MAX_BYTES:
         raise MeshFileError(f"{path}: {path.stat().st_size / 2**20:.0f} MiB is more than a "
                             f"drawing of faces needs (at most {MAX_BYTES // 2**20} MiB)")
-    found, pieces = READERS[path.suffix.lower()](path, flatten, layer)
+    reader = importlib.import_module(f".{READERS[path.suffix.lower()]}", __package__)
+    found, pieces = reader.read_rings(path, flatten, layer)
     if not found and not pieces:
         raise MeshFileError(f"{path}: no outlines found")
     try:
