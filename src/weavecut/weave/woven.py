@@ -189,10 +189,6 @@ def woven_model(weave: Weave, colours, lift: float, names=None) -> Model:
     else:
         tile_n = normal_inner
         normal_inner = normal_inner[outer_visit]
-    sign = np.where(over, lift, -lift)
-    outer = outer + np.where(on_outer, 0.0, sign[outer_visit])[:, None] * normal_outer
-    inner = inner + sign[outer_visit][:, None] * normal_inner
-    centre = centre + sign[:, None] * tile_n
     # points of a visit: its outer ring (R), its inner ring (R), its centre
     block = 4 * size + 1
     block_first = np.cumsum(block) - block
@@ -205,9 +201,14 @@ def woven_model(weave: Weave, colours, lift: float, names=None) -> Model:
     triangles = np.concatenate([np.column_stack([o, o1, i1]), np.column_stack([o, i1, i]),
                                 np.column_stack([i, i1, c])])
     points = np.empty((int(block.sum()), 3))
-    points[o] = outer
-    points[i] = inner
-    points[block_first + block - 1] = centre
+    up = np.empty_like(points)  # where every point goes per unit of height
+    sign = np.where(over, 1.0, -1.0)
+    points[o], up[o] = outer, np.where(on_outer, 0.0, sign[outer_visit])[:, None] * normal_outer
+    points[i], up[i] = inner, sign[outer_visit][:, None] * normal_inner
+    points[block_first + block - 1], up[block_first + block - 1] = centre, sign[:, None] * tile_n
+    if sphere is not None:  # flat triangles between points of a sphere sag towards its centre
+        lift = lift / _least_cos(points[triangles] - sphere[0])
+    points += lift * up
     group = np.repeat(strand.astype(np.int64), block)
     vertices, triangles, keep = merged(points, group, triangles)
     triangles = triangles[keep]
@@ -216,6 +217,16 @@ def woven_model(weave: Weave, colours, lift: float, names=None) -> Model:
                                                          for s in range(weave.n_strands))
     return Model(vertices, smooth_normals(vertices, triangles), triangles, part,
                  tuple(colours), names)
+
+
+def _least_cos(corners: NDArray[np.float64]) -> float:
+    """The least cosine between a triangle's centroid and its corners, seen from the origin,
+    over ``corners`` (M, 3, 3): a plane through three points at radius r passes at r times it
+    or more from the origin, so lifts divided by it clear as much along every ray."""
+    unit = corners / np.sqrt((corners * corners).sum(axis=2))[:, :, None]
+    mid = unit.sum(axis=1)
+    mid /= np.sqrt((mid * mid).sum(axis=1))[:, None]
+    return float((unit * mid[:, None]).sum(axis=2).min())
 
 
 def _tile_normals(weave: Weave, v3: NDArray[np.float64]) -> NDArray[np.float64]:
