@@ -52,7 +52,7 @@ background:{PAPER};border:1px solid #d0d3d6}}
 .for{{font-weight:600}}
 .facts{{color:{MUTED};font-size:.9rem}}
 figure.model3d{{margin:0}}
-figure.model3d canvas{{display:block;width:100%;aspect-ratio:4/3;max-height:36rem;
+figure.model3d canvas{{display:block;width:100%;max-width:48rem;aspect-ratio:4/3;margin:0 auto;
 background:{PAPER};border:1px solid #d0d3d6;touch-action:none;cursor:grab}}
 figure.model3d figcaption{{color:{MUTED};font-size:.9rem}}
 figure.model3d script{{display:none}}

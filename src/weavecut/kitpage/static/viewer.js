@@ -50,13 +50,24 @@
     }
     new ResizeObserver(fit).observe(canvas);
 
-    new T.GLTFLoader().parse(bytes(data.textContent), "", function (gltf) {
+    function failed(error) {
+      figure.dataset.state = "error";
+      console.error("weave-cut viewer: " + error);
+    }
+    try {
+      new T.GLTFLoader().parse(bytes(data.textContent), "", loaded, failed);
+    } catch (error) {
+      failed(error);
+    }
+
+    function loaded(gltf) {
       scene.add(gltf.scene);
       var box = new T.Box3().setFromObject(gltf.scene);
       var centre = box.getCenter(new T.Vector3());
-      var radius = box.getSize(new T.Vector3()).length() / 2;
+      var size = box.getSize(new T.Vector3());
+      var radius = Math.max(size.x, size.y, size.z) / 2 * 1.1;
       var distance = radius / Math.sin(camera.fov * Math.PI / 360) * 1.02;
-      var flat = box.max.y - box.min.y < 0.05 * radius;  // a flat model: seen from above
+      var flat = size.y < 0.1 * radius;  // a flat model: seen from above
       var look = flat ? new T.Vector3(0, 3, 1) : new T.Vector3(0.35, 0.35, 1);
       camera.position.copy(centre).add(look.normalize().multiplyScalar(distance));
       camera.near = distance / 50;
@@ -71,10 +82,7 @@
       fit();
       draw();
       figure.dataset.state = "ready";
-    }, function (error) {
-      figure.dataset.state = "error";
-      console.error("weave-cut viewer: " + error);
-    });
+    }
   }
 
   document.querySelectorAll("figure.model3d").forEach(show);
