@@ -13,12 +13,9 @@ from urllib.parse import unquote, urlparse
 
 import numpy as np
 import pytest
-from click.testing import CliRunner
 from PIL import Image
 
-from weavecut.cli import cli
-
-from .test_readback import program
+from .test_kitpage_browser import chromium, kit_page
 
 RECIPE = """[recipe]
 name = "models"
@@ -46,21 +43,14 @@ READY = """(() => { const f = [...document.querySelectorAll('figure.model3d')];
 
 @pytest.fixture(scope="module")
 def browser():
-    pytest.importorskip("websocket", reason="websocket-client is a test dependency")
-    from .browser import Chromium
-
-    with Chromium(program("chromium"), webgl=True) as chromium:
-        chromium.call("Network.enable")
-        yield chromium
+    with chromium(webgl=True) as browser:
+        browser.call("Network.enable")
+        yield browser
 
 
 @pytest.fixture(scope="module")
 def page(tmp_path_factory) -> Path:
-    root = tmp_path_factory.mktemp("kit")
-    (root / "r.toml").write_text(RECIPE)
-    result = CliRunner().invoke(cli, ["build", str(root / "r.toml"), "-o", str(root / "out")])
-    assert result.exit_code == 0, result.output
-    return root / "out" / "index.html"
+    return kit_page(tmp_path_factory, RECIPE)
 
 
 def open_page(browser, page: Path) -> list[str]:

@@ -397,6 +397,6 @@ def test_depth_buffer_draws_no_pixel_outside_a_triangles_box():
         [[-0.8480617845833467, 47.782418490758715], [-40.29366194156568, 35.727610785348084],
          [-31.93462051576808, 38.28218307195363]]])
     for xy in slivers:
-        covered, _ = model3d._depth_buffer(xy[None], np.zeros((1, 3)), big)
+        covered, _, _ = model3d._depth_buffer(xy[None], np.zeros((1, 3)), big)
         centres = np.column_stack([covered % big, covered // big]) + 0.5
         assert ((centres >= xy.min(axis=0)) & (centres <= xy.max(axis=0))).all()

@@ -51,8 +51,8 @@ MODELS = ("obj", "glb", "png")  # of a weave on a surface in space
               help="Longer side of the picture, without margins.")
 @page_option
 @click.option("--thickness", type=Length(), default="0.5mm", show_default=True,
-              help="Paper thickness: how far a surface's ribbons rise over and sink under "
-                   "each other in a 3-D model.")
+              help="Paper thickness: in a 3-D model the strip on top lies this far over "
+                   "the surface and the one below as far under it.")
 @click.option("--json", "as_json", is_flag=True, help="Print the counts per level as JSON.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), default=None,
               help="Picture: .svg, .pdf, .png or .dxf; of a surface (a woven ball): a 3-D "
