@@ -150,7 +150,7 @@ def _depth_buffer(xy, depth, big: int):
         inside = (wa >= 0) & (wb >= 0) & (wc >= 0)
         z = (wa * depth[tri, 0] + wb * depth[tri, 1] + wc * depth[tri, 2])[inside]
         pix, tri = (py * big + px)[inside], tri[inside]
-        wab = np.column_stack([wa, wb])[inside]
+        wab = np.column_stack([wa[inside], wb[inside]])
         # by pixel, then depth; of equally near triangles the first comes last, so that ties
         # go to the first triangle within a chunk as across chunks (where the nearer must be
         # strictly nearer): the picture does not depend on the chunks
