@@ -4,8 +4,8 @@ The code is in ``src/``; the presets stay in ``templates/`` at the top of the ch
 users look for them, and install as the package ``weavecut.templates`` (its TOML files are
 package data, read with ``importlib.resources``); the example recipes and their drawings in
 ``examples/`` install as ``weavecut.examples``, so ``build star-paper-model`` works anywhere;
-the web app's style sheet, script and pictures (``weavecut/web/static/``) are package data
-too. Folders are found, not listed, so a new
+the web app's style sheet, script and pictures (``weavecut/web/static/``) and the kit page's
+3-D viewer (``weavecut/kitpage/static/``: three.js and its licence) are package data too. Folders are found, not listed, so a new
 subpackage or preset kind ships without touching this file.
 """
 
@@ -18,4 +18,5 @@ setup(packages=find_packages("src") + TEMPLATES + ["weavecut.examples"],
       package_dir={"": "src", "weavecut.templates": "templates", "weavecut.examples": "examples"},
       package_data={"weavecut.templates": ["*/*.toml", "recipes/*.svg"],
                     "weavecut.examples": ["*.toml", "*.svg", "*.dxf", "*.obj", "*.json"],
-                    "weavecut.web": ["static/*.*", "static/products/*.webp"]})
+                    "weavecut.web": ["static/*.*", "static/products/*.webp"],
+                    "weavecut.kitpage": ["static/*.js", "static/*.LICENSE"]})

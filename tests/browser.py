@@ -27,6 +27,8 @@ import websocket
 FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
          "--disable-background-networking", "--disable-component-update", "--disable-sync",
          "--hide-scrollbars", "--remote-debugging-port=0"]
+# WebGL in software (SwiftShader, inside Chromium): no GPU needed, the same on every machine
+WEBGL = ["--use-gl=angle", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
 
 REPORT = """JSON.stringify({
   images: [...document.images].map(i => ({alt: i.alt, loaded: i.complete && i.naturalWidth > 0,
@@ -51,10 +53,11 @@ class Visit:
 class Chromium:
     """One headless browser with one tab; use as a context manager."""
 
-    def __init__(self, program: str, timeout: float = 60.0) -> None:
+    def __init__(self, program: str, timeout: float = 60.0, webgl: bool = False) -> None:
         self.profile = tempfile.TemporaryDirectory(prefix="weavecut-chromium-",
                                                    ignore_cleanup_errors=True)
-        self.proc = subprocess.Popen([program, *FLAGS, f"--user-data-dir={self.profile.name}",
+        flags = [f for f in FLAGS if f != "--disable-gpu"] + WEBGL if webgl else FLAGS
+        self.proc = subprocess.Popen([program, *flags, f"--user-data-dir={self.profile.name}",
                                       "about:blank"], stdout=subprocess.DEVNULL,
                                      stderr=subprocess.PIPE, text=True)
         self.timeout = timeout

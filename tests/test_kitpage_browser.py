@@ -42,20 +42,30 @@ output = "pentagon.dxf"
 
 @pytest.fixture(scope="module")
 def browser():
+    with chromium() as browser:
+        yield browser
+
+
+def chromium(webgl: bool = False):
+    """Debian's headless Chromium (skipped without it or websocket-client)."""
     pytest.importorskip("websocket", reason="websocket-client is a test dependency")
     from .browser import Chromium
 
-    with Chromium(program("chromium")) as chromium:
-        yield chromium
+    return Chromium(program("chromium"), webgl=webgl)
+
+
+def kit_page(tmp_path_factory, recipe: str) -> Path:
+    """The kit page of ``recipe`` built into a new folder."""
+    root = tmp_path_factory.mktemp("kit")
+    (root / "r.toml").write_text(recipe)
+    result = CliRunner().invoke(cli, ["build", str(root / "r.toml"), "-o", str(root / "out")])
+    assert result.exit_code == 0, result.output
+    return root / "out" / "index.html"
 
 
 @pytest.fixture(scope="module")
 def page(tmp_path_factory) -> Path:
-    root = tmp_path_factory.mktemp("kit")
-    (root / "r.toml").write_text(RECIPE)
-    result = CliRunner().invoke(cli, ["build", str(root / "r.toml"), "-o", str(root / "out")])
-    assert result.exit_code == 0, result.output
-    return root / "out" / "index.html"
+    return kit_page(tmp_path_factory, RECIPE)
 
 
 @pytest.mark.parametrize("width", [1280, 390])

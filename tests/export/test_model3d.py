@@ -256,7 +256,7 @@ def test_depth_buffer_keeps_the_nearest_triangle_at_every_pixel(seed, chunk, mon
     xy[3] = [[1.2, 0.2], [1.8, 0.3], [1.3, 0.8]]  # around pixel 1 only (alone in a chunk of 7)
     depth = rng.uniform(-1, 1, (14, 3))  # tilted: triangles pass through one another
     depth[0] = depth[3] = 2.0  # the small ones in front
-    covered, tri = model3d._depth_buffer(xy, depth, big)
+    covered, tri, _ = model3d._depth_buffer(xy, depth, big)
     got = np.full(big * big, -1)
     got[covered] = tri
     want, unsure = depth_oracle(xy, depth, big)
@@ -326,7 +326,7 @@ def test_depth_buffer_clips_triangles_at_every_edge_of_the_image(seed):
     xy[0], xy[1] = left, big - left * [1, -1] - [0, big]  # wholly left, wholly right
     xy[2], xy[3] = left[:, ::-1], big - left[:, ::-1] * [-1, 1] - [big, 0]  # above, below
     depth = rng.uniform(-1, 1, (24, 3))
-    covered, tri = model3d._depth_buffer(xy, depth, big)
+    covered, tri, _ = model3d._depth_buffer(xy, depth, big)
     got = np.full(big * big, -1)
     got[covered] = tri
     want, unsure = depth_oracle(xy, depth, big)
@@ -345,7 +345,7 @@ def test_depth_buffer_leaves_no_gap_on_an_edge_through_pixel_centres(turn, diago
     corners = np.roll(corners, diagonal, axis=0)
     halves = np.array([[0, 1, 2], [2, 3, 0]])
     xy = corners[np.roll(halves, turn, axis=1)]
-    covered, tri = model3d._depth_buffer(xy, np.zeros((2, 3)), big)
+    covered, tri, _ = model3d._depth_buffer(xy, np.zeros((2, 3)), big)
     cols, rows = np.meshgrid(range(2, 11), range(2, 11))
     assert sorted(covered.tolist()) == sorted((rows * big + cols).ravel().tolist())
     # the diagonal's pixels go to the first triangle (a tie), the rest to the one holding them
@@ -381,7 +381,7 @@ def test_depth_buffer_draws_a_lone_triangle_over_the_last_pixel():
     # pixel is drawn (the triangle's box, clipped to the image, is that pixel alone)
     big = 8
     xy = big - np.array([[[0.9, 0.9], [-4.0, 0.9], [0.9, -4.0]]])
-    covered, tri = model3d._depth_buffer(xy, np.zeros((1, 3)), big)
+    covered, tri, _ = model3d._depth_buffer(xy, np.zeros((1, 3)), big)
     assert covered.tolist() == [big * big - 1] and tri.tolist() == [0]
 
 
@@ -397,6 +397,6 @@ def test_depth_buffer_draws_no_pixel_outside_a_triangles_box():
         [[-0.8480617845833467, 47.782418490758715], [-40.29366194156568, 35.727610785348084],
          [-31.93462051576808, 38.28218307195363]]])
     for xy in slivers:
-        covered, _ = model3d._depth_buffer(xy[None], np.zeros((1, 3)), big)
+        covered, _, _ = model3d._depth_buffer(xy[None], np.zeros((1, 3)), big)
         centres = np.column_stack([covered % big, covered // big]) + 0.5
         assert ((centres >= xy.min(axis=0)) & (centres <= xy.max(axis=0))).all()

@@ -167,14 +167,16 @@ def test_every_file_a_job_writes_is_in_the_manifest_and_stale_ones_go(tmp_path):
     recipe = write_recipe(tmp_path, cut.format("40mm"), "strands", "square-grid:2x2")
     assert run("build", recipe, "-o", out).exit_code == 0
     manifest = json.loads((out / MANIFEST).read_text())
-    pages = ["sq.pdf", *(f"sq-p{n:02d}-cut.{s}" for n in (3, 4, 5) for s in ("dxf", "svg"))]
+    pages = ["sq.pdf", "sq-3d.glb",  # the woven 3-D model beside the strips
+             *(f"sq-p{n:02d}-cut.{s}" for n in (3, 4, 5) for s in ("dxf", "svg"))]
     assert manifest["outputs"] == {"sq.pdf": sorted(pages)}
     assert set(manifest["files"]) == {*pages, "index.html"}
     assert all(manifest["files"][p] == file_hash(out / p) for p in pages)
     recipe = write_recipe(tmp_path, cut.format("20mm"), "strands", "square-grid:2x2")
     assert run("build", recipe, "-o", out).exit_code == 0  # one strip page now
     left = {p.name for p in out.iterdir()}
-    assert left == {"sq.pdf", "sq-p03-cut.dxf", "sq-p03-cut.svg", "index.html", MANIFEST}
+    assert left == {"sq.pdf", "sq-3d.glb", "sq-p03-cut.dxf", "sq-p03-cut.svg", "index.html",
+                    MANIFEST}
     assert set(json.loads((out / MANIFEST).read_text())["files"]) == left - {MANIFEST}
     (out / "sq-p07-cut.svg").write_text("<svg/>")  # a file weave-cut did not write, in the way
     refused(run("build", recipe, "-o", out), "sq-p07-cut.svg", "--force")

@@ -106,6 +106,8 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     from ..puzzle.guides import colour_key, guide, printed
     from ..puzzle.guides import preview as painted_preview
     from ..puzzle.pieces import build_puzzle
+    from ..puzzle.model3d import puzzle_model
+    from ..export.gltf import glb_bytes
     from ..layout.lasersetup import kerf_note, laser_job, output_formats
 
     mat = workshop.material(material)
@@ -192,7 +194,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
                 **({"chosen": chosen} if chosen else {}),
                 frame_parts=1 if frame_parts is None else len(frame_parts), warnings=warnings,
                 **flag_nonconvex(puzzle.hierarchy),
-                files=sorted(list(files) + ["puzzle-summary.json", "README.txt"]))
+                files=sorted(list(files) + ["puzzle-summary.json", "README.txt", MODEL]))
     text = json.dumps(info, indent=2, allow_nan=False)
     folder = make_folder(out_dir)
     meta = provenance()
@@ -200,12 +202,17 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
         export.write(drawing.with_metadata(**meta), folder / name, job=job)
     write_atomic(folder / "README.txt", workshop.readme(info, page).encode("utf-8"))
     write_atomic(folder / "puzzle-summary.json", (text + "\n").encode("utf-8"))
+    write_atomic(folder / MODEL, glb_bytes(puzzle_model(puzzle, colouring, mat["thickness"]),
+                                           name="weave-cut puzzle"))
     for w in warnings:
         click.echo(f"weave-cut: warning: {w}", err=True)
     if as_json:
         click.echo(text)
     else:
         summary(workshop.summary_text(info))
+
+
+MODEL = "puzzle-3d.glb"  # the finished puzzle in 3-D, painted, in its frame
 
 
 def _beside(values: dict) -> list[Path]:

@@ -174,6 +174,7 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
         extra = _print_and_cut(book, machine, output)
     else:
         export.write(book.drawing.with_metadata(**provenance()), output)
+    write_woven_model(weaves[-1], book, output)
     plan = book.plan
     if as_json:
         click.echo(json.dumps({"input": input_mesh, "levels": levels, "output": output,
@@ -203,14 +204,34 @@ def _beside(values: dict) -> list[Path]:
     output = Path(values["output"])
     if values.get("laser_card") not in (None, False, "false"):
         return sorted(output.glob("strands-*"))
+    model = [model_path(output)] if values.get("preview") in (None, False, "false") else []
     if values.get("cutter_name") is None:
-        return []
+        return model
     from ..papermodel.printcut import existing_cut_files
 
-    return existing_cut_files(output)
+    return existing_cut_files(output) + model
 
 
 strands_command.beside = _beside
+
+MODEL_THICKNESS = 0.5  # mm: the strips of the 3-D model (as weave --thickness)
+
+
+def model_path(output) -> Path:
+    """Where the woven 3-D model of the strips at ``output`` goes: OUTPUT-3d.glb beside it."""
+    output = Path(output)
+    return output.with_name(f"{output.stem}-3d.glb")
+
+
+def write_woven_model(weave, book, output) -> None:
+    """The woven model of ``book``'s strips, as glTF binary beside ``output``."""
+    from ..export.gltf import glb_bytes
+    from ..fileio import write_atomic
+    from ..weave.woven import woven_mm
+
+    model = woven_mm(weave, book.colours, book.scale, MODEL_THICKNESS)
+    write_atomic(model_path(output), glb_bytes(model, name=Path(output).stem))
+
 
 BALL_TILE = 40.0  # mm across an octagon: a ball's default size
 
@@ -238,6 +259,7 @@ def ball(mesh, input_mesh, levels, page, tile_size, diameter, margin, pal, chira
     for warning in book.warnings:
         click.echo(f"weave-cut: warning: {warning}", err=True)
     export.write(book.drawing.with_metadata(**provenance()), output)
+    write_woven_model(weave, book, output)
     if as_json:
         click.echo(json.dumps({"input": input_mesh, "levels": levels, "project": project,
                                "output": output, **report(book), **book.flattening(),

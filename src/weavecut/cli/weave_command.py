@@ -51,8 +51,8 @@ MODELS = ("obj", "glb", "png")  # of a weave on a surface in space
               help="Longer side of the picture, without margins.")
 @page_option
 @click.option("--thickness", type=Length(), default="0.5mm", show_default=True,
-              help="Paper thickness: how far a surface's ribbons rise over and sink under "
-                   "each other in a 3-D model.")
+              help="Paper thickness: in a 3-D model the strip on top lies this far over "
+                   "the surface and the one below as far under it.")
 @click.option("--json", "as_json", is_flag=True, help="Print the counts per level as JSON.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), default=None,
               help="Picture: .svg, .pdf, .png or .dxf; of a surface (a woven ball): a 3-D "
@@ -130,27 +130,41 @@ RIBBON_WIDTH = 0.55  # of the mean distance between the centres of consecutive t
 
 def write_model(weaves, colours, diameter: float, thickness: float, output: str,
                 title: str) -> None:
-    """The last weave, on a surface, as ribbons in space (.obj, .glb) or PNG views, scaled to
-    ``diameter`` (mm), the ribbons ``thickness`` over and under each other."""
-    from ..export import model3d
+    """The last weave, on a surface, as strips in space (.obj, .glb) or PNG views, scaled to
+    ``diameter`` (mm), the strips ``thickness`` over and under each other: a snub weave's
+    strips are its tiles (:mod:`weavecut.weave.woven`), any other weave's ribbons run through
+    its tile centres (:mod:`weavecut.weave.ribbons`)."""
+    from ..export import gltf, model3d
     from ..fileio import write_atomic
     from ..weave.ribbons import mean_step, ribbons
+    from ..weave.woven import Model, smooth_normals, woven_mm, woven_model
 
     weave = weaves[-1]
-    width = RIBBON_WIDTH * mean_step(weave)
-    flat = ribbons(weave, width, 0.0).vertices  # the ribbons' own size sets the scale
-    centre = flat.mean(axis=0)
-    scale = diameter / (2 * np.linalg.norm(flat - centre, axis=1).max())  # mm per unit
-    model = ribbons(weave, width, thickness / 2 / scale)
-    rgb = np.array([[int(c[i:i + 2], 16) for i in (1, 3, 5)] for c in colours], dtype=np.uint8)
+    try:
+        flat = woven_model(weave, colours, 0.0).vertices  # the strips' own size sets the scale
+        centre = flat.mean(axis=0)
+        scale = diameter / (2 * np.linalg.norm(flat - centre, axis=1).max())  # mm per unit
+        model = woven_mm(weave, colours, scale, thickness)
+    except MeshError:  # not a snub weave: ribbons through the tile centres
+        width = RIBBON_WIDTH * mean_step(weave)
+        flat = ribbons(weave, width, 0.0).vertices
+        centre = flat.mean(axis=0)
+        scale = diameter / (2 * np.linalg.norm(flat - centre, axis=1).max())
+        band = ribbons(weave, width, thickness / 2 / scale)
+        vertices = (band.vertices - centre) * scale
+        model = Model(vertices, smooth_normals(vertices, band.triangles), band.triangles,
+                      band.strand, tuple(colours), tuple(f"strand {s + 1}"
+                                                         for s in range(weave.n_strands)))
+    rgb = np.array([[int(c[i:i + 2], 16) for i in (1, 3, 5)] for c in model.colours],
+                   dtype=np.uint8)
     vertex_rgb = np.zeros((len(model.vertices), 3), dtype=np.uint8)
-    vertex_rgb[model.triangles] = rgb[model.strand][:, None]
-    args = ((model.vertices - centre) * scale, model.triangles, vertex_rgb)
+    vertex_rgb[model.triangles] = rgb[model.part][:, None]
+    args = (model.vertices, model.triangles, vertex_rgb)
     suffix = Path(output).suffix.lower()
     if suffix == ".png":
-        write_png(model3d.png_bytes(*args), output, title)
+        write_png(model3d.png_bytes(*args, normals=model.normals), output, title)
     elif suffix == ".glb":
-        write_atomic(output, model3d.glb_bytes(*args))
+        write_atomic(output, gltf.glb_bytes(model, name=title))
     else:
         write_atomic(output, model3d.obj_bytes(*args, comments=[title, *(
             f"{k}: {v}" for k, v in provenance().items())]))

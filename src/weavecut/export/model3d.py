@@ -68,8 +68,10 @@ def _rotation(azimuth: float, elevation: float) -> NDArray[np.float64]:
     return matmul(matmul(tilt, upright), spin)
 
 
-def png_bytes(vertices, triangles, colours, size: int = 480, views=VIEWS) -> bytes:
-    """Views of the model side by side (two per row), flat-shaded."""
+def png_bytes(vertices, triangles, colours, size: int = 480, views=VIEWS,
+              normals=None) -> bytes:
+    """Views of the model side by side (two per row): flat-shaded, or smooth-shaded when
+    ``normals`` (N, 3) gives every vertex its normal."""
     if not 16 <= size <= 4096:
         raise ExportError(f"a PNG view is 16 to 4096 pixels wide, got {size}")
     big = size * SUPERSAMPLE
@@ -79,26 +81,33 @@ def png_bytes(vertices, triangles, colours, size: int = 480, views=VIEWS) -> byt
     rows = -(-len(views) // cols)
     sheet = Image.new("RGB", (cols * size, rows * size), "white")
     for k, view in enumerate(views):
-        sheet.paste(_view(vertices - centre, triangles, colours, radius, big, view)
+        sheet.paste(_view(vertices - centre, triangles, colours, radius, big, view, normals)
                     .resize((size, size), Image.LANCZOS), ((k % cols) * size, (k // cols) * size))
     buf = io.BytesIO()
     sheet.save(buf, "PNG", optimize=False)
     return buf.getvalue()
 
 
-def _view(vertices, triangles, colours, radius: float, big: int, view) -> Image.Image:
-    """One view: flat-shaded triangles, orthographic, hidden surfaces removed by a depth
-    buffer."""
-    p = matmul(vertices, _rotation(*view).T)
+def _view(vertices, triangles, colours, radius: float, big: int, view,
+          normals=None) -> Image.Image:
+    """One view: flat- or smooth-shaded triangles, orthographic, hidden surfaces removed by a
+    depth buffer."""
+    turn = _rotation(*view)
+    p = matmul(vertices, turn.T)
     corners = p[triangles]  # (M, 3, 3)
-    normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    normal /= np.maximum(np.linalg.norm(normal, axis=1), 1e-300)[:, None]
-    light = np.abs(dot(normal, np.asarray(LIGHT) / math.hypot(*LIGHT)))  # paper: lit on both sides
-    rgb = colours[triangles].mean(axis=1) * (0.35 + 0.65 * light)[:, None]
+    sun = np.asarray(LIGHT) / math.hypot(*LIGHT)
     xy = (corners[:, :, :2] / radius * 0.47 * big) * np.array([1, -1]) + big / 2
-    front, tri = _depth_buffer(xy, corners[:, :, 2], big)
+    front, tri, weights = _depth_buffer(xy, corners[:, :, 2], big)
     pixels = np.full((big * big, 3), 255.0)
-    pixels[front] = rgb[tri]
+    if normals is None:
+        normal = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+        normal /= np.maximum(np.linalg.norm(normal, axis=1), 1e-300)[:, None]
+        light = np.abs(dot(normal, sun))  # paper: lit on both sides
+        pixels[front] = (colours[triangles].mean(axis=1) * (0.35 + 0.65 * light)[:, None])[tri]
+    else:  # the shade of every corner, blended across the triangle
+        light = 0.35 + 0.65 * np.abs(dot(matmul(normals, turn.T), sun))
+        shaded = colours * light[:, None]
+        pixels[front] = (shaded[triangles[tri]] * weights[:, :, None]).sum(axis=1)
     return Image.fromarray(np.round(pixels).astype(np.uint8).reshape(big, big, 3))
 
 
@@ -106,7 +115,8 @@ PAIRS_PER_CHUNK = 2_000_000  # (triangle, pixel) candidates rasterised at a time
 
 
 def _depth_buffer(xy, depth, big: int):
-    """(pixels, triangle): the nearest triangle (largest depth) at every covered pixel.
+    """(pixels, triangle, weights): the nearest triangle (largest depth) at every covered
+    pixel, and the pixel centre's barycentric weights (K, 3) in it.
 
     Every triangle is tested at the pixel centres of its bounding box, chunk by chunk; the
     candidates inside it are interpolated and the nearest kept per pixel.
@@ -117,6 +127,7 @@ def _depth_buffer(xy, depth, big: int):
     count = w * h
     zbuf = np.full(big * big, -np.inf)
     owner = np.full(big * big, -1, dtype=np.int64)
+    where = np.zeros((big * big, 2))
     a, b, c = xy[:, 0], xy[:, 1], xy[:, 2]
     area = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
     ok = np.abs(area) > 1e-12
@@ -139,16 +150,19 @@ def _depth_buffer(xy, depth, big: int):
         inside = (wa >= 0) & (wb >= 0) & (wc >= 0)
         z = (wa * depth[tri, 0] + wb * depth[tri, 1] + wc * depth[tri, 2])[inside]
         pix, tri = (py * big + px)[inside], tri[inside]
+        wab = np.column_stack([wa[inside], wb[inside]])
         # by pixel, then depth; of equally near triangles the first comes last, so that ties
         # go to the first triangle within a chunk as across chunks (where the nearer must be
         # strictly nearer): the picture does not depend on the chunks
         order = np.lexsort((-tri, z, pix))
-        pix, z, tri = pix[order], z[order], tri[order]
+        pix, z, tri, wab = pix[order], z[order], tri[order], wab[order]
         # the last of every pixel (the nearest); pixels are >= 0, so the last one differs
         # from -1 (and a chunk whose triangles cover no pixel centre keeps nothing)
         nearest = np.diff(pix, append=-1) != 0
-        pix, z, tri = pix[nearest], z[nearest], tri[nearest]
+        pix, z, tri, wab = pix[nearest], z[nearest], tri[nearest], wab[nearest]
         nearer = z > zbuf[pix]
         zbuf[pix[nearer]], owner[pix[nearer]] = z[nearer], tri[nearer]
+        where[pix[nearer]] = wab[nearer]
     covered = np.flatnonzero(owner >= 0)
-    return covered, owner[covered]
+    wab = where[covered]
+    return covered, owner[covered], np.column_stack([wab, 1 - wab.sum(axis=1)])

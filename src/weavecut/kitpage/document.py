@@ -2,7 +2,7 @@
 
 For every output a picture first, then its name, what it is for ("print at 100 % on A4",
 "cut: ..."), its size in mm, page count and figures; for every command its command line and
-summary. No script runs, no network: generated pictures are ``data:`` URIs, the outputs are
+summary. No network, no script but the 3-D viewer of a ``.glb`` (:mod:`.viewer`, inlined): generated pictures are ``data:`` URIs, the outputs are
 linked by relative paths, the style sheet is inline (screen, phones down to 390 px, and print).
 A JSON data block (:mod:`.overview`) gives the index of builds the kit's card.
 """
@@ -22,7 +22,7 @@ from .. import __version__, presets
 from ..layout.drawing import Drawing, Polygons, Polylines
 from ..text import clean
 from ..units import PAPER_SIZES
-from . import overview, previews
+from . import overview, previews, viewer
 
 # colours of the page: (text, background) pairs the tests hold to WCAG contrast >= 4.5
 INK, MUTED, LINK, PAPER, CARD = "#1a1a1a", "#52575c", "#0b57a4", "#ffffff", "#f3f4f5"
@@ -51,6 +51,11 @@ background:{PAPER};border:1px solid #d0d3d6}}
 .pages img{{width:6.5rem;margin:0}}
 .for{{font-weight:600}}
 .facts{{color:{MUTED};font-size:.9rem}}
+figure.model3d{{margin:0}}
+figure.model3d canvas{{display:block;width:100%;max-width:48rem;aspect-ratio:4/3;margin:0 auto;
+background:{PAPER};border:1px solid #d0d3d6;touch-action:none;cursor:grab}}
+figure.model3d figcaption{{color:{MUTED};font-size:.9rem}}
+figure.model3d script{{display:none}}
 @media print{{body{{max-width:none;padding:0;font-size:11pt}}main{{display:block}}
 .cards{{grid-template-columns:repeat(2,1fr)}}.card{{background:none;border:1px solid #999}}
 a{{color:{INK};text-decoration:none}}}}
@@ -83,8 +88,8 @@ def page(title: str, runs: list[Run], folder: Path) -> str:
     n = sum(len(r.files) for r in runs)
     body = "".join(_run(k, r, Path(os.path.abspath(folder))) for k, r in enumerate(runs, 1))
     return _document(title, f"{n} file{'s' * (n != 1)} from {len(runs)} "
-                     f"command{'s' * (len(runs) != 1)}, made by weave-cut {__version__}.", body,
-                     overview.block(runs, body, _length))
+                     f"command{'s' * (len(runs) != 1)}, made by weave-cut {__version__}.",
+                     body + viewer.scripts(body), overview.block(runs, body, _length))
 
 
 def index(title: str, pages: list[Path], folder: Path) -> str:
@@ -153,7 +158,7 @@ def _card(paths: list[Path], files: dict, figures: dict, folder: Path) -> tuple[
     facts = [*_sizes(drawing, pages), *_drawing_figures(drawing, made), _bytes(paths)]
     links = " · ".join(f'<a href="{_href(p, folder)}">{_e(p.suffix.lstrip(".").upper() or p.name)}'
                        "</a>" for p in paths)
-    wide = pages > 4
+    wide = pages > 4 or ".glb" in suffixes  # many pages, or a 3-D model to turn
     return (f'<li class="card{" wide" * wide}">{picture}<h3>{_e(name)}</h3>'
             f'<p class="for">{_e(_purpose(suffixes, drawing, figures))}</p>'
             f'<p class="facts">{_e(" · ".join(f for f in facts if f))}</p><p>{links}</p></li>',
@@ -163,6 +168,9 @@ def _card(paths: list[Path], files: dict, figures: dict, folder: Path) -> tuple[
 def _picture(paths: list[Path], files: dict, folder: Path) -> tuple[str, int]:
     """The card's picture and the page count of its PDF (0 without one)."""
     by = {p.suffix.lower(): p for p in paths}
+    model = viewer.figure(by[".glb"], _href(by[".glb"], folder)) if ".glb" in by else ""
+    if model:
+        return model, 0
     if ".pdf" in by:
         pdf = by[".pdf"]
         thumbs, _ = previews.pdf_thumbnails(pdf, files[pdf])
@@ -323,6 +331,8 @@ def _purpose(suffixes: list[str], drawing: Drawing | None, figures: dict) -> str
         return DXF_FOR
     if ".json" in suffixes:
         return "figures for scripts (JSON)"
+    if ".glb" in suffixes:
+        return "the finished model in 3-D (glTF, in metres): turn it here, or open it in Blender"
     what = f"{_title(drawing)}: " if _title(drawing) else ""
     if ".png" in suffixes:
         return f"{what}picture for a screen"

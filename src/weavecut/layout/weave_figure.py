@@ -7,7 +7,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..mesh import Mesh
-from ..weave.model import Weave
+from ..weave.model import Weave, tile_ring_ids
 from .drawing import Drawing, Fit, Layer, Polylines, Sheet, Style, mesh_polygons
 from .mesh_figure import line_width
 
@@ -15,22 +15,8 @@ from .mesh_figure import line_width
 def tile_rings(weave: Weave) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """Outline of every tile of a snub weave: the octagon of two pentagons glued along their
     middle edge, or the lone boundary pentagon. Returns (coords, ring offsets) in model units."""
-    mesh = weave.mesh
-    faces = mesh.dense_faces()
-    sizes = np.diff(weave.tile_offsets)
-    first = weave.tile_faces[weave.tile_offsets[:-1]]
-    second = weave.tile_faces[np.minimum(weave.tile_offsets[:-1] + 1, len(weave.tile_faces) - 1)]
-    p, q = faces[first], faces[second]
-    # p = (p0 .. p4) with middle edge p1 -> p2; q runs it the other way: q1 = p2, q2 = p1
-    octagon = np.column_stack([p[:, 2], p[:, 3], p[:, 4], p[:, 0], p[:, 1],
-                               q[:, 3], q[:, 4], q[:, 0]])
-    lone = sizes == 1
-    counts = np.where(lone, 5, 8)
-    offsets = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
-    take = np.ones((len(first), 8), dtype=bool)
-    take[lone, 5:] = False
-    ids = octagon[take]
-    return np.take(mesh.vertices, ids, axis=0), offsets
+    ids, offsets = tile_ring_ids(weave)
+    return np.take(weave.mesh.vertices, ids, axis=0), offsets
 
 
 def middle_edge_lines(mesh: Mesh) -> tuple[NDArray[np.float64], NDArray[np.int64]]:

@@ -103,3 +103,28 @@ class Weave:
         """Tiles visited by strand ``s`` and whether it is on top at each."""
         a, b = self.strand_offsets[s], self.strand_offsets[s + 1]
         return self.strand_visits[a:b], self.visit_over[a:b]
+
+
+def tile_ring_ids(weave: Weave) -> tuple[NDArray[np.int32], NDArray[np.int64]]:
+    """Vertex ids of the outline of every tile of a snub weave, counter-clockwise: the octagon
+    (p2, p3, p4, p0, p1, q3, q4, q0) of two pentagons p, q glued along their middle edge
+    p1 -> p2 (so entries 0 and 4 are the middle edge's ends), or the lone boundary pentagon
+    (p2, p3, p4, p0, p1). Returns (ids, ring offsets)."""
+    mesh = weave.mesh
+    faces = mesh.dense_faces()
+    sizes = np.diff(weave.tile_offsets)
+    first = weave.tile_faces[weave.tile_offsets[:-1]]
+    second = weave.tile_faces[np.minimum(weave.tile_offsets[:-1] + 1, len(weave.tile_faces) - 1)]
+    p, q = faces[first], faces[second]
+    # p = (p0 .. p4) with middle edge p1 -> p2; q runs it the other way: q1 = p2, q2 = p1
+    octagon = np.column_stack([p[:, 2], p[:, 3], p[:, 4], p[:, 0], p[:, 1],
+                               q[:, 3], q[:, 4], q[:, 0]])
+    lone = sizes == 1
+    counts = np.where(lone, 5, 8)
+    offsets = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+    take = np.ones((len(first), 8), dtype=bool)
+    take[lone, 5:] = False
+    ids = octagon[take]
+    return ids, offsets
+
+
