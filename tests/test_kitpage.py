@@ -363,3 +363,45 @@ def test_the_index_shows_each_build_as_a_card(tmp_path):
             in said("pz")[1])
     assert said("sq") == ["woven paper model", f"{pages(sq)} printed pages"]
     assert list(cards["pz"].iter("img")) and not said("bare")
+
+
+ODD_FOLDER = "kit #1 at 100% (a b)"
+ODD_FILES = ("tile #2 50% off.svg", "pages %41 #.pdf", "cut #1.dxf", "raster 100%.png")
+
+
+def odd_kit(root: Path) -> Path:
+    """A kit page, itself named with a space and ``#``, in a folder whose name has a space,
+    ``#`` and ``%``, linking files whose names have them too (``%41`` would read as "A" if it
+    were left unescaped)."""
+    folder = root / ODD_FOLDER
+    folder.mkdir()
+    with recording() as record:
+        for name in ODD_FILES:
+            kind = {"tile": drawing(), "pages": drawing(3), "cut": drawing(True, "cut"),
+                    "raster": drawing()}[name.split()[0]]
+            export.write(kind, folder / name)
+    page = folder / "kit #1.html"
+    kitpage.write(page, "odd names", [kitpage.Run.of(record, "weave-cut test")])
+    return page
+
+
+def opened(page: Path, ref: str) -> Path:
+    """The file a browser opens for ``ref`` on ``page``: the reference resolved against the
+    page's file: URL (a bare ``#`` starts a fragment, ``%XX`` is an escape), then the URL's
+    path unescaped."""
+    from urllib.parse import urljoin, urlparse
+    from urllib.request import url2pathname
+    return Path(url2pathname(urlparse(urljoin(page.as_uri(), ref)).path))
+
+
+def test_links_open_files_named_with_a_space_hash_or_percent(tmp_path):
+    page = odd_kit(tmp_path)
+    tree = parse(page.read_text(encoding="utf-8"))
+    refs = [a.get("href") for a in tree.iter("a")] + [i.get("src") for i in tree.iter("img")]
+    files = {opened(page, r) for r in refs if not r.startswith("data:")}
+    assert files == {page.parent / name for name in ODD_FILES}
+    assert all(f.is_file() for f in files)
+    index = tmp_path / "index.html"
+    kitpage.write_index(index, "builds", [page])
+    tree = parse(index.read_text(encoding="utf-8"))
+    assert {opened(index, a.get("href")) for a in tree.iter("a")} == {page}
