@@ -113,6 +113,42 @@ PACKAGES: dict[str, Package] = {
                            "__init__", "budgets", "drawing", "dxf", "outline_mesh", "pieces",
                            "rings", "svg", "tessellations")), ("tests/readers",),
                        deselect="not strands_of_a_drawing"),
+    # the Drawing model and the tools every product uses; hershey_futural.py is the stroke
+    # font's glyph table (data: a mutant there is a changed glyph, which the glyph tests
+    # check by their own table, not worth 4000 mutants); the products' tests (pages,
+    # puzzle, papermodel) reach a layout function many calls down, so a test is run only for
+    # the functions it reaches within 5 layout frames
+    "layout": Package(tuple(f"src/weavecut/layout/{m}.py" for m in (
+                          "__init__", "colour_difference", "contrast", "cutpaths", "drawing",
+                          "labels", "lasersetup", "mesh_figure", "nesting", "strokefont",
+                          "tiling", "weave_figure")),
+                      ("tests/test_drawing.py", "tests/test_cutpaths.py",
+                       "tests/test_contrast.py", "tests/test_nesting_moves.py",
+                       "tests/test_tiling_clip.py", "tests/test_strokefont_glyphs.py",
+                       "tests/test_strokefont_labels.py", "tests/test_pages.py",
+                       "tests/puzzle/test_colour_difference.py",
+                       "tests/untrusted/test_layout_guards.py", "tests/figures",
+                       "tests/papermodel/test_label_checks.py"),
+                      settings={"max_stack_depth": 5}),
+    # the kit page: its own tests build small kits in process (the CLI's build and --html are
+    # a few frames above kitpage), and the figures a maker reads against --json
+    "kitpage": Package(("src/weavecut/kitpage/*",),
+                       ("tests/test_kitpage.py", "tests/test_figures_agree.py")),
+    # lengths with units and presets (the untrusted-input tests read presets and options
+    # through the same functions)
+    "units-presets": Package(("src/weavecut/units.py", "src/weavecut/presets.py"),
+                             ("tests/test_lengths.py", "tests/untrusted/test_presets.py",
+                              "tests/untrusted/test_options.py", "tests/test_cli_names.py",
+                              "tests/papermodel/test_cutter.py")),
+    "surface": Package(("src/weavecut/surface.py",), ("tests/surface",)),
+    # the command line: the CLI tests run whole commands (seconds each); the interrupt and
+    # install tests start processes of their own, which mutmut's trampoline does not reach
+    "cli": Package(("src/weavecut/cli/*",),
+                   ("tests/test_cli.py", "tests/test_cli_names.py", "tests/test_cli_outputs.py",
+                    "tests/test_cli_shell.py", "tests/test_formats_option.py",
+                    "tests/untrusted/test_options.py", "tests/untrusted/test_recipes.py",
+                    "tests/untrusted/test_confinement.py"),
+                   settings={"timeout_multiplier": 20}),
 }
 
 
