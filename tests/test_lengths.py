@@ -14,3 +14,28 @@ from weavecut import units
 def test_the_examples_in_the_docstrings_hold():
     failed, tried = doctest.testmod(units, optionflags=doctest.ELLIPSIS)
     assert tried >= 4 and failed == 0
+
+
+@pytest.mark.parametrize("value, mm", [
+    ("100mmx5cm", (100.0, 50.0)),   # a unit on each side: each its own
+    ("100x5e1mm", (100.0, 50.0)),   # an exponent is part of the number, not of the unit
+    ("2inx3in", (50.8, 76.2)),
+    ("0.5x50mm", (0.5, 50.0)),      # small but positive
+    (" A4 ", (210.0, 297.0)),
+])
+def test_a_page_size_is_read_side_by_side(value, mm):
+    assert units.page_size(value) == pytest.approx(mm, rel=1e-12)
+
+
+@pytest.mark.parametrize("value, message", [
+    ("a44", "'a44' is not a page size: use a4, a3, letter, a preset or WxH like 200x300mm "
+            "(did you mean 'a4'?)"),
+    ("100x1", "'100x1' has no unit: write it like '100x1mm'"),
+    ("50x0mm", "page size '50x0mm' must be positive"),
+    ("0x50mm", "page size '0x50mm' must be positive"),
+    ("10001x5mm", "page size '10001x5mm' is larger than 10 m"),
+])
+def test_a_page_size_that_cannot_be_is_refused_with_its_reason(value, message):
+    with pytest.raises(ValueError) as refused:
+        units.page_size(value)
+    assert str(refused.value) == message

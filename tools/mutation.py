@@ -176,7 +176,7 @@ def configure(work: Path, package: Package) -> None:
     settings = {"source_paths": ["src"], "only_mutate": list(package.mutate),
                 "pytest_add_cli_args_test_selection": list(package.tests),
                 "pytest_add_cli_args": args,
-                "also_copy": ["templates/", "examples/", "benchmarks/"],
+                "also_copy": ["templates/", "examples/", "benchmarks/", "docs/", "README.md"],
                 "timeout_multiplier": TIMEOUT_MULTIPLIER, **package.settings}
     text += "\n[tool.mutmut]\n" + "".join(f"{key} = {json.dumps(value)}\n"
                                           for key, value in settings.items())

@@ -1,15 +1,21 @@
 """The hand audit: plausible bugs a developer could write, kept as patches, and whether the
 suite catches each (README, "Mutation testing").
 
-Each ``NN-name.patch`` here starts with a header (``area:``, ``bug:``, ``tests:``, the tests
+Two sets of patches: ``audit/`` holds the hand audit proper (20 bugs written over the
+products without looking at which tests exist, the README's figure); ``planted/`` the bugs
+planted once to watch the virtual assembly, the writers' hole, the kit page's links and the
+figures' units tests fail (each caught by the test written for it).
+
+Each ``NN-name.patch`` starts with a header (``area:``, ``bug:``, ``tests:``, the tests
 that guard that code, space-separated pytest paths or node ids) followed by a unified diff
 against ``src/``. For each patch this copies ``src/`` to a temporary folder, applies the patch
 there (the worktree is never touched), runs the named tests against the copy and reports
 caught (a test failed) or missed. Run it from the repository's root::
 
-    python tests/hand_audit/run.py              # every patch
-    python tests/hand_audit/run.py 03 17        # the patches whose names start so
-    python tests/hand_audit/run.py --all-tests  # a missed bug again, against the whole suite
+    python tests/hand_audit/run.py                    # every patch of both sets
+    python tests/hand_audit/run.py audit              # the hand audit only
+    python tests/hand_audit/run.py audit/03 planted/1 # the patches whose paths start so
+    python tests/hand_audit/run.py --all-tests audit/17   # a missed bug, whole suite
 
 It is not collected by pytest (no test_ prefix): each patch costs one pytest run.
 """
@@ -40,6 +46,10 @@ def header(patch: Path) -> dict[str, str]:
     return out
 
 
+def name(patch: Path) -> str:
+    return f"{patch.parent.name}/{patch.name}"
+
+
 def run(patch: Path, all_tests: bool) -> tuple[bool, str]:
     """(caught, the last lines pytest printed) for one patch."""
     info = header(patch)
@@ -64,25 +74,28 @@ def run(patch: Path, all_tests: bool) -> tuple[bool, str]:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("only", nargs="*", help="run the patches whose names start so")
+    parser.add_argument("only", nargs="*", help="run the patches whose paths (audit/NN-...) "
+                        "start so")
     parser.add_argument("--all-tests", action="store_true",
                         help="run the whole suite instead of each patch's tests")
     args = parser.parse_args()
-    patches = sorted(p for p in HERE.glob("*.patch")
-                     if not args.only or any(p.name.startswith(o) for o in args.only))
-    caught, areas = 0, {}
-    for patch in patches:
-        info = header(patch)
+    patches = sorted(p for p in HERE.glob("*/*.patch")
+                     if not args.only or any(name(p).startswith(o) for o in args.only))
+    areas: dict[tuple[str, str], list[int]] = {}
+    for p in patches:
+        patch, info = p, header(p)
         hit, tail = run(patch, args.all_tests)
-        caught += hit
-        area = areas.setdefault(info.get("area", "?"), [0, 0])
+        area = areas.setdefault((p.parent.name, info.get("area", "?")), [0, 0])
         area[0] += hit
         area[1] += 1
         first = next((line for line in tail.splitlines() if line.startswith("FAILED")), "")
-        print(f"{'caught' if hit else 'MISSED'}  {patch.name}: {info.get('bug', '')}"
+        print(f"{'caught' if hit else 'MISSED'}  {name(patch)}: {info.get('bug', '')}"
               + (f"\n        {first}" if first else ""), flush=True)
-    print(f"\n{caught} of {len(patches)} caught; "
-          + ", ".join(f"{a} {c}/{n}" for a, (c, n) in sorted(areas.items())))
+    for group in sorted({g for g, _ in areas}):
+        mine = {a: cn for (g, a), cn in areas.items() if g == group}
+        print(f"\n{group}: {sum(c for c, _ in mine.values())} of "
+              f"{sum(n for _, n in mine.values())} caught; "
+              + ", ".join(f"{a} {c}/{n}" for a, (c, n) in sorted(mine.items())))
 
 
 if __name__ == "__main__":
