@@ -5,10 +5,11 @@ src/) reaches them, and what its mutants showed untested."""
 from __future__ import annotations
 
 import doctest
+import tomllib
 
 import pytest
 
-from weavecut import units
+from weavecut import presets, units
 
 
 def test_the_examples_in_the_docstrings_hold():
@@ -39,3 +40,19 @@ def test_a_page_size_that_cannot_be_is_refused_with_its_reason(value, message):
     with pytest.raises(ValueError) as refused:
         units.page_size(value)
     assert str(refused.value) == message
+
+
+# ISO 216 and ANSI/ASME Y14.1 sizes in mm (legal 8.5 x 14 in, tabloid 11 x 17 in), portrait
+PUBLISHED = {"a2": (420.0, 594.0), "a5": (148.0, 210.0), "legal": (215.9, 355.6),
+             "tabloid": (279.4, 431.8)}
+
+
+@pytest.mark.parametrize("name", presets.names("pages"))
+def test_a_page_preset_is_read_as_its_file_says(name):
+    """Width first, height second, as the preset's TOML (read by tomllib) names them; the
+    paper sizes also as published."""
+    doc = tomllib.loads(presets.find("pages", name).read_text(encoding="utf-8"))
+    wanted = (units.to_mm(doc["width"]), units.to_mm(doc["height"]))
+    assert presets.page_size(name) == wanted
+    if name in PUBLISHED:
+        assert wanted == pytest.approx(PUBLISHED[name], abs=1e-9)
