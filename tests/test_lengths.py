@@ -56,3 +56,15 @@ def test_a_page_preset_is_read_as_its_file_says(name):
     assert presets.page_size(name) == wanted
     if name in PUBLISHED:
         assert wanted == pytest.approx(PUBLISHED[name], abs=1e-9)
+
+
+@pytest.mark.parametrize("read, value, message", [
+    (units.to_mm, "3yd", "'3yd' is not a length: unknown unit 'yd'; use mm, cm, m, in, pt, px"),
+    (units.length, True, "True is not a length"),
+    (presets.page_size, "a9", "'a9' is not a page size: use a4, a3, letter, a preset (a2, a5, "
+                              "glowforge-bed, legal, tabloid) or WxH like 200x300mm"),
+])
+def test_what_is_not_a_length_or_a_page_is_said_word_for_word(read, value, message):
+    with pytest.raises(ValueError) as refused:
+        read(value)
+    assert str(refused.value) == message
