@@ -22,6 +22,8 @@ def test_the_examples_in_the_docstrings_hold():
     ("100x5e1mm", (100.0, 50.0)),   # an exponent is part of the number, not of the unit
     ("2inx3in", (50.8, 76.2)),
     ("0.5x50mm", (0.5, 50.0)),      # small but positive
+    ("50x0.5mm", (50.0, 0.5)),
+    ("10000x5mm", (10000.0, 5.0)),  # as large as a page may be
     (" A4 ", (210.0, 297.0)),
 ])
 def test_a_page_size_is_read_side_by_side(value, mm):
