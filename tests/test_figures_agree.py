@@ -104,6 +104,7 @@ def test_the_strand_books_figures_agree_on_the_page_the_summary_and_the_pdf(stra
     cutter = figures["cutter"]
     (sheets, metres), = re.findall(r"(\d+) cut sheets?, ([\d.]+) m of cuts", card)
     assert int(sheets) == figures["pages"]["strip"]
+    assert f"{sheets} cut sheet{'s' * (int(sheets) != 1)}," in card  # "1 cut sheet"
     assert float(metres) == pytest.approx(cutter["cut_length_mm"] / 1000, abs=0.05 + 1e-9)
     (metres,) = re.findall(r"s-p03-cut .*? mm · cut ([\d.]+) m ", text)
     assert float(metres) == pytest.approx(cutter["cut_length_mm"] / 1000, abs=0.005 + 1e-9)

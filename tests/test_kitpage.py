@@ -405,3 +405,44 @@ def test_links_open_files_named_with_a_space_hash_or_percent(tmp_path):
     kitpage.write_index(index, "builds", [page])
     tree = parse(index.read_text(encoding="utf-8"))
     assert {opened(index, a.get("href")) for a in tree.iter("a")} == {page}
+
+
+def cards(text: str) -> dict[str, dict]:
+    """Per file card (by its name): what it is for, its facts, its links' texts and its
+    pictures' alt texts, as a reader sees them."""
+    out = {}
+    for li in parse(text).iter("li"):
+        if "card" not in li.get("class", "").split() or li.find("h3") is None:
+            continue
+        ps = {p.get("class"): "".join(p.itertext()) for p in li.iter("p")}
+        out["".join(li.find("h3").itertext())] = {
+            "for": ps.get("for"), "facts": ps.get("facts", "").split(" · "),
+            "links": [a.text for a in li.iter("a") if a.text],
+            "alts": [i.get("alt") for i in li.iter("img")]}
+    return out
+
+
+def test_each_card_says_what_its_files_are_for_and_links_each_format(built, tmp_path):
+    """Every card of the test run: its purpose word for word, one link per file named by its
+    format, a one-colour drawing without a colour count; and alone, a DXF (for CAD) and a
+    drawing of two fills (its count)."""
+    found = cards(built[2])
+    assert {k: (v["for"], v["links"]) for k, v in found.items()} == {
+        "picture": ("test: 1:1 in mm, to view, print or edit", ["SVG"]),
+        "cut": ("cut: LightBurn: cut red, score blue, engrave black at 20 mm/s (SVG or DXF)",
+                ["SVG", "DXF"]),
+        "pages": ("print at 100 % on A4", ["PDF"]),
+        "raster": ("test: picture for a screen", ["PNG"]),
+        "summary": ("figures for scripts (JSON)", ["JSON"])}
+    assert found["picture"]["alts"] == ["picture.svg: test"]
+    assert not [f for f in found["picture"]["facts"] if "colours" in f]
+    two = Drawing((Sheet(100.0, 100.0, (Layer("shapes", "paint", (polygons_from_rings(
+        [SQUARE, [(x + 60, y) for x, y in SQUARE]], Style(None, 0.0),
+        ["#1b4f72", "#f5b041"]),)),)),), "two")
+    with recording() as record:
+        export.write(drawing(), tmp_path / "plan.dxf")
+        export.write(two, tmp_path / "two.svg")
+    kitpage.write(tmp_path / "k.html", "alone", [kitpage.Run.of(record, "weave-cut test")])
+    alone = cards((tmp_path / "k.html").read_text(encoding="utf-8"))
+    assert alone["plan"]["for"] == kp.DXF_FOR and alone["plan"]["links"] == ["DXF"]
+    assert "2 colours" in alone["two"]["facts"]
