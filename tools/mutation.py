@@ -116,7 +116,9 @@ PACKAGES: dict[str, Package] = {
     # the Drawing model and the tools every product uses; hershey_futural.py is the stroke
     # font's glyph table (data: a mutant there is a changed glyph, which the glyph tests check
     # by their own table, not worth 4000 mutants); the layout tools' own tests only (the
-    # products' tests reach a layout function many calls down), and no max_stack_depth:
+    # products' tests reach a layout function many calls down; the figures', the puzzle's
+    # cut files' and the strips' paint tests are the nearest that reach the figure drawing,
+    # the nesting and the stroke-font labels), and no max_stack_depth:
     # mutmut 3.8's stack walk fails on the frame of a dataclass's generated __init__ (file
     # "<string>"), which every Drawing is built through (as for mesh-core)
     "layout": Package(tuple(f"src/weavecut/layout/{m}.py" for m in (
@@ -129,7 +131,9 @@ PACKAGES: dict[str, Package] = {
                        "tests/test_strokefont_labels.py", "tests/test_pages.py",
                        "tests/puzzle/test_colour_difference.py",
                        "tests/untrusted/test_layout_guards.py",
-                       "tests/papermodel/test_label_checks.py")),
+                       "tests/papermodel/test_label_checks.py", "tests/figures",
+                       "tests/puzzle/test_cut_readback.py",
+                       "tests/papermodel/test_strip_paint.py")),
     # the kit page: its own tests build small kits in process (the CLI's build and --html are
     # a few frames above kitpage), and the figures a maker reads against --json
     "kitpage": Package(("src/weavecut/kitpage/*",),
