@@ -363,3 +363,86 @@ def test_the_index_shows_each_build_as_a_card(tmp_path):
             in said("pz")[1])
     assert said("sq") == ["woven paper model", f"{pages(sq)} printed pages"]
     assert list(cards["pz"].iter("img")) and not said("bare")
+
+
+ODD_FOLDER = "kit #1 at 100% (a b)"
+ODD_FILES = ("tile #2 50% off.svg", "pages %41 #.pdf", "cut #1.dxf", "raster 100%.png")
+
+
+def odd_kit(root: Path) -> Path:
+    """A kit page, itself named with a space and ``#``, in a folder whose name has a space,
+    ``#`` and ``%``, linking files whose names have them too (``%41`` would read as "A" if it
+    were left unescaped)."""
+    folder = root / ODD_FOLDER
+    folder.mkdir()
+    with recording() as record:
+        for name in ODD_FILES:
+            kind = {"tile": drawing(), "pages": drawing(3), "cut": drawing(True, "cut"),
+                    "raster": drawing()}[name.split()[0]]
+            export.write(kind, folder / name)
+    page = folder / "kit #1.html"
+    kitpage.write(page, "odd names", [kitpage.Run.of(record, "weave-cut test")])
+    return page
+
+
+def opened(page: Path, ref: str) -> Path:
+    """The file a browser opens for ``ref`` on ``page``: the reference resolved against the
+    page's file: URL (a bare ``#`` starts a fragment, ``%XX`` is an escape), then the URL's
+    path unescaped."""
+    from urllib.parse import urljoin, urlparse
+    from urllib.request import url2pathname
+    return Path(url2pathname(urlparse(urljoin(page.as_uri(), ref)).path))
+
+
+def test_links_open_files_named_with_a_space_hash_or_percent(tmp_path):
+    page = odd_kit(tmp_path)
+    tree = parse(page.read_text(encoding="utf-8"))
+    refs = [a.get("href") for a in tree.iter("a")] + [i.get("src") for i in tree.iter("img")]
+    files = {opened(page, r) for r in refs if not r.startswith("data:")}
+    assert files == {page.parent / name for name in ODD_FILES}
+    assert all(f.is_file() for f in files)
+    index = tmp_path / "index.html"
+    kitpage.write_index(index, "builds", [page])
+    tree = parse(index.read_text(encoding="utf-8"))
+    assert {opened(index, a.get("href")) for a in tree.iter("a")} == {page}
+
+
+def cards(text: str) -> dict[str, dict]:
+    """Per file card (by its name): what it is for, its facts, its links' texts and its
+    pictures' alt texts, as a reader sees them."""
+    out = {}
+    for li in parse(text).iter("li"):
+        if "card" not in li.get("class", "").split() or li.find("h3") is None:
+            continue
+        ps = {p.get("class"): "".join(p.itertext()) for p in li.iter("p")}
+        out["".join(li.find("h3").itertext())] = {
+            "for": ps.get("for"), "facts": ps.get("facts", "").split(" · "),
+            "links": [a.text for a in li.iter("a") if a.text],
+            "alts": [i.get("alt") for i in li.iter("img")]}
+    return out
+
+
+def test_each_card_says_what_its_files_are_for_and_links_each_format(built, tmp_path):
+    """Every card of the test run: its purpose word for word, one link per file named by its
+    format, a one-colour drawing without a colour count; and alone, a DXF (for CAD) and a
+    drawing of two fills (its count)."""
+    found = cards(built[2])
+    assert {k: (v["for"], v["links"]) for k, v in found.items()} == {
+        "picture": ("test: 1:1 in mm, to view, print or edit", ["SVG"]),
+        "cut": ("cut: LightBurn: cut red, score blue, engrave black at 20 mm/s (SVG or DXF)",
+                ["SVG", "DXF"]),
+        "pages": ("print at 100 % on A4", ["PDF"]),
+        "raster": ("test: picture for a screen", ["PNG"]),
+        "summary": ("figures for scripts (JSON)", ["JSON"])}
+    assert found["picture"]["alts"] == ["picture.svg: test"]
+    assert not [f for f in found["picture"]["facts"] if "colours" in f]
+    two = Drawing((Sheet(100.0, 100.0, (Layer("shapes", "paint", (polygons_from_rings(
+        [SQUARE, [(x + 60, y) for x, y in SQUARE]], Style(None, 0.0),
+        ["#1b4f72", "#f5b041"]),)),)),), "two")
+    with recording() as record:
+        export.write(drawing(), tmp_path / "plan.dxf")
+        export.write(two, tmp_path / "two.svg")
+    kitpage.write(tmp_path / "k.html", "alone", [kitpage.Run.of(record, "weave-cut test")])
+    alone = cards((tmp_path / "k.html").read_text(encoding="utf-8"))
+    assert alone["plan"]["for"] == kp.DXF_FOR and alone["plan"]["links"] == ["DXF"]
+    assert "2 colours" in alone["two"]["facts"]

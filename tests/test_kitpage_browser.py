@@ -93,3 +93,16 @@ def test_the_page_prints(browser, page):
     browser.visit(page, 1280)
     pdf = browser.print_pdf()
     assert pdf.startswith(b"%PDF-") and pdf.count(b"/Type /Page\n") + pdf.count(b"/Type/Page")
+
+
+def test_links_named_with_a_space_hash_or_percent_open_in_chromium(browser, tmp_path):
+    """The kit page of files (in a folder) named with a space, ``#`` and ``%``: Chromium loads
+    every picture and every link's URL names a file that exists."""
+    from .test_kitpage import ODD_FILES, odd_kit
+
+    page = odd_kit(tmp_path)
+    visit = browser.visit(page, 1280)
+    assert visit.errors == []
+    assert visit.images and [i for i in visit.images if not i["loaded"]] == []
+    files = {Path(unquote(urlparse(href).path)) for href in visit.links}
+    assert files == {page.parent / name for name in ODD_FILES}

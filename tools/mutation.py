@@ -113,6 +113,46 @@ PACKAGES: dict[str, Package] = {
                            "__init__", "budgets", "drawing", "dxf", "outline_mesh", "pieces",
                            "rings", "svg", "tessellations")), ("tests/readers",),
                        deselect="not strands_of_a_drawing"),
+    # the Drawing model and the tools every product uses; hershey_futural.py is the stroke
+    # font's glyph table (data: a mutant there is a changed glyph, which the glyph tests check
+    # by their own table, not worth 4000 mutants); the layout tools' own tests only (the
+    # products' tests reach a layout function many calls down; the figures', the puzzle's
+    # cut files' and the strips' paint tests are the nearest that reach the figure drawing,
+    # the nesting and the stroke-font labels), and no max_stack_depth:
+    # mutmut 3.8's stack walk fails on the frame of a dataclass's generated __init__ (file
+    # "<string>"), which every Drawing is built through (as for mesh-core)
+    "layout": Package(tuple(f"src/weavecut/layout/{m}.py" for m in (
+                          "__init__", "colour_difference", "contrast", "cutpaths", "drawing",
+                          "labels", "lasersetup", "mesh_figure", "nesting", "strokefont",
+                          "tiling", "weave_figure")),
+                      ("tests/test_drawing.py", "tests/test_cutpaths.py",
+                       "tests/test_contrast.py", "tests/test_nesting_moves.py",
+                       "tests/test_tiling_clip.py", "tests/test_strokefont_glyphs.py",
+                       "tests/test_strokefont_labels.py", "tests/test_pages.py",
+                       "tests/puzzle/test_colour_difference.py",
+                       "tests/untrusted/test_layout_guards.py",
+                       "tests/papermodel/test_label_checks.py", "tests/figures",
+                       "tests/puzzle/test_cut_readback.py",
+                       "tests/papermodel/test_strip_paint.py")),
+    # the kit page: its own tests build small kits in process (the CLI's build and --html are
+    # a few frames above kitpage), and the figures a maker reads against --json
+    "kitpage": Package(("src/weavecut/kitpage/*",),
+                       ("tests/test_kitpage.py", "tests/test_figures_agree.py")),
+    # lengths with units and presets (the untrusted-input tests read presets and options
+    # through the same functions)
+    "units-presets": Package(("src/weavecut/units.py", "src/weavecut/presets.py"),
+                             ("tests/test_lengths.py", "tests/untrusted/test_presets.py",
+                              "tests/untrusted/test_options.py", "tests/test_cli_names.py",
+                              "tests/papermodel/test_cutter.py")),
+    "surface": Package(("src/weavecut/surface.py",), ("tests/surface",)),
+    # the command line: the CLI tests run whole commands (seconds each); the interrupt and
+    # install tests start processes of their own, which mutmut's trampoline does not reach
+    "cli": Package(("src/weavecut/cli/*",),
+                   ("tests/test_cli.py", "tests/test_cli_names.py", "tests/test_cli_outputs.py",
+                    "tests/test_cli_shell.py", "tests/test_formats_option.py",
+                    "tests/untrusted/test_options.py", "tests/untrusted/test_recipes.py",
+                    "tests/untrusted/test_confinement.py"),
+                   settings={"timeout_multiplier": 20}),
 }
 
 
@@ -140,7 +180,7 @@ def configure(work: Path, package: Package) -> None:
     settings = {"source_paths": ["src"], "only_mutate": list(package.mutate),
                 "pytest_add_cli_args_test_selection": list(package.tests),
                 "pytest_add_cli_args": args,
-                "also_copy": ["templates/", "examples/", "benchmarks/"],
+                "also_copy": ["templates/", "examples/", "benchmarks/", "docs/", "README.md"],
                 "timeout_multiplier": TIMEOUT_MULTIPLIER, **package.settings}
     text += "\n[tool.mutmut]\n" + "".join(f"{key} = {json.dumps(value)}\n"
                                           for key, value in settings.items())

@@ -14,7 +14,7 @@ import shapely
 from PIL import Image
 
 from weavecut.errors import ExportError
-from weavecut.export import pdf, png, svg
+from weavecut.export import dxf, pdf, png, svg
 from weavecut.layout.drawing import (
     Drawing, Layer, Polygons, Sheet, Style, Text, polygons_from_rings, polygons_from_shapely,
 )
@@ -173,15 +173,21 @@ def test_pdf_strokes_at_their_width(tmp_path):
     assert thin == pytest.approx(2 * 2, abs=1) and thick == pytest.approx(2 * 8, abs=1)
 
 
-def test_a_hole_wound_like_its_outline_stays_open_in_every_format(tmp_path):
-    """The fill rule is even-odd in every writer: a hole whose ring runs the same way as its
-    outline (as drawings read from files may have) is open in the SVG (rendered by rsvg), the
-    PDF (rendered by poppler) and the PNG, not only where shapely oriented the rings."""
+def hole_drawing() -> Drawing:
+    """A 30 mm sheet with a teal frame (5-25 mm) whose hole (10-20 mm) runs the same way as
+    its outline, as drawings read from files may have."""
     outer = np.array([[5.0, 5], [25, 5], [25, 25], [5, 25]])
     hole = np.array([[10.0, 10], [20, 10], [20, 20], [10, 20]])  # counter-clockwise, as outer
     shape = Polygons(np.concatenate([outer, hole]), np.array([0, 4, 8]), Style(None, 0,
                      hexc(TEAL)), np.array([0, 2]))
-    d = Drawing((Sheet(30, 30, (Layer("tiles", "paint", (shape,)),)),), "hole")
+    return Drawing((Sheet(30, 30, (Layer("tiles", "paint", (shape,)),)),), "hole")
+
+
+def test_a_hole_wound_like_its_outline_stays_open_in_every_format(tmp_path):
+    """The fill rule is even-odd in every writer: a hole whose ring runs the same way as its
+    outline is open in the SVG (rendered by rsvg), the PDF (rendered by poppler) and the PNG,
+    not only where shapely oriented the rings (the DXF: the next test)."""
+    d = hole_drawing()
     (tmp_path / "h.svg").write_bytes(svg.render(d))
     (tmp_path / "h.pdf").write_bytes(pdf.render(d))
     subprocess.run([program("rsvg-convert"), "-d", f"{DPI}", "-p", f"{DPI}", "-b", "white",
@@ -194,3 +200,23 @@ def test_a_hole_wound_like_its_outline_stays_open_in_every_format(tmp_path):
     for name, img in images.items():
         assert close(at(img, 7, 15, 30), TEAL), name       # the frame is filled
         assert at(img, 15, 15, 30) == WHITE, name           # its hole is open
+
+
+def test_a_hole_wound_like_its_outline_stays_open_in_the_dxf(tmp_path):
+    """The same frame as DXF, printed by LibreCAD (its own DXF reader and hatch filler) to a
+    PDF fitted to the drawing, rendered by poppler: inside the teal frame's bounds, the middle
+    (the hole) is white and a point halfway between the outline and the hole is teal."""
+    (tmp_path / "h.dxf").write_bytes(dxf.render(hole_drawing()))
+    subprocess.run([program("xvfb-run"), "-a", program("librecad"), "dxf2pdf", "-a", "-t",
+                    str(tmp_path), str(tmp_path / "h.dxf")], check=True, capture_output=True)
+    subprocess.run([program("pdftoppm"), "-r", "50", "-png", str(tmp_path / "h.pdf"),
+                    str(tmp_path / "p")], check=True)
+    img = np.asarray(Image.open(tmp_path / "p-1.png").convert("RGB")).astype(int)
+    teal = (np.abs(img - TEAL) <= 12).all(axis=-1)
+    rows, cols = np.flatnonzero(teal.any(axis=1)), np.flatnonzero(teal.any(axis=0))
+    (top, bottom), (left, right) = (rows[[0, -1]], cols[[0, -1]])
+    assert bottom - top > 40 and right - left > 40  # the frame, 20 mm across, is drawn
+    mid_y, mid_x = (top + bottom) // 2, (left + right) // 2
+    assert (img[mid_y, mid_x] == WHITE).all()                  # the hole is open
+    assert teal[mid_y, left + (right - left) // 8]             # the frame is filled
+    assert teal[top + (bottom - top) // 8, mid_x]

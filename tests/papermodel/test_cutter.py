@@ -400,3 +400,25 @@ def test_a_cutter_is_named_by_its_preset(tmp_path):
     text = (Path(__file__).resolve().parents[2] / "templates/cutters/silhouette.toml").read_text()
     own.write_text(text.replace('name = "silhouette"', 'name = "my cameo"'))
     assert printcut.cutter(str(own)).name == "my cameo"
+
+
+@pytest.mark.parametrize("name", CUTTERS)
+def test_a_cut_file_starts_at_the_outline_corner_nearest_the_top_left(name, tmp_path):
+    """Desktop cutters park their knife at the mat's top-left corner: each page's cut file,
+    written and read back as SVG (y down, the page's top-left at 0, 0), starts cutting at the
+    corner of any outline on the page nearest to that corner, and no other page corner is
+    nearer to where it starts."""
+    _, book = cut_book(name)
+    for n, drawing in printcut.cut_files(book):
+        path = tmp_path / f"p{n}.svg"
+        export.write(drawing, path)
+        root = ET.parse(path).getroot()
+        w, h = (float(v) for v in root.get("viewBox").split()[2:])
+        d = [p.get("d") for p in root.iter(f"{SVG}path")]
+        rings = [np.array(re.findall(r"-?[\d.]+(?:e-?\d+)?", sub), dtype=float).reshape(-1, 2)
+                 for path_d in d for sub in path_d.split("M")[1:]]
+        start = rings[0][0]
+        corners = np.concatenate(rings)
+        assert np.hypot(*start) == pytest.approx(np.hypot(*corners.T).min(), abs=1e-3)
+        others = np.array([(w, 0.0), (0.0, h), (w, h)])
+        assert (np.hypot(*(others - start).T) > np.hypot(*start)).all()
