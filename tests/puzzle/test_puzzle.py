@@ -162,9 +162,20 @@ def test_cli_writes_a_complete_set_that_loads(tmp_path):
     layers = {layer.dxf.name for layer in doc.layers}
     assert {"cut-1-inner", "cut-2-hole", "cut-3-outer"} <= layers
     assert len(doc.modelspace().query("LWPOLYLINE")) > 0
+    # the sheet is in millimetres, one user unit a millimetre, and the outline drawn on it is
+    # the asked 30 cm across its corners (--size measures the diagonal), seen on the path
     root = ElementTree.parse(out / "puzzle-shared-cut.svg").getroot()
-    width = float(root.get("width").removesuffix("mm"))
-    assert width == pytest.approx(info["frame_mm"][0] + 20.0, abs=0.5)
+    assert root.get("width").endswith("mm") and root.get("height").endswith("mm")
+    width, height = (float(root.get(k)[:-2]) for k in ("width", "height"))
+    assert [float(v) for v in root.get("viewBox").split()] == [0, 0, width, height]
+    ns = "{http://www.w3.org/2000/svg}"
+    (outer,) = [g for g in root.iter(f"{ns}g") if g.get("id") == "cut-cut-3-outer"]
+    xy = np.array([float(v) for path in outer.iter(f"{ns}path")
+                   for v in path.get("d").replace("M", " ").replace("Z", " ")
+                   .replace(",", " ").split()]).reshape(-1, 2)
+    assert np.hypot(*(xy[:, None] - xy[None]).transpose(2, 0, 1)).max() == \
+        pytest.approx(300.0, abs=0.01)
+    assert np.ptp(xy[:, 0]) < width <= np.ptp(xy[:, 0]) + 50
     assert not list(out.glob(".*part"))
 
 
