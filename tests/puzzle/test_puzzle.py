@@ -16,7 +16,7 @@ from click.testing import CliRunner
 
 from weavecut.cli import cli
 from weavecut.puzzle import files as pf
-from weavecut.puzzle.colouring import colour_puzzle
+from weavecut.puzzle.colouring import UNPAINTED, colour_puzzle
 from weavecut.puzzle.guides import guide, piece_halves
 from weavecut.puzzle.pieces import ENNEAGON, OCTAGON
 from weavecut.weave.colour import palette
@@ -136,14 +136,15 @@ def test_front_and_back_colours_follow_the_lineage(puzzle):
     colouring = colour_puzzle(puzzle, palette("puzzle"))
     child, parent = puzzle.weaves[-1], puzzle.weaves[-2]
     ps = child.parent_strand
+    # a back strand wears exactly its parent's front colour (colouring.py: "a level t strand
+    # wears its parent's front colour"), an orphan none; not a sibling's, not a tint
+    assert (ps >= 0).sum() > len(ps) // 2
     for s, p in enumerate(ps.tolist()):
-        if p >= 0:  # a back strand takes its parent's front colour or a tint of it
-            same = colouring.back_strands[s] == colouring.front_strands[p]
-            siblings = [c for c in np.flatnonzero(ps == p) if c != s]
-            assert same or any(colouring.back_strands[c] == colouring.front_strands[p]
-                               for c in siblings)
-    # front halves: the colour of the parent tile's top strand
-    assert len(set(colouring.front.ravel())) >= len(set(colouring.front_strands)) // 2
+        assert colouring.back_strands[s] == (colouring.front_strands[p] if p >= 0
+                                             else UNPAINTED), s
+    # front halves: each wears a parent strand's colour, and every parent colour is worn
+    worn = set(colouring.front.ravel()) - {UNPAINTED}
+    assert worn == set(colouring.front_strands) - {UNPAINTED}
     assert len(colouring.front_strands) == parent.n_strands
 
 
