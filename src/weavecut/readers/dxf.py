@@ -53,6 +53,8 @@ def read_rings(path: Path, flatten: float,
         data = path.read_bytes()
         _check_size(data, path)
         doc, auditor = recover.read(io.BytesIO(data))
+    except MeshFileError:  # a budget of _check_size (a ValueError too)
+        raise
     except (OSError, ezdxf.DXFStructureError) as exc:
         raise MeshFileError(f"{path}: not a readable DXF ({exc})"[:200]) from None
     except (ValueError, ArithmeticError) as exc:  # ezdxf's repair on degenerate data, e.g. an
