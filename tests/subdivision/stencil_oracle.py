@@ -99,17 +99,17 @@ def cubic_bspline_vertex(adj, v):
     return comb((0.75, adj.p[v]), (0.125, adj.p[ends[0]]), (0.125, adj.p[ends[1]]))
 
 
+def per_vertex(adj, inner, outer=cubic_bspline_vertex):
+    """{v: outer(adj, v)} for outer vertices, {v: inner(v, valence)} for inner ones."""
+    return {v: outer(adj, v) if v in adj.outer else inner(v, adj.valence(v))
+            for v in range(len(adj.p))}
+
+
 def loop(adj, beta=loop_beta):
     """(even, odd): new positions of the old vertices and one point per edge (Loop 1987;
     boundary: Hoppe et al. 1994)."""
-    even = {}
-    for v in range(len(adj.p)):
-        if v in adj.outer:
-            even[v] = cubic_bspline_vertex(adj, v)
-            continue
-        n = adj.valence(v)
-        b = beta(n)
-        even[v] = comb((1 - n * b, adj.p[v]), *[(b, adj.p[u]) for u in adj.nbrs[v]])
+    even = per_vertex(adj, lambda v, n: comb((1 - n * beta(n), adj.p[v]),
+                                             *[(beta(n), adj.p[u]) for u in adj.nbrs[v]]))
     odd = {}
     for u, w in adj.edges:
         if adj.is_outer_edge(u, w):
@@ -173,14 +173,11 @@ def sqrt3(adj):
     """(even, centres) of Kobbelt's sqrt(3) (SIGGRAPH 2000, eq. 6): an inner vertex of valence
     n moves to (1 - a_n) p + a_n / n sum(neighbours), a_n = (4 - 2 cos(2 pi / n)) / 9; outer
     vertices stay (the code's documented boundary); a face gets its vertex mean."""
-    even = {}
-    for v in range(len(adj.p)):
-        if v in adj.outer:
-            even[v] = adj.p[v]
-            continue
-        n = adj.valence(v)
+    def relaxed(v, n):
         a = (4 - 2 * math.cos(2 * math.pi / n)) / 9
-        even[v] = comb((1 - a, adj.p[v]), *[(a / n, adj.p[u]) for u in adj.nbrs[v]])
+        return comb((1 - a, adj.p[v]), *[(a / n, adj.p[u]) for u in adj.nbrs[v]])
+
+    even = per_vertex(adj, relaxed, outer=lambda adj, v: adj.p[v])
     return even, {f: adj.centre(f) for f in range(len(adj.faces))}
 
 
@@ -197,17 +194,13 @@ def catmull_clark(adj):
         else:
             cf, cg = face[adj.face_of[(u, w)]], face[adj.face_of[(w, u)]]
             edge[(u, w)] = comb((1 / 4, adj.p[u]), (1 / 4, adj.p[w]), (1 / 4, cf), (1 / 4, cg))
-    vertex = {}
-    for v in range(len(adj.p)):
-        if v in adj.outer:
-            vertex[v] = cubic_bspline_vertex(adj, v)
-            continue
-        n = adj.valence(v)
+    def moved(v, n):
         fs = [f for (a, _), f in adj.face_of.items() if a == v]
         q = comb(*[(1 / len(fs), face[f]) for f in fs])
         r = comb(*[(1 / n, mid(adj.p[v], adj.p[u])) for u in adj.nbrs[v]])
-        vertex[v] = comb((1 / n, q), (2 / n, r), ((n - 3) / n, adj.p[v]))
-    return vertex, edge, face
+        return comb((1 / n, q), (2 / n, r), ((n - 3) / n, adj.p[v]))
+
+    return per_vertex(adj, moved), edge, face
 
 
 def doo_sabin(adj):
