@@ -68,26 +68,11 @@ def peers():
         pass
     try:
         import vtk
-        from vtk.util.numpy_support import numpy_to_vtk, numpy_to_vtkIdTypeArray
+
+        from vtk_peer import subdivided
 
         def vtk_run(cls):
-            def run(v, f):
-                pts = vtk.vtkPoints()
-                pts.SetData(numpy_to_vtk(xyz(v), deep=True))
-                cells = vtk.vtkCellArray()
-                conn = numpy_to_vtkIdTypeArray(f.astype(np.int64).ravel(), deep=True)
-                offs = numpy_to_vtkIdTypeArray(np.arange(0, f.size + 1, 3, dtype=np.int64),
-                                               deep=True)
-                cells.SetData(offs, conn)
-                poly = vtk.vtkPolyData()
-                poly.SetPoints(pts)
-                poly.SetPolys(cells)
-                flt = cls()
-                flt.SetInputData(poly)
-                flt.SetNumberOfSubdivisions(2)
-                flt.Update()
-                return flt.GetOutput().GetNumberOfCells()
-            return run
+            return lambda v, f: subdivided(cls, xyz(v), f, 2).GetNumberOfCells()
         out["vtk"] = {"loop": vtk_run(vtk.vtkLoopSubdivisionFilter),
                       "butterfly": vtk_run(vtk.vtkButterflySubdivisionFilter)}
     except ImportError:

@@ -78,13 +78,14 @@ def page_size(value: str) -> tuple[float, float]:
 
     Examples
     --------
-    >>> page_size("letter"), page_size("100x50mm")
-    ((215.9, 279.4), (100.0, 50.0))
+    >>> page_size("letter"), page_size("100x50mm"), page_size("96x192px")
+    ((215.9, 279.4), (100.0, 50.0), (25.4, 50.8))
     """
     key = value.strip().lower()
     if key in PAPER_SIZES:
         return PAPER_SIZES[key]
-    parts = key.split("x")
+    # split at the x between the sides, not at the x of "px"
+    parts = [p.replace("\0", "px") for p in key.replace("px", "\0").split("x")]
     if len(parts) != 2:
         raise ValueError(f"{value!r} is not a page size: use a4, a3, letter, a preset or WxH "
                          f"like 200x300mm{nearest(key, PAPER_SIZES)}")

@@ -12,7 +12,7 @@ import shapely.ops
 from click.testing import CliRunner
 
 from weavecut import export, inputs
-from weavecut.layout.drawing import Polylines
+from weavecut.layout.drawing import Polylines, Text
 from weavecut.papermodel.assembly import _free_spot
 from weavecut.papermodel.pages import GAP, occupied
 from weavecut.papermodel.book import strand_book
@@ -153,16 +153,31 @@ def test_strips_do_not_overlap_and_stay_in_the_printable_area(book):
 
 
 def test_scale_bar_is_100_mm_on_every_page(tmp_path):
+    """The bar is as long as its caption says, in the drawing's millimetres, and its ticks
+    stand every 10 mm along it from end to end (taller at 0, 50 and 100 mm): a bar drawn in
+    another unit, or ticks spaced otherwise, cannot be checked with a ruler."""
     book = small_book()
     for sheet in book.drawing.sheets:
         page = next(layer for layer in sheet.layers if layer.name == "page")
         bar = next(s for s in page.shapes if isinstance(s, Polylines) and len(s.coords) == 2)
-        assert np.ptp(bar.coords[:, 0]) == pytest.approx(100.0, abs=1e-9)
-        assert np.ptp(bar.coords[:, 1]) == 0
+        (x0, y0), (x1, y1) = bar.coords
+        (stated,) = [float(m) for t in page.shapes if isinstance(t, Text)
+                     for m in re.findall(r"^(\d+(?:\.\d+)?) mm: check this", t.text)]
+        assert stated == 100.0 and x1 - x0 == pytest.approx(stated, abs=1e-9) and y1 == y0
+        (marks,) = [s for s in page.shapes if isinstance(s, Polylines) and s is not bar
+                    and all(len(seg) == 2 and seg[0, 1] == y0 for seg in s.lines())]
+        ticks = np.array([seg for seg in marks.lines()])
+        assert (ticks[:, 0, 0] == ticks[:, 1, 0]).all()          # upright
+        np.testing.assert_allclose(ticks[:, 0, 0] - x0, np.arange(0.0, stated + 1, 10.0),
+                                   atol=1e-9)
+        tall = ticks[:, 1, 1] - y0
+        np.testing.assert_allclose(tall, np.where(np.arange(11) % 5 == 0, 2.0, 1.0))
     out = tmp_path / "s.svg"
     export.write(book.drawing, out)
     text = out.read_text()
-    assert 'width="' in text and "mm" in text
+    root = re.search(r'<svg [^>]*', text).group(0)
+    width = re.search(r' width="([\d.]+)mm"', root).group(1)
+    assert re.search(r' viewBox="0 0 ' + re.escape(width) + ' ', root)  # a user unit is 1 mm
     bars = re.findall(r'<path d="M([\d.]+),([\d.]+) ([\d.]+),([\d.]+)" fill="none" stroke="#000000" '
                       r'stroke-linejoin="round" stroke-width="0.3"', text)
     assert len(bars) == len(book.drawing.sheets)

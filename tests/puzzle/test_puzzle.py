@@ -16,7 +16,7 @@ from click.testing import CliRunner
 
 from weavecut.cli import cli
 from weavecut.puzzle import files as pf
-from weavecut.puzzle.colouring import colour_puzzle
+from weavecut.puzzle.colouring import UNPAINTED, colour_puzzle
 from weavecut.puzzle.guides import guide, piece_halves
 from weavecut.puzzle.pieces import ENNEAGON, OCTAGON
 from weavecut.weave.colour import palette
@@ -136,14 +136,15 @@ def test_front_and_back_colours_follow_the_lineage(puzzle):
     colouring = colour_puzzle(puzzle, palette("puzzle"))
     child, parent = puzzle.weaves[-1], puzzle.weaves[-2]
     ps = child.parent_strand
+    # a back strand wears exactly its parent's front colour (colouring.py: "a level t strand
+    # wears its parent's front colour"), an orphan none; not a sibling's, not a tint
+    assert (ps >= 0).sum() > len(ps) // 2
     for s, p in enumerate(ps.tolist()):
-        if p >= 0:  # a back strand takes its parent's front colour or a tint of it
-            same = colouring.back_strands[s] == colouring.front_strands[p]
-            siblings = [c for c in np.flatnonzero(ps == p) if c != s]
-            assert same or any(colouring.back_strands[c] == colouring.front_strands[p]
-                               for c in siblings)
-    # front halves: the colour of the parent tile's top strand
-    assert len(set(colouring.front.ravel())) >= len(set(colouring.front_strands)) // 2
+        assert colouring.back_strands[s] == (colouring.front_strands[p] if p >= 0
+                                             else UNPAINTED), s
+    # front halves: each wears a parent strand's colour, and every parent colour is worn
+    worn = set(colouring.front.ravel()) - {UNPAINTED}
+    assert worn == set(colouring.front_strands) - {UNPAINTED}
     assert len(colouring.front_strands) == parent.n_strands
 
 
@@ -162,9 +163,20 @@ def test_cli_writes_a_complete_set_that_loads(tmp_path):
     layers = {layer.dxf.name for layer in doc.layers}
     assert {"cut-1-inner", "cut-2-hole", "cut-3-outer"} <= layers
     assert len(doc.modelspace().query("LWPOLYLINE")) > 0
+    # the sheet is in millimetres, one user unit a millimetre, and the outline drawn on it is
+    # the asked 30 cm across its corners (--size measures the diagonal), seen on the path
     root = ElementTree.parse(out / "puzzle-shared-cut.svg").getroot()
-    width = float(root.get("width").removesuffix("mm"))
-    assert width == pytest.approx(info["frame_mm"][0] + 20.0, abs=0.5)
+    assert root.get("width").endswith("mm") and root.get("height").endswith("mm")
+    width, height = (float(root.get(k)[:-2]) for k in ("width", "height"))
+    assert [float(v) for v in root.get("viewBox").split()] == [0, 0, width, height]
+    ns = "{http://www.w3.org/2000/svg}"
+    (outer,) = [g for g in root.iter(f"{ns}g") if g.get("id") == "cut-cut-3-outer"]
+    xy = np.array([float(v) for path in outer.iter(f"{ns}path")
+                   for v in path.get("d").replace("M", " ").replace("Z", " ")
+                   .replace(",", " ").split()]).reshape(-1, 2)
+    assert np.hypot(*(xy[:, None] - xy[None]).transpose(2, 0, 1)).max() == \
+        pytest.approx(300.0, abs=0.01)
+    assert np.ptp(xy[:, 0]) < width <= np.ptp(xy[:, 0]) + 50
     assert not list(out.glob(".*part"))
 
 

@@ -45,8 +45,15 @@ def test_heart_pieces_tile_the_hole(heart):
     a, b = a[a < b], b[a < b]
     overlap = shapely.area(shapely.intersection(pieces[a], pieces[b]))
     assert overlap.max() < 1e-9 * hole.area
-    assert heart.frame.is_valid
-    assert heart.frame.area + hole.area == pytest.approx(heart.outer.area, rel=1e-9)
+    # the board and the pieces fill the outline, neither overlapping the other: the board's
+    # hole is where the pieces are (not just a hole of their area), and the ring hexagons
+    # that no piece claims stay in the board
+    frame = heart.frame
+    assert frame.is_valid
+    assert shapely.area(shapely.intersection(frame, pieces)).max() < 1e-9 * hole.area
+    filled = shapely.union_all(np.concatenate([[frame], pieces]))
+    assert shapely.symmetric_difference(filled, heart.outer).area < 1e-9 * heart.outer.area
+    assert shapely.contains(shapely.buffer(frame, 1e-6), heart.ring).all()
 
 
 def test_heart_size_is_the_finished_width(heart):

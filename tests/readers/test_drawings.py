@@ -68,6 +68,9 @@ def layer(label: str, body: str, transform: str = "", hidden: bool = False) -> s
     ("400", "0 0 400 400", 25.4 / 96),      # bare numbers are CSS pixels
     ("20cm", "0 0 200 200", 1.0),
     ("288pt", "0 0 4 4", 25.4),             # points, 72 per inch
+    ("400px", "0 0 400 400", 25.4 / 96),    # CSS pixels, 96 per inch, written out
+    ("24pc", "0 0 4 4", 25.4),              # picas, 6 per inch (CSS Values 3, sec. 6.2)
+    ("400Q", "0 0 100 100", 1.0),           # quarter-millimetres (CSS Values 3, sec. 6.2)
 ])
 def test_a_square_is_its_size_in_every_unit(tmp_path, width, viewbox, unit_mm):
     side = float(viewbox.split()[2]) / 4

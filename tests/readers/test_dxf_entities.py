@@ -134,3 +134,21 @@ def test_a_closed_polyline_of_two_points_is_a_ring_that_encloses_nothing(tmp_pat
     with pytest.raises(MeshFileError, match=r"(LW)?POLYLINE #\w+ \(layer '0'\) encloses no "
                                             r"area$"):
         read_drawing(path)
+
+
+@pytest.mark.parametrize("error", [ValueError("Invalid major axis (null vector)."),
+                                   ZeroDivisionError("float division")])
+def test_an_error_of_ezdxfs_repair_is_one_line(tmp_path, monkeypatch, error):
+    """ezdxf's recover/audit raises ValueError ("Invalid major axis (null vector)", seen on a
+    degenerate ELLIPSE) or ZeroDivisionError on data it cannot repair: the reader names the
+    file and the error in one line (the corpus holds a drawing that raises the second)."""
+    path = write(tmp_path, lambda msp: msp.add_circle((0, 0), 5))
+
+    def fails(stream):
+        raise error
+
+    monkeypatch.setattr(dxf_reader.recover, "read", fails)
+    with pytest.raises(MeshFileError, match=r"not a readable DXF \(ezdxf's repair failed: "
+                       + type(error).__name__) as info:
+        dxf_reader.read_rings(path, 0.1)
+    assert str(path) in str(info.value) and "\n" not in str(info.value)

@@ -284,3 +284,17 @@ def test_each_outline_keeps_its_own_holes(tmp_path):
     faces = shapely.polygons(shapely.linearrings(mesh.vertices[mesh.face_indices],
                                                  indices=mesh.half_edge_face))
     assert not shapely.intersects(faces[:, None], shapely.points(centres)[None]).any()
+
+
+def test_a_simple_ring_of_no_area_is_refused_though_its_hull_has_one():
+    """A thin V, drawn out and back along almost the same line: simple (no crossing), its hull
+    100 mm², but 0.01 mm² inside, below the flattening tolerance squared (0.04 mm²)."""
+    from weavecut.readers.rings import Ring, checked
+
+    v = np.array([(0.0, 0.0), (10.0, 10.0), (20.0, 0.0), (10.0, 10.001)])
+    polygon = shapely.Polygon(v)
+    assert polygon.is_valid and polygon.area < 0.2 ** 2 < polygon.convex_hull.area
+    with pytest.raises(MeshFileError, match=r'^<path id="v"> encloses no area$'):
+        checked([Ring('<path id="v">', v)], 0.2)
+    dart = np.array([(0.0, 0.0), (10.0, 10.0), (20.0, 0.0), (10.0, 15.0)])  # 50 mm² inside
+    assert len(checked([Ring("dart", dart)], 0.2)) == 1

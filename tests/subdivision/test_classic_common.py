@@ -34,9 +34,19 @@ def test_triangle_schemes_build_valid_levels(name, mesh):
     level = SCHEMES[name](mesh)
     assert_consistent(level.mesh)
     assert_consistent(SCHEMES[name](level.mesh).mesh)
-    # every child face lies in its parent face: its parent's corners are among its own
-    # vertices or edge points of the parent face's edges
-    assert (np.bincount(level.parent_face) == 4).all()
+    # every child face lies in its parent face: each of its vertices is a corner of the parent
+    # or the point of one of the parent's edges (edge e -> vertex V + e); a corner child
+    # holds its parent corner, the middle child only edge points; four children a parent
+    n_v, edges = mesh.n_vertices, mesh.topology.edges
+    parents = mesh.face_indices.reshape(-1, 3).tolist()
+    for child, f, i in zip(level.mesh.face_indices.reshape(-1, 3).tolist(),
+                           level.parent_face.tolist(), level.parent_corner.tolist()):
+        corners = set(parents[f])
+        for x in child:
+            assert (x in corners) if x < n_v else set(edges[x - n_v].tolist()) <= corners
+        assert parents[f][i] in child if i >= 0 else min(child) >= n_v
+    assert sorted(level.parent_face.tolist()) == [f for f in range(mesh.n_faces)
+                                                  for _ in range(4)]
 
 
 @pytest.mark.parametrize("name", ["loop", "butterfly"])

@@ -170,3 +170,25 @@ def test_size_encoding_and_file_kind_are_bounded(tmp_path):
     refused(done[0], "not a regular file")
     refused(run("weave", "square-grid", "--palette", tmp_path, "-o", tmp_path / "w.svg"))
     assert files_under(tmp_path) == {"big.toml", "latin.toml", "fifo.toml"}
+
+
+def test_a_preset_name_names_a_preset_and_not_a_path(tmp_path, monkeypatch):
+    """A name without ".toml" is looked up among the presets of its kind only: a name that
+    walks out of the folder ("../pages/ok"), an absolute one, or a spelling of a preset's
+    path ("./mine", "../palettes/mine") is refused even though the file it would open is there (a path to a file
+    must end in .toml, the explicit way)."""
+    root = tmp_path / "templates"
+    for kind in ("palettes", "pages"):
+        (root / kind).mkdir(parents=True)
+    (root / "palettes" / "mine.toml").write_text('colours = ["#102030"]\n')
+    (root / "pages" / "ok.toml").write_text("width = '100mm'\nheight = '20cm'\n")
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    (elsewhere / "evil.toml").write_text('colours = ["#ffffff"]\n')
+    monkeypatch.setenv("WEAVECUT_TEMPLATES", str(root))
+    assert presets.find("palettes", "mine") == root / "palettes" / "mine.toml"
+    for name in ("../pages/ok", str(elsewhere / "evil"), "./mine", "../palettes/mine"):
+        assert (root / "palettes" / f"{name}.toml").is_file()  # only the name check refuses
+        with pytest.raises(presets.PresetError, match="unknown palette"):
+            presets.find("palettes", name)
+    assert presets.load("palettes", str(elsewhere / "evil.toml"))["colours"] == ["#ffffff"]

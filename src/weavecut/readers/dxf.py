@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import io
 import math
+import re
 from pathlib import Path
 
 import ezdxf
@@ -23,6 +24,7 @@ import numpy as np
 from ezdxf import path as dxfpath
 from ezdxf import recover
 from ezdxf import units as dxfunits
+from ezdxf.audit import AuditError
 from ezdxf.math import Vec3
 from ezdxf.recover import bytes_loader
 
@@ -51,8 +53,15 @@ def read_rings(path: Path, flatten: float,
         data = path.read_bytes()
         _check_size(data, path)
         doc, auditor = recover.read(io.BytesIO(data))
+    except MeshFileError:  # a budget of _check_size (a ValueError too)
+        raise
     except (OSError, ezdxf.DXFStructureError) as exc:
         raise MeshFileError(f"{path}: not a readable DXF ({exc})"[:200]) from None
+    except (ValueError, ArithmeticError) as exc:  # ezdxf's repair on degenerate data, e.g. an
+        # ELLIPSE whose axes it swaps ("Invalid major axis", "float division")
+        raise MeshFileError(f"{path}: not a readable DXF (ezdxf's repair failed: "
+                            f"{type(exc).__name__}: {exc})"[:200]) from None
+    _refuse_dropped_ellipses(auditor, path)
     scale = _mm_per_unit(doc.header.get("$INSUNITS", 0), path)
     entities = doc.modelspace().query(ENTITIES)
     if layer is not None:
@@ -93,6 +102,17 @@ def read_rings(path: Path, flatten: float,
         else:
             pieces.append(Ring(name, points))
     return rings, pieces
+
+
+def _refuse_dropped_ellipses(auditor, path: Path) -> None:
+    """Refuse an ELLIPSE with a null major axis, which ezdxf's repair removes without a word:
+    the drawing would lose an outline (a one-line error naming it instead)."""
+    for fix in auditor.fixes:
+        if fix.code == AuditError.INVALID_MAJOR_AXIS:
+            found = re.search(r"ELLIPSE\(#(\w+)\)", fix.message)
+            name = f"ELLIPSE #{found[1]}" if found else "an ELLIPSE"
+            raise MeshFileError(f"{path}: {name}: major axis (0, 0, 0) has no length, so the "
+                                "ellipse has no size; redraw it")
 
 
 def _check_size(data: bytes, path: Path) -> None:
