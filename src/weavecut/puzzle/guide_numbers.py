@@ -1,0 +1,161 @@
+"""Where a painting guide prints every piece's number, in which ink, and on what.
+
+A number must be found: its ink reads on whatever lies under it (WCAG contrast at least
+``MIN_CONTRAST``), it stands apart from its neighbours by more than its own digits do, and it
+reads upright. So every number is fitted, up to ``MAX_CAP`` mm, into a part of its piece
+whose paint is known: the piece less its ring hexagon (all its paints under the number), on
+the front one half (one paint), a ring piece's bare hexagon (natural wood, printed white), or
+the whole ring piece (its paints and the white hexagon).
+The largest of these on which black or white reaches the contrast wins, level where a level
+number is nearly as large. Where no ink reads (two paints of which one wants black and the
+other white, or a mid-tone paint) the number sits on a small white plate in black ink. A
+number that fits nowhere at ``MIN_CAP`` is still printed, at ``MIN_CAP`` on its plate over
+the piece, and named in a warning: never left out.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from numpy.typing import NDArray
+
+from ..layout.contrast import BLACK, MIN_CONTRAST, WHITE, contrast_ratio
+from ..layout.labels import MIN_CAP
+from ..layout.strokefont import fit_labels, ink_box
+from ..numeric import turn
+from .colouring import UNPAINTED, Colouring
+from .files import Labels, _listed
+from .guides import piece_halves
+from .pieces import Puzzle
+
+MAX_CAP = 6.0  # mm, the largest number on a guide
+MARGIN = 0.6  # mm from a number's box to its piece's edge
+PAD = 0.25  # of the cap height, each side of a number's ink: its room from the next number
+PLATE = 0.15  # of the cap height, each side of a number's ink: its plate
+LEVEL_SHARE = 0.8  # a level number this large against the largest turned one goes level
+PAPER = UNPAINTED  # what a printed guide shows where nothing is painted
+
+
+@dataclass(frozen=True, eq=False)
+class GuideNumbers:
+    """Every piece's number on one side's guide (in the puzzle's coordinates, unmirrored).
+
+    ``inks`` (P,) black or white; ``plates`` (P,) the white plate under a number (None for
+    none); ``crowded`` the pieces (0-based) whose number fits nowhere at ``MIN_CAP``."""
+
+    labels: Labels
+    inks: NDArray[np.object_]
+    plates: NDArray[np.object_]
+    crowded: NDArray[np.int64]
+
+
+def _ink(fills: tuple[str, ...]) -> tuple[str, float]:
+    """Black or white, whichever reads better on all of ``fills``, and its least contrast."""
+    worst = {ink: min(contrast_ratio(ink, f) for f in fills) for ink in (BLACK, WHITE)}
+    ink = BLACK if worst[BLACK] >= worst[WHITE] else WHITE
+    return ink, worst[ink]
+
+
+def _paper(colour: str) -> str:
+    return PAPER if colour == UNPAINTED else colour
+
+
+def _candidates(puzzle: Puzzle, colouring: Colouring, side: str) -> list[tuple]:
+    """[(regions (P,), fills per piece, pad)]: the parts of every piece a number may fill, with
+    the paints it then lies on; the whole piece less its hexagon first."""
+    hexes = puzzle.hexagons
+    has = hexes != None  # noqa: E711
+    base = puzzle.pieces.copy()
+    base[has] = shapely.difference(base[has], hexes[has].astype(object))
+    paints = (colouring.front if side == "front" else colouring.back[:, None]).tolist()
+    painted = [tuple(dict.fromkeys(map(_paper, f))) for f in paints]
+    out = [(base, painted, PAD)]
+    if side == "front":
+        halves = piece_halves(puzzle)
+        for j in (0, 1):
+            part = shapely.intersection(halves[:, j], base)
+            part = np.array([max(shapely.get_parts(g), key=shapely.area, default=g)
+                             for g in part.tolist()], dtype=object)  # its largest piece
+            out.append((part, [(_paper(f[j]),) for f in paints], PAD))
+    if has.any():  # a ring piece: on its bare hexagon, or across hexagon and paint
+        hexagon = np.where(has, hexes, None)
+        out.append((hexagon, [(PAPER,)] * len(base), PAD))
+        out.append((puzzle.pieces, [tuple(dict.fromkeys((*p, PAPER))) if h else p
+                                    for p, h in zip(painted, has.tolist())], PAD))
+    return out
+
+
+def guide_numbers(puzzle: Puzzle, colouring: Colouring, side: str) -> GuideNumbers:
+    """Every piece's number for ``side``'s guide: the largest that reads, where it reads."""
+    texts = [str(k + 1) for k in range(puzzle.n_pieces)]
+    n = len(texts)
+    best_h, centres, angles = np.zeros(n), np.zeros((n, 2)), np.zeros(n)
+    inks = np.full(n, BLACK, dtype=object)
+    plated = np.ones(n, dtype=bool)
+    # the largest fit anywhere, with room round it and without
+    largest = {p: (np.full(n, -1.0), np.zeros((n, 2)), np.zeros(n)) for p in (PAD, 0.0)}
+    candidates = _candidates(puzzle, colouring, side)
+    # with room round every number; where that leaves it under MIN_CAP, without
+    for regions, fills, pad in candidates + [(r, f, 0.0) for r, f, _ in candidates]:
+        h, c, a = _fit(regions, texts, pad)
+        larger = h > largest[pad][0] + 1e-9
+        for was, now in zip(largest[pad], (h, c, a)):
+            was[larger] = now[larger]
+        read = [_ink(f) for f in fills]
+        ok = np.array([r[1] >= MIN_CONTRAST for r in read]) & (h >= MIN_CAP)
+        better = ok & (plated | ((h > best_h + 1e-9) & (pad > 0 or best_h < MIN_CAP)))
+        best_h[better], centres[better], angles[better] = h[better], c[better], a[better]
+        inks[better] = np.array([r[0] for r in read], dtype=object)[better]
+        plated &= ~ok
+    # no part reads: where the number is largest, on a plate, in black
+    roomy = largest[PAD][0] >= MIN_CAP
+    h, c, a = (np.where(roomy if now.ndim == 1 else roomy[:, None], now, tight)
+               for now, tight in zip(largest[PAD], largest[0.0]))
+    best_h[plated], centres[plated], angles[plated] = h[plated], c[plated], a[plated]
+    crowded = np.flatnonzero(best_h < MIN_CAP)
+    if len(crowded):  # printed anyway, at the floor, level on the piece's pole
+        best_h[crowded], angles[crowded] = MIN_CAP, 0.0
+        centres[crowded] = shapely.get_coordinates(shapely.get_point(
+            shapely.maximum_inscribed_circle(puzzle.pieces[crowded], 0.01), 0))
+    plates = np.full(n, None, dtype=object)
+    if plated.any():
+        plates[plated] = _plates([texts[k] for k in np.flatnonzero(plated).tolist()],
+                                 best_h[plated], centres[plated], angles[plated])
+    return GuideNumbers(Labels(tuple(texts), best_h, centres, angles), inks, plates, crowded)
+
+
+def _fit(regions, texts, pad: float) -> tuple:
+    """:func:`fit_labels` of the numbers into ``regions`` (none where a region is None):
+    level where a level number is nearly as large and at least ``MIN_CAP``."""
+    h, c, a = np.zeros(len(texts)), np.zeros((len(texts), 2)), np.zeros(len(texts))
+    some = np.flatnonzero(regions != None)  # noqa: E711
+    if len(some):
+        args = (regions[some].astype(object), [texts[k] for k in some.tolist()], MARGIN,
+                MAX_CAP, pad)
+        level, largest = fit_labels(*args, LEVEL_SHARE), fit_labels(*args)
+        small = level[0] < MIN_CAP
+        for out, lv, lg in zip((h, c, a), level, largest):
+            out[some] = np.where(small if lv.ndim == 1 else small[:, None], lg, lv)
+    return h, c, a
+
+
+def _plates(texts, heights, centres, angles) -> NDArray[np.object_]:
+    """The white plates under numbers: their ink boxes widened by ``PLATE`` of the cap height
+    (inside the room a number is fitted with: ``MARGIN`` is more than that at ``MAX_CAP``)."""
+    box = np.array([ink_box(t) for t in texts], dtype=float)
+    hx = ((box[:, 2] - box[:, 0]) / 2 + PLATE) * heights
+    hy = ((box[:, 3] - box[:, 1]) / 2 + PLATE) * heights
+    corners = np.stack([np.stack([-hx, -hy], -1), np.stack([hx, -hy], -1),
+                        np.stack([hx, hy], -1), np.stack([-hx, hy], -1)], axis=1)
+    return shapely.polygons(turn(corners, angles[:, None], centres[:, None]))
+
+
+def warnings(numbers: GuideNumbers, side: str) -> list[str]:
+    """A line naming the pieces whose number on ``side``'s guide overhangs the piece."""
+    if not len(numbers.crowded):
+        return []
+    return [f"pieces {_listed(numbers.crowded)} are too small for {MIN_CAP:g} mm numbers on "
+            f"the {side} painting guide; their numbers are printed at {MIN_CAP:g} mm on a "
+            "white plate over the piece"]
