@@ -1,7 +1,7 @@
 """An independent reading of the numbers on a painting guide, from the Drawing alone.
 
-Every number is one Polylines on the guide's "numbers" layer, in piece order (word k is the
-number k + 1), maybe after its plate. Read here without the library's checks:
+Every number is one Polylines on the guide's "numbers" layer, in piece order (of the pieces
+that have one), maybe after its plate. Read here without the library's checks:
 
 - the fill under the ink: points along every stroke and on both its edges (half the stroke
   width off), every 0.1 mm, each looked up in the filled polygons in drawing order (the
@@ -83,14 +83,14 @@ def contrasts(sheet) -> np.ndarray:
     return np.array(out)
 
 
-def gaps(sheet) -> np.ndarray:
-    """Per number: the room (mm) to the nearest other number's ink or plate."""
+def gaps(sheet, plates: bool = True) -> np.ndarray:
+    """Per number: the room (mm) to the nearest other number's ink, or plate (``plates``)."""
     ws = words(sheet)
     shapes = []
     for word, plate in ws:
         lines = shapely.multilinestrings([shapely.linestrings(x) for x in word.lines()])
-        shapes.append((plate if plate is not None else lines,
-                       0.0 if plate is not None else word.style.stroke_width / 2))
+        plated = plates and plate is not None
+        shapes.append((plate if plated else lines, 0.0 if plated else word.style.stroke_width / 2))
     geoms = np.array([g for g, _ in shapes], dtype=object)
     pad = np.array([h for _, h in shapes])
     tree = shapely.STRtree(geoms)
@@ -100,6 +100,9 @@ def gaps(sheet) -> np.ndarray:
     a, b = a[keep], b[keep]
     d = shapely.distance(geoms[a], geoms[b]) - pad[a] - pad[b]
     np.minimum.at(out, a, d)
+    for k in np.flatnonzero(np.isinf(out)).tolist():  # far from all: every other one
+        d = shapely.distance(geoms[k], np.delete(geoms, k)) - pad[k] - np.delete(pad, k)
+        out[k] = d.min(initial=np.inf)
     return out
 
 
@@ -136,10 +139,12 @@ def spread(word: Polylines, angle: float, height: float) -> float:
     return widest / height
 
 
-def word_figures(sheet, side: str = "") -> dict:
-    """Before/after figures of one guide sheet."""
+def word_figures(sheet, texts=None) -> dict:
+    """Before/after figures of one guide sheet whose words are ``texts`` (default: every
+    piece's, 1, 2, ...)."""
     c, g = contrasts(sheet), gaps(sheet)
-    poses = [pose(w, str(k + 1)) for k, (w, _) in enumerate(words(sheet))]
+    texts = texts or [str(k + 1) for k in range(len(words(sheet)))]
+    poses = [pose(w, t) for (w, _), t in zip(words(sheet), texts)]
     angles = np.array([p[0] for p in poses])
     spreads = [spread(w, p[0], p[1]) for (w, _), p in zip(words(sheet), poses)]
     return {"numbers": len(c), "under_4.5": int((c < 4.5).sum()),

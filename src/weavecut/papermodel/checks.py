@@ -15,6 +15,7 @@ from __future__ import annotations
 import shapely
 
 from ..layout.contrast import MIN_CONTRAST, contrast_ratio
+from ..layout.label_checks import figures as label_figures
 from ..layout.drawing import Polygons, Polylines, Sheet, Text
 from ..layout.labels import MIN_CAP, text_box
 from .pages import FURNITURE_GAP
@@ -122,8 +123,9 @@ def sheet_checks(book, n: int) -> list[dict]:
 
 
 def report(book) -> dict:
-    """What ``strands --json`` reports: pages, ink, smallest label, contrast, violations, label
-    tabs, under-crossing names left off the strips."""
+    """What ``strands --json`` reports: pages, ink, smallest label, contrast (at the label's
+    centre, and the least over everything under its box: ``label_checks``), the smallest gap
+    between two labels, violations, label tabs, under-crossing names left off the strips."""
     records = []
     for n, sheet in enumerate(book.drawing.sheets, start=1):
         records += sheet_checks(book, n)
@@ -133,6 +135,8 @@ def report(book) -> dict:
         "ink_fraction": round(book.ink, 3),
         "smallest_text_mm": round(min((r["size"] for r in records), default=0.0), 2),
         "smallest_contrast": round(min((r["contrast"] for r in records), default=21.0), 2),
+        **{k: v for k, v in label_figures(book.drawing.sheets).items()
+           if k in ("min_label_contrast", "min_label_gap_mm")},
         "label_violations": sum(bool(r["broken"]) for r in records),
         "label_tabs": sum(p.flap is not None for _, p in book.pieces),
         "names_left_out": sum(len(p.left_out) for _, p in book.pieces),

@@ -9,8 +9,8 @@ the whole ring piece (its paints and the white hexagon).
 The largest of these on which black or white reaches the contrast wins, level where a level
 number is nearly as large. Where no ink reads (two paints of which one wants black and the
 other white, or a mid-tone paint) the number sits on a small white plate in black ink. A
-number that fits nowhere at ``MIN_CAP`` is still printed, at ``MIN_CAP`` on its plate over
-the piece, and named in a warning: never left out.
+number that fits nowhere at ``MIN_CAP`` is printed smaller, down to ``LEAST``; a piece too
+small even for that is left without a number. Both are named in a warning, never silently.
 """
 
 from __future__ import annotations
@@ -31,8 +31,11 @@ from .guides import piece_halves
 from .pieces import Puzzle
 
 MAX_CAP = 6.0  # mm, the largest number on a guide
+LEAST = 1.5  # mm, the smallest: a piece without room for it is named, not numbered
 MARGIN = 0.6  # mm from a number's box to its piece's edge
 PAD = 0.25  # of the cap height, each side of a number's ink: its room from the next number
+TIGHT_CAP = 3.0  # mm, the largest number fitted without PAD: the two MARGINs between it and
+# the next number (less the strokes) are then still wider than its digits' spacing (2/7 cap)
 PLATE = 0.15  # of the cap height, each side of a number's ink: its plate
 LEVEL_SHARE = 0.8  # a level number this large against the largest turned one goes level
 PAPER = UNPAINTED  # what a printed guide shows where nothing is painted
@@ -43,12 +46,11 @@ class GuideNumbers:
     """Every piece's number on one side's guide (in the puzzle's coordinates, unmirrored).
 
     ``inks`` (P,) black or white; ``plates`` (P,) the white plate under a number (None for
-    none); ``crowded`` the pieces (0-based) whose number fits nowhere at ``MIN_CAP``."""
+    none); a height of 0: no number fits, even at ``LEAST``."""
 
     labels: Labels
     inks: NDArray[np.object_]
     plates: NDArray[np.object_]
-    crowded: NDArray[np.int64]
 
 
 def _ink(fills: tuple[str, ...]) -> tuple[str, float]:
@@ -91,39 +93,34 @@ def guide_numbers(puzzle: Puzzle, colouring: Colouring, side: str) -> GuideNumbe
     """Every piece's number for ``side``'s guide: the largest that reads, where it reads."""
     texts = [str(k + 1) for k in range(puzzle.n_pieces)]
     n = len(texts)
+    candidates = _candidates(puzzle, colouring, side)
+    # every candidate with room round the number, and without
+    fits = [(_fit(r, texts, pad), [_ink(f) for f in fills], pad)
+            for r, fills, pad in candidates + [(r, f, 0.0) for r, f, _ in candidates]]
     best_h, centres, angles = np.zeros(n), np.zeros((n, 2)), np.zeros(n)
     inks = np.full(n, BLACK, dtype=object)
-    plated = np.ones(n, dtype=bool)
-    # the largest fit anywhere, with room round it and without
-    largest = {p: (np.full(n, -1.0), np.zeros((n, 2)), np.zeros(n)) for p in (PAD, 0.0)}
-    candidates = _candidates(puzzle, colouring, side)
-    # with room round every number; where that leaves it under MIN_CAP, without
-    for regions, fills, pad in candidates + [(r, f, 0.0) for r, f, _ in candidates]:
-        h, c, a = _fit(regions, texts, pad)
-        larger = h > largest[pad][0] + 1e-9
-        for was, now in zip(largest[pad], (h, c, a)):
-            was[larger] = now[larger]
-        read = [_ink(f) for f in fills]
-        ok = np.array([r[1] >= MIN_CONTRAST for r in read]) & (h >= MIN_CAP)
-        better = ok & (plated | ((h > best_h + 1e-9) & (pad > 0 or best_h < MIN_CAP)))
-        best_h[better], centres[better], angles[better] = h[better], c[better], a[better]
-        inks[better] = np.array([r[0] for r in read], dtype=object)[better]
-        plated &= ~ok
-    # no part reads: where the number is largest, on a plate, in black
-    roomy = largest[PAD][0] >= MIN_CAP
-    h, c, a = (np.where(roomy if now.ndim == 1 else roomy[:, None], now, tight)
-               for now, tight in zip(largest[PAD], largest[0.0]))
-    best_h[plated], centres[plated], angles[plated] = h[plated], c[plated], a[plated]
-    crowded = np.flatnonzero(best_h < MIN_CAP)
-    if len(crowded):  # printed anyway, at the floor, level on the piece's pole
-        best_h[crowded], angles[crowded] = MIN_CAP, 0.0
-        centres[crowded] = shapely.get_coordinates(shapely.get_point(
-            shapely.maximum_inscribed_circle(puzzle.pieces[crowded], 0.01), 0))
+    found = np.zeros(n, dtype=bool)
+    for floor in (MIN_CAP, LEAST):  # at MIN_CAP if anywhere, else smaller
+        for (h, c, a), read, pad in fits:
+            ok = ~found & np.array([r[1] >= MIN_CONTRAST for r in read]) & (h >= floor)
+            # the first that reads wins, a larger one with room round it over it
+            better = ok & ((best_h == 0) | ((h > best_h + 1e-9) & (pad > 0)))
+            best_h[better], centres[better], angles[better] = h[better], c[better], a[better]
+            inks[better] = np.array([r[0] for r in read], dtype=object)[better]
+        found |= best_h > 0
+    # no part reads: where the number is largest (with room round it, if at MIN_CAP), on a
+    # plate, in black
+    for floor, pads in ((MIN_CAP, (PAD,)), (LEAST, (PAD, 0.0))):
+        todo = ~found & (best_h == 0)
+        for (h, c, a), _, pad in fits:
+            better = todo & (pad in pads) & (h >= floor) & (h > best_h + 1e-9)
+            best_h[better], centres[better], angles[better] = h[better], c[better], a[better]
+    plated = ~found & (best_h > 0)
     plates = np.full(n, None, dtype=object)
     if plated.any():
         plates[plated] = _plates([texts[k] for k in np.flatnonzero(plated).tolist()],
                                  best_h[plated], centres[plated], angles[plated])
-    return GuideNumbers(Labels(tuple(texts), best_h, centres, angles), inks, plates, crowded)
+    return GuideNumbers(Labels(tuple(texts), best_h, centres, angles), inks, plates)
 
 
 def _fit(regions, texts, pad: float) -> tuple:
@@ -133,7 +130,7 @@ def _fit(regions, texts, pad: float) -> tuple:
     some = np.flatnonzero(regions != None)  # noqa: E711
     if len(some):
         args = (regions[some].astype(object), [texts[k] for k in some.tolist()], MARGIN,
-                MAX_CAP, pad)
+                MAX_CAP if pad else TIGHT_CAP, pad)
         level, largest = fit_labels(*args, LEVEL_SHARE), fit_labels(*args)
         small = level[0] < MIN_CAP
         for out, lv, lg in zip((h, c, a), level, largest):
@@ -153,9 +150,17 @@ def _plates(texts, heights, centres, angles) -> NDArray[np.object_]:
 
 
 def warnings(numbers: GuideNumbers, side: str) -> list[str]:
-    """A line naming the pieces whose number on ``side``'s guide overhangs the piece."""
-    if not len(numbers.crowded):
-        return []
-    return [f"pieces {_listed(numbers.crowded)} are too small for {MIN_CAP:g} mm numbers on "
-            f"the {side} painting guide; their numbers are printed at {MIN_CAP:g} mm on a "
-            "white plate over the piece"]
+    """Lines naming the pieces whose number on ``side``'s guide is smaller than ``MIN_CAP``,
+    and those too small for any (they are left without one: the colour key lists them)."""
+    h = numbers.labels.heights
+    small, none = np.flatnonzero((h > 0) & (h < MIN_CAP)), np.flatnonzero(h == 0)
+    out = []
+    if len(small):
+        out.append(f"pieces {_listed(small)} are too small for {MIN_CAP:g} mm numbers on the "
+                   f"{side} painting guide; theirs are printed smaller (down to "
+                   f"{h[small].min():.1f} mm)")
+    if len(none):
+        out.append(f"pieces {_listed(none)} are too small for {LEAST:g} mm numbers on the "
+                   f"{side} painting guide and are printed without one (the colour key lists "
+                   "them by their paint)")
+    return out

@@ -165,7 +165,7 @@ def guide(puzzle: Puzzle, colouring: Colouring, side: str, numbers=None,
     """The front (level t-1 weave, two halves per piece) or back (level t weave, mirrored)
     painting guide at 1:1, registered to the shared cut sheet; with ``numbers`` (a
     ``guide_numbers.GuideNumbers`` of this side) every piece's number on a layer of its own,
-    one word per piece in piece order."""
+    one word per numbered piece in piece order."""
     width, height, shift = placement(puzzle, margin)
     mirror = side == "back"
 
@@ -235,9 +235,9 @@ def _dashes(a: NDArray[np.float64], b: NDArray[np.float64], style: Style) -> Pol
 
 def _number_shapes(numbers: Labels, inks: NDArray[np.object_], plates) -> tuple:
     """One Polylines per number, in piece order (a word: its digits together), each after its
-    white plate where it has one."""
+    white plate where it has one; none for a piece too small for any (height 0)."""
     shapes = []
-    for k in range(len(numbers.texts)):
+    for k in np.flatnonzero(numbers.heights > 0).tolist():
         if plates[k] is not None:
             shapes.append(polygons_from_shapely([plates[k]], Style(None, 0.0, PAPER)))
         coords, offsets = numbers.strokes(pick=[k])
