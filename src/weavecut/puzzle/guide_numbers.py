@@ -99,23 +99,25 @@ def guide_numbers(puzzle: Puzzle, colouring: Colouring, side: str) -> GuideNumbe
             for r, fills, pad in candidates + [(r, f, 0.0) for r, f, _ in candidates]]
     best_h, centres, angles = np.zeros(n), np.zeros((n, 2)), np.zeros(n)
     inks = np.full(n, BLACK, dtype=object)
-    found = np.zeros(n, dtype=bool)
-    for floor in (MIN_CAP, LEAST):  # at MIN_CAP if anywhere, else smaller
+    plated = np.zeros(n, dtype=bool)
+    # at MIN_CAP if anywhere, else smaller; on a plate before smaller
+    for floor in (MIN_CAP, LEAST):
+        todo = best_h == 0
         for (h, c, a), read, pad in fits:
-            ok = ~found & np.array([r[1] >= MIN_CONTRAST for r in read]) & (h >= floor)
+            ok = todo & np.array([r[1] >= MIN_CONTRAST for r in read]) & (h >= floor)
             # the first that reads wins, a larger one with room round it over it
             better = ok & ((best_h == 0) | ((h > best_h + 1e-9) & (pad > 0)))
             best_h[better], centres[better], angles[better] = h[better], c[better], a[better]
             inks[better] = np.array([r[0] for r in read], dtype=object)[better]
-        found |= best_h > 0
-    # no part reads: where the number is largest (with room round it, if at MIN_CAP), on a
-    # plate, in black
-    for floor, pads in ((MIN_CAP, (PAD,)), (LEAST, (PAD, 0.0))):
-        todo = ~found & (best_h == 0)
-        for (h, c, a), _, pad in fits:
-            better = todo & (pad in pads) & (h >= floor) & (h > best_h + 1e-9)
-            best_h[better], centres[better], angles[better] = h[better], c[better], a[better]
-    plated = ~found & (best_h > 0)
+        # no part reads: where the number is largest, with room round it if it can, on a
+        # plate, in black
+        todo = best_h == 0
+        for want in (PAD, 0.0):
+            for (h, c, a), _, pad in fits:
+                better = todo & (pad == want) & (h >= floor) & (h > best_h + 1e-9)
+                best_h[better], centres[better], angles[better] = h[better], c[better], a[better]
+                plated |= better
+            todo &= best_h == 0
     plates = np.full(n, None, dtype=object)
     if plated.any():
         plates[plated] = _plates([texts[k] for k in np.flatnonzero(plated).tolist()],
