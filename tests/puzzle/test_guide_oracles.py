@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 import shapely
 
-from weavecut.layout.contrast import BLACK, WHITE, contrast_ratio
+from weavecut.layout.contrast import BLACK, WHITE
 from weavecut.layout.labels import text_box
 from weavecut.puzzle import files as pf
 from weavecut.puzzle.colouring import UNPAINTED

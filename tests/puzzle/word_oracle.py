@@ -21,6 +21,7 @@ import shapely
 
 from weavecut.layout.contrast import contrast_ratio
 from weavecut.layout.drawing import Polygons, Polylines
+from weavecut.layout.label_checks import filled
 from weavecut.layout.strokefont import text_strokes
 
 
@@ -37,19 +38,6 @@ def words(sheet):
                 out.append((shape, plate))
                 plate = None
     return out
-
-
-def _fills(sheet):
-    polys, fills = [], []
-    for layer in sheet.layers:
-        for shape in layer.shapes:
-            if isinstance(shape, Polygons) and layer.visible:
-                colours = shape.fills or (shape.style.fill,) * shape.n_polygons
-                for g, c in zip(shape.to_shapely().tolist(), colours):
-                    if c is not None:
-                        polys.append(g)
-                        fills.append(c)
-    return polys, fills
 
 
 def _samples(word: Polylines, step: float = 0.1) -> np.ndarray:
@@ -70,7 +58,7 @@ def _samples(word: Polylines, step: float = 0.1) -> np.ndarray:
 
 def contrasts(sheet) -> np.ndarray:
     """Per number: its ink's least contrast with what lies under any of its sample points."""
-    polys, fills = _fills(sheet)
+    polys, fills = filled(sheet)  # every filled polygon, in drawing order
     tree = shapely.STRtree(polys)
     out = []
     for word, _ in words(sheet):

@@ -15,30 +15,13 @@ from __future__ import annotations
 import shapely
 
 from ..layout.contrast import MIN_CONTRAST, contrast_ratio
+from ..layout.label_checks import PAPER, filled
 from ..layout.label_checks import figures as label_figures
 from ..layout.drawing import Polygons, Polylines, Sheet, Text
 from ..layout.labels import MIN_CAP, text_box
 from .pages import FURNITURE_GAP
 
-PAPER = "#ffffff"
 SLACK = 1e-6  # mm
-
-
-def _painted(sheet: Sheet) -> tuple[list, list[str]]:
-    """Every filled polygon on the sheet in drawing order, with its fill."""
-    polys, fills = [], []
-    for layer in sheet.layers:
-        if not layer.visible:
-            continue
-        for shape in layer.shapes:
-            if isinstance(shape, Polygons):
-                style_fill = shape.style.fill
-                colours = shape.fills or (style_fill,) * shape.n_polygons
-                for g, c in zip(shape.to_shapely().tolist(), colours):
-                    if c is not None:
-                        polys.append(g)
-                        fills.append(c)
-    return polys, fills
 
 
 def _fill_at(polys, fills, tree, point) -> str:
@@ -56,7 +39,7 @@ def text_checks(sheet: Sheet, box=None, inner=None, strands=None) -> list[dict]:
     its margins, where every text must lie. ``strands`` maps a strand's ID to its fill: a text of
     the "ids" layer (the assembly sheet) naming a strand must lie on that fill, or on a white
     plate whose leader line ends on it."""
-    polys, fills = _painted(sheet)
+    polys, fills = filled(sheet)
     tree = shapely.STRtree(polys) if polys else None
     cuts = [g for layer in sheet.layers if layer.role == "cut" for s in layer.shapes
             if isinstance(s, Polygons) for g in s.to_shapely().tolist()]
