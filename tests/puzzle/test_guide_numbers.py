@@ -24,7 +24,7 @@ from weavecut.layout.contrast import MIN_CONTRAST
 from weavecut.layout.labels import MIN_CAP
 from weavecut.puzzle.colouring import colour_puzzle, palette_names
 from weavecut.puzzle.guide_numbers import LEAST, guide_numbers, warnings
-from weavecut.puzzle.guides import guide
+from weavecut.puzzle.guides import colour_key, guide, printed
 from weavecut.puzzle.pieces import build_puzzle
 from weavecut.subdivision import subdivide
 from weavecut.weave.colour import palette
@@ -50,7 +50,7 @@ def check_guide(puzzle, colouring, side) -> dict:
     shown = np.flatnonzero(heights > 0)
     assert len(drawn) == len(shown)
     c = contrasts(sheet)
-    assert c.min() >= MIN_CONTRAST, shown[c < MIN_CONTRAST] + 1
+    assert c.min(initial=21.0) >= MIN_CONTRAST, shown[c < MIN_CONTRAST] + 1
     sizes = []
     for k, (word, _) in zip(shown.tolist(), drawn):
         angle, height, misfit = pose(word, str(k + 1))
@@ -68,7 +68,8 @@ def check_guide(puzzle, colouring, side) -> dict:
     for k in np.flatnonzero(heights < MIN_CAP)[:3].tolist():
         assert f" {k + 1}," in said.replace("pieces ", " ").replace(" are", ",")
     assert bool(said) == bool((heights < MIN_CAP).any())
-    return {"sheet": sheet, "contrast": c.min(), "gap": g.min(), "numbers": numbers}
+    return {"sheet": sheet, "contrast": c.min(initial=21.0), "gap": g.min(initial=np.inf),
+            "numbers": numbers}
 
 
 @pytest.mark.parametrize("side", ["front", "back"])
@@ -81,6 +82,30 @@ def test_every_number_reads_on_what_is_under_it_apart_and_upright(name, side):
     assert figures["min_label_contrast"] == pytest.approx(seen["contrast"], abs=0.01)
     assert figures["min_label_gap_mm"] == pytest.approx(seen["gap"], abs=0.01)
     assert figures["labels_under_contrast"] == figures["labels_too_close"] == 0
+
+
+def _shapes(sheet) -> set:
+    """Every word of the sheet as its strokes relative to its first point (mm, rounded)."""
+    return {(len(w.coords), np.round(w.coords - w.coords[0], 6).tobytes())
+            for w, _ in words(sheet)}
+
+
+@pytest.mark.parametrize("side", ["front", "back"])
+@pytest.mark.parametrize("name", ["default", "heart"])
+def test_printed_pages_show_every_number_whole_and_readable(name, side):
+    """Tiled on A4 (after the colour key), every number is whole on some page, none is cut
+    at a page's edge, and every label of every page (numbers, the key's lines, the page
+    marks) reads on what is under it and keeps 0.5 mm from the next."""
+    puzzle, colouring = _puzzles()[name]()
+    sheet = guide(puzzle, colouring, side, guide_numbers(puzzle, colouring, side))
+    pages = printed(sheet, colour_key(puzzle, colouring, side), (210.0, 297.0))
+    on_pages = set().union(*(_shapes(p) for p in pages.sheets))
+    assert _shapes(sheet.sheets[0]) <= on_pages  # whole somewhere
+    assert on_pages <= _shapes(sheet.sheets[0])  # never a part of one
+    figures = label_checks.figures(pages.sheets)
+    assert figures["labels_under_contrast"] == figures["labels_too_close"] == 0
+    assert figures["min_label_contrast"] >= MIN_CONTRAST
+    assert figures["min_label_gap_mm"] >= label_checks.MIN_GAP
 
 
 @settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])

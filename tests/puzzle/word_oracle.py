@@ -81,6 +81,8 @@ def gaps(sheet, plates: bool = True) -> np.ndarray:
         shapes.append((plate if plated else lines, 0.0 if plated else word.style.stroke_width / 2))
     geoms = np.array([g for g, _ in shapes], dtype=object)
     pad = np.array([h for _, h in shapes])
+    if not len(geoms):
+        return np.zeros(0)
     tree = shapely.STRtree(geoms)
     out = np.full(len(ws), np.inf)
     a, b = tree.query(geoms, predicate="dwithin", distance=20.0)

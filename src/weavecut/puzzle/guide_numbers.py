@@ -27,16 +27,19 @@ from ..layout.strokefont import fit_labels, ink_box
 from ..numeric import turn
 from .colouring import UNPAINTED, Colouring
 from .files import Labels, _listed
-from .guides import piece_halves
+from .guides import NUMBER_STROKE, piece_halves
 from .pieces import Puzzle
 
 MAX_CAP = 6.0  # mm, the largest number on a guide
+WORD_SPAN = 9.5  # mm, the most a number spans: under the 10 mm by which printed pages overlap,
+# so each is whole on one page (layout.tiling keeps a word whole or leaves it to the next page)
 LEAST = 1.5  # mm, the smallest: a piece without room for it is named, not numbered
 MARGIN = 0.6  # mm from a number's box to its piece's edge
 PAD = 0.25  # of the cap height, each side of a number's ink: its room from the next number
 TIGHT_CAP = 3.0  # mm, the largest number fitted without PAD: the two MARGINs between it and
 # the next number (less the strokes) are then still wider than its digits' spacing (2/7 cap)
-PLATE = 0.15  # of the cap height, each side of a number's ink: its plate
+PLATE = 0.25  # mm each side of a number's ink box: its plate (twice MARGIN less this keeps two
+# plates in neighbouring pieces MIN_GAP apart)
 LEVEL_SHARE = 0.8  # a level number this large against the largest turned one goes level
 PAPER = UNPAINTED  # what a printed guide shows where nothing is painted
 
@@ -131,8 +134,9 @@ def _fit(regions, texts, pad: float) -> tuple:
     h, c, a = np.zeros(len(texts)), np.zeros((len(texts), 2)), np.zeros(len(texts))
     some = np.flatnonzero(regions != None)  # noqa: E711
     if len(some):
-        args = (regions[some].astype(object), [texts[k] for k in some.tolist()], MARGIN,
-                MAX_CAP if pad else TIGHT_CAP, pad)
+        chosen = [texts[k] for k in some.tolist()]
+        args = (regions[some].astype(object), chosen, MARGIN,
+                np.minimum(MAX_CAP if pad else TIGHT_CAP, largest_caps(chosen)), pad)
         level, largest = fit_labels(*args, LEVEL_SHARE), fit_labels(*args)
         small = level[0] < MIN_CAP
         for out, lv, lg in zip((h, c, a), level, largest):
@@ -140,12 +144,20 @@ def _fit(regions, texts, pad: float) -> tuple:
     return h, c, a
 
 
+def largest_caps(texts) -> NDArray[np.float64]:
+    """(n,) the largest cap height at which every text, turned any way, spans at most
+    ``WORD_SPAN`` mm across and up (its box's diagonal, with its strokes)."""
+    box = np.array([ink_box(t) for t in texts], dtype=float).reshape(-1, 4)
+    diagonal = np.hypot(box[:, 2] - box[:, 0], box[:, 3] - box[:, 1])
+    return (WORD_SPAN - NUMBER_STROKE) / np.maximum(diagonal, 1e-9)
+
+
 def _plates(texts, heights, centres, angles) -> NDArray[np.object_]:
-    """The white plates under numbers: their ink boxes widened by ``PLATE`` of the cap height
-    (inside the room a number is fitted with: ``MARGIN`` is more than that at ``MAX_CAP``)."""
+    """The white plates under numbers: their ink boxes widened by ``PLATE`` (inside the
+    ``MARGIN`` a number keeps from its piece's edge)."""
     box = np.array([ink_box(t) for t in texts], dtype=float)
-    hx = ((box[:, 2] - box[:, 0]) / 2 + PLATE) * heights
-    hy = ((box[:, 3] - box[:, 1]) / 2 + PLATE) * heights
+    hx = (box[:, 2] - box[:, 0]) / 2 * heights + PLATE
+    hy = (box[:, 3] - box[:, 1]) / 2 * heights + PLATE
     corners = np.stack([np.stack([-hx, -hy], -1), np.stack([hx, -hy], -1),
                         np.stack([hx, hy], -1), np.stack([-hx, hy], -1)], axis=1)
     return shapely.polygons(turn(corners, angles[:, None], centres[:, None]))

@@ -22,7 +22,7 @@ from ..layout.label_checks import PAPER, WORDS
 from ..layout.drawing import (Drawing, Layer, Polylines, Sheet, Style, Text,
                               polygons_from_rings, polygons_from_shapely)
 from ..layout.labels import text_width, wrap
-from ..layout.tiling import tile
+from ..layout.tiling import tile, word_overlap
 from ..numeric import distinct
 from .colouring import UNPAINTED, Colouring
 from .files import Labels, placement
@@ -259,8 +259,9 @@ def _registration(width: float, height: float, margin: float) -> list:
 # --- printed pages ----------------------------------------------------------------------------
 
 def printed(guide_drawing: Drawing, key: Drawing, page: tuple[float, float]) -> Drawing:
-    """The colour key, then the guide tiled on ``page``s, keeping only pages with paint."""
-    tiled = tile(guide_drawing, page)
+    """The colour key, then the guide tiled on ``page``s, keeping only pages with paint; the
+    pages overlap by more than the widest number, which each shows whole or not at all."""
+    tiled = tile(guide_drawing, page, word_overlap(guide_drawing))
     keep = tuple(s for s in tiled.sheets
                  if any(layer.role == "paint" and layer.shapes for layer in s.layers))
     return replace(tiled, sheets=key.sheets + keep)
@@ -274,7 +275,7 @@ def colour_key(puzzle: Puzzle, colouring: Colouring, side: str,
     areas = paint.areas()
     order = [c for c in colouring.names if c in areas] + sorted(set(areas) - set(
         colouring.names))
-    size, line = 3.0, 4.2
+    size, line = 3.0, 4.6  # lines' boxes (cap height, descenders) 0.5 mm apart
     room = page[0] - 2 * margin - 30  # right of the swatches
     rows = []
     for colour in order:
