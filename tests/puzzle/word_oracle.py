@@ -143,5 +143,9 @@ def word_figures(sheet, texts=None) -> dict:
             "touching_pairs": int((g <= 0).sum() // 2),
             "pairs_under_0.5mm": int((g < 0.5).sum() // 2),
             "not_upright": int((np.abs(angles) > 90 + 1e-6).sum()),
+            "turned_over_10deg": int((np.abs(angles) > 10).sum()),
+            "run_together": int((gaps(sheet, plates=False)
+                                 < 0.3 * np.array([p[1] for p in poses])).sum()),
+            "smallest_cap_mm": round(min(p[1] for p in poses), 2),
             "max_spread_per_cap": round(max(spreads), 2),
             "misfit_mm": round(max(p[2] for p in poses), 3)}
