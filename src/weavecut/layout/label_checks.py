@@ -51,7 +51,8 @@ def stroke_outline(shape: Polylines) -> shapely.Geometry:
     """The area the strokes of ``shape`` cover at their width (round caps and joins)."""
     lines = shapely.linestrings(shape.coords, indices=np.repeat(
         np.arange(len(shape.offsets) - 1), np.diff(shape.offsets)))
-    return shapely.union_all(shapely.buffer(lines, max(shape.style.stroke_width, 1e-3) / 2))
+    return shapely.buffer(shapely.multilinestrings(lines),
+                          max(shape.style.stroke_width, 1e-3) / 2)
 
 
 def labels(sheet: Sheet) -> list[tuple[shapely.Geometry, str, shapely.Geometry]]:
@@ -91,21 +92,23 @@ def fills_under(polys, fills, tree, outline) -> list[str]:
     return out + [PAPER] if rest.area > 1e-9 else out
 
 
-def contrasts(sheet: Sheet) -> list[float]:
-    """Per label: its ink's least contrast with anything under it."""
+def contrasts(sheet: Sheet, found=None) -> list[float]:
+    """Per label (``found``: :func:`labels` of the sheet, if at hand): its ink's least
+    contrast with anything under it."""
     polys, fills = filled(sheet)
     tree = shapely.STRtree(polys) if polys else None
     out = []
-    for ink_area, ink, _ in labels(sheet):
+    for ink_area, ink, _ in labels(sheet) if found is None else found:
         under = fills_under(polys, fills, tree, ink_area)
         out.append(min(contrast_ratio(ink, c) for c in under))
     return out
 
 
-def gaps(sheet: Sheet) -> list[float]:
-    """Per label: the distance (mm) from its outline (with its plate) to the nearest other
-    label's; infinite for a label alone."""
-    outlines = np.array([room for *_, room in labels(sheet)], dtype=object)
+def gaps(sheet: Sheet, found=None) -> list[float]:
+    """Per label (``found``: :func:`labels` of the sheet, if at hand): the distance (mm) from
+    its outline (with its plate) to the nearest other label's; infinite for a label alone."""
+    found = labels(sheet) if found is None else found
+    outlines = np.array([room for *_, room in found], dtype=object)
     if len(outlines) < 2:
         return [float("inf")] * len(outlines)
     tree = shapely.STRtree(outlines)
@@ -119,8 +122,11 @@ def gaps(sheet: Sheet) -> list[float]:
 def figures(sheets) -> dict:
     """``min_label_contrast`` and ``min_label_gap_mm`` over the labels of ``sheets``, with how
     many labels fall short of ``MIN_CONTRAST`` and of ``MIN_GAP``."""
-    c = [x for s in sheets for x in contrasts(s)]
-    g = [x for s in sheets for x in gaps(s)]
+    c, g = [], []
+    for s in sheets:
+        found = labels(s)
+        c += contrasts(s, found)
+        g += gaps(s, found)
     finite = [x for x in g if np.isfinite(x)]
     return {"min_label_contrast": round(min(c, default=21.0), 2),
             "min_label_gap_mm": round(min(finite), 2) if finite else None,

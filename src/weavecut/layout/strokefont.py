@@ -154,7 +154,7 @@ def _poles(polygons: NDArray[np.object_]) -> NDArray[np.float64]:
 
 
 def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, max_height,
-               pad: float = 0.0, level_share: float = 1.0
+               pad: float = 0.0, level_share: float = 1.0, level_least: float = 0.0
                ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """The largest cap height (up to ``max_height``, a number or one per text) at which each
     text fits inside its polygon
@@ -162,7 +162,8 @@ def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, m
     or half-way between, level or along the polygon's long axis, whichever fits largest (the
     first on a tie). ``pad`` widens every text's ink box by that share of its cap height on
     each side (room that grows with the text: two texts fitted so stand apart by more than
-    their letters do); a level text wins where it is at least ``level_share`` of the largest.
+    their letters do); a level text wins where it is at least ``level_share`` of the largest
+    and at least ``level_least`` tall.
 
     Parameters
     ----------
@@ -195,7 +196,8 @@ def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, m
     h = np.nan_to_num(h, nan=0.0).reshape(len(spots), n)
     best_h, best_a, centres = np.zeros(n), np.zeros(n), pole.copy()
     if level_share < 1.0:  # a level text that is nearly as large goes first
-        level = h[0::2].max(axis=0) >= level_share * h.max(axis=0) - 1e-9
+        flat = h[0::2].max(axis=0)
+        level = (flat >= level_share * h.max(axis=0) - 1e-9) & (flat >= level_least)
         h = np.where((np.arange(len(spots)) % 2 == 1)[:, None] & level[None, :], 0.0, h)
     for (at, angle), fit in zip(spots, h):  # in order: the first of equal fits wins
         better = fit > best_h + 1e-9

@@ -137,10 +137,7 @@ def _fit(regions, texts, pad: float) -> tuple:
         chosen = [texts[k] for k in some.tolist()]
         args = (regions[some].astype(object), chosen, MARGIN,
                 np.minimum(MAX_CAP if pad else TIGHT_CAP, largest_caps(chosen)), pad)
-        level, largest = fit_labels(*args, LEVEL_SHARE), fit_labels(*args)
-        small = level[0] < MIN_CAP
-        for out, lv, lg in zip((h, c, a), level, largest):
-            out[some] = np.where(small if lv.ndim == 1 else small[:, None], lg, lv)
+        h[some], c[some], a[some] = fit_labels(*args, LEVEL_SHARE, MIN_CAP)
     return h, c, a
 
 
