@@ -27,3 +27,18 @@ def pentagon_paint(levels: int, size: float = 300.0) -> Colouring:
     """Its paint in the "puzzle" palette, with the palette's family names."""
     pal = palette("puzzle")
     return colour_puzzle(pentagon_puzzle(levels, size), pal, palette_names("puzzle", pal))
+
+
+@lru_cache(maxsize=None)
+def heart_puzzle() -> tuple[Puzzle, Colouring]:
+    """The heart-puzzle recipe's puzzle (templates/recipes/heart-puzzle.toml: heart.svg in
+    39 mm cells, level 2, 30 cm wide, a 15 mm frame) and its paint."""
+    from pathlib import Path
+
+    from weavecut.mesh_io import read_valid_mesh
+
+    svg = Path(__file__).parents[1] / "templates" / "recipes" / "heart.svg"
+    puzzle = build_puzzle(subdivide(read_valid_mesh(str(svg), cell=39.0, runs=True), 2),
+                          size=300.0, frame_width=15.0, measure="width")
+    pal = palette("puzzle")
+    return puzzle, colour_puzzle(puzzle, pal, palette_names("puzzle", pal))

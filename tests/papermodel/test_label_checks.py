@@ -148,6 +148,8 @@ def test_report_recounts_pages_sizes_contrast_and_violations():
     assert rep == {"pages": {"strip": 1, "extra": 1, "total": 2}, "ink_fraction": 0.412,
                    "smallest_text_mm": 2.46,
                    "smallest_contrast": round(contrast_ratio("#ffffff", DARK), 2),
+                   "min_label_contrast": round(contrast_ratio("#ffffff", DARK), 2),
+                   "min_label_gap_mm": round(text_box(good).distance(text_box(small)), 2),
                    "label_violations": 1, "tile_size_mm": 21.46, "strip_width_mm": 9.9,
                    "warnings": ["thin"], "label_tabs": 0, "names_left_out": 0}
     # page 1 is no strip page: its label off the strip is fine; as a strip page it is not

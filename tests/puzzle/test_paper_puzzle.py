@@ -20,6 +20,7 @@ from weavecut.layout.labels import text_box
 from weavecut.puzzle import files as pf
 from weavecut.puzzle.frame import fits, split_frame
 from weavecut.puzzle.guides import colour_key, guide, painted, printed
+from weavecut.puzzle.guide_numbers import guide_numbers
 from weavecut.puzzle.pieces import OCTAGON, build_puzzle
 from weavecut.subdivision import subdivide
 
@@ -227,15 +228,16 @@ def test_back_guide_numbers_read_left_to_right(paper):
     """The back is mirrored, its numbers are not: the strokes of "1" in piece 1's number lie
     where an unmirrored number puts them (the vertical of a 1 is at the right of its box)."""
     puzzle, colouring = paper
-    numbers = pf.piece_numbers(puzzle, max_height=6.0, margin=1.0)
+    placed = guide_numbers(puzzle, colouring, "back")
+    numbers = placed.labels
     one = [k for k, t in enumerate(numbers.texts) if t == "1"][0]
-    sheet = guide(puzzle, colouring, "back", numbers).sheets[0]
+    sheet = guide(puzzle, colouring, "back", placed).sheets[0]
     layer = next(layer for layer in sheet.layers if layer.name == "numbers")
     width = sheet.width
     _, _, shift = pf.placement(puzzle)
     centre = numbers.centres[one] + shift
     centre = np.array([width - centre[0], centre[1]])
-    pts = np.concatenate([shape.coords for shape in layer.shapes])
+    pts = np.concatenate([shape.coords for shape in layer.shapes if hasattr(shape, "offsets")])
     near = pts[np.hypot(*(pts - centre).T) < numbers.heights[one]]
     # the back turns labels by minus their angle a; turned back (by +a), the foot of the 1's
     # stem (its lowest point) is right of the centre, its flag reaches left

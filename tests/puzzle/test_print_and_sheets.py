@@ -1,7 +1,7 @@
 """What the maker prints and loads beside the cut: the printed guide keeps the colour key first
 and exactly the pages that hold paint, on the page size asked for; separate sheets keep the
-documented 5 mm margin and 2 mm spacing, and each sheet's file keeps the cut's metadata; number
-inks break a tie towards black; the summary's times keep a tenth of a minute."""
+documented 5 mm margin and 2 mm spacing, and each sheet's file keeps the cut's metadata; a piece
+painted black and white has its number in one half; the summary's times keep a tenth of a minute."""
 
 from __future__ import annotations
 
@@ -10,14 +10,14 @@ import pytest
 import shapely
 
 from weavecut.errors import WeaveCutError
-from weavecut.layout.contrast import BLACK
+from weavecut.layout.contrast import BLACK, WHITE
 from weavecut.layout.tiling import tile
 from weavecut.puzzle import files as pf
 from weavecut.puzzle import workshop
 from weavecut.puzzle.frame import fits
 from weavecut.puzzle.colouring import UNPAINTED
-from weavecut.puzzle.guides import (OUTLINE, SPLIT, _number_colours, _number_shapes, colour_key,
-                                    guide, printed)
+from weavecut.puzzle.guide_numbers import guide_numbers
+from weavecut.puzzle.guides import OUTLINE, SPLIT, colour_key, guide, piece_halves, printed
 
 from tests.built_puzzles import pentagon_paint, pentagon_puzzle
 
@@ -124,12 +124,13 @@ def test_every_separate_piece_carries_its_number_even_alone_on_a_sheet():
     assert numbered == puzzle.n_pieces and alone >= 1
 
 
-def test_a_tie_between_black_and_white_numbers_goes_to_black():
-    """A piece painted black and white reads as badly in either ink (contrast 1 on one half):
-    its number is black, like every number on unpainted wood; numbers are drawn in thin
-    strokes (a fraction of a millimetre) so digits 3 mm high stay open, bolder than the
-    dashed split lines they may cross and lighter than the piece outlines around them (the
-    README tells the maker: bold lines are outlines, thin dashed lines split)."""
+def test_a_piece_painted_black_and_white_has_its_number_inside_one_half():
+    """A piece painted black and white reads in neither ink across both halves (contrast 1
+    on one of them): its number moves into one half, in the ink that reads there (contrast
+    21); an unpainted piece's number is black. Numbers are drawn in thin strokes (a fraction
+    of a millimetre) so digits 3 mm high stay open, bolder than the dashed split lines they
+    may cross and lighter than the piece outlines around them (the README tells the maker:
+    bold lines are outlines, thin dashed lines split)."""
     puzzle, colouring = pentagon_puzzle(2), pentagon_paint(2)
     front = colouring.front.copy()
     front[0] = ("#000000", "#ffffff")
@@ -137,12 +138,16 @@ def test_a_tie_between_black_and_white_numbers_goes_to_black():
     tied = type(colouring)(front, colouring.back, colouring.front_strands,
                            colouring.back_strands, colouring.face_colours, colouring.names,
                            colouring.touching)
-    inks = _number_colours(puzzle, tied, "front")
-    assert inks[0] == BLACK and inks[1] == BLACK
-    numbers = pf.piece_numbers(puzzle)
-    shapes = _number_shapes(numbers, inks)
+    numbers = guide_numbers(puzzle, tied, "front")
+    assert numbers.inks[1] == BLACK and numbers.plates[0] is None
+    halves = piece_halves(puzzle)[0]
+    box = shapely.box(*(numbers.labels.centres[0] - 0.01), *(numbers.labels.centres[0] + 0.01))
+    inside = [h.contains(box) for h in halves]
+    assert sum(inside) == 1 and numbers.inks[0] == (WHITE if inside[0] else BLACK)
+    sheet = guide(puzzle, tied, "front", numbers).sheets[0]
+    shapes = [s for layer in sheet.layers if layer.name == "numbers" for s in layer.shapes]
     assert all(SPLIT.stroke_width < s.style.stroke_width < OUTLINE.stroke_width
-               and s.style.stroke_width <= 0.1 * numbers.heights.max() for s in shapes)
+               and s.style.stroke_width <= 0.1 * numbers.labels.heights.max() for s in shapes)
 
 
 def test_summary_times_keep_a_tenth_of_a_minute():

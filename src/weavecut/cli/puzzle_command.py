@@ -104,6 +104,8 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     from ..puzzle.colouring import colour_puzzle, palette_names
     from ..puzzle.frame import fits, split_frame
     from ..puzzle.guides import colour_key, guide, printed
+    from ..puzzle.guide_numbers import guide_numbers, warnings as number_warnings
+    from ..layout.label_checks import figures as label_figures
     from ..puzzle.guides import preview as painted_preview
     from ..puzzle.pieces import build_puzzle
     from ..puzzle.model3d import puzzle_model
@@ -182,13 +184,16 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
         for n, one in enumerate(pf.split_sheets(results["separate"].drawing), start=1):
             for fmt in formats:
                 files[f"puzzle-separate-sheet-{n}.{fmt}"] = one
-    guide_numbers = pf.piece_numbers(puzzle, max_height=6.0, margin=0.6, least=0.8)
+    guides = {}
     for side in ("front", "back"):
-        g = guide(puzzle, colouring, side, guide_numbers)
+        numbers = guide_numbers(puzzle, colouring, side)
+        warnings += number_warnings(numbers, side)
+        guides[side] = g = guide(puzzle, colouring, side, numbers)
         files[f"puzzle-{side}-guide.svg"] = g
         files[f"puzzle-{side}-guide-{page}.pdf"] = printed(
             g, colour_key(puzzle, colouring, side, PAPER_SIZES[page]), PAPER_SIZES[page])
     info = workshop.summary(puzzle, results, speed, colouring)
+    info.update(label_figures([g.sheets[0] for g in guides.values()]))
     info.update(material=mat["description"], thickness_mm=mat["thickness"], kerf_mm=kerf,
                 sheet_mm=list(sheet), laser=las.name,
                 **({"chosen": chosen} if chosen else {}),

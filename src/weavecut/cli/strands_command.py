@@ -337,8 +337,9 @@ def _laser_card(weaves, pal_name: str, material: str | None, laser_name: str, fo
                                "score_lines": sum(len(s) for s in cut.scores),
                                "engraved_dots": sum(len(d) for d in cut.dots),
                                **{k: v for k, v in report(kit.book).items() if k in (
-                                   "smallest_text_mm", "smallest_contrast", "label_violations",
-                                   "names_left_out")}, "warnings": list(kit.warnings),
+                                   "smallest_text_mm", "smallest_contrast", "min_label_contrast",
+                                   "min_label_gap_mm", "label_violations", "names_left_out")},
+                               "warnings": list(kit.warnings),
                                "smallest_label_mm": round(cut.smallest_label, 2),
                                "cut_minutes": round(minutes, 1), "files": files,
                                **cut.report.as_dict()}, indent=2, allow_nan=False))

@@ -66,12 +66,29 @@ def text_strokes(text: str, height: float) -> tuple[NDArray[np.float64], NDArray
     return coords * height, offsets.copy(), width * height
 
 
+DIGITS = frozenset("0123456789")
+DIGIT_SIDE = 3 / 21  # the bearing either side of a digit's ink, at cap height 1 (the font's '0')
+
+
+@lru_cache(maxsize=16)
+def _digit(char: str) -> tuple[tuple[NDArray[np.float64], ...], float]:
+    """A digit's strokes and advance, set proportionally: its ink ``DIGIT_SIDE`` from either
+    side. The font's figures are tabular (all as wide as a '0'), which leaves a '1' alone in
+    its wide cell and spreads a number's digits apart ("1 16"); set proportionally a number
+    reads as one word."""
+    strokes, _ = _glyph(char)
+    left = min(float(s[:, 0].min()) for s in strokes)
+    right = max(float(s[:, 0].max()) for s in strokes)
+    return tuple(s - (left - DIGIT_SIDE, 0.0) for s in strokes), right - left + 2 * DIGIT_SIDE
+
+
 @lru_cache(maxsize=4096)
 def _unit_strokes(text: str) -> tuple[NDArray[np.float64], NDArray[np.int64], float]:
-    """:func:`text_strokes` at cap height 1 (kept: labels repeat their texts)."""
+    """:func:`text_strokes` at cap height 1 (kept: labels repeat their texts); digits are set
+    proportionally (:func:`_digit`)."""
     strokes, x = [], 0.0
     for char in text:
-        glyph, advance = _glyph(char)
+        glyph, advance = _digit(char) if char in DIGITS else _glyph(char)
         strokes.extend(s + (x, 0.0) for s in glyph)
         x += advance
     coords = np.concatenate(strokes) if strokes else np.zeros((0, 2))
@@ -136,13 +153,17 @@ def _poles(polygons: NDArray[np.object_]) -> NDArray[np.float64]:
     return poles.copy()
 
 
-def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, max_height
+def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, max_height,
+               pad: float = 0.0, level_share: float = 1.0, level_least: float = 0.0
                ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """The largest cap height (up to ``max_height``, a number or one per text) at which each
     text fits inside its polygon
     with ``margin`` mm to spare: centred on the polygon's pole of inaccessibility, its centroid
     or half-way between, level or along the polygon's long axis, whichever fits largest (the
-    first on a tie).
+    first on a tie). ``pad`` widens every text's ink box by that share of its cap height on
+    each side (room that grows with the text: two texts fitted so stand apart by more than
+    their letters do); a level text wins where it is at least ``level_share`` of the largest
+    and at least ``level_least`` tall.
 
     Parameters
     ----------
@@ -159,7 +180,7 @@ def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, m
     pole = _poles(polygons)
     middle = shapely.get_coordinates(shapely.centroid(polygons))
     boxes = np.array([ink_box(t) for t in texts], dtype=float).reshape(-1, 4)
-    hx, hy = (boxes[:, 2] - boxes[:, 0]) / 2, (boxes[:, 3] - boxes[:, 1]) / 2
+    hx, hy = (boxes[:, 2] - boxes[:, 0]) / 2 + pad, (boxes[:, 3] - boxes[:, 1]) / 2 + pad
     level = np.stack([np.stack([-hx, -hy], -1), np.stack([hx, -hy], -1),
                       np.stack([hx, hy], -1), np.stack([-hx, hy], -1)], axis=1)
     long_axis = _long_axes(polygons)
@@ -174,6 +195,10 @@ def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, m
                     np.tile(np.broadcast_to(np.asarray(max_height, dtype=float), (n,)), len(spots)))
     h = np.nan_to_num(h, nan=0.0).reshape(len(spots), n)
     best_h, best_a, centres = np.zeros(n), np.zeros(n), pole.copy()
+    if level_share < 1.0:  # a level text that is nearly as large goes first
+        flat = h[0::2].max(axis=0)
+        level = (flat >= level_share * h.max(axis=0) - 1e-9) & (flat >= level_least)
+        h = np.where((np.arange(len(spots)) % 2 == 1)[:, None] & level[None, :], 0.0, h)
     for (at, angle), fit in zip(spots, h):  # in order: the first of equal fits wins
         better = fit > best_h + 1e-9
         best_h, best_a = np.where(better, fit, best_h), np.where(better, angle, best_a)

@@ -18,6 +18,7 @@ from numpy.typing import NDArray
 
 from .. import budget
 from .drawing import Drawing, Layer, Polygons, Polylines, Sheet, Style, Text, polygons_from_shapely
+from .label_checks import WORDS
 
 MARK = Style("#808080", 0.2)
 
@@ -128,8 +129,12 @@ def _geoms(shape):
 
 def _clip_layer(layer: Layer, geoms, window, shift) -> Layer:
     """``layer`` clipped to ``window`` and moved by ``shift``; ``geoms`` (:func:`_geoms` of
-    every shape) is clipped where its bounds reach the window."""
+    every shape) is clipped where its bounds reach the window. A single-stroke word (a
+    Polylines of a ``WORDS`` layer) is kept whole where it lies inside the window and left to
+    the neighbouring page where it does not: no number is printed cut in two (with an overlap
+    as wide as the widest word, each is whole on some page: :func:`word_overlap`)."""
     x0, y0, x1, y1 = window.bounds
+    margin_box = np.array([x0, y0, x1, y1]) + np.r_[shift, shift]
     shapes = []
     for shape, got in zip(layer.shapes, geoms):
         if got is not None:
@@ -147,6 +152,12 @@ def _clip_layer(layer: Layer, geoms, window, shift) -> Layer:
                 if shape.fills else None
             moved = shapely.transform(parts[keep], lambda xy: xy + shift)
             shapes.append(polygons_from_shapely(moved, shape.style, fills))
+        elif isinstance(shape, Polylines) and layer.name == WORDS:  # a word: whole or not
+            coords = shape.coords + shift
+            reach = shape.style.stroke_width / 2
+            if len(coords) and (coords.min(axis=0) - reach >= margin_box[:2]).all() \
+                    and (coords.max(axis=0) + reach <= margin_box[2:]).all():
+                shapes.append(Polylines(coords, shape.offsets, shape.style))
         elif isinstance(shape, Polylines):
             parts = parts[(shapely.get_type_id(parts) == 1) & ~shapely.is_empty(parts)]
             if len(parts):
@@ -157,6 +168,15 @@ def _clip_layer(layer: Layer, geoms, window, shift) -> Layer:
             if window.contains(shapely.Point(shape.x, shape.y)):
                 shapes.append(replace(shape, x=shape.x + shift[0], y=shape.y + shift[1]))
     return replace(layer, shapes=tuple(shapes))
+
+
+def word_overlap(drawing: Drawing, least: float = 10.0) -> float:
+    """The overlap (mm) at which every single-stroke word of ``drawing``'s first sheet lies
+    whole on some page: at least ``least``, and more than the widest or tallest word."""
+    sizes = [np.ptp(s.coords, axis=0).max() + s.style.stroke_width
+             for layer in drawing.sheets[0].layers if layer.name == WORDS
+             for s in layer.shapes if isinstance(s, Polylines) and len(s.coords)]
+    return max([least, *(math.ceil(x + 0.5) for x in sizes)])
 
 
 def _clip(geoms: NDArray[np.object_], bounds: NDArray[np.float64], window, lines: bool

@@ -15,29 +15,13 @@ from __future__ import annotations
 import shapely
 
 from ..layout.contrast import MIN_CONTRAST, contrast_ratio
+from ..layout.label_checks import PAPER, filled
+from ..layout.label_checks import figures as label_figures
 from ..layout.drawing import Polygons, Polylines, Sheet, Text
 from ..layout.labels import MIN_CAP, text_box
 from .pages import FURNITURE_GAP
 
-PAPER = "#ffffff"
 SLACK = 1e-6  # mm
-
-
-def _painted(sheet: Sheet) -> tuple[list, list[str]]:
-    """Every filled polygon on the sheet in drawing order, with its fill."""
-    polys, fills = [], []
-    for layer in sheet.layers:
-        if not layer.visible:
-            continue
-        for shape in layer.shapes:
-            if isinstance(shape, Polygons):
-                style_fill = shape.style.fill
-                colours = shape.fills or (style_fill,) * shape.n_polygons
-                for g, c in zip(shape.to_shapely().tolist(), colours):
-                    if c is not None:
-                        polys.append(g)
-                        fills.append(c)
-    return polys, fills
 
 
 def _fill_at(polys, fills, tree, point) -> str:
@@ -55,7 +39,7 @@ def text_checks(sheet: Sheet, box=None, inner=None, strands=None) -> list[dict]:
     its margins, where every text must lie. ``strands`` maps a strand's ID to its fill: a text of
     the "ids" layer (the assembly sheet) naming a strand must lie on that fill, or on a white
     plate whose leader line ends on it."""
-    polys, fills = _painted(sheet)
+    polys, fills = filled(sheet)
     tree = shapely.STRtree(polys) if polys else None
     cuts = [g for layer in sheet.layers if layer.role == "cut" for s in layer.shapes
             if isinstance(s, Polygons) for g in s.to_shapely().tolist()]
@@ -122,8 +106,9 @@ def sheet_checks(book, n: int) -> list[dict]:
 
 
 def report(book) -> dict:
-    """What ``strands --json`` reports: pages, ink, smallest label, contrast, violations, label
-    tabs, under-crossing names left off the strips."""
+    """What ``strands --json`` reports: pages, ink, smallest label, contrast (at the label's
+    centre, and the least over everything under its box: ``label_checks``), the smallest gap
+    between two labels, violations, label tabs, under-crossing names left off the strips."""
     records = []
     for n, sheet in enumerate(book.drawing.sheets, start=1):
         records += sheet_checks(book, n)
@@ -133,6 +118,8 @@ def report(book) -> dict:
         "ink_fraction": round(book.ink, 3),
         "smallest_text_mm": round(min((r["size"] for r in records), default=0.0), 2),
         "smallest_contrast": round(min((r["contrast"] for r in records), default=21.0), 2),
+        **{k: v for k, v in label_figures(book.drawing.sheets).items()
+           if k in ("min_label_contrast", "min_label_gap_mm")},
         "label_violations": sum(bool(r["broken"]) for r in records),
         "label_tabs": sum(p.flap is not None for _, p in book.pieces),
         "names_left_out": sum(len(p.left_out) for _, p in book.pieces),

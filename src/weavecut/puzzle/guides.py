@@ -3,8 +3,8 @@ colour key per side.
 
 A guide shows every piece in its paint with a bold outline (the cut), the front's split lines
 thin and dashed (the parent edge a Z-triplet replaced: "split diagonally, which shows the
-replaced edge", paper section 6; the back has none), and every piece's number inside it in
-black or white, whichever reads better on its paint. The back is mirrored, as the flipped board
+replaced edge", paper section 6; the back has none), and every piece's number inside it, placed
+where it reads (``guide_numbers``). The back is mirrored, as the flipped board
 shows it. Printed on pages, only pages that hold paint are kept; the colour key lists every
 paint with its swatch, name, hex code, the pieces that carry it and the area it covers.
 """
@@ -18,11 +18,11 @@ import numpy as np
 import shapely
 from numpy.typing import NDArray
 
-from ..layout.contrast import BLACK, WHITE, contrast_ratio
+from ..layout.label_checks import PAPER, WORDS
 from ..layout.drawing import (Drawing, Layer, Polylines, Sheet, Style, Text,
                               polygons_from_rings, polygons_from_shapely)
 from ..layout.labels import text_width, wrap
-from ..layout.tiling import tile
+from ..layout.tiling import tile, word_overlap
 from ..numeric import distinct
 from .colouring import UNPAINTED, Colouring
 from .files import Labels, placement
@@ -32,6 +32,7 @@ OUTLINE = Style("#000000", 0.5)
 SPLIT = Style("#000000", 0.2)
 THIN = Style("#555555", 0.25)
 DASH, GAP = 1.5, 1.2  # mm, the split lines' dashes
+NUMBER_STROKE = 0.3  # mm, the numbers' strokes: bolder than the split lines, lighter than outlines
 
 
 def piece_halves(puzzle: Puzzle) -> NDArray[np.object_]:
@@ -159,10 +160,12 @@ def painted(puzzle: Puzzle, colouring: Colouring, side: str) -> Painted:
     return Painted(*out)
 
 
-def guide(puzzle: Puzzle, colouring: Colouring, side: str, numbers: Labels | None = None,
+def guide(puzzle: Puzzle, colouring: Colouring, side: str, numbers=None,
           margin: float = 10.0) -> Drawing:
     """The front (level t-1 weave, two halves per piece) or back (level t weave, mirrored)
-    painting guide at 1:1, registered to the shared cut sheet."""
+    painting guide at 1:1, registered to the shared cut sheet; with ``numbers`` (a
+    ``guide_numbers.GuideNumbers`` of this side) every piece's number on a layer of its own,
+    one word per numbered piece in piece order."""
     width, height, shift = placement(puzzle, margin)
     mirror = side == "back"
 
@@ -190,10 +193,11 @@ def guide(puzzle: Puzzle, colouring: Colouring, side: str, numbers: Labels | Non
     layers.append(Layer("pieces", "guide", (polygons_from_shapely(place(puzzle.pieces),
                                                                   OUTLINE),)))
     if numbers is not None:  # moved with the pieces, but never mirrored: they must read
-        placed = Labels(numbers.texts, numbers.heights, place_xy(numbers.centres),
-                        -numbers.angles if mirror else numbers.angles)
-        layers.append(Layer("numbers", "label", _number_shapes(
-            placed, _number_colours(puzzle, colouring, side))))
+        labels = numbers.labels
+        placed = Labels(labels.texts, labels.heights, place_xy(labels.centres),
+                        -labels.angles if mirror else labels.angles)
+        layers.append(Layer(WORDS, "label", _number_shapes(placed, numbers.inks,
+                                                           place(numbers.plates))))
     layers.append(Layer("registration", "guide", tuple(_registration(width, height, margin))))
     title = f"weave-cut puzzle: {side} painting guide (level {puzzle.levels - (side == 'front')}" \
             " weave)" + (", mirrored" if mirror else "")
@@ -229,24 +233,15 @@ def _dashes(a: NDArray[np.float64], b: NDArray[np.float64], style: Style) -> Pol
                      style)
 
 
-def _number_colours(puzzle: Puzzle, colouring: Colouring, side: str) -> NDArray[np.object_]:
-    """(P,) black or white per piece: the better worst-case contrast on its paint(s)."""
-    fills = colouring.front if side == "front" else colouring.back[:, None]
-    out = np.empty(puzzle.n_pieces, dtype=object)
-    for colour in dict.fromkeys(map(tuple, fills.tolist())):  # distinct paint combinations
-        worst = {ink: min(contrast_ratio(ink, f) for f in colour) for ink in (BLACK, WHITE)}
-        rows = (fills == np.array(colour, dtype=object)).all(axis=1)
-        out[rows] = BLACK if worst[BLACK] >= worst[WHITE] else WHITE
-    return out
-
-
-def _number_shapes(numbers: Labels, inks: NDArray[np.object_]) -> tuple:
+def _number_shapes(numbers: Labels, inks: NDArray[np.object_], plates) -> tuple:
+    """One Polylines per number, in piece order (a word: its digits together), each after its
+    white plate where it has one; none for a piece too small for any (height 0)."""
     shapes = []
-    for ink in (BLACK, WHITE):
-        pick = np.flatnonzero(inks == ink)
-        if len(pick):
-            coords, offsets = numbers.strokes(pick=pick)
-            shapes.append(Polylines(coords, offsets, Style(ink, 0.3)))
+    for k in np.flatnonzero(numbers.heights > 0).tolist():
+        if plates[k] is not None:
+            shapes.append(polygons_from_shapely([plates[k]], Style(None, 0.0, PAPER)))
+        coords, offsets = numbers.strokes(pick=[k])
+        shapes.append(Polylines(coords, offsets, Style(inks[k], NUMBER_STROKE)))
     return tuple(shapes)
 
 
@@ -264,8 +259,9 @@ def _registration(width: float, height: float, margin: float) -> list:
 # --- printed pages ----------------------------------------------------------------------------
 
 def printed(guide_drawing: Drawing, key: Drawing, page: tuple[float, float]) -> Drawing:
-    """The colour key, then the guide tiled on ``page``s, keeping only pages with paint."""
-    tiled = tile(guide_drawing, page)
+    """The colour key, then the guide tiled on ``page``s, keeping only pages with paint; the
+    pages overlap by more than the widest number, which each shows whole or not at all."""
+    tiled = tile(guide_drawing, page, word_overlap(guide_drawing))
     keep = tuple(s for s in tiled.sheets
                  if any(layer.role == "paint" and layer.shapes for layer in s.layers))
     return replace(tiled, sheets=key.sheets + keep)
@@ -279,7 +275,7 @@ def colour_key(puzzle: Puzzle, colouring: Colouring, side: str,
     areas = paint.areas()
     order = [c for c in colouring.names if c in areas] + sorted(set(areas) - set(
         colouring.names))
-    size, line = 3.0, 4.2
+    size, line = 3.0, 4.6  # lines' boxes (cap height, descenders) 0.5 mm apart
     room = page[0] - 2 * margin - 30  # right of the swatches
     rows = []
     for colour in order:

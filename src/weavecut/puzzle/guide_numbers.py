@@ -1,0 +1,177 @@
+"""Where a painting guide prints every piece's number, in which ink, and on what.
+
+A number must be found: its ink reads on whatever lies under it (WCAG contrast at least
+``MIN_CONTRAST``), it stands apart from its neighbours by more than its own digits do, and it
+reads upright. So every number is fitted, up to ``MAX_CAP`` mm, into a part of its piece
+whose paint is known: the piece less its ring hexagon (all its paints under the number), on
+the front one half (one paint), a ring piece's bare hexagon (natural wood, printed white), or
+the whole ring piece (its paints and the white hexagon).
+The largest of these on which black or white reaches the contrast wins, level where a level
+number is nearly as large. Where no ink reads (two paints of which one wants black and the
+other white, or a mid-tone paint) the number sits on a small white plate in black ink. A
+number that fits nowhere at ``MIN_CAP`` is printed smaller, down to ``LEAST``; a piece too
+small even for that is left without a number. Both are named in a warning, never silently.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import shapely
+from numpy.typing import NDArray
+
+from ..layout.contrast import BLACK, MIN_CONTRAST, WHITE, contrast_ratio
+from ..layout.labels import MIN_CAP
+from ..layout.strokefont import fit_labels, ink_box
+from ..numeric import turn
+from .colouring import UNPAINTED, Colouring
+from .files import Labels, _listed
+from .guides import NUMBER_STROKE, piece_halves
+from .pieces import Puzzle
+
+MAX_CAP = 6.0  # mm, the largest number on a guide
+WORD_SPAN = 9.5  # mm, the most a number spans: under the 10 mm by which printed pages overlap,
+# so each is whole on one page (layout.tiling keeps a word whole or leaves it to the next page)
+LEAST = 1.5  # mm, the smallest: a piece without room for it is named, not numbered
+MARGIN = 0.6  # mm from a number's box to its piece's edge
+PAD = 0.25  # of the cap height, each side of a number's ink: its room from the next number
+TIGHT_CAP = 3.0  # mm, the largest number fitted without PAD: the two MARGINs between it and
+# the next number (less the strokes) are then still wider than its digits' spacing (2/7 cap)
+PLATE = 0.25  # mm each side of a number's ink box: its plate (twice MARGIN less this keeps two
+# plates in neighbouring pieces MIN_GAP apart)
+LEVEL_SHARE = 0.8  # a level number this large against the largest turned one goes level
+PAPER = UNPAINTED  # what a printed guide shows where nothing is painted
+
+
+@dataclass(frozen=True, eq=False)
+class GuideNumbers:
+    """Every piece's number on one side's guide (in the puzzle's coordinates, unmirrored).
+
+    ``inks`` (P,) black or white; ``plates`` (P,) the white plate under a number (None for
+    none); a height of 0: no number fits, even at ``LEAST``."""
+
+    labels: Labels
+    inks: NDArray[np.object_]
+    plates: NDArray[np.object_]
+
+
+def _ink(fills: tuple[str, ...]) -> tuple[str, float]:
+    """Black or white, whichever reads better on all of ``fills``, and its least contrast."""
+    worst = {ink: min(contrast_ratio(ink, f) for f in fills) for ink in (BLACK, WHITE)}
+    ink = BLACK if worst[BLACK] >= worst[WHITE] else WHITE
+    return ink, worst[ink]
+
+
+def _paper(colour: str) -> str:
+    return PAPER if colour == UNPAINTED else colour
+
+
+def _candidates(puzzle: Puzzle, colouring: Colouring, side: str) -> list[tuple]:
+    """[(regions (P,), fills per piece, pad)]: the parts of every piece a number may fill, with
+    the paints it then lies on; the whole piece less its hexagon first."""
+    hexes = puzzle.hexagons
+    has = hexes != None  # noqa: E711
+    base = puzzle.pieces.copy()
+    base[has] = shapely.difference(base[has], hexes[has].astype(object))
+    paints = (colouring.front if side == "front" else colouring.back[:, None]).tolist()
+    painted = [tuple(dict.fromkeys(map(_paper, f))) for f in paints]
+    out = [(base, painted, PAD)]
+    if side == "front":
+        halves = piece_halves(puzzle)
+        for j in (0, 1):
+            part = shapely.intersection(halves[:, j], base)
+            part = np.array([max(shapely.get_parts(g), key=shapely.area, default=g)
+                             for g in part.tolist()], dtype=object)  # its largest piece
+            out.append((part, [(_paper(f[j]),) for f in paints], PAD))
+    if has.any():  # a ring piece: on its bare hexagon, or across hexagon and paint
+        hexagon = np.where(has, hexes, None)
+        out.append((hexagon, [(PAPER,)] * len(base), PAD))
+        out.append((puzzle.pieces, [tuple(dict.fromkeys((*p, PAPER))) if h else p
+                                    for p, h in zip(painted, has.tolist())], PAD))
+    return out
+
+
+def guide_numbers(puzzle: Puzzle, colouring: Colouring, side: str) -> GuideNumbers:
+    """Every piece's number for ``side``'s guide: the largest that reads, where it reads."""
+    texts = [str(k + 1) for k in range(puzzle.n_pieces)]
+    n = len(texts)
+    candidates = _candidates(puzzle, colouring, side)
+    # every candidate with room round the number, and without
+    fits = [(_fit(r, texts, pad), [_ink(f) for f in fills], pad)
+            for r, fills, pad in candidates + [(r, f, 0.0) for r, f, _ in candidates]]
+    best_h, centres, angles = np.zeros(n), np.zeros((n, 2)), np.zeros(n)
+    inks = np.full(n, BLACK, dtype=object)
+    plated = np.zeros(n, dtype=bool)
+    # at MIN_CAP if anywhere, else smaller; on a plate before smaller
+    for floor in (MIN_CAP, LEAST):
+        todo = best_h == 0
+        for (h, c, a), read, pad in fits:
+            ok = todo & np.array([r[1] >= MIN_CONTRAST for r in read]) & (h >= floor)
+            # the first that reads wins, a larger one with room round it over it
+            better = ok & ((best_h == 0) | ((h > best_h + 1e-9) & (pad > 0)))
+            best_h[better], centres[better], angles[better] = h[better], c[better], a[better]
+            inks[better] = np.array([r[0] for r in read], dtype=object)[better]
+        # no part reads: where the number is largest, with room round it if it can, on a
+        # plate, in black
+        todo = best_h == 0
+        for want in (PAD, 0.0):
+            for (h, c, a), _, pad in fits:
+                better = todo & (pad == want) & (h >= floor) & (h > best_h + 1e-9)
+                best_h[better], centres[better], angles[better] = h[better], c[better], a[better]
+                plated |= better
+            todo &= best_h == 0
+    plates = np.full(n, None, dtype=object)
+    if plated.any():
+        plates[plated] = _plates([texts[k] for k in np.flatnonzero(plated).tolist()],
+                                 best_h[plated], centres[plated], angles[plated])
+    return GuideNumbers(Labels(tuple(texts), best_h, centres, angles), inks, plates)
+
+
+def _fit(regions, texts, pad: float) -> tuple:
+    """:func:`fit_labels` of the numbers into ``regions`` (none where a region is None):
+    level where a level number is nearly as large and at least ``MIN_CAP``."""
+    h, c, a = np.zeros(len(texts)), np.zeros((len(texts), 2)), np.zeros(len(texts))
+    some = np.flatnonzero(regions != None)  # noqa: E711
+    if len(some):
+        chosen = [texts[k] for k in some.tolist()]
+        args = (regions[some].astype(object), chosen, MARGIN,
+                np.minimum(MAX_CAP if pad else TIGHT_CAP, largest_caps(chosen)), pad)
+        h[some], c[some], a[some] = fit_labels(*args, LEVEL_SHARE, MIN_CAP)
+    return h, c, a
+
+
+def largest_caps(texts) -> NDArray[np.float64]:
+    """(n,) the largest cap height at which every text, turned any way, spans at most
+    ``WORD_SPAN`` mm across and up (its box's diagonal, with its strokes)."""
+    box = np.array([ink_box(t) for t in texts], dtype=float).reshape(-1, 4)
+    diagonal = np.hypot(box[:, 2] - box[:, 0], box[:, 3] - box[:, 1])
+    return (WORD_SPAN - NUMBER_STROKE) / np.maximum(diagonal, 1e-9)
+
+
+def _plates(texts, heights, centres, angles) -> NDArray[np.object_]:
+    """The white plates under numbers: their ink boxes widened by ``PLATE`` (inside the
+    ``MARGIN`` a number keeps from its piece's edge)."""
+    box = np.array([ink_box(t) for t in texts], dtype=float)
+    hx = (box[:, 2] - box[:, 0]) / 2 * heights + PLATE
+    hy = (box[:, 3] - box[:, 1]) / 2 * heights + PLATE
+    corners = np.stack([np.stack([-hx, -hy], -1), np.stack([hx, -hy], -1),
+                        np.stack([hx, hy], -1), np.stack([-hx, hy], -1)], axis=1)
+    return shapely.polygons(turn(corners, angles[:, None], centres[:, None]))
+
+
+def warnings(numbers: GuideNumbers, side: str) -> list[str]:
+    """Lines naming the pieces whose number on ``side``'s guide is smaller than ``MIN_CAP``,
+    and those too small for any (they are left without one: the colour key lists them)."""
+    h = numbers.labels.heights
+    small, none = np.flatnonzero((h > 0) & (h < MIN_CAP)), np.flatnonzero(h == 0)
+    out = []
+    if len(small):
+        out.append(f"pieces {_listed(small)} are too small for {MIN_CAP:g} mm numbers on the "
+                   f"{side} painting guide; theirs are printed smaller (down to "
+                   f"{h[small].min():.1f} mm)")
+    if len(none):
+        out.append(f"pieces {_listed(none)} are too small for {LEAST:g} mm numbers on the "
+                   f"{side} painting guide and are printed without one (the colour key lists "
+                   "them by their paint)")
+    return out
