@@ -47,12 +47,16 @@ def filled(sheet: Sheet) -> tuple[list, list[str]]:
     return polys, fills
 
 
+QUAD_SEGS = 4  # a round end within 2 % of its radius (a hundredth of a millimetre), and gaps
+# measured four times faster than at shapely's default 8
+
+
 def stroke_outline(shape: Polylines) -> shapely.Geometry:
     """The area the strokes of ``shape`` cover at their width (round caps and joins)."""
     lines = shapely.linestrings(shape.coords, indices=np.repeat(
         np.arange(len(shape.offsets) - 1), np.diff(shape.offsets)))
     return shapely.buffer(shapely.multilinestrings(lines),
-                          max(shape.style.stroke_width, 1e-3) / 2)
+                          max(shape.style.stroke_width, 1e-3) / 2, quad_segs=QUAD_SEGS)
 
 
 def labels(sheet: Sheet) -> list[tuple[shapely.Geometry, str, shapely.Geometry]]:
