@@ -19,6 +19,7 @@ from ..analysis import fractal as fr
 from ..analysis import levels as lv
 from .common import (
     CONTEXT,
+    input_title,
     force_option,
     input_argument,
     load_mesh,
@@ -250,7 +251,7 @@ def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonco
         return
     lv.check_memory(mesh, levels, grid, windowed=window is not None)
     image, grid = lv.level_image(mesh, levels, size, window, **options)
-    title = f"{input_mesh}: first level per pixel, to level {levels}"
+    title = f"{input_title(input_mesh)}: first level per pixel, to level {levels}"
     write_png(lv.png_bytes(lv.colour(image)), output, title)
     hit = image != lv.UNSET
     if as_json:
@@ -307,7 +308,7 @@ def convexity_command(input_mesh, levels, no_smooth, chirality, centre, allow_no
     h = _hierarchy(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex)
     rows = cv.convexity_report(h)
     if output:
-        title = f"{input_mesh}, level {levels}: non-convex faces"
+        title = f"{input_title(input_mesh)}, level {levels}: non-convex faces"
         drawing = figures.convexity_drawing(h[-1].mesh, title=title)
         write_drawing(drawing, output, page)
     if as_json:

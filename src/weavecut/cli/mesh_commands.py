@@ -14,6 +14,7 @@ from ..analysis.stats import level_stats, surface_stats
 from ..subdivision import SCHEMES, snub, subdivide
 from .common import (
     CONTEXT,
+    input_title,
     Choice,
     Length,
     allow_nonconvex_option,
@@ -151,7 +152,7 @@ def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
     if suffix in MESH_SUFFIXES:
         write_mesh(hierarchy[-1].mesh, output, provenance())
         return
-    title = f"{input_mesh}, {scheme} level {levels}"
+    title = f"{input_title(input_mesh)}, {scheme} level {levels}"
     drawing = mesh_drawing([lv.mesh for lv in hierarchy], size, title=title,
                            earlier=earlier_levels)
     write_drawing(drawing, output, page)

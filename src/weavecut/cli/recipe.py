@@ -89,6 +89,8 @@ class Job:
     reads: tuple[Path, ...]
     paths: dict[str, str]  # parameter name -> every path it writes, as the user sees it
     folder: bool = False  # the output may be a folder (its option takes one)
+    named: tuple[tuple[str, str], ...] = ()  # parameter name -> a file it reads, as the recipe
+    # names it (the value holds the absolute path)
 
     def command_line(self) -> str:
         """The job as a shell command (for --dry-run and progress lines)."""
@@ -96,7 +98,7 @@ class Job:
         for p in self.command.params:
             if p.name not in self.values:
                 continue
-            value = self.values[p.name]
+            value = dict(self.named).get(p.name, self.values[p.name])
             if isinstance(p, click.Argument):
                 words.append(str(value))
             elif p.name in self.paths:
@@ -178,10 +180,14 @@ class Planner:
             raw[norm] = value
         raw.update({k: v for k, v in overrides.items() if k in options and k != "output"})
         values, reads = {}, []
+        named = {k: v for k, v in raw.items() if isinstance(v, str) and k in options
+                 and (v.endswith(".toml") or isinstance(options[k].type, click.Path))}
+        named = {options[k].name: v for k, v in named.items() if k != "output"}
         if argument is not None and "input" in raw:
             value = raw.pop("input")
             if not isinstance(value, str):
                 raise RecipeError(f"{where}: input: expected a string")
+            named[argument.name] = value
             if argument.name == "input_mesh":
                 value = self.mesh_input(value, where)
                 reads += [Path(value)] if Path(value).is_absolute() else []
@@ -205,7 +211,8 @@ class Planner:
                 raise RecipeError(f"{where}: {k}: {message.replace(str(targets[k]), shown[k])}")
         folder = bool(paths) and is_folder(options[first], values)
         job = Job(where, f"job {n} ({name})", command, values, targets.get(first),
-                  shown.get(first), prints, tuple(reads), paths, folder)
+                  shown.get(first), prints, tuple(reads), paths, folder,
+                  tuple(sorted((k, v) for k, v in named.items() if k not in paths)))
         self.convert(job)
         return job
 
