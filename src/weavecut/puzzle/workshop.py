@@ -236,12 +236,13 @@ def readme(info: dict, page: str) -> str:
                      "outline last, so nothing shifts before its inner cuts are done.")
     if "separate" in modes:
         n = modes["separate"]["sheets"]
-        laser.append(_fit(f"  puzzle-separate-sheet-1..{n}"
+        laser.append(_fit(f"  puzzle-separate-sheet-1{f'..{n}' if n > 1 else ''}"
                           f"{_suffixes(files, 'puzzle-separate-sheet-1')} - pieces and frame "
-                          f"nested on {n} sheet(s),")
+                          f"nested on {counted(n, 'sheet')} (pieces in the frame's hole "
+                          "too),")
                      + "\n    each outline offset by half the kerf so the pieces fit "
-                     "snugly. Layers in order:\n    engrave-numbers (engrave), cut-1-inner, "
-                     "cut-2-outer (cut).")
+                     "snugly. Layers in order:\n    engrave-numbers (engrave), cut-1-inner "
+                     "(the pieces, then the frame's hole), cut-2-outer (cut).")
     if any(name.endswith(".lbrn2") for name in files):
         laser.append("  The .lbrn2 files are LightBurn projects (File > Open) with these layers, "
                      "in this order,\n    each with the material's speed, power and passes; "
@@ -317,6 +318,6 @@ def _suffixes(files: list[str], stem: str) -> str:
 def _modes_text(info: dict) -> str:
     lines = []
     for mode, m in info["modes"].items():
-        lines.append(f"{mode.capitalize()} cut: {counted(m['sheets'], 'sheet')}, {m['cut_length_m']:.1f} m "
-                     f"of cutting, about {m['time_min']:g} min at {info['speed_mm_s']:g} mm/s.")
+        lines.append(f"{mode.capitalize()} cut: {counted(m['sheets'], 'sheet')}, "
+                     f"{m['cut_length_m']:.1f} m of cutting, about {m['time_min']:g} min at {info['speed_mm_s']:g} mm/s.")
     return "\n".join(lines) + "\n"
