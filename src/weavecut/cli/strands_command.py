@@ -154,16 +154,18 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
         return _laser_card(weaves, palette_name or preset["palette"], material, laser_name,
                            formats, page,
                            margin, tile_size or 20.0, turn, title, output, as_json)
-    limit, machine = None, None
+    limit, machine, words = None, None, {}
     if cutter_name is not None:
-        from ..papermodel.printcut import cutter
+        from ..papermodel.printcut import cut_file_note, cutter, cutter_words
 
         machine = cutter(cutter_name)
         machine.check(*page)
         margin, limit = max(margin, machine.margin), machine.limit(*page)
+        words = {"words": cutter_words(machine, Path(output)),
+                 "page_note": cut_file_note(Path(output))}
     try:
         book = strand_book(weaves, pal, page, tile_size or 20.0, margin, turn, title=title,
-                           layout=layout, limit=limit)
+                           layout=layout, limit=limit, **words)
     except ValueError as exc:
         raise click.ClickException(str(exc)) from exc
     for warning in book.warnings:

@@ -60,7 +60,7 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
              f"{size_mm[0] / 10:.1f} x {size_mm[1] / 10:.1f} cm, octagons {tile_size:.1f} mm "
              f"across.{words.scale}"]
     if words.sources is not None:
-        lines.append(words.sources)
+        lines.append(words.sources(book) if callable(words.sources) else words.sources)
     elif book.layout == "module" and k > 1:
         turns = "; ".join(f"print {j + 1} = copy {copy_letter(j)}: turned by {j * 360 / k:g} deg"
                           for j in range(k))

@@ -183,7 +183,8 @@ def strip_set(weaves: list[Weave], pal: Palette, area: PageArea, tile_size: floa
 def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (210.0, 297.0),
                 tile_size: float = 20.0, margin: float = 10.0, turn: float = 0.0,
                 title: str = "weave-cut strands", layout: str = "mixed",
-                limit: tuple[float, float, float, float] | None = None) -> StrandBook:
+                limit: tuple[float, float, float, float] | None = None,
+                words: Words = PRINTED, page_note=None) -> StrandBook:
     """Lay out every strand of ``weaves[-1]`` as printable strips.
 
     Parameters
@@ -201,6 +202,10 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         direction)
     limit : (x0, y0, x1, y1) mm, the part of the page strips may use besides the margins (the
         area a print-and-cut machine reads), or None
+    words : what page 1 and the weaving page say the maker holds (print and cut:
+        ``printcut.cutter_words``)
+    page_note : a function of a strip page's number giving a note put before its list of strips
+        (print and cut: the page's cut file), or None
 
     Raises
     ------
@@ -228,7 +233,7 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         """The book laid out with ``own`` pages of unnamed crossings after the weaving page."""
         first = 3 + own  # pages 1, 2: assembly and weaving
         placed, sheets = strip_sheets(pieces, kinds, area, title, subtitle, colours, first,
-                                      places)
+                                      places, page_note)
         where = page_span(range(3, first) if own else [1])
         names = "name is" if left_out == 1 else "names are"
         strips = (f"each print's strips ({len(crossings)} on the model)" if layout == "module"
@@ -248,7 +253,7 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         return book, total, 3
 
     book, extra = front_pages(weave, plan, colours, area, crossings, book_for, tile_size, turn,
-                              title)
+                              title, words)
     return replace(book, drawing=Drawing((*extra, *laid["sheets"]), title))
 
 
@@ -278,10 +283,12 @@ def front_pages(weave: Weave, plan: ModulePlan, colours, area: PageArea, crossin
 
 
 def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitle, colours,
-                 first: int, places=None) -> tuple[tuple[tuple[int, Strip], ...], list[Sheet]]:
+                 first: int, places=None, note=None
+                 ) -> tuple[tuple[tuple[int, Strip], ...], list[Sheet]]:
     """(placed, sheets): ``pieces`` packed onto pages numbered from ``first`` on (or placed at
     ``places``, the packer's answer), each page with its strips, title, ``subtitle(names of
-    its strips)``, scale bar and legend; placed holds (page number, piece on the page)."""
+    its strips)`` (after ``note(page number)`` if given), scale bar and legend; placed holds
+    (page number, piece on the page)."""
     x0, y0, x1, y1 = area.box
     if places is None:
         places = pack([p.cut for p in pieces], x1 - x0, y1 - y0, GAP, kinds=kinds)
@@ -295,7 +302,8 @@ def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitl
         on_page = [p for k, p in placed if k == n]
         names_here = strip_runs({p.label.split(" ")[0] for p in on_page})
         layers = strip_layers(on_page) + page_layers(
-            area, title, subtitle(names_here), n, total, colours[on_page[0].strand],
+            area, title, (f"{note(n)} " if note else "") + subtitle(names_here), n, total,
+            colours[on_page[0].strand],
             glue=any(p.glue is not None for p in on_page),
             folds=any(len(p.folds) for p in on_page),
             tabs=any(p.flap is not None for p in on_page))
