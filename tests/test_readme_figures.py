@@ -73,10 +73,10 @@ CLAIMS = [
           lambda j: {"pages": str(j["pages"]["total"]), "strands": str(j["strands"]),
                      "pieces": str(j["pieces"])}),
     Claim("star paper model",
-          r"makes the paper star \((?P<strips>\d+) strips on (?P<strip_pages>one) A4 strip page, "
+          r"makes the paper star \((?P<strips>\d+) strips on (?P<strip_pages>\w+) A4 strip pages?, "
           r"(?P<pages>\w+) pages in all, about\s+(?P<w>\d+) × (?P<h>\d+) cm\)",
           ("strands", str(ROOT / "examples" / "star.svg"), "--cell", "10mm", "--levels", "1",
-           "--tile-size", "19mm", "-o", "star.pdf"),
+           "--tile-size", "21mm", "-o", "star.pdf"),
           lambda j: {"strips": str(j["module_strips"]),
                      "strip_pages": NUMBER_WORDS[j["pages"]["strip"]],
                      "pages": NUMBER_WORDS[j["pages"]["total"]],

@@ -181,7 +181,8 @@ def stats_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
     if hierarchy[0].mesh.dim == 3:
         rows = [{**r, **more} for r, more in zip(rows, surface_stats(hierarchy))]
     if as_json:
-        click.echo(json.dumps({"input": input_mesh, "levels": rows}, indent=2, allow_nan=False))
+        click.echo(json.dumps({"input": input_title(input_mesh),
+                               "levels": rows}, indent=2, allow_nan=False))
         return
     click.echo(f"{input_mesh} ({scheme})")
     click.echo(f"{'level':>5} {'V':>10} {'E':>10} {'F':>10} {'non-convex':>10} "

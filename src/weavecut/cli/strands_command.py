@@ -177,7 +177,7 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
         export.write(book.drawing.with_metadata(**provenance()), output)
     plan = book.plan
     if as_json:
-        click.echo(json.dumps({"input": input_mesh, "levels": levels, "output": output,
+        click.echo(json.dumps({"input": input_title(input_mesh), "levels": levels, "output": output,
                                "layout": layout, **report(book),
                                "rotation_order": plan.k, "copies": plan.k,
                                "module_strips": int(plan.copies.shape[1]),
@@ -234,7 +234,8 @@ def ball(mesh, input_mesh, levels, page, tile_size, diameter, margin, pal, chira
         click.echo(f"weave-cut: warning: {warning}", err=True)
     export.write(book.drawing.with_metadata(**provenance()), output)
     if as_json:
-        click.echo(json.dumps({"input": input_mesh, "levels": levels, "project": project,
+        click.echo(json.dumps({"input": input_title(input_mesh),
+                               "levels": levels, "project": project,
                                "output": output, **report(book), **book.flattening(),
                                "strands": int(weave.n_strands),
                                "strand_lengths_mm": np.round(weave.strand_lengths()
@@ -312,6 +313,7 @@ def _laser_card(weaves, pal_name: str, material: str | None, laser_name: str, fo
                                "engraved_dots": sum(len(d) for d in cut.dots),
                                **{k: v for k, v in report(kit.book).items() if k in (
                                    "smallest_text_mm", "smallest_contrast", "label_violations",
+                                   "slimmest_piece_mm",
                                    "names_left_out")}, "warnings": list(kit.warnings),
                                "smallest_label_mm": round(cut.smallest_label, 2),
                                "cut_minutes": round(minutes, 1), "files": files,

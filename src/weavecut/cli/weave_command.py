@@ -107,7 +107,7 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
                                    "--face-split or another scheme")
     if as_json:
         first = levels - len(weaves) + 1
-        click.echo(json.dumps({"input": input_mesh, "scheme": scheme, **nonconvex, "levels": [
+        click.echo(json.dumps({"input": input_title(input_mesh), "scheme": scheme, **nonconvex, "levels": [
             {"level": first + i, **s} for i, s in enumerate(weave_summaries(weaves))]},
             indent=2, allow_nan=False))
     if output and surface:

@@ -29,7 +29,8 @@ from .packing import pack
 from .pages import GAP, PageArea, page_layers, page_span, split_strip, strip_layers
 from .modules import ModulePlan, book_colours, plan_modules
 from .strip_labels import label_strips
-from .strips import Strip, build_copies, build_strips, moved_strips, octagon_size, strip_width
+from .strips import (MIN_PIECE, Strip, build_copies, build_strips, holds, moved_strips,
+                     octagon_size, strip_width)
 from .wording import PRINTED, Words, strip_runs
 
 ON_COVER = 24  # at most this many unnamed crossings are tried on page 1
@@ -160,7 +161,8 @@ def strip_set(weaves: list[Weave], pal: Palette, area: PageArea, tile_size: floa
 
     Raises
     ------
-    SizeError when strips would be narrower than 8 mm or a label smaller than 2.5 mm
+    SizeError when strips would be narrower than 8 mm, a label smaller than 2.5 mm or a part of
+    a strip narrower than ``MIN_PIECE`` (see :func:`.strips.holds`)
     """
     if layout not in LAYOUTS:
         raise ValueError(f"layout must be one of {LAYOUTS}, got {layout!r}")
@@ -176,6 +178,12 @@ def strip_set(weaves: list[Weave], pal: Palette, area: PageArea, tile_size: floa
         need = smallest_tile_size(weave, plan, colours, tile_size, layout, area)
         raise SizeError(f"some labels would be {small:.1f} mm tall at --tile-size {tile_size:.1f}mm"
                         f"; labels need {MIN_CAP:g} mm: {_use(weave, need)}")
+    slim = ~holds([p.cut for p in pieces], MIN_PIECE)
+    if slim.any():  # a neck or sliver no filled notch widens enough
+        worst = pieces[int(np.flatnonzero(slim)[0])]
+        need = smallest_tile_size(weave, plan, colours, tile_size, layout, area)
+        raise SizeError(f"strip {worst.label} would have a part narrower than {MIN_PIECE:g} mm, "
+                        f"too thin to cut, at --tile-size {tile_size:.1f}mm: {_use(weave, need)}")
     return StripSet(plan, tuple(colours), pieces, kinds, tile_size / octagon_size(weave), width,
                     warnings)
 
@@ -350,9 +358,11 @@ def _reads(pieces: list[Strip]) -> bool:
 def smallest_tile_size(weave: Weave, plan: ModulePlan, colours, start: float, layout: str,
                        area: PageArea) -> float:
     """The smallest tile size, ``start`` or a whole mm above it, at which every label reaches
-    ``MIN_CAP``: grown by a quarter until it works, then bisected."""
+    ``MIN_CAP`` and every strip holds ``MIN_PIECE``: grown by a quarter until it works, then
+    bisected."""
     def reads(t: float) -> bool:
-        return _reads(labelled_pieces(weave, plan, colours, t, layout, area)[0])
+        pieces = labelled_pieces(weave, plan, colours, t, layout, area)[0]
+        return _reads(pieces) and bool(holds([p.cut for p in pieces], MIN_PIECE).all())
 
     if reads(start):
         return start
