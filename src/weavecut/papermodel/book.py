@@ -368,6 +368,10 @@ def smallest_tile_size(weave: Weave, plan: ModulePlan, colours, start: float, la
         return start
     low, high = math.floor(start), math.ceil(start * 1.25)
     while not reads(high):  # a few sizes
+        if high > 8 * start:  # a sharp corner or a sliver fails at any size
+            raise SizeError(f"no --tile-size up to {high}mm makes every label "
+                            f"{MIN_CAP:g} mm tall and every part of a strip {MIN_PIECE:g} mm "
+                            "wide; try another --cell or input")
         low, high = high, math.ceil(high * 1.25)
     while high - low > 1:
         mid = (low + high) // 2

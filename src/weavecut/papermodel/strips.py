@@ -26,8 +26,9 @@ from ..layout.weave_figure import tile_rings
 
 LIGHT = 0.22  # share of the over strand's colour in an under-crossing tile (rest white)
 MIN_PIECE = 3.0  # mm: the narrowest part of a paper strip that scissors cut without it tearing
-REACH = 2.0  # a part narrower than that may reach out this many times its width (a sharp
-# corner) but no more (a sliver)
+SLIVER = 6.0  # mm: a part narrower than a width may stick out this far beyond the parts that
+# are as wide (a sharp corner: 2.3 mm for the star's 35-degree tips at 3 mm), no farther (a
+# sliver); a fixed length, so that a wider disc never passes what a narrower one fails
 
 
 def tint(colour: str, share: float = LIGHT) -> str:
@@ -259,7 +260,7 @@ def opened(polygons, width: float) -> NDArray[np.object_]:
 def holds(polygons, width: float) -> NDArray[np.bool_]:
     """(N,) True for every polygon that is no thinner than ``width`` anywhere it matters to a
     pair of scissors: what a disc ``width`` across reaches inside it is one piece (no neck),
-    and no corner reaches farther than ``REACH`` x ``width`` beyond it (no sliver)."""
+    and no corner reaches farther than ``SLIVER`` beyond it (no sliver)."""
     polygons = np.asarray(polygons, dtype=object)
     core = opened(polygons, width)
     one = (shapely.get_num_geometries(core) == 1) & ~shapely.is_empty(core)
@@ -267,7 +268,7 @@ def holds(polygons, width: float) -> NDArray[np.bool_]:
     far = shapely.distance(shapely.points(coords), core[owner])
     reach = np.zeros(len(polygons))
     np.maximum.at(reach, owner, np.nan_to_num(far, nan=np.inf))
-    return one & (reach <= REACH * width)
+    return one & (reach <= SLIVER)
 
 
 def slimmest(polygons, step: float = 0.05, largest: float = 50.0) -> NDArray[np.float64]:
@@ -285,7 +286,7 @@ def slimmest(polygons, step: float = 0.05, largest: float = 50.0) -> NDArray[np.
 def thin_parts(outline: shapely.Polygon, width: float) -> list:
     """The parts of ``outline`` that make it fail :func:`holds`: of what a disc ``width``
     across does not reach, the bits that join two reached parts (necks) and those reaching
-    farther than ``REACH`` x ``width`` out of them (slivers); not the corners' small chips."""
+    farther than ``SLIVER`` out of them (slivers); not the corners' small chips."""
     core = opened([outline], width)[0]
     cores = list(shapely.get_parts(core))
     out = []
@@ -294,18 +295,20 @@ def thin_parts(outline: shapely.Polygon, width: float) -> list:
             continue
         touching = sum(shapely.distance(c, bit) < 1e-6 * width for c in cores)
         far = shapely.distance(shapely.points(shapely.get_coordinates(bit)), core).max()
-        if touching > 1 or not far <= REACH * width:
+        if touching > 1 or not far <= SLIVER:
             out.append(bit)
     return out
 
 
-def widened(outline: shapely.Polygon, tiles: NDArray[np.object_], width: float = MIN_PIECE
+def widened(outline: shapely.Polygon, tiles: NDArray[np.object_], width: float | None = None
             ) -> tuple[shapely.Polygon, NDArray[np.object_]]:
     """(outline, tiles) of a strip whose necks narrower than ``width`` are filled out: the
     notches beside each :func:`thin_parts` are closed (a round closing of the outline, as small
     as does it; only the notches within ``width`` of a thin part), each filled notch printed
     as the tile it shares the longest edge with. Unchanged when the strip already
-    :func:`holds` (and when no closing up to twice ``width`` helps: the caller refuses it)."""
+    :func:`holds` (and when no closing up to twice ``width`` helps: the caller refuses it).
+    ``width`` defaults to ``MIN_PIECE``."""
+    width = MIN_PIECE if width is None else width
     if holds([outline], width)[0]:
         return outline, tiles
     thin = shapely.buffer(shapely.union_all(thin_parts(outline, width)), width)
