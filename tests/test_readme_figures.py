@@ -91,6 +91,15 @@ def kit_row(command: str, unit: str, key: Callable[[dict], int]) -> Claim:
                  args, lambda j: {"n": str(key(j))})
 
 
+def cutter_figures(j: dict) -> dict[str, str]:
+    """Print and cut: strip pages, all pages, metres of cuts, the smallest feature."""
+    return {"strip": str(j["pages"]["strip"]), "total": str(j["pages"]["total"]),
+            "m": f"{j['cutter']['cut_length_mm'] / 1000:.1f}",
+            "f": f"{j['cutter']['min_feature_mm']:.2f}"}
+
+
+SQUARE_4 = ("strands", "square-grid", "--size", "27cm", "--palette", "maritime-4")
+FLOWER_OKABE = ("strands", "pentagon-flower", "--size", "23cm", "--palette", "okabe-ito")
 BALL = ("strands", "dodecahedron", "--levels", "1", "--project", "sphere", "--size", "12cm")
 HEART = str(ROOT / "templates" / "recipes" / "heart.svg")
 CLAIMS = [
@@ -142,6 +151,45 @@ ROWS = [
                                      r"birch\)", r"300 × 278.4 mm"),
           ("puzzle", HEART, "--cell", "39mm", "--levels", "2", "--size", "30cm", "--frame",
            "15mm", "--material", "birch-plywood-3mm", "--numbers", "-o", "pz"), puzzle_row),
+    Claim("slimmest piece: star", r"\(`slimmest_piece_mm`\): the star (?P<s>[\d.]+) mm",
+          ("strands", str(ROOT / "examples" / "star.svg"), "--cell", "10mm", "--levels", "1",
+           "--tile-size", "21mm", "-o", "star.pdf"),
+          lambda j: {"s": f"{j['slimmest_piece_mm']:g}"}),
+    Claim("slimmest piece: pentagon flower",
+          r"the pentagon flower at 23 cm\s+(?P<s>[\d.]+) mm, the square grid",
+          ("strands", "pentagon-flower", "--size", "23cm", "-o", "pf.pdf"),
+          lambda j: {"s": f"{j['slimmest_piece_mm']:g}"}),
+    Claim("slimmest piece: square grid", r"the square grid at 27 cm (?P<s>[\d.]+) mm\.",
+          ("strands", "square-grid", "--size", "27cm", "-o", "sq.pdf"),
+          lambda j: {"s": f"{j['slimmest_piece_mm']:g}"}),
+    Claim("cut by machine: square grid, Silhouette",
+          r"for a Silhouette, (?P<strip>\d+)\s+strip pages \((?P<total>\d+) with the assembly "
+          r"and weaving pages\), on Letter for a Cricut \d+; (?P<m>[\d.]+) m of cuts,\s+"
+          r"smallest feature (?P<f>[\d.]+) mm\. From card",
+          (*SQUARE_4, "--cutter", "silhouette", "-o", "sq.pdf"), cutter_figures),
+    Claim("cut by machine: square grid, Cricut", r"on Letter for a Cricut (?P<strip>\d+);",
+          (*SQUARE_4, "--cutter", "cricut", "--page", "letter", "-o", "sq.pdf"),
+          lambda j: {"strip": str(j["pages"]["strip"])}),
+    Claim("cut by machine: square grid, card",
+          r"From card: (?P<sheets>\d+) A4 sheets in (?P<colours>\d+) colours, (?P<m>[\d.]+) m "
+          r"of cuts \(recipe\s+`square-grid-cut-by-machine`\)",
+          (*SQUARE_4, "--laser-card", "--material", "card-300gsm", "-o", "card"),
+          lambda j: {"sheets": str(j["sheets"]), "colours": str(j["card_colours"]),
+                     "m": f"{j['cut_length_mm'] / 1000:.1f}"}),
+    Claim("cut by machine: pentagon flower, Silhouette",
+          r"its (?P<strands>\d+) strips: (?P<strip>\d+) strip pages for a Silhouette, "
+          r"(?P<m>[\d.]+) m of cuts,\s+smallest feature (?P<f>[\d.]+) mm \(a label tab's"
+          r"[\s\S]*?The (?P<tabs>\d+) label tabs",
+          (*FLOWER_OKABE, "--cutter", "silhouette", "-o", "pf.pdf"),
+          lambda j: {"strands": str(j["strands"]), "tabs": str(j["label_tabs"]),
+                     **{k: v for k, v in cutter_figures(j).items() if k != "total"}}),
+    Claim("cut by machine: pentagon flower, card",
+          r"from card, one 12 x 12 in\s+sheet per colour, (?P<m>[\d.]+) m, smallest engraved "
+          r"label (?P<label>[\d.]+) mm, (?P<dots>\d+) engraved dots, and (?P<pages>\d+) A4 pages",
+          (*FLOWER_OKABE, "--laser-card", "--material", "card-300gsm-12in", "-o", "card"),
+          lambda j: {"m": f"{j['cut_length_mm'] / 1000:.1f}",
+                     "label": f"{j['smallest_label_mm']:.1f}", "dots": str(j["engraved_dots"]),
+                     "pages": str(j["instruction_pages"])}),
     kit_row("strands pentagon-flower --size 23cm -o pf.pdf", "page",
             lambda j: j["pages"]["total"]),
     kit_row("strands square-grid --size 27cm --laser-card -o card", "sheet",
