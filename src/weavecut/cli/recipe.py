@@ -89,25 +89,18 @@ class Job:
     reads: tuple[Path, ...]
     paths: dict[str, str]  # parameter name -> every path it writes, as the user sees it
     folder: bool = False  # the output may be a folder (its option takes one)
-    named: tuple[tuple[str, str], ...] = ()  # parameter name -> a file it reads, as the recipe
-    # names it (the value holds the absolute path)
-    inside: tuple[tuple[str, str], ...] = ()  # parameter name -> a path it writes, inside the
-    # build folder (as the recipe names it)
-
-    @property
-    def rel_output(self) -> str | None:
-        """The output inside the build folder, as the recipe names it."""
-        return dict(self.inside).get("output", dict(self.inside).get("out_dir"))
+    named: tuple[tuple[str, str], ...] = ()  # parameter -> a file it reads, as the recipe says
+    inside: tuple[tuple[str, str], ...] = ()  # parameter -> a path it writes, as the recipe says
 
     def command_line(self, inside: bool = False) -> str:
-        """The job as a shell command (for --dry-run and progress lines); ``inside``: as run
-        in the build folder (for the kit page, which lies there: no path of the machine)."""
+        """The job as a shell command (for --dry-run and progress lines); ``inside``: as the
+        recipe names its files (the kit page's: no path of the machine)."""
         paths = dict(self.inside) if inside else self.paths
         words = [self.command.name]
         for p in self.command.params:
             if p.name not in self.values:
                 continue
-            value = dict(self.named).get(p.name, self.values[p.name])
+            value = (dict(self.named) if inside else self.values).get(p.name, self.values[p.name])
             if isinstance(p, click.Argument):
                 words.append(str(value))
             elif p.name in paths:
@@ -118,7 +111,7 @@ class Job:
                 for item in value if isinstance(value, list) else [value]:
                     words += [_long(p), str(item)]
         line = "weave-cut " + " ".join(shlex.quote(w) for w in words)
-        shown = self.rel_output if inside else self.shown
+        shown = dict(self.inside).get("output", self.shown) if inside else self.shown
         return line + (f" > {shlex.quote(shown)}" if self.prints else "")
 
 
@@ -190,9 +183,8 @@ class Planner:
             raw[norm] = value
         raw.update({k: v for k, v in overrides.items() if k in options and k != "output"})
         values, reads = {}, []
-        named = {k: v for k, v in raw.items() if isinstance(v, str) and k in options
-                 and (v.endswith(".toml") or isinstance(options[k].type, click.Path))}
-        named = {options[k].name: v for k, v in named.items() if k != "output"}
+        named = {options[k].name: v for k, v in raw.items() if k in options and isinstance(
+            v, str) and (v.endswith(".toml") or isinstance(options[k].type, click.Path))}
         if argument is not None and "input" in raw:
             value = raw.pop("input")
             if not isinstance(value, str):
@@ -223,9 +215,8 @@ class Planner:
         folder = bool(paths) and is_folder(options[first], values)
         job = Job(where, f"job {n} ({name})", command, values, targets.get(first),
                   shown.get(first), prints, tuple(reads), paths, folder,
-                  tuple(sorted((k, v) for k, v in named.items() if k not in paths)),
-                  tuple(sorted((options[k].name if k in options else k, v)
-                               for k, v in inside.items())))
+                  tuple(sorted((k, v) for k, v in named.items() if k not in paths)), tuple(sorted(
+                      (options[k].name if k in options else k, v) for k, v in inside.items())))
         self.convert(job)
         return job
 
