@@ -100,21 +100,16 @@ def test_the_stars_neck_is_widened_and_printed():
 
 
 def test_a_strip_no_widening_saves_is_refused_with_the_size_that_works(monkeypatch):
-    """Asked for 3.5 mm parts, the star at 21 mm is refused, naming a tile size at which the
-    book is made (its parts then all 3.5 mm wide); asked for 8 mm, no size works (its
-    35-degree tips stick out more than ``SLIVER`` past a disc 8 mm across) and it says so."""
+    """Asked for 5 mm necks, the star at 21 mm is refused, naming a tile size at which the
+    book is made (its necks then all 5 mm wide)."""
     for module in (book_module, strips):
-        monkeypatch.setattr(module, "MIN_PIECE", 3.5)
-    with pytest.raises(SizeError, match=r"narrower than 3.5 mm, too thin to cut") as refused:
+        monkeypatch.setattr(module, "MIN_PIECE", 5.0)
+    with pytest.raises(SizeError, match=r"neck narrower than 5 mm, too thin to cut") as refused:
         _star_book(21.0)
     need = float(str(refused.value).split("use --tile-size ")[-1].split("mm")[0])
     assert need > 21.0
     _, book = _star_book(need)
-    assert strips.holds([p.cut for _, p in book.pieces], 3.5).all()
-    for module in (book_module, strips):
-        monkeypatch.setattr(module, "MIN_PIECE", 8.0)
-    with pytest.raises(SizeError, match=r"no --tile-size up to \d+mm makes"):
-        _star_book(21.0)
+    assert strips.holds([p.cut for _, p in book.pieces], 5.0, slivers=False).all()
 
 
 @pytest.mark.parametrize("recipe", RECIPES, ids=lambda p: p.stem)

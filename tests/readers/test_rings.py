@@ -247,7 +247,7 @@ def test_mesh_choices(tmp_path):
     reports = []
     meshed = read_drawing(two, mesh="quad", cell=10.0, report=reports.append)
     assert meshed.n_faces == 18 and euler(meshed) == 1
-    assert re.fullmatch(r"two\.svg: 2 outline\(s\), 0 hole\(s\), 1800 mm², meshed quad with "
+    assert re.fullmatch(r"two\.svg: 2 outlines, 0 holes, 1800 mm², meshed quad with "
                         r"cell 10 mm: 18 faces, angles 90-90°, size 1\.00-1\.00 × cell",
                         reports[0]), reports[0]
     with pytest.raises(MeshError, match=r"unknown --mesh 'pent'; choose one of auto, none, hex, "

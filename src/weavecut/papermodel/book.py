@@ -178,12 +178,18 @@ def strip_set(weaves: list[Weave], pal: Palette, area: PageArea, tile_size: floa
         need = smallest_tile_size(weave, plan, colours, tile_size, layout, area)
         raise SizeError(f"some labels would be {small:.1f} mm tall at --tile-size {tile_size:.1f}mm"
                         f"; labels need {MIN_CAP:g} mm: {_use(weave, need)}")
-    slim = ~holds([p.cut for p in pieces], MIN_PIECE)
-    if slim.any():  # a neck or sliver no filled notch widens enough
+    slim = ~holds([p.cut for p in pieces], MIN_PIECE, slivers=False)
+    if slim.any():  # a neck no filled notch widens enough
         worst = pieces[int(np.flatnonzero(slim)[0])]
-        need = smallest_tile_size(weave, plan, colours, tile_size, layout, area)
-        raise SizeError(f"strip {worst.label} would have a part narrower than {MIN_PIECE:g} mm, "
-                        f"too thin to cut, at --tile-size {tile_size:.1f}mm: {_use(weave, need)}")
+        neck = (f"strip {worst.label} would have a neck narrower than {MIN_PIECE:g} mm, too "
+                f"thin to cut, at --tile-size {tile_size:.1f}mm")
+        try:
+            need = smallest_tile_size(weave, plan, colours, tile_size, layout, area)
+        except SizeError:  # tiles that touch at a corner: no size widens them
+            warnings += (f"{neck}, and at any size (tiles that meet at a corner): cut round "
+                         "it with care, or tape it",)
+        else:
+            raise SizeError(f"{neck}: {_use(weave, need)}")
     return StripSet(plan, tuple(colours), pieces, kinds, tile_size / octagon_size(weave), width,
                     warnings)
 
@@ -362,7 +368,7 @@ def smallest_tile_size(weave: Weave, plan: ModulePlan, colours, start: float, la
     bisected."""
     def reads(t: float) -> bool:
         pieces = labelled_pieces(weave, plan, colours, t, layout, area)[0]
-        return _reads(pieces) and bool(holds([p.cut for p in pieces], MIN_PIECE).all())
+        return _reads(pieces) and bool(holds([p.cut for p in pieces], MIN_PIECE, False).all())
 
     if reads(start):
         return start

@@ -257,13 +257,16 @@ def opened(polygons, width: float) -> NDArray[np.object_]:
     return shapely.buffer(shrunk, width / 2, quad_segs=8)
 
 
-def holds(polygons, width: float) -> NDArray[np.bool_]:
+def holds(polygons, width: float, slivers: bool = True) -> NDArray[np.bool_]:
     """(N,) True for every polygon that is no thinner than ``width`` anywhere it matters to a
     pair of scissors: what a disc ``width`` across reaches inside it is one piece (no neck),
-    and no corner reaches farther than ``SLIVER`` beyond it (no sliver)."""
+    and no corner reaches farther than ``SLIVER`` beyond it (no sliver; with ``slivers``
+    False, necks only: what widening mends and a larger size always cures)."""
     polygons = np.asarray(polygons, dtype=object)
     core = opened(polygons, width)
     one = (shapely.get_num_geometries(core) == 1) & ~shapely.is_empty(core)
+    if not slivers:
+        return one
     coords, owner = shapely.get_coordinates(polygons, return_index=True)
     far = shapely.distance(shapely.points(coords), core[owner])
     reach = np.zeros(len(polygons))
@@ -309,7 +312,7 @@ def widened(outline: shapely.Polygon, tiles: NDArray[np.object_], width: float |
     :func:`holds` (and when no closing up to twice ``width`` helps: the caller refuses it).
     ``width`` defaults to ``MIN_PIECE``."""
     width = MIN_PIECE if width is None else width
-    if holds([outline], width)[0]:
+    if holds([outline], width, slivers=False)[0]:
         return outline, tiles
     thin = shapely.buffer(shapely.union_all(thin_parts(outline, width)), width)
     for radius in (width, 1.5 * width, 2.0 * width):
@@ -320,7 +323,7 @@ def widened(outline: shapely.Polygon, tiles: NDArray[np.object_], width: float |
         grown = outline_of(np.array([outline, *fills], dtype=object), 1e-6 * width)
         grown = shapely.simplify(grown, width / 20)  # the arcs in few segments: a knife's
         # corner check (``printcut.cut_report``) reads no chord as a narrow feature
-        if holds([grown], width)[0]:
+        if holds([grown], width, slivers=False)[0]:
             break
     else:
         return outline, tiles
