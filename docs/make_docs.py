@@ -74,7 +74,7 @@ IMAGES = {
     "examples/previews/tiles-level2.png": Image(
         ("subdivide", "examples/tiles.svg", "-n", "2", "-o", "{out}/t.svg"), "t.svg", 320),
     "examples/previews/star-paper-model.png": Image(
-        ("strands", "examples/star.svg", "--cell", "10mm", "-n", "1", "--tile-size", "19mm",
+        ("strands", "examples/star.svg", "--cell", "10mm", "-n", "1", "--tile-size", "21mm",
          "-o", "{out}/s.svg"), "s.svg", 331),
     "docs/scheme-weaves.png": Image(
         ("figure", "scheme-weaves", "-o", "{out}/s.svg"), "s.svg", 800),

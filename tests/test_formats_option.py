@@ -30,7 +30,7 @@ def test_default_is_svg_and_dxf_and_the_option_picks(tmp_path):
     assert laser_files(tmp_path / "b") == ["puzzle-separate-sheet-1.lbrn2",
                                            "puzzle-separate-sheet-1.svg"]
     text = (tmp_path / "b" / "README.txt").read_text()
-    assert "puzzle-separate-sheet-1..1.svg / .lbrn2 - " in text and "LightBurn projects" in text
+    assert "puzzle-separate-sheet-1.svg / .lbrn2 - " in text and "LightBurn projects" in text
 
 
 def test_the_laser_preset_names_its_formats(tmp_path):

@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 import re
 import shlex
+from pathlib import Path
 import shutil
 import subprocess
 import sys
@@ -30,12 +31,13 @@ LETTER = (612.0, 792.0)
 
 
 def run(monkeypatch, *args):
-    """Run the CLI with ``sys.argv`` as a shell would set it (the command is in the files)."""
+    """Run the CLI with ``sys.argv`` as a shell would set it (the command is in the files, an
+    absolute path by its file's name: no file tells where the maker keeps it)."""
     args = [str(a) for a in args]
     monkeypatch.setattr(sys, "argv", ["weave-cut", *args])
     result = CliRunner().invoke(cli, args)
     assert result.exit_code == 0, result.output
-    return "weave-cut " + shlex.join(args)
+    return "weave-cut " + shlex.join(Path(a).name if Path(a).is_absolute() else a for a in args)
 
 
 def program(name: str) -> str:

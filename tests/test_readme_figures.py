@@ -56,7 +56,52 @@ def puzzle(j: dict) -> dict[str, str]:
             "t2": f"{separate['time_min']:.0f}"}
 
 
+def puzzle_row(j: dict) -> dict[str, str]:
+    """A row of the puzzle table in any of its forms: the groups a row states (pieces, kinds,
+    sizes across, narrowest, shared and separate cut, sheets, times), from the JSON."""
+    modes = j["modes"]
+    lo, hi = j["piece_across_mm"][:2]
+    out = {"pieces": str(j["pieces"]), "oct": str(j["pieces_by_type"]["octagon"]),
+           "enn": str(j["pieces_by_type"]["enneagon"]), "lo": f"{lo:g}", "hi": f"{hi:g}",
+           "narrow": f"{j['piece_width_min_mm']:g}",
+           "separate": f"{modes['separate']['cut_length_m']:.1f}",
+           "sheets": str(modes["separate"]["sheets"]),
+           "t2": f"{modes['separate']['time_min']:.0f}"}
+    if "shared" in modes:
+        out.update(shared=f"{modes['shared']['cut_length_m']:.1f}",
+                   t1=f"{modes['shared']['time_min']:.0f}")
+    return out
+
+
+def row(label: str, frame: str) -> str:
+    """The pattern of a puzzle table row: ``label`` and ``frame`` cells as regexes."""
+    return (rf"\| {label} \| (?P<pieces>\d+)(?: \((?P<oct>\d+) octagons, (?P<enn>\d+) "
+            r"enneagons\))? \| (?P<lo>[\d.]+)–(?P<hi>[\d.]+) mm(?:, narrowest "
+            r"(?P<narrow>[\d.]+) mm)?[^|]* \| " + frame + r" \| (?:(?P<shared>[\d.]+) m|–[^/]*) / "
+            r"(?P<separate>[\d.]+) m on (?P<sheets>\d+) sheets?[^|]* \| (?:(?P<t1>\d+)|–) / "
+            r"(?P<t2>\d+) min \|")
+
+
+def kit_row(command: str, unit: str, key: Callable[[dict], int]) -> Claim:
+    """A row of the kits' speed table: its pages or sheets (its last cell), from the command
+    the row names (run as written, with --json)."""
+    args = tuple(command.split())
+    return Claim(f"kits table: {command}",
+                 rf"\| `{re.escape(command)}` \|[^\n]*\| (?P<n>\d+) {unit}s?\b[^|\n]*\|\n",
+                 args, lambda j: {"n": str(key(j))})
+
+
+def cutter_figures(j: dict) -> dict[str, str]:
+    """Print and cut: strip pages, all pages, metres of cuts, the smallest feature."""
+    return {"strip": str(j["pages"]["strip"]), "total": str(j["pages"]["total"]),
+            "m": f"{j['cutter']['cut_length_mm'] / 1000:.1f}",
+            "f": f"{j['cutter']['min_feature_mm']:.2f}"}
+
+
+SQUARE_4 = ("strands", "square-grid", "--size", "27cm", "--palette", "maritime-4")
+FLOWER_OKABE = ("strands", "pentagon-flower", "--size", "23cm", "--palette", "okabe-ito")
 BALL = ("strands", "dodecahedron", "--levels", "1", "--project", "sphere", "--size", "12cm")
+HEART = str(ROOT / "templates" / "recipes" / "heart.svg")
 CLAIMS = [
     Claim("square grid paper model",
           r"`weave-cut strands square-grid -o square\.pdf` \((?P<pages>\d+) A4 pages, "
@@ -73,10 +118,10 @@ CLAIMS = [
           lambda j: {"pages": str(j["pages"]["total"]), "strands": str(j["strands"]),
                      "pieces": str(j["pieces"])}),
     Claim("star paper model",
-          r"makes the paper star \((?P<strips>\d+) strips on (?P<strip_pages>one) A4 strip page, "
+          r"makes the paper star \((?P<strips>\d+) strips on (?P<strip_pages>\w+) A4 strip pages?, "
           r"(?P<pages>\w+) pages in all, about\s+(?P<w>\d+) × (?P<h>\d+) cm\)",
           ("strands", str(ROOT / "examples" / "star.svg"), "--cell", "10mm", "--levels", "1",
-           "--tile-size", "19mm", "-o", "star.pdf"),
+           "--tile-size", "21mm", "-o", "star.pdf"),
           lambda j: {"strips": str(j["module_strips"]),
                      "strip_pages": NUMBER_WORDS[j["pages"]["strip"]],
                      "pages": NUMBER_WORDS[j["pages"]["total"]],
@@ -84,10 +129,75 @@ CLAIMS = [
     Claim("default puzzle",
           r"\| default \(`jigsaw-50cm-poplar`\) \| (?P<pieces>\d+) \((?P<oct>\d+) octagons, "
           r"(?P<enn>\d+) enneagons\) \| (?P<lo>[\d.]+)–(?P<hi>[\d.]+) mm \| 500 mm, one piece \| "
-          r"(?P<shared>[\d.]+) m / (?P<separate>[\d.]+) m on (?P<sheets>\d+) sheets of 800 × 500 "
+          r"(?P<shared>[\d.]+) m / (?P<separate>[\d.]+) m on (?P<sheets>\d+) sheets? of 800 × 500 "
           r"\| (?P<t1>\d+) / (?P<t2>\d+) min \|",
           ("puzzle", "--levels", "4", "--size", "50cm", "--material", "poplar-3mm",
            "--numbers", "-o", "pz"), puzzle),
+]
+ROWS = [
+    Claim("puzzle table: --size 30cm", row(r"`--size 30cm`", r"300 mm"),
+          ("puzzle", "--size", "30cm", "-o", "pz"), puzzle_row),
+    Claim("puzzle table: small sheets", row(r"`--sheet 600x400mm` \(`jigsaw-small-sheets`\)",
+                                            r"2 dovetailed parts"),
+          ("puzzle", "--levels", "4", "--size", "50cm", "--material", "poplar-3mm", "--sheet",
+           "600x400mm", "--mode", "separate", "--numbers", "-o", "pz"), puzzle_row),
+    Claim("puzzle table: 8-4 level 4", row(r"`tiling-8-4` \(level 4\)", r"500 × 500 mm"),
+          ("puzzle", "tiling-8-4", "-o", "pz"), puzzle_row),
+    Claim("puzzle table: 8-4 level 3", row(r"`tiling-8-4 --levels 3`", r"500 × 500 mm"),
+          ("puzzle", "tiling-8-4", "--levels", "3", "-o", "pz"), puzzle_row),
+    Claim("puzzle table: 8-4 level 2", row(r"`tiling-8-4 --levels 2`", r"500 × 500 mm"),
+          ("puzzle", "tiling-8-4", "--levels", "2", "-o", "pz"), puzzle_row),
+    Claim("puzzle table: heart", row(r"`heart-puzzle` \(`heart.svg`, level 2, `--size 30cm`, "
+                                     r"birch\)", r"300 × 278.4 mm"),
+          ("puzzle", HEART, "--cell", "39mm", "--levels", "2", "--size", "30cm", "--frame",
+           "15mm", "--material", "birch-plywood-3mm", "--numbers", "-o", "pz"), puzzle_row),
+    Claim("slimmest piece: star", r"\(`slimmest_piece_mm`\): the star (?P<s>[\d.]+) mm",
+          ("strands", str(ROOT / "examples" / "star.svg"), "--cell", "10mm", "--levels", "1",
+           "--tile-size", "21mm", "-o", "star.pdf"),
+          lambda j: {"s": f"{j['slimmest_piece_mm']:g}"}),
+    Claim("slimmest piece: pentagon flower",
+          r"the pentagon flower at 23 cm\s+(?P<s>[\d.]+) mm, the square grid",
+          ("strands", "pentagon-flower", "--size", "23cm", "-o", "pf.pdf"),
+          lambda j: {"s": f"{j['slimmest_piece_mm']:g}"}),
+    Claim("slimmest piece: square grid", r"the square grid at 27 cm (?P<s>[\d.]+) mm\.",
+          ("strands", "square-grid", "--size", "27cm", "-o", "sq.pdf"),
+          lambda j: {"s": f"{j['slimmest_piece_mm']:g}"}),
+    Claim("cut by machine: square grid, Silhouette",
+          r"for a Silhouette, (?P<strip>\d+)\s+strip pages \((?P<total>\d+) with the assembly "
+          r"and weaving pages\), on Letter for a Cricut \d+; (?P<m>[\d.]+) m of cuts,\s+"
+          r"smallest feature (?P<f>[\d.]+) mm\. From card",
+          (*SQUARE_4, "--cutter", "silhouette", "-o", "sq.pdf"), cutter_figures),
+    Claim("cut by machine: square grid, Cricut", r"on Letter for a Cricut (?P<strip>\d+);",
+          (*SQUARE_4, "--cutter", "cricut", "--page", "letter", "-o", "sq.pdf"),
+          lambda j: {"strip": str(j["pages"]["strip"])}),
+    Claim("cut by machine: square grid, card",
+          r"From card: (?P<sheets>\d+) A4 sheets in (?P<colours>\d+) colours, (?P<m>[\d.]+) m "
+          r"of cuts \(recipe\s+`square-grid-cut-by-machine`\)",
+          (*SQUARE_4, "--laser-card", "--material", "card-300gsm", "-o", "card"),
+          lambda j: {"sheets": str(j["sheets"]), "colours": str(j["card_colours"]),
+                     "m": f"{j['cut_length_mm'] / 1000:.1f}"}),
+    Claim("cut by machine: pentagon flower, Silhouette",
+          r"its (?P<strands>\d+) strips: (?P<strip>\d+) strip pages for a Silhouette, "
+          r"(?P<m>[\d.]+) m of cuts,\s+smallest feature (?P<f>[\d.]+) mm \(a label tab's"
+          r"[\s\S]*?The (?P<tabs>\d+) label tabs",
+          (*FLOWER_OKABE, "--cutter", "silhouette", "-o", "pf.pdf"),
+          lambda j: {"strands": str(j["strands"]), "tabs": str(j["label_tabs"]),
+                     **{k: v for k, v in cutter_figures(j).items() if k != "total"}}),
+    Claim("cut by machine: pentagon flower, card",
+          r"from card, one 12 x 12 in\s+sheet per colour, (?P<m>[\d.]+) m, smallest engraved "
+          r"label (?P<label>[\d.]+) mm, (?P<dots>\d+) engraved dots, and (?P<pages>\d+) A4 pages",
+          (*FLOWER_OKABE, "--laser-card", "--material", "card-300gsm-12in", "-o", "card"),
+          lambda j: {"m": f"{j['cut_length_mm'] / 1000:.1f}",
+                     "label": f"{j['smallest_label_mm']:.1f}", "dots": str(j["engraved_dots"]),
+                     "pages": str(j["instruction_pages"])}),
+    kit_row("strands pentagon-flower --size 23cm -o pf.pdf", "page",
+            lambda j: j["pages"]["total"]),
+    kit_row("strands square-grid --size 27cm --laser-card -o card", "sheet",
+            lambda j: j["sheets"]),
+    kit_row("strands square-grid --size 27cm -o sq.pdf", "page", lambda j: j["pages"]["total"]),
+    kit_row("puzzle --numbers -o pz", "sheet", lambda j: j["modes"]["separate"]["sheets"]),
+    kit_row("strands dodecahedron --levels 1 --project sphere --size 12cm -o ball.pdf", "page",
+            lambda j: j["pages"]["total"]),
 ]
 NUMBER_WORDS = dict(enumerate(["no", "one", "two", "three", "four", "five", "six", "seven",
                                "eight", "nine", "ten"]))
@@ -111,6 +221,16 @@ def stated(pattern: str, readme: Path = ROOT / "README.md") -> dict[str, str]:
 def test_readme_figures_are_what_the_command_makes(claim, tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     assert stated(claim.pattern) == claim.figures(run(claim.args, tmp_path))
+
+
+@pytest.mark.parametrize("claim", ROWS, ids=lambda c: c.name)
+def test_the_tables_rows_are_what_the_command_makes(claim, tmp_path, monkeypatch):
+    """The puzzle table's rows and the kits table's pages and sheets: the figures a row states
+    (a row may leave some out: an empty cell, no breakdown of the pieces) are the command's."""
+    monkeypatch.chdir(tmp_path)
+    said = {k: v for k, v in stated(claim.pattern).items() if v is not None}
+    made = claim.figures(run(claim.args, tmp_path))
+    assert said and said == {k: made[k] for k in said}
 
 
 @pytest.mark.parametrize("name, level", SOLIDS, ids=lambda v: str(v))

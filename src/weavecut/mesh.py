@@ -224,7 +224,8 @@ def check_structure(mesh: Mesh, numbering: Numbering = ZERO_BASED) -> None:
     sizes = np.diff(off)
     if (sizes < 3).any():
         f = int(np.flatnonzero(sizes < 3)[0])
-        raise MeshError(f"{n.face(f)} has {sizes[f]} corner(s); a face needs at least 3")
+        raise MeshError(f"{n.face(f)} has {sizes[f]} corner{'' if sizes[f] == 1 else 's'}; a face "
+                        "needs at least 3")
     if len(idx) and (idx.min() < 0 or idx.max() >= len(v)):
         h = int(np.flatnonzero((idx < 0) | (idx >= len(v)))[0])
         f = int(np.searchsorted(off, h, side="right") - 1)

@@ -24,6 +24,23 @@ def clean(text: str) -> str:
     return _UNSAFE.sub("\ufffd", text)
 
 
+def counted(n: int, noun: str, plural: str | None = None) -> str:
+    """``n`` and ``noun``, in the plural unless ``n`` is 1 (``plural``: an irregular one;
+    by default an -s, or -ies after a consonant and y).
+
+    Examples
+    --------
+    >>> counted(1, "copy"), counted(3, "copy"), counted(0, "page"), counted(1, "sheet")
+    ('1 copy', '3 copies', '0 pages', '1 sheet')
+    """
+    if n == 1:
+        return f"{n} {noun}"
+    if plural is None:
+        plural = (noun[:-1] + "ies" if noun.endswith("y") and noun[-2:-1] not in "aeiou"
+                  else noun + "s")
+    return f"{n} {plural}"
+
+
 def nearest(word: str, choices) -> str:
     """' (did you mean X?)' for the closest of ``choices`` to a name a person typed, or ''.
 

@@ -104,6 +104,15 @@ def test_cut_file_is_registered_to_the_printed_page(name, fmt, tmp_path):
         rings = svg_rings(path) if fmt == "svg" else dxf_rings(path, "cut")
         # the page transform is the identity: the cut file has the page's size and frame
         assert_coincide(layer_polygons(page, "cut"), rings)
+        # and nothing else (the README: "no frame: only the cuts"): no entity on another
+        # layer, no shape besides the paths
+        if fmt == "dxf":
+            assert len(ezdxf.readfile(path).modelspace()) == len(rings)
+        else:
+            shapes = [e for e in ET.parse(path).getroot().iter()
+                      if e.tag.split("}")[-1] in ("path", "rect", "line", "polyline", "polygon",
+                                                  "circle", "ellipse", "text")]
+            assert len(shapes) == len(drawing.sheets[0].layers) == 1
 
 
 @pytest.mark.parametrize("name", CUTTERS)

@@ -151,7 +151,8 @@ def test_report_recounts_pages_sizes_contrast_and_violations():
                    "min_label_contrast": round(contrast_ratio("#ffffff", DARK), 2),
                    "min_label_gap_mm": round(text_box(good).distance(text_box(small)), 2),
                    "label_violations": 1, "tile_size_mm": 21.46, "strip_width_mm": 9.9,
-                   "warnings": ["thin"], "label_tabs": 0, "names_left_out": 0}
+                   "warnings": ["thin"], "label_tabs": 0, "names_left_out": 0,
+                   "slimmest_piece_mm": None}  # this book has no pieces
     # page 1 is no strip page: its label off the strip is fine; as a strip page it is not
     assert report(_Book([_sheet(off), _sheet(good, small)], (1, 2)))["label_violations"] == 2
     empty = report(_Book([Sheet(200.0, 200.0)], ()))

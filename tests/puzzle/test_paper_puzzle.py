@@ -13,6 +13,7 @@ import pytest
 import shapely
 from click.testing import CliRunner
 
+from weavecut.text import counted
 from weavecut import export, inputs
 from weavecut.cli import cli
 from weavecut.layout.colour_difference import colour_difference, srgb_to_lab
@@ -191,7 +192,7 @@ def test_cli_on_a_small_sheet_splits_the_frame_and_never_says_part_0(tmp_path):
     for name in info["files"]:
         assert (out / name).is_file() and f"  {name}\n" in readme
     m = info["modes"]["separate"]
-    assert info["material"] in readme and f"{m['sheets']} sheet(s)" in readme
+    assert info["material"] in readme and counted(m['sheets'], 'sheet') in readme
     assert f"{m['cut_length_m']:.1f} m of cutting" in readme and f"{m['time_min']:g} min" in readme
     assert f"{info['frame_diagonal_mm']:g} mm diagonal" in readme
     bad = CliRunner().invoke(cli, ["puzzle", "-o", str(tmp_path / "q"), "--levels", "2",

@@ -19,6 +19,7 @@ from weavecut.puzzle import files as pf
 from weavecut.puzzle import workshop
 from weavecut.puzzle.colouring import UNPAINTED, colour_puzzle
 from weavecut.puzzle.frame_size import diameter
+from weavecut.text import counted
 from weavecut.puzzle.pieces import OCTAGON, build_puzzle
 from weavecut.subdivision import subdivide
 from weavecut.weave.colour import palette
@@ -169,7 +170,7 @@ def test_summary_text_states_every_figure(small):
             in text.splitlines())
     for mode, m in info["modes"].items():
         assert (f"{mode}: cut {m['cut_length_m']:.2f} m in {m['paths']} paths, travel "
-                f"{m['travel_m']:.2f} m, {m['sheets']} sheet(s), about {m['time_min']:g} min at "
+                f"{m['travel_m']:.2f} m, {counted(m['sheets'], 'sheet')}, about {m['time_min']:g} min at "
                 "7 mm/s") in text.splitlines()
     assert text.splitlines()[-1] == ("files: README.txt, puzzle-back-guide-a4.pdf, "
                                      "puzzle-shared-cut.dxf")
@@ -197,7 +198,7 @@ def test_readme_names_the_files_layers_and_figures(small):
     assert (f"Paints: {info['front_colours']} on the front, {info['back_colours']} on the back "
             "(the same paints).") in lines
     for mode, m in info["modes"].items():
-        assert (f"{mode.capitalize()} cut: {m['sheets']} sheet(s), {m['cut_length_m']:.1f} m of "
+        assert (f"{mode.capitalize()} cut: {counted(m['sheets'], 'sheet')}, {m['cut_length_m']:.1f} m of "
                 f"cutting, about {m['time_min']:g} min at 7 mm/s.") in lines
     # the printed guides are named for the page asked for; every file is listed once
     assert "puzzle-front-guide-letter.pdf" in text and "-a4.pdf -" not in text
@@ -211,7 +212,8 @@ def test_readme_names_the_files_layers_and_figures(small):
     named = [name for name in dict.fromkeys(shared + separate) if name in text]
     assert named == list(dict.fromkeys(shared + separate))
     n = info["modes"]["separate"]["sheets"]
-    assert f"puzzle-separate-sheet-1..{n}.svg / .dxf" in text and f"nested on {n} sheet(s)" in text
+    assert f"puzzle-separate-sheet-1{f'..{n}' if n > 1 else ''}.svg / .dxf" in text
+    assert f"nested on {counted(n, 'sheet')}" in text
     assert "The frame comes in 3 parts" in text
     assert "Rerun with\n  --kerf if it differs from 0.17 mm." in text
     # without a split frame, warnings or a shared cut, the README says so

@@ -56,9 +56,10 @@ def test_each_laser_file_names_its_layers_in_cutting_order(levels):
         "once. Layers in order: engrave-numbers (engrave, lowest power), score-ring (score: "
         "low power, fast), cut-1-inner, cut-2-hole, cut-3-outer (cut: full power). Keep the "
         "order: the outline last, so nothing shifts before its inner cuts are done.",
-        "puzzle-separate-sheet-1..2.svg / .dxf - pieces and frame nested on 2 sheet(s), each "
-        "outline offset by half the kerf so the pieces fit snugly. Layers in order: "
-        "engrave-numbers (engrave), cut-1-inner, cut-2-outer (cut).",
+        "puzzle-separate-sheet-1..2.svg / .dxf - pieces and frame nested on 2 sheets (pieces "
+        "in the frame's hole too), each outline offset by half the kerf so the pieces fit "
+        "snugly. Layers in order: engrave-numbers (engrave), cut-1-inner (the pieces, then "
+        "the frame's hole), cut-2-outer (cut).",
         "The frame comes in 3 parts (F1, F2, ... engraved, counter-clockwise), joined by "
         "dovetails: F1 joins F2, F2 joins F3, and the last joins F1. Glue them on a flat "
         "surface.",

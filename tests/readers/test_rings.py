@@ -247,7 +247,7 @@ def test_mesh_choices(tmp_path):
     reports = []
     meshed = read_drawing(two, mesh="quad", cell=10.0, report=reports.append)
     assert meshed.n_faces == 18 and euler(meshed) == 1
-    assert re.fullmatch(r"two\.svg: 2 outline\(s\), 0 hole\(s\), 1800 mm², meshed quad with "
+    assert re.fullmatch(r"two\.svg: 2 outlines, 0 holes, 1800 mm², meshed quad with "
                         r"cell 10 mm: 18 faces, angles 90-90°, size 1\.00-1\.00 × cell",
                         reports[0]), reports[0]
     with pytest.raises(MeshError, match=r"unknown --mesh 'pent'; choose one of auto, none, hex, "
@@ -264,7 +264,7 @@ def test_separate_outlines_mesh_apart(tmp_path):
         mesh = validate(read_drawing(path, mesh=kind, cell=6.0, report=reports.append))
         assert euler(mesh) == 2
         assert signed_areas(mesh).sum() == pytest.approx(1800.0, abs=2 * 240 * 0.2)
-    assert reports[0].startswith("d.svg: 2 outline(s), 0 hole(s), 1800 mm², meshed hex")
+    assert reports[0].startswith("d.svg: 2 outlines, 0 holes, 1800 mm², meshed hex")
 
 
 def test_each_outline_keeps_its_own_holes(tmp_path):
@@ -279,7 +279,7 @@ def test_each_outline_keeps_its_own_holes(tmp_path):
     mesh = validate(read_drawing(path, cell=5.0, report=reports.append))
     assert euler(mesh) == -1
     assert signed_areas(mesh).sum() == pytest.approx(2900.0, abs=0.2 * 440)
-    assert reports[0].startswith("d.svg: 2 outline(s), 3 hole(s), 2900 mm², meshed hex")
+    assert reports[0].startswith("d.svg: 2 outlines, 3 holes, 2900 mm², meshed hex")
     centres = np.array([(20, -20), (70, -10), (85, -30)])  # y up
     faces = shapely.polygons(shapely.linearrings(mesh.vertices[mesh.face_indices],
                                                  indices=mesh.half_edge_face))

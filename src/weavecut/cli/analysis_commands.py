@@ -19,6 +19,7 @@ from ..analysis import fractal as fr
 from ..analysis import levels as lv
 from .common import (
     CONTEXT,
+    input_title,
     force_option,
     input_argument,
     load_mesh,
@@ -124,7 +125,7 @@ def fractal_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonc
         report = fr.fractal_report(h, chirality, curve, born)
     except ValueError as exc:
         raise click.ClickException(str(exc)) from exc
-    report = {"input": input_mesh, "smooth": not no_smooth, "centre": centre,
+    report = {"input": input_title(input_mesh), "smooth": not no_smooth, "centre": centre,
               "chirality": chirality, **report}
     if output:
         drawing = figures.fractal_drawing(h, min(min(born, default=1), levels))
@@ -239,7 +240,8 @@ def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonco
         made = deepzoom.write_pyramid(mesh, levels, grid, tiles, tile_size=tile_size,
                                       jobs=jobs, **options)
         if as_json:
-            click.echo(json.dumps({"input": input_mesh, "levels": levels, "tiles": tiles,
+            click.echo(json.dumps({"input": input_title(input_mesh),
+                                   "levels": levels, "tiles": tiles,
                                    **made}, indent=2, allow_nan=False))
         else:
             summary(f"{tiles}/{deepzoom.NAME}.dzi: {grid.width} x {grid.height} px, "
@@ -250,12 +252,12 @@ def levels_command(input_mesh, levels, no_smooth, chirality, centre, allow_nonco
         return
     lv.check_memory(mesh, levels, grid, windowed=window is not None)
     image, grid = lv.level_image(mesh, levels, size, window, **options)
-    title = f"{input_mesh}: first level per pixel, to level {levels}"
+    title = f"{input_title(input_mesh)}: first level per pixel, to level {levels}"
     write_png(lv.png_bytes(lv.colour(image)), output, title)
     hit = image != lv.UNSET
     if as_json:
         per_level = np.bincount(image[hit].ravel().astype(np.int64), minlength=levels + 1)
-        click.echo(json.dumps({"input": input_mesh, "levels": levels, "output": output,
+        click.echo(json.dumps({"input": input_title(input_mesh), "levels": levels, "output": output,
                                "width": grid.width, "height": grid.height,
                                "window": list(grid.window), "pixels_reached": int(hit.sum()),
                                "pixels_per_level": per_level.tolist()}, indent=2,
@@ -307,11 +309,12 @@ def convexity_command(input_mesh, levels, no_smooth, chirality, centre, allow_no
     h = _hierarchy(input_mesh, levels, no_smooth, chirality, centre, allow_nonconvex)
     rows = cv.convexity_report(h)
     if output:
-        title = f"{input_mesh}, level {levels}: non-convex faces"
+        title = f"{input_title(input_mesh)}, level {levels}: non-convex faces"
         drawing = figures.convexity_drawing(h[-1].mesh, title=title)
         write_drawing(drawing, output, page)
     if as_json:
-        click.echo(json.dumps({"input": input_mesh, "smooth": not no_smooth, "centre": centre,
+        click.echo(json.dumps({"input": input_title(input_mesh),
+                               "smooth": not no_smooth, "centre": centre,
                                "chirality": chirality, "levels": rows}, indent=2, allow_nan=False))
         return
     click.echo(f"{input_mesh} ({'smoothed' if not no_smooth else 'not smoothed'}, "

@@ -230,8 +230,21 @@ def check_levels(levels, what: str) -> None:
 
 def command_line() -> str:
     """The command that is running, for output metadata (control characters and undecodable
-    bytes replaced)."""
-    return clean("weave-cut " + " ".join(shlex.quote(a) for a in sys.argv[1:]))
+    bytes replaced; an absolute path by its name, see :func:`shown_path`)."""
+    return clean("weave-cut " + " ".join(shlex.quote(shown_path(a)) for a in sys.argv[1:]))
+
+
+def shown_path(word: str) -> str:
+    """``word`` as an output file may show it: an absolute path (or an ``--option=PATH``) by
+    the file's name, so no file tells where the maker keeps theirs (and the same command
+    writes the same bytes wherever it runs); anything else as it is."""
+    key, eq, value = word.partition("=") if word.startswith("-") else ("", "", word)
+    return f"{key}{eq}{Path(value).name}" if os.path.isabs(value) else word
+
+
+def input_title(spec: str) -> str:
+    """An INPUT as a title names it: a built-in input by its name, a file by its name only."""
+    return spec if inputs.is_builtin(spec) else Path(spec).name
 
 
 def provenance() -> dict[str, str]:

@@ -14,6 +14,7 @@ from ..analysis.stats import level_stats, surface_stats
 from ..subdivision import SCHEMES, snub, subdivide
 from .common import (
     CONTEXT,
+    input_title,
     Choice,
     Length,
     allow_nonconvex_option,
@@ -151,7 +152,7 @@ def subdivide_command(input_mesh, levels, scheme, no_smooth, chirality, centre,
     if suffix in MESH_SUFFIXES:
         write_mesh(hierarchy[-1].mesh, output, provenance())
         return
-    title = f"{input_mesh}, {scheme} level {levels}"
+    title = f"{input_title(input_mesh)}, {scheme} level {levels}"
     drawing = mesh_drawing([lv.mesh for lv in hierarchy], size, title=title,
                            earlier=earlier_levels)
     write_drawing(drawing, output, page)
@@ -180,7 +181,8 @@ def stats_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
     if hierarchy[0].mesh.dim == 3:
         rows = [{**r, **more} for r, more in zip(rows, surface_stats(hierarchy))]
     if as_json:
-        click.echo(json.dumps({"input": input_mesh, "levels": rows}, indent=2, allow_nan=False))
+        click.echo(json.dumps({"input": input_title(input_mesh),
+                               "levels": rows}, indent=2, allow_nan=False))
         return
     click.echo(f"{input_mesh} ({scheme})")
     click.echo(f"{'level':>5} {'V':>10} {'E':>10} {'F':>10} {'non-convex':>10} "

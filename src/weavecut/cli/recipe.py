@@ -89,25 +89,30 @@ class Job:
     reads: tuple[Path, ...]
     paths: dict[str, str]  # parameter name -> every path it writes, as the user sees it
     folder: bool = False  # the output may be a folder (its option takes one)
+    named: tuple[tuple[str, str], ...] = ()  # parameter -> a file it reads, as the recipe says
+    inside: tuple[tuple[str, str], ...] = ()  # parameter -> a path it writes, as the recipe says
 
-    def command_line(self) -> str:
-        """The job as a shell command (for --dry-run and progress lines)."""
+    def command_line(self, inside: bool = False) -> str:
+        """The job as a shell command (for --dry-run and progress lines); ``inside``: as the
+        recipe names its files (the kit page's: no path of the machine)."""
+        paths = dict(self.inside) if inside else self.paths
         words = [self.command.name]
         for p in self.command.params:
             if p.name not in self.values:
                 continue
-            value = self.values[p.name]
+            value = (dict(self.named) if inside else self.values).get(p.name, self.values[p.name])
             if isinstance(p, click.Argument):
                 words.append(str(value))
-            elif p.name in self.paths:
-                words += ["-o" if "-o" in p.opts else _long(p), self.paths[p.name]]
+            elif p.name in paths:
+                words += ["-o" if "-o" in p.opts else _long(p), paths[p.name]]
             elif getattr(p, "is_flag", False):
                 words += [_long(p)] if value in (True, "true", "1", "yes") else []
             else:
                 for item in value if isinstance(value, list) else [value]:
                     words += [_long(p), str(item)]
         line = "weave-cut " + " ".join(shlex.quote(w) for w in words)
-        return line + (f" > {shlex.quote(self.shown)}" if self.prints else "")
+        shown = dict(self.inside).get("output", self.shown) if inside else self.shown
+        return line + (f" > {shlex.quote(shown)}" if self.prints else "")
 
 
 def _long(p: click.Parameter) -> str:
@@ -178,10 +183,13 @@ class Planner:
             raw[norm] = value
         raw.update({k: v for k, v in overrides.items() if k in options and k != "output"})
         values, reads = {}, []
+        named = {options[k].name: v for k, v in raw.items() if k in options and isinstance(
+            v, str) and (v.endswith(".toml") or isinstance(options[k].type, click.Path))}
         if argument is not None and "input" in raw:
             value = raw.pop("input")
             if not isinstance(value, str):
                 raise RecipeError(f"{where}: input: expected a string")
+            named[argument.name] = value
             if argument.name == "input_mesh":
                 value = self.mesh_input(value, where)
                 reads += [Path(value)] if Path(value).is_absolute() else []
@@ -191,6 +199,7 @@ class Planner:
         writes = [k for k in raw if k == "output" or options[k] in path_options(command)]
         writes.sort(key=lambda k: k != "output")  # -o first: the job's output
         targets = {k: self.output(raw[k], where, k) for k in writes}
+        inside = {k: raw[k] for k in writes}
         shown = {k: str(Path(self.shown_dir) / raw.pop(k)) for k in writes}
         for key, value in raw.items():
             values[options[key].name] = self.value(options[key], key, value, where, reads)
@@ -205,7 +214,9 @@ class Planner:
                 raise RecipeError(f"{where}: {k}: {message.replace(str(targets[k]), shown[k])}")
         folder = bool(paths) and is_folder(options[first], values)
         job = Job(where, f"job {n} ({name})", command, values, targets.get(first),
-                  shown.get(first), prints, tuple(reads), paths, folder)
+                  shown.get(first), prints, tuple(reads), paths, folder,
+                  tuple(sorted((k, v) for k, v in named.items() if k not in paths)), tuple(sorted(
+                      (options[k].name if k in options else k, v) for k, v in inside.items())))
         self.convert(job)
         return job
 
@@ -371,7 +382,7 @@ class Planner:
         except click.ClickException as exc:  # no usage line of the nested command
             raise RecipeError(f"{job.where}: {exc.format_message()}") from exc
         self.remember(job, record.files)
-        return kitpage.Run.of(record, job.command_line(), job.command.name)
+        return kitpage.Run.of(record, job.command_line(inside=True), job.command.name)
 
     def remember(self, job: Job, written) -> None:
         """Record the files ``job`` wrote in the manifest, and remove the files it wrote last

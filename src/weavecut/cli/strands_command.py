@@ -11,11 +11,11 @@ import numpy as np
 
 from .. import export
 from ..subdivision import snub, subdivide
+from ..text import counted
 from ..weave.colour import palette
 from .common import (CONTEXT, Choice, Finite, Length, PageSize, complete_preset,
-                     flag_nonconvex, force_option, formats_option, input_argument, load_mesh,
-                     provenance,
-                     reports_errors, html_option, summary)
+                     flag_nonconvex, force_option, formats_option, input_argument, input_title,
+                     load_mesh, provenance, reports_errors, html_option, summary)
 from .mesh_commands import project_option
 from .outputs import OutputPath, check_suffix
 
@@ -140,14 +140,14 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
     turn = preset["turn"] if turn is None else math.radians(turn)
     hierarchy = subdivide(check_layout(mesh, "the paper model"), levels, chirality=chirality)
     weaves = snub_weaves(hierarchy)
-    title = f"weave-cut strands: {input_mesh}, level {levels}"
+    title = f"weave-cut strands: {input_title(input_mesh)}, level {levels}"
     if preview:
         from ..papermodel.preview import pattern_preview
 
         export.write(pattern_preview(weaves, pal, turn, layout, f"{title}: preview")
                      .with_metadata(**provenance()), output)
-        return summary(f"{output}: the pattern of {weaves[-1].n_strands} strands, as the "
-                       "strips are coloured")
+        return summary(f"{output}: the pattern of {counted(weaves[-1].n_strands, 'strand')}, "
+                       "as the strips are coloured")
     nonconvex = flag_nonconvex(hierarchy)
     if model_size is not None:
         tile_size = tile_size_for(weaves[-1], model_size)
@@ -155,16 +155,18 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
         return _laser_card(weaves, palette_name or preset["palette"], material, laser_name,
                            formats, page,
                            margin, tile_size or 20.0, turn, title, output, as_json)
-    limit, machine = None, None
+    limit, machine, words = None, None, {}
     if cutter_name is not None:
-        from ..papermodel.printcut import cutter
+        from ..papermodel.printcut import cut_file_note, cutter, cutter_words
 
         machine = cutter(cutter_name)
         machine.check(*page)
         margin, limit = max(margin, machine.margin), machine.limit(*page)
+        words = {"words": cutter_words(machine, Path(output)),
+                 "page_note": cut_file_note(Path(output))}
     try:
         book = strand_book(weaves, pal, page, tile_size or 20.0, margin, turn, title=title,
-                           layout=layout, limit=limit)
+                           layout=layout, limit=limit, **words)
     except ValueError as exc:
         raise click.ClickException(str(exc)) from exc
     for warning in book.warnings:
@@ -177,7 +179,7 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
     write_woven_model(weaves[-1], book, output)
     plan = book.plan
     if as_json:
-        click.echo(json.dumps({"input": input_mesh, "levels": levels, "output": output,
+        click.echo(json.dumps({"input": input_title(input_mesh), "levels": levels, "output": output,
                                "layout": layout, **report(book),
                                "rotation_order": plan.k, "copies": plan.k,
                                "module_strips": int(plan.copies.shape[1]),
@@ -188,11 +190,11 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
                                **nonconvex, **extra},
                               indent=2, allow_nan=False))
     else:
-        summary(f"{output}: {len(book.drawing.sheets)} pages ({len(book.strip_pages)} of "
-                f"strips, {100 * book.ink:.0f} % ink); C{plan.k}, {plan.k} copies of "
-                f"a {plan.copies.shape[1]}-strip module"
-                + (f" + {len(plan.extras)} extras" if len(plan.extras) else "")
-                + (f"; {len(book.strip_pages)} cut files for {machine.name}, "
+        summary(f"{output}: {counted(len(book.drawing.sheets), 'page')} "
+                f"({len(book.strip_pages)} of strips, {100 * book.ink:.0f} % ink); C{plan.k}, "
+                f"{counted(plan.k, 'copy')} of a {plan.copies.shape[1]}-strip module"
+                + (f" + {counted(len(plan.extras), 'extra')}" if len(plan.extras) else "")
+                + (f"; {counted(len(book.strip_pages), 'cut file')} for {machine.name}, "
                    f"{extra['cutter']['cut_length_mm'] / 1000:.1f} m of cuts, smallest "
                    f"feature {extra['cutter']['min_feature_mm']:.1f} mm" if extra else ""))
 
@@ -247,7 +249,7 @@ def ball(mesh, input_mesh, levels, page, tile_size, diameter, margin, pal, chira
     hierarchy = subdivide(mesh, levels, chirality=chirality, project=project)
     weaves = snub_weaves(hierarchy)
     weave = weaves[-1]
-    title = (f"weave-cut strands: {input_mesh}, level {levels}"
+    title = (f"weave-cut strands: {input_title(input_mesh)}, level {levels}"
              + (f", projected to the {project}" if project else ""))
     if preview:
         export.write(ball_preview(weaves, pal, f"{title}: preview")
@@ -261,16 +263,18 @@ def ball(mesh, input_mesh, levels, page, tile_size, diameter, margin, pal, chira
     export.write(book.drawing.with_metadata(**provenance()), output)
     write_woven_model(weave, book, output)
     if as_json:
-        click.echo(json.dumps({"input": input_mesh, "levels": levels, "project": project,
+        click.echo(json.dumps({"input": input_title(input_mesh),
+                               "levels": levels, "project": project,
                                "output": output, **report(book), **book.flattening(),
                                "strands": int(weave.n_strands),
                                "strand_lengths_mm": np.round(weave.strand_lengths()
                                                              * book.scale, 1).tolist()},
                               indent=2, allow_nan=False))
     else:
-        summary(f"{output}: {len(book.drawing.sheets)} pages ({len(book.strip_pages)} of "
-                f"strips, {100 * book.ink:.0f} % ink); {weave.n_strands} strips in "
-                f"{len(book.pieces)} pieces, a ball {book.diameter / 10:.1f} cm across; "
+        summary(f"{output}: {counted(len(book.drawing.sheets), 'page')} "
+                f"({len(book.strip_pages)} of strips, {100 * book.ink:.0f} % ink); "
+                f"{counted(weave.n_strands, 'strip')} in {counted(len(book.pieces), 'piece')}, "
+                f"a ball {book.diameter / 10:.1f} cm across; "
                 f"unfolded edges change by at most {100 * book.stretch:.2f} %, pentagons are at most "
                 f"{100 * float(book.non_planarity.max()):.1f} % off their planes")
 
@@ -338,7 +342,8 @@ def _laser_card(weaves, pal_name: str, material: str | None, laser_name: str, fo
                                "engraved_dots": sum(len(d) for d in cut.dots),
                                **{k: v for k, v in report(kit.book).items() if k in (
                                    "smallest_text_mm", "smallest_contrast", "min_label_contrast",
-                                   "min_label_gap_mm", "label_violations", "names_left_out")},
+                                   "min_label_gap_mm", "label_violations", "slimmest_piece_mm",
+                                   "names_left_out")},
                                "warnings": list(kit.warnings),
                                "smallest_label_mm": round(cut.smallest_label, 2),
                                "cut_minutes": round(minutes, 1), "files": files,
@@ -346,8 +351,9 @@ def _laser_card(weaves, pal_name: str, material: str | None, laser_name: str, fo
     else:
         fewer = kit.fewer and (f"; sheets {100 * cut.fill:.0f} % covered: --palette "
                                f"{kit.fewer[0][0]} needs {kit.fewer[0][1]} card colours")
-        summary(f"{out_dir}: {len(cut.sheets)} sheets of {mat['name']} in {n_colours} card "
-                f"colours, {n_pieces} strip pieces, {cut.report.length / 1000:.1f} m of "
+        summary(f"{out_dir}: {counted(len(cut.sheets), 'sheet')} of {mat['name']} in "
+                f"{counted(n_colours, 'card colour')}, {counted(n_pieces, 'strip piece')}, "
+                f"{cut.report.length / 1000:.1f} m of "
                 f"cuts (about {minutes:.0f} min), smallest feature "
-                f"{cut.report.min_feature:.1f} mm{fewer or ''}; strands-assembly.pdf ({pages} "
-                "pages): what to cut from which card, how to weave")
+                f"{cut.report.min_feature:.1f} mm{fewer or ''}; strands-assembly.pdf "
+                f"({counted(pages, 'page')}): what to cut from which card, how to weave")

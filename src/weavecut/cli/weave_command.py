@@ -13,6 +13,7 @@ from ..weave.colour import palette, strand_colours
 from ..weave.report import weave_summaries
 from .common import (
     CONTEXT,
+    input_title,
     Choice,
     Length,
     complete_preset,
@@ -106,12 +107,12 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
                                    "--face-split or another scheme")
     if as_json:
         first = levels - len(weaves) + 1
-        click.echo(json.dumps({"input": input_mesh, "scheme": scheme, **nonconvex, "levels": [
+        click.echo(json.dumps({"input": input_title(input_mesh), "scheme": scheme, **nonconvex, "levels": [
             {"level": first + i, **s} for i, s in enumerate(weave_summaries(weaves))]},
             indent=2, allow_nan=False))
     if output and surface:
         write_model(weaves, strand_colours(weaves, pal), size, thickness, output,
-                    f"{input_mesh}, {scheme} weave, level {levels}")
+                    f"{input_title(input_mesh)}, {scheme} weave, level {levels}")
     elif output:
         snub = scheme == "snub" and not face_split
         outline = None
@@ -121,7 +122,7 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
             weaves, strand_colours(weaves, pal), size, outline=outline,
             middle_edges=middle_edges and snub, crossings=crossings, ribbons=style == "ribbons",
             under_points=snub_under_points(weaves[-1]) if snub else None,
-            title=f"{input_mesh}, {scheme} weave, level {levels}")
+            title=f"{input_title(input_mesh)}, {scheme} weave, level {levels}")
         write_drawing(drawing, output, page)
 
 

@@ -18,6 +18,7 @@ from numpy.typing import NDArray
 from .. import inputs
 from ..analysis import convexity as cv
 from ..mesh import Mesh
+from ..text import counted
 from ..mesh_geometry import edge_lengths, signed_areas
 from ..subdivision import snub, subdivide
 from ..layout.drawing import (
@@ -280,7 +281,8 @@ def convexity_drawing(mesh: Mesh, size: float = 200.0, title: str = "non-convex 
                 discs(fit(pts), max(3 * lw, 0.4), Style(None, 0, fill="#1030c0")),)))
         return layers
 
-    label = (f"{len(bad)} non-convex face(s) of {mesh.n_faces:,} (red), reflex corners blue"
+    label = (f"{counted(len(bad), 'non-convex face')} of {mesh.n_faces:,} (red), reflex "
+             "corners blue"
              if len(bad) else f"all {mesh.n_faces:,} faces convex")
     panel = Panel(grow(mesh_bounds(mesh), 0.02), draw, label)
     return compose([panel], 1, cell=size, title=title, caption_size=3.5)

@@ -9,6 +9,14 @@ along x), then the rectangles, inflated by the spacing, are placed tallest first
 bottom-left packer (each goes where its bottom is lowest, then leftmost) on the first sheet where
 it fits, opening a new sheet when none does. Rectangles, not outlines: simple, predictable and
 about 60-75 % dense for these near-round pieces; the frame, the largest part, goes first.
+
+A large part (the puzzle's frame or a part of it) has the room its rectangle leaves free filled
+as soon as it is placed (its holes, and the bays between its outline and its rectangle): the
+parts not yet placed go there, in the same order, each at the lowest (then leftmost) free spot
+on a ``HOLE_GRID`` mm grid, their rectangles kept ``spacing`` from the part and from each
+other; only the parts no room takes go on to the skyline. So a sheet is used before the next
+is started. A part in a hole must be cut before the hole's outline (its slug may shift once
+it is free): ``Placement.room_of`` says which part's room holds each part.
 """
 
 from __future__ import annotations
@@ -21,6 +29,8 @@ from numpy.typing import NDArray
 
 from ..errors import WeaveCutError
 from ..numeric import affine, snap
+
+HOLE_GRID = 1.0  # mm: the grid parts are placed on inside a hole
 
 
 def offset(parts: NDArray[np.object_], kerf: float) -> NDArray[np.object_]:
@@ -38,6 +48,7 @@ class Placement:
     angle: NDArray[np.float64]
     shift: NDArray[np.float64]  # (N, 2)
     n_sheets: int
+    room_of: NDArray[np.int64] | None = None  # (N,) the part whose room holds it, or -1
 
     def apply(self, parts: NDArray[np.object_]) -> NDArray[np.object_]:
         """The parts moved to their places on their sheets."""
@@ -72,7 +83,7 @@ def upright_angles(parts: NDArray[np.object_]) -> NDArray[np.float64]:
 
 def nest(parts: NDArray[np.object_], sheet: tuple[float, float], spacing: float,
          margin: float = 5.0, rotate: NDArray[np.bool_] | None = None,
-         names: list[str] | None = None) -> Placement:
+         names: list[str] | None = None, rooms: NDArray[np.bool_] | None = None) -> Placement:
     """Place ``parts`` on as few ``sheet`` (width, height) mm sheets as the packer finds.
 
     Parameters
@@ -82,6 +93,8 @@ def nest(parts: NDArray[np.object_], sheet: tuple[float, float], spacing: float,
     margin : mm kept free along the sheet edges
     rotate : (N,) False for parts to keep unturned (default: all may turn)
     names : what to call each part in an error (default: "part 1", "part 2", ...)
+    rooms : (N,) True for the parts whose free room (holes, bays) takes other parts (default:
+        the parts with holes)
     """
     n = len(parts)
     angle = upright_angles(parts)
@@ -102,8 +115,14 @@ def nest(parts: NDArray[np.object_], sheet: tuple[float, float], spacing: float,
     order = np.lexsort((np.arange(n), -snap(w), -snap(h)))  # tallest first, then widest
     skylines: list[list[list[float]]] = []
     sheet_of = np.zeros(n, dtype=np.int64)
-    pos = np.zeros((n, 2))
+    shift = np.zeros((n, 2))
+    room_of = np.full(n, -1, dtype=np.int64)
+    if rooms is None:
+        rooms = shapely.get_num_interior_rings(parts) > 0
+    done = np.zeros(n, dtype=bool)
     for k in order.tolist():  # parts, a packing loop (no array form)
+        if done[k]:
+            continue
         for s, sky in enumerate(skylines):
             spot = _skyline_fit(sky, w[k], h[k], room_w, room_h)
             if spot is not None:
@@ -113,9 +132,69 @@ def nest(parts: NDArray[np.object_], sheet: tuple[float, float], spacing: float,
             s, spot = len(skylines) - 1, (0, 0.0, 0.0)
         i, x, y = spot
         _skyline_add(skylines[s], i, x, y, w[k], h[k])
-        sheet_of[k], pos[k] = s, (x, y)
-    shift = pos + margin - b[:, :2]
-    return Placement(sheet_of, angle, shift, len(skylines))
+        sheet_of[k], shift[k], done[k] = s, np.array([x, y]) + margin - b[k, :2], True
+        if rooms[k]:  # a frame: fill the room it leaves now
+            waiting = [j for j in order.tolist() if not done[j] and not rooms[j]]
+            here = moved(turned[k:k + 1], np.zeros(1), shift[k:k + 1])[0]
+            for j, corner in fill_room(here, b[waiting], spacing, waiting).items():
+                sheet_of[j], shift[j], room_of[j], done[j] = s, corner - b[j, :2], k, True
+    return Placement(sheet_of, angle, shift, len(skylines), room_of)
+
+
+def room(part: shapely.Polygon) -> shapely.Geometry:
+    """The room ``part`` leaves free in its bounding rectangle: its holes and its bays."""
+    return shapely.difference(shapely.box(*part.bounds), part)
+
+
+def fill_room(part: shapely.Polygon, bounds: NDArray[np.float64], spacing: float,
+              ids: list[int], grid: float = HOLE_GRID) -> dict[int, NDArray[np.float64]]:
+    """Where the parts with ``bounds`` (m, 4) go in the :func:`room` of ``part``, in the
+    order given: {id: the lower-left corner of its bounding box}. Each goes to the lowest,
+    then leftmost, spot of a ``grid`` mm grid where its box grown by ``spacing / 2`` on every
+    side lies inside the room shrunk by ``spacing / 2`` and overlaps no box placed before; a
+    part with no such spot stays out.
+
+    The room is read as the grid cells wholly inside it (a cell's centre inside the room
+    shrunk by a further half diagonal), the boxes as whole cells: integers decide, not float
+    noise."""
+    out: dict[int, NDArray[np.float64]] = {}
+    inside = shapely.buffer(room(part), -(spacing / 2 + grid * 0.7072), join_style="mitre")
+    if inside.is_empty or not len(ids):
+        return out
+    micro = snap((bounds[:, 2:] - bounds[:, :2] + spacing) / grid, 1e-6)
+    size = -(-micro // 1_000_000)  # (m, 2) whole cells across and up
+    x0, y0 = np.floor(np.asarray(part.bounds[:2]) / grid) * grid
+    nx, ny = np.ceil((np.asarray(part.bounds[2:]) - (x0, y0)) / grid).astype(int)
+    cx, cy = np.meshgrid(x0 + (np.arange(nx) + 0.5) * grid, y0 + (np.arange(ny) + 0.5) * grid)
+    blocked = ~shapely.contains_xy(inside, cx, cy)  # (ny, nx)
+    failed: list[tuple[int, int]] = []  # sizes with no spot: larger ones have none either
+    for a, (wx, wy) in zip(ids, size.tolist()):
+        if any(wx >= fx and wy >= fy for fx, fy in failed):
+            continue
+        spot = _lowest_free(blocked, wx, wy)
+        if spot is None:
+            failed.append((wx, wy))
+            continue
+        j, i = spot
+        blocked[j:j + wy, i:i + wx] = True
+        out[a] = np.array([x0 + i * grid, y0 + j * grid]) + spacing / 2
+    return out
+
+
+def _lowest_free(blocked: NDArray[np.bool_], wx: int, wy: int) -> tuple[int, int] | None:
+    """(row, column) of the lowest, then leftmost, ``wy`` x ``wx`` window of cells none of which
+    is ``blocked``, or None (a summed-area table: one pass over the grid)."""
+    ny, nx = blocked.shape
+    if wx > nx or wy > ny:
+        return None
+    table = np.zeros((ny + 1, nx + 1), dtype=np.int64)
+    table[1:, 1:] = blocked.cumsum(axis=0).cumsum(axis=1)
+    sums = (table[wy:, wx:] - table[:-wy, wx:] - table[wy:, :-wx] + table[:-wy, :-wx])
+    free = np.flatnonzero(sums.ravel() == 0)
+    if not len(free):
+        return None
+    j, i = divmod(int(free[0]), sums.shape[1])
+    return j, i
 
 
 def _skyline_fit(sky, w, h, room_w, room_h):

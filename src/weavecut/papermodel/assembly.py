@@ -23,6 +23,7 @@ from ..layout.labels import (
     unit_boxes,
 )
 from ..weave.model import Weave
+from ..text import counted
 from .crossings import DOT, callout_shapes, crossing_label, crossing_meaning, too_small
 from .pages import GAP, page_layers, page_span
 from .modules import copy_letter
@@ -51,15 +52,15 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
     x0, y0, x1, y1 = area.box
     size_mm = finished_size(weave, book)
     strips = page_span(book.strip_pages, short=True)
-    copies = (f": {k} copies (A-{copy_letter(k - 1)}) of a module of {m} strips"
-              + (f" + {len(plan.extras)} extras (X)" if len(plan.extras) else "")
+    copies = (f": {k} copies (A-{copy_letter(k - 1)}) of a module of {counted(m, 'strip')}"
+              + (f" + {counted(len(plan.extras), 'extra')} (X)" if len(plan.extras) else "")
               + f"; copy j is the module turned by j x {360 / k:g} deg" if k > 1
               else ", one strip each")  # no turn maps the pattern onto itself: no copies
-    lines = [f"{weave.n_strands} strands{copies}. Finished model about "
+    lines = [f"{counted(weave.n_strands, 'strand')}{copies}. Finished model about "
              f"{size_mm[0] / 10:.1f} x {size_mm[1] / 10:.1f} cm, octagons {tile_size:.1f} mm "
              f"across.{words.scale}"]
     if words.sources is not None:
-        lines.append(words.sources)
+        lines.append(words.sources(book) if callable(words.sources) else words.sources)
     elif book.layout == "module" and k > 1:
         turns = "; ".join(f"print {j + 1} = copy {copy_letter(j)}: turned by {j * 360 / k:g} deg"
                           for j in range(k))

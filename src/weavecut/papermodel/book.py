@@ -29,7 +29,8 @@ from .packing import pack
 from .pages import GAP, PageArea, page_layers, page_span, split_strip, strip_layers
 from .modules import ModulePlan, book_colours, plan_modules
 from .strip_labels import label_strips
-from .strips import Strip, build_copies, build_strips, moved_strips, octagon_size, strip_width
+from .strips import (MIN_PIECE, Strip, build_copies, build_strips, holds, moved_strips,
+                     octagon_size, strip_width)
 from .wording import PRINTED, Words, strip_runs
 
 ON_COVER = 24  # at most this many unnamed crossings are tried on page 1
@@ -160,7 +161,8 @@ def strip_set(weaves: list[Weave], pal: Palette, area: PageArea, tile_size: floa
 
     Raises
     ------
-    SizeError when strips would be narrower than 8 mm or a label smaller than 2.5 mm
+    SizeError when strips would be narrower than 8 mm, a label smaller than 2.5 mm or a part of
+    a strip narrower than ``MIN_PIECE`` (see :func:`.strips.holds`)
     """
     if layout not in LAYOUTS:
         raise ValueError(f"layout must be one of {LAYOUTS}, got {layout!r}")
@@ -176,6 +178,18 @@ def strip_set(weaves: list[Weave], pal: Palette, area: PageArea, tile_size: floa
         need = smallest_tile_size(weave, plan, colours, tile_size, layout, area)
         raise SizeError(f"some labels would be {small:.1f} mm tall at --tile-size {tile_size:.1f}mm"
                         f"; labels need {MIN_CAP:g} mm: {_use(weave, need)}")
+    slim = ~holds([p.cut for p in pieces], MIN_PIECE, slivers=False)
+    if slim.any():  # a neck no filled notch widens enough
+        worst = pieces[int(np.flatnonzero(slim)[0])]
+        neck = (f"strip {worst.label} would have a neck narrower than {MIN_PIECE:g} mm, too "
+                f"thin to cut, at --tile-size {tile_size:.1f}mm")
+        try:
+            need = smallest_tile_size(weave, plan, colours, tile_size, layout, area)
+        except SizeError:  # tiles that touch at a corner: no size widens them
+            warnings += (f"{neck}, and at any size (tiles that meet at a corner): cut round "
+                         "it with care, or tape it",)
+        else:
+            raise SizeError(f"{neck}: {_use(weave, need)}")
     return StripSet(plan, tuple(colours), pieces, kinds, tile_size / octagon_size(weave), width,
                     warnings)
 
@@ -183,7 +197,8 @@ def strip_set(weaves: list[Weave], pal: Palette, area: PageArea, tile_size: floa
 def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (210.0, 297.0),
                 tile_size: float = 20.0, margin: float = 10.0, turn: float = 0.0,
                 title: str = "weave-cut strands", layout: str = "mixed",
-                limit: tuple[float, float, float, float] | None = None) -> StrandBook:
+                limit: tuple[float, float, float, float] | None = None,
+                words: Words = PRINTED, page_note=None) -> StrandBook:
     """Lay out every strand of ``weaves[-1]`` as printable strips.
 
     Parameters
@@ -201,6 +216,10 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         direction)
     limit : (x0, y0, x1, y1) mm, the part of the page strips may use besides the margins (the
         area a print-and-cut machine reads), or None
+    words : what page 1 and the weaving page say the maker holds (print and cut:
+        ``printcut.cutter_words``)
+    page_note : a function of a strip page's number giving a note put before its list of strips
+        (print and cut: the page's cut file), or None
 
     Raises
     ------
@@ -228,7 +247,7 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         """The book laid out with ``own`` pages of unnamed crossings after the weaving page."""
         first = 3 + own  # pages 1, 2: assembly and weaving
         placed, sheets = strip_sheets(pieces, kinds, area, title, subtitle, colours, first,
-                                      places)
+                                      places, page_note)
         where = page_span(range(3, first) if own else [1])
         names = "name is" if left_out == 1 else "names are"
         strips = (f"each print's strips ({len(crossings)} on the model)" if layout == "module"
@@ -248,7 +267,7 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         return book, total, 3
 
     book, extra = front_pages(weave, plan, colours, area, crossings, book_for, tile_size, turn,
-                              title)
+                              title, words)
     return replace(book, drawing=Drawing((*extra, *laid["sheets"]), title))
 
 
@@ -278,10 +297,12 @@ def front_pages(weave: Weave, plan: ModulePlan, colours, area: PageArea, crossin
 
 
 def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitle, colours,
-                 first: int, places=None) -> tuple[tuple[tuple[int, Strip], ...], list[Sheet]]:
+                 first: int, places=None, note=None
+                 ) -> tuple[tuple[tuple[int, Strip], ...], list[Sheet]]:
     """(placed, sheets): ``pieces`` packed onto pages numbered from ``first`` on (or placed at
     ``places``, the packer's answer), each page with its strips, title, ``subtitle(names of
-    its strips)``, scale bar and legend; placed holds (page number, piece on the page)."""
+    its strips)`` (after ``note(page number)`` if given), scale bar and legend; placed holds
+    (page number, piece on the page)."""
     x0, y0, x1, y1 = area.box
     if places is None:
         places = pack([p.cut for p in pieces], x1 - x0, y1 - y0, GAP, kinds=kinds)
@@ -295,7 +316,8 @@ def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitl
         on_page = [p for k, p in placed if k == n]
         names_here = strip_runs({p.label.split(" ")[0] for p in on_page})
         layers = strip_layers(on_page) + page_layers(
-            area, title, subtitle(names_here), n, total, colours[on_page[0].strand],
+            area, title, (f"{note(n)} " if note else "") + subtitle(names_here), n, total,
+            colours[on_page[0].strand],
             glue=any(p.glue is not None for p in on_page),
             folds=any(len(p.folds) for p in on_page),
             tabs=any(p.flap is not None for p in on_page))
@@ -342,14 +364,20 @@ def _reads(pieces: list[Strip]) -> bool:
 def smallest_tile_size(weave: Weave, plan: ModulePlan, colours, start: float, layout: str,
                        area: PageArea) -> float:
     """The smallest tile size, ``start`` or a whole mm above it, at which every label reaches
-    ``MIN_CAP``: grown by a quarter until it works, then bisected."""
+    ``MIN_CAP`` and every strip holds ``MIN_PIECE``: grown by a quarter until it works, then
+    bisected."""
     def reads(t: float) -> bool:
-        return _reads(labelled_pieces(weave, plan, colours, t, layout, area)[0])
+        pieces = labelled_pieces(weave, plan, colours, t, layout, area)[0]
+        return _reads(pieces) and bool(holds([p.cut for p in pieces], MIN_PIECE, False).all())
 
     if reads(start):
         return start
     low, high = math.floor(start), math.ceil(start * 1.25)
     while not reads(high):  # a few sizes
+        if high > 8 * start:  # a sharp corner or a sliver fails at any size
+            raise SizeError(f"no --tile-size up to {high}mm makes every label "
+                            f"{MIN_CAP:g} mm tall and every part of a strip {MIN_PIECE:g} mm "
+                            "wide; try another --cell or input")
         low, high = high, math.ceil(high * 1.25)
     while high - low > 1:
         mid = (low + high) // 2

@@ -28,7 +28,9 @@ from ..errors import WeaveCutError
 from ..layout import cutpaths
 from ..layout.drawing import Drawing, Layer, Polygons, Sheet, Style, polygons_from_shapely
 from ..units import to_mm
+from .modules import copy_letter
 from .pages import CUT
+from .wording import PRINTED, Words, page_index
 
 PRINTER_EDGE = 6.35  # mm (1/4 in): the widest unprintable edge of common home printers
 MARK_INK = Style(None, 0.0, "#000000")
@@ -231,3 +233,61 @@ def cut_files(book) -> list[tuple[int, Drawing]]:
         out.append((n, Drawing((sheet,), f"{book.drawing.title}: cut file of page {n}",
                                (*book.drawing.metadata, ("printed_page", str(n))))))
     return out
+
+
+def marks_text(machine: Cutter) -> str:
+    """The registration marks of ``machine`` in words ("a 5 mm square top-left and L corners
+    top-right and bottom-left, 10 mm from the edges")."""
+    where = f"{machine.inset:g} mm from the page's edges"
+    if machine.marks == "frame":
+        return f"a black frame {where}"
+    if machine.marks == "corners":
+        return f"L corners ({machine.length:g} mm arms) at the four corners, {where}"
+    return (f"a {machine.length:g} mm square top-left and L corners top-right and bottom-left, "
+            f"{where}")
+
+
+def cutter_words(machine: Cutter, output: Path) -> Words:
+    """The print-and-cut book's words: the strip pages carry registration marks, each strip
+    page's cut file lies beside the PDF ``output``, and how the cutter's software puts the two
+    together (page 1's sources, page 2's first steps)."""
+    name, stem = machine.name, output.stem
+
+    def files(book) -> str:
+        first, last = book.strip_pages[0], book.strip_pages[-1]
+        one = f"{stem}-p{first:02d}-cut.svg or .dxf"
+        return one if first == last else (f"{one} for page {first}, and so on to "
+                                           f"{stem}-p{last:02d}-cut for page {last}")
+
+    def sources(book) -> str:
+        strips = f"p. {book.strip_pages[0]}" + (f"-{book.strip_pages[-1]}"
+                                                 if len(book.strip_pages) > 1 else "")
+        k = book.plan.k
+        times = (f"{k} times, once per direction (write the copy letter, A to "
+                 f"{copy_letter(k - 1)}, on the back of each strip)" if book.layout == "module"
+                 and k > 1 else "once")
+        return (f"Print and cut ({name}): print the strip pages ({strips}) {times}. Each carries "
+                f"registration marks ({marks_text(machine)}) that the cutter's eye reads to "
+                f"find the page, and has its cut file beside this PDF ({files(book)}): the "
+                "outlines of its strips, at the page's size. Where each strip is: "
+                f"{page_index(book)}.")
+
+    return replace(PRINTED, scale=" Print at 100 % (no fit to page), marks and all.",
+                   sources=sources,
+                   need=f"You need: the printed strip pages, your {name} cutter with its mat, "
+                        "tape or paper clips, a glue stick and a piece of cardboard a little "
+                        "larger than the model.",
+                   cut=f"Cut each strip page with the cutter: in its software, open that page "
+                       f"of this PDF at 100 %, then its cut file ({stem}-pNN-cut.svg or .dxf, "
+                       "NN the page number, beside this PDF) on it at the page's corner: both "
+                       "have the page's size, so the cut lines lie on the printed outlines. "
+                       "Turn on the software's registration marks with the sizes above, so they "
+                       "lie on the printed ones; put the printed page on the mat, let the "
+                       "cutter read the marks, and cut. Sort the strips by ID: the ID printed "
+                       "in the strip's own colour is its name on page 1; a small ID in a light "
+                       "part names the strand that lies on top there.")
+
+
+def cut_file_note(output: Path):
+    """A strip page's subtitle note: its cut file's name (``page_note`` of ``strand_book``)."""
+    return lambda n: f"Cut file: {output.stem}-p{n:02d}-cut.svg / .dxf, beside this PDF."

@@ -25,6 +25,10 @@ from .symmetry import tile_centres
 from ..layout.weave_figure import tile_rings
 
 LIGHT = 0.22  # share of the over strand's colour in an under-crossing tile (rest white)
+MIN_PIECE = 3.0  # mm: the narrowest part of a paper strip that scissors cut without it tearing
+SLIVER = 6.0  # mm: a part narrower than a width may stick out this far beyond the parts that
+# are as wide (a sharp corner: 2.3 mm for the star's 35-degree tips at 3 mm), no farther (a
+# sliver); a fixed length, so that a wider disc never passes what a narrower one fails
 
 
 def tint(colour: str, share: float = LIGHT) -> str:
@@ -247,6 +251,92 @@ def flat_angle(outline) -> float:
     return float(-np.degrees(np.arctan2(long[1], long[0])))
 
 
+def opened(polygons, width: float) -> NDArray[np.object_]:
+    """The parts of ``polygons`` a disc ``width`` across reaches inside them (a round opening)."""
+    shrunk = shapely.buffer(np.asarray(polygons, dtype=object), -width / 2, quad_segs=8)
+    return shapely.buffer(shrunk, width / 2, quad_segs=8)
+
+
+def holds(polygons, width: float, slivers: bool = True) -> NDArray[np.bool_]:
+    """(N,) True for every polygon that is no thinner than ``width`` anywhere it matters to a
+    pair of scissors: what a disc ``width`` across reaches inside it is one piece (no neck),
+    and no corner reaches farther than ``SLIVER`` beyond it (no sliver; with ``slivers``
+    False, necks only: what widening mends and a larger size always cures)."""
+    polygons = np.asarray(polygons, dtype=object)
+    core = opened(polygons, width)
+    one = (shapely.get_num_geometries(core) == 1) & ~shapely.is_empty(core)
+    if not slivers:
+        return one
+    coords, owner = shapely.get_coordinates(polygons, return_index=True)
+    far = shapely.distance(shapely.points(coords), core[owner])
+    reach = np.zeros(len(polygons))
+    np.maximum.at(reach, owner, np.nan_to_num(far, nan=np.inf))
+    return one & (reach <= SLIVER)
+
+
+def slimmest(polygons, step: float = 0.05, largest: float = 50.0) -> NDArray[np.float64]:
+    """(N,) per polygon the largest width (to ``step`` mm, at most ``largest``) it
+    :func:`holds`: the narrowest neck or sliver a maker must cut round."""
+    polygons = np.asarray(polygons, dtype=object)
+    low, high = np.zeros(len(polygons)), np.full(len(polygons), largest)
+    while (high - low > step).any():  # bisection steps, all polygons at once
+        mid = (low + high) / 2
+        ok = holds(polygons, mid)
+        low, high = np.where(ok, mid, low), np.where(ok, high, mid)
+    return low
+
+
+def thin_parts(outline: shapely.Polygon, width: float) -> list:
+    """The parts of ``outline`` that make it fail :func:`holds`: of what a disc ``width``
+    across does not reach, the bits that join two reached parts (necks) and those reaching
+    farther than ``SLIVER`` out of them (slivers); not the corners' small chips."""
+    core = opened([outline], width)[0]
+    cores = list(shapely.get_parts(core))
+    out = []
+    for bit in shapely.get_parts(shapely.difference(outline, core)):  # a few bits
+        if bit.area <= 0:
+            continue
+        touching = sum(shapely.distance(c, bit) < 1e-6 * width for c in cores)
+        far = shapely.distance(shapely.points(shapely.get_coordinates(bit)), core).max()
+        if touching > 1 or not far <= SLIVER:
+            out.append(bit)
+    return out
+
+
+def widened(outline: shapely.Polygon, tiles: NDArray[np.object_], width: float | None = None
+            ) -> tuple[shapely.Polygon, NDArray[np.object_]]:
+    """(outline, tiles) of a strip whose necks narrower than ``width`` are filled out: the
+    notches beside each :func:`thin_parts` are closed (a round closing of the outline, as small
+    as does it; only the notches within ``width`` of a thin part), each filled notch printed
+    as the tile it shares the longest edge with. Unchanged when the strip already
+    :func:`holds` (and when no closing up to twice ``width`` helps: the caller refuses it).
+    ``width`` defaults to ``MIN_PIECE``."""
+    width = MIN_PIECE if width is None else width
+    if holds([outline], width, slivers=False)[0]:
+        return outline, tiles
+    thin = shapely.buffer(shapely.union_all(thin_parts(outline, width)), width)
+    for radius in (width, 1.5 * width, 2.0 * width):
+        closed = shapely.buffer(shapely.buffer(outline, radius, quad_segs=8), -radius,
+                                quad_segs=8)
+        fills = [g for g in shapely.get_parts(shapely.difference(closed, outline))
+                 if g.area > 0 and g.intersects(thin)]
+        grown = outline_of(np.array([outline, *fills], dtype=object), 1e-6 * width)
+        grown = shapely.simplify(grown, width / 20)  # the arcs in few segments: a knife's
+        # corner check (``printcut.cut_report``) reads no chord as a narrow feature
+        if holds([grown], width, slivers=False)[0]:
+            break
+    else:
+        return outline, tiles
+    added = [g for g in shapely.get_parts(shapely.difference(grown, outline)) if g.area > 0]
+    tiles = tiles.copy()
+    for bit in added:  # a few bits per strip
+        shared = shapely.length(shapely.intersection(shapely.boundary(tiles), bit.boundary))
+        k = int(np.lexsort((np.arange(len(tiles)), snap(shapely.distance(tiles, bit)),
+                            -snap(shared)))[0])
+        tiles[k] = shapely.union(tiles[k], bit)
+    return grown, tiles
+
+
 def _strip_shape(visits, tiles, centres, scale, tile_mm):
     """(outline, tiles, frame) of the strip of the tiles ``visits``: in mm, long axis along
     x, walking towards +x, and the map from model units to it."""
@@ -260,7 +350,8 @@ def _strip_shape(visits, tiles, centres, scale, tile_mm):
     x0, y0 = shapely.transform(outline, transform(turn)).bounds[:2]
     frame = matmul(affine(0.0, (-x0, -y0)), turn)
     place = transform(frame)
-    return shapely.transform(outline, place), shapely.transform(shapes, place), frame
+    return (*widened(shapely.transform(outline, place), shapely.transform(shapes, place)),
+            frame)
 
 
 def _strip(weave, s, visits, over, outline, shapes, frame, labels, colours) -> Strip:

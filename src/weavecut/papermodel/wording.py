@@ -4,6 +4,7 @@ printed on paper (``PRINTED``) or laser-cut from coloured card (``CARD``)."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..layout.drawing import Text
@@ -71,8 +72,9 @@ class Words:
     Parameters
     ----------
     scale : after the model's size on page 1 (how to print)
-    sources : page 1's sentence on where the strips come from and where each one is; None:
-        the printed book's ("Print the strip pages once (p. 3-8). Where each strip is: ...")
+    sources : page 1's sentence on where the strips come from and where each one is, or a
+        function of the book that gives it; None: the printed book's ("Print the strip pages
+        once (p. 3-8). Where each strip is: ...")
     ids : page 1's sentence on the pattern's IDs and arrows
     unnamed_mark : how a crossing too small to name looks on its strip ("... (X there)")
     unnamed_there : the same for the crossing pages ("there the strip X")
@@ -86,7 +88,7 @@ class Words:
     """
 
     scale: str
-    sources: str | None
+    sources: str | Callable[..., str] | None
     ids: str
     unnamed_mark: str
     unnamed_there: str

@@ -186,8 +186,9 @@ def separate_cut(puzzle: Puzzle, las: Laser, kerf: float, sheet: tuple[float, fl
                  spacing: float = 2.0, numbers: Labels | None = None, margin: float = 5.0,
                  frame_parts: NDArray[np.object_] | None = None) -> CutResult:
     """Every piece a closed outline offset by kerf/2, the frame (its ``frame_parts`` when split,
-    hole shrunk by kerf/2) first, all nested onto ``sheet``-sized sheets; per sheet: pieces and
-    the frame's hole, then the frame's outer outlines last. Frame parts carry engraved labels
+    hole shrunk by kerf/2) first, all nested onto ``sheet``-sized sheets, pieces inside the
+    frame's hole too (``nesting.nest``); per sheet: the pieces, then the frame's hole, then the
+    frame's outer outlines last. Frame parts carry engraved labels
     (F1, F2, ...)."""
     spacing = max(spacing, kerf)
     frames = np.array([puzzle.frame], dtype=object) if frame_parts is None else frame_parts
@@ -196,7 +197,8 @@ def separate_cut(puzzle: Puzzle, las: Laser, kerf: float, sheet: tuple[float, fl
     parts = np.concatenate([nesting.offset(frames, kerf), nesting.offset(puzzle.pieces, kerf)])
     names = ([f"frame part {t}" for t in labels] if n_frame > 1 else ["the frame"]) + [
         f"piece {k + 1}" for k in range(puzzle.n_pieces)]
-    placed_at = nesting.nest(parts, sheet, spacing, margin, names=names)
+    rooms = np.arange(len(parts)) < n_frame  # the frame's hole and bays take pieces
+    placed_at = nesting.nest(parts, sheet, spacing, margin, names=names, rooms=rooms)
     placed = placed_at.apply(parts)
     cut, eng = las.style("cut"), las.style("engrave")
     sheets, total, travel, n_paths = [], 0.0, 0.0, 0
@@ -211,9 +213,13 @@ def separate_cut(puzzle: Puzzle, las: Laser, kerf: float, sheet: tuple[float, fl
         frame_here = on[on < n_frame]
         inner_rings = [np.asarray(r.coords) for k in frame_here for r in placed[k].interiors]
         piece_rings = [np.asarray(placed[k].exterior.coords) for k in on[on >= n_frame]]
-        inner, here = cutpaths.order_paths(piece_rings + inner_rings, home)
+        # the pieces first (those in the frame's hole before the hole frees its slug), then
+        # the hole, then the frame's outer outline
+        pieces, here = cutpaths.order_paths(piece_rings, home)
+        holes, here = cutpaths.order_paths(inner_rings, here)
         outer, _ = cutpaths.order_paths([np.asarray(placed[k].exterior.coords)
                                          for k in frame_here], here)
+        inner = pieces + holes
         paths = inner + outer
         total += cutpaths.path_length(paths)
         travel += cutpaths.travel_length(paths, home)

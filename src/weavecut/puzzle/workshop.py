@@ -18,6 +18,7 @@ from ..errors import MeshError, TurnedOverError, WeaveCutError
 from ..mesh import Mesh
 from ..mesh_geometry import signed_areas
 from ..subdivision import Hierarchy, subdivide
+from ..text import counted
 from .frame_size import diameter, extent
 from .pieces import KIND_NAMES, OCTAGON, Puzzle, build_puzzle
 
@@ -196,10 +197,10 @@ def summary(puzzle: Puzzle, results: dict[str, CutResult], speed: float,
 
 def summary_text(info: dict) -> str:
     """The summary as a few readable lines."""
-    kinds = ", ".join(f"{n} {k}s" for k, n in info["pieces_by_type"].items())
+    kinds = ", ".join(counted(n, k) for k, n in info["pieces_by_type"].items())
     lo, hi = info["piece_across_mm"]
     lines = [info["chosen"]["text"]] if "chosen" in info else []
-    lines += [f"level {info['levels']} puzzle: {info['pieces']} pieces ({kinds}), {lo:g}-{hi:g} "
+    lines += [f"level {info['levels']} puzzle: {counted(info['pieces'], 'piece')} ({kinds}), {lo:g}-{hi:g} "
               f"mm across, narrowest {info['piece_width_min_mm']:g} mm; "
               f"{info['ring_hexagons_in_frame']} ring hexagons stay in the frame",
               f"frame: {info['frame_diagonal_mm']:g} mm diagonal, {info['frame_mm'][0]:g} x "
@@ -213,10 +214,10 @@ def summary_text(info: dict) -> str:
                   f"touching colours differ by CIEDE2000 >= {info['smallest_delta_e']:g}")
         lines.append(f"paints: front {info['front_colours']}, back {info['back_colours']}; "
                      f"{differ}; "
-                     f"{info['single_coloured_pieces']} single-coloured pieces on the front")
+                     f"{counted(info['single_coloured_pieces'], 'single-coloured piece')} on the front")
     for mode, m in info["modes"].items():
         lines.append(f"{mode}: cut {m['cut_length_m']:.2f} m in {m['paths']} paths, travel "
-                     f"{m['travel_m']:.2f} m, {m['sheets']} sheet(s), about {m['time_min']:g} min "
+                     f"{m['travel_m']:.2f} m, {counted(m['sheets'], 'sheet')}, about {m['time_min']:g} min "
                      f"at {info['speed_mm_s']:g} mm/s")
     if "files" in info:
         lines.append("files: " + ", ".join(info["files"]))
@@ -238,12 +239,13 @@ def readme(info: dict, page: str) -> str:
                      "outline last, so nothing shifts before its inner cuts are done.")
     if "separate" in modes:
         n = modes["separate"]["sheets"]
-        laser.append(_fit(f"  puzzle-separate-sheet-1..{n}"
+        laser.append(_fit(f"  puzzle-separate-sheet-1{f'..{n}' if n > 1 else ''}"
                           f"{_suffixes(files, 'puzzle-separate-sheet-1')} - pieces and frame "
-                          f"nested on {n} sheet(s),")
+                          f"nested on {counted(n, 'sheet')} (pieces in the frame's hole "
+                          "too),")
                      + "\n    each outline offset by half the kerf so the pieces fit "
-                     "snugly. Layers in order:\n    engrave-numbers (engrave), cut-1-inner, "
-                     "cut-2-outer (cut).")
+                     "snugly. Layers in order:\n    engrave-numbers (engrave), cut-1-inner "
+                     "(the pieces, then the frame's hole), cut-2-outer (cut).")
     if any(name.endswith(".lbrn2") for name in files):
         laser.append("  The .lbrn2 files are LightBurn projects (File > Open) with these layers, "
                      "in this order,\n    each with the material's speed, power and passes; "
@@ -319,6 +321,6 @@ def _suffixes(files: list[str], stem: str) -> str:
 def _modes_text(info: dict) -> str:
     lines = []
     for mode, m in info["modes"].items():
-        lines.append(f"{mode.capitalize()} cut: {m['sheets']} sheet(s), {m['cut_length_m']:.1f} m "
-                     f"of cutting, about {m['time_min']:g} min at {info['speed_mm_s']:g} mm/s.")
+        lines.append(f"{mode.capitalize()} cut: {counted(m['sheets'], 'sheet')}, "
+                     f"{m['cut_length_m']:.1f} m of cutting, about {m['time_min']:g} min at {info['speed_mm_s']:g} mm/s.")
     return "\n".join(lines) + "\n"

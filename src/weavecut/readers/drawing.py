@@ -14,6 +14,7 @@ import shapely
 
 from ..errors import MeshError, MeshFileError
 from ..mesh import Mesh
+from ..text import counted
 from ..validation import validate
 from . import DEFAULT_FLATTEN, DEFAULT_KIND, MESH_CHOICES, outline_mesh
 from .rings import Ring, checked, enclosed_faces, nesting, split_t_junctions, weld
@@ -74,7 +75,8 @@ def read_drawing(path: str | Path, *, flatten: float = DEFAULT_FLATTEN,
             cell = outline_mesh.default_cell(region) if cell is None else cell
             result = outline_mesh.mesh_outline(region, kind, cell, flatten, runs)
             q = outline_mesh.quality(result, cell)
-            line = (f"{path.name}: {len(outer)} outline(s), {len(rings) - len(outer)} hole(s), "
+            line = (f"{path.name}: {counted(len(outer), 'outline')}, "
+                    f"{counted(len(rings) - len(outer), 'hole')}, "
                     f"{region.area:.0f} mm², meshed {kind} with cell {cell:.3g} mm: "
                     f"{q['faces']} faces, angles {q['min_angle']:.0f}-{q['max_angle']:.0f}°, "
                     f"size {q['min_size']:.2f}-{q['max_size']:.2f} × cell")

@@ -26,6 +26,7 @@ from scipy.spatial import cKDTree
 
 from ..errors import MeshError
 from ..mesh import Mesh
+from ..text import counted
 from ..mesh_geometry import corner_angles, signed_areas
 from ..validation import validate
 from . import KINDS
@@ -108,7 +109,7 @@ def mesh_outline(region, kind: str = "hex", cell: float | None = None,
         gaps = euler - (mesh.n_vertices - mesh.topology.n_edges + mesh.n_faces)
         if gaps == 0:
             return mesh
-        error = MeshError(f"the faces leave {gaps} gap(s) between them")
+        error = MeshError(f"the faces leave {counted(gaps, 'gap')} between them")
     raise MeshError(f"meshing the outline failed ({error}); try another --cell")
 
 

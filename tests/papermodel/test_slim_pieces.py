@@ -1,0 +1,138 @@
+"""No paper piece is too thin to cut: every cut outline of every paper-model recipe, read from
+the Drawings the recipe's commands write, holds ``MIN_PIECE`` (3 mm): what a disc that wide
+reaches inside it is one piece (no neck) and no corner reaches more than twice that beyond it
+(no sliver). The measure is checked on hand-made shapes whose narrowest part is known; the
+star's neck (strip A8 hung on a 0.2 mm joint at 19 mm octagons) is widened by closing the
+notches beside it, printed as its tile; what no widening saves is refused with the size that
+works."""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+from click.testing import CliRunner
+from shapely import affinity
+
+from weavecut import export
+from weavecut.cli import cli
+from weavecut.layout.drawing import Polygons
+from weavecut.mesh_io import read_valid_mesh
+from weavecut.papermodel import book as book_module
+from weavecut.papermodel import strips
+from weavecut.papermodel.book import SizeError, strand_book
+from weavecut.subdivision import subdivide
+from weavecut.weave.colour import palette
+from weavecut.weave.snub_weave import snub_weaves
+
+ROOT = Path(__file__).resolve().parents[2]
+RECIPES = sorted(p for p in [*ROOT.glob("templates/recipes/*.toml"), *ROOT.glob("examples/*.toml")]
+                 if any(j.get("command") == "strands"
+                        for j in tomllib.loads(p.read_text()).get("job", [])))
+
+
+def _dumbbell(neck: float) -> shapely.Polygon:
+    """Two 20 mm squares joined by a bar ``neck`` mm wide and 6 mm long."""
+    return shapely.union_all([shapely.box(0, 0, 20, 20), shapely.box(26, 0, 46, 20),
+                              shapely.box(19, 10 - neck / 2, 27, 10 + neck / 2)])
+
+
+def _needle(width: float, length: float = 15.0) -> shapely.Polygon:
+    """A 20 mm square with a needle ``width`` wide sticking ``length`` out of one side."""
+    return shapely.union(shapely.box(0, 0, 20, 20),
+                         shapely.box(19, 10 - width / 2, 20 + length, 10 + width / 2))
+
+
+def _wedge(degrees: float, length: float = 40.0) -> shapely.Polygon:
+    """An isosceles triangle with a tip of ``degrees``."""
+    half = np.radians(degrees) / 2
+    return shapely.Polygon([(0, 0), (length, length * np.tan(half)),
+                            (length, -length * np.tan(half))])
+
+
+@pytest.mark.parametrize("neck", [0.5, 1.8, 2.9, 4.2])
+def test_the_slimmest_part_of_a_dumbbell_is_its_neck(neck):
+    """Worked by hand: the bar is the narrowest part, whichever way the shape lies."""
+    for angle in (0.0, 37.0):
+        shape = affinity.rotate(_dumbbell(neck), angle)
+        assert neck - strips.slimmest([shape], step=0.02)[0] == pytest.approx(0.0, abs=0.03)
+        assert strips.holds([shape], 3.0)[0] == (neck > 3.0)
+
+
+@pytest.mark.parametrize("width", [0.3, 1.5, 2.5])
+def test_a_needle_is_a_sliver_and_a_sharp_corner_is_not(width):
+    """A needle narrower than a disc, longer than twice it, fails; so does a hairline tip
+    (15 degrees); a 35 degree tip (the star's) and a stub as long as it is wide do not."""
+    assert strips.slimmest([_needle(width)], step=0.02)[0] == pytest.approx(width, abs=0.03)
+    assert strips.holds([_needle(width, length=width)], 3.0)[0]
+    assert not strips.holds([_wedge(15.0)], 3.0)[0]
+    assert strips.holds([_wedge(35.0)], 3.0)[0]
+
+
+def _star_book(tile: float):
+    mesh = read_valid_mesh(str(ROOT / "examples" / "star.svg"), cell=10.0)
+    weaves = snub_weaves(subdivide(mesh, 1))
+    return weaves, strand_book(weaves, palette("maritime-12"), tile_size=tile)
+
+
+def test_the_stars_neck_is_widened_and_printed():
+    """At 19 mm octagons strip A8's tiles hang on a 0.2 mm joint: the strip as its tiles make
+    it fails, the strip printed holds 3 mm, contains every tile it had, and its tiles cover it
+    (the filled notches are printed, as the tile beside them)."""
+    weaves, book = _star_book(19.0)
+    tiles = strips.model_tiles(weaves[-1])
+    widened = 0
+    for _, piece in book.pieces:
+        visits, _ = weaves[-1].strand(piece.strand)
+        raw = shapely.transform(shapely.union_all(shapely.make_valid(tiles[visits])),
+                                lambda xy: (piece.frame[:2, :2] @ xy.T).T + piece.frame[:2, 2])
+        assert strips.holds([piece.cut], strips.MIN_PIECE)[0], piece.label
+        assert piece.outline.buffer(1e-6).covers(raw), piece.label  # nothing cut away
+        union = shapely.union_all(piece.tiles)
+        assert union.symmetric_difference(piece.outline).area < 1e-6 * piece.outline.area
+        if not strips.holds([raw], strips.MIN_PIECE)[0]:
+            widened += 1
+            assert piece.outline.area > raw.area
+    assert widened >= 1  # A8 (and A7, 2.9 mm) needed it
+
+
+def test_a_strip_no_widening_saves_is_refused_with_the_size_that_works(monkeypatch):
+    """Asked for 5 mm necks, the star at 21 mm is refused, naming a tile size at which the
+    book is made (its necks then all 5 mm wide)."""
+    for module in (book_module, strips):
+        monkeypatch.setattr(module, "MIN_PIECE", 5.0)
+    with pytest.raises(SizeError, match=r"neck narrower than 5 mm, too thin to cut") as refused:
+        _star_book(21.0)
+    need = float(str(refused.value).split("use --tile-size ")[-1].split("mm")[0])
+    assert need > 21.0
+    _, book = _star_book(need)
+    assert strips.holds([p.cut for _, p in book.pieces], 5.0, slivers=False).all()
+
+
+@pytest.mark.parametrize("recipe", RECIPES, ids=lambda p: p.stem)
+def test_every_cut_piece_of_a_paper_model_recipe_holds_the_minimum(recipe, tmp_path, monkeypatch):
+    """Every outline on a cut layer of every Drawing the recipe's commands write (the printed
+    books' strip pages, the cutters' cut files, the card sheets) holds ``MIN_PIECE``."""
+    written = []
+    original = export.write
+
+    def keep(drawing, path, *args, **kwargs):
+        written.append((Path(path).name, drawing))
+        return original(drawing, path, *args, **kwargs)
+
+    monkeypatch.setattr(export, "write", keep)
+    res = CliRunner().invoke(cli, ["-q", "build", str(recipe), "-o", str(tmp_path / "b")])
+    assert res.exit_code == 0, res.output
+    outlines = 0
+    for name, drawing in written:
+        cut = [g for sheet in drawing.sheets for layer in sheet.layers if layer.role == "cut"
+               for shape in layer.shapes if isinstance(shape, Polygons)
+               for g in shape.to_shapely().tolist()]
+        if cut:
+            slim = strips.slimmest(cut)
+            assert slim.min() >= strips.MIN_PIECE, (name, float(slim.min()))
+            outlines += len(cut)
+    assert outlines > 0
