@@ -88,7 +88,7 @@ def test_the_puzzles_summary_states_the_json_figures(puzzle):
     figures, said, *_ = puzzle
     for mode, f in figures["modes"].items():
         (cut, paths, travel, sheets, minutes), = re.findall(
-            rf"{mode}: cut ([\d.]+) m in (\d+) paths, travel ([\d.]+) m, (\d+) sheet\(s\), "
+            rf"{mode}: cut ([\d.]+) m in (\d+) paths, travel ([\d.]+) m, (\d+) sheets?, "
             r"about ([\d.]+) min", said)
         assert float(cut) == pytest.approx(f["cut_length_m"], abs=0.005 + 1e-9)
         assert float(travel) == pytest.approx(f["travel_m"], abs=0.005 + 1e-9)
