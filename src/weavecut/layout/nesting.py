@@ -168,27 +168,34 @@ def fill_room(part: shapely.Polygon, bounds: NDArray[np.float64], spacing: float
     cx, cy = np.meshgrid(x0 + (np.arange(nx) + 0.5) * grid, y0 + (np.arange(ny) + 0.5) * grid)
     blocked = ~shapely.contains_xy(inside, cx, cy)  # (ny, nx)
     failed: list[tuple[int, int]] = []  # sizes with no spot: larger ones have none either
+    table = _summed(blocked)
     for a, (wx, wy) in zip(ids, size.tolist()):
         if any(wx >= fx and wy >= fy for fx, fy in failed):
             continue
-        spot = _lowest_free(blocked, wx, wy)
+        spot = _lowest_free(table, wx, wy)
         if spot is None:
             failed.append((wx, wy))
             continue
-        j, i = spot
-        blocked[j:j + wy, i:i + wx] = True
+        j, i = spot  # the window's cells were free: each now counts once more in the table
+        table[j + 1:, i + 1:] += np.minimum(np.arange(1, table.shape[0] - j), wy)[:, None] * \
+            np.minimum(np.arange(1, table.shape[1] - i), wx)
         out[a] = np.array([x0 + i * grid, y0 + j * grid]) + spacing / 2
     return out
 
 
-def _lowest_free(blocked: NDArray[np.bool_], wx: int, wy: int) -> tuple[int, int] | None:
+def _summed(blocked: NDArray[np.bool_]) -> NDArray[np.int64]:
+    """The summed-area table of ``blocked`` (one row and column of zeros before it)."""
+    table = np.zeros((blocked.shape[0] + 1, blocked.shape[1] + 1), dtype=np.int64)
+    table[1:, 1:] = blocked.cumsum(axis=0).cumsum(axis=1)
+    return table
+
+
+def _lowest_free(table: NDArray[np.int64], wx: int, wy: int) -> tuple[int, int] | None:
     """(row, column) of the lowest, then leftmost, ``wy`` x ``wx`` window of cells none of which
-    is ``blocked``, or None (a summed-area table: one pass over the grid)."""
-    ny, nx = blocked.shape
+    is blocked, or None, from the blocked cells' summed-area table (:func:`_summed`)."""
+    ny, nx = table.shape[0] - 1, table.shape[1] - 1
     if wx > nx or wy > ny:
         return None
-    table = np.zeros((ny + 1, nx + 1), dtype=np.int64)
-    table[1:, 1:] = blocked.cumsum(axis=0).cumsum(axis=1)
     sums = (table[wy:, wx:] - table[:-wy, wx:] - table[wy:, :-wx] + table[:-wy, :-wx])
     free = np.flatnonzero(sums.ravel() == 0)
     if not len(free):
