@@ -15,6 +15,7 @@ from pathlib import Path
 
 MARK = '<figure class="model3d"'
 MAX_EMBEDDED = 16 * 2**20  # bytes of a .glb shown in the page; a larger one is only linked
+STATIC = Path(__file__).resolve().parent / "static"  # three.min.js, viewer.js (the app serves them)
 HINT = "Drag to turn, scroll or pinch to zoom, right-drag to move."
 
 

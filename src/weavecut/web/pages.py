@@ -10,6 +10,7 @@ from html import escape
 from urllib.parse import urlencode
 
 from .. import __version__
+from ..kitpage.viewer import HINT
 from . import forms
 
 PRODUCTS = [  # (picture, title, what it is, link)
@@ -49,13 +50,15 @@ def _e(text) -> str:
     return escape(str(text), quote=True)
 
 
-def _document(title: str, body: str, current: str = "") -> str:
+def _document(title: str, body: str, current: str = "", viewer: bool = False) -> str:
     nav = "".join(f'<a href="/{n}"{" aria-current=page" if n == current else ""}>{_e(n)}</a>'
                   for n in forms.COMMANDS)
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
             "<meta name=\"viewport\" content=\"width=device-width,initial-scale=1\">"
             f"<title>{_e(title)}</title><link rel=\"icon\" href=\"/static/logo.svg\">"
             "<link rel=\"stylesheet\" href=\"/static/app.css\">"
+            + "".join(f'<script src="/static/viewer/{n}" defer></script>'
+                      for n in ("three.min.js", "viewer.js") if viewer) +
             "<script src=\"/static/app.js\" defer></script></head>\n<body>"
             "<a class=\"skip\" href=\"#main\">Skip to the content</a>"
             "<header class=\"bar\"><a class=\"brand\" href=\"/\"><img src=\"/static/logo.svg\" "
@@ -140,12 +143,17 @@ def command_page(name: str, raw: dict[str, str], error: forms.FormError | None,
         'with its kit page</span></div>'
         '<section class="figures" aria-labelledby="h-figures"><h2 id="h-figures">The kit'
         '</h2><dl id="figures"></dl><ul id="warnings" class="warnings"></ul></section>'
+        '<section class="model" id="model" aria-label="The kit\'s model in 3-D" hidden>'
+        '<template><figure class="model3d" data-state="loading"><canvas role="img" '
+        'aria-label="The finished model in 3-D"></canvas>'
+        f'<figcaption>{_e(HINT)} <button type="button">Reset view</button> '
+        '<a download="model.glb">GLB</a></figcaption></figure></template></section>'
         '</section><section class="terminal" aria-labelledby="h-terminal"><h2 id="h-terminal">At a '
         'terminal</h2><p>The same kit from the command line, byte for byte:</p>'
         f'<pre><code id="cmdline">{_e(line)}</code></pre><h3>As a recipe</h3>'
         '<p><code>weave-cut build</code> runs it, with others, into one folder:</p>'
         f'<pre><code id="recipe">{_e(toml)}</code></pre></section></div>')
-    return _document(f"{TITLES.get(name, name)}: weave-cut", body, name)
+    return _document(f"{TITLES.get(name, name)}: weave-cut", body, name, viewer=True)
 
 
 def _field(f: forms.Field, value: str, message: str, uploads) -> str:

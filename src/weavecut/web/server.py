@@ -4,9 +4,10 @@ Routes: ``GET /`` (start page), ``GET /{command}`` (form and preview; options in
 the CLI's long option names), ``GET /{command}/check`` (the query checked by the command:
 field messages, the command line, the recipe; JSON), ``GET /{command}/preview.svg``,
 ``GET /{command}/summary.json`` (the kit's figures), ``GET /{command}.zip`` (the kit),
+``GET /{command}/model.glb`` (the kit's woven 3-D model, from the same job; 404 if it has none),
 ``POST /upload`` (a drawing as the request body, read by a job like a kit; ``{"id": SHA256}``
 for ``input=upload:ID``)
-and ``/static/``. A bad value answers 400 with the CLI's own message (header ``X-Field``: the
+``/static/`` and ``/static/viewer/`` (the kit page's 3-D viewer scripts). A bad value answers 400 with the CLI's own message (header ``X-Field``: the
 form key it belongs to), an unknown command 404, a full queue 503 with Retry-After, anything
 unexpected a plain 500 (the traceback goes to the log, never to the browser).
 
@@ -18,7 +19,9 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import io
 import logging
+import zipfile
 from pathlib import Path
 
 from starlette.applications import Starlette
@@ -31,6 +34,7 @@ from starlette.responses import HTMLResponse, JSONResponse, PlainTextResponse, R
 from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
+from ..kitpage.viewer import STATIC as VIEWER_STATIC
 from . import forms, pages, summary
 from .uploads import MAX_BYTES, Store, UploadError, read_spec
 
@@ -106,6 +110,16 @@ async def _unless_gone(request: Request, job):
     task.cancel()
     log.info("client left: job cancelled")
     return None
+
+
+def _model_of(kit: bytes) -> bytes | None:
+    """The woven 3-D model (the first ``.glb`` by name) in the ZIP ``kit``, None if none."""
+    try:
+        with zipfile.ZipFile(io.BytesIO(kit)) as z:
+            names = sorted(n for n in z.namelist() if n.endswith(".glb"))
+            return z.read(names[0]) if names else None
+    except zipfile.BadZipFile:
+        return None
 
 
 def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> Starlette:
@@ -214,6 +228,15 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
         return Response(result.body, media_type="application/zip", headers={
             "Content-Disposition": f'attachment; filename="weave-cut-{name}.zip"'})
 
+    async def model(request: Request) -> Response:
+        result = await job(request, "kit")
+        if isinstance(result, Response):
+            return result
+        data = await run_in_threadpool(_model_of, result.body)
+        if data is None:
+            return PlainTextResponse("this kit has no 3-D model", 404)
+        return Response(data, media_type="model/gltf-binary")
+
     async def upload(request: Request) -> Response:
         size = request.headers.get("content-length", "")
         if size.isdigit() and int(size) > MAX_BYTES:
@@ -265,11 +288,13 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
 
     routes = [
         Route("/", start),
+        Mount("/static/viewer", StaticFiles(directory=VIEWER_STATIC), name="viewer"),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
         Route("/upload", upload, methods=["POST"]),
         Route("/{command}.zip", kit),
         Route("/{command}/preview.svg", preview),
         Route("/{command}/summary.json", figures),
+        Route("/{command}/model.glb", model),
         Route("/{command}/check", check),
         Route("/{command}", page),
     ]

@@ -2,7 +2,9 @@
    embedded in it (base64, so the page works from file://, where a browser refuses to fetch
    files) with three.js (window.WeaveCutThree, three.min.js). Drag to turn, wheel or pinch to
    zoom, right-drag or two fingers to move; the button puts the view back. The figure's
-   data-state becomes "ready" once the model is drawn ("error" if it could not be). */
+   data-state becomes "ready" once the model is drawn ("error" if it could not be).
+   window.WeaveCutViewer(figure, buffer) shows a model fetched by a page (weave-cut serve) in a
+   figure added later; it answers a function that frees the figure's WebGL context. */
 (function () {
   "use strict";
   var T = window.WeaveCutThree;
@@ -13,11 +15,11 @@
     return out.buffer;
   }
 
-  function show(figure) {
+  function show(figure, buffer) {
     var canvas = figure.querySelector("canvas");
     var data = figure.querySelector("script[type='model/gltf-binary']");
     var button = figure.querySelector("button");
-    if (!T || !canvas || !data) { figure.dataset.state = "error"; return; }
+    if (!T || !canvas || !(data || buffer)) { figure.dataset.state = "error"; return; }
     var renderer;
     try {
       renderer = new T.WebGLRenderer({canvas: canvas, antialias: true,
@@ -55,7 +57,7 @@
       console.error("weave-cut viewer: " + error);
     }
     try {
-      new T.GLTFLoader().parse(bytes(data.textContent), "", loaded, failed);
+      new T.GLTFLoader().parse(buffer || bytes(data.textContent), "", loaded, failed);
     } catch (error) {
       failed(error);
     }
@@ -83,7 +85,9 @@
       draw();
       figure.dataset.state = "ready";
     }
+    return function () { controls.dispose(); renderer.dispose(); renderer.forceContextLoss(); };
   }
 
-  document.querySelectorAll("figure.model3d").forEach(show);
+  window.WeaveCutViewer = show;
+  document.querySelectorAll("figure.model3d").forEach(function (f) { show(f); });
 })();

@@ -1,8 +1,9 @@
 // weave-cut serve: the live preview of a command's page. The form is the CLI's options; on
 // every change (debounced) the query is checked by the command (/CMD/check: messages next to
 // the fields, the command line, the recipe), then the preview is drawn (/CMD/preview.svg) and
-// the kit made (/CMD/summary.json: its figures; the download then comes from the cache). A
-// newer change aborts the requests of the older one (AbortController).
+// the kit made (/CMD/summary.json: its figures; the download then comes from the cache) and
+// its woven 3-D model shown (/CMD/model.glb, in the kit page's viewer, static/viewer/). A newer
+// change aborts the requests of the older one (AbortController).
 "use strict";
 (function () {
   const form = document.getElementById("form");
@@ -11,8 +12,27 @@
   const $ = (id) => document.getElementById(id);
   const preview = $("preview"), sheet = $("sheet"), status = $("status");
   const download = $("download"), cmdline = $("cmdline"), recipe = $("recipe");
-  const figures = $("figures"), warnings = $("warnings");
-  let controller = null, timer = null, shownUrl = null;
+  const figures = $("figures"), warnings = $("warnings"), model = $("model");
+  let controller = null, timer = null, shownUrl = null, release = null;
+
+  function clearModel() {
+    if (release) release();
+    release = null;
+    model.replaceChildren(model.querySelector("template"));
+    model.hidden = true;
+  }
+
+  async function showModel(qs, signal) {  // nothing when the kit has no model (404)
+    const url = `/${command}/model.glb?${qs}`;
+    const got = await fetch(url, {signal});
+    if (!got.ok || !window.WeaveCutViewer) return;
+    const buffer = await got.arrayBuffer();
+    const figure = model.querySelector("template").content.firstElementChild.cloneNode(true);
+    figure.querySelector("a").href = url;
+    model.append(figure);
+    model.hidden = false;
+    release = window.WeaveCutViewer(figure, buffer) || null;
+  }
 
   function value(field) {
     const kind = field.dataset.kind, key = field.dataset.key;
@@ -118,6 +138,7 @@
       sheet.classList.remove("busy");
       say("Preview ready; making the kit…");
       figures.replaceChildren();
+      clearModel();
       figures.classList.remove("made");
       warnings.replaceChildren();
       const made = await fetch(`/${command}/summary.json?${qs}`, {signal});
@@ -126,6 +147,7 @@
       figures.classList.add("made");
       say("The kit is ready to download.");
       download.dataset.ready = qs;
+      await showModel(qs, signal);
     } catch (err) {
       if (err.name === "AbortError") return;
       sheet.classList.remove("busy");
