@@ -5,6 +5,7 @@ and the summary starts with the chosen cell and level when the command chose the
 
 from __future__ import annotations
 
+import re
 import textwrap
 
 import pytest
@@ -60,9 +61,8 @@ def test_each_laser_file_names_its_layers_in_cutting_order(levels):
         "in the frame's hole too), each outline offset by half the kerf so the pieces fit "
         "snugly. Layers in order: engrave-numbers (engrave), cut-1-inner (the pieces, then "
         "the frame's hole), cut-2-outer (cut).",
-        "The frame comes in 3 parts (F1, F2, ... engraved, counter-clockwise), joined by "
-        "dovetails: F1 joins F2, F2 joins F3, and the last joins F1. Glue them on a flat "
-        "surface.",
+        "The frame comes in 3 parts (F1, F2, F3 engraved, counter-clockwise), joined by "
+        "dovetails: F1 joins F2, F2 joins F3, F3 joins F1. Glue them on a flat surface.",
         "Test first: cut a 20 mm square, measure it; kerf = 20 mm - its size. Rerun with",
         "--kerf if it differs from 0.15 mm."]
     lines = [line for line in _section(text, "==========================================",
@@ -81,7 +81,8 @@ def test_the_frame_paragraph_appears_for_a_split_frame_only(parts):
     text = workshop.readme({**INFO, "frame_parts": parts}, "a4")
     assert ("The frame comes in" in text) == (parts > 1)
     if parts > 1:
-        assert f"The frame comes in {parts} parts (F1, F2, ..." in text
+        names = ", ".join(f"F{k}" for k in range(1, parts + 1))
+        assert f"The frame comes in {parts} parts ({names} engraved" in text
     assert ("The frame comes in" in workshop.readme(INFO, "a4")) is False
 
 
@@ -125,3 +126,37 @@ def test_summary_text_starts_with_what_the_command_chose():
     plain = workshop.summary_text(INFO).splitlines()
     assert lines[0] == chosen["text"] and lines[1:] == plain
     assert plain[0].startswith("level 3 puzzle: 85 pieces (40 octagons, 45 enneagons)")
+
+
+def _order_of_work(text: str) -> str:
+    return " ".join(_section(text, "3. Order of work", "Warnings:")).split(" b. ")[0]
+
+
+@pytest.mark.parametrize("parts", [1, 2, 3, 5])
+@pytest.mark.parametrize("modes", [("shared",), ("separate",), ("shared", "separate")])
+def test_the_order_of_work_fits_the_files(modes, parts):
+    """Step a. says what the cut files allow: scoring only where a shared cut has its ring
+    scored, the pieces kept in the frame only by the shared cut, the separate pieces laid in
+    by number after a frame in parts is glued; the dovetails join the parts in one ring."""
+    info = {**INFO, "frame_parts": parts, "modes": {m: INFO["modes"][m] for m in modes}}
+    text = workshop.readme(info, "a4")
+    step = " ".join(_order_of_work(text).split())
+    assert ("score" in step) == ("shared" in modes)
+    assert ("stay in the frame" in step) == ("shared" in modes)
+    assert ("lay the pieces into the frame" in step) == ("separate" in modes)
+    assert ("glue the frame's" in step) == ("separate" in modes and parts > 1)
+    flat = " ".join(text.split())
+    if parts == 2:
+        assert "F1 and F2 join at both ends" in flat
+    elif parts > 2:
+        joins = [tuple(int(n) for n in pair) for pair in
+                 re.findall(r"F(\d+) joins F(\d+)", flat)]
+        after = dict(joins)
+        assert sorted(after) == list(range(1, parts + 1)) == sorted(after.values())
+        k, seen = 1, []
+        for _ in range(parts):  # one ring through every part
+            seen.append(k)
+            k = after[k]
+        assert k == 1 and sorted(seen) == list(range(1, parts + 1))
+    else:
+        assert " joins " not in flat and "glue the frame" not in flat

@@ -251,10 +251,25 @@ def readme(info: dict, page: str) -> str:
                      "in this order,\n    each with the material's speed, power and passes; "
                      "a project's note says how it\n    was made. Test the settings on a "
                      "scrap first.")
-    if info.get("frame_parts", 1) > 1:
-        laser.append(f"  The frame comes in {info['frame_parts']} parts (F1, F2, ... "
-                     "engraved, counter-clockwise),\n    joined by dovetails: F1 joins F2, "
-                     "F2 joins F3, and the last joins F1. Glue them on a flat\n    surface.")
+    parts = info.get("frame_parts", 1)
+    if parts > 1:
+        ring = "F1 and F2 join at both ends" if parts == 2 else ", ".join(
+            f"F{k} joins F{k % parts + 1}" for k in range(1, parts + 1))
+        names = ", ".join(f"F{k}" for k in range(1, parts + 1))
+        laser.append(_fit(f"  The frame comes in {parts} parts ({names} engraved, "
+                          f"counter-clockwise), joined by dovetails: {ring}. Glue them on a flat surface."))
+    cuts = []
+    if "shared" in modes:
+        cuts.append("the shared cut: engrave, score, then cut (outlines last); the pieces stay "
+                    "in the frame.")
+    if "separate" in modes:
+        cuts.append("the separate sheets: engrave, then cut (outlines last)"
+                    + (f"; glue the frame's {parts} parts on a flat surface and let them dry"
+                       if parts > 1 else "")
+                    + "; lay the pieces into the frame by their numbers, as the front guide "
+                    "shows them.")
+    cut = textwrap.fill(("Cut " if len(cuts) == 1 else "Cut either ") + " Or ".join(cuts), 89,
+                        initial_indent="  a. ", subsequent_indent="     ")
     warnings = "".join(textwrap.fill(w, 92, initial_indent="  - ", subsequent_indent="    ",
                                      break_on_hyphens=False) + "\n"
                        for w in info.get("warnings", [])) or "  none\n"
@@ -288,7 +303,7 @@ back (the same paints).
   area it covers, so you know how much to buy.
 
 3. Order of work
-  a. Cut (engrave, score, then cut; outlines last). Keep the pieces in the frame.
+{cut}
   b. Sand the burr off lightly; prime both sides if the wood is porous.
   c. Paint the front from the front guide: bold lines are piece outlines, thin dashed
      lines split two-coloured pieces along the parent edge (the paper's diagonal). Numbers
