@@ -19,7 +19,7 @@ import shapely
 from click.testing import CliRunner
 
 from weavecut import export, inputs, presets
-from weavecut.layout.drawing import Polygons, Text
+from weavecut.layout.drawing import Polygons, Polylines, Text
 from weavecut.layout.labels import text_box
 from weavecut.layout.lasersetup import laser
 from weavecut.papermodel import cardkit, lasercard, printcut
@@ -431,3 +431,32 @@ def test_a_cut_file_starts_at_the_outline_corner_nearest_the_top_left(name, tmp_
         assert np.hypot(*start) == pytest.approx(np.hypot(*corners.T).min(), abs=1e-3)
         others = np.array([(w, 0.0), (0.0, h), (w, h)])
         assert (np.hypot(*(others - start).T) > np.hypot(*start)).all()
+
+
+def test_the_card_page_has_a_100_mm_bar_as_its_strip_is_drawn_at_100_percent():
+    """Page 3 draws a strip "at 100 %": a maker checks the print against a 100 mm bar with
+    ticks every 10 mm."""
+    _, cut = card()
+    page = cardkit.card_colour_sheet(cut, PageArea(*A4, 10.0), "test", laser())
+    shapes = [s for layer in page.layers for s in layer.shapes]
+    said = " ".join(s.text for s in shapes if isinstance(s, Text))
+    assert re.findall(r"drawn at (\d+) %", said) == ["100"]
+    assert "100 mm: check this at 100 % scale" in said
+    (line,) = [s.coords for s in shapes if isinstance(s, Polylines) and len(s.coords) == 2
+               and np.isclose(s.coords[:, 1], s.coords[0, 1]).all()
+               and np.isclose(np.ptp(s.coords[:, 0]), 100.0)]
+    (ticks,) = [s for s in shapes if isinstance(s, Polylines) and len(s.offsets) == 12]
+    x = np.unique(np.round(ticks.coords[:, 0], 6))
+    assert np.allclose(np.diff(x), 10.0) and x[0] == line[:, 0].min()
+
+
+@pytest.mark.parametrize("box", [(0.0, 0.0, 190.0, 150.0), (0.0, 0.0, 8.0, 60.0)])
+def test_a_strip_figure_says_whether_it_is_true_size_as_its_caption_does(box):
+    """The flag that puts the bar on the page agrees with the caption's scale: a box too
+    narrow for any strip draws one smaller and says so, without claiming 100 %."""
+    _, cut = card()
+    shapes, true_size = cardkit.strip_figure(cut, box)
+    said = " ".join(s.text for s in shapes if isinstance(s, Text))
+    (percent,) = re.findall(r"drawn at (\d+) %", said)
+    assert true_size == (int(percent) == 100)
+    assert true_size == (box[2] > 8.0)  # no tile of 20 mm fits 8 mm

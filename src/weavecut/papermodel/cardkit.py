@@ -186,17 +186,18 @@ def card_colour_sheet(cut: CardCut, area: PageArea, title: str, las: Laser, note
                           f"{', '.join(map(str, numbers))}", 4.0))
         texts.append(Text(x0 + 18.0, y, "strands " + strip_runs(labels), MIN_CAP))
     shapes = [polygons_from_shapely(swatches, SWATCH, fills)]
-    shapes += strip_figure(cut, (x0, y0, x1, y - 2 * GAP))
+    figure, true_size = strip_figure(cut, (x0, y0, x1, y - 2 * GAP))
+    shapes += figure
     layers = (Layer("card colours", "label", tuple(shapes) + tuple(texts)),
               *page_layers(area, title, "Card and laser: the card colour of every sheet, the "
                            "laser's layers, a strip as it comes off the laser", number, total,
-                           legend=False))
+                           legend=False, bar=true_size))
     return Sheet(area.width, area.height, layers, f"page {number}: card colours")
 
 
-def strip_figure(cut: CardCut, box) -> list:
-    """A strip as it comes off the laser, drawn in ``box`` (at 100 % where it fits) with a
-    caption below: the card in its colour, the engraving and the score lines in the ink that
+def strip_figure(cut: CardCut, box) -> tuple[list, bool]:
+    """(shapes, whether at 100 %): a strip as it comes off the laser, drawn in ``box`` (at
+    100 % where it fits) with a caption below: the card in its colour, the engraving and the score lines in the ink that
     reads on it. The whole strip (not a part of a split one) with the most tiles that fits at
     100 % is drawn (else the one with the most tiles, smaller); nothing where ``box`` is too
     low."""
@@ -204,7 +205,7 @@ def strip_figure(cut: CardCut, box) -> list:
     pieces = [p for group in cut.pieces for p in group]
     caption_room = 3 * LINE + GAP
     if not pieces or y1 - y0 - caption_room < 15.0:
-        return []
+        return [], False
     rects = np.array([_long_short(p.cut) for p in pieces])
     fits = (rects[:, 0] <= x1 - x0) & (rects[:, 1] <= y1 - y0 - caption_room)
     pick = min(range(len(pieces)), key=lambda i: (  # a whole strip, as long as fits
@@ -233,7 +234,8 @@ def strip_figure(cut: CardCut, box) -> list:
                              "the strip goes under."], x0, at[1] - GAP, x1 - x0)
     return [polygons_from_shapely([outline], SWATCH, [colour]),
             polylines_from_lines([place(s) for s in scores], Style(ink, 0.15)),
-            polylines_from_lines([place(s) for s in lines], Style(ink, 0.3)), *caption]
+            polylines_from_lines([place(s) for s in lines], Style(ink, 0.3)), *caption], \
+        scale == 1.0
 
 
 def _long_short(polygon) -> tuple[float, float]:

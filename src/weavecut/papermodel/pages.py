@@ -215,11 +215,12 @@ LEGEND = (
 
 def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: int,
                 sample: str = "#3e9fb0", glue: bool = False, folds: bool = False,
-                tabs: bool = False, legend: bool = True) -> list[Layer]:
+                tabs: bool = False, legend: bool = True, bar: bool = False) -> list[Layer]:
     """Title, page number, a 100 mm scale bar and a legend for one page (all text at least
     ``MIN_CAP`` tall, in the margins outside the printable box); ``glue``, ``folds`` and ``tabs``
     add their entries. Without ``legend`` (pages that neither show printed strips nor need
-    printing at true scale) the bar and the legend are left out."""
+    printing at true scale) the bar and the legend are left out, the bar kept with ``bar`` (a
+    page with one drawing at 100 %)."""
     w, h, m = area.width, area.height, area.margin
     number_text = f"page {number} / {total}"
     room = w - 2 * m - text_width(number_text, 3.2) - 4
@@ -230,7 +231,7 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
     texts = [head, Text(w - m, h - m - 4.0, number_text, 3.2, "end"),
              Text(m, below, _wrap(subtitle, w - 2 * m, 1)[0], SMALL)]
     if not legend:
-        return [Layer("page", "label", tuple(texts))]
+        return [Layer("page", "label", (scale_bar(m, m + 1.5) if bar else ()) + tuple(texts))]
     bar, marks, caption = scale_bar(m, m + 1.5)
     shapes: list = [bar, marks, caption]
     # legend: right of the bar on wide pages, above its caption otherwise (FURNITURE_GAP clear
