@@ -79,34 +79,6 @@ def test_obj_reads_back_with_its_colours_and_both_sides():
     assert np.isclose(mesh.face_normals[:, 2], -1).sum() == len(t)
 
 
-@pytest.mark.parametrize("metres_per_unit", [0.001, 1.0])
-def test_glb_reads_back_in_metres_with_its_colours(metres_per_unit):
-    v, t, c = model((square(0.25, 0.5), TEAL), (square(-1.5, 2.0, x=3.0), SAND))
-    data = model3d.glb_bytes(v, t, c, metres_per_unit=metres_per_unit)
-    assert data[:4] == b"glTF"
-    mesh = trimesh.load(io.BytesIO(data), file_type="glb", force="mesh", process=False)
-    assert len(mesh.faces) == 2 * len(t)
-    np.testing.assert_allclose(mesh.vertices, np.concatenate([v, v]) * metres_per_unit,
-                               rtol=1e-6)
-    colours = np.asarray(mesh.visual.vertex_colors)
-    np.testing.assert_array_equal(colours[:, :3], np.concatenate([c, c]))
-    assert (colours[:, 3] == 255).all()  # opaque
-    assert np.isclose(mesh.face_normals[:, 2], 1).sum() == len(t)
-    assert np.isclose(mesh.face_normals[:, 2], -1).sum() == len(t)
-    assert model3d.glb_bytes(v, t, c) == \
-        model3d.glb_bytes(v, t, c, metres_per_unit=0.001)  # millimetres by default
-
-
-def test_glb_without_trimesh_is_a_clear_error(monkeypatch):
-    import sys
-
-    monkeypatch.setitem(sys.modules, "trimesh", None)
-    v, t, c = model((square(0.0), TEAL))
-    with pytest.raises(ExportError) as err:
-        model3d.glb_bytes(v, t, c)
-    assert str(err.value) == "writing .glb needs trimesh: pip install 'weave-cut[balls]'"
-
-
 def rotation_oracle(azimuth, elevation):
     """World to view from first principles: the camera turns about z by ``azimuth`` and
     rises by ``elevation``; view x right, y up, z towards the viewer."""

@@ -1,8 +1,8 @@
-"""Writers of coloured triangle models in space: OBJ (vertex colours), glTF binary (trimesh)
-and PNG views (Pillow, no GPU).
+"""Writers of coloured triangle models in space: OBJ (vertex colours) and PNG views (Pillow,
+no GPU); glTF binary is :mod:`.gltf`'s.
 
 A model is ``(vertices (N, 3), triangles (M, 3), colours (N, 3) uint8)``, one colour per
-vertex. Paper is two-sided, so OBJ and glTF carry every triangle twice, once per side (with
+vertex. Paper is two-sided, so OBJ carries every triangle twice, once per side (with
 its own vertices, so normals never cancel); the PNG renderer lights both sides.
 """
 
@@ -42,19 +42,6 @@ def obj_bytes(vertices, triangles, colours, comments=()) -> bytes:
               for (x, y, z), (r, g, b) in zip(vertices.tolist(), rgb.tolist())]
     lines += [f"f {a} {b} {c}" for a, b, c in (triangles + 1).tolist()]
     return ("\n".join(lines) + "\n").encode("utf-8")
-
-
-def glb_bytes(vertices, triangles, colours, metres_per_unit: float = 0.001) -> bytes:
-    """glTF 2.0 binary (through trimesh, an optional dependency), two-sided, in metres."""
-    try:
-        import trimesh
-    except ImportError:
-        raise ExportError("writing .glb needs trimesh: pip install 'weave-cut[balls]'") from None
-    vertices, triangles, colours = two_sided(vertices, triangles, colours)
-    alpha = np.full((len(colours), 1), 255, dtype=np.uint8)
-    mesh = trimesh.Trimesh(vertices * metres_per_unit, triangles,
-                           vertex_colors=np.hstack([colours, alpha]), process=False)
-    return mesh.export(file_type="glb")
 
 
 def _rotation(azimuth: float, elevation: float) -> NDArray[np.float64]:
