@@ -20,6 +20,9 @@ numpy's kernels (``tests/test_determinism.py`` keeps it so), and makes discrete 
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -155,10 +158,37 @@ def solve(a: ArrayLike, b: ArrayLike) -> list[float]:
     return x
 
 
+class SnapError(FloatingPointError):
+    """A NaN, an infinity or a value beyond int64 reached :func:`snap`: a bug upstream, not
+    a user's input. Its cast to an integer is whatever the CPU makes of it (the most negative
+    int64 on x86, 0 on ARM), so a decision resting on it would differ between machines."""
+
+
 def snap(values: ArrayLike, grid: float = GRID) -> NDArray[np.int64]:
     """Integer keys of ``values`` on a ``grid``: what a decision (a sort, a tie, a
-    comparison) looks at, so that last-bit noise cannot flip it."""
-    return np.rint(np.asarray(values, dtype=float) / grid).astype(np.int64)
+    comparison) looks at, so that last-bit noise cannot flip it. Raises :class:`SnapError`,
+    naming the value and the caller, on a value with no integer key (NaN, inf, beyond int64).
+
+    >>> snap([0.1234567, -2e-7]).tolist()
+    [123457, 0]
+    """
+    keys = np.rint(np.asarray(values, dtype=float) / grid)
+    keyless = ~(np.abs(keys) < 2.0 ** 63)  # NaN compares false
+    if keyless.any():
+        raise SnapError(_keyless(np.asarray(values, dtype=float), keyless, sys._getframe(1)))
+    return keys.astype(np.int64)
+
+
+def _keyless(values: NDArray[np.float64], keyless: NDArray[np.bool_], caller) -> str:
+    """What :func:`snap` refuses: the first keyless value, where, and who asked."""
+    first = tuple(int(i) for i in np.argwhere(keyless)[0])
+    at = "" if not first else f" at index {first[0] if len(first) == 1 else first}"
+    file = Path(caller.f_code.co_filename)
+    file = "/".join(file.parts[file.parts.index("weavecut"):]) if "weavecut" in file.parts \
+        else file.name
+    return (f"snap() got {float(values[first]):g}{at} ({int(keyless.sum())} of {values.size} "
+            f"values have no integer key), asked by {caller.f_code.co_name}() in "
+            f"{file}:{caller.f_lineno}")
 
 
 def root(f, a: float, b: float, xtol: float, rtol: float, iterations: int = 100) -> float:

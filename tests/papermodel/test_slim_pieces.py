@@ -136,3 +136,39 @@ def test_every_cut_piece_of_a_paper_model_recipe_holds_the_minimum(recipe, tmp_p
             assert slim.min() >= strips.MIN_PIECE, (name, float(slim.min()))
             outlines += len(cut)
     assert outlines > 0
+
+
+def test_widened_tiles_of_the_voronoi_example_stay_areas():
+    """The Voronoi example's irregular strips are widened where a notch is filled: GEOS gave a
+    tile plus its filled notch back as the polygon beside a collapsed edge (a LineString), a
+    collection without a boundary, whose shared length with the next notch was NaN: a sort key
+    that depended on the CPU (now refused by ``snap``). Every printed tile is a (Multi)Polygon
+    with a boundary, and the widened strips' tiles keep all their area."""
+    from weavecut.papermodel.modules import plan_modules
+
+    mesh = read_valid_mesh(str(ROOT / "examples" / "voronoi-patch.obj"))
+    weave = snub_weaves(subdivide(mesh, 2))[-1]  # as `strands` and the books' tests make it
+    plan = plan_modules(weave)
+    original, grown = strips.widened, []
+
+    def keep(outline, tiles, width=None):
+        made = original(outline, tiles, width)
+        if made[0] is not outline:
+            grown.append((outline, tiles, *made))
+        return made
+
+    strips.widened = keep
+    try:
+        made = strips.build_strips(weave, plan, ["#336699"] * len(plan.labels),
+                                   20.0 / strips.octagon_size(weave), range(len(plan.labels)))
+    finally:
+        strips.widened = original
+    for strip in made:
+        kinds = shapely.get_type_id(strip.tiles)
+        assert set(kinds.tolist()) <= {3, 6}, (strip.label, kinds)  # Polygon, MultiPolygon
+        assert not any(b is None for b in shapely.boundary(strip.tiles).tolist()), strip.label
+    assert len(grown) >= 2  # the example has strips to widen
+    for outline, before, _, after in grown:  # the filled notches are added, nothing is lost
+        added = shapely.area(shapely.difference(shapely.union_all(after), outline))
+        assert sum(shapely.area(after)) == pytest.approx(sum(shapely.area(before)) + added,
+                                                         rel=1e-9)

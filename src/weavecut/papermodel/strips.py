@@ -303,6 +303,17 @@ def thin_parts(outline: shapely.Polygon, width: float) -> list:
     return out
 
 
+def areal(geometry):
+    """The polygons of an overlay's result, as one (Multi)Polygon. GEOS can return the union of
+    a tile and a filled notch that meet along a nearly straight edge as a GeometryCollection:
+    the polygon, and that edge collapsed by its snap-rounding into a LineString of no area (a
+    strip of the Voronoi example). A collection has no boundary (``shapely.boundary`` gives
+    None, and its length NaN), and a tile is an area: its lines are dropped."""
+    parts = shapely.get_parts(geometry)
+    parts = parts[shapely.get_type_id(parts) == 3]
+    return parts[0] if len(parts) == 1 else shapely.multipolygons(parts)
+
+
 def widened(outline: shapely.Polygon, tiles: NDArray[np.object_], width: float | None = None
             ) -> tuple[shapely.Polygon, NDArray[np.object_]]:
     """(outline, tiles) of a strip whose necks narrower than ``width`` are filled out: the
@@ -333,7 +344,7 @@ def widened(outline: shapely.Polygon, tiles: NDArray[np.object_], width: float |
         shared = shapely.length(shapely.intersection(shapely.boundary(tiles), bit.boundary))
         k = int(np.lexsort((np.arange(len(tiles)), snap(shapely.distance(tiles, bit)),
                             -snap(shared)))[0])
-        tiles[k] = shapely.union(tiles[k], bit)
+        tiles[k] = areal(shapely.union(tiles[k], bit))
     return grown, tiles
 
 
