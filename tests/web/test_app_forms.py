@@ -1,7 +1,7 @@
 """Each command's form against the command's own ``--help`` (an independent listing: the help
 text click prints, parsed, not the parameter objects the form is built from): the same
-options less the ones the web hides, their help, defaults and choices; every control has a
-label."""
+options less the ones the web hides, their help (in the form's words: no help on a page names
+a flag), defaults and choices; every control has a label."""
 
 from __future__ import annotations
 
@@ -12,7 +12,8 @@ import pytest
 from click.testing import CliRunner
 
 from weavecut.cli import cli
-from weavecut.web.forms import COMMANDS
+from weavecut.web import forms
+from weavecut.web.forms import COMMANDS, web_help
 
 HIDDEN = {"help", "output", "force", "json", "preview", "html", "list"}  # the web's own policy
 OPTION = re.compile(r"^  (?:-\w, )?--([a-z][a-z0-9-]*)(.*)$")
@@ -71,7 +72,7 @@ def test_help_defaults_and_choices_come_from_the_command(recording, name):
             continue
         field = found[key]
         shown = text(field)
-        head = re.sub(r"\s*\[default:.*", "", line)[:30]
+        head = re.sub(r"\s*\[default:.*", "", web_help(line, name))[:30]
         assert head in shown, (key, head)
         note = re.search(r"\[([^\]]+)\]$", line)  # click's "[default: 4; 2<=x<=7]"
         for part in note.group(1).split("; ") if note else ():
@@ -114,3 +115,44 @@ def test_a_page_keeps_the_values_of_its_link(recording):
     assert found["laser-card"].find(".//input").get("checked") is not None
     assert [e.get("value") for e in found["palette"].iter("input") if e.get("checked")
             is not None] == ["maritime-4"]
+
+
+CLI_WORDS = re.compile(r"(?<![\w-])--?[a-z][a-z0-9-]*|templates/[a-z]+|\.toml\b")
+PAGES = [*COMMANDS, "strands?input=square-grid&laser-card=on&cutter=silhouette",
+         "strands?input=dodecahedron&levels=1&project=sphere"]
+
+
+def cli_words(doc) -> list[str]:
+    """Every CLI word (``--page``, ``-o``, a preset folder, a .toml file) in what a page says
+    about its fields: the hints, the chosen item's description, the preset cards, the intro,
+    and the descriptions the script shows when another item is chosen."""
+    said = [text(e) for e in doc.iter() if {"hint", "about", "what", "intro"}
+            & set((e.get("class") or "").split())]
+    said += [e.get("data-description") for e in doc.iter() if e.get("data-description")]
+    return [f"{found.group(0)!r} in {t!r}" for t in said for found in CLI_WORDS.finditer(t)]
+
+
+@pytest.mark.parametrize("name", PAGES)
+def test_no_help_on_a_form_page_names_a_cli_flag(recording, name):
+    """A maker in a browser sees fields: a help names another option by its field's label."""
+    assert cli_words(page(recording, name)) == []
+
+
+def test_a_flag_planted_in_a_help_is_found_and_the_cli_keeps_its_words(recording, monkeypatch):
+    """The check finds a flag with no field (``-q``, ``--json``); an option with a field is
+    named by its label; ``--help`` at a terminal is click's own text, flags and all."""
+    size = next(p for p in forms.command("strands").params if forms.key(p) == "size")
+    monkeypatch.setattr(size, "help", size.help + " Quiet with -q; see --json and --page.")
+    forms.fields.cache_clear()
+    try:
+        found = cli_words(page(recording, "strands"))
+        assert [f.split(" in ")[0] for f in found] == ["'-q'", "'--json'"]
+        assert "see --json and “Page”." in found[0]
+    finally:
+        monkeypatch.undo()
+        forms.fields.cache_clear()
+    terminal = " ".join(CliRunner().invoke(cli, ["strands", "--help"]).output.split())
+    for words in ("(with --laser-card: the instructions' pages; --material sets the card's)",
+                  "(templates/cutters: silhouette, cricut, scanncut, or a .toml file)",
+                  "beside -o (PAGE-cut.svg, .dxf)", "-o is a folder of cut sheets"):
+        assert words in terminal

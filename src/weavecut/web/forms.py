@@ -4,9 +4,10 @@ checked by the command itself, so the form and the CLI cannot drift.
 ``fields(name)`` lists a command's options as form fields: the query key is the long option
 name without dashes (``--tile-size`` -> ``tile-size``), the INPUT argument is ``input`` (a
 figure's NAME ``name``); label, help, default, choices, bounds and unit come from the click
-parameter. Options that make no sense on the web are hidden: where the output goes and how it
-is printed (``-o``, ``--json``, ``--html``, ``--preview``, ``--list``, ``--force``: the job
-adds what it needs) and every option naming a file.
+parameter, the help in the form's words (``words.form_words``: fields, not flags). Options
+that make no sense on the web are hidden: where the output goes and how it is printed
+(``-o``, ``--json``, ``--html``, ``--preview``, ``--list``, ``--force``: the job adds what it
+needs) and every option naming a file.
 
 ``parse(name, query)`` turns a query into the command's arguments: unknown keys are refused
 with the nearest key, every value is confined (no file paths; a preset is a preset name; the
@@ -29,6 +30,7 @@ from ..cli.common import Finite, Formats, Length, PageSize
 from ..schema import nearest
 from .jobs import JobSpec, default_output, output_formats
 from .uploads import UploadError
+from .words import form_words
 
 COMMANDS = ("strands", "puzzle", "weave", "subdivide", "figure")  # a page each, in this order
 HIDDEN = frozenset({"output", "output-dir", "force", "json", "preview", "html", "list"})
@@ -152,7 +154,7 @@ def fields(name: str) -> tuple[Field, ...]:
             continue
         k = key(p)
         where = "main" if k in primary else ("drawing" if not p.expose_value else "more")
-        out.append(_field(p, k, where, NEEDS.get(name, {}).get(k, "")))
+        out.append(_field(p, k, where, NEEDS.get(name, {}).get(k, ""), name))
     return tuple(out)
 
 
@@ -178,11 +180,19 @@ def form_fields(name: str) -> tuple[Field, ...]:
     return fields(name) + ((extra,) if extra else ())
 
 
-def _field(p: click.Parameter, k: str, where: str, needs: str) -> Field:
+def web_help(text: str, name: str) -> str:
+    """Click's help of an option of command ``name`` as the form shows it
+    (:func:`.words.form_words`; its options by their fields' labels, a flag's ticked)."""
+    labels = {key(p): f"“{_label(key(p))}”" + " ticked" * bool(getattr(p, "is_flag", False))
+              for p in command(name).params if not is_hidden(p)}
+    return form_words(text, labels)
+
+
+def _field(p: click.Parameter, k: str, where: str, needs: str, name: str) -> Field:
     default = p.default  # click's UNSET, None, False: no default to show
     default = str(default) if isinstance(default, (str, int, float)) and default is not False \
         else None
-    text = getattr(p, "help", None) or ""
+    text = web_help(getattr(p, "help", None) or "", name)
     base = {"key": k, "label": _label(k), "help": text, "required": p.required or k == "name",
             "group": where, "param": p, "default": default, "needs": needs}
     t = p.type

@@ -111,7 +111,8 @@ def command_page(name: str, raw: dict[str, str], error: forms.FormError | None,
                                   1)
         groups[f.group].append(field)
     general = error.message if error is not None and error.key is None else ""
-    about = " ".join((cmd.help or "").split("\n\n")[0].split()).replace("INPUT", "the input")
+    about = forms.web_help(" ".join((cmd.help or "").split("\n\n")[0].split()), name).replace(
+        "INPUT", "the input")
     qs = urlencode([(k, v) for k, v in raw.items()])
     from .equivalents import command_line, recipe
 

@@ -1,0 +1,36 @@
+"""The form's words for click's help: a maker in a browser sees fields, not flags.
+
+The CLI's ``--help`` keeps its words; the web form shows each option's help through
+:func:`form_words`, one transform instead of a second copy of every help string: no preset
+folder (the form lists the presets), no file (the web app reads no file a request names), no
+comma list (the form has checkboxes), ``-o`` is the kit, and an option named in a help is the
+field's label.
+"""
+
+from __future__ import annotations
+
+import re
+
+WEB_WORDS = (  # (the CLI's words, the form's words), in this order
+    (r" \(templates/[a-z]+\)|(?<=\()templates/[a-z]+: ", ""),  # a preset folder
+    (r",? or a \.toml file", ""),
+    (r", comma-separated", ""),
+    (r"\bbeside -o\b", "in the kit"),
+    (r"(?<![\w-])-o\b", "the kit"),  # the job's output, which the form does not show
+)
+NAMED = re.compile(r"(?<![\w-])--([a-z][a-z0-9-]*)")  # an option named in a help
+
+
+def form_words(text: str, labels: dict[str, str]) -> str:
+    """``text`` in the form's words; ``labels``: option key (``laser-card``) -> how the form
+    names its field. An option without a field is left as it is (the web tests find it).
+
+    >>> form_words("With --laser-card: colour conventions (templates/laser).",
+    ...            {"laser-card": "“Laser-cut card” ticked"})
+    'With “Laser-cut card” ticked: colour conventions.'
+    >>> form_words("a cut file per page beside -o, or a .toml file", {})
+    'a cut file per page in the kit'
+    """
+    for cli_words, web_words in WEB_WORDS:
+        text = re.sub(cli_words, web_words, text)
+    return NAMED.sub(lambda found: labels.get(found.group(1), found.group(0)), text)
