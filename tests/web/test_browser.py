@@ -156,3 +156,27 @@ def test_a_kit_without_figures_says_so_once_made(browser, server):
     before = "getComputedStyle(document.getElementById('figures'), '::before').content"
     browser.wait_until(READY, 120)
     assert "prints no figures" in browser.evaluate(before)
+
+
+def test_choosing_a_ball_hides_what_a_ball_refuses_and_sends_none_of_it(browser, server):
+    """The fields the command refuses for a surface in space (its KIT_REFUSES) disappear when
+    the input becomes the dodecahedron, with the fields that need the hidden laser card; the
+    query then carries none of them; back on a flat input they return as they were."""
+    browser.goto(server + "strands?input=square-grid&laser-card=on&palette=maritime-4", 1280)
+    browser.wait_until("!!document.getElementById('f-laser-card')", 60)
+    visible = "(k => !document.querySelector(`.field[data-key=${k}]`).hidden)"
+    gone = ("cutter", "laser-card", "layout", "turn", "material", "laser", "formats")
+    assert all(browser.evaluate(f"{visible}('{k}')") for k in gone if k != "cutter")
+    assert not browser.evaluate(f"{visible}('project')")
+    browser.evaluate("(s => { s.value = 'dodecahedron'; s.dispatchEvent(new Event('change', "
+                     "{bubbles: true})); })(document.getElementById('f-input')), 0")
+    browser.wait_until(" && ".join(f"!{visible}('{k}')" for k in gone)
+                       + f" && {visible}('project') && {visible}('format')", 10)
+    browser.wait_until("location.search.includes('input=dodecahedron')", 10)
+    assert "laser-card" not in browser.evaluate("location.search")
+    browser.evaluate("(s => { s.value = 'square-grid'; s.dispatchEvent(new Event('change', "
+                     "{bubbles: true})); })(document.getElementById('f-input')), 0")
+    browser.wait_until(f"{visible}('laser-card') && {visible}('material') && !{visible}('format')"
+                       f" && !{visible}('project')", 10)
+    browser.wait_until("location.search.includes('laser-card=on')", 10)
+    assert browser.errors() == []

@@ -242,6 +242,12 @@ def shown_path(word: str) -> str:
     return f"{key}{eq}{Path(value).name}" if os.path.isabs(value) else word
 
 
+def option_key(p: click.Parameter) -> str:
+    """An option's long name without dashes (``--laser-card``: ``laser-card``), as a recipe
+    and the web form name it."""
+    return max(p.opts, key=len).lstrip("-")
+
+
 def input_title(spec: str) -> str:
     """An INPUT as a title names it: a built-in input by its name, a file by its name only."""
     return spec if inputs.is_builtin(spec) else Path(spec).name

@@ -55,7 +55,7 @@ from ..errors import WeaveCutError
 from ..fileio import make_folder, recording, write_atomic
 from ..manifest import MANIFEST, Ledger, file_hash, read_manifest, record_manifest
 from ..schema import SchemaError, nearest
-from .common import say
+from .common import option_key, say
 from .outputs import is_folder, may_replace, path_options, problem, too_long
 
 if TYPE_CHECKING:  # the kit page (and shapely) load when a job runs, not for --help
@@ -119,10 +119,6 @@ def _long(p: click.Parameter) -> str:
     return max(p.opts, key=len)
 
 
-def _key(p: click.Parameter) -> str:
-    return _long(p).lstrip("-")
-
-
 def find_recipe(spec: str) -> Path:
     """A recipe file, or a recipe preset by name (``templates/recipes/NAME.toml``)."""
     path = Path(spec)
@@ -160,7 +156,7 @@ class Planner:
         for p in command.params:
             if isinstance(p, click.Option) and p.name not in ("html", "force"):  # build
                 # writes the page; only the build's own --force lets a file be replaced
-                out["output" if "-o" in p.opts else _key(p)] = p
+                out["output" if "-o" in p.opts else option_key(p)] = p
         return out
 
     def plan(self, n: int, job: dict, overrides: dict[str, str]) -> Job:
@@ -310,10 +306,10 @@ class Planner:
         except click.MissingParameter as exc:
             what = "output" if exc.param is not None and "-o" in exc.param.opts else (
                 "input" if isinstance(exc.param, click.Argument) else
-                (_key(exc.param) if exc.param else "a key"))
+                (option_key(exc.param) if exc.param else "a key"))
             raise RecipeError(f"{job.where}: needs {what!r}") from exc
         except click.BadParameter as exc:
-            key = _key(exc.param) if exc.param is not None and exc.param.opts else "input"
+            key = option_key(exc.param) if exc.param is not None and exc.param.opts else "input"
             raise RecipeError(f"{job.where}: {key}: {exc.message}") from exc
         except click.ClickException as exc:
             raise RecipeError(f"{job.where}: {exc.format_message()}") from exc

@@ -15,11 +15,20 @@ from ..text import counted
 from ..weave.colour import palette
 from .common import (CONTEXT, Choice, Finite, Length, PageSize, complete_preset,
                      flag_nonconvex, force_option, formats_option, input_argument, input_title,
-                     load_mesh, provenance, reports_errors, html_option, summary)
+                     load_mesh, option_key, provenance, reports_errors, html_option, summary)
 from .mesh_commands import project_option
 from .outputs import OutputPath, check_suffix
 
 FORMATS = ("pdf", "svg")
+BY_HAND = "a ball's strips are printed and cut by hand so far"
+KIT_REFUSES = {  # an input's kind -> (what the options are for, {option: why a kit of that kind
+    # refuses it}): set away from its default, it is refused (``refuse_for_kit``); the web
+    # form does not offer it for that kind of input
+    "surface": ("flat models", {"layout": "a ball prints every strip once",
+                                "turn": "a ball prints every strip once",
+                                "cutter": BY_HAND, "laser-card": BY_HAND}),
+    "flat": ("surfaces in space", {"project": ""}),
+}
 
 
 @click.command("strands", context_settings=CONTEXT)
@@ -125,18 +134,10 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
     from ..validation import check_layout
 
     mesh = load_mesh(input_mesh)
+    refuse_for_kit("surface" if mesh.dim == 3 else "flat", input_mesh)
     if mesh.dim == 3:
-        if layout != "mixed" or turn is not None:
-            raise click.UsageError("--layout and --turn are for flat models; a ball prints "
-                                   "every strip once")
-        if cutter_name is not None or laser_card:
-            raise click.UsageError("--cutter and --laser-card are for flat models so far; "
-                                   "print a ball's strips and cut them by hand")
         return ball(mesh, input_mesh, levels, page, tile_size, model_size, margin, pal,
                     chirality, project, output, as_json, preview)
-    if project:
-        raise click.BadParameter(f"{input_mesh} is flat; --project sphere is for surfaces "
-                                 "in space", param_hint="'--project'")
     turn = preset["turn"] if turn is None else math.radians(turn)
     hierarchy = subdivide(check_layout(mesh, "the paper model"), levels, chirality=chirality)
     weaves = snub_weaves(hierarchy)
@@ -233,6 +234,22 @@ def write_woven_model(weave, book, output) -> None:
 
     model = woven_mm(weave, book.colours, book.scale, MODEL_THICKNESS)
     write_atomic(model_path(output), glb_bytes(model, name=Path(output).stem))
+
+
+def refuse_for_kit(kind: str, input_mesh: str) -> None:
+    """BadParameter naming the options given away from their defaults that a kit of ``kind``
+    ("surface": a ball; "flat") refuses, with why (``KIT_REFUSES``)."""
+    ctx = click.get_current_context()
+    meant, why = KIT_REFUSES[kind]
+    given = [p for p in ctx.command.params if isinstance(p, click.Option)
+             and option_key(p) in why and ctx.params[p.name] != p.get_default(ctx)]
+    if given:
+        names = " and ".join(f"--{option_key(p)}" for p in given)
+        reasons = "".join(f"; {r}" for r in dict.fromkeys(why[option_key(p)] for p in given) if r)
+        raise click.BadParameter(
+            f"{f'{input_mesh} is flat; ' if kind == 'flat' else ''}{names} "
+            f"{'is' if len(given) == 1 else 'are'} for {meant}{reasons}",
+            param_hint=f"'--{option_key(given[0])}'")
 
 
 BALL_TILE = 40.0  # mm across an octagon: a ball's default size

@@ -20,17 +20,17 @@ from __future__ import annotations
 
 import functools
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import click
 
 from .. import inputs, presets
-from ..cli.common import Finite, Formats, Length, PageSize
+from ..cli.common import Finite, Formats, Length, PageSize, option_key
 from ..schema import nearest
 from .jobs import JobSpec, default_output, output_formats
 from .uploads import UploadError
-from .words import form_words
+from .words import bounds, field_label, form_words
 
 COMMANDS = ("strands", "puzzle", "weave", "subdivide", "figure")  # a page each, in this order
 HIDDEN = frozenset({"output", "output-dir", "force", "json", "preview", "html", "list"})
@@ -82,6 +82,7 @@ class Choice:
     swatches: tuple[str, ...] = ()
     group: str = ""
     parameter: str = ""  # a built-in input's parameter ("N", "WxH"), if it takes one
+    kind: str = ""  # a built-in input's kind: "surface" (in space: a ball) or "flat"
 
 
 @dataclass(frozen=True)
@@ -100,6 +101,7 @@ class Field:
     maximum: float | None = None
     unit: str = ""
     needs: str = ""  # a flag's key this field counts with ("!key": without), from NEEDS
+    not_for: str = ""  # the kind of input the command refuses it for (``kit_refuses``)
     param: click.Parameter | None = field(default=None, compare=False, repr=False)
 
 
@@ -137,7 +139,7 @@ def key(param: click.Parameter) -> str:
     """The query key of a parameter: its long option name without dashes, ``input``."""
     if isinstance(param, click.Argument):
         return "input" if param.name == "input_mesh" else param.name
-    return max(param.opts, key=len).lstrip("-")
+    return option_key(param)
 
 
 def is_hidden(param: click.Parameter) -> bool:
@@ -154,8 +156,27 @@ def fields(name: str) -> tuple[Field, ...]:
             continue
         k = key(p)
         where = "main" if k in primary else ("drawing" if not p.expose_value else "more")
-        out.append(_field(p, k, where, NEEDS.get(name, {}).get(k, ""), name))
+        made = _field(p, k, where, NEEDS.get(name, {}).get(k, ""), name)
+        refused = [kind for kind, (_, why) in kit_refuses(name).items() if k in why]
+        out.append(replace(made, not_for=refused[0]) if refused else made)
     return tuple(out)
+
+
+def kit_refuses(name: str) -> dict:
+    """The command's own table of the options it refuses for a kind of input (the CLI's
+    ``KIT_REFUSES``: a ball takes no cutter); {} for a command without one."""
+    from ..cli import strands_command
+
+    return strands_command.KIT_REFUSES if name == "strands" else {}
+
+
+def input_kind(value: str) -> str:
+    """"surface" or "flat" for a built-in input (``value`` as a query gives it), "" for an
+    upload or an unknown name (its kind shows only when the command reads it)."""
+    found = INPUT.fullmatch(value or "")
+    if found is None or found.group(1) not in inputs.INPUTS:
+        return ""
+    return "surface" if found.group(1) in inputs.SURFACES else "flat"
 
 
 @functools.cache
@@ -183,7 +204,7 @@ def form_fields(name: str) -> tuple[Field, ...]:
 def web_help(text: str, name: str) -> str:
     """Click's help of an option of command ``name`` as the form shows it
     (:func:`.words.form_words`; its options by their fields' labels, a flag's ticked)."""
-    labels = {key(p): f"“{_label(key(p))}”" + " ticked" * bool(getattr(p, "is_flag", False))
+    labels = {key(p): f"“{field_label(key(p))}”" + " ticked" * bool(getattr(p, "is_flag", False))
               for p in command(name).params if not is_hidden(p)}
     return form_words(text, labels)
 
@@ -193,7 +214,7 @@ def _field(p: click.Parameter, k: str, where: str, needs: str, name: str) -> Fie
     default = str(default) if isinstance(default, (str, int, float)) and default is not False \
         else None
     text = web_help(getattr(p, "help", None) or "", name)
-    base = {"key": k, "label": _label(k), "help": text, "required": p.required or k == "name",
+    base = {"key": k, "label": field_label(k), "help": text, "required": p.required or k == "name",
             "group": where, "param": p, "default": default, "needs": needs}
     t = p.type
     if isinstance(p, click.Argument):
@@ -212,7 +233,7 @@ def _field(p: click.Parameter, k: str, where: str, needs: str, name: str) -> Fie
         return Field(kind="length", unit=unit, minimum=t.minimum, **base)
     if isinstance(t, (click.IntRange, Finite)):
         return Field(kind="integer" if isinstance(t, click.IntRange) else "number",
-                     minimum=t.min, maximum=t.max, unit=_range(t), **base)
+                     minimum=t.min, maximum=t.max, unit=bounds(t), **base)
     if isinstance(t, Formats):
         return Field(kind="formats", choices=tuple(
             Choice(f, FORMAT_LABELS.get(f, f)) for f in presets.LASER_FORMATS), **base)
@@ -222,29 +243,10 @@ def _field(p: click.Parameter, k: str, where: str, needs: str, name: str) -> Fie
     return Field(kind="text", **base)
 
 
-def _range(t: click.IntRange | click.FloatRange) -> str:
-    """'from 1 to 8', 'over 0, at most 10000' (click's bounds, open or closed)."""
-    def number(x) -> str:
-        return f"{x:g}" if isinstance(x, float) else str(x)
-
-    low = None if t.min is None else ("over " if t.min_open else "from ") + number(t.min)
-    high = None if t.max is None else ("below " if t.max_open else "to ") + number(t.max)
-    if low and high and not t.min_open and not t.max_open:
-        return f"{low} {high}"
-    return ", ".join(w for w in (low, high and high.replace("to ", "at most ")) if w)
-
-
-def _label(k: str) -> str:
-    return {"laser-card": "Laser-cut card", "no-smooth": "No smoothing (skip operation 4)",
-            "allow-nonconvex": "Allow non-convex faces", "name": "Figure",
-            "input": "Input", "cell": "Cell size", "formats": "Files per sheet"}.get(
-        k, k.replace("-", " ").capitalize())
-
-
 @functools.cache
 def input_choices() -> tuple[Choice, ...]:
     return tuple(Choice(n, n, e.description, group="Surfaces: woven balls" if n in
-                        inputs.SURFACES else "Flat", parameter=e.parameter)
+                        inputs.SURFACES else "Flat", parameter=e.parameter, kind=input_kind(n))
                  for n, e in inputs.INPUTS.items())
 
 
@@ -309,7 +311,7 @@ def parse(name: str, items: list[tuple[str, str]], uploads=None) -> Query:
             if f.kind == "preset":
                 _preset(f, value)
             args.append(f"{_long(f.param)}={value}")
-    check(cmd, name, args)
+    check(cmd, name, args, input_kind(values.get("input", "")))
     return Query(name, tuple(args), tuple(files), values, _output(name, args, raw, values))
 
 
@@ -364,15 +366,19 @@ def _preset(f: Field, value: str) -> None:
         raise FormError(str(exc), f.key) from None
 
 
-def check(cmd: click.Command, name: str, args: list[str]) -> None:
+def check(cmd: click.Command, name: str, args: list[str], kind: str = "") -> None:
     """Let the command parse ``args`` with its own types, as the CLI does (a required hidden
-    option, -o, gets a placeholder: parsing writes nothing); FormError with its message."""
+    option, -o, gets a placeholder: parsing writes nothing), and refuse what it refuses for
+    the ``kind`` of a built-in input (``kit_refuses``); FormError with its message."""
     fill = [f"{_long(p)}={PLACEHOLDER}" for p in cmd.params
             if isinstance(p, click.Option) and p.required and is_hidden(p)]
     root = click.Context(group(), info_name="weave-cut")
     try:
-        with cmd.make_context(name, [*args, *fill], parent=root):
-            pass
+        with cmd.make_context(name, [*args, *fill], parent=root) as ctx:
+            if kind and kit_refuses(name):
+                from ..cli.strands_command import refuse_for_kit
+
+                refuse_for_kit(kind, ctx.params["input_mesh"])
     except click.UsageError as exc:
         param = getattr(exc, "param", None)
         raise FormError(exc.format_message(), key(param) if param is not None else None) \

@@ -101,14 +101,20 @@ def command_page(name: str, raw: dict[str, str], error: forms.FormError | None,
     and ``uploads`` (id, label) offered as inputs."""
     cmd = forms.command(name)
     groups = {"main": [], "more": [], "drawing": []}
+    kind = forms.input_kind(raw.get("input") or dict([forms.STARTING.get(name, ("", ""))])
+                            .get("input", ""))
+    gone = {f.key for f in forms.form_fields(name) if f.not_for and f.not_for == kind}
     for f in forms.form_fields(name):
         message = error.message if error is not None and error.key == f.key else ""
         field = _field(f, raw.get(f.key, ""), message, uploads)
+        hidden = f.key in gone  # not for this input (a ball's cutter): the script follows it
         if f.needs:  # shown only with (or without) a flag: the script follows the flag
-            on = _on(raw.get(f.needs.lstrip("!"), ""))
-            field = field.replace(' data-key=', f' data-needs="{_e(f.needs)}"'
-                                  + " hidden" * (on == f.needs.startswith("!")) + ' data-key=',
-                                  1)
+            flag = f.needs.lstrip("!")
+            on = _on(raw.get(flag, "")) and flag not in gone
+            hidden = hidden or on == f.needs.startswith("!")
+        extra = (f' data-not-for="{f.not_for}"' if f.not_for else "") + (
+            f' data-needs="{_e(f.needs)}"' if f.needs else "")
+        field = field.replace(' data-key=', f'{extra}{" hidden" * hidden} data-key=', 1)
         groups[f.group].append(field)
     general = error.message if error is not None and error.key is None else ""
     about = forms.web_help(" ".join((cmd.help or "").split("\n\n")[0].split()), name).replace(
@@ -232,6 +238,7 @@ def _select(f: forms.Field, value: str, fid: str, extra: str, uploads) -> str:
         groups.setdefault(c.group, []).append(
             f'<option value="{_e(c.value)}" data-description="{_e(c.description)}"'
             + (f' data-param="{_e(c.parameter)}"' if c.parameter else "")
+            + (f' data-kind="{c.kind}"' if c.kind else "")
             + f'{" selected" * (c.value == (chosen or f.default))}>{_e(c.label)}</option>')
     for g, items in groups.items():
         options.append(f'<optgroup label="{_e(g)}">{"".join(items)}</optgroup>' if g

@@ -1,4 +1,5 @@
-"""The form's words for click's help: a maker in a browser sees fields, not flags.
+"""The form's words: a field's label, its bounds, and click's help as a maker in a browser
+reads it, with fields, not flags.
 
 The CLI's ``--help`` keeps its words; the web form shows each option's help through
 :func:`form_words`, one transform instead of a second copy of every help string: no preset
@@ -34,3 +35,23 @@ def form_words(text: str, labels: dict[str, str]) -> str:
     for cli_words, web_words in WEB_WORDS:
         text = re.sub(cli_words, web_words, text)
     return NAMED.sub(lambda found: labels.get(found.group(1), found.group(0)), text)
+
+
+def bounds(t) -> str:
+    """'from 1 to 8', 'over 0, at most 10000' (click's bounds, open or closed)."""
+    def number(x) -> str:
+        return f"{x:g}" if isinstance(x, float) else str(x)
+
+    low = None if t.min is None else ("over " if t.min_open else "from ") + number(t.min)
+    high = None if t.max is None else ("below " if t.max_open else "to ") + number(t.max)
+    if low and high and not t.min_open and not t.max_open:
+        return f"{low} {high}"
+    return ", ".join(w for w in (low, high and high.replace("to ", "at most ")) if w)
+
+
+def field_label(k: str) -> str:
+    """The label of the field of option ``k``."""
+    return {"laser-card": "Laser-cut card", "no-smooth": "No smoothing (skip operation 4)",
+            "allow-nonconvex": "Allow non-convex faces", "name": "Figure",
+            "input": "Input", "cell": "Cell size", "formats": "Files per sheet"}.get(
+        k, k.replace("-", " ").capitalize())

@@ -112,6 +112,7 @@
 
   async function update() {
     clearTimeout(timer);
+    follow();  // an upload, or the page's first query: the fields its input takes
     if (controller) controller.abort();
     controller = new AbortController();
     const signal = controller.signal;
@@ -155,10 +156,19 @@
     }
   }
 
-  function follow() {  // show a field only with (or without) the flag it needs
-    for (const field of form.querySelectorAll(".field[data-needs]")) {
-      const needs = field.dataset.needs, flag = $("f-" + needs.replace("!", ""));
-      if (flag) field.hidden = flag.checked === needs.startsWith("!");
+  function follow() {  // show a field only for the inputs it is for (data-not-for: the kind of
+    // input the command refuses it for) and with (or without) the flag it needs; a hidden flag
+    // is off (fields come in the command's order: a flag before the fields that need it)
+    const input = $("f-input"), chosen = input && input.selectedOptions[0];
+    const kind = (chosen && chosen.dataset.kind) || "";
+    for (const field of form.querySelectorAll(".field[data-not-for], .field[data-needs]")) {
+      let hidden = field.dataset.notFor === kind;
+      const needs = field.dataset.needs, flag = needs && $("f-" + needs.replace("!", ""));
+      if (flag) {
+        const on = flag.checked && !flag.closest(".field").hidden;
+        hidden = hidden || on === needs.startsWith("!");
+      }
+      field.hidden = hidden;
     }
   }
 
