@@ -27,6 +27,8 @@ import sys
 import tempfile
 from pathlib import Path
 
+from weavecut.text import counted
+
 ROOT = Path(__file__).resolve().parents[1]
 BASE = "e6bca44"  # main before the kits were made fast
 PAGE = re.compile(rb"/Type /Page\b")
@@ -70,12 +72,13 @@ def cpu_of(src: Path, args: list[str], out: Path) -> float:
 
 
 def pages(out: Path) -> str:
-    """Pages of a PDF, or the files of a kit folder ("3 pages", "8 sheets")."""
+    """Pages of a PDF, or the sheets and files of a kit folder ("3 pages", "1 sheet, 4
+    files")."""
     if out.suffix == ".pdf":
-        return f"{len(PAGE.findall(out.read_bytes()))} pages"
+        return counted(len(PAGE.findall(out.read_bytes())), "page")
     files = sorted(p.name for p in out.iterdir())
     sheets = [f for f in files if re.search(r"-(card|sheet|cut)-.*\.svg$", f)]
-    return f"{len(sheets)} sheets, {len(files)} files"
+    return f"{counted(len(sheets), 'sheet')}, {counted(len(files), 'file')}"
 
 
 def main() -> None:

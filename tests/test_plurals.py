@@ -36,3 +36,17 @@ def test_the_star_and_the_puzzle_say_one_in_the_singular(tmp_path):
     assert "C1, 1 copy of a 31-strip module" in said[0]
     assert "separate: cut" in said[1] and ", 1 sheet, about" in said[1]
     assert [m[0] for text in said for m in ONE_PLURAL.finditer(text)] == []
+
+
+def test_the_kit_benchmark_counts_in_the_singular(tmp_path):
+    """benchmarks/bench_kits.py's page column: a one-sheet card kit, a one-page PDF."""
+    from benchmarks.bench_kits import pages
+
+    kit = tmp_path / "card"
+    kit.mkdir()
+    (kit / "strands-card-1.svg").write_text("<svg/>")
+    (tmp_path / "one.pdf").write_bytes(b"%PDF-1.4 1 0 obj << /Type /Page /Parent 2 0 R >>")
+    said = [pages(kit), pages(tmp_path / "one.pdf")]
+    assert said == ["1 sheet, 1 file", "1 page"]
+    (kit / "strands-assembly.pdf").write_bytes(b"%PDF")
+    assert pages(kit) == "1 sheet, 2 files"
