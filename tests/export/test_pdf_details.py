@@ -21,7 +21,7 @@ from weavecut.layout.drawing import (
     Drawing, Layer, Sheet, Style, Text, polygons_from_shapely, polylines_from_lines,
 )
 
-from tests.export.test_raster_readback import PX, at, close, ink
+from tests.export.test_raster_readback import PX, at, close
 from tests.test_readback import page_sizes, pdfinfo, program
 
 MM = 72 / 25.4  # points per millimetre

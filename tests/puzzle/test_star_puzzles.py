@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 import shapely
 
-from weavecut.errors import MeshError, TurnedOverError
+from weavecut.errors import MeshError
 from weavecut.puzzle.frame_size import extent
 from weavecut.puzzle.guides import piece_halves, split_ends
 from weavecut.puzzle.pieces import OCTAGON, _one_region, build_puzzle

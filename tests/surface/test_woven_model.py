@@ -3,8 +3,6 @@
 
 from __future__ import annotations
 
-import io
-
 import numpy as np
 import pytest
 from click.testing import CliRunner

@@ -127,12 +127,14 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     ctx = click.get_current_context()
     drawing = ctx.meta.setdefault(DRAWING_KEY, {})
     drawing["runs"] = True
-    read_at = None
-    if Path(input_mesh).suffix.lower() in DRAWINGS and drawing.get("mesh") != "none":
-        @functools.cache  # the defaults and the warnings try the same cells again
-        def read_at(cell):
-            return check_layout(read_valid_mesh(input_mesh, **{**drawing, "cell": cell}),
-                                "the puzzle", connected=True)
+
+    @functools.cache  # the defaults and the warnings try the same cells again
+    def read_drawing(cell):
+        return check_layout(read_valid_mesh(input_mesh, **{**drawing, "cell": cell}),
+                            "the puzzle", connected=True)
+
+    meshed = Path(input_mesh).suffix.lower() in DRAWINGS and drawing.get("mesh") != "none"
+    read_at = read_drawing if meshed else None  # a drawing meshed at a cell size, or not
     if read_at is not None and drawing.get("cell") is None:
         given = ctx.get_parameter_source("levels") is not ParameterSource.DEFAULT
         cell, levels, puzzle = workshop.drawing_defaults(

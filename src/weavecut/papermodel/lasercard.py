@@ -31,12 +31,10 @@ from ..layout.drawing import (
     Drawing,
     Layer,
     Sheet,
-    Style,
     Text,
-    polygons_from_shapely,
     polylines_from_lines,
 )
-from ..layout.labels import MIN_CAP, inner_centres, text_boxes
+from ..layout.labels import inner_centres, text_boxes
 from ..layout.lasersetup import Laser
 from .packing import pack
 from .pages import GAP

@@ -155,7 +155,6 @@ def _new_surface_vertices(mesh: Mesh, right: bool, centre: str) -> NDArray[np.fl
     (u, w) in the plane of its edge normal n, with ``t = n x d`` scaled to ``|d|`` for
     ``i d``."""
     topo = mesh.topology
-    n_v, n_e = mesh.n_vertices, topo.n_edges
     u, w = mesh.vertices[topo.edges[:, 0]], mesh.vertices[topo.edges[:, 1]]
     d = w - u
     t = np.cross(edge_normals(mesh), d)
