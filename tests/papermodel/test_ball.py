@@ -18,7 +18,8 @@ from click.testing import CliRunner
 
 from weavecut.cli import cli
 from weavecut.inputs import get
-from weavecut.papermodel.ball import ball_book, diameter_for, piece_runs
+from weavecut.papermodel.ball import ball_book, diameter_for
+from weavecut.papermodel.ball_pieces import piece_runs
 from weavecut.papermodel.checks import report
 from weavecut.papermodel.pages import GAP, occupied
 from weavecut.papermodel.unfold import OVERLAP, Unfolding, flatten, unfold

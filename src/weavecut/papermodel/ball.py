@@ -22,20 +22,19 @@ from ..layout.weave_figure import tile_rings
 from ..surface import face_normals
 from ..weave.colour import Palette, strand_colours
 from ..weave.model import Weave
-from .book import CURL, MIN_STRIP, WARN_STRIP, SizeError, StrandBook, strip_sheets
-from .pages import FOLD, GAP, PageArea, _fits, page_layers, page_span
+from .book import MIN_STRIP, WARN_STRIP, SizeError, StrandBook, strip_sheets
+from .pages import GAP, PageArea, page_layers, page_span
 from .pattern import OUTLINE
-from ..numeric import affine, dot, snap
+from ..numeric import dot, snap
 from .modules import copy_letter
-from .notches import MIN_CUT, NotchError, widen_notches
+from .ball_pieces import MIN_FOLD, PageTooSmall, strand_pieces, too_large
+from .notches import MIN_CUT, NotchError
 from .strip_labels import label_strips
-from .strips import Strip, flat_angle, outline_of, tint
-from .unfold import OVERLAP, Unfolding, UnfoldError, dashed, flatten, unfold
+from .strips import Strip, tint
+from .unfold import Unfolding, UnfoldError, flatten, unfold
 from .wording import TEXT, page_index, paragraphs
 
 PREVIEW, PREVIEW_MARGIN = 200.0, 5.0  # mm: the width of the quick look's two views, margin
-MIN_FOLD = math.radians(1.0)  # joints flatter than this are not drawn as folds
-VALLEY = (0.5, 1.0)  # mm dash and gap of a valley fold (a mountain fold: unfold.DASH)
 # (name, towards the viewer, up): six views, every tile seen head-on in one of them
 VIEWS = (("front", (0, 0, 1), (0, 1, 0)), ("right", (1, 0, 0), (0, 1, 0)),
          ("back", (0, 0, -1), (0, 1, 0)), ("left", (-1, 0, 0), (0, 1, 0)),
@@ -97,88 +96,6 @@ def diameter_for(weave: Weave, tile_size: float) -> float:
     return tile_size / tile_size_of(weave) * 2 * radius(weave)
 
 
-def piece_runs(tiles, length: float, width: float) -> list[tuple[int, int]]:
-    """Runs (first, last) of whole tiles, consecutive runs sharing a tile, such that each run
-    fits a ``length`` x ``width`` rectangle and no two tiles of a run overlap (but neighbours,
-    which share an edge); as few runs as greedy extension gives, then evened out if the
-    even runs still fit."""
-    tiles = np.asarray(tiles, dtype=object)
-    m = len(tiles)
-
-    def ok(a: int, b: int) -> bool:
-        part = tiles[a:b + 1]
-        if not _fits(shapely.union_all(part), length, width):
-            return False
-        i, j = shapely.STRtree(part).query(part, predicate="intersects")
-        far = j > i + 1
-        overlap = shapely.area(shapely.intersection(part[i[far]], part[j[far]]))
-        return bool((overlap <= OVERLAP * shapely.area(part[i[far]])).all())
-
-    if m == 1:
-        return [(0, 0)]
-    runs, a = [], 0
-    while True:  # runs
-        b = a + 1
-        if not ok(a, b):
-            raise UnfoldError("two tiles of a strip do not fit the page: make the ball smaller "
-                              "or the page larger")
-        while b + 1 < m and ok(a, b + 1):
-            b += 1
-        runs.append((a, b))
-        if b >= m - 1:
-            return _even(runs, m, ok)
-        a = b
-
-
-def _even(runs, m: int, ok) -> list[tuple[int, int]]:
-    """As many runs as ``runs`` over ``m`` tiles, of equal length if those pass ``ok``."""
-    ends = np.round(np.linspace(0, m - 1, len(runs) + 1)).astype(int).tolist()
-    even = list(zip(ends[:-1], ends[1:]))
-    return even if all(b > a and ok(a, b) for a, b in even) else runs
-
-
-def strand_pieces(weave: Weave, u: Unfolding, colours, labels, scale: float,
-                  area: PageArea) -> list[Strip]:
-    """Strand ``u.strand``'s strip in pieces (mm, unlabelled), each laid flat, long axis
-    along x, walking towards +x."""
-    s = u.strand
-    tiles = shapely.transform(u.tile_polygons(), lambda xy: xy * scale)
-    x0, y0, x1, y1 = area.box
-    runs = piece_runs(tiles, max(x1 - x0, y1 - y0), CURL * min(x1 - x0, y1 - y0))
-    top = weave.tile_over[u.tiles]
-    fills = tuple(colours[s] if o else tint(colours[t]) for o, t in zip(u.over, top.tolist()))
-    names = tuple(labels[t] for t in top.tolist())
-    fold = np.abs(u.fold_angles) >= MIN_FOLD
-    # a fold across an own tile in the ink that reads on the strand's colour, else dark
-    across_own = (u.face_visit[:-1] == u.face_visit[1:]) & u.over[u.face_visit[:-1]]
-    inks = np.where(across_own, text_colour_on(colours[s]), FOLD.stroke)
-    # mountain folds (the printed side bulges out) dashed, valley folds dotted
-    lines = np.where(u.fold_angles > 0, dashed(u.folds * scale),
-                     dashed(u.folds * scale, *VALLEY))
-    closed = bool(weave.strand_closed[s])
-    n = len(runs)
-    eps = 1e-6 * scale
-    out = []
-    for i, (a, b) in enumerate(runs):  # pieces of one strand
-        band = closed or i + 1 < n
-        inside = fold & (u.face_visit[:-1] >= a) & (u.face_visit[1:] <= b)
-        outline = widen_notches(outline_of(tiles[a:b + 1], eps))
-        paper = shapely.intersection(tiles[a:b + 1], outline)  # less the widened notches
-        piece = Strip(s, labels[s] if n == 1 else f"{labels[s]} {i + 1}/{n}",
-                      outline, paper, fills[a:b + 1], u.over[a:b + 1], names[a:b + 1],
-                      np.eye(3), arrow_ink=text_colour_on(colours[s]),
-                      glue=paper[-1:] if band else None, folds=lines[inside],
-                      fold_inks=tuple(inks[inside].tolist()),
-                      tab=f"glue {i + 1}", mark=str(i) if i else (str(n) if closed else ""))
-        flat = piece.moved(affine(flat_angle(piece.outline)))
-        ends = shapely.get_coordinates(shapely.centroid(flat.tiles[[0, -1]]))
-        if ends[1, 0] < ends[0, 0]:
-            flat = flat.moved(affine(180.0))
-        bx, by = flat.outline.bounds[:2]
-        out.append(flat.moved(affine(0.0, (-bx, -by))))
-    return out
-
-
 def ball_book(weaves: list[Weave], pal: Palette, page=(210.0, 297.0),
               diameter: float | None = None, margin: float = 10.0,
               title: str = "weave-cut strands", tile_size: float = 40.0) -> BallBook:
@@ -210,6 +127,8 @@ def ball_book(weaves: list[Weave], pal: Palette, page=(210.0, 297.0),
         raise SizeError(f"{exc} on a {diameter / 10:g} cm ball (scissors need {MIN_CUT:g} mm):"
                         f" use --size {math.ceil(diameter * MIN_CUT / exc.mouth / 10)}cm or "
                         "more") from None
+    except PageTooSmall as exc:  # pieces grow with the ball: the largest whose pieces fit
+        raise SizeError(too_large(exc.need, diameter, page, margin)) from None
     widths = shapely.minimum_rotated_rectangle(np.concatenate([p.tiles for p in pieces]))
     rect = shapely.get_coordinates(shapely.get_exterior_ring(widths)).reshape(-1, 5, 2)
     sides = np.linalg.norm(rect[:, 1:3] - rect[:, 0:2], axis=-1)

@@ -89,10 +89,16 @@ class PageArea:
                              f"{self.margin:g} mm leaves no room for strips")
 
 
+def rect_sides(geoms) -> np.ndarray:
+    """(n, 2) the short and the long side of each of ``geoms``' smallest rectangles."""
+    rects = shapely.minimum_rotated_rectangle(np.asarray(geoms, dtype=object))
+    corners = shapely.get_coordinates(shapely.get_exterior_ring(rects)).reshape(-1, 5, 2)[:, :3]
+    return np.sort(np.hypot(*np.diff(corners, axis=1).transpose(2, 0, 1)), axis=1)
+
+
 def _fits(geom, length: float, width: float) -> bool:
-    rect = np.asarray(shapely.minimum_rotated_rectangle(geom).exterior.coords)[:3]
-    sides = np.sort(np.hypot(*np.diff(rect, axis=0).T))
-    return bool(sides[1] <= length and sides[0] <= width)
+    short, long = rect_sides([geom])[0]
+    return bool(long <= length and short <= width)
 
 
 def split_strip(strip: Strip, max_length: float, max_width: float) -> list[Strip]:
