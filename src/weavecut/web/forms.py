@@ -204,7 +204,7 @@ def form_fields(name: str) -> tuple[Field, ...]:
 def web_help(text: str, name: str) -> str:
     """Click's help of an option of command ``name`` as the form shows it
     (:func:`.words.form_words`; its options by their fields' labels, a flag's ticked)."""
-    labels = {key(p): f"“{field_label(key(p))}”" + " ticked" * bool(getattr(p, "is_flag", False))
+    labels = {key(p): f"“{field_label(key(p))}”" + " ticked" * bool(getattr(p, "is_flag", 0))
               for p in command(name).params if not is_hidden(p)}
     return form_words(text, labels)
 
@@ -214,7 +214,8 @@ def _field(p: click.Parameter, k: str, where: str, needs: str, name: str) -> Fie
     default = str(default) if isinstance(default, (str, int, float)) and default is not False \
         else None
     text = web_help(getattr(p, "help", None) or "", name)
-    base = {"key": k, "label": field_label(k), "help": text, "required": p.required or k == "name",
+    base = {"key": k, "label": field_label(k), "help": text,
+            "required": p.required or k == "name",
             "group": where, "param": p, "default": default, "needs": needs}
     t = p.type
     if isinstance(p, click.Argument):

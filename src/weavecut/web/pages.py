@@ -101,8 +101,8 @@ def command_page(name: str, raw: dict[str, str], error: forms.FormError | None,
     and ``uploads`` (id, label) offered as inputs."""
     cmd = forms.command(name)
     groups = {"main": [], "more": [], "drawing": []}
-    kind = forms.input_kind(raw.get("input") or dict([forms.STARTING.get(name, ("", ""))])
-                            .get("input", ""))
+    starting = dict([forms.STARTING[name]]) if name in forms.STARTING else {}
+    kind = forms.input_kind(raw.get("input") or starting.get("input", ""))
     gone = {f.key for f in forms.form_fields(name) if f.not_for and f.not_for == kind}
     for f in forms.form_fields(name):
         message = error.message if error is not None and error.key == f.key else ""
