@@ -18,3 +18,10 @@ settings.register_profile("mutation", max_examples=8, deadline=None, derandomize
                           suppress_health_check=[HealthCheck.too_slow])
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE") or ("ci" if os.environ.get("CI")
                                                                else "dev"))
+
+
+def pytest_collection_modifyitems(items):
+    """The tests marked ``slow`` (each several seconds of CPU) first, in their order: xdist's
+    workers share out the quick ones at the end, so neither is left running a long test alone
+    while the other waits (a module's slow tests stay together: their fixtures are made once)."""
+    items.sort(key=lambda item: item.get_closest_marker("slow") is None)

@@ -5,6 +5,7 @@ README rounds them. ``test_findings.py`` does the same for the paper's numbers."
 
 from __future__ import annotations
 
+import contextlib
 import json
 import re
 from dataclasses import dataclass
@@ -16,7 +17,10 @@ from click.testing import CliRunner
 
 from weavecut.cli import cli
 
+from .once import once, session_root
+
 ROOT = Path(__file__).resolve().parents[1]
+pytestmark = pytest.mark.slow  # whole commands, the 8-4 level 4 puzzle among them
 
 
 @dataclass(frozen=True)
@@ -204,10 +208,19 @@ NUMBER_WORDS = dict(enumerate(["no", "one", "two", "three", "four", "five", "six
 SOLIDS = [(s, level) for s in ("dodecahedron", "cube") for level in (1, 2)]
 
 
-def run(args, tmp_path) -> dict:
-    result = CliRunner().invoke(cli, ["-q", *args, "--json"], catch_exceptions=False)
-    assert result.exit_code == 0, result.output
-    return json.loads(result.stdout)
+@pytest.fixture(scope="session")
+def run(tmp_path_factory) -> Callable[..., dict]:
+    """``run(args)``: the JSON of ``weave-cut -q ARGS --json``, run in an empty folder once
+    per session (several claims name one command; the xdist workers share it: once.py)."""
+    root = session_root(tmp_path_factory)
+
+    def make(args: tuple[str, ...]) -> dict:
+        with contextlib.chdir(tmp_path_factory.mktemp("run")):
+            result = CliRunner().invoke(cli, ["-q", *args, "--json"], catch_exceptions=False)
+        assert result.exit_code == 0, result.output
+        return json.loads(result.stdout)
+
+    return lambda args: once(root, json.dumps(list(args)), lambda: make(tuple(args)))
 
 
 def stated(pattern: str, readme: Path = ROOT / "README.md") -> dict[str, str]:
@@ -218,44 +231,40 @@ def stated(pattern: str, readme: Path = ROOT / "README.md") -> dict[str, str]:
 
 
 @pytest.mark.parametrize("claim", CLAIMS, ids=lambda c: c.name)
-def test_readme_figures_are_what_the_command_makes(claim, tmp_path, monkeypatch):
-    monkeypatch.chdir(tmp_path)
-    assert stated(claim.pattern) == claim.figures(run(claim.args, tmp_path))
+def test_readme_figures_are_what_the_command_makes(claim, run):
+    assert stated(claim.pattern) == claim.figures(run(claim.args))
 
 
 @pytest.mark.parametrize("claim", ROWS, ids=lambda c: c.name)
-def test_the_tables_rows_are_what_the_command_makes(claim, tmp_path, monkeypatch):
+def test_the_tables_rows_are_what_the_command_makes(claim, run):
     """The puzzle table's rows and the kits table's pages and sheets: the figures a row states
     (a row may leave some out: an empty cell, no breakdown of the pieces) are the command's."""
-    monkeypatch.chdir(tmp_path)
     said = {k: v for k, v in stated(claim.pattern).items() if v is not None}
-    made = claim.figures(run(claim.args, tmp_path))
+    made = claim.figures(run(claim.args))
     assert said and said == {k: made[k] for k in said}
 
 
 @pytest.mark.parametrize("name, level", SOLIDS, ids=lambda v: str(v))
-def test_the_solids_table_is_what_the_command_makes(name, level, tmp_path, monkeypatch):
+def test_the_solids_table_is_what_the_command_makes(name, level, run):
     """A row of the table of woven solids: at 40 mm octagons, 1 m across (loop lengths per
     diameter), on the sphere and (in brackets) without."""
-    monkeypatch.chdir(tmp_path)
     row = (rf"\| {name} \| {level} \| (?P<strands>\d+) \| (?P<loop>[\d.]+) \((?P<loop0>[\d.]+)\)"
            r" \| (?P<edge>[\d.]+) % \((?P<edge0>[\d.]+) %\) \| (?P<flat>[\d.]+) % "
            r"\((?P<flat0>[\d.]+) %\) \| (?P<pages>\d+): (?P<pieces>\d+) pieces "
            r"\((?P<pages0>\d+)\) \|")
     base = ("strands", name, "--levels", str(level), "--tile-size", "40mm")
-    on = run((*base, "--project", "sphere", "-o", "on.pdf"), tmp_path)
-    off = run((*base, "-o", "off.pdf"), tmp_path)
+    on = run((*base, "--project", "sphere", "-o", "on.pdf"))
+    off = run((*base, "-o", "off.pdf"))
     assert stated(row) == solid(on, off)
 
 
-def test_a_changed_figure_fails(tmp_path, monkeypatch):
+def test_a_changed_figure_fails(tmp_path, run):
     """The check itself: a README one page off is caught (the first claim, edited)."""
     claim = CLAIMS[0]
     text = (ROOT / "README.md").read_text(encoding="utf-8")
     wrong = re.sub(claim.pattern, lambda m: m.group(0).replace(
         f"({m['pages']} A4", f"({int(m['pages']) + 1} A4"), text)
     (tmp_path / "README.md").write_text(wrong, encoding="utf-8")
-    monkeypatch.chdir(tmp_path)
-    figures = claim.figures(run(claim.args, tmp_path))
+    figures = claim.figures(run(claim.args))
     assert stated(claim.pattern) == figures
     assert stated(claim.pattern, tmp_path / "README.md") != figures

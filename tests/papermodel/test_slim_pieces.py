@@ -112,6 +112,7 @@ def test_a_strip_no_widening_saves_is_refused_with_the_size_that_works(monkeypat
     assert strips.holds([p.cut for _, p in book.pieces], 5.0, slivers=False).all()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("recipe", RECIPES, ids=lambda p: p.stem)
 def test_every_cut_piece_of_a_paper_model_recipe_holds_the_minimum(recipe, tmp_path, monkeypatch):
     """Every outline on a cut layer of every Drawing the recipe's commands write (the printed

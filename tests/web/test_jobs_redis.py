@@ -21,6 +21,7 @@ from weavecut.web.queues import open_queue
 
 redis = pytest.importorskip("redis")
 rq = pytest.importorskip("rq")
+pytestmark = pytest.mark.slow  # a Redis server and workers (its tests stay together)
 
 
 def free_port() -> int:

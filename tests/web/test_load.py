@@ -76,6 +76,7 @@ def server(request, tmp_path_factory):
     proc.stdout.close()
 
 
+@pytest.mark.slow
 def test_twenty_kits_at_once(server):
     proc, url, waiting = server
     # warm: the first kit starts the worker processes; its memory is the baseline
