@@ -196,3 +196,32 @@ def test_a_page_naming_a_page_beyond_the_file_is_caught():
     key = colour_key(puzzle, colouring, "front").sheets
     with pytest.raises(AssertionError):
         check_labels(key + pages, len(key) + 1)
+
+
+def _paint_shares(pages) -> list[float]:
+    """Per page: the share of its window its paint covers (exact areas)."""
+    out = []
+    for sheet in pages:
+        x0, y0, x1, y1 = window(sheet)
+        polys = [g for layer in sheet.layers if layer.name == "paint" for s in layer.shapes
+                 for g in s.to_shapely().tolist()]
+        out.append(shapely.union_all(polys).area / ((x1 - x0) * (y1 - y0)))
+    return out
+
+
+@pytest.mark.parametrize("name,side", [(n, s) for n, s, *_ in _guides()])
+def test_the_emptiest_page_holds_as_much_paint_as_the_centred_grids_does(name, side):
+    """The printed guide's pages: no more than the centred grid's on either orientation, and
+    its emptiest page holds at least as much paint (to 1 % of a page) as theirs."""
+    (_, _, puzzle, colouring), = [g for g in _guides() if g[:2] == (name, side)]
+    g = guide(puzzle, colouring, side)
+    key = colour_key(puzzle, colouring, side)
+    tiles = printed(g, key, A4).sheets[len(key.sheets):]
+    bare = Drawing((Sheet(g.sheets[0].width, g.sheets[0].height, tuple(
+        layer for layer in g.sheets[0].layers if layer.name != "registration")),), g.title)
+    centred = [[s for s in tile(bare, p).sheets if _paint_shares([s])[0] > 0]
+               for p in (A4, A4[::-1])]
+    fewest = min(len(c) for c in centred)
+    assert len(tiles) <= fewest
+    best = max(min(_paint_shares(c)) for c in centred if len(c) == fewest)
+    assert min(_paint_shares(tiles)) >= best - 0.01

@@ -13,7 +13,7 @@ import shapely
 
 from weavecut.errors import WeaveCutError
 from weavecut.layout.contrast import BLACK, WHITE
-from weavecut.layout.tiling import tile, word_overlap
+from weavecut.layout.tiling import balanced, tile, word_overlap
 from weavecut.puzzle import files as pf
 from weavecut.puzzle import workshop
 from weavecut.puzzle.frame import fits
@@ -42,7 +42,9 @@ def test_printed_guide_is_the_key_then_the_pages_with_paint(page):
     assert size in (page, page[::-1])
     bare = replace(front, sheets=(replace(front.sheets[0], layers=tuple(
         layer for layer in front.sheets[0].layers if layer.name != "registration")),))
-    tiles = tile(bare, size, word_overlap(bare)).sheets
+    best, shift = balanced(bare.sheets[0], (page, page[::-1]), word_overlap(bare), 10.0)
+    assert best == size
+    tiles = tile(bare, size, word_overlap(bare), shift=shift).sheets
     assert [s.name for s in rest] == [s.name for s in tiles if _has_paint(s)]
     assert all((s.width, s.height) == size for s in rest)
     assert not any(layer.name == "registration" for s in rest for layer in s.layers)

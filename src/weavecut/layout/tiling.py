@@ -107,10 +107,12 @@ def _cover(sheet: Sheet) -> tuple[float, float, float, float]:
     return (x0 - PAD, y0 - PAD, x1 + PAD, y1 + PAD)
 
 
-def grid(box, page, overlap: float, margin: float) -> tuple[int, int, float, float, float]:
+def grid(box, page, overlap: float, margin: float, shift=(0.5, 0.5)
+         ) -> tuple[int, int, float, float, float]:
     """(columns, rows, margin, left, top) of the windows over ``box`` (x0, y0, x1, y1): at
-    ``margin``, or at ``LEAST_MARGIN`` where that needs fewer pages; the grid centred on the
-    box (``left``, ``top``: the first window's left and top edges)."""
+    ``margin``, or at ``LEAST_MARGIN`` where that needs fewer pages; the grid's slack (what
+    it covers beyond the box) ``shift`` (x, y: 0 to 1) of it left of and above the box, half
+    by default: centred (``left``, ``top``: the first window's left and top edges)."""
     width, height = box[2] - box[0], box[3] - box[1]
     best = None
     for m in dict.fromkeys((margin, min(margin, LEAST_MARGIN))):
@@ -120,32 +122,77 @@ def grid(box, page, overlap: float, margin: float) -> tuple[int, int, float, flo
         if best is None or cols * rows < best[0] * best[1]:
             slack_x = cols * (window[0] - overlap) + overlap - width
             slack_y = rows * (window[1] - overlap) + overlap - height
-            best = (cols, rows, m, box[0] - slack_x / 2, box[3] + slack_y / 2)
+            best = (cols, rows, m, box[0] - slack_x * shift[0], box[3] + slack_y * shift[1])
     return best
 
 
-def tile(drawing: Drawing, page: tuple[float, float] = (210.0, 297.0), overlap: float = 10.0,
-         margin: float = 10.0, keep=None, before: int = 0, after: int = 0) -> Drawing:
-    """One page per window over what is drawn on the first sheet of ``drawing`` (rows from the
-    top), less those ``keep`` (a test of a page) leaves out; each names itself "page n of N"
-    in a file with ``before`` pages ahead of these and ``after`` behind."""
-    big = drawing.sheets[0]
-    cols, rows, margin, left, top = grid(_cover(big), page, overlap, margin)
+def _windows(page, overlap, cols, rows, margin, left, top) -> NDArray[np.float64]:
+    """(rows * cols, 4) the windows (x0, y0, x1, y1), row by row from the top."""
     pw, ph = page[0] - 2 * margin, page[1] - 2 * margin
-    step_x, step_y = pw - overlap, ph - overlap
+    r, c = np.divmod(np.arange(rows * cols), cols)
+    x0 = left + c * (pw - overlap)
+    y0 = top - ph - r * (ph - overlap)
+    return np.column_stack([x0, y0, x0 + pw, y0 + ph])
+
+
+SHIFTS = (0.5, 0.25, 0.75, 0.0, 1.0)  # where a grid may lie in its slack: centred first
+SAMPLE = 2.0  # mm between the points that weigh what a window holds
+
+
+def balanced(sheet: Sheet, pages, overlap: float, margin: float, name: str = "paint"):
+    """(page, shift): of ``pages`` (sizes) and the grid's ``SHIFTS``, the one that leaves the
+    fewest windows holding any of the polygons of the sheet's layer ``name`` (the others are
+    left out), then whose emptiest window holds the most of them (points on a ``SAMPLE`` mm
+    grid); the first of equals (centred, on the first page)."""
+    box = _cover(sheet)
+    polys = [g for layer in sheet.layers if layer.name == name for shape in layer.shapes
+             if isinstance(shape, Polygons) for g in shape.to_shapely().tolist()]
+    xs = np.arange(box[0], box[2], SAMPLE) + SAMPLE / 2
+    ys = np.arange(box[1], box[3], SAMPLE) + SAMPLE / 2
+    inside = np.zeros((len(ys), len(xs)), dtype=bool)
+    for g, (x0, y0, x1, y1) in zip(polys, shapely.bounds(polys).tolist()):  # each its points
+        i0, i1 = np.searchsorted(xs, [x0, x1])
+        j0, j1 = np.searchsorted(ys, [y0, y1])
+        inside[j0:j1, i0:i1] |= shapely.contains_xy(g, xs[None, i0:i1], ys[j0:j1, None])
+    held = np.zeros((len(ys) + 1, len(xs) + 1), dtype=np.int64)  # points below-left, summed
+    held[1:, 1:] = inside.cumsum(axis=0).cumsum(axis=1)
+    fewest = min(count(sheet, p, overlap, margin) for p in pages)
+    best, choice = None, (pages[0], (0.5, 0.5))
+    for page in pages:
+        if count(sheet, page, overlap, margin) > fewest:
+            continue
+        for shift in ((x, y) for x in SHIFTS for y in SHIFTS):
+            w = _windows(page, overlap, *grid(box, page, overlap, margin, shift))
+            i0, i1 = (np.searchsorted(xs, w[:, k]) for k in (0, 2))
+            j0, j1 = (np.searchsorted(ys, w[:, k]) for k in (1, 3))
+            n = held[j1, i1] - held[j0, i1] - held[j1, i0] + held[j0, i0]
+            score = (int((n > 0).sum()), -int(n[n > 0].min(initial=n.sum())))
+            if best is None or score < best:
+                best, choice = score, (page, shift)
+    return choice
+
+
+def tile(drawing: Drawing, page: tuple[float, float] = (210.0, 297.0), overlap: float = 10.0,
+         margin: float = 10.0, keep=None, before: int = 0, after: int = 0,
+         shift=(0.5, 0.5)) -> Drawing:
+    """One page per window over what is drawn on the first sheet of ``drawing`` (rows from the
+    top; the grid centred on it, or ``shift``ed as :func:`grid` says), less those ``keep`` (a
+    test of a page) leaves out; each names itself "page n of N" in a file with ``before``
+    pages ahead of these and ``after`` behind."""
+    big = drawing.sheets[0]
+    cols, rows, margin, left, top = grid(_cover(big), page, overlap, margin, shift)
     check_pages(drawing, page, cols * rows)
     geoms = [[_geoms(shape) for shape in layer.shapes] for layer in big.layers]
     made = {}
-    for r in range(rows):  # pages, a handful
-        for c in range(cols):
-            x0 = left + c * step_x
-            y0 = top - ph - r * step_y  # row 1 at the top
-            window = shapely.box(x0, y0, x0 + pw, y0 + ph)
-            shift = np.array([margin - x0, margin - y0])
-            layers = [_clip_layer(layer, g, window, shift) for layer, g in zip(big.layers, geoms)]
-            sheet = Sheet(page[0], page[1], tuple(layers), f"page r{r + 1} c{c + 1}")
-            if keep is None or keep(sheet):
-                made[r, c] = sheet
+    boxes = _windows(page, overlap, cols, rows, margin, left, top)
+    for k, (x0, y0, x1, y1) in enumerate(boxes.tolist()):  # pages, a handful
+        r, c = divmod(k, cols)
+        window = shapely.box(x0, y0, x1, y1)
+        moved = np.array([margin - x0, margin - y0])
+        layers = [_clip_layer(layer, g, window, moved) for layer, g in zip(big.layers, geoms)]
+        sheet = Sheet(page[0], page[1], tuple(layers), f"page r{r + 1} c{c + 1}")
+        if keep is None or keep(sheet):
+            made[r, c] = sheet
     number = {rc: before + k + 1 for k, rc in enumerate(made)}
     total = before + len(made) + after
     pages = [replace(sheet, layers=sheet.layers + (_marks(

@@ -23,7 +23,7 @@ from ..layout.label_checks import PAPER, WORDS
 from ..layout.drawing import (Drawing, Layer, Polylines, Sheet, Style, Text,
                               polygons_from_rings, polygons_from_shapely)
 from ..layout.labels import text_width, wrap
-from ..layout.tiling import count, tile, word_overlap
+from ..layout.tiling import balanced, tile, word_overlap
 from ..numeric import distinct
 from .colouring import UNPAINTED, Colouring
 from .files import Labels, placement
@@ -279,8 +279,9 @@ def _registration(width: float, height: float, margin: float) -> list:
 # --- printed pages ----------------------------------------------------------------------------
 
 def printed(guide_drawing: Drawing, key: Drawing, page: tuple[float, float]) -> Drawing:
-    """The colour key, then the guide tiled on ``page``s (or the same turned, where that
-    takes fewer), keeping only pages with paint; the pages overlap by more than the widest
+    """The colour key, then the guide tiled on ``page``s (or the same turned), keeping only
+    pages with paint, on the page and grid that need the fewest and leave the emptiest page
+    the most paint (``tiling.balanced``); the pages overlap by more than the widest
     number, which each shows whole or not at all. The 1:1 sheet's crosshairs are left off:
     the pages register on the frame's outline and on each other."""
     sheet = guide_drawing.sheets[0]
@@ -288,8 +289,8 @@ def printed(guide_drawing: Drawing, key: Drawing, page: tuple[float, float]) -> 
                                         if layer.name != "registration"))
     bare = replace(guide_drawing, sheets=(sheet,))
     overlap = word_overlap(bare)
-    best = min((page, page[::-1]), key=lambda p: count(sheet, p, overlap, 10.0))
-    tiled = tile(bare, best, overlap, keep=_has_paint, before=len(key.sheets))
+    best, shift = balanced(sheet, (page, page[::-1]), overlap, 10.0)
+    tiled = tile(bare, best, overlap, keep=_has_paint, before=len(key.sheets), shift=shift)
     return replace(tiled, sheets=key.sheets + tiled.sheets)
 
 
