@@ -30,7 +30,7 @@ from weavecut.subdivision import subdivide
 from weavecut.weave.colour import palette
 
 from tests.built_puzzles import heart_puzzle, pentagon_paint, pentagon_puzzle
-from tests.puzzle.word_oracle import contrasts, gaps, pose, spread, words
+from tests.puzzle.word_oracle import contrasts, gaps, pose, split_mark, spread, words
 
 SPREAD = 0.4  # per cap height: a digit's spacing is 2/7 of it, a tabular '1' left 4/7
 WORD_GAP = 0.3  # per cap height: two numbers stand further apart than a digit's spacing
@@ -53,10 +53,11 @@ def check_guide(puzzle, colouring, side) -> dict:
     assert c.min(initial=21.0) >= MIN_CONTRAST, shown[c < MIN_CONTRAST] + 1
     sizes = []
     for k, (word, _) in zip(shown.tolist(), drawn):
-        angle, height, misfit = pose(word, str(k + 1))
+        digits, _ = split_mark(word, str(k + 1))  # its mark: tests/puzzle/test_turned_numbers
+        angle, height, misfit = pose(digits, str(k + 1))
         assert misfit < 1e-6 * max(height, 1.0), k + 1  # the text's strokes, not mirrored
         assert abs(angle) <= 90.0 + 1e-6, (k + 1, angle)  # upright as printed
-        assert spread(word, angle, height) <= SPREAD, k + 1  # digits together
+        assert spread(digits, angle, height) <= SPREAD, k + 1  # digits together
         assert height >= LEAST - 1e-6
         sizes.append(height)
     g, ink = gaps(sheet), gaps(sheet, plates=False)

@@ -178,7 +178,8 @@ def test_back_paint_is_each_piece_without_its_hexagon_in_its_strand_colour():
 @pytest.mark.parametrize("side", ["front", "back"])
 def test_colour_key_lists_each_paints_pieces_and_area(side):
     """Read from the key's text: one row per paint in palette order, naming the paint, its hex
-    code, its area in cm² and exactly the pieces painted with it."""
+    code, its area in cm² and exactly the pieces painted with it; then the bare wood of the
+    ring pieces' hexagons, white, naming exactly those pieces."""
     puzzle, colouring = _coloured()
     key = colour_key(puzzle, colouring, side, page=(210.0, 297.0))
     texts = [s.text for sheet in key.sheets for layer in sheet.layers for s in layer.shapes
@@ -206,7 +207,14 @@ def test_colour_key_lists_each_paints_pieces_and_area(side):
     # swatches: one filled square per paint, 25 x 12 mm, in the paint's colour
     swatches = [s for sheet in key.sheets for layer in sheet.layers for s in layer.shapes
                 if getattr(s, "fills", None)]
-    assert [f for s in swatches for f in s.fills] == colours
+    ring = (np.flatnonzero(puzzle.hexagons != None) + 1).tolist()  # noqa: E711
+    assert ring  # then the ring pieces' bare hexagons, white as the guide shows them
+    assert [f for s in swatches for f in s.fills] == colours + [UNPAINTED]
+    (k,) = [k for k, t in enumerate(texts) if t.startswith("bare wood, not painted")]
+    bare = shapely.area(puzzle.hexagons[np.array(ring) - 1].astype(object)).sum() / 100
+    assert texts[k].endswith(f"   {bare:.1f} cm²")
+    listed = " ".join(texts[k + 1:]).removeprefix("the hexagon of pieces: ").split()
+    assert [int(n) for n in listed] == ring
     for s in swatches:
         minx, miny, maxx, maxy = shapely.total_bounds(s.to_shapely())
         assert (maxx - minx, maxy - miny) == pytest.approx((25.0, 12.0))
@@ -225,7 +233,7 @@ def test_a_long_colour_key_continues_on_further_pages():
         assert min(t.y for t in texts) >= 15.0
     rows = sum(1 for sheet in key.sheets for layer in sheet.layers for s in layer.shapes
                if getattr(s, "fills", None))
-    assert rows == len(colouring.back_colours)
+    assert rows == len(colouring.back_colours) + 1  # and the bare hexagons
 
 
 def test_only_octagons_have_two_front_halves_painted_apart():
@@ -255,11 +263,13 @@ def test_colour_key_rows_stack_without_overlap_beside_their_swatches(page):
         for i, a in enumerate(everything):
             for b in everything[i + 1:]:
                 assert a.intersection(b).area < 1e-9
-        rows = [k for k, t in enumerate(texts) if re.search(r"   #[0-9a-f]{6}   ", t.text)]
+        rows = [k for k, t in enumerate(texts) if re.search(r"   #[0-9a-f]{6}   ", t.text)
+                or t.text.startswith("bare wood")]
         assert len(rows) == len(swatches)
         for k, end, swatch in zip(rows, rows[1:] + [len(texts)], swatches):
             name, following = boxes[k], boxes[k + 1:end]  # the name, then the piece lines
-            assert following and texts[k + 1].text.startswith("pieces: ")
+            assert following and all(re.fullmatch(r"(pieces: |the hexagon of pieces: )?[\d ]+",
+                                                  t.text) for t in texts[k + 1:end])
             assert name.bounds[0] > swatch.bounds[2]  # right of the swatch
             assert swatch.bounds[1] <= name.bounds[1] and name.bounds[3] <= swatch.bounds[3]
             tops = [b.bounds[3] for b in [name] + following]

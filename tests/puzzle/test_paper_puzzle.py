@@ -207,7 +207,7 @@ def test_colour_key_areas_add_up_to_the_painted_area(paper):
         key = colour_key(puzzle, colouring, side)
         text = " ".join(s.text for sheet in key.sheets for layer in sheet.layers
                         for s in layer.shapes if hasattr(s, "text"))
-        listed = [float(x) for x in re.findall(r"(\d+\.\d) cm²", text)]  # one per paint
+        listed = [float(x) for x in re.findall(r"#[0-9a-f]{6}   (\d+\.\d) cm²", text)]  # a paint's
         g = guide(puzzle, colouring, side)
         paint = next(layer for layer in g.sheets[0].layers if layer.name == "paint")
         painted_cm2 = shapely.area(paint.shapes[0].to_shapely()).sum() / 100

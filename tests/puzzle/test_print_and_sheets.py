@@ -5,13 +5,15 @@ painted black and white has its number in one half; the summary's times keep a t
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 import shapely
 
 from weavecut.errors import WeaveCutError
 from weavecut.layout.contrast import BLACK, WHITE
-from weavecut.layout.tiling import tile
+from weavecut.layout.tiling import balanced, tile, word_overlap
 from weavecut.puzzle import files as pf
 from weavecut.puzzle import workshop
 from weavecut.puzzle.frame import fits
@@ -28,16 +30,24 @@ def _has_paint(sheet) -> bool:
 
 @pytest.mark.parametrize("page", [(297.0, 210.0), (148.0, 105.0)])  # not A4, the default
 def test_printed_guide_is_the_key_then_the_pages_with_paint(page):
+    """The key first, then the guide's tiles on the page asked for (or the same turned):
+    exactly those with paint, in the order tiled, the 1:1 sheet's crosshairs left off."""
     puzzle, colouring = pentagon_puzzle(3), pentagon_paint(3)
     front = guide(puzzle, colouring, "front")
     key = colour_key(puzzle, colouring, "front", page=page)
     pages = printed(front, key, page)
     assert pages.sheets[:len(key.sheets)] == key.sheets
     rest = pages.sheets[len(key.sheets):]
-    tiles = tile(front, page).sheets
+    size = (rest[0].width, rest[0].height)
+    assert size in (page, page[::-1])
+    bare = replace(front, sheets=(replace(front.sheets[0], layers=tuple(
+        layer for layer in front.sheets[0].layers if layer.name != "registration")),))
+    best, shift = balanced(bare.sheets[0], (page, page[::-1]), word_overlap(bare), 10.0)
+    assert best == size
+    tiles = tile(bare, size, word_overlap(bare), shift=shift).sheets
     assert [s.name for s in rest] == [s.name for s in tiles if _has_paint(s)]
-    assert len(rest) < len(tiles)  # the frame's corners hold no paint: those pages are left out
-    assert all((s.width, s.height) == page for s in rest)
+    assert all((s.width, s.height) == size for s in rest)
+    assert not any(layer.name == "registration" for s in rest for layer in s.layers)
 
 
 def test_separate_sheets_keep_the_documented_margin_and_spacing():

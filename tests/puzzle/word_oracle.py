@@ -11,7 +11,10 @@ that have one), maybe after its plate. Read here without the library's checks:
 - the angle: the rotation that best lays the font's own strokes of the text onto the word's
   (Procrustes, over corresponding points), as the reader sees it on the sheet;
 - the spread: the widest stretch along the reading direction with no ink, per cap height
-  (a word whose digits stand apart has a wide one).
+  (a word whose digits stand apart has a wide one);
+- the mark: the strokes a word has beyond its digits' (the font's strokes of the number),
+  read as an underline where they are one straight stroke along the reading direction,
+  under the digits' ink and as wide as it.
 """
 
 from __future__ import annotations
@@ -113,6 +116,33 @@ def pose(word: Polylines, text: str) -> tuple[float, float, float]:
     return float(np.degrees(angle)), scale, misfit
 
 
+def split_mark(word: Polylines, number: str) -> tuple[Polylines, list]:
+    """(the word's first strokes, as many as the font draws ``number`` with; the lines after
+    them: its mark, [] for none)."""
+    _, offsets, _ = text_strokes(number, 1.0)
+    n = min(len(offsets) - 1, len(word.offsets) - 1)
+    digits = Polylines(word.coords[:word.offsets[n]], word.offsets[:n + 1], word.style)
+    return digits, word.lines()[n:]
+
+
+def underlined(digits: Polylines, mark: list, angle: float, height: float) -> bool:
+    """Whether ``mark`` is one straight stroke under ``digits`` (read at ``angle`` degrees,
+    ``height`` cap): along the reading direction, below the digits' ink by at least a tenth
+    of the cap height and at most half of it, spanning their ink's width (to a tenth)."""
+    if len(mark) != 1 or len(mark[0]) != 2:
+        return False
+    a = np.radians(angle)
+    frame = np.array([[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]])  # columns: along, up
+    ink, line = digits.coords @ frame, mark[0] @ frame
+    lo, hi = ink.min(axis=0), ink.max(axis=0)
+    depth = lo[1] - line[:, 1]
+    level = abs(line[1, 1] - line[0, 1]) <= 0.02 * height
+    below = (depth >= 0.1 * height).all() and (depth <= 0.5 * height).all()
+    span = np.sort(line[:, 0])
+    wide = abs(span[0] - lo[0]) <= 0.1 * height and abs(span[1] - hi[0]) <= 0.1 * height
+    return bool(level and below and wide)
+
+
 def spread(word: Polylines, angle: float, height: float) -> float:
     """The widest stretch along the reading direction without ink, per cap height."""
     a = np.radians(angle)
@@ -134,9 +164,10 @@ def word_figures(sheet, texts=None) -> dict:
     piece's, 1, 2, ...)."""
     c, g = contrasts(sheet), gaps(sheet)
     texts = texts or [str(k + 1) for k in range(len(words(sheet)))]
-    poses = [pose(w, t) for (w, _), t in zip(words(sheet), texts)]
+    digits = [split_mark(w, t)[0] for (w, _), t in zip(words(sheet), texts)]
+    poses = [pose(w, t) for w, t in zip(digits, texts)]
     angles = np.array([p[0] for p in poses])
-    spreads = [spread(w, p[0], p[1]) for (w, _), p in zip(words(sheet), poses)]
+    spreads = [spread(w, p[0], p[1]) for w, p in zip(digits, poses)]
     return {"numbers": len(c), "under_4.5": int((c < 4.5).sum()),
             "min_contrast": round(float(c.min()), 2),
             "min_gap_mm": round(float(g.min()), 2),

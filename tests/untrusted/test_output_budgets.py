@@ -3,7 +3,7 @@ in one line with the numbers, before any file is written; the memory guard and t
 heed the process's own limits (``ulimit -v``, ``ulimit -f``) and the free disk space.
 
 The refused inputs would take minutes and gigabytes if they were not refused (1.3 million
-tiles, 8,400 pages, a 3.6 GB picture): the real process limits of the subprocess tests hold
+tiles, 8,066 pages, a 3.6 GB picture): the real process limits of the subprocess tests hold
 them, and every refusal is also checked at its bound, where one more file, page or pixel
 tips it over."""
 
@@ -43,13 +43,13 @@ GIB = 1 << 30
     (["levels", "pentagon", "--levels", "3", "--size", "16384", "--tile-size", "16", "--tiles",
       "{d}/t"], ["16,384 x 15,741 px pyramid in 16-pixel tiles makes 1,343,546 files",
                  "at most 100,000", "--tile-size"]),
-    # a kilometre-wide weave tiled on A4: 20 million pages
+    # a kilometre-wide weave tiled on A4: 20 million pages (8 mm margins, which save pages)
     (["weave", "square-grid", "--levels", "2", "--size", "999999mm", "-o", "{d}/x.pdf"],
-     ["1,000,019 x 1,000,019 mm drawing 1:1 on 210 x 297 mm paper makes 20,812,776 pages",
+     ["1,000,019 x 1,000,019 mm drawing 1:1 on 210 x 297 mm paper makes 20,060,585 pages",
       "at most 500", "--page"]),
-    # 20 m: 8,400 pages (about a minute of clipping, and an 11 MB file)
+    # 20 m: 8,066 pages (about a minute of clipping, and an 11 MB file)
     (["weave", "square-grid", "--levels", "2", "--size", "20m", "-o", "{d}/x.pdf"],
-     ["20,020 x 20,020 mm", "makes 8,400 pages; at most 500"]),
+     ["20,020 x 20,020 mm", "makes 8,066 pages; at most 500"]),
     (["subdivide", "pentagon", "--size", "20m", "-o", "{d}/x.pdf"], ["pages; at most 500"]),
     (["weave", "square-grid", "--levels", "2", "--size", "20m", "--page", "a3", "-o",
       "{d}/x.pdf"], ["on 297 x 420 mm paper", "pages; at most 500"]),
@@ -139,7 +139,7 @@ def test_pages_are_counted_before_tiling_to_the_page(sizes, limit):
 def test_tiling_alone_is_bounded(monkeypatch):
     """The puzzle's painting guides call ``tile`` directly."""
     monkeypatch.setattr(tiling, "_clip_layer", lambda *a: pytest.fail("tiled anyway"))
-    with pytest.raises(TooLargeError, match="makes 8,400 pages; at most 500"):
+    with pytest.raises(TooLargeError, match="makes 8,066 pages; at most 500"):
         tiling.tile(Drawing((_sheet(20020, 20020),), "t"))
 
 

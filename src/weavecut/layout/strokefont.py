@@ -67,6 +67,9 @@ def text_strokes(text: str, height: float) -> tuple[NDArray[np.float64], NDArray
 
 
 DIGITS = frozenset("0123456789")
+UNDERLINE = "\u0332"  # COMBINING LOW LINE: at a text's end, one straight stroke under its ink
+UNDER = 0.3  # the underline's depth below the baseline, per cap height (clear of the digits'
+# strokes down to 1.5 mm numbers)
 DIGIT_SIDE = 3 / 21  # the bearing either side of a digit's ink, at cap height 1 (the font's '0')
 
 
@@ -85,12 +88,17 @@ def _digit(char: str) -> tuple[tuple[NDArray[np.float64], ...], float]:
 @lru_cache(maxsize=4096)
 def _unit_strokes(text: str) -> tuple[NDArray[np.float64], NDArray[np.int64], float]:
     """:func:`text_strokes` at cap height 1 (kept: labels repeat their texts); digits are set
-    proportionally (:func:`_digit`)."""
+    proportionally (:func:`_digit`); a text ending in ``UNDERLINE`` is underlined from its
+    ink's left to its right, the line its last stroke."""
     strokes, x = [], 0.0
-    for char in text:
+    body = text.removesuffix(UNDERLINE)
+    for char in body:
         glyph, advance = _digit(char) if char in DIGITS else _glyph(char)
         strokes.extend(s + (x, 0.0) for s in glyph)
         x += advance
+    if body != text and strokes:
+        ink = np.concatenate(strokes)[:, 0]
+        strokes.append(np.array([[ink.min(), -UNDER], [ink.max(), -UNDER]]))
     coords = np.concatenate(strokes) if strokes else np.zeros((0, 2))
     coords.flags.writeable = False
     return coords, np.r_[0, np.cumsum([len(s) for s in strokes])].astype(np.int64), x

@@ -1,10 +1,15 @@
 """Tile a large 1:1 Drawing onto printer pages (A4, Letter) with overlap and assembly marks.
 
 Every page shows a window of the big sheet: the printable area (page minus ``margin``) steps by
-its size minus ``overlap``, so neighbouring pages repeat an ``overlap`` mm strip. Dashed lines
-mark where the neighbour's window starts (cut or fold there and glue the strip under), corner
-ticks mark the window, a label names the page (row, column) and a 100 mm bar checks the scale.
-Shapes are clipped to the window with shapely, fills kept.
+its size minus ``overlap``, so neighbouring pages repeat an ``overlap`` mm strip. The grid of
+windows covers what is drawn (not the sheet's empty margins), centred on it, so the first and
+the last page of a row or column share the slack and none holds only a sliver; where a
+narrower margin (``LEAST_MARGIN``, still clear of the page marks) saves a row or a column, it
+is used. Pages may be left out (``keep``: a guide keeps only pages with paint). Dashed lines
+mark where the next page's window starts (cut or fold there and glue the strip under), corner
+ticks mark the window, a label names the page by its number in the file ("page 3 of 5") and
+the pages that join it on the right and below, and a 100 mm bar checks the scale. Shapes are
+clipped to the window with shapely, fills kept.
 """
 
 from __future__ import annotations
@@ -19,8 +24,12 @@ from numpy.typing import NDArray
 from .. import budget
 from .drawing import Drawing, Layer, Polygons, Polylines, Sheet, Style, Text, polygons_from_shapely
 from .label_checks import WORDS
+from .labels import text_width
 
 MARK = Style("#808080", 0.2)
+MARK_MARGIN = 10.0  # mm: the page marks (label, scale bar) lie in the outer half of this margin
+LEAST_MARGIN = 8.0  # mm: the narrowest margin a window may take, clear of the marks
+PAD = 1.0  # mm round what is drawn (strokes' widths) that the windows cover
 
 
 def on_pages(drawing: Drawing, page: tuple[float, float], overlap: float = 10.0,
@@ -39,14 +48,16 @@ def on_pages(drawing: Drawing, page: tuple[float, float], overlap: float = 10.0,
             plan.append((sheet, fits[0], (x0, y0, x1, y1), 1))
             continue
         wide = sheet.width > sheet.height
-        best = min((page, turned), key=lambda p: (math.prod(_grid(sheet, p, overlap, margin)),
+        best = min((page, turned), key=lambda p: (count(sheet, p, overlap, margin),
                                                   (p[0] > p[1]) != wide))
-        plan.append((sheet, best, None, math.prod(_grid(sheet, best, overlap, margin))))
-    check_pages(drawing, page, sum(n for *_, n in plan))
+        plan.append((sheet, best, None, count(sheet, best, overlap, margin)))
+    total = sum(n for *_, n in plan)
+    check_pages(drawing, page, total)
     pages: list[Sheet] = []
-    for sheet, (w, h), box, _ in plan:
+    for sheet, (w, h), box, n in plan:
         if box is None:
-            pages.extend(tile(replace(drawing, sheets=(sheet,)), (w, h), overlap, margin).sheets)
+            pages.extend(tile(replace(drawing, sheets=(sheet,)), (w, h), overlap, margin,
+                              before=len(pages), after=total - len(pages) - n).sheets)
             continue
         dx, dy = (w - box[0] - box[2]) / 2, (h - box[1] - box[3]) / 2
         pages.append(replace(sheet, width=w, height=h, layers=tuple(
@@ -84,33 +95,109 @@ def _moved(shape, dx: float, dy: float):
     return replace(shape, coords=shape.coords + (dx, dy))
 
 
-def _grid(big: Sheet, page, overlap: float, margin: float) -> tuple[int, int]:
-    """(columns, rows) of pages that ``tile`` lays over ``big``."""
-    step_x = page[0] - 2 * margin - overlap
-    step_y = page[1] - 2 * margin - overlap
-    return (max(1, math.ceil((big.width - overlap) / step_x)),
-            max(1, math.ceil((big.height - overlap) / step_y)))
+def count(sheet: Sheet, page, overlap: float, margin: float) -> int:
+    """How many pages :func:`tile` lays over ``sheet`` (before any is left out)."""
+    cols, rows, *_ = grid(_cover(sheet), page, overlap, margin)
+    return cols * rows
+
+
+def _cover(sheet: Sheet) -> tuple[float, float, float, float]:
+    """The box the windows cover: what is drawn on ``sheet``, ``PAD`` mm round it."""
+    x0, y0, x1, y1 = _content_box(sheet)
+    return (x0 - PAD, y0 - PAD, x1 + PAD, y1 + PAD)
+
+
+def grid(box, page, overlap: float, margin: float, shift=(0.5, 0.5)
+         ) -> tuple[int, int, float, float, float]:
+    """(columns, rows, margin, left, top) of the windows over ``box`` (x0, y0, x1, y1): at
+    ``margin``, or at ``LEAST_MARGIN`` where that needs fewer pages; the grid's slack (what
+    it covers beyond the box) ``shift`` (x, y: 0 to 1) of it left of and above the box, half
+    by default: centred (``left``, ``top``: the first window's left and top edges)."""
+    width, height = box[2] - box[0], box[3] - box[1]
+    best = None
+    for m in dict.fromkeys((margin, min(margin, LEAST_MARGIN))):
+        window = (page[0] - 2 * m, page[1] - 2 * m)
+        cols, rows = (max(1, math.ceil((size - overlap) / (w - overlap)))
+                      for size, w in ((width, window[0]), (height, window[1])))
+        if best is None or cols * rows < best[0] * best[1]:
+            slack_x = cols * (window[0] - overlap) + overlap - width
+            slack_y = rows * (window[1] - overlap) + overlap - height
+            best = (cols, rows, m, box[0] - slack_x * shift[0], box[3] + slack_y * shift[1])
+    return best
+
+
+def _windows(page, overlap, cols, rows, margin, left, top) -> NDArray[np.float64]:
+    """(rows * cols, 4) the windows (x0, y0, x1, y1), row by row from the top."""
+    pw, ph = page[0] - 2 * margin, page[1] - 2 * margin
+    r, c = np.divmod(np.arange(rows * cols), cols)
+    x0 = left + c * (pw - overlap)
+    y0 = top - ph - r * (ph - overlap)
+    return np.column_stack([x0, y0, x0 + pw, y0 + ph])
+
+
+SHIFTS = (0.5, 0.25, 0.75, 0.0, 1.0)  # where a grid may lie in its slack: centred first
+SAMPLE = 2.0  # mm between the points that weigh what a window holds
+
+
+def balanced(sheet: Sheet, pages, overlap: float, margin: float, name: str = "paint"):
+    """(page, shift): of ``pages`` (sizes) and the grid's ``SHIFTS``, the one that leaves the
+    fewest windows holding any of the polygons of the sheet's layer ``name`` (the others are
+    left out), then whose emptiest window holds the most of them (points on a ``SAMPLE`` mm
+    grid); the first of equals (centred, on the first page)."""
+    box = _cover(sheet)
+    polys = [g for layer in sheet.layers if layer.name == name for shape in layer.shapes
+             if isinstance(shape, Polygons) for g in shape.to_shapely().tolist()]
+    xs = np.arange(box[0], box[2], SAMPLE) + SAMPLE / 2
+    ys = np.arange(box[1], box[3], SAMPLE) + SAMPLE / 2
+    inside = np.zeros((len(ys), len(xs)), dtype=bool)
+    for g, (x0, y0, x1, y1) in zip(polys, shapely.bounds(polys).tolist()):  # each its points
+        i0, i1 = np.searchsorted(xs, [x0, x1])
+        j0, j1 = np.searchsorted(ys, [y0, y1])
+        inside[j0:j1, i0:i1] |= shapely.contains_xy(g, xs[None, i0:i1], ys[j0:j1, None])
+    held = np.zeros((len(ys) + 1, len(xs) + 1), dtype=np.int64)  # points below-left, summed
+    held[1:, 1:] = inside.cumsum(axis=0).cumsum(axis=1)
+    fewest = min(count(sheet, p, overlap, margin) for p in pages)
+    best, choice = None, (pages[0], (0.5, 0.5))
+    for page in pages:
+        if count(sheet, page, overlap, margin) > fewest:
+            continue
+        for shift in ((x, y) for x in SHIFTS for y in SHIFTS):
+            w = _windows(page, overlap, *grid(box, page, overlap, margin, shift))
+            i0, i1 = (np.searchsorted(xs, w[:, k]) for k in (0, 2))
+            j0, j1 = (np.searchsorted(ys, w[:, k]) for k in (1, 3))
+            n = held[j1, i1] - held[j0, i1] - held[j1, i0] + held[j0, i0]
+            score = (int((n > 0).sum()), -int(n[n > 0].min(initial=n.sum())))
+            if best is None or score < best:
+                best, choice = score, (page, shift)
+    return choice
 
 
 def tile(drawing: Drawing, page: tuple[float, float] = (210.0, 297.0), overlap: float = 10.0,
-         margin: float = 10.0) -> Drawing:
-    """One page per window over the first sheet of ``drawing`` (rows from the top)."""
+         margin: float = 10.0, keep=None, before: int = 0, after: int = 0,
+         shift=(0.5, 0.5)) -> Drawing:
+    """One page per window over what is drawn on the first sheet of ``drawing`` (rows from the
+    top; the grid centred on it, or ``shift``ed as :func:`grid` says), less those ``keep`` (a
+    test of a page) leaves out; each names itself "page n of N" in a file with ``before``
+    pages ahead of these and ``after`` behind."""
     big = drawing.sheets[0]
-    pw, ph = page[0] - 2 * margin, page[1] - 2 * margin
-    step_x, step_y = pw - overlap, ph - overlap
-    cols, rows = _grid(big, page, overlap, margin)
+    cols, rows, margin, left, top = grid(_cover(big), page, overlap, margin, shift)
     check_pages(drawing, page, cols * rows)
     geoms = [[_geoms(shape) for shape in layer.shapes] for layer in big.layers]
-    pages = []
-    for r in range(rows):  # pages, a handful
-        for c in range(cols):
-            x0 = c * step_x
-            y0 = big.height - ph - r * step_y  # row 1 at the top
-            window = shapely.box(x0, y0, x0 + pw, y0 + ph)
-            shift = np.array([margin - x0, margin - y0])
-            layers = [_clip_layer(layer, g, window, shift) for layer, g in zip(big.layers, geoms)]
-            layers.append(_marks(page, margin, overlap, r, c, rows, cols, drawing.title))
-            pages.append(Sheet(page[0], page[1], tuple(layers), f"page r{r + 1} c{c + 1}"))
+    made = {}
+    boxes = _windows(page, overlap, cols, rows, margin, left, top)
+    for k, (x0, y0, x1, y1) in enumerate(boxes.tolist()):  # pages, a handful
+        r, c = divmod(k, cols)
+        window = shapely.box(x0, y0, x1, y1)
+        moved = np.array([margin - x0, margin - y0])
+        layers = [_clip_layer(layer, g, window, moved) for layer, g in zip(big.layers, geoms)]
+        sheet = Sheet(page[0], page[1], tuple(layers), f"page r{r + 1} c{c + 1}")
+        if keep is None or keep(sheet):
+            made[r, c] = sheet
+    number = {rc: before + k + 1 for k, rc in enumerate(made)}
+    total = before + len(made) + after
+    pages = [replace(sheet, layers=sheet.layers + (_marks(
+        page, margin, overlap, number[r, c], total, number.get((r, c + 1)),
+        number.get((r + 1, c)), drawing.title),)) for (r, c), sheet in made.items()]
     return replace(drawing, sheets=tuple(pages))
 
 
@@ -201,27 +288,39 @@ def _clip(geoms: NDArray[np.object_], bounds: NDArray[np.float64], window, lines
     return out
 
 
-def _marks(page, margin, overlap, r, c, rows, cols, title) -> Layer:
+def _marks(page, margin, overlap, n, total, right, below, title) -> Layer:
+    """Page ``n`` of ``total``'s marks: dashes where the window of page ``right`` (or
+    ``below``; None: no page there) starts, the window's corner ticks, its label and the
+    100 mm bar (in the outer half of ``MARK_MARGIN``)."""
     w, h = page
     x1, y1 = w - margin, h - margin
     segs = []
-    if c + 1 < cols:  # the next column's window starts overlap mm before this one ends
+    if right is not None:  # the next column's window starts overlap mm before this one ends
         segs += _dashes((x1 - overlap, margin), (x1 - overlap, y1))
-    if r + 1 < rows:
+    if below is not None:
         segs += _dashes((margin, margin + overlap), (x1, margin + overlap))
     t = 4.0
     for x, y, sx, sy in ((margin, margin, 1, 1), (x1, margin, -1, 1), (margin, y1, 1, -1),
                          (x1, y1, -1, -1)):
         segs += [((x - sx * t, y), (x + sx * t, y)), ((x, y - sy * t), (x, y + sy * t))]
-    bar_y = margin / 2
-    segs += [((margin, bar_y), (margin + 100.0, bar_y)), ((margin, bar_y - 1.5), (margin, bar_y + 1.5)),
-             ((margin + 100, bar_y - 1.5), (margin + 100, bar_y + 1.5))]
+    bar_x, bar_y = margin, MARK_MARGIN / 2
+    segs += [((bar_x, bar_y), (bar_x + 100.0, bar_y)), ((bar_x, bar_y - 1.5), (bar_x, bar_y + 1.5)),
+             ((bar_x + 100, bar_y - 1.5), (bar_x + 100, bar_y + 1.5))]
     coords = np.array(segs, dtype=float).reshape(-1, 2)
     lines = Polylines(coords, np.arange(0, len(coords) + 1, 2, dtype=np.int64), MARK)
-    label = Text(margin, h - margin / 2 - 1.5, f"{title} - page row {r + 1}/{rows}, "
-                 f"column {c + 1}/{cols}; overlap {overlap:g} mm", 2.5, fill="#606060")
-    scale = Text(margin + 103.0, bar_y - 1.2, "100 mm", 2.5, fill="#606060")
-    return Layer("page-marks", "guide", (lines, label, scale))
+    grey = "#606060"
+    name = f"{title} - page {n} of {total}; overlap {overlap:g} mm"
+    shapes = [lines, Text(bar_x + 103.0, bar_y - 1.2, "100 mm", 2.5, fill=grey)]
+    joins = ", ".join([f"page {right} on the right"] * (right is not None)
+                      + [f"page {below} below"] * (below is not None))
+    room = x1 - (bar_x + 103.0 + text_width("100 mm", 2.5) + 3.0)  # right of the bar
+    if joins and room >= text_width(joins, 2.0):
+        size = min(2.5, 2.5 * room / text_width(joins, 2.5))
+        shapes.append(Text(x1, bar_y - 1.2, joins, size, "end", fill=grey))
+    elif joins:  # a page too narrow for both: in its label
+        name += f"; {joins}"
+    shapes.append(Text(margin, h - MARK_MARGIN / 2 - 1.5, name, 2.5, fill=grey))
+    return Layer("page-marks", "guide", tuple(shapes))
 
 
 def _dashes(a, b, dash: float = 3.0, gap: float = 2.0) -> list:

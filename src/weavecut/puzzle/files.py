@@ -85,12 +85,35 @@ class Labels:
         return coords, offsets
 
 
+TURNED = {"0": "0", "1": "1", "6": "9", "8": "8", "9": "6"}  # digits that read as digits
+# turned half a turn (in the stroke font a 2 or a 5 does not)
+
+
+def turned_over(number: str) -> str | None:
+    """What ``number`` reads as turned half a turn (its digits reversed, 6 and 9 swapped), or
+    None where that is no number (a digit without a turned reading, a leading 0)."""
+    if not number or not set(number) <= TURNED.keys():
+        return None
+    turned = "".join(TURNED[c] for c in reversed(number))
+    return None if turned.startswith("0") else turned
+
+
+def piece_texts(n: int) -> list[str]:
+    """The numbers 1..n as printed and engraved: one that reads as another number upside down
+    (6/9, 16/91, 86/98, ...) underlined, as on bingo balls, so it shows which way is up."""
+    out = []
+    for k in range(1, n + 1):
+        text, turned = str(k), turned_over(str(k))
+        out.append(text + strokefont.UNDERLINE if turned not in (None, text) else text)
+    return out
+
+
 def piece_numbers(puzzle: Puzzle, max_height: float = 4.0, margin: float = 0.6,
                   least: float = MIN_ENGRAVED) -> Labels:
-    """Every piece's number (1..P) at the largest cap height up to ``max_height`` mm that keeps
-    its strokes ``margin`` mm inside the piece; none where that is under ``least`` mm."""
-    labels = Labels.fitted(puzzle.pieces, [str(k + 1) for k in range(puzzle.n_pieces)],
-                           max_height, margin)
+    """Every piece's number (1..P, :func:`piece_texts`) at the largest cap height up to
+    ``max_height`` mm that keeps its strokes ``margin`` mm inside the piece; none where that is
+    under ``least`` mm."""
+    labels = Labels.fitted(puzzle.pieces, piece_texts(puzzle.n_pieces), max_height, margin)
     return replace(labels, heights=np.where(labels.heights >= least, labels.heights, 0.0))
 
 

@@ -7,10 +7,12 @@ whose paint is known: the piece less its ring hexagon (all its paints under the 
 the front one half (one paint), a ring piece's bare hexagon (natural wood, printed white), or
 the whole ring piece (its paints and the white hexagon).
 The largest of these on which black or white reaches the contrast wins, level where a level
-number is nearly as large. Where no ink reads (two paints of which one wants black and the
-other white, or a mid-tone paint) the number sits on a small white plate in black ink. A
-number that fits nowhere at ``MIN_CAP`` is printed smaller, down to ``LEAST``; a piece too
-small even for that is left without a number. Both are named in a warning, never silently.
+number is nearly as large; a ring piece's hexagon (or the whole piece) only where its
+painted part has no room: a white hexagon with a number reads as a piece of its own. Where no
+ink reads (two paints of which one wants black and the other white, or a mid-tone paint) the
+number sits on a small white plate in black ink. A number that fits nowhere at ``MIN_CAP``
+is printed smaller, down to ``LEAST``; a piece too small even for that is left without a
+number. Both are named in a warning, never silently.
 """
 
 from __future__ import annotations
@@ -26,7 +28,7 @@ from ..layout.labels import MIN_CAP
 from ..layout.strokefont import fit_labels, ink_box
 from ..numeric import turn
 from .colouring import UNPAINTED, Colouring
-from .files import Labels, _listed
+from .files import Labels, _listed, piece_texts
 from .guides import NUMBER_STROKE, piece_halves
 from .pieces import Puzzle
 
@@ -93,39 +95,53 @@ def _candidates(puzzle: Puzzle, colouring: Colouring, side: str) -> list[tuple]:
 
 
 def guide_numbers(puzzle: Puzzle, colouring: Colouring, side: str) -> GuideNumbers:
-    """Every piece's number for ``side``'s guide: the largest that reads, where it reads."""
-    texts = [str(k + 1) for k in range(puzzle.n_pieces)]
+    """Every piece's number for ``side``'s guide: the largest that reads, where it reads; on
+    the painted part of a ring piece wherever that has room (its bare hexagon, white like the
+    paper, would read as a piece of its own)."""
+    texts = piece_texts(puzzle.n_pieces)
     n = len(texts)
     candidates = _candidates(puzzle, colouring, side)
+    painted = len(candidates) - 2 * bool((puzzle.hexagons != None).any())  # noqa: E711
     # every candidate with room round the number, and without
     fits = [(_fit(r, texts, pad), [_ink(f) for f in fills], pad)
             for r, fills, pad in candidates + [(r, f, 0.0) for r, f, _ in candidates]]
-    best_h, centres, angles = np.zeros(n), np.zeros((n, 2)), np.zeros(n)
-    inks = np.full(n, BLACK, dtype=object)
-    plated = np.zeros(n, dtype=bool)
-    # at MIN_CAP if anywhere, else smaller; on a plate before smaller
+    on_paint = fits[:painted] + fits[len(candidates):len(candidates) + painted]
+    chosen = (np.zeros(n), np.zeros((n, 2)), np.zeros(n), np.full(n, BLACK, dtype=object),
+              np.zeros(n, dtype=bool))
+    # at MIN_CAP if anywhere, else smaller; on the paint before the hexagon; on a plate
+    # before smaller
     for floor in (MIN_CAP, LEAST):
-        todo = best_h == 0
-        for (h, c, a), read, pad in fits:
-            ok = todo & np.array([r[1] >= MIN_CONTRAST for r in read]) & (h >= floor)
-            # the first that reads wins, a larger one with room round it over it
-            better = ok & ((best_h == 0) | ((h > best_h + 1e-9) & (pad > 0)))
-            best_h[better], centres[better], angles[better] = h[better], c[better], a[better]
-            inks[better] = np.array([r[0] for r in read], dtype=object)[better]
-        # no part reads: where the number is largest, with room round it if it can, on a
-        # plate, in black
-        todo = best_h == 0
-        for want in (PAD, 0.0):
-            for (h, c, a), _, pad in fits:
-                better = todo & (pad == want) & (h >= floor) & (h > best_h + 1e-9)
-                best_h[better], centres[better], angles[better] = h[better], c[better], a[better]
-                plated |= better
-            todo &= best_h == 0
+        for group in (on_paint, fits):
+            _choose(group, floor, chosen)
+    best_h, centres, angles, inks, plated = chosen
     plates = np.full(n, None, dtype=object)
     if plated.any():
         plates[plated] = _plates([texts[k] for k in np.flatnonzero(plated).tolist()],
                                  best_h[plated], centres[plated], angles[plated])
     return GuideNumbers(Labels(tuple(texts), best_h, centres, angles), inks, plates)
+
+
+def _choose(fits, floor: float, chosen) -> None:
+    """Number the pieces still without one (``chosen``: heights, centres, angles, inks, plated,
+    changed in place) from ``fits`` at ``floor`` mm or more: where an ink reads, else on a
+    plate."""
+    best_h, centres, angles, inks, plated = chosen
+    todo = best_h == 0
+    for (h, c, a), read, pad in fits:
+        ok = todo & np.array([r[1] >= MIN_CONTRAST for r in read]) & (h >= floor)
+        # the first that reads wins, a larger one with room round it over it
+        better = ok & ((best_h == 0) | ((h > best_h + 1e-9) & (pad > 0)))
+        best_h[better], centres[better], angles[better] = h[better], c[better], a[better]
+        inks[better] = np.array([r[0] for r in read], dtype=object)[better]
+    # no part reads: where the number is largest, with room round it if it can, on a plate,
+    # in black
+    todo = best_h == 0
+    for want in (PAD, 0.0):
+        for (h, c, a), _, pad in fits:
+            better = todo & (pad == want) & (h >= floor) & (h > best_h + 1e-9)
+            best_h[better], centres[better], angles[better] = h[better], c[better], a[better]
+            plated |= better
+        todo &= best_h == 0
 
 
 def _fit(regions, texts, pad: float) -> tuple:

@@ -3,8 +3,9 @@ colour key per side.
 
 A guide shows every piece in its paint with a bold outline (the cut), the front's split lines
 thin and dashed (the parent edge a Z-triplet replaced: "split diagonally, which shows the
-replaced edge", paper section 6; the back has none), and every piece's number inside it, placed
-where it reads (``guide_numbers``). The back is mirrored, as the flipped board
+replaced edge", paper section 6; the back has none), a ring piece's bare hexagon split off its
+paint by the same thin dashes (it is part of the piece, not one of its own), and every piece's
+number inside it, placed where it reads (``guide_numbers``). The back is mirrored, as the flipped board
 shows it. Printed on pages, only pages that hold paint are kept; the colour key lists every
 paint with its swatch, name, hex code, the pieces that carry it and the area it covers.
 """
@@ -22,7 +23,7 @@ from ..layout.label_checks import PAPER, WORDS
 from ..layout.drawing import (Drawing, Layer, Polylines, Sheet, Style, Text,
                               polygons_from_rings, polygons_from_shapely)
 from ..layout.labels import text_width, wrap
-from ..layout.tiling import tile, word_overlap
+from ..layout.tiling import balanced, tile, word_overlap
 from ..numeric import distinct
 from .colouring import UNPAINTED, Colouring
 from .files import Labels, placement
@@ -186,6 +187,9 @@ def guide(puzzle: Puzzle, colouring: Colouring, side: str, numbers=None,
     if side == "front":
         layers.append(Layer("split-lines", "guide", (_split_lines(puzzle, colouring,
                                                                   place_xy),)))
+    if len(hexes):  # a ring piece's bare hexagon is part of it: split off thin, not cut bold
+        layers.append(Layer("hexagon-lines", "guide", (_dashes(
+            *map(place_xy, hexagon_edges(puzzle)), SPLIT),)))
     outlines = [polygons_from_shapely(place(np.array([puzzle.frame], dtype=object)), OUTLINE)]
     if len(puzzle.ring):
         outlines.append(polygons_from_shapely(place(puzzle.ring), THIN))
@@ -216,6 +220,22 @@ def _split_lines(puzzle: Puzzle, colouring: Colouring, place_xy) -> Polylines:
     u, w = split_ends(puzzle)
     two = colouring.front[:, 0] != colouring.front[:, 1]
     return _dashes(place_xy(u[two]), place_xy(w[two]), SPLIT)
+
+
+def hexagon_edges(puzzle: Puzzle) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(E, 2) twice: the ends of every ring hexagon's edge that lies inside its piece (the
+    edge it shares with the piece's pentagon), in piece order."""
+    has = np.flatnonzero(puzzle.hexagons != None)  # noqa: E711
+    if not len(has):
+        return np.zeros((0, 2)), np.zeros((0, 2))
+    rings = shapely.get_exterior_ring(puzzle.hexagons[has].astype(object))
+    xy, k = shapely.get_coordinates(rings, return_index=True)
+    last = np.r_[k[1:] != k[:-1], True]  # each ring's closing repeat ends no edge
+    a, b, k = xy[:-1][~last[:-1]], xy[1:][~last[:-1]], k[:-1][~last[:-1]]
+    middle = shapely.points((a + b) / 2)
+    outline = shapely.get_exterior_ring(puzzle.pieces[has[k]].astype(object))
+    inside = shapely.distance(middle, outline) > 1e-6
+    return a[inside], b[inside]
 
 
 def _dashes(a: NDArray[np.float64], b: NDArray[np.float64], style: Style) -> Polylines:
@@ -259,18 +279,30 @@ def _registration(width: float, height: float, margin: float) -> list:
 # --- printed pages ----------------------------------------------------------------------------
 
 def printed(guide_drawing: Drawing, key: Drawing, page: tuple[float, float]) -> Drawing:
-    """The colour key, then the guide tiled on ``page``s, keeping only pages with paint; the
-    pages overlap by more than the widest number, which each shows whole or not at all."""
-    tiled = tile(guide_drawing, page, word_overlap(guide_drawing))
-    keep = tuple(s for s in tiled.sheets
-                 if any(layer.role == "paint" and layer.shapes for layer in s.layers))
-    return replace(tiled, sheets=key.sheets + keep)
+    """The colour key, then the guide tiled on ``page``s (or the same turned), keeping only
+    pages with paint, on the page and grid that need the fewest and leave the emptiest page
+    the most paint (``tiling.balanced``); the pages overlap by more than the widest
+    number, which each shows whole or not at all. The 1:1 sheet's crosshairs are left off:
+    the pages register on the frame's outline and on each other."""
+    sheet = guide_drawing.sheets[0]
+    sheet = replace(sheet, layers=tuple(layer for layer in sheet.layers
+                                        if layer.name != "registration"))
+    bare = replace(guide_drawing, sheets=(sheet,))
+    overlap = word_overlap(bare)
+    best, shift = balanced(sheet, (page, page[::-1]), overlap, 10.0)
+    tiled = tile(bare, best, overlap, keep=_has_paint, before=len(key.sheets), shift=shift)
+    return replace(tiled, sheets=key.sheets + tiled.sheets)
+
+
+def _has_paint(sheet: Sheet) -> bool:
+    return any(layer.role == "paint" and layer.shapes for layer in sheet.layers)
 
 
 def colour_key(puzzle: Puzzle, colouring: Colouring, side: str,
                page: tuple[float, float] = (210.0, 297.0), margin: float = 15.0) -> Drawing:
-    """Every paint of one side: swatch, name, hex code, pieces and area (cm²), on as many
-    ``page``s as it takes."""
+    """Every paint of one side: swatch, name, hex code, pieces and area (cm²), then the bare
+    wood of the ring pieces' hexagons (white on the guide), on as many ``page``s as it
+    takes."""
     paint = painted(puzzle, colouring, side)
     areas = paint.areas()
     order = [c for c in colouring.names if c in areas] + sorted(set(areas) - set(
@@ -281,7 +313,15 @@ def colour_key(puzzle: Puzzle, colouring: Colouring, side: str,
     for colour in order:
         numbers = " ".join(str(k) for k in paint.pieces(colour).tolist())
         wrapped = wrap(f"pieces: {numbers}", room, size)
-        rows.append((colour, wrapped, max(14.0, line * (len(wrapped) + 1) + 3)))
+        rows.append((colour, wrapped))
+    ring = np.flatnonzero(puzzle.hexagons != None)  # noqa: E711
+    if len(ring):  # what the guide shows white: the ring pieces' hexagons, bare wood
+        bare = float(shapely.area(puzzle.hexagons[ring].astype(object)).sum())
+        rows.append((None, wrap("the hexagon of pieces: " + " ".join(
+            str(k + 1) for k in ring.tolist()), room, size)))
+    most = max(1, int((page[1] - 2 * margin - 14 - 3) // line) - 1)  # lines a page holds
+    rows = [(colour, wrapped[k:k + most], max(14.0, line * (len(wrapped[k:k + most]) + 1) + 3))
+            for colour, wrapped in rows for k in range(0, len(wrapped), most)]
     total = sum(areas.values())
     sheets, shapes, y = [], [], None
     heading = (f"Colour key, {side}: {len(order)} paints, {total / 100:.0f} cm² painted "
@@ -296,11 +336,13 @@ def colour_key(puzzle: Puzzle, colouring: Colouring, side: str,
             y -= 14
         swatch = np.array([(margin, y - 12), (margin + 25, y - 12), (margin + 25, y),
                            (margin, y)])
-        shapes.append(polygons_from_rings([swatch], Style("#000000", 0.3), [colour]))
+        shapes.append(polygons_from_rings([swatch], Style("#000000", 0.3),
+                                          [colour or UNPAINTED]))
         x = margin + 30
-        name = colouring.names.get(colour, colour)
-        shapes.append(Text(x, y - 4, f"{name}   {colour}   {areas[colour] / 100:.1f} cm²",
-                           3.5))
+        title = (f"{colouring.names.get(colour, colour)}   {colour}   "
+                 f"{areas[colour] / 100:.1f} cm²" if colour else
+                 f"bare wood, not painted (white on the guide)   {bare / 100:.1f} cm²")
+        shapes.append(Text(x, y - 4, title, 3.5))
         for k, text in enumerate(wrapped):
             shapes.append(Text(x, y - 4 - line * (k + 1), text, size, fill="#333333"))
         y -= height

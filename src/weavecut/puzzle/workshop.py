@@ -306,9 +306,12 @@ back (the same paints).
 {cut}
   b. Sand the burr off lightly; prime both sides if the wood is porous.
   c. Paint the front from the front guide: bold lines are piece outlines, thin dashed
-     lines split two-coloured pieces along the parent edge (the paper's diagonal). Numbers
-     tell you which piece is which; single-coloured pieces sit at the centres of the large
-     octagons of the coarser weave.
+     lines split two-coloured pieces along the parent edge (the paper's diagonal) and
+     split a ring piece's hexagon (white: bare wood, left unpainted) off its paint. Numbers
+     tell you which piece is which; a number that reads as another one upside down (6, 9,
+     16, 91, 86, 98, ...) is underlined, on the guides and on the wood: the line goes
+     under it. Single-coloured pieces sit at the centres of the large octagons of the
+     coarser weave.
   d. Let it dry, turn the whole puzzle over in its frame, paint the back from the back guide.
   e. Seal. Paint swells the wood a little and closes the cutting gaps.
 
