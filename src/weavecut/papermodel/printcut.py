@@ -30,6 +30,7 @@ from ..layout.drawing import Drawing, Layer, Polygons, Sheet, Style, polygons_fr
 from ..units import to_mm
 from .modules import copy_letter
 from .pages import CUT
+from .strips import narrowest_feature
 from .wording import PRINTED, Words, page_index
 
 PRINTER_EDGE = 6.35  # mm (1/4 in): the widest unprintable edge of common home printers
@@ -150,8 +151,9 @@ class CutReport:
     n_outlines : closed outlines
     simple : every outline is one closed, simple ring without holes
     duplicates : segments cut twice (shared by two outlines)
-    min_feature : the smallest distance a corner keeps from a segment it does not end (the
-        narrowest neck or notch a knife must turn in)
+    min_feature : the narrowest neck, sliver or notch of any outline
+        (:func:`.strips.narrowest_feature`): the least width of paper a knife cuts round or
+        clears
     """
 
     length: float
@@ -187,7 +189,7 @@ def cut_report(outlines) -> CutReport:
     graph = cutpaths.shared_edges(coords[keep], offsets, decimals=4)
     return CutReport(float(shapely.length(rings).sum()), len(polys), simple,
                      int((graph.uses > 1).sum()),
-                     float(shapely.minimum_clearance(polys).min()))
+                     float(narrowest_feature(polys).min()))
 
 
 def ordered_outlines(outlines, home) -> list[NDArray[np.float64]]:
