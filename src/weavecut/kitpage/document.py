@@ -142,9 +142,13 @@ def _run(k: int, run: Run, folder: Path) -> str:
 
 
 def _unprefixed(line: str, files: dict) -> str:
-    """A summary line without its leading "OUTPUT: " (the card shows the file)."""
+    """A summary line without its leading "OUTPUT: " (the cards show the file, or the files
+    of an output folder such as the laser card's)."""
     head, sep, rest = line.partition(": ")
-    return rest if sep and Path(os.path.abspath(head)) in files else line
+    if not sep:
+        return line
+    output = Path(os.path.abspath(head))
+    return rest if output in files or any(output in f.parents for f in files) else line
 
 
 def _card(paths: list[Path], files: dict, figures: dict, folder: Path) -> tuple[str, bool]:
