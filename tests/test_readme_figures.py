@@ -164,7 +164,7 @@ ROWS = [
            "--tile-size", "21mm", "-o", "star.pdf"),
           lambda j: {"s": f"{j['slimmest_piece_mm']:g}"}),
     Claim("slimmest piece: pentagon flower",
-          r"the pentagon flower at 23 cm\s+(?P<s>[\d.]+) mm \(a label\s+tab\), the square grid",
+          r"the pentagon flower at 23 cm\s+(?P<s>[\d.]+) mm,\s+the square grid",
           ("strands", "pentagon-flower", "--size", "23cm", "-o", "pf.pdf"),
           lambda j: {"s": f"{j['slimmest_piece_mm']:g}"}),
     Claim("slimmest piece: square grid", r"the square grid at 27 cm (?P<s>[\d.]+) mm\.",
@@ -186,7 +186,7 @@ ROWS = [
                      "m": f"{j['cut_length_mm'] / 1000:.1f}"}),
     Claim("cut by machine: pentagon flower, Silhouette",
           r"its (?P<strands>\d+) strips: (?P<strip>\d+) strip pages for a Silhouette, "
-          r"(?P<m>[\d.]+) m of cuts,\s+smallest feature (?P<f>[\d.]+) mm \(a label tab;"
+          r"(?P<m>[\d.]+) m of cuts,\s+smallest feature (?P<f>[\d.]+) mm \(it was 1\.26 mm"
           r"[\s\S]*?The (?P<tabs>\d+) label tabs",
           (*FLOWER_OKABE, "--cutter", "silhouette", "-o", "pf.pdf"),
           lambda j: {"strands": str(j["strands"]), "tabs": str(j["label_tabs"]),

@@ -88,7 +88,8 @@ def _tab(a, b, normal, base, depth, before, after):
     ``b``) holding a ``base`` x ``depth`` box for its text, ``lift`` mm out from the edge; tab
     None where it cannot be made. A box no wider than the edge stands on it, its corners on
     the edge's ends or at least ``FLAP_STEP`` from them (no step a knife tears at). A wider box
-    is lifted off the edge and joined to the edge's ends by chamfers (a six-sided tab): a
+    (at least ``FLAP_STEP`` past each end: room for a laser's engraving margin) is lifted off
+    the edge and joined to the edge's ends by chamfers (a six-sided tab): a
     rectangle overhanging the edge would leave a V between its shoulder and the tile's next
     edge, a notch a blade cannot clear. Each chamfer rises at ``FLAP_CHAMFER`` (45 degrees)
     or more, and stands square to the tile's next edge or farther from it: the corner at the
@@ -102,6 +103,7 @@ def _tab(a, b, normal, base, depth, before, after):
         p, q = mid - unit * base / 2, mid + unit * base / 2
         tab = shapely.Polygon([p, q, q + normal * depth, p + normal * depth])
         return tab, 0.0, shapely.LineString([p, q])
+    base = max(base, edge + 2 * FLAP_STEP)  # room round the text to engrave it on card too
     over = (base - edge) / 2
     rise = [FLAP_CHAMFER]
     for corner, end, out in ((before, a, -unit), (after, b, unit)):  # the edge's two ends
