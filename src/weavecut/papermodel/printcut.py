@@ -281,6 +281,18 @@ def marks_text(machine: Cutter) -> str:
             f"{where}")
 
 
+def _strip_pages(book) -> tuple[str, str]:
+    """("p. 3-8", how many times to make them: "once", or once per direction for a module
+    printed per copy)."""
+    strips = f"p. {book.strip_pages[0]}" + (f"-{book.strip_pages[-1]}"
+                                             if len(book.strip_pages) > 1 else "")
+    k = book.plan.k
+    times = (f"{k} times, once per direction (write the copy letter, A to "
+             f"{copy_letter(k - 1)}, on the back of each strip)" if book.layout == "module"
+             and k > 1 else "once")
+    return strips, times
+
+
 def _design_space_words(machine: Cutter, output: Path) -> Words:
     """The words of a kit whose cutter's software prints its own marks (Cricut): the strip
     pages show what each page holds; Design Space prints each page's print image with its
@@ -292,12 +304,7 @@ def _design_space_words(machine: Cutter, output: Path) -> Words:
     w, h = (v / 25.4 for v in machine.max_size) if machine.max_size else (6.75, 9.25)
 
     def sources(book) -> str:
-        strips = f"p. {book.strip_pages[0]}" + (f"-{book.strip_pages[-1]}"
-                                                 if len(book.strip_pages) > 1 else "")
-        k = book.plan.k
-        times = (f"{k} times, once per direction (write the copy letter, A to "
-                 f"{copy_letter(k - 1)}, on the back of each strip)" if book.layout == "module"
-                 and k > 1 else "once")
+        strips, times = _strip_pages(book)
         return (f"Print then cut ({name}): Design Space prints each strip page itself, with its "
                 "own sensor marks round it, and cuts only pages it printed, so do not print "
                 f"the strip pages of this PDF ({strips}) to cut them: they show what each page "
@@ -338,12 +345,7 @@ def cutter_words(machine: Cutter, output: Path) -> Words:
                                            f"{stem}-p{last:02d}-cut for page {last}")
 
     def sources(book) -> str:
-        strips = f"p. {book.strip_pages[0]}" + (f"-{book.strip_pages[-1]}"
-                                                 if len(book.strip_pages) > 1 else "")
-        k = book.plan.k
-        times = (f"{k} times, once per direction (write the copy letter, A to "
-                 f"{copy_letter(k - 1)}, on the back of each strip)" if book.layout == "module"
-                 and k > 1 else "once")
+        strips, times = _strip_pages(book)
         return (f"Print and cut ({name}): print the strip pages ({strips}) {times}. Each carries "
                 f"registration marks ({marks_text(machine)}) that the cutter's eye reads to "
                 f"find the page, and has its cut file beside this PDF ({files(book)}): the "
