@@ -185,6 +185,8 @@ def test_a_cricut_page_is_a_print_image_design_space_prints_and_cuts_round():
         assert painted.symmetric_difference(cuts).area < 1e-6 * cuts.area
         x0, y0, x1, y1 = painted.bounds
         assert x1 - x0 <= 6.75 * 25.4 and y1 - y0 <= 9.25 * 25.4
+    from weavecut.kitpage.document import _purpose  # the kit page's card says what it is for
+    assert "Design Space" in _purpose([".svg"], drawing, {})
     words = printcut.cutter_words(machine, Path("kit/sq.pdf"))
     said = words.sources(book) + " " + words.cut
     assert "sq-pNN-print.svg" in said and "sensor marks" in said and "Flatten" in said

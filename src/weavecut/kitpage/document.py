@@ -322,6 +322,10 @@ def _purpose(suffixes: list[str], drawing: Drawing | None, figures: dict) -> str
             paper = "US Letter"
         return f"print at 100 % on {paper}"
     roles = {layer.role for sheet in (drawing.sheets if drawing else ()) for layer in sheet.layers}
+    printed = dict(drawing.metadata).get("print_image") if drawing is not None else None
+    if printed:  # a Cricut kit's (``printcut.print_files``)
+        return (f"page {printed}'s strips for Cricut Design Space: upload, Flatten, Make it (it "
+                "prints them with its sensor marks and cuts round them)")
     laser, speed = figures.get("laser"), figures.get("speed_mm_s")
     what = _cut_for(drawing)
     if what.startswith("card"):

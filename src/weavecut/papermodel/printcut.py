@@ -250,7 +250,7 @@ def print_files(book) -> list[tuple[int, Drawing]]:
         layers = tuple(x for x in page.layers if x.name not in ("page", "cut", "registration"))
         sheet = Sheet(page.width, page.height, layers, f"page {n}: print image")
         out.append((n, Drawing((sheet,), f"{book.drawing.title}: print image of page {n}",
-                               book.drawing.metadata)))
+                               (*book.drawing.metadata, ("print_image", str(n))))))
     return out
 
 
