@@ -108,10 +108,10 @@ def _tab(a, b, normal, base, depth, before, after):
     rise = [FLAP_CHAMFER]
     for corner, end, out in ((before, a, -unit), (after, b, unit)):  # the edge's two ends
         side = corner - end
-        across = -float(side @ normal)  # the tile lies on the side away from ``normal``
+        across = -float(dot(side, normal))  # the tile lies on the side away from ``normal``
         if across <= 1e-9 * edge:
             return None, 0.0, None  # a straight or reflex corner: no chamfer squares with it
-        rise.append(float(side @ out) / across)  # the chamfer square to the tile's next edge
+        rise.append(float(dot(side, out)) / across)  # the chamfer square to the tile's next edge
     lift = max(over * max(rise) * (1 + 1e-6), FLAP_STEP)  # square and a hair (no notch by
     # rounding); no chamfer shorter than a step
     if lift > FLAP_LIFT * depth:
