@@ -351,3 +351,47 @@ def test_a_page_into_the_folder_the_command_makes_is_no_missing_folder(world):
     refused(run("puzzle", "-n", "2", "--preview", "-o", kit, "--html",
                 world / "out" / "elsewhere" / "index.html"), "elsewhere' does not exist",
             status=(2,))
+
+
+def _listed(home: Path) -> set[str]:
+    return set(json.loads((home / MANIFEST).read_text())["files"])
+
+
+def test_a_rerun_removes_the_sheets_it_no_longer_needs_and_nothing_else(world):
+    """``puzzle -o FOLDER`` cut on 300 x 200 mm sheets needs 8, on 600 x 600 mm 2: the rerun
+    removes sheets 3-8, which weave-cut wrote last time, and keeps the maker's notes; a stale
+    sheet the maker edited since is kept (with --force, as the rerun would replace it) and is
+    no longer listed as weave-cut's."""
+    kit = world / "out" / "kit"
+    small = ("puzzle", "-n", "2", "--mode", "separate", "--sheet", "300x200mm", "-o", kit)
+    large = ("puzzle", "-n", "2", "--mode", "separate", "--sheet", "600x600mm", "-o", kit)
+    sheets = {f"puzzle-separate-sheet-{n}.{s}" for n in range(3, 9) for s in ("svg", "dxf")}
+    assert run(*small).exit_code == 0 and sheets <= files_under(kit)
+    (kit / "notes.txt").write_text("my notes")
+    assert run(*large).exit_code == 0
+    assert not sheets & files_under(kit) and "puzzle-separate-sheet-2.svg" in files_under(kit)
+    assert (kit / "notes.txt").read_text() == "my notes"
+    assert _listed(kit) == files_under(kit) - {"notes.txt", MANIFEST}
+    assert run(*small).exit_code == 0 and sheets <= files_under(kit)
+    (kit / "puzzle-separate-sheet-8.svg").write_text("mine")
+    assert run(*large, "--force").exit_code == 0
+    assert files_under(kit) & sheets == {"puzzle-separate-sheet-8.svg"}
+    assert (kit / "puzzle-separate-sheet-8.svg").read_text() == "mine"
+    assert _listed(kit) == files_under(kit) - {"notes.txt", "puzzle-separate-sheet-8.svg",
+                                               MANIFEST}
+
+
+def test_a_rerun_removes_the_cut_files_of_pages_it_no_longer_prints(world):
+    """``strands --cutter -o FILE``: at 60 mm tiles the strips take pages 3-5, at 20 mm page 3
+    only; the rerun removes the cut files of pages 4-5 beside the PDF, not those of another
+    PDF in the folder (its own -o's)."""
+    out = world / "out"
+    line = ("strands", "square-grid:3x3", "-n", "1", "--cutter", "silhouette", "-o")
+    assert run(*line, out / "other.pdf", "--tile-size", "60mm").exit_code == 0
+    assert run(*line, out / "c.pdf", "--tile-size", "60mm").exit_code == 0
+    pages = {f"c-p0{n}-cut.{s}" for n in (4, 5) for s in ("svg", "dxf")}
+    assert pages <= files_under(out)
+    assert run(*line, out / "c.pdf", "--tile-size", "20mm").exit_code == 0
+    assert not pages & files_under(out) and "c-p03-cut.svg" in files_under(out)
+    assert {f"other-p0{n}-cut.svg" for n in (3, 4, 5)} <= files_under(out)
+    assert _listed(out) == files_under(out) - {MANIFEST}

@@ -18,7 +18,10 @@ from .test_readback import program
 
 ROOT = Path(__file__).resolve().parents[1]
 RECIPES = [ROOT / "examples" / "star-paper-model.toml", ROOT / "examples" / "voronoi.toml",
-           ROOT / "templates" / "recipes" / "heart-puzzle.toml"]
+           ROOT / "templates" / "recipes" / "heart-puzzle.toml",
+           # a cutter's PDF with cut files beside it, and a laser card folder (whose summary
+           # line began with the folder's absolute path on the kit page)
+           ROOT / "templates" / "recipes" / "square-grid-cut-by-machine.toml"]
 
 
 def _text(path: Path) -> str:

@@ -102,6 +102,13 @@ def cutter_figures(j: dict) -> dict[str, str]:
             "f": f"{j['cutter']['min_feature_mm']:.2f}"}
 
 
+def strips_ink(decimals: str) -> Callable[[dict], dict[str, str]]:
+    """A paper model's strip pages and its ink (per cent, to ``decimals`` places as the README
+    writes it)."""
+    return lambda j: {"strip": str(j["pages"]["strip"]),
+                      "ink": f"{100 * j['ink_fraction']:.{decimals}f}"}
+
+
 SQUARE_4 = ("strands", "square-grid", "--size", "27cm", "--palette", "maritime-4")
 FLOWER_OKABE = ("strands", "pentagon-flower", "--size", "23cm", "--palette", "okabe-ito")
 BALL = ("strands", "dodecahedron", "--levels", "1", "--project", "sphere", "--size", "12cm")
@@ -155,12 +162,13 @@ ROWS = [
                                      r"birch\)", r"300 × 278.4 mm"),
           ("puzzle", HEART, "--cell", "39mm", "--levels", "2", "--size", "30cm", "--frame",
            "15mm", "--material", "birch-plywood-3mm", "--numbers", "-o", "pz"), puzzle_row),
-    Claim("slimmest piece: star", r"\(`slimmest_piece_mm`\): the star (?P<s>[\d.]+) mm",
+    Claim("slimmest piece: star", r"\(`slimmest_piece_mm`: the narrowest neck, sliver or notch\): the star "
+          r"(?P<s>[\d.]+) mm",
           ("strands", str(ROOT / "examples" / "star.svg"), "--cell", "10mm", "--levels", "1",
            "--tile-size", "21mm", "-o", "star.pdf"),
           lambda j: {"s": f"{j['slimmest_piece_mm']:g}"}),
     Claim("slimmest piece: pentagon flower",
-          r"the pentagon flower at 23 cm\s+(?P<s>[\d.]+) mm, the square grid",
+          r"the pentagon flower at 23 cm\s+(?P<s>[\d.]+) mm,\s+the square grid",
           ("strands", "pentagon-flower", "--size", "23cm", "-o", "pf.pdf"),
           lambda j: {"s": f"{j['slimmest_piece_mm']:g}"}),
     Claim("slimmest piece: square grid", r"the square grid at 27 cm (?P<s>[\d.]+) mm\.",
@@ -182,7 +190,7 @@ ROWS = [
                      "m": f"{j['cut_length_mm'] / 1000:.1f}"}),
     Claim("cut by machine: pentagon flower, Silhouette",
           r"its (?P<strands>\d+) strips: (?P<strip>\d+) strip pages for a Silhouette, "
-          r"(?P<m>[\d.]+) m of cuts,\s+smallest feature (?P<f>[\d.]+) mm \(a label tab's"
+          r"(?P<m>[\d.]+) m of cuts,\s+smallest feature (?P<f>[\d.]+) mm \(it was 1\.26 mm"
           r"[\s\S]*?The (?P<tabs>\d+) label tabs",
           (*FLOWER_OKABE, "--cutter", "silhouette", "-o", "pf.pdf"),
           lambda j: {"strands": str(j["strands"]), "tabs": str(j["label_tabs"]),
@@ -194,6 +202,37 @@ ROWS = [
           lambda j: {"m": f"{j['cut_length_mm'] / 1000:.1f}",
                      "label": f"{j['smallest_label_mm']:.1f}", "dots": str(j["engraved_dots"]),
                      "pages": str(j["instruction_pages"])}),
+    Claim("packing: pentagon flower on A4",
+          r"the pentagon flower \(23 cm\) (?P<strip>\d+)\s+strip pages on A4 \((?P<ink>\d+) % ink\)",
+          ("strands", "pentagon-flower", "--size", "23cm", "-o", "pf.pdf"), strips_ink("0")),
+    Claim("packing: pentagon flower on Letter",
+          r"the pentagon flower \(23 cm\) (?P<strip>\d+)\s+strip pages on A4 \(\d+ % ink\) and "
+          r"on Letter \((?P<ink>\d+) %\)",
+          ("strands", "pentagon-flower", "--size", "23cm", "--page", "letter", "-o", "pf.pdf"),
+          strips_ink("0")),
+    Claim("packing: square grid maritime-4 on A4",
+          r"the square grid \(27 cm, `--palette\s+maritime-4`\) (?P<strip>\d+) on A4 "
+          r"\((?P<ink>\d+) %\)", (*SQUARE_4, "-o", "sq.pdf"), strips_ink("0")),
+    Claim("packing: square grid maritime-4 on Letter",
+          r"the square grid \(27 cm, `--palette\s+maritime-4`\) (?P<strip>\d+) on A4 \(\d+ %\) "
+          r"and on Letter \((?P<ink>\d+) %;", (*SQUARE_4, "--page", "letter", "-o", "sq.pdf"),
+          strips_ink("0")),
+    Claim("packing: square grid at 16 cm",
+          r"\(square grid 16 cm, pentagon flower 32 cm\) the strips take (?P<strip>\d+) and \d+ "
+          r"A4 pages \((?P<ink>[\d.]+) % and",
+          ("strands", "square-grid", "--size", "16cm", "-o", "sq.pdf"), strips_ink("0")),
+    Claim("packing: pentagon flower at 32 cm",
+          r"\(square grid 16 cm, pentagon flower 32 cm\) the strips take \d+ and (?P<strip>\d+) "
+          r"A4 pages \([\d.]+ % and\s+(?P<ink>[\d.]+) % ink\)",
+          ("strands", "pentagon-flower", "--size", "32cm", "-o", "pf.pdf"), strips_ink("1")),
+    Claim("callouts: pentagon flower at 23 cm",
+          r"\(the pentagon flower at 23 cm: (?P<names>\d+) names in its tiny[\s\S]*?\(the "
+          r"pentagon flower at 23 cm:\s+(?P<n>\d+) callouts on pages (?P<first>\d+)-(?P<last>\d+), "
+          r"so (?P<pages>\d+) pages in all\)",
+          ("strands", "pentagon-flower", "--size", "23cm", "-o", "pf.pdf"),
+          lambda j: {"names": str(j["names_left_out"]), "n": str(j["names_left_out"]),
+                     "first": "3", "last": str(j["pages"]["extra"]),
+                     "pages": str(j["pages"]["total"])}),
     kit_row("strands pentagon-flower --size 23cm -o pf.pdf", "page",
             lambda j: j["pages"]["total"]),
     kit_row("strands square-grid --size 27cm --laser-card -o card", "sheet",

@@ -148,12 +148,17 @@ class Ledger:
     holds it, or written in this run), unless ``force``. A refusal is confirmed under the
     folder's lock, as another weave-cut may be writing there and lists its files before it
     lets go. ``wrote(path)`` for every file written; ``record`` lists them in the manifest of
-    the innermost root that holds each (the file's own folder if none does)."""
+    the innermost root that holds each (the file's own folder if none does), and under each
+    of ``outputs`` (the command's ``-o``) the files the run wrote in its root: a file the same
+    output listed last time and this run did not write (a sheet or page the work no longer
+    needs) is removed, if it is as weave-cut wrote it (as a build's jobs do,
+    ``recipe.Planner.remember``)."""
 
-    def __init__(self, roots, force: bool = False) -> None:
+    def __init__(self, roots, force: bool = False, outputs=()) -> None:
         real = {os.path.realpath(r) for r in roots}
         self.roots = sorted(real, key=lambda r: (-len(r), r))  # innermost first
         self.force = force
+        self.outputs = sorted({self._real(o) for o in outputs})
         self.written: set[str] = set()
         self._listed: dict[str, dict[str, str]] = {}
 
@@ -219,8 +224,29 @@ class Ledger:
             if digest is not None and os.path.basename(real) != MANIFEST:
                 by_root.setdefault(root, {})[os.path.relpath(real, root)] = digest
         try:
-            for root, entries in by_root.items():
-                record_manifest(Path(root), entries)
+            lists: dict[str, dict[str, list[str]]] = {}
+            for output in self.outputs if strict else ():  # a failed run removes nothing
+                root = output if output in self.roots else (self._holders(output)
+                                                             or [os.path.dirname(output)])[0]
+                lists.setdefault(root, {})[os.path.relpath(output, root)] = sorted(
+                    by_root.get(root, {}))
+            for root in sorted(set(by_root) | set(lists)):
+                gone = _remove_stale(Path(root), lists.get(root, {}))
+                record_manifest(Path(root), by_root.get(root, {}), lists.get(root), gone)
         except (WeaveCutError, OSError):
             if strict:
                 raise
+
+
+def _remove_stale(root: Path, outputs: dict[str, list[str]]) -> list[str]:
+    """Remove the files the manifest of ``root`` lists under each of ``outputs`` that the run
+    did not write now (its list), each only if unchanged since weave-cut wrote it; return the
+    relative paths that are no longer weave-cut's to list."""
+    files, wrote = read_manifest(root)
+    gone = []
+    for output, now in sorted(outputs.items()):
+        for rel in sorted(set(wrote.get(output, ())) - set(now)):  # a few files
+            if file_hash(root / rel) == files.get(rel):  # edited since: the maker's now
+                os.unlink(root / rel)
+            gone.append(rel)
+    return gone

@@ -162,7 +162,11 @@ def writing(ctx: click.Context | None):
         if message:
             raise click.BadParameter(message, ctx=ctx, param=p)
     folders = roots(command, values)
-    ledger = Ledger(folders, forced())
+    # a file -o's run lists what it wrote by that -o, and a rerun removes what it no longer
+    # writes (a build does so per job, by the job's output: ``recipe.Planner.remember``)
+    outputs = [] if command.name == "build" else [path for p, path in written(command, values)
+                                                  if "-o" in p.opts]
+    ledger = Ledger(folders, forced(), outputs)
     with writing_into(folders, guard=ledger):
         guard = active_guard()
         if guard is ledger:

@@ -62,7 +62,9 @@ KIT_REFUSES = {  # an input's kind -> (what the options are for, {option: why a 
 @click.option("--cutter", "cutter_name", default=None, shell_complete=complete_preset("cutters"),
               help="Print-and-cut: lay the strips out for this cutter (templates/cutters: "
                    "silhouette, cricut, scanncut, or a .toml file), print its registration "
-                   "marks and write a cut file per strip page beside -o (PAGE-cut.svg, .dxf).")
+                   "marks and write a cut file per strip page beside -o (PAGE-cut.svg, .dxf; "
+                   "a Cricut's print image too, PAGE-print.svg: Design Space prints its own "
+                   "marks).")
 @click.option("--laser-card", is_flag=True,
               help="Laser-cut the strips from coloured card instead: -o is a folder of cut "
                    "sheets (strands-card-*.svg, .dxf), one set per strand colour, and "
@@ -164,7 +166,7 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
         machine.check(*page)
         margin, limit = max(margin, machine.margin), machine.limit(*page)
         words = {"words": cutter_words(machine, Path(output)),
-                 "page_note": cut_file_note(Path(output))}
+                 "page_note": cut_file_note(Path(output), machine)}
     try:
         book = strand_book(weaves, pal, page, tile_size or 20.0, margin, turn, title=title,
                            layout=layout, limit=limit, **words)
@@ -299,7 +301,8 @@ def ball(mesh, input_mesh, levels, page, tile_size, diameter, margin, pal, chira
 def _print_and_cut(book, machine, output: str) -> dict:
     """Write the strip pages with the cutter's marks to ``output`` and a cut file per strip
     page beside it (SVG and DXF); return the --json figures."""
-    from ..papermodel.printcut import cut_file_paths, cut_files, cut_report, with_marks
+    from ..papermodel.printcut import (cut_file_paths, cut_files, cut_report, print_file_path,
+                                       print_files, with_marks)
 
     marked = with_marks(book, machine)
     export.write(marked.drawing.with_metadata(**provenance()), output)
@@ -310,10 +313,15 @@ def _print_and_cut(book, machine, output: str) -> dict:
         for path in cut_file_paths(base, n):
             export.write(drawing.with_metadata(**provenance()), path)
             files.append(str(path))
+    prints = []  # the images a cutter's software prints with its own marks (Cricut)
+    for n, drawing in print_files(marked) if machine.own_marks else ():
+        export.write(drawing.with_metadata(**provenance()), print_file_path(base, n))
+        prints.append(str(print_file_path(base, n)))
     if report.min_feature < machine.min_feature:
         click.echo(f"weave-cut: warning: features down to {report.min_feature:.2f} mm: a drag "
                    f"knife tears below {machine.min_feature:g} mm", err=True)
     return {"cutter": {"name": machine.name, "marks": machine.marks, "cut_files": files,
+                       **({"print_images": prints} if prints else {}),
                        **report.as_dict()}}
 
 

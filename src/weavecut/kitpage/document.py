@@ -142,9 +142,13 @@ def _run(k: int, run: Run, folder: Path) -> str:
 
 
 def _unprefixed(line: str, files: dict) -> str:
-    """A summary line without its leading "OUTPUT: " (the card shows the file)."""
+    """A summary line without its leading "OUTPUT: " (the cards show the file, or the files
+    of an output folder such as the laser card's)."""
     head, sep, rest = line.partition(": ")
-    return rest if sep and Path(os.path.abspath(head)) in files else line
+    if not sep:
+        return line
+    output = Path(os.path.abspath(head))
+    return rest if output in files or any(output in f.parents for f in files) else line
 
 
 def _card(paths: list[Path], files: dict, figures: dict, folder: Path) -> tuple[str, bool]:
@@ -318,6 +322,10 @@ def _purpose(suffixes: list[str], drawing: Drawing | None, figures: dict) -> str
             paper = "US Letter"
         return f"print at 100 % on {paper}"
     roles = {layer.role for sheet in (drawing.sheets if drawing else ()) for layer in sheet.layers}
+    printed = dict(drawing.metadata).get("print_image") if drawing is not None else None
+    if printed:  # a Cricut kit's (``printcut.print_files``)
+        return (f"page {printed}'s strips for Cricut Design Space: upload, Flatten, Make it (it "
+                "prints them with its sensor marks and cuts round them)")
     laser, speed = figures.get("laser"), figures.get("speed_mm_s")
     what = _cut_for(drawing)
     if what.startswith("card"):

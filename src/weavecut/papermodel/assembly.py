@@ -121,17 +121,21 @@ def tile_mm(on_sheet) -> float:
 
 def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
     """IDs at both ends of every strand and every ``ALONG`` own tiles, inside own tiles where
-    they fit; an end that has no room gets its ID on a white box with a leader line. Returns
-    (IDs, white boxes, leader lines, arrows by ink, everything later labels keep clear of)."""
+    they fit; an end that has no room gets its ID on a white box with a leader line, unless
+    the strand is short (``ALONG`` own tiles or fewer: both ends in view of one ID) and its ID
+    is already on it or on a box (one box, not two side by side). Returns (IDs, white boxes,
+    leader lines, arrows by ink, everything later labels keep clear of)."""
     plan = book.plan
     regions = shapely.buffer(on_sheet, -0.4, join_style="mitre")
     across = tile_mm(on_sheet)
-    wanted, order = [], []  # (tile, strand, end?) per candidate
+    wanted, order, short = [], [], set()  # (tile, strand, end?) per candidate
     for s in range(weave.n_strands):  # strands, not mesh elements
         visits, own = weave.strand(s)
         if plan.reversed[s]:
             visits, own = visits[::-1], own[::-1]
         mine = visits[own]
+        if len(mine) <= ALONG:
+            short.add(s)
         picks = {0: True, len(mine) - 1: True}
         picks.update({i: False for i in range(ALONG, len(mine) - ALONG // 2, ALONG)})
         for i, end in sorted(picks.items()):
@@ -144,7 +148,7 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
     ids, taken, boxes, leaders = [], [], [], []
     arrow_tiles: dict[int, tuple] = {}
     missing = []
-    used = set()
+    used, named = set(), set()  # tiles taken; short strands whose ID is placed or boxed
     for c in np.lexsort((np.arange(len(wanted)), order)).tolist():  # candidates
         t, s, end = wanted[c]
         if t in used:
@@ -155,8 +159,9 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
                                  text_colour_on(fills[t]))
             ids.append(label)
             taken.append(text_box(label))
+            named.add(s)
         elif end:
-            missing.append((t, text[c]))
+            missing.append((t, s, text[c]))
     # arrows: the second own tile of every strand, when free
     for s in range(weave.n_strands):  # strands, not mesh elements
         visits, own = weave.strand(s)
@@ -180,10 +185,19 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
                 shapely.Polygon(u * z + centres[t]))
     obstacles = Obstacles(taken + [a for v in arrows.values() for a in v])
     frame = shapely.box(*box)
-    for t, label in missing:  # leader lines
+    # leader lines: first a box for every strand not named yet, then the other ends of long
+    # strands (a short strand's one ID is in view of both its ends)
+    first, rest, seen = [], [], set(named)
+    for m in missing:  # ends
+        (rest if m[1] in seen else first).append(m)
+        seen.add(m[1])
+    for t, s, label in first + rest:
+        if s in short and s in named:
+            continue  # its one ID is placed
         spot = _free_spot(centres[t], label, obstacles, frame, across)
         if spot is None:
             continue
+        named.add(s)
         text_at, plate, leader = spot
         ids.append(text_at)
         boxes.append(plate)

@@ -21,7 +21,7 @@ from ..layout.label_checks import figures as label_figures
 from ..layout.drawing import Polygons, Polylines, Sheet, Text
 from ..layout.labels import MIN_CAP, text_box
 from .pages import FURNITURE_GAP
-from .strips import slimmest
+from .strips import narrowest_feature
 
 SLACK = 1e-6  # mm
 
@@ -111,8 +111,8 @@ def report(book) -> dict:
     """What ``strands --json`` reports: pages, ink, smallest label, contrast (at the label's
     centre, and the least over everything under its box: ``label_checks``), the smallest gap
     between two labels, violations, label tabs, under-crossing names left off the strips, the
-    slimmest piece (the narrowest neck or sliver of any strip's cut outline,
-    :func:`.strips.slimmest`)."""
+    slimmest piece (the narrowest neck, sliver or notch of any strip's cut outline,
+    :func:`.strips.narrowest_feature`)."""
     records = []
     for n, sheet in enumerate(book.drawing.sheets, start=1):
         records += sheet_checks(book, n)
@@ -127,7 +127,7 @@ def report(book) -> dict:
         "label_violations": sum(bool(r["broken"]) for r in records),
         "label_tabs": sum(p.flap is not None for _, p in book.pieces),
         "names_left_out": sum(len(p.left_out) for _, p in book.pieces),
-        "slimmest_piece_mm": round(float(slimmest([p.cut for _, p in book.pieces]).min(
+        "slimmest_piece_mm": round(float(narrowest_feature([p.cut for _, p in book.pieces]).min(
             initial=np.inf)), 2) if book.pieces else None,
         "tile_size_mm": round(book.tile_size, 2),
         "strip_width_mm": round(book.strip_width, 1),

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 import shapely
+from numpy.typing import NDArray
 from shapely.geometry.polygon import orient
 
 from ..errors import WeaveCutError
@@ -126,3 +127,18 @@ def widen_notches(outline: shapely.Polygon, minimum: float = MIN_CUT) -> shapely
             raise NotchError(f"a notch would be {mouth(ring, k):.1f} mm wide", mouth(ring, k))
         ring, changed = wider, True
     return shapely.Polygon(ring) if changed else outline
+
+
+def narrowest_notch(polygons) -> NDArray[np.float64]:
+    """(N,) per polygon the narrowest :func:`mouth` of its notches (corners cut in from
+    outside whose sides are less than ``V`` apart), inf where it has none: the width of paper
+    a blade must clear between the notch's two sides where the shorter one ends."""
+    out = []
+    for polygon in np.asarray(polygons, dtype=object).tolist():  # outlines of a sheet
+        ring = np.asarray(orient(polygon, 1.0).exterior.coords)[:-1]  # anticlockwise
+        u, w = np.roll(ring, 1, axis=0) - ring, np.roll(ring, -1, axis=0) - ring
+        concave = u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0] > 0  # turning right, inward
+        cosine = (u * w).sum(axis=1) / np.maximum(np.hypot(*u.T) * np.hypot(*w.T), 1e-300)
+        corners = np.flatnonzero(concave & (cosine > np.cos(V)))
+        out.append(min((mouth(ring, int(k)) for k in corners), default=np.inf))
+    return np.asarray(out, dtype=float)

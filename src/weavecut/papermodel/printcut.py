@@ -30,6 +30,7 @@ from ..layout.drawing import Drawing, Layer, Polygons, Sheet, Style, polygons_fr
 from ..units import to_mm
 from .modules import copy_letter
 from .pages import CUT
+from .strips import narrowest_feature
 from .wording import PRINTED, Words, page_index
 
 PRINTER_EDGE = 6.35  # mm (1/4 in): the widest unprintable edge of common home printers
@@ -66,6 +67,14 @@ class Cutter:
     clearance: float
     max_size: tuple[float, float] | None = None
     min_feature: float = 1.0
+
+    @property
+    def own_marks(self) -> bool:
+        """Whether the cutter's software prints the marks itself: Cricut Design Space sends the
+        image it is given to the printer with its own sensor frame round it, and cuts only a
+        page it printed so (help.cricut.com, "How to Print Then Cut in Design Space",
+        article 360009387274); a page printed with a frame of ours cannot be cut."""
+        return self.marks == "frame"
 
     @property
     def reach(self) -> float:
@@ -131,7 +140,10 @@ def cutter(name: str) -> Cutter:
 
 
 def with_marks(book, machine: Cutter):
-    """``book`` with the cutter's registration marks printed on every strip page."""
+    """``book`` with the cutter's registration marks printed on every strip page (none where
+    the cutter's software prints its own, :attr:`Cutter.own_marks`)."""
+    if machine.own_marks:
+        return book
     sheets = list(book.drawing.sheets)
     for n in book.strip_pages:
         s = sheets[n - 1]
@@ -150,8 +162,9 @@ class CutReport:
     n_outlines : closed outlines
     simple : every outline is one closed, simple ring without holes
     duplicates : segments cut twice (shared by two outlines)
-    min_feature : the smallest distance a corner keeps from a segment it does not end (the
-        narrowest neck or notch a knife must turn in)
+    min_feature : the narrowest neck, sliver or notch of any outline
+        (:func:`.strips.narrowest_feature`): the least width of paper a knife cuts round or
+        clears
     """
 
     length: float
@@ -187,7 +200,7 @@ def cut_report(outlines) -> CutReport:
     graph = cutpaths.shared_edges(coords[keep], offsets, decimals=4)
     return CutReport(float(shapely.length(rings).sum()), len(polys), simple,
                      int((graph.uses > 1).sum()),
-                     float(shapely.minimum_clearance(polys).min()))
+                     float(narrowest_feature(polys).min()))
 
 
 def ordered_outlines(outlines, home) -> list[NDArray[np.float64]]:
@@ -214,10 +227,31 @@ def cut_file_paths(output: Path, n: int) -> list[Path]:
     return [output.with_name(f"{output.stem}-p{n:02d}-cut{s}") for s in CUT_SUFFIXES]
 
 
+def print_file_path(output: Path, n: int) -> Path:
+    """The print image of strip page ``n`` of the PDF ``output``: PAGE-pNN-print.svg."""
+    return output.with_name(f"{output.stem}-p{n:02d}-print.svg")
+
+
 def existing_cut_files(output: Path) -> list[Path]:
-    """The cut files of any page of ``output`` that exist beside it."""
-    pattern = f"{output.stem}-p[0-9][0-9]*-cut"
-    return sorted(p for s in CUT_SUFFIXES for p in output.parent.glob(pattern + s))
+    """The cut files and print images of any page of ``output`` that exist beside it."""
+    pattern = f"{output.stem}-p[0-9][0-9]*-"
+    return sorted(p for s in (*(f"cut{s}" for s in CUT_SUFFIXES), "print.svg")
+                  for p in output.parent.glob(pattern + s))
+
+
+def print_files(book) -> list[tuple[int, Drawing]]:
+    """(page number, print image) for every strip page: the page's strips as printed (tiles,
+    labels, arrows), at the page's size and place, without its cut lines, marks, title or
+    legend: the image Cricut Design Space prints with its own sensor marks and cuts round
+    (its cut line is the outline of what the image covers: the strips' outlines)."""
+    out = []
+    for n in book.strip_pages:
+        page = book.drawing.sheets[n - 1]
+        layers = tuple(x for x in page.layers if x.name not in ("page", "cut", "registration"))
+        sheet = Sheet(page.width, page.height, layers, f"page {n}: print image")
+        out.append((n, Drawing((sheet,), f"{book.drawing.title}: print image of page {n}",
+                               (*book.drawing.metadata, ("print_image", str(n))))))
+    return out
 
 
 def cut_files(book) -> list[tuple[int, Drawing]]:
@@ -247,10 +281,61 @@ def marks_text(machine: Cutter) -> str:
             f"{where}")
 
 
+def _strip_pages(book) -> tuple[str, str]:
+    """("p. 3-8", how many times to make them: "once", or once per direction for a module
+    printed per copy)."""
+    strips = f"p. {book.strip_pages[0]}" + (f"-{book.strip_pages[-1]}"
+                                             if len(book.strip_pages) > 1 else "")
+    k = book.plan.k
+    times = (f"{k} times, once per direction (write the copy letter, A to "
+             f"{copy_letter(k - 1)}, on the back of each strip)" if book.layout == "module"
+             and k > 1 else "once")
+    return strips, times
+
+
+def _design_space_words(machine: Cutter, output: Path) -> Words:
+    """The words of a kit whose cutter's software prints its own marks (Cricut): the strip
+    pages show what each page holds; Design Space prints each page's print image with its
+    sensor marks and cuts round it. Sources: help.cricut.com articles 360009387274 ("How to
+    Print Then Cut in Design Space": upload, Flatten, Make it, Design Space prints the marks)
+    and 360009429814 ("How large can I Print Then Cut?": 6.75 x 9.25 in is the area every
+    machine and paper takes; newer machines take more, on an area that is not a rectangle)."""
+    name, stem = machine.name, output.stem
+    w, h = (v / 25.4 for v in machine.max_size) if machine.max_size else (6.75, 9.25)
+
+    def sources(book) -> str:
+        strips, times = _strip_pages(book)
+        return (f"Print then cut ({name}): Design Space prints each strip page itself, with its "
+                "own sensor marks round it, and cuts only pages it printed, so do not print "
+                f"the strip pages of this PDF ({strips}) to cut them: they show what each page "
+                f"holds. Beside this PDF each strip page has its print image "
+                f"({stem}-pNN-print.svg, NN the page number: its strips as printed, within "
+                f"{w:g} x {h:g} in, the largest image every Cricut prints then cuts) and its "
+                f"cut file ({stem}-pNN-cut.svg or .dxf, the outlines alone). Make each page "
+                f"{times}. Where each strip is: {page_index(book)}.")
+
+    return replace(PRINTED, scale=" Design Space prints at 100 %: keep its print dialog at "
+                                  "actual size.", sources=sources,
+                   need=f"You need: your {name} cutter with its mat, a printer Design Space "
+                        "prints to, tape or paper clips, a glue stick and a piece of cardboard "
+                        "a little larger than the model.",
+                   cut=f"Cut each strip page with the cutter: in Design Space upload its print "
+                       f"image ({stem}-pNN-print.svg), select all its layers and Flatten them "
+                       "(one Print Then Cut image, cut round the strips' outlines), keep its "
+                       "size (the strips at 100 %), and Make it: Design Space prints it with "
+                       "its sensor marks (bleed on), the machine reads the marks and cuts round "
+                       "every strip. Sort the strips by ID: the ID printed in the strip's own "
+                       "colour is its name on page 1; a small ID in a light part names the "
+                       "strand that lies on top there.")
+
+
 def cutter_words(machine: Cutter, output: Path) -> Words:
     """The print-and-cut book's words: the strip pages carry registration marks, each strip
     page's cut file lies beside the PDF ``output``, and how the cutter's software puts the two
-    together (page 1's sources, page 2's first steps)."""
+    together (page 1's sources, page 2's first steps); a cutter whose software prints its own
+    marks has words of its own (:func:`_design_space_words`)."""
+    if machine.own_marks:
+        return _design_space_words(machine, output)
     name, stem = machine.name, output.stem
 
     def files(book) -> str:
@@ -260,12 +345,7 @@ def cutter_words(machine: Cutter, output: Path) -> Words:
                                            f"{stem}-p{last:02d}-cut for page {last}")
 
     def sources(book) -> str:
-        strips = f"p. {book.strip_pages[0]}" + (f"-{book.strip_pages[-1]}"
-                                                 if len(book.strip_pages) > 1 else "")
-        k = book.plan.k
-        times = (f"{k} times, once per direction (write the copy letter, A to "
-                 f"{copy_letter(k - 1)}, on the back of each strip)" if book.layout == "module"
-                 and k > 1 else "once")
+        strips, times = _strip_pages(book)
         return (f"Print and cut ({name}): print the strip pages ({strips}) {times}. Each carries "
                 f"registration marks ({marks_text(machine)}) that the cutter's eye reads to "
                 f"find the page, and has its cut file beside this PDF ({files(book)}): the "
@@ -288,6 +368,10 @@ def cutter_words(machine: Cutter, output: Path) -> Words:
                        "part names the strand that lies on top there.")
 
 
-def cut_file_note(output: Path):
-    """A strip page's subtitle note: its cut file's name (``page_note`` of ``strand_book``)."""
+def cut_file_note(output: Path, machine: Cutter | None = None):
+    """A strip page's subtitle note: its cut file's name, and its print image's where the
+    cutter's software prints the marks (``page_note`` of ``strand_book``)."""
+    if machine is not None and machine.own_marks:
+        return lambda n: (f"Print image: {output.stem}-p{n:02d}-print.svg (Design Space "
+                          f"prints it); cut file: {output.stem}-p{n:02d}-cut.svg / .dxf.")
     return lambda n: f"Cut file: {output.stem}-p{n:02d}-cut.svg / .dxf, beside this PDF."

@@ -21,6 +21,7 @@ from ..layout.contrast import text_colour_on
 from ..layout.drawing import Text
 from ..layout.labels import uprights
 from .modules import ModulePlan
+from .notches import NotchError, narrowest_notch, widen_notches
 from .symmetry import tile_centres
 from ..layout.weave_figure import tile_rings
 
@@ -286,6 +287,13 @@ def slimmest(polygons, step: float = 0.05, largest: float = 50.0) -> NDArray[np.
     return low
 
 
+def narrowest_feature(polygons) -> NDArray[np.float64]:
+    """(N,) per outline the narrowest part a blade must cut round or clear: its
+    :func:`slimmest` neck or sliver of paper, or the mouth of its narrowest notch
+    (:func:`.notches.narrowest_notch`), whichever is narrower."""
+    return np.minimum(slimmest(polygons), narrowest_notch(polygons))
+
+
 def thin_parts(outline: shapely.Polygon, width: float) -> list:
     """The parts of ``outline`` that make it fail :func:`holds`: of what a disc ``width``
     across does not reach, the bits that join two reached parts (necks) and those reaching
@@ -361,8 +369,14 @@ def _strip_shape(visits, tiles, centres, scale, tile_mm):
     x0, y0 = shapely.transform(outline, transform(turn)).bounds[:2]
     frame = matmul(affine(0.0, (-x0, -y0)), turn)
     place = transform(frame)
-    return (*widened(shapely.transform(outline, place), shapely.transform(shapes, place)),
-            frame)
+    outline, shapes = widened(shapely.transform(outline, place), shapely.transform(shapes, place))
+    try:  # a V between two tiles opened as the ball's are (scissors and blades clear it)
+        opened = widen_notches(outline)
+    except NotchError:  # none opens within its tiles: narrowest_feature reports it
+        opened = outline
+    if opened is not outline:
+        shapes = shapely.intersection(shapes, opened)
+    return opened, shapes, frame
 
 
 def _strip(weave, s, visits, over, outline, shapes, frame, labels, colours) -> Strip:
