@@ -101,6 +101,22 @@ def test_pack_starts_no_page_while_an_earlier_one_has_room(specs):
                 assert room_for(s, on[n], (0, 0, 60, 45), step=1.0, gap=2.0) is None, n
 
 
+def test_a_stacks_pieces_go_alone_to_an_earlier_page_with_room():
+    # a 96 x 66 block fills page 1 but for a band 32 mm high; a 90 x 60 block needs page 2 and
+    # leaves a band 38 mm high. Two congruent 40 x 16 strips nest into a stack 34 mm high: it
+    # fits page 2's band and not page 1's, but each strip alone fits page 1's band, where
+    # pages are used before new ones: both go there, and no piece of the last page has room
+    # on page 1 (the oracle above)
+    a, b = shapely.box(0, 0, 96, 66), shapely.box(0, 0, 90, 60)
+    strip = shapely.box(0, 0, 40, 16)
+    shapes = [a, b, strip, strip]
+    places = pack(shapes, 100.0, 100.0, 2.0, kinds=[0, 1, 2, 2])
+    assert [p.page for p in places] == [0, 1, 0, 0]
+    on = [shapely.transform(s, lambda xy, m=p.matrix(): xy @ m[:2, :2].T + m[:2, 2])
+          for s, p in zip(shapes, places)]
+    assert room_for(b, [on[0], on[2], on[3]], (0, 0, 100, 100), step=1.0, gap=2.0) is None
+
+
 def test_the_twelve_centimetre_ball_takes_three_pieces_a_page(twelve):
     # 12 congruent pieces 54.6 mm wide and 234 mm long on a 190 x 254.5 mm area: upright,
     # three fit across (3 x 54.6 + 2 x 2 mm = 168 mm), a fourth does not (224 mm), and a

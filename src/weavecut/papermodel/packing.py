@@ -20,7 +20,12 @@ is opened. When the last page is nearly empty, the packing is redone with that
 page's pieces first. All of it is done twice, filling columns from the left and rows from the
 bottom (long strips lie across the page in one and along it in the other), and the packing with
 the fewer pages (then the emptier last page) kept; a try is given up as soon as it needs as many
-pages as the best so far.
+pages as the best so far. Then a last page whose pieces would fit by their area beside those
+of an earlier page (no more room than the fullest page holds, and a little) is emptied where
+those pieces, packed again in other orders and on a finer grid, go onto one page; and the
+pieces of the stacks left on the last page go one by one to the first earlier page with room
+for them alone (a stack went to the first page with room for all of it): pages are used
+before new ones are started.
 """
 
 from __future__ import annotations
@@ -33,6 +38,7 @@ from numpy.typing import NDArray
 
 from ..numeric import affine, snap, transform
 from .packing_grid import BLOCKS, Options, Page, turned_masks
+from .stacks import nest_offset
 
 ANGLE_STEP = 15.0  # degrees between the turns tried
 TRIES = 256  # places tried one by one before the next finer block test
@@ -50,33 +56,6 @@ class Place:
     def matrix(self) -> NDArray[np.float64]:
         """(3, 3) the affine map from the piece's frame to the packing area."""
         return affine(self.angle, self.shift)
-
-
-def nest_offset(shape, gap: float, step: float = 0.25,
-                longest: float = np.inf) -> NDArray[np.float64]:
-    """(dx, dy): the move that nests a copy of ``shape`` (long axis along x) ``gap`` mm clear of
-    it most tightly: for every slide dx along the axis a clear dy across it, bisected to within
-    ``step`` of one that is not, and of those the one whose pair has the smallest convex hull
-    (congruent wavy strips nest). Slides go up to ``longest`` mm beyond the shape's length (a
-    pair slid further than the page is long would lie only aslant on it)."""
-    x0, y0, x1, y1 = shape.bounds
-    slide = min(x1 - x0, 30.0)
-    slide = slide if slide <= longest else max(float(np.floor(longest)), 0.0)
-    dxs = np.arange(-slide, slide + 1e-9, 1.0)
-    low, high = np.zeros_like(dxs), np.full_like(dxs, y1 - y0 + gap)  # overlapping, clear
-
-    def copies(dys):
-        moves = np.column_stack([dxs, dys])
-        return shapely.transform(np.full(len(dxs), shape, dtype=object),
-                                 lambda xy: xy + np.repeat(moves, len(xy) // len(moves), axis=0))
-
-    while (high - low > step).any():  # a few halvings, every slide at once
-        mid = (low + high) / 2
-        clear = shapely.distance(shape, copies(mid)) >= gap
-        low, high = np.where(clear, low, mid), np.where(clear, mid, high)
-    box = shapely.area(shapely.convex_hull(shapely.union(shape, copies(high))))
-    best = np.lexsort((np.abs(dxs), np.round(box, 3)))[0]
-    return np.array([dxs[best], high[best]])
 
 
 def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 0.75,
@@ -110,7 +89,6 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 0.
     angles = np.arange(0.0, 360.0, angle_step).tolist()
     # a mask reaches gap / 2 beyond its piece: it may reach as far beyond the area's edge
     width, height = width + gap, height + gap
-    nx, ny = int(width // cell), int(height // cell)
     _, first, inverse = np.unique(kinds, return_index=True, return_inverse=True)
     units = []  # (members, move between members)
     for g in np.argsort(first, kind="stable").tolist():  # kinds of piece
@@ -119,16 +97,24 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 0.
         move = nest_offset(shapes[members[0]], gap, longest=max(width, height) - gap - (x1 - x0)) \
             if len(members) > 1 else np.zeros(2)
         units.append((members, move))
-    masks: dict[tuple, list] = {}
+    grids: dict[float, Grid] = {}
 
-    def options(members, move):
-        key = (int(kinds[members[0]]), len(members))
-        if key not in masks:
-            stack = shapely.union_all([shapely.transform(shapes[members[0]],
-                                                         lambda xy, j=j: xy + j * move)
-                                       for j in range(len(members))])
-            masks[key] = Options(turned_masks(stack, angles, gap, cell, width, height))
-        return masks[key]
+    def grid(size: float) -> Grid:
+        """The raster of ``size`` mm cells: its masks and transforms are made once."""
+        if size not in grids:
+            masks: dict[tuple, Options] = {}
+
+            def options(members, move):
+                key = (int(kinds[members[0]]), len(members))
+                if key not in masks:
+                    stack = shapely.union_all([shapely.transform(
+                        shapes[members[0]], lambda xy, j=j: xy + j * move)
+                        for j in range(len(members))])
+                    masks[key] = Options(turned_masks(stack, angles, gap, size, width, height))
+                return masks[key]
+
+            grids[size] = Grid(options, int(width // size), int(height // size), size, {})
+        return grids[size]
 
     hulls = shapely.area(shapely.convex_hull(shapes))
 
@@ -136,27 +122,110 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 0.
         return -int(snap(hulls[unit[0]].sum()))
 
     def rank(r):
-        return (_pages(r), int(snap(_last_fill(r, shapes))))
+        return (_pages(r[0]), int(snap(_last_fill(r[0], shapes))))
 
-    spectra: dict = {}  # the masks' Fourier transforms, shared by every packing tried
-    best = None
+    best = None  # (places, what was laid where, axis)
     for axis in (1, 0):  # columns from the left, then rows from the bottom
-        if best is not None and _pages(best) == 1:
+        if best is not None and _pages(best[0]) == 1:
             break  # nothing to save
-        run = _fill(units, shapes, kinds, options, area, nx, ny, cell, set(), axis, spectra,
-                    None if best is None else _pages(best) - 1)
+        run = _fill(units, shapes, kinds, grid(cell), area, set(), axis,
+                    None if best is None else _pages(best[0]) - 1)
         first: set = set()
         for _ in range(REPAIRS):  # the last page's pieces go first next time
-            if run is None or _pages(run) == 1 or \
-                    _last_fill(run, shapes) > REPAIR_BELOW * width * height:
+            if run is None or _pages(run[0]) == 1 or \
+                    _last_fill(run[0], shapes) > REPAIR_BELOW * width * height:
                 break
-            first |= {i for i, p in enumerate(run) if p.page == _pages(run) - 1}
-            again = _fill(units, shapes, kinds, options, area, nx, ny, cell, first, axis,
-                          spectra, _pages(run))
+            first |= {i for i, p in enumerate(run[0]) if p.page == _pages(run[0]) - 1}
+            again = _fill(units, shapes, kinds, grid(cell), area, first, axis, _pages(run[0]))
             if again is not None and rank(again) < rank(run):
                 run = again
-        best = best if run is None else run
-    return [Place(p.page, p.angle, (p.shift[0] - gap / 2, p.shift[1] - gap / 2)) for p in best]
+        best = best if run is None else (*run, axis)
+    places, laid, axis = best
+    if _pages(places) > 1:  # each piece's share of a page, grown by half the gap
+        room = shapely.area(shapely.buffer(shapes, gap / 2, quad_segs=4)) / (width * height)
+        places, laid = _merge_last(places, laid, room, lambda here, size, first, axis: _fill(
+            [(m, move) for members, move in units if (m := [i for i in members if i in here])],
+            shapes, kinds, grid(size), area, first, axis, 1), cell)
+        places = _settle(places, laid, grid(cell), kinds, axis)
+    return [Place(p.page, p.angle, (p.shift[0] - gap / 2, p.shift[1] - gap / 2))
+            for p in places]
+
+
+@dataclass(frozen=True)
+class Grid:
+    """A raster to pack on: ``options(members, move)`` the turns of a stack, the page's
+    ``nx`` x ``ny`` cells of ``cell`` mm, and the masks' transforms shared by its pages."""
+
+    options: object
+    nx: int
+    ny: int
+    cell: float
+    spectra: dict
+
+
+MERGE_SLACK = 50_000  # millionths of the area: a last page is emptied into an earlier one where
+# the two pages' pieces take up at most this much more than the fullest page holds ...
+MERGE_PAGES = 3  # ... tried with the pieces of each of the this many emptiest pages
+FINE = 2.0 / 3.0  # ... then on cells this much smaller (masks less grown)
+MERGES = ((1.0, 1, True), (1.0, 0, True), (1.0, 0, False),  # (cell, axis, last page first)
+          (FINE, 1, False), (FINE, 1, True), (FINE, 0, False), (FINE, 0, True))
+
+
+def _merge_last(run, laid, room, one_page, cell: float):
+    """(places, laid): ``run`` (places) with its last page emptied into an earlier page, again
+    and again while one can be: the pieces of the last page and of one of the ``MERGE_PAGES``
+    emptiest pages before it whose pieces take up together (``room``: each piece's share of
+    the area, grown by half the gap) no more than the fullest page holds and ``MERGE_SLACK``,
+    packed as in ``MERGES`` onto one page (``one_page(pieces, cell, pieces first, axis)``:
+    their places and what was laid where, or None where they need a second page)."""
+    while _pages(run) > 1:
+        last = _pages(run) - 1
+        on = [[i for i, p in enumerate(run) if p.page == n] for n in range(last + 1)]
+        need = [int(snap(room[o].sum())) for o in on]  # in millionths of the area
+        most = max(need[:last]) + MERGE_SLACK  # what the fullest page holds, and a little
+        tries = [n for n in sorted(range(last), key=lambda n: (need[n], n))
+                 if need[n] + need[last] <= most][:MERGE_PAGES]
+        for n, (size, axis, lead) in ((n, m) for m in MERGES for n in tries):
+            here = set(on[n] + on[last])
+            got = one_page(here, size * cell, set(on[last]) if lead else set(), axis)
+            if got is not None:
+                run = [Place(n, q.angle, q.shift) if i in here else p
+                       for i, (p, q) in enumerate(zip(run, got[0]))]
+                fine = size != 1.0  # a page laid on a finer grid takes no more pieces
+                laid = [e for e in laid if e[0] not in (n, last)] + \
+                    [(n, members, None if fine else mask, at) for _, members, mask, at in got[1]]
+                break
+        else:
+            return run, laid
+    return run, laid
+
+
+SETTLE_MOST = 24  # pieces of stacks on the last page tried one by one, at most
+
+
+def _settle(run, laid, grid: Grid, kinds, axis: int):
+    """``run`` (places) with the pieces of the stacks on its last page moved, one by one, to
+    the first earlier page with room for them alone (a stack went to the first page with room
+    for all of it), its pages rebuilt from what was ``laid`` where (a page laid on a finer
+    grid, a mask of None, is left as it is); left as it is where the last page's stacks hold
+    more than ``SETTLE_MOST`` pieces (a full last page: the time is not worth it)."""
+    last = _pages(run) - 1
+    if sum(len(m) for n, m, _, _ in laid if n == last and len(m) > 1) > SETTLE_MOST:
+        return run
+    pages = [Page(grid.ny, grid.nx, grid.spectra) for _ in range(last)]
+    for number, _, mask, (iy, ix) in laid:
+        if number < last:
+            if mask is None:
+                pages[number].taken[:] = True
+            else:
+                pages[number].add(mask, iy, ix)
+    out, full = list(run), set()
+    for number, members, _, _ in laid:
+        for i in (members if number == last and len(members) > 1 else []):
+            opts = grid.options([i], np.zeros(2))
+            if (spot := _first_fit(pages, opts, (int(kinds[i]), 1), full, axis)) is not None:
+                _place(out, [], pages, [i], np.zeros(2), *spot, grid.cell)
+    return out
 
 
 REPAIRS = 2  # re-packings with the last page's pieces first ...
@@ -172,50 +241,64 @@ def _last_fill(places, shapes) -> float:
     return sum(s.area for p, s in zip(places, shapes) if p.page == last)
 
 
-def _fill(units, shapes, kinds, options, area, nx: int, ny: int, cell: float, first, axis: int,
-          spectra: dict, most: int | None = None):
+def _fill(units, shapes, kinds, grid: Grid, area, first, axis: int, most: int | None = None):
     """Places for every piece: the units (stacks) largest first (those holding a piece in
     ``first`` before all others), first fit, each where its far edge along ``axis`` is least
-    (:func:`_best_spot`); None as soon as it needs more than ``most`` pages."""
+    (:func:`_best_spot`); None as soon as it needs more than ``most`` pages. Returns the places
+    and what was laid where: (page, members, mask, (iy, ix)) per stack."""
     def order(u):
         return (not first.intersection(u[0]), area(u), u[0][0])
 
     queue = sorted(units, key=order)
+    options, nx, ny, cell = grid.options, grid.nx, grid.ny, grid.cell
     pages: list[Page] = []
     full: set = set()
     out: list[Place | None] = [None] * len(shapes)
+    laid: list = []
     while queue:  # stacks of pieces
         members, move = queue.pop(0)
-        opts = options(members, move)
-        spot = None
-        key = (int(kinds[members[0]]), len(members))
-        for number, page in enumerate(pages):
-            if opts and (key, number) not in full and page.may_hold(opts):
-                if (best := _best_spot(page, opts, axis)) is not None:
-                    spot = number, best
-                    break
-                full.add((key, number))  # pages only fill up: no need to try again
-        if spot is None and (len(members) > 1 and (pages or not opts)):
+        spot = _first_fit(pages, options(members, move), (int(kinds[members[0]]), len(members)),
+                          full, axis)
+        if spot is None and (len(members) > 1 and (pages or not options(members, move))):
             half = (len(members) + 1) // 2
             queue = sorted(queue + [(members[:half], move), (members[half:], move)], key=order)
             continue
         if spot is None:
-            if not opts:
+            if not options(members, move):
                 x0, y0, x1, y1 = shapes[members[0]].bounds
                 raise ValueError(f"a strip of {x1 - x0:.0f} x {y1 - y0:.0f} mm fits the printable "
                                  f"area at no angle")
             if most is not None and len(pages) == most:
                 return None  # no better than a packing found before
-            pages.append(Page(ny, nx, spectra))
-            spot = len(pages) - 1, _best_spot(pages[-1], opts, axis)
-        number, ((iy, ix), angle, mask, origin) = spot
-        pages[number].add(mask, iy, ix)
-        shift = np.array([ix * cell - origin[0], iy * cell - origin[1]])
-        turn = transform(Place(number, float(angle), (0.0, 0.0)).matrix())
-        for j, i in enumerate(members):
-            at = shift + turn(j * move)
-            out[i] = Place(number, float(angle), (float(at[0]), float(at[1])))
-    return out
+            pages.append(Page(ny, nx, grid.spectra))
+            spot = len(pages) - 1, _best_spot(pages[-1], options(members, move), axis)
+        _place(out, laid, pages, members, move, *spot, cell)
+    return out, laid
+
+
+def _first_fit(pages, opts, key, full: set, axis: int):
+    """(page, spot) of the first of ``pages`` with room for the stack of ``opts`` (see
+    :func:`_best_spot`), or None; ``full`` holds the (key, page) already found without."""
+    for number, page in enumerate(pages):
+        if opts and (key, number) not in full and page.may_hold(opts):
+            if (best := _best_spot(page, opts, axis)) is not None:
+                return number, best
+            full.add((key, number))  # pages only fill up: no need to try again
+    return None
+
+
+def _place(out, laid, pages, members, move, number: int, spot, cell: float) -> None:
+    """Lay the stack of ``members`` (each ``move`` from the one before) at ``spot`` on page
+    ``number``: its mask onto the page, its pieces' places into ``out``, the stack into
+    ``laid``."""
+    (iy, ix), angle, mask, origin = spot
+    pages[number].add(mask, iy, ix)
+    shift = np.array([ix * cell - origin[0], iy * cell - origin[1]])
+    turn = transform(Place(number, float(angle), (0.0, 0.0)).matrix())
+    for j, i in enumerate(members):
+        at = shift + turn(j * move)
+        out[i] = Place(number, float(angle), (float(at[0]), float(at[1])))
+    laid.append((number, members, mask, (iy, ix)))
 
 
 def _best_spot(grid: Page, options, axis: int = 1):
