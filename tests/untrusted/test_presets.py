@@ -10,7 +10,7 @@ import time
 import pytest
 
 from weavecut import presets
-from weavecut.presets import SCHEMAS
+from weavecut.presets import schemas
 from weavecut.schema import MAX_BYTES, MAX_DEPTH, read_toml, toml_depth
 
 from .helpers import files_under, refused, run
@@ -117,7 +117,7 @@ def test_page_presets_and_bad_preset_names(tmp_path, monkeypatch):
 
 
 def test_every_shipped_preset_passes_its_schema():
-    for kind in (*SCHEMAS, "recipes"):
+    for kind in (*schemas(), "recipes"):
         assert presets.names(kind), kind
         for name in presets.names(kind):
             presets.load(kind, name)  # raises on any problem
