@@ -6,14 +6,17 @@ or ``error`` (click's ``self.fail`` makes a ``BadParameter``), or a ``return`` o
 HTTP status or response, a problem string a schema checker returns); or an ``assert``. A guard
 is disabled by making its condition ``False`` (an ``assert`` ``True``) in a copy of ``src/``.
 
-    python tests/hand_audit/guards.py list                 # the guards found
-    python tests/hand_audit/guards.py run                  # every guard (about an hour)
-    python tests/hand_audit/guards.py run cli/recipe.py    # those whose file starts so
+    python tests/hand_audit/guards.py list                      # the guards found
+    python tests/hand_audit/guards.py run --map COV cli/recipe.py   # those of one file
 
-Each guard first runs the test files that quote its message (a literal of 8 characters or more
-from the ``raise`` or ``return``); a guard those do not catch is then disabled together with
-the others not caught, the whole suite runs once, and each such guard runs the tests that
-failed there, alone. A guard still not caught is reported MISSED. Not collected by pytest.
+``--map`` names a combined coverage data file of the whole suite measured with
+``dynamic_context = test_function`` (measuring only the files above keeps it near the suite's
+own time; a ``sitecustomize`` calling ``coverage.process_startup()`` covers xdist's workers):
+each guard then runs, with ``-x``, the tests that reach its condition, those that quote its
+message (a literal of 8 characters or more) first; a guard no in-process test reaches is
+MISSED at once. Without ``--map`` a guard runs only the tests that quote its message. A
+guard is caught when a test fails (or hangs past 15 minutes) without it. Not collected by
+pytest.
 """
 
 from __future__ import annotations
@@ -99,45 +102,58 @@ def guards(files: tuple[str, ...] = FILES) -> list[Guard]:
     return sorted(out, key=lambda g: (g.file, g.line))
 
 
-def disabled(src: Path, chosen: list[Guard]) -> None:
-    """Make each chosen guard's condition False (an assert's True) in the copy ``src``."""
+def disabled(chosen: list[Guard]) -> dict[Path, str]:
+    """The files of ``src/weavecut`` with each chosen guard's condition False (an assert's
+    True), by path relative to ``src``."""
     by_file: dict[str, list[Guard]] = {}
     for g in chosen:
         by_file.setdefault(g.file, []).append(g)
+    out = {}
     for file, gs in by_file.items():
-        path = src / "weavecut" / file
-        lines = path.read_text(encoding="utf-8").splitlines(keepends=True)
+        lines = (SRC / file).read_text(encoding="utf-8").splitlines(keepends=True)
         for g in sorted(gs, key=lambda g: g.span, reverse=True):
             l0, c0, l1, c1 = g.span
             head, tail = lines[l0 - 1][:c0], lines[l1 - 1][c1:]
             word = "True" if g.shape == "assert" else "False"
             new = f"({word}" + "\n" * (l1 - l0) + ")"  # the same lines: tracebacks still match
             lines[l0 - 1:l1] = [head + new + tail]
-        path.write_text("".join(lines), encoding="utf-8")
+        out[Path("weavecut") / file] = "".join(lines)
+    return out
 
 
-def pytest(chosen: list[Guard], tests: list[str], whole: bool = False) -> tuple[int, list[str]]:
-    """Run ``tests`` on a copy of src/ with ``chosen`` disabled: (status, failed node ids)."""
-    with tempfile.TemporaryDirectory(prefix="guard-audit-") as tmp:
-        src = Path(tmp) / "src"
-        shutil.copytree(ROOT / "src", src, ignore=shutil.ignore_patterns("__pycache__"))
-        disabled(src, chosen)
-        env = {**os.environ, "PYTHONPATH": str(src), "PYTHONDONTWRITEBYTECODE": "1"}
-        args = ["-n", "2", "-rf"] if whole else ["-x", "-rf"]
+class Copy:
+    """One copy of ``src/`` for the whole run (its bytecode is kept between runs): each run
+    writes the changed files, and puts the originals back after."""
+
+    def __init__(self) -> None:
+        self._tmp = tempfile.TemporaryDirectory(prefix="guard-audit-")
+        self.src = Path(self._tmp.name) / "src"
+        shutil.copytree(ROOT / "src", self.src, ignore=shutil.ignore_patterns("__pycache__"))
+
+    def pytest(self, chosen: list[Guard], tests: list[str],
+               parallel: bool = False) -> tuple[int, list[str]]:
+        """Run ``tests`` with ``chosen`` disabled: (status, failed node ids)."""
+        changed = disabled(chosen)
+        for rel, text in changed.items():
+            (self.src / rel).write_text(text, encoding="utf-8")
+        env = {**os.environ, "PYTHONPATH": str(self.src)}
+        args = ["-n", "2", "-x", "-rf"] if parallel else ["-x", "-rf"]
         try:
             done = subprocess.run([sys.executable, "-m", "pytest", "-q", "--tb=no", "-p",
                                    "no:randomly", "-p", "no:cacheprovider", *args, *tests],
                                   cwd=ROOT, env=env, capture_output=True, text=True,
-                                  timeout=3600 if whole else 900)
+                                  timeout=900)
         except subprocess.TimeoutExpired:  # a guard whose absence hangs a test is caught
             return 1, ["(timed out)"]
-    failed = sorted({line.split()[1] for line in done.stdout.splitlines()
-                     if line.startswith("FAILED ")})
-    failed = [f.split(" - ")[0] for f in failed]
-    if done.returncode not in (0, 1):
-        raise SystemExit(f"pytest could not run (status {done.returncode})\n"
-                         f"{done.stdout[-2000:]}{done.stderr[-2000:]}")
-    return done.returncode, failed
+        finally:
+            for rel in changed:
+                shutil.copy(ROOT / "src" / rel, self.src / rel)
+        failed = [line.split()[1] for line in done.stdout.splitlines()
+                  if line.startswith("FAILED ")]
+        if done.returncode not in (0, 1):
+            raise SystemExit(f"pytest could not run (status {done.returncode})\n"
+                             f"{done.stdout[-2000:]}{done.stderr[-2000:]}")
+        return done.returncode, failed
 
 
 def quoting_tests(g: Guard) -> list[str]:
@@ -162,40 +178,82 @@ def quoting_tests(g: Guard) -> list[str]:
     return found
 
 
+def reaching_tests(data_file: Path) -> dict[tuple[str, int], set[str]]:
+    """(file relative to src/weavecut, line) -> the pytest node ids of the tests that ran it,
+    from a coverage data file measured with ``dynamic_context = test_function``."""
+    import coverage
+
+    data = coverage.CoverageData(basename=str(data_file))
+    data.read()
+    out: dict[tuple[str, int], set[str]] = {}
+    node_of: dict[str, str | None] = {}
+    for measured in data.measured_files():
+        if "/src/weavecut/" not in measured:
+            continue
+        rel = measured.split("/src/weavecut/", 1)[1]
+        for line, contexts in data.contexts_by_lineno(measured).items():
+            for context in contexts:
+                if context not in node_of:
+                    node_of[context] = _node_id(context)
+                if node_of[context]:
+                    out.setdefault((rel, line), set()).add(node_of[context])
+    return out
+
+
+def _node_id(context: str) -> str | None:
+    """``tests.web.test_jobs.Class.test_x`` -> ``tests/web/test_jobs.py::Class::test_x``."""
+    parts = context.split(".")
+    for n in range(len(parts) - 1, 0, -1):
+        path = ROOT.joinpath(*parts[:n]).with_suffix(".py")
+        if path.is_file():
+            return "::".join([str(path.relative_to(ROOT)), *parts[n:]])
+    return None
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("action", choices=("list", "run"))
+    parser.add_argument("--map", metavar="COVERAGE_FILE",
+                        help="a combined coverage data file of the suite, measured with "
+                        "dynamic_context = test_function: each guard runs the tests that "
+                        "reach it (without: the tests that quote its message)")
     parser.add_argument("only", nargs="*", help="guards whose file (relative to "
                         "src/weavecut) or file:line starts so")
     args = parser.parse_args()
-    chosen = [g for g in guards() if not args.only or any(g.name.startswith(o)
-                                                           for o in args.only)]
+    found = guards()
+    chosen = ([g for o in args.only for g in found if g.name.startswith(o)] if args.only
+              else found)  # in the order asked
+    chosen = list(dict.fromkeys(chosen))
     if args.action == "list":
         for g in chosen:
             print(f"{g.name:32} {g.shape:15} {g.condition}")
         print(f"{len(chosen)} guards")
         return
+    reach = reaching_tests(Path(args.map)) if args.map else None
+    copy = Copy()
     caught: dict[str, str] = {}
     for g in chosen:
-        tests = quoting_tests(g)
-        if tests:
-            status, failed = pytest([g], tests)
-            if status:
-                caught[g.name] = failed[0] if failed else "?"
-                print(f"caught  {g.name}: {caught[g.name]}", flush=True)
-    left = [g for g in chosen if g.name not in caught]
-    if left:
-        print(f"{len(left)} guards not caught by the tests that quote them: the whole suite "
-              "with all of them disabled", flush=True)
-        _, failed = pytest(left, [], whole=True)
-        for g in left:
-            if failed:
-                status, one = pytest([g], failed)
-                if status:
-                    caught[g.name] = one[0] if one else "?"
-                    print(f"caught  {g.name}: {caught[g.name]}", flush=True)
-                    continue
-            print(f"MISSED  {g.name} ({g.shape}): {g.condition}", flush=True)
+        quoting = quoting_tests(g)
+        tests = quoting
+        if reach is not None:
+            reached = sorted({t for line in range(g.span[0], g.span[2] + 1)
+                              for t in reach.get((g.file, line), ())})
+            # the tests that quote the message first (-x stops at the first failure)
+            tests = [t for t in quoting if any(t.startswith(r.split("::")[0]) for r in reached)]
+            tests += [t for t in reached if t not in tests]
+            tests = tests or quoting  # reached only by tests outside the map's run
+            if not tests:
+                print(f"MISSED  {g.name} ({g.shape}): {g.condition}  [no test reaches it]",
+                      flush=True)
+                continue
+        status, failed = (copy.pytest([g], tests, parallel=len(tests) > 40) if tests
+                          else (0, []))
+        if status:
+            caught[g.name] = failed[0] if failed else "?"
+            print(f"caught  {g.name}: {caught[g.name]}", flush=True)
+        else:
+            print(f"MISSED  {g.name} ({g.shape}): {g.condition}  [{len(tests)} tests run]",
+                  flush=True)
     print(f"\n{len(caught)} of {len(chosen)} guards caught")
 
 
