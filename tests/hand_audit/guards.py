@@ -217,6 +217,9 @@ def main() -> None:
                         help="a combined coverage data file of the suite, measured with "
                         "dynamic_context = test_function: each guard runs the tests that "
                         "reach it (without: the tests that quote its message)")
+    parser.add_argument("--tests", nargs="+", default=[], metavar="TEST",
+                        help="tests to run first for every guard (the tests written for the "
+                        "guards a run missed)")
     parser.add_argument("only", nargs="*", help="guards whose file (relative to "
                         "src/weavecut) or file:line starts so")
     args = parser.parse_args()
@@ -234,12 +237,13 @@ def main() -> None:
     caught: dict[str, str] = {}
     for g in chosen:
         quoting = quoting_tests(g)
-        tests = quoting
+        tests = [*args.tests, *quoting]
         if reach is not None:
             reached = sorted({t for line in range(g.span[0], g.span[2] + 1)
                               for t in reach.get((g.file, line), ())})
             # the tests that quote the message first (-x stops at the first failure)
-            tests = [t for t in quoting if any(t.startswith(r.split("::")[0]) for r in reached)]
+            tests = [*args.tests, *(t for t in quoting
+                                    if any(t.startswith(r.split("::")[0]) for r in reached))]
             tests += [t for t in reached if t not in tests]
             tests = tests or quoting  # reached only by tests outside the map's run
             if not tests:

@@ -4,7 +4,12 @@ refusal further on. Each request here must be refused for its own reason, in wor
 
 from __future__ import annotations
 
+import json
+
+import pytest
+
 from tests.web_app import written
+from weavecut.web.jobs import JobResult, JobSpec, run_job
 
 
 def test_more_parameters_than_a_form_has_are_refused_as_too_many(recording, tmp_path):
@@ -29,3 +34,25 @@ def test_a_parameter_given_twice_is_refused_but_formats_add_up(recording):
                              "&formats=svg&formats=dxf")
     assert response.status_code == 200, response.text
     assert "--formats svg,dxf" in response.json()["command_line"]
+
+
+def test_a_result_without_its_header_line_or_with_another_header_is_no_result():
+    """A kept result cut before its body (no newline) once read as a whole result with an
+    empty body; a header with a key missing or added is not one either."""
+    whole = JobResult(True, b"<svg/>", "image/svg+xml", {"n": 1}, "", 200).to_bytes()
+    head = whole.partition(b"\n")[0]
+    with pytest.raises(ValueError, match="no header line"):
+        JobResult.from_bytes(head)
+    doc = json.loads(head)
+    for other in ({k: v for k, v in doc.items() if k != "status"}, {**doc, "extra": 1},
+                  [doc]):
+        with pytest.raises(ValueError, match="wrong header"):
+            JobResult.from_bytes(json.dumps(other).encode() + b"\n<svg/>")
+
+
+def test_a_jobs_output_may_not_be_named_as_an_upload():
+    spec = JobSpec("kit", "puzzle", ("up.svg",), files=(("up.svg", b"<svg/>"),),
+                   output="up.svg")
+    result = run_job(spec)
+    assert (result.ok, result.status) == (False, 400)
+    assert result.error == "the output 'up.svg' is an upload's name"
