@@ -150,6 +150,8 @@ class Copy:
                 shutil.copy(ROOT / "src" / rel, self.src / rel)
         failed = [line.split()[1] for line in done.stdout.splitlines()
                   if line.startswith("FAILED ")]
+        if done.returncode == 2 and "stopping after 1 failures" in done.stdout:
+            return 1, failed  # xdist's -x: interrupted at the first failure
         if done.returncode not in (0, 1):
             raise SystemExit(f"pytest could not run (status {done.returncode})\n"
                              f"{done.stdout[-2000:]}{done.stderr[-2000:]}")

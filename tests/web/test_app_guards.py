@@ -56,3 +56,16 @@ def test_a_jobs_output_may_not_be_named_as_an_upload():
     result = run_job(spec)
     assert (result.ok, result.status) == (False, 400)
     assert result.error == "the output 'up.svg' is an upload's name"
+
+
+def test_a_kit_larger_than_a_web_job_returns_is_refused(monkeypatch):
+    """The limit made small (a real kit over it takes minutes): the kit is refused with its
+    size and the way to make it, not returned."""
+    from weavecut.web import jobs
+
+    monkeypatch.setattr(jobs, "MAX_BODY", 1 << 10)
+    result = run_job(JobSpec("kit", "weave", ("square-grid", "--levels", "1")))
+    assert (result.ok, result.status, result.body) == (False, 422, b"")
+    assert result.error.startswith("the kit is ")
+    assert result.error.endswith("; a web job returns at most 0 MB (run it with the weave-cut "
+                                 "command)")
