@@ -69,3 +69,30 @@ def test_a_kit_larger_than_a_web_job_returns_is_refused(monkeypatch):
     assert result.error.startswith("the kit is ")
     assert result.error.endswith("; a web job returns at most 0 MB (run it with the weave-cut "
                                  "command)")
+
+
+def test_a_long_query_is_refused_by_its_length_before_its_values(recording):
+    long = "input=pentagon&layer=" + "x" * 20000  # not "layer: a value of at most 200 ..."
+    response = recording.get(f"/strands/preview.svg?{long}")
+    assert response.status_code == 400
+    assert response.text == f"a query of {len(long):,} characters; at most 8,192"
+
+
+def test_an_oversized_upload_is_refused_by_its_length_then_while_it_is_read(recording):
+    """The declared length is refused before the body is read; without one, the body is
+    refused as soon as it passes the limit, not once whole (the store's own check)."""
+    from weavecut.web.uploads import MAX_BYTES
+
+    big = b"v 0 0 0\n" * (MAX_BYTES // 8 + 1)
+    response = recording.post("/upload", content=big)
+    assert response.status_code == 413
+    assert response.text == f"{len(big):,} bytes; an upload is at most {MAX_BYTES >> 20} MiB"
+
+    def chunks():
+        for _ in range(MAX_BYTES // 2**20 + 2):
+            yield b"#" * 2**20
+
+    response = recording.post("/upload", content=chunks())
+    assert response.status_code == 413
+    assert response.text == (f"more than {MAX_BYTES >> 20} MiB; an upload is at most "
+                             f"{MAX_BYTES >> 20} MiB")
