@@ -5,11 +5,14 @@ refusal further on. Each request here must be refused for its own reason, in wor
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import pytest
 
 from tests.web_app import written
 from weavecut.web.jobs import JobResult, JobSpec, run_job
+
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_more_parameters_than_a_form_has_are_refused_as_too_many(recording, tmp_path):
@@ -96,3 +99,36 @@ def test_an_oversized_upload_is_refused_by_its_length_then_while_it_is_read(reco
     assert response.status_code == 413
     assert response.text == (f"more than {MAX_BYTES >> 20} MiB; an upload is at most "
                              f"{MAX_BYTES >> 20} MiB")
+
+
+def test_each_example_drawing_and_mesh_is_told_by_its_bytes(tmp_path):
+    """Every example file's format is known from its bytes alone (the upload's name is never
+    read): a DXF (text and binary), a weave-cut JSON mesh, an SVG and an OBJ."""
+    import ezdxf
+
+    from weavecut.web.uploads import sniff
+
+    for path in sorted(ROOT.joinpath("examples").iterdir()):
+        if path.suffix in (".svg", ".dxf", ".obj", ".json"):
+            assert sniff(path.read_bytes()) == path.suffix, path.name
+    doc = ezdxf.new()
+    doc.modelspace().add_line((0, 0), (10, 0))
+    doc.saveas(tmp_path / "binary.dxf", fmt="bin")
+    assert (tmp_path / "binary.dxf").read_bytes().startswith(b"AutoCAD Binary DXF")
+    assert sniff((tmp_path / "binary.dxf").read_bytes()) == ".dxf"
+
+
+def test_a_read_job_reads_one_file_of_a_known_format_and_the_store_bounds_its_size(tmp_path):
+    from weavecut.web.uploads import MAX_BYTES, Store, UploadError, read_job, read_spec
+
+    svg = (ROOT / "examples" / "heart.svg").read_bytes()
+    assert read_job(read_spec(svg, ".svg")).ok
+    for files in ((("a.svg", svg), ("b.svg", svg)), (("a.txt", svg),), ()):
+        result = read_job(JobSpec("read", "upload", (), files))
+        assert (result.ok, result.status) == (False, 400)
+        assert result.error == "a read job reads one .svg, .dxf, .obj or .json file"
+    with pytest.raises(UploadError) as caught:
+        Store(tmp_path).screen(b"#" * (MAX_BYTES + 1))
+    assert caught.value.status == 413
+    assert caught.value.message == (f"{MAX_BYTES + 1:,} bytes; an upload is at most "
+                                    f"{MAX_BYTES >> 20} MiB")
