@@ -446,3 +446,17 @@ def test_each_card_says_what_its_files_are_for_and_links_each_format(built, tmp_
     alone = cards((tmp_path / "k.html").read_text(encoding="utf-8"))
     assert alone["plan"]["for"] == kp.DXF_FOR and alone["plan"]["links"] == ["DXF"]
     assert "2 colours" in alone["two"]["facts"]
+
+
+@pytest.mark.parametrize("name", ["epilog-uls", "lightburn", "ponoko"])
+def test_a_laser_files_card_names_the_laser_by_its_presets_description(tmp_path, name):
+    """Called in the test (the module's kit is built once, in a fixture, which mutation
+    testing credits to the first test only): the description as the preset's TOML says it."""
+    import tomllib
+
+    from weavecut.kitpage import document
+
+    preset = Path(__file__).resolve().parents[1] / "templates" / "laser" / f"{name}.toml"
+    wanted = tomllib.loads(preset.read_text(encoding="utf-8"))["description"]
+    assert document._laser_description(name) == wanted
+    assert document._laser_description("no-such-laser") == "no-such-laser"

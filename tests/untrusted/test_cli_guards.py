@@ -40,3 +40,16 @@ def test_a_bad_option_value_is_one_line_and_writes_nothing(tmp_path, args, statu
     out = str(tmp_path / "out")
     refused(run(*[a.replace("OUT", out) for a in args]), says, status=(status,))
     assert files_under(tmp_path) == set()
+
+
+@pytest.mark.parametrize("body, says", [
+    ('input = 3\nlevels = 1\noutput = "w.svg"\n', "job 1 (weave): input: expected a string"),
+    ('input = "no-such-mesh.obj"\nlevels = 1\noutput = "w.svg"\n',
+     "job 1 (weave): input 'no-such-mesh.obj' is neither a built-in input nor a file beside "
+     "the recipe"),
+])
+def test_a_recipe_jobs_input_is_a_name_or_a_file_beside_it(tmp_path, body, says):
+    recipe = tmp_path / "r.toml"
+    recipe.write_text('[[job]]\ncommand = "weave"\n' + body)
+    refused(run("build", recipe, "-o", tmp_path / "out"), says)
+    assert files_under(tmp_path) == {"r.toml"}

@@ -132,3 +132,22 @@ def test_a_read_job_reads_one_file_of_a_known_format_and_the_store_bounds_its_si
     assert caught.value.status == 413
     assert caught.value.message == (f"{MAX_BYTES + 1:,} bytes; an upload is at most "
                                     f"{MAX_BYTES >> 20} MiB")
+
+
+def test_a_queue_needs_a_worker_and_a_closed_queue_runs_nothing(tmp_path):
+    import asyncio
+
+    from weavecut.web.local_queue import LocalQueue
+
+    for workers, waiting in ((0, 4), (1, -1)):
+        with pytest.raises(ValueError, match="at least one worker and no negative wait"):
+            LocalQueue(workers=workers, cpu_seconds=10, memory_mb=500, waiting=waiting,
+                       folder=tmp_path)
+    queue = LocalQueue(workers=1, cpu_seconds=10, memory_mb=500, waiting=0, folder=tmp_path)
+
+    async def closed_then_run():
+        await queue.close()
+        await queue.run(JobSpec("kit", "stats", ("pentagon",)))
+
+    with pytest.raises(RuntimeError, match="the job queue is closed"):
+        asyncio.run(closed_then_run())
