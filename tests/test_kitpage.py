@@ -460,3 +460,16 @@ def test_a_laser_files_card_names_the_laser_by_its_presets_description(tmp_path,
     wanted = tomllib.loads(preset.read_text(encoding="utf-8"))["description"]
     assert document._laser_description(name) == wanted
     assert document._laser_description("no-such-laser") == "no-such-laser"
+
+
+def test_the_page_counts_its_files_and_commands_in_words(tmp_path):
+    """"7 files from 1 command", "14 files from 2 commands": a page of one run and of two,
+    written in the test (not the module's fixture)."""
+    from weavecut import __version__
+
+    runs = [run_of(tmp_path)]
+    n = len(runs[0].files)
+    one = kitpage.document.page("kit", runs, tmp_path)
+    assert f"{n} files from 1 command, made by weave-cut {__version__}." in one
+    two = kitpage.document.page("kit", runs * 2, tmp_path)
+    assert f"{2 * n} files from 2 commands, made by weave-cut {__version__}." in two

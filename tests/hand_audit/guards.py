@@ -219,9 +219,9 @@ def main() -> None:
                         help="a combined coverage data file of the suite, measured with "
                         "dynamic_context = test_function: each guard runs the tests that "
                         "reach it (without: the tests that quote its message)")
-    parser.add_argument("--tests", nargs="+", default=[], metavar="TEST",
-                        help="tests to run first for every guard (the tests written for the "
-                        "guards a run missed)")
+    parser.add_argument("--tests", action="append", default=[], metavar="TEST",
+                        help="a test to run first for every guard (repeatable): the tests "
+                        "written for the guards a run missed")
     parser.add_argument("only", nargs="*", help="guards whose file (relative to "
                         "src/weavecut) or file:line starts so")
     args = parser.parse_args()
