@@ -111,7 +111,7 @@ def length_fields(table: Table, where: str = ""):
             yield f"{where}{key}", field
 
 
-PRESET_LENGTHS = [(kind, key, field) for kind, table in sorted(presets.SCHEMAS.items())
+PRESET_LENGTHS = [(kind, key, field) for kind, table in sorted(presets.schemas().items())
                   for key, field in length_fields(table)]
 
 

@@ -446,3 +446,30 @@ def test_each_card_says_what_its_files_are_for_and_links_each_format(built, tmp_
     alone = cards((tmp_path / "k.html").read_text(encoding="utf-8"))
     assert alone["plan"]["for"] == kp.DXF_FOR and alone["plan"]["links"] == ["DXF"]
     assert "2 colours" in alone["two"]["facts"]
+
+
+@pytest.mark.parametrize("name", ["epilog-uls", "lightburn", "ponoko"])
+def test_a_laser_files_card_names_the_laser_by_its_presets_description(tmp_path, name):
+    """Called in the test (the module's kit is built once, in a fixture, which mutation
+    testing credits to the first test only): the description as the preset's TOML says it."""
+    import tomllib
+
+    from weavecut.kitpage import document
+
+    preset = Path(__file__).resolve().parents[1] / "templates" / "laser" / f"{name}.toml"
+    wanted = tomllib.loads(preset.read_text(encoding="utf-8"))["description"]
+    assert document._laser_description(name) == wanted
+    assert document._laser_description("no-such-laser") == "no-such-laser"
+
+
+def test_the_page_counts_its_files_and_commands_in_words(tmp_path):
+    """"7 files from 1 command", "14 files from 2 commands": a page of one run and of two,
+    written in the test (not the module's fixture)."""
+    from weavecut import __version__
+
+    runs = [run_of(tmp_path)]
+    n = len(runs[0].files)
+    one = kitpage.document.page("kit", runs, tmp_path)
+    assert f"{n} files from 1 command, made by weave-cut {__version__}." in one
+    two = kitpage.document.page("kit", runs * 2, tmp_path)
+    assert f"{2 * n} files from 2 commands, made by weave-cut {__version__}." in two

@@ -25,6 +25,9 @@ def test_the_examples_in_the_docstrings_hold():
     ("50x0.5mm", (50.0, 0.5)),
     ("10000x5mm", (10000.0, 5.0)),  # as large as a page may be
     (" A4 ", (210.0, 297.0)),
+    ("100mm x 5cm", (100.0, 50.0)),  # spaces around the x (refused as '100mm  5cm' before)
+    ("100 x 50 mm", (100.0, 50.0)),
+    ("816pxx1056px", (215.9, 279.4)),  # px on each side: the x between, not px's
 ])
 def test_a_page_size_is_read_side_by_side(value, mm):
     assert units.page_size(value) == pytest.approx(mm, rel=1e-12)
@@ -63,6 +66,7 @@ def test_a_page_preset_is_read_as_its_file_says(name):
 @pytest.mark.parametrize("read, value, message", [
     (units.to_mm, "3yd", "'3yd' is not a length: unknown unit 'yd'; use mm, cm, m, in, pt, px"),
     (units.length, True, "True is not a length"),
+    (units.to_mm, "3 mm mm", "'3 mm mm' is not a length like '3mm', '2.5cm' or '1in'"),
     (presets.page_size, "a9", "'a9' is not a page size: use a4, a3, letter, a preset (a2, a5, "
                               "glowforge-bed, legal, tabloid) or WxH like 200x300mm"),
 ])

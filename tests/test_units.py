@@ -73,7 +73,7 @@ def test_a_letter_page_in_every_unit(unit):
 @pytest.mark.parametrize("unit", sorted(ROUND))
 def test_a_preset_length_in_every_unit(unit):
     amount, mm = ROUND[unit]
-    pages = presets.SCHEMAS["pages"]
+    pages = presets.schemas()["pages"]
     assert pages.fields["width"].problem(amount + unit) is None
     assert schema.Length(0, mm * (1 + 1e-9)).problem(amount + unit) is None
     assert "must be" in (schema.Length(0, mm * (1 - 1e-6)).problem(amount + unit) or "must be")

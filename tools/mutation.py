@@ -141,7 +141,10 @@ PACKAGES: dict[str, Package] = {
     # lengths with units and presets (the untrusted-input tests read presets and options
     # through the same functions)
     "units-presets": Package(("src/weavecut/units.py", "src/weavecut/presets.py"),
-                             ("tests/test_lengths.py", "tests/untrusted/test_presets.py",
+                             ("tests/test_units.py", "tests/test_lengths.py",
+                              "tests/untrusted/test_preset_limits.py",
+                              "tests/untrusted/test_guards.py",
+                              "tests/untrusted/test_presets.py",
                               "tests/untrusted/test_options.py", "tests/test_cli_names.py",
                               "tests/papermodel/test_cutter.py")),
     "surface": Package(("src/weavecut/surface.py",), ("tests/surface",)),

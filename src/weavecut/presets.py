@@ -3,7 +3,7 @@
 A preset is found by name in ``templates/<kind>/<name>.toml`` (installed with the package as
 ``weavecut.templates``, or ``$WEAVECUT_TEMPLATES``), or given as a path to a ``.toml`` file. Every preset is
 read through ``schema.read_toml`` (bounded) and checked against its kind's schema
-(``SCHEMAS``) before use. A sheet size may name a page preset (``page_size``).
+(``schemas``) before use. A sheet size may name a page preset (``page_size``).
 """
 
 from __future__ import annotations
@@ -62,11 +62,12 @@ def find(kind: str, name: str) -> Path:
 
 def load(kind: str, name: str) -> dict:
     """The preset ``name`` (or a path to a .toml file) of ``kind`` as a dict, checked against
-    ``SCHEMAS[kind]`` when there is one (recipes are checked by ``build``)."""
+    ``schemas()[kind]`` when there is one (recipes are checked by ``build``)."""
     path = find(kind, name)
     doc = read_toml(path, PresetError)
-    if kind in SCHEMAS:
-        SCHEMAS[kind].check(doc, str(path), PresetError)
+    schema = schemas().get(kind)
+    if schema is not None:
+        schema.check(doc, str(path), PresetError)
     return doc
 
 
@@ -106,26 +107,32 @@ def _operation(role: str) -> Table:
                   "passes": Whole(1, 100)}, label=role)
 
 
-SCHEMAS: dict[str, Table] = {
-    "palettes": Table({**ABOUT, "colours": ListOf(Colour(), 1, 256),
-                       "families": ListOf(ListOf(Colour(), 1, 16), 1, 256),
-                       "family_names": ListOf(Text(40), 1, 256)},
-                      one_of=("colours", "families")),
-    "materials": Table({**ABOUT, "thickness": Length(0, 100, open_lo=True),
-                        "kerf": Length(0, 5), "sheet": Sheet(page_size),
-                        "cut_speed": Number(0, 10_000, open_lo=True, unit="mm/s"),
-                        **{r: _operation(r) for r in ("cut", "score", "engrave")}},
-                       ("thickness", "kerf", "sheet", "cut_speed")),
-    "laser": Table({**ABOUT, **{r: _stroke(r) for r in ("cut", "score", "engrave")},
-                    "formats": ListOf(Choice(LASER_FORMATS), 1, len(LASER_FORMATS))},
-                   ("cut", "score", "engrave")),
-    "pages": Table({**ABOUT, "width": Length(0, 10_000, open_lo=True),
-                    "height": Length(0, 10_000, open_lo=True)}, ("width", "height")),
-    "cutters": Table({**ABOUT, "marks": Choice(("square-and-corners", "corners", "frame")),
-                      "inset": Length(0, 100), "length": Length(0, 100, open_lo=True),
-                      "thickness": Length(0, 20, open_lo=True), "clearance": Length(0, 100),
-                      "max_width": Length(0, 10_000, open_lo=True),
-                      "max_height": Length(0, 10_000, open_lo=True),
-                      "min_feature": Length(0, 100)},
-                     ("marks", "inset", "length", "thickness", "clearance", "min_feature")),
-}
+def schemas() -> dict[str, Table]:
+    """Each preset kind's schema: the limits of untrusted presets (the README's table "What a
+    preset may hold"). Built at each call (microseconds, a few per command), not once at
+    import: a table built at import is out of reach of mutation testing, which swaps a
+    function's body in each test process after the import, so no test could fail for a
+    wrong limit here."""
+    return {
+        "palettes": Table({**ABOUT, "colours": ListOf(Colour(), 1, 256),
+                           "families": ListOf(ListOf(Colour(), 1, 16), 1, 256),
+                           "family_names": ListOf(Text(40), 1, 256)},
+                          one_of=("colours", "families")),
+        "materials": Table({**ABOUT, "thickness": Length(0, 100, open_lo=True),
+                            "kerf": Length(0, 5), "sheet": Sheet(page_size),
+                            "cut_speed": Number(0, 10_000, open_lo=True, unit="mm/s"),
+                            **{r: _operation(r) for r in ("cut", "score", "engrave")}},
+                           ("thickness", "kerf", "sheet", "cut_speed")),
+        "laser": Table({**ABOUT, **{r: _stroke(r) for r in ("cut", "score", "engrave")},
+                        "formats": ListOf(Choice(LASER_FORMATS), 1, len(LASER_FORMATS))},
+                       ("cut", "score", "engrave")),
+        "pages": Table({**ABOUT, "width": Length(0, 10_000, open_lo=True),
+                        "height": Length(0, 10_000, open_lo=True)}, ("width", "height")),
+        "cutters": Table({**ABOUT, "marks": Choice(("square-and-corners", "corners", "frame")),
+                          "inset": Length(0, 100), "length": Length(0, 100, open_lo=True),
+                          "thickness": Length(0, 20, open_lo=True), "clearance": Length(0, 100),
+                          "max_width": Length(0, 10_000, open_lo=True),
+                          "max_height": Length(0, 10_000, open_lo=True),
+                          "min_feature": Length(0, 100)},
+                         ("marks", "inset", "length", "thickness", "clearance", "min_feature")),
+    }

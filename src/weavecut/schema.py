@@ -2,10 +2,11 @@
 a bounded TOML reader.
 
 Every preset kind has one ``Table`` of these checkers (types, ranges, units, allowed and
-required keys: ``presets.SCHEMAS``). ``read_toml`` refuses anything that is not a regular UTF-8 file of at most
-``MAX_BYTES`` or nests deeper than ``MAX_DEPTH`` *before* the parser sees it (a 50,000-deep
-dotted key takes tomllib a minute and gigabytes); ``Table.check`` then names the file, table and
-key of the first problem and suggests the nearest key for a misspelt one::
+required keys: ``presets.schemas()``). ``read_toml`` refuses anything that is not a regular
+UTF-8 file of at most ``MAX_BYTES`` or nests deeper than ``MAX_DEPTH`` *before* the parser
+sees it (a 50,000-deep dotted key takes tomllib a minute and gigabytes); ``Table.check`` then
+names the file, table and key of the first problem and suggests the nearest key for a
+misspelt one::
 
     poplar.toml: kerf: '-1mm' must be >= 0 mm
     lightburn.toml: [cut] colour: 'red' is not a #rrggbb colour
@@ -284,7 +285,7 @@ class Table:
             raise error(f"{where} needs exactly one of {' or '.join(map(repr, self.one_of))}")
 
 
-# --- the recipe (the presets' kinds: presets.SCHEMAS) ---------------------------------
+# --- the recipe (the presets' kinds: presets.schemas()) -------------------------------
 
 ABOUT = {"name": Text(80), "description": Text(400)}
 

@@ -84,8 +84,9 @@ def page_size(value: str) -> tuple[float, float]:
     key = value.strip().lower()
     if key in PAPER_SIZES:
         return PAPER_SIZES[key]
-    # split at the x between the sides, not at the x of "px"
-    parts = [p.replace("\0", "px") for p in key.replace("px", "\0").split("x")]
+    # split at the x between the sides, not at the x of "px"; spaces around it ("100 x 50mm")
+    # belong to neither side
+    parts = [p.replace("\0", "px").strip() for p in key.replace("px", "\0").split("x")]
     if len(parts) != 2:
         raise ValueError(f"{value!r} is not a page size: use a4, a3, letter, a preset or WxH "
                          f"like 200x300mm{nearest(key, PAPER_SIZES)}")

@@ -3,14 +3,16 @@ schema before any work; the text is bounded before the parser sees it."""
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import threading
 import time
+from pathlib import Path
 
 import pytest
 
 from weavecut import presets
-from weavecut.presets import SCHEMAS
+from weavecut.presets import schemas
 from weavecut.schema import MAX_BYTES, MAX_DEPTH, read_toml, toml_depth
 
 from .helpers import files_under, refused, run
@@ -117,7 +119,7 @@ def test_page_presets_and_bad_preset_names(tmp_path, monkeypatch):
 
 
 def test_every_shipped_preset_passes_its_schema():
-    for kind in (*SCHEMAS, "recipes"):
+    for kind in (*schemas(), "recipes"):
         assert presets.names(kind), kind
         for name in presets.names(kind):
             presets.load(kind, name)  # raises on any problem
@@ -192,3 +194,46 @@ def test_a_preset_name_names_a_preset_and_not_a_path(tmp_path, monkeypatch):
         with pytest.raises(presets.PresetError, match="unknown palette"):
             presets.find("palettes", name)
     assert presets.load("palettes", str(elsewhere / "evil.toml"))["colours"] == ["#ffffff"]
+
+
+ROOT = Path(__file__).resolve().parents[2]
+SINGULAR = {"palettes": "palette", "materials": "material", "laser": "laser",
+            "pages": "page", "cutters": "cutter"}
+
+
+@pytest.mark.parametrize("kind", sorted(SINGULAR))
+def test_an_unknown_preset_name_says_its_kind_and_lists_the_folders_presets(kind):
+    shipped = sorted(p.stem for p in (ROOT / "templates" / kind).glob("*.toml"))
+    with pytest.raises(presets.PresetError) as caught:
+        presets.find(kind, "no-such-preset")
+    assert str(caught.value) == (f"unknown {SINGULAR[kind]} 'no-such-preset'; "
+                                 f"choose one of {', '.join(shipped)}")
+
+
+def test_a_folder_without_presets_says_none_was_found(tmp_path, monkeypatch):
+    monkeypatch.setenv("WEAVECUT_TEMPLATES", str(tmp_path))
+    with pytest.raises(presets.PresetError, match=r"unknown palette 'x'; choose one of "
+                                                  r"\(none found\)$"):
+        presets.find("palettes", "x")
+
+
+def test_without_weavecut_templates_the_installed_presets_are_found(monkeypatch):
+    """The package's own presets (``weavecut.templates``) when $WEAVECUT_TEMPLATES is unset:
+    the same names as the checkout's templates/ folder; recipes also from examples/ where it
+    is installed (``weavecut.examples``: not in an editable install made before it existed,
+    nor from the sources on PYTHONPATH)."""
+    monkeypatch.delenv("WEAVECUT_TEMPLATES", raising=False)
+    examples = ({p.stem for p in (ROOT / "examples").glob("*.toml")}
+                if importlib.util.find_spec("weavecut.examples") else set())
+    for kind in (*SINGULAR, "recipes"):
+        assert presets.names(kind) == sorted(
+            {p.stem for p in (ROOT / "templates" / kind).glob("*.toml")}
+            | (examples if kind == "recipes" else set())), kind
+    assert presets.load("laser", "lightburn")["cut"]["colour"] == "#ff0000"
+
+
+def test_a_preset_that_is_not_toml_is_a_preset_error(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("colours = [\n")
+    with pytest.raises(presets.PresetError, match="bad.toml"):
+        presets.load("palettes", str(bad))

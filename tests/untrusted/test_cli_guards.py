@@ -1,0 +1,55 @@
+"""Guards of the command line that no test failed without (each disabled once by
+``tests/hand_audit/guards.py``, #34): an option's value a person could type, and what must be
+said about it, in one line, before any file is written."""
+
+from __future__ import annotations
+
+import pytest
+
+from .helpers import files_under, refused, run
+
+# arguments (OUT: a path in the test's folder), exit status, what the one line says
+CASES = [
+    (("fractal", "pentagon", "--levels", "3", "--curve", "-1:3"), 2,
+     "'-1:3': level and edge must be >= 0"),
+    (("fractal", "pentagon", "--levels", "3", "--curve", "2:-1"), 2,
+     "'2:-1': level and edge must be >= 0"),
+    (("fractal", "pentagon", "--levels", "3", "--curve", "5:1"), 2,
+     "level 5 is beyond --levels 3"),
+    (("levels", "pentagon", "--levels", "2", "--window", "1,2,3", "-o", "OUT.png"), 2,
+     "'1,2,3' is not four numbers X0,Y0,X1,Y1"),
+    (("levels", "pentagon", "--levels", "2", "--window", "0,0,nan,1", "-o", "OUT.png"), 2,
+     "'0,0,nan,1' is not four numbers X0,Y0,X1,Y1"),
+    (("levels", "pentagon", "--levels", "2", "--window", "1,0,0,1", "-o", "OUT.png"), 2,
+     "'1,0,0,1': need X0 < X1 and Y0 < Y1"),
+    (("levels", "pentagon", "--levels", "2", "--window", "0,1,1,1", "-o", "OUT.png"), 2,
+     "'0,1,1,1': need X0 < X1 and Y0 < Y1"),
+    (("levels", "pentagon", "--levels", "2"), 2, "give either -o FILE.png or --tiles FOLDER"),
+    (("levels", "pentagon", "--levels", "2", "-o", "OUT.png", "--tiles", "OUT"), 2,
+     "give either -o FILE.png or --tiles FOLDER"),
+    (("figure", "edge-renders"), 2, "give an output file with -o"),
+    (("figure",), 2, "give a figure NAME, or --list"),
+    (("build", "weaves", "--dry-run", "--set", "levels"), 2, "'levels' is not KEY=VALUE"),
+    (("build", "weaves", "--dry-run", "--set", " =3"), 2, "' =3' is not KEY=VALUE"),
+]
+
+
+@pytest.mark.parametrize("args, status, says", CASES,
+                         ids=[" ".join(a[:1] + a[3:5]) or a[0] for a, _, _ in CASES])
+def test_a_bad_option_value_is_one_line_and_writes_nothing(tmp_path, args, status, says):
+    out = str(tmp_path / "out")
+    refused(run(*[a.replace("OUT", out) for a in args]), says, status=(status,))
+    assert files_under(tmp_path) == set()
+
+
+@pytest.mark.parametrize("body, says", [
+    ('input = 3\nlevels = 1\noutput = "w.svg"\n', "job 1 (weave): input: expected a string"),
+    ('input = "no-such-mesh.obj"\nlevels = 1\noutput = "w.svg"\n',
+     "job 1 (weave): input 'no-such-mesh.obj' is neither a built-in input nor a file beside "
+     "the recipe"),
+])
+def test_a_recipe_jobs_input_is_a_name_or_a_file_beside_it(tmp_path, body, says):
+    recipe = tmp_path / "r.toml"
+    recipe.write_text('[[job]]\ncommand = "weave"\n' + body)
+    refused(run("build", recipe, "-o", tmp_path / "out"), says)
+    assert files_under(tmp_path) == {"r.toml"}
