@@ -212,10 +212,10 @@ ROWS = [
           strips_ink("0")),
     Claim("packing: square grid maritime-4 on A4",
           r"the square grid \(27 cm, `--palette\s+maritime-4`\) (?P<strip>\d+) on A4 "
-          r"\((?P<ink>\d+) %\)", (*SQUARE_4, "-o", "sq.pdf"), strips_ink("0")),
+          r"\((?P<ink>\d+) %;", (*SQUARE_4, "-o", "sq.pdf"), strips_ink("0")),
     Claim("packing: square grid maritime-4 on Letter",
-          r"the square grid \(27 cm, `--palette\s+maritime-4`\) (?P<strip>\d+) on A4 \(\d+ %\) "
-          r"and on Letter \((?P<ink>\d+) %;", (*SQUARE_4, "--page", "letter", "-o", "sq.pdf"),
+          r"the square grid \(27 cm, `--palette\s+maritime-4`\) \d+ on A4 \(\d+ %;[^)]*\)\s+"
+          r"and (?P<strip>\d+) on Letter \((?P<ink>\d+) %\)", (*SQUARE_4, "--page", "letter", "-o", "sq.pdf"),
           strips_ink("0")),
     Claim("packing: square grid at 16 cm",
           r"\(square grid 16 cm, pentagon flower 32 cm\) the strips take (?P<strip>\d+) and \d+ "
