@@ -154,5 +154,5 @@ def test_a_flag_planted_in_a_help_is_found_and_the_cli_keeps_its_words(recording
     terminal = " ".join(CliRunner().invoke(cli, ["strands", "--help"]).output.split())
     for words in ("(with --laser-card: the instructions' pages; --material sets the card's)",
                   "(templates/cutters: silhouette, cricut, scanncut, or a .toml file)",
-                  "beside -o (PAGE-cut.svg, .dxf)", "-o is a folder of cut sheets"):
+                  "beside -o (PAGE-cut.svg, .dxf;", "-o is a folder of cut sheets"):
         assert words in terminal
