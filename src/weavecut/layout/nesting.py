@@ -166,42 +166,69 @@ def fill_room(part: shapely.Polygon, bounds: NDArray[np.float64], spacing: float
     x0, y0 = np.floor(np.asarray(part.bounds[:2]) / grid) * grid
     nx, ny = np.ceil((np.asarray(part.bounds[2:]) - (x0, y0)) / grid).astype(int)
     cx, cy = np.meshgrid(x0 + (np.arange(nx) + 0.5) * grid, y0 + (np.arange(ny) + 0.5) * grid)
-    blocked = ~shapely.contains_xy(inside, cx, cy)  # (ny, nx)
-    failed: list[tuple[int, int]] = []  # sizes with no spot: larger ones have none either
-    table = _summed(blocked)
-    for a, (wx, wy) in zip(ids, size.tolist()):
-        if any(wx >= fx and wy >= fy for fx, fy in failed):
-            continue
-        spot = _lowest_free(table, wx, wy)
-        if spot is None:
-            failed.append((wx, wy))
-            continue
-        j, i = spot  # the window's cells were free: each now counts once more in the table
-        table[j + 1:, i + 1:] += np.minimum(np.arange(1, table.shape[0] - j), wy)[:, None] * \
-            np.minimum(np.arange(1, table.shape[1] - i), wx)
-        out[a] = np.array([x0 + i * grid, y0 + j * grid]) + spacing / 2
+    spots = _place(shapely.contains_xy(inside, cx, cy), size.tolist())  # (ny, nx) cells
+    for a, spot in zip(ids, spots):
+        if spot is not None:
+            j, i = spot
+            out[a] = np.array([x0 + i * grid, y0 + j * grid]) + spacing / 2
     return out
 
 
-def _summed(blocked: NDArray[np.bool_]) -> NDArray[np.int64]:
-    """The summed-area table of ``blocked`` (one row and column of zeros before it)."""
-    table = np.zeros((blocked.shape[0] + 1, blocked.shape[1] + 1), dtype=np.int64)
-    table[1:, 1:] = blocked.cumsum(axis=0).cumsum(axis=1)
-    return table
+def _place(inside: NDArray[np.bool_], sizes: list[list[int]]) -> list[tuple[int, int] | None]:
+    """(row, column) of every window of ``sizes`` ((wx, wy) cells, 1 or more), in order, at
+    the lowest, then leftmost, spot where all its cells are ``inside`` and none is taken by a
+    window placed before; None where it has none."""
+    free = _free_above(inside)
+    failed: list[tuple[int, int]] = []  # sizes with no spot: larger ones have none either
+    found: list[tuple[int, int, int]] = []  # (wx, wy, row) of every spot found
+    out: list[tuple[int, int] | None] = []
+    for wx, wy in sizes:
+        spot = None
+        if not any(wx >= fx and wy >= fy for fx, fy in failed):
+            # a window at least as large as one found before lies no lower than it did then
+            low = max((row for fx, fy, row in found if wx >= fx and wy >= fy), default=0)
+            spot = _lowest_free(free, wx, wy, low)
+        out.append(spot)
+        if spot is None:
+            failed.append((wx, wy))
+            continue
+        j, i = spot  # its cells are taken: the free runs below it now end at it
+        free[j:j + wy, i:i + wx] = 0
+        free[:j, i:i + wx] = np.minimum(free[:j, i:i + wx], np.arange(j, 0, -1)[:, None])
+        found.append((wx, wy, j))
+    return out
 
 
-def _lowest_free(table: NDArray[np.int64], wx: int, wy: int) -> tuple[int, int] | None:
-    """(row, column) of the lowest, then leftmost, ``wy`` x ``wx`` window of cells none of which
-    is blocked, or None, from the blocked cells' summed-area table (:func:`_summed`)."""
-    ny, nx = table.shape[0] - 1, table.shape[1] - 1
+def _free_above(inside: NDArray[np.bool_]) -> NDArray[np.int32]:
+    """(rows, columns): how many cells from each up are inside (0 for a cell outside)."""
+    out = np.zeros(inside.shape, dtype=np.int32)
+    run = np.zeros(inside.shape[1], dtype=np.int32)
+    for r in range(inside.shape[0] - 1, -1, -1):  # rows, top down: each needs the one above
+        run = (run + 1) * inside[r]
+        out[r] = run
+    return out
+
+
+ROWS = 32  # rows of windows looked at in one go
+
+
+def _lowest_free(free: NDArray[np.int32], wx: int, wy: int, low: int = 0
+                 ) -> tuple[int, int] | None:
+    """(row, column) of the lowest, then leftmost, ``wy`` x ``wx`` window of cells that are
+    all free, from row ``low`` on, or None; ``free`` (:func:`_free_above`) counts the free
+    cells from each cell up, so a window is free where ``wx`` neighbours in a row all count
+    ``wy`` or more. A few rows at a time: a window found low costs little."""
+    ny, nx = free.shape
     if wx > nx or wy > ny:
         return None
-    sums = (table[wy:, wx:] - table[:-wy, wx:] - table[wy:, :-wx] + table[:-wy, :-wx])
-    free = np.flatnonzero(sums.ravel() == 0)
-    if not len(free):
-        return None
-    j, i = divmod(int(free[0]), sums.shape[1])
-    return j, i
+    for top in range(low, ny - wy + 1, ROWS):
+        tall = np.zeros((min(ROWS, ny - wy + 1 - top), nx + 1), dtype=np.int32)
+        np.cumsum(free[top:top + len(tall)] >= wy, axis=1, out=tall[:, 1:])
+        hit = np.flatnonzero((tall[:, wx:] - tall[:, :-wx]).ravel() == wx)
+        if len(hit):
+            j, i = divmod(int(hit[0]), nx + 1 - wx)
+            return top + j, i
+    return None
 
 
 def _skyline_fit(sky, w, h, room_w, room_h):

@@ -1,0 +1,42 @@
+"""The search for the lowest, then leftmost, free window in a frame's room (``nesting._place``)
+finds what a plain scan of every window, row by row, finds on random rooms and random sizes,
+windows taken before included."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from weavecut.layout import nesting
+
+
+def _scan(inside, sizes):
+    """The oracle: every window of every row, lowest row first, each cell looked at."""
+    taken = ~inside.copy()
+    out = []
+    for wx, wy in sizes:
+        spot = next(((j, i) for j in range(inside.shape[0] - wy + 1)
+                     for i in range(inside.shape[1] - wx + 1)
+                     if not taken[j:j + wy, i:i + wx].any()), None)
+        if spot is not None:
+            taken[spot[0]:spot[0] + wy, spot[1]:spot[1] + wx] = True
+        out.append(spot)
+    return out
+
+
+@settings(max_examples=150, deadline=None)
+@given(st.integers(1, 70), st.integers(1, 45), st.integers(0, 2**32 - 1), st.floats(0.0, 0.3),
+       st.lists(st.tuples(st.integers(1, 12), st.integers(1, 12)), max_size=25))
+def test_the_room_search_finds_what_a_scan_of_every_window_finds(ny, nx, seed, holes, sizes):
+    rng = np.random.default_rng(seed)
+    inside = rng.random((ny, nx)) >= holes  # a room with scattered cells outside it
+    assert nesting._place(inside.copy(), [list(s) for s in sizes]) == _scan(inside, sizes)
+
+
+def test_a_room_taller_than_one_band_of_rows():
+    """Windows found past the first rows looked at together, and one that fits nowhere."""
+    inside = np.ones((3 * nesting.ROWS + 5, 9), dtype=bool)
+    inside[:2 * nesting.ROWS, 3:] = False  # a narrow shaft below, the room's width above
+    sizes = [(5, 4), (4, 3), (9, nesting.ROWS + 6), (9, 2), (3, 2)]
+    assert nesting._place(inside.copy(), [list(s) for s in sizes]) == _scan(inside, sizes)
