@@ -15,7 +15,9 @@ capitals span exactly ``[0, h]`` above the baseline.
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from functools import lru_cache
+from threading import Lock
 
 import numpy as np
 import shapely
@@ -135,22 +137,34 @@ def labels(texts: list[str], centres: NDArray[np.float64], heights: NDArray[np.f
         offsets, owner
 
 
-_last_poles: list = [((), np.zeros((0, 2)))]  # the last polygons asked and their poles
+_KEPT = 8192  # poles kept, by their polygons' WKB (the last asked for kept longest)
+_kept: OrderedDict[bytes, tuple[float, float]] = OrderedDict()
+_kept_lock = Lock()
 
 
 def _poles(polygons: NDArray[np.object_]) -> NDArray[np.float64]:
     """(N, 2) every polygon's pole of inaccessibility (the centre of its largest inscribed
-    circle, to 0.01 mm), kept for the last polygons asked: a puzzle fits its engraved and its
-    printed numbers into the same pieces. Geometries are immutable, and kept ones can neither
-    be freed nor have their ids reused, so the same objects have the same poles."""
-    geoms = tuple(np.asarray(polygons, dtype=object).ravel().tolist())
-    kept, poles = _last_poles[0]  # one read: another thread may replace it
-    if len(kept) == len(geoms) and all(a is b for a, b in zip(kept, geoms)):
-        return poles.copy()
-    circles = shapely.maximum_inscribed_circle(polygons, tolerance=0.01)
-    poles = shapely.get_coordinates(shapely.get_point(circles, 0))
-    _last_poles[0] = (geoms, poles)
-    return poles.copy()
+    circle, to 0.01 mm), kept for the polygons last asked for: a puzzle fits its engraved and
+    its printed numbers into the same pieces and parts of them, with room and without. A
+    polygon is known by its WKB (its type and every coordinate, exactly), so the same polygon
+    built twice has the same pole."""
+    keys = shapely.to_wkb(np.asarray(polygons, dtype=object).ravel()).tolist()
+    with _kept_lock:  # the web app's threads share it
+        known = [_kept.get(k) for k in keys]
+        for k, p in zip(keys, known):
+            if p is not None:
+                _kept.move_to_end(k)
+    new = list(dict.fromkeys(k for k, p in zip(keys, known) if p is None))
+    if new:
+        circles = shapely.maximum_inscribed_circle(shapely.from_wkb(new), tolerance=0.01)
+        found = dict(zip(new, map(tuple, shapely.get_coordinates(shapely.get_point(circles, 0))
+                                  .tolist())))
+        known = [found[k] if p is None else p for k, p in zip(keys, known)]
+        with _kept_lock:
+            _kept.update(found)
+            while len(_kept) > _KEPT:
+                _kept.popitem(last=False)
+    return np.array(known, dtype=float).reshape(-1, 2)
 
 
 def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, max_height,
