@@ -63,3 +63,29 @@ def test_poles_are_kept_for_the_same_polygons_only():
     assert len(strokefont._kept) == strokefont._KEPT
     assert np.array_equal(strokefont._poles(np.concatenate([many[:2], b])),
                           fresh(np.concatenate([many[:2], b])))
+
+
+def test_kept_fits_answer_only_the_same_question():
+    """A fit asked again (the same polygons, built anew or not) is the one worked out then;
+    one that differs in any of polygons, texts, margin, sizes, pad or level rule is worked out
+    afresh: each agrees with a fit made with nothing kept."""
+    import shapely
+
+    def pieces(dx=0.0):
+        return np.array([shapely.Polygon([(0 + dx, 0), (30, 0), (30, 8), (0, 12)]),
+                         shapely.Point(50, 50).buffer(9, quad_segs=3),
+                         shapely.box(0, 40, 14, 47)], dtype=object)
+
+    base = (pieces(), ["1", "22", "333"], 0.6, 6.0, 0.25, 0.8, 3.0)
+    asks = [base, (pieces(),) + base[1:], (pieces(0.5),) + base[1:],
+            base[:1] + (["1", "22", "3"],) + base[2:], base[:2] + (1.5,) + base[3:],
+            base[:3] + (np.array([6.0, 6.0, 2.0]),) + base[4:],
+            base[:3] + (np.array([6.0, 6.0, 2.5]),) + base[4:], base[:4] + (0.0,) + base[5:],
+            base[:5] + (1.0,) + base[6:], base[:6] + (0.0,), base]
+    got = [strokefont.fit_labels(*a) for a in asks]  # each after the others are kept
+    for a, g in zip(asks, got):
+        strokefont._kept.clear()
+        strokefont._fits.clear()
+        want = strokefont.fit_labels(*a)
+        assert all(np.array_equal(x, y) for x, y in zip(g, want))
+    assert len({tuple(g[0].tolist()) for g in got}) > 3  # the asks differ in their answers
