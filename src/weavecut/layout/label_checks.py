@@ -63,7 +63,7 @@ class Label(NamedTuple):
 
 def labels(sheet: Sheet) -> list[Label]:
     """Every visible label of the sheet."""
-    out, texts = [], []
+    out, texts, words = [], [], []
     for layer in sheet.layers:
         if not layer.visible:
             continue
@@ -75,15 +75,29 @@ def labels(sheet: Sheet) -> list[Label]:
             elif layer.name == WORDS and isinstance(shape, Polygons):
                 plate = shapely.union_all(shape.to_shapely())
             elif layer.name == WORDS and isinstance(shape, Polylines):
-                lines = shapely.multilinestrings(shapely.linestrings(
-                    shape.coords, indices=np.repeat(np.arange(len(shape.offsets) - 1),
-                                                    np.diff(shape.offsets))))
-                pad = max(shape.style.stroke_width, 1e-3) / 2  # round caps and joins
-                out.append(Label(shape.style.stroke, lines, pad, plate))
+                words.append((len(out), shape, plate))
+                out.append(None)
                 plate = None
+    for (k, shape, plate), lines in zip(words, _strokes([w for _, w, _ in words])):
+        pad = max(shape.style.stroke_width, 1e-3) / 2  # round caps and joins
+        out[k] = Label(shape.style.stroke, lines, pad, plate)
     for (k, t), box in zip(texts, text_boxes([t for _, t in texts])):
         out[k] = Label(t.fill, box, 0.0, None)
     return out
+
+
+def _strokes(words: list[Polylines]) -> list:
+    """Every word's strokes as one multilinestring: all words' lines made at once."""
+    if not words or any(len(w.offsets) < 2 for w in words):  # (a word without strokes)
+        return [shapely.multilinestrings(shapely.linestrings(
+            w.coords, indices=np.repeat(np.arange(len(w.offsets) - 1), np.diff(w.offsets))))
+            for w in words]
+    counts = [np.diff(w.offsets) for w in words]
+    lines = shapely.linestrings(np.concatenate([w.coords for w in words]),
+                                indices=np.repeat(np.arange(sum(map(len, counts))),
+                                                  np.concatenate(counts)))
+    return shapely.multilinestrings(lines, indices=np.repeat(
+        np.arange(len(words)), [len(c) for c in counts])).tolist()
 
 
 def fills_under(polys, fills, tree, outline) -> list[str]:
