@@ -40,3 +40,27 @@ def test_a_room_taller_than_one_band_of_rows():
     inside[:2 * nesting.ROWS, 3:] = False  # a narrow shaft below, the room's width above
     sizes = [(5, 4), (4, 3), (9, nesting.ROWS + 6), (9, 2), (3, 2)]
     assert nesting._place(inside.copy(), [list(s) for s in sizes]) == _scan(inside, sizes)
+
+
+@settings(max_examples=120, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.integers(3, 9), st.booleans(), st.booleans(),
+       st.sampled_from([1.0, 0.5, 0.3]))
+def test_the_cells_inside_a_room_are_those_shapely_finds(seed, corners, on_grid, holed, grid):
+    """Row crossings against ``shapely.contains_xy`` cell by cell: random polygons (with a
+    hole, as a second part), some with every corner on a cell centre's row or column, and
+    edges through cell centres (those cells are shapely's to decide)."""
+    import shapely
+
+    rng = np.random.default_rng(seed)
+    angle = np.sort(rng.uniform(0, 2 * np.pi, corners))
+    radius = rng.uniform(3, 10, corners)
+    ring = np.column_stack([10 + radius * np.cos(angle), 10 + radius * np.sin(angle)])
+    if on_grid:  # corners on cell centres (and so edges through some)
+        ring = (np.round(ring / grid - 0.5) + 0.5) * grid
+    area = shapely.make_valid(shapely.Polygon(ring))
+    if holed:
+        area = shapely.union(shapely.difference(area, shapely.box(8.5, 8.5, 11.5, 11.5)),
+                             shapely.box(22, 3, 25.5, 9))
+    xs, ys = (np.arange(int(27 / grid)) + 0.5) * grid, (np.arange(int(21 / grid)) + 0.5) * grid
+    cx, cy = np.meshgrid(xs, ys)
+    assert np.array_equal(nesting.cells_inside(area, xs, ys), shapely.contains_xy(area, cx, cy))

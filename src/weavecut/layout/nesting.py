@@ -165,12 +165,61 @@ def fill_room(part: shapely.Polygon, bounds: NDArray[np.float64], spacing: float
     size = -(-micro // 1_000_000)  # (m, 2) whole cells across and up
     x0, y0 = np.floor(np.asarray(part.bounds[:2]) / grid) * grid
     nx, ny = np.ceil((np.asarray(part.bounds[2:]) - (x0, y0)) / grid).astype(int)
-    cx, cy = np.meshgrid(x0 + (np.arange(nx) + 0.5) * grid, y0 + (np.arange(ny) + 0.5) * grid)
-    spots = _place(shapely.contains_xy(inside, cx, cy), size.tolist())  # (ny, nx) cells
+    spots = _place(cells_inside(inside, x0 + (np.arange(nx) + 0.5) * grid,
+                                y0 + (np.arange(ny) + 0.5) * grid), size.tolist())
     for a, spot in zip(ids, spots):
         if spot is not None:
             j, i = spot
             out[a] = np.array([x0 + i * grid, y0 + j * grid]) + spacing / 2
+    return out
+
+
+NEAR_EDGE = 1e-6  # mm: a cell centre this near an edge is looked up by shapely
+
+
+def cells_inside(area: shapely.Geometry, xs: NDArray[np.float64], ys: NDArray[np.float64]
+                 ) -> NDArray[np.bool_]:
+    """(len(ys), len(xs)) which of the grid's points (x, y) lie inside ``area`` (a polygon
+    or multipolygon), as ``shapely.contains_xy`` finds them: row by row, a point is inside
+    where an odd number of the area's edges cross its row to its left. A point within
+    ``NEAR_EDGE`` of a crossing, and every point of a row that passes within it of a corner,
+    is left to ``contains_xy`` (the crossings are computed in floating point)."""
+    rings = shapely.get_rings(shapely.get_parts(area))
+    xy, ring = shapely.get_coordinates(rings, return_index=True)
+    one = ring[:-1] == ring[1:]  # consecutive corners of one ring: an edge
+    (px, py), (qx, qy) = xy[:-1][one].T, xy[1:][one].T
+    low, high = np.minimum(py, qy), np.maximum(py, qy)
+    # the rows each edge crosses: low <= y < high (a horizontal edge crosses none)
+    first = np.searchsorted(ys, low, side="left")
+    stop = np.searchsorted(ys, high, side="left")
+    n = np.maximum(stop - first, 0)
+    edge = np.repeat(np.arange(len(px)), n)
+    row = np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n) + first[edge]
+    y = ys[row]
+    x = px[edge] + (y - py[edge]) * (qx[edge] - px[edge]) / (qy[edge] - py[edge])
+    order = np.lexsort((x, row))
+    row, x = row[order], x[order]
+    starts = np.searchsorted(row, np.arange(len(ys) + 1))
+    out = np.zeros((len(ys), len(xs)), dtype=bool)
+    doubt = np.zeros((len(ys), len(xs)), dtype=bool)
+    near_corner = np.zeros(len(ys), dtype=bool)
+    if len(xy):
+        at = np.searchsorted(ys, xy[:, 1])
+        for k in (at - 1, at):
+            ok = (k >= 0) & (k < len(ys))
+            near_corner[k[ok]] |= np.abs(ys[k[ok]] - xy[ok, 1]) <= NEAR_EDGE
+    for r in range(len(ys)):  # rows: a few crossings each
+        cross = x[starts[r]:starts[r + 1]]
+        left = np.searchsorted(cross, xs)
+        out[r] = left % 2 == 1
+        if len(cross):
+            gap = np.minimum(np.abs(xs - cross[np.maximum(left - 1, 0)]),
+                             np.abs(xs - cross[np.minimum(left, len(cross) - 1)]))
+            doubt[r] = gap <= NEAR_EDGE
+    doubt[near_corner] = True
+    if doubt.any():
+        j, i = np.nonzero(doubt)
+        out[j, i] = shapely.contains_xy(area, xs[i], ys[j])
     return out
 
 
