@@ -5,7 +5,7 @@ windows taken before included."""
 from __future__ import annotations
 
 import numpy as np
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from weavecut.layout import nesting
@@ -45,6 +45,7 @@ def test_a_room_taller_than_one_band_of_rows():
 @settings(max_examples=120, deadline=None)
 @given(st.integers(0, 2**32 - 1), st.integers(3, 9), st.booleans(), st.booleans(),
        st.sampled_from([1.0, 0.5, 0.3]))
+@example(seed=4, corners=4, on_grid=False, holed=True, grid=1.0)  # a hole's top on a row
 def test_the_cells_inside_a_room_are_those_shapely_finds(seed, corners, on_grid, holed, grid):
     """Row crossings against ``shapely.contains_xy`` cell by cell: random polygons (with a
     hole, as a second part), some with every corner on a cell centre's row or column, and

@@ -207,7 +207,8 @@ def cells_inside(area: shapely.Geometry, xs: NDArray[np.float64], ys: NDArray[np
         at = np.searchsorted(ys, xy[:, 1])
         for k in (at - 1, at):
             ok = (k >= 0) & (k < len(ys))
-            near_corner[k[ok]] |= np.abs(ys[k[ok]] - xy[ok, 1]) <= NEAR_EDGE
+            ok[ok] = np.abs(ys[k[ok]] - xy[ok, 1]) <= NEAR_EDGE
+            near_corner[k[ok]] = True
     for r in range(len(ys)):  # rows: a few crossings each
         cross = x[starts[r]:starts[r + 1]]
         left = np.searchsorted(cross, xs)
@@ -271,11 +272,15 @@ def _lowest_free(free: NDArray[np.int32], wx: int, wy: int, low: int = 0
     if wx > nx or wy > ny:
         return None
     for top in range(low, ny - wy + 1, ROWS):
-        tall = np.zeros((min(ROWS, ny - wy + 1 - top), nx + 1), dtype=np.int32)
-        np.cumsum(free[top:top + len(tall)] >= wy, axis=1, out=tall[:, 1:])
-        hit = np.flatnonzero((tall[:, wx:] - tall[:, :-wx]).ravel() == wx)
+        run = free[top:min(top + ROWS, ny - wy + 1)] >= wy  # columns tall enough ...
+        span = 1
+        while span < wx:  # ... and then ``wx`` of them side by side (doubling the run)
+            step = min(span, wx - span)
+            run = run[:, :-step] & run[:, step:]
+            span += step
+        hit = np.flatnonzero(run)
         if len(hit):
-            j, i = divmod(int(hit[0]), nx + 1 - wx)
+            j, i = divmod(int(hit[0]), run.shape[1])
             return top + j, i
     return None
 
