@@ -34,3 +34,13 @@ def test_a_command_loads_its_own_module_only():
     assert "weavecut.cli.weave_command" in modules
     assert not {"weavecut.cli.puzzle_command", "weavecut.cli.strands_command",
                 "weavecut.cli.analysis_commands"} & modules
+
+
+def test_a_whole_puzzle_loads_no_masked_arrays(tmp_path):
+    """numpy.ma (15 ms) comes with a plain ``np.unique``; the puzzle's writers, its 3-D model
+    included, ask for distinct values without it (``numeric.distinct``)."""
+    modules = modules_after("from weavecut.cli import main\nimport contextlib\n"
+                            "with contextlib.suppress(SystemExit):\n"
+                            f"    main(['-q', 'puzzle', '--levels', '2', '--numbers', '-o', "
+                            f"{str(tmp_path / 'pz')!r}])\n")
+    assert "weavecut.export.gltf" in modules and "numpy.ma" not in modules

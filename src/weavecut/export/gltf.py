@@ -16,6 +16,7 @@ import struct
 import numpy as np
 
 from ..errors import ExportError
+from ..numeric import distinct
 
 GLB_MAGIC, JSON_CHUNK, BIN_CHUNK = 0x46546C67, 0x4E4F534A, 0x004E4942
 FLOAT, UINT = 5126, 5125
@@ -41,7 +42,8 @@ def y_up(points: np.ndarray) -> np.ndarray:
 
 def glb_bytes(model, metres_per_unit: float = 0.001, name: str = "weave-cut model") -> bytes:
     """The model as glTF binary, its lengths times ``metres_per_unit`` (mm -> m by default)."""
-    colours = sorted(set(model.colours[p] for p in np.unique(model.part).tolist()))
+    parts = distinct(model.part).tolist()  # in order (without np.unique's numpy.ma import)
+    colours = sorted(set(model.colours[p] for p in parts))
     material_of = {c: k for k, c in enumerate(colours)}
     chunks: list[bytes] = []
     views, accessors, primitives = [], [], []
@@ -62,7 +64,7 @@ def glb_bytes(model, metres_per_unit: float = 0.001, name: str = "weave-cut mode
         accessors.append(accessor)
         return len(accessors) - 1
 
-    for p in np.unique(model.part).tolist():  # parts in order
+    for p in parts:
         tri = model.triangles[model.part == p]
         used, local = np.unique(tri, return_inverse=True)
         position = add((y_up(model.vertices[used]) * metres_per_unit).astype("<f4"),

@@ -61,8 +61,15 @@ def _document(drawing: Drawing, page: Sheet, placed) -> bytes:
 
 
 def _layer(layer, height: float) -> str:
+    # the points of all the layer's lines and rings written at once (a guide has a shape
+    # per number), then handed out shape by shape
+    drawn = [s.coords for s in layer.shapes if not isinstance(s, Text)]
+    pts = _points(np.concatenate(drawn), height) if drawn else []
+    ends = np.cumsum([len(c) for c in drawn]).tolist()
+    spans = iter(zip([0, *ends], ends))
     return _group(f"{layer.role}-{layer.name}".replace(" ", "-"), layer.name,
-                  [e for shape in layer.shapes for e in _elements(shape, height)],
+                  [e for shape in layer.shapes for e in _elements(
+                      shape, height, None if isinstance(shape, Text) else pts, spans)],
                   style=None if layer.visible else "display:none")
 
 
@@ -91,23 +98,26 @@ def _escape(text: str, attribute: bool = False) -> str:
     return text
 
 
-def _elements(shape, height: float):
+def _elements(shape, height: float, pts, spans):
+    """The elements of ``shape``: a Text's, or the paths of a Polylines or Polygons whose
+    points are ``pts[a:b]`` for the next (a, b) of ``spans``."""
     if isinstance(shape, Text):
         yield _text(shape, height)
     else:
-        for d, style in _paths(shape, height):
+        a, b = next(spans)
+        for d, style in _paths(shape, height, pts[a:b]):
             yield _element("path", {"d": d, **style})
 
 
-def _paths(shape, height: float):
-    """(path data, attributes) of each path of a Polylines or Polygons shape: one path for
-    all lines or all rings, or one per fill colour."""
+def _paths(shape, height: float, pts: list[str] | None = None):
+    """(path data, attributes) of each path of a Polylines or Polygons shape (its points as
+    written, ``pts``, if at hand): one path for all lines or all rings, or one per fill
+    colour."""
+    pts = _points(shape.coords, height) if pts is None else pts
     if isinstance(shape, Polylines):
-        pts = _points(shape.coords, height)
         yield " ".join("M" + " ".join(pts[a:b]) for a, b in _pairs(shape.offsets)), _style(
             shape.style, closed=False)
     elif isinstance(shape, Polygons):
-        pts = _points(shape.coords, height)
         rings = ["M" + " ".join(pts[a:b]) + "Z" for a, b in _pairs(shape.ring_offsets)]
         po = shape.polygon_rings().tolist()
         paths = ["".join(rings[a:b]) for a, b in zip(po[:-1], po[1:])]

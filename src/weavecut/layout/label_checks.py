@@ -51,16 +51,19 @@ def filled(sheet: Sheet) -> tuple[list, list[str]]:
 
 class Label(NamedTuple):
     """A label as :func:`labels` finds it."""
-    ink: shapely.Geometry  # the area its ink covers
     colour: str  # its ink's
     core: shapely.Geometry  # its strokes' centre lines (a Text: its box) ...
-    pad: float  # ... and how far its ink reaches beyond them (mm)
+    pad: float  # ... and how far its ink reaches beyond them (mm; 0 for a Text)
     plate: shapely.Geometry | None  # its own backing, if any
+
+    def ink(self) -> shapely.Geometry:
+        """The area its ink covers (its strokes at their width: made when asked for)."""
+        return shapely.buffer(self.core, self.pad) if self.pad > 0 else self.core
 
 
 def labels(sheet: Sheet) -> list[Label]:
     """Every visible label of the sheet."""
-    out, texts = [], []
+    out, texts, words = [], [], []
     for layer in sheet.layers:
         if not layer.visible:
             continue
@@ -72,16 +75,29 @@ def labels(sheet: Sheet) -> list[Label]:
             elif layer.name == WORDS and isinstance(shape, Polygons):
                 plate = shapely.union_all(shape.to_shapely())
             elif layer.name == WORDS and isinstance(shape, Polylines):
-                lines = shapely.multilinestrings(shapely.linestrings(
-                    shape.coords, indices=np.repeat(np.arange(len(shape.offsets) - 1),
-                                                    np.diff(shape.offsets))))
-                pad = max(shape.style.stroke_width, 1e-3) / 2  # round caps and joins
-                out.append(Label(shapely.buffer(lines, pad), shape.style.stroke, lines, pad,
-                                 plate))
+                words.append((len(out), shape, plate))
+                out.append(None)
                 plate = None
+    for (k, shape, plate), lines in zip(words, _strokes([w for _, w, _ in words])):
+        pad = max(shape.style.stroke_width, 1e-3) / 2  # round caps and joins
+        out[k] = Label(shape.style.stroke, lines, pad, plate)
     for (k, t), box in zip(texts, text_boxes([t for _, t in texts])):
-        out[k] = Label(box, t.fill, box, 0.0, None)
+        out[k] = Label(t.fill, box, 0.0, None)
     return out
+
+
+def _strokes(words: list[Polylines]) -> list:
+    """Every word's strokes as one multilinestring: all words' lines made at once."""
+    if not words or any(len(w.offsets) < 2 for w in words):  # (a word without strokes)
+        return [shapely.multilinestrings(shapely.linestrings(
+            w.coords, indices=np.repeat(np.arange(len(w.offsets) - 1), np.diff(w.offsets))))
+            for w in words]
+    counts = [np.diff(w.offsets) for w in words]
+    lines = shapely.linestrings(np.concatenate([w.coords for w in words]),
+                                indices=np.repeat(np.arange(sum(map(len, counts))),
+                                                  np.concatenate(counts)))
+    return shapely.multilinestrings(lines, indices=np.repeat(
+        np.arange(len(words)), [len(c) for c in counts])).tolist()
 
 
 def fills_under(polys, fills, tree, outline) -> list[str]:
@@ -101,12 +117,33 @@ def contrasts(sheet: Sheet, found=None) -> list[float]:
     """Per label (``found``: :func:`labels` of the sheet, if at hand): its ink's least
     contrast with anything under it."""
     polys, fills = filled(sheet)
+    found = labels(sheet) if found is None else found
+    return [min(contrast_ratio(label.colour, c) for c in under)
+            for label, under in zip(found, _under(polys, fills, found))]
+
+
+def _under(polys, fills, found) -> list[list[str]]:
+    """:func:`fills_under` every label's ink, all at once where one fill covers it: the
+    topmost polygon near its strokes (within its pad) that holds them farther than the pad
+    from its edge hides everything under the ink and nothing above reaches it; the other
+    labels' inks (their strokes at their width) are made and looked at fill by fill."""
     tree = shapely.STRtree(polys) if polys else None
-    out = []
-    for label in labels(sheet) if found is None else found:
-        under = fills_under(polys, fills, tree, label.ink)
-        out.append(min(contrast_ratio(label.colour, c) for c in under))
-    return out
+    out: list[list[str] | None] = [None] * len(found)
+    if tree is not None and found:
+        core = np.array([f.core for f in found], dtype=object)
+        pad = np.array([f.pad for f in found])
+        label, poly = tree.query(core, predicate="dwithin", distance=pad)
+        top = np.full(len(found), -1)
+        np.maximum.at(top, label, poly)
+        k = np.flatnonzero(top >= 0)
+        cover = np.array(polys, dtype=object)[top[k]]
+        held = shapely.within(core[k], cover)
+        held &= shapely.distance(core[k], shapely.boundary(cover)) >= pad[k] + 1e-9
+        held &= (pad[k] > 0) | (shapely.area(core[k]) > 1e-9)  # no empty Text box
+        for i in k[held].tolist():
+            out[i] = [fills[top[i]]]
+    return [fills_under(polys, fills, tree, f.ink()) if o is None else o
+            for f, o in zip(found, out)]
 
 
 def gaps(sheet: Sheet, found=None) -> list[float]:

@@ -165,43 +165,124 @@ def fill_room(part: shapely.Polygon, bounds: NDArray[np.float64], spacing: float
     size = -(-micro // 1_000_000)  # (m, 2) whole cells across and up
     x0, y0 = np.floor(np.asarray(part.bounds[:2]) / grid) * grid
     nx, ny = np.ceil((np.asarray(part.bounds[2:]) - (x0, y0)) / grid).astype(int)
-    cx, cy = np.meshgrid(x0 + (np.arange(nx) + 0.5) * grid, y0 + (np.arange(ny) + 0.5) * grid)
-    blocked = ~shapely.contains_xy(inside, cx, cy)  # (ny, nx)
-    failed: list[tuple[int, int]] = []  # sizes with no spot: larger ones have none either
-    table = _summed(blocked)
-    for a, (wx, wy) in zip(ids, size.tolist()):
-        if any(wx >= fx and wy >= fy for fx, fy in failed):
-            continue
-        spot = _lowest_free(table, wx, wy)
-        if spot is None:
-            failed.append((wx, wy))
-            continue
-        j, i = spot  # the window's cells were free: each now counts once more in the table
-        table[j + 1:, i + 1:] += np.minimum(np.arange(1, table.shape[0] - j), wy)[:, None] * \
-            np.minimum(np.arange(1, table.shape[1] - i), wx)
-        out[a] = np.array([x0 + i * grid, y0 + j * grid]) + spacing / 2
+    spots = _place(cells_inside(inside, x0 + (np.arange(nx) + 0.5) * grid,
+                                y0 + (np.arange(ny) + 0.5) * grid), size.tolist())
+    for a, spot in zip(ids, spots):
+        if spot is not None:
+            j, i = spot
+            out[a] = np.array([x0 + i * grid, y0 + j * grid]) + spacing / 2
     return out
 
 
-def _summed(blocked: NDArray[np.bool_]) -> NDArray[np.int64]:
-    """The summed-area table of ``blocked`` (one row and column of zeros before it)."""
-    table = np.zeros((blocked.shape[0] + 1, blocked.shape[1] + 1), dtype=np.int64)
-    table[1:, 1:] = blocked.cumsum(axis=0).cumsum(axis=1)
-    return table
+NEAR_EDGE = 1e-6  # mm: a cell centre this near an edge is looked up by shapely
 
 
-def _lowest_free(table: NDArray[np.int64], wx: int, wy: int) -> tuple[int, int] | None:
-    """(row, column) of the lowest, then leftmost, ``wy`` x ``wx`` window of cells none of which
-    is blocked, or None, from the blocked cells' summed-area table (:func:`_summed`)."""
-    ny, nx = table.shape[0] - 1, table.shape[1] - 1
+def cells_inside(area: shapely.Geometry, xs: NDArray[np.float64], ys: NDArray[np.float64]
+                 ) -> NDArray[np.bool_]:
+    """(len(ys), len(xs)) which of the grid's points (x, y) lie inside ``area`` (a polygon
+    or multipolygon), as ``shapely.contains_xy`` finds them: row by row, a point is inside
+    where an odd number of the area's edges cross its row to its left. A point within
+    ``NEAR_EDGE`` of a crossing, and every point of a row that passes within it of a corner,
+    is left to ``contains_xy`` (the crossings are computed in floating point)."""
+    rings = shapely.get_rings(shapely.get_parts(area))
+    xy, ring = shapely.get_coordinates(rings, return_index=True)
+    one = ring[:-1] == ring[1:]  # consecutive corners of one ring: an edge
+    (px, py), (qx, qy) = xy[:-1][one].T, xy[1:][one].T
+    low, high = np.minimum(py, qy), np.maximum(py, qy)
+    # the rows each edge crosses: low <= y < high (a horizontal edge crosses none)
+    first = np.searchsorted(ys, low, side="left")
+    stop = np.searchsorted(ys, high, side="left")
+    n = np.maximum(stop - first, 0)
+    edge = np.repeat(np.arange(len(px)), n)
+    row = np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n) + first[edge]
+    y = ys[row]
+    x = px[edge] + (y - py[edge]) * (qx[edge] - px[edge]) / (qy[edge] - py[edge])
+    order = np.lexsort((x, row))
+    row, x = row[order], x[order]
+    starts = np.searchsorted(row, np.arange(len(ys) + 1))
+    out = np.zeros((len(ys), len(xs)), dtype=bool)
+    doubt = np.zeros((len(ys), len(xs)), dtype=bool)
+    near_corner = np.zeros(len(ys), dtype=bool)
+    if len(xy):
+        at = np.searchsorted(ys, xy[:, 1])
+        for k in (at - 1, at):
+            ok = (k >= 0) & (k < len(ys))
+            ok[ok] = np.abs(ys[k[ok]] - xy[ok, 1]) <= NEAR_EDGE
+            near_corner[k[ok]] = True
+    for r in range(len(ys)):  # rows: a few crossings each
+        cross = x[starts[r]:starts[r + 1]]
+        left = np.searchsorted(cross, xs)
+        out[r] = left % 2 == 1
+        if len(cross):
+            gap = np.minimum(np.abs(xs - cross[np.maximum(left - 1, 0)]),
+                             np.abs(xs - cross[np.minimum(left, len(cross) - 1)]))
+            doubt[r] = gap <= NEAR_EDGE
+    doubt[near_corner] = True
+    if doubt.any():
+        j, i = np.nonzero(doubt)
+        out[j, i] = shapely.contains_xy(area, xs[i], ys[j])
+    return out
+
+
+def _place(inside: NDArray[np.bool_], sizes: list[list[int]]) -> list[tuple[int, int] | None]:
+    """(row, column) of every window of ``sizes`` ((wx, wy) cells, 1 or more), in order, at
+    the lowest, then leftmost, spot where all its cells are ``inside`` and none is taken by a
+    window placed before; None where it has none."""
+    free = _free_above(inside)
+    failed: list[tuple[int, int]] = []  # sizes with no spot: larger ones have none either
+    found: list[tuple[int, int, int]] = []  # (wx, wy, row) of every spot found
+    out: list[tuple[int, int] | None] = []
+    for wx, wy in sizes:
+        spot = None
+        if not any(wx >= fx and wy >= fy for fx, fy in failed):
+            # a window at least as large as one found before lies no lower than it did then
+            low = max((row for fx, fy, row in found if wx >= fx and wy >= fy), default=0)
+            spot = _lowest_free(free, wx, wy, low)
+        out.append(spot)
+        if spot is None:
+            failed.append((wx, wy))
+            continue
+        j, i = spot  # its cells are taken: the free runs below it now end at it
+        free[j:j + wy, i:i + wx] = 0
+        free[:j, i:i + wx] = np.minimum(free[:j, i:i + wx], np.arange(j, 0, -1)[:, None])
+        found.append((wx, wy, j))
+    return out
+
+
+def _free_above(inside: NDArray[np.bool_]) -> NDArray[np.int32]:
+    """(rows, columns): how many cells from each up are inside (0 for a cell outside)."""
+    out = np.zeros(inside.shape, dtype=np.int32)
+    run = np.zeros(inside.shape[1], dtype=np.int32)
+    for r in range(inside.shape[0] - 1, -1, -1):  # rows, top down: each needs the one above
+        run = (run + 1) * inside[r]
+        out[r] = run
+    return out
+
+
+ROWS = 32  # rows of windows looked at in one go
+
+
+def _lowest_free(free: NDArray[np.int32], wx: int, wy: int, low: int = 0
+                 ) -> tuple[int, int] | None:
+    """(row, column) of the lowest, then leftmost, ``wy`` x ``wx`` window of cells that are
+    all free, from row ``low`` on, or None; ``free`` (:func:`_free_above`) counts the free
+    cells from each cell up, so a window is free where ``wx`` neighbours in a row all count
+    ``wy`` or more. A few rows at a time: a window found low costs little."""
+    ny, nx = free.shape
     if wx > nx or wy > ny:
         return None
-    sums = (table[wy:, wx:] - table[:-wy, wx:] - table[wy:, :-wx] + table[:-wy, :-wx])
-    free = np.flatnonzero(sums.ravel() == 0)
-    if not len(free):
-        return None
-    j, i = divmod(int(free[0]), sums.shape[1])
-    return j, i
+    for top in range(low, ny - wy + 1, ROWS):
+        run = free[top:min(top + ROWS, ny - wy + 1)] >= wy  # columns tall enough ...
+        span = 1
+        while span < wx:  # ... and then ``wx`` of them side by side (doubling the run)
+            step = min(span, wx - span)
+            run = run[:, :-step] & run[:, step:]
+            span += step
+        hit = np.flatnonzero(run)
+        if len(hit):
+            j, i = divmod(int(hit[0]), run.shape[1])
+            return top + j, i
+    return None
 
 
 def _skyline_fit(sky, w, h, room_w, room_h):

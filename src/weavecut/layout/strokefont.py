@@ -15,7 +15,9 @@ capitals span exactly ``[0, h]`` above the baseline.
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from functools import lru_cache
+from threading import Lock
 
 import numpy as np
 import shapely
@@ -143,22 +145,52 @@ def labels(texts: list[str], centres: NDArray[np.float64], heights: NDArray[np.f
         offsets, owner
 
 
-_last_poles: list = [((), np.zeros((0, 2)))]  # the last polygons asked and their poles
+_KEPT = 8192  # facts of polygons kept, by their WKB (the last asked for kept longest) ...
+_FITS = 16  # ... and the last fits asked for
+_kept: OrderedDict[tuple, object] = OrderedDict()
+_fits: OrderedDict[tuple, tuple] = OrderedDict()
+_kept_lock = Lock()  # the web app's threads share them
+
+
+def _kept_values(what, keys: list[bytes], make) -> list:
+    """Per key (a polygon's WKB: its type and every coordinate, exactly) its ``what``, kept
+    from an earlier call or made now, all at once, by ``make`` (the keys not kept -> their
+    values): a puzzle fits its engraved and its printed numbers into the same pieces and parts
+    of them, with room round them and without, so the same polygon built twice is worked out
+    once."""
+    with _kept_lock:
+        known = [_kept.get((what, k)) for k in keys]
+        for k, v in zip(keys, known):
+            if v is not None:
+                _kept.move_to_end((what, k))
+    new = list(dict.fromkeys(k for k, v in zip(keys, known) if v is None))
+    if new:
+        found = dict(zip(new, make(new)))
+        known = [found[k] if v is None else v for k, v in zip(keys, known)]
+        with _kept_lock:
+            _kept.update(((what, k), v) for k, v in found.items())
+            while len(_kept) > _KEPT:
+                _kept.popitem(last=False)
+    return known
 
 
 def _poles(polygons: NDArray[np.object_]) -> NDArray[np.float64]:
     """(N, 2) every polygon's pole of inaccessibility (the centre of its largest inscribed
-    circle, to 0.01 mm), kept for the last polygons asked: a puzzle fits its engraved and its
-    printed numbers into the same pieces. Geometries are immutable, and kept ones can neither
-    be freed nor have their ids reused, so the same objects have the same poles."""
-    geoms = tuple(np.asarray(polygons, dtype=object).ravel().tolist())
-    kept, poles = _last_poles[0]  # one read: another thread may replace it
-    if len(kept) == len(geoms) and all(a is b for a, b in zip(kept, geoms)):
-        return poles.copy()
-    circles = shapely.maximum_inscribed_circle(polygons, tolerance=0.01)
-    poles = shapely.get_coordinates(shapely.get_point(circles, 0))
-    _last_poles[0] = (geoms, poles)
-    return poles.copy()
+    circle, to 0.01 mm), kept (:func:`_kept_values`)."""
+    keys = shapely.to_wkb(np.asarray(polygons, dtype=object).ravel()).tolist()
+    return _facts(keys)[:, :2]
+
+
+def _facts(keys: list[bytes]) -> NDArray[np.float64]:
+    """(N, 3) the pole (x, y) and the long axis (:func:`_long_axes`) of every polygon, given
+    by its WKB, kept (:func:`_kept_values`)."""
+    def make(new):
+        polygons = shapely.from_wkb(new)
+        circles = shapely.maximum_inscribed_circle(polygons, tolerance=0.01)
+        pole = shapely.get_coordinates(shapely.get_point(circles, 0))
+        return map(tuple, np.column_stack([pole, _long_axes(polygons)]).tolist())
+
+    return np.array(_kept_values("facts", keys, make), dtype=float).reshape(-1, 3)
 
 
 def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, max_height,
@@ -171,7 +203,8 @@ def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, m
     first on a tie). ``pad`` widens every text's ink box by that share of its cap height on
     each side (room that grows with the text: two texts fitted so stand apart by more than
     their letters do); a level text wins where it is at least ``level_share`` of the largest
-    and at least ``level_least`` tall.
+    and at least ``level_least`` tall. The last fits asked for are kept (the same polygons,
+    texts and sizes: a guide's back asks for its front's again).
 
     Parameters
     ----------
@@ -184,14 +217,35 @@ def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, m
     centres : (N, 2) float64, where each label's ink box is centred
     angles : (N,) float64, degrees counter-clockwise, in (-90, 90]
     """
-    inner = shapely.buffer(polygons, -margin, join_style="mitre")
-    pole = _poles(polygons)
+    keys = shapely.to_wkb(np.asarray(polygons, dtype=object).ravel()).tolist()
+    top = np.asarray(max_height, dtype=float)
+    call = (tuple(keys), tuple(texts), float(margin), top.shape, top.tobytes(), float(pad),
+            float(level_share), float(level_least))
+    with _kept_lock:
+        found = _fits.get(call)
+        if found is not None:
+            _fits.move_to_end(call)
+    if found is None:
+        found = _fit(keys, texts, margin, top, pad, level_share, level_least)
+        with _kept_lock:
+            _fits[call] = found
+            while len(_fits) > _FITS:
+                _fits.popitem(last=False)
+    return tuple(a.copy() for a in found)
+
+
+def _fit(keys, texts, margin, max_height, pad, level_share, level_least) -> tuple:
+    """:func:`fit_labels` of the polygons with WKB ``keys``."""
+    polygons = shapely.from_wkb(keys)
+    inner = np.array(_kept_values(("inner", float(margin)), keys, lambda new: shapely.buffer(
+        shapely.from_wkb(new), -margin, join_style="mitre").tolist()), dtype=object)
+    facts = _facts(keys)
+    pole, long_axis = facts[:, :2].copy(), facts[:, 2].copy()
     middle = shapely.get_coordinates(shapely.centroid(polygons))
     boxes = np.array([ink_box(t) for t in texts], dtype=float).reshape(-1, 4)
     hx, hy = (boxes[:, 2] - boxes[:, 0]) / 2 + pad, (boxes[:, 3] - boxes[:, 1]) / 2 + pad
     level = np.stack([np.stack([-hx, -hy], -1), np.stack([hx, -hy], -1),
                       np.stack([hx, hy], -1), np.stack([-hx, hy], -1)], axis=1)
-    long_axis = _long_axes(polygons)
     n = len(texts)
     # every label at every (centre, angle) at once: pole, half-way, centroid; level, long axis
     spots = [(at, angle) for at in (pole, (pole + middle) / 2, middle)

@@ -203,7 +203,7 @@ def _plan(weave: Weave, lineage, strand_pairs, pal: Palette) -> _Plan:
     n = weave.n_strands
     main = np.flatnonzero(on_top_of_octagon(weave))
     if not len(main):  # level 1 has no octagons: every strand on top of a tile is painted
-        main = np.unique(weave.tile_over[weave.tile_over >= 0]).astype(np.int64)
+        main = distinct(weave.tile_over[weave.tile_over >= 0]).astype(np.int64)
     parent = lineage if lineage is not None else np.full(n, -1, dtype=np.int32)
     keys, group = np.unique(np.where(parent[main] >= 0, parent[main], -1 - main),
                             return_inverse=True)
