@@ -1,9 +1,11 @@
-"""Write the peer fixtures once: Loop and butterfly of small meshes by libigl and vtk.
+"""Write the peer fixtures once: classic schemes of small meshes by libigl, vtk and pymeshlab.
 
 Run with an interpreter that has the peers (not weave-cut's venv), from this folder:
     python -m venv /tmp/peers && /tmp/peers/bin/pip install numpy vtk libigl
-    /tmp/peers/bin/python make_fixtures.py
-It reads the meshes from ``inputs.json`` and writes one ``<peer>-<scheme>.json`` per run, with
+    /tmp/peers/bin/python make_fixtures.py libigl vtk
+    python -m venv /tmp/pml && /tmp/pml/bin/pip install numpy pymeshlab==2025.7
+    /tmp/pml/bin/python make_fixtures.py pymeshlab
+(the peers named on the command line are written, the others left as they are). It reads the meshes from ``inputs.json`` and writes one ``<peer>-<scheme>.json`` per run, with
 every coordinate as Python writes a float (repr: the double itself, no rounding).
 """
 
@@ -17,8 +19,6 @@ from pathlib import Path
 import numpy as np
 
 HERE = Path(__file__).parent
-sys.path.insert(0, str(HERE.parents[2] / "benchmarks"))
-from vtk_peer import subdivided  # noqa: E402  (the benchmark runs vtk the same way)
 
 
 def xyz(v):
@@ -34,6 +34,8 @@ def igl_loop(v, f):
 def vtk_run(cls):
     def run(v, f):
         from vtk.util.numpy_support import vtk_to_numpy
+        sys.path.insert(0, str(HERE.parents[2] / "benchmarks"))
+        from vtk_peer import subdivided  # the benchmark runs vtk the same way
         out = subdivided(cls, xyz(v), f, 1)
         nv = vtk_to_numpy(out.GetPoints().GetData()).astype(np.float64)
         conn = vtk_to_numpy(out.GetPolys().GetConnectivityArray()).reshape(-1, 3)
@@ -41,15 +43,45 @@ def vtk_run(cls):
     return run
 
 
-def main() -> None:
-    import vtk
+def vtk_filter(name):
+    def run(v, f):
+        import vtk
+        return vtk_run(getattr(vtk, name))(v, f)
+    return run
+
+
+def meshlab_run(filter_name, split_all=True, **params):
+    """One step of a MeshLab filter; ``threshold=0`` so that every edge is split (MeshLab's
+    default leaves edges shorter than 1 % of the bounding box); polygonal faces are read back
+    as MeshLab keeps them (Catmull-Clark's quads)."""
+    def run(v, f):
+        import pymeshlab
+        ms = pymeshlab.MeshSet(verbose=False)
+        ms.add_mesh(pymeshlab.Mesh(xyz(v), np.asarray(f, dtype=np.int32)))
+        if split_all:
+            params["threshold"] = pymeshlab.PercentageValue(0)
+        getattr(ms, filter_name)(iterations=1, **params)
+        out = ms.current_mesh()
+        return out.vertex_matrix(), [p.tolist() for p in out.polygonal_face_list()]
+    return run
+
+
+RUNS = {("libigl", "loop"): igl_loop,
+        ("vtk", "loop"): vtk_filter("vtkLoopSubdivisionFilter"),
+        ("vtk", "butterfly"): vtk_filter("vtkButterflySubdivisionFilter"),
+        ("pymeshlab", "loop"): meshlab_run("meshing_surface_subdivision_loop", loopweight="Loop"),
+        ("pymeshlab", "butterfly"): meshlab_run("meshing_surface_subdivision_butterfly"),
+        ("pymeshlab", "catmull-clark"): meshlab_run("meshing_surface_subdivision_catmull_clark",
+                                                    split_all=False)}
+
+
+def main(peers: list[str]) -> None:
     meshes = json.loads((HERE / "inputs.json").read_text())
-    runs = {("libigl", "loop"): igl_loop,
-            ("vtk", "loop"): vtk_run(vtk.vtkLoopSubdivisionFilter),
-            ("vtk", "butterfly"): vtk_run(vtk.vtkButterflySubdivisionFilter)}
-    versions = {"libigl": metadata.version("libigl"), "vtk": metadata.version("vtk"),
-                "numpy": metadata.version("numpy"), "python": sys.version.split()[0]}
-    for (peer, scheme), run in runs.items():
+    versions = {p: metadata.version(p) for p in peers}
+    versions |= {"numpy": metadata.version("numpy"), "python": sys.version.split()[0]}
+    for (peer, scheme), run in RUNS.items():
+        if peer not in peers:
+            continue
         out = {"peer": peer, "scheme": scheme, "versions": versions, "meshes": []}
         for mesh in meshes:
             got = run(np.array(mesh["vertices"]), mesh["faces"])
@@ -61,4 +93,4 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    main(sys.argv[1:] or ["libigl", "vtk"])
