@@ -4,6 +4,8 @@ right pieces, and the rest in the tests below."""
 from __future__ import annotations
 
 import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from weavecut.puzzle import files as pf
 
@@ -28,3 +30,21 @@ def test_number_warnings_list_twelve_pieces_and_count_the_rest():
     fifteen = pf.number_warnings(_labels([0.0] * 15))[0]
     assert fifteen.startswith("pieces 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12 and 3 more are too "
                               "small for 1.5 mm digits")
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.lists(st.tuples(st.sampled_from(["1", "27", "380", "", " "]),
+                          st.sampled_from([0.0, 2.5, 3.0, 7.25]),
+                          st.floats(-50.0, 50.0), st.floats(-50.0, 50.0),
+                          st.sampled_from([0.0, 90.0, 33.3, -120.0])), max_size=8))
+def test_each_labels_strokes_made_together_are_its_strokes_made_alone(rows):
+    labels = pf.Labels(tuple(r[0] for r in rows), np.array([r[1] for r in rows]),
+                       np.array([r[2:4] for r in rows]).reshape(-1, 2),
+                       np.array([r[4] for r in rows]))
+    some = np.flatnonzero(labels.heights > 0)
+    each = labels.strokes_each(some)
+    assert len(each) == len(some)
+    for k, (coords, offsets) in zip(some.tolist(), each):
+        alone_coords, alone_offsets = labels.strokes(pick=[k])
+        assert coords.tobytes() == alone_coords.tobytes() and coords.shape == alone_coords.shape
+        assert offsets.dtype == alone_offsets.dtype and offsets.tolist() == alone_offsets.tolist()

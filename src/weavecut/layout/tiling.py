@@ -182,7 +182,7 @@ def tile(drawing: Drawing, page: tuple[float, float] = (210.0, 297.0), overlap: 
     big = drawing.sheets[0]
     cols, rows, margin, left, top = grid(_cover(big), page, overlap, margin, shift)
     check_pages(drawing, page, cols * rows)
-    geoms = [[_geoms(shape) for shape in layer.shapes] for layer in big.layers]
+    geoms = [_geoms(layer) for layer in big.layers]
     made = {}
     boxes = _windows(page, overlap, cols, rows, margin, left, top)
     for k, (x0, y0, x1, y1) in enumerate(boxes.tolist()):  # pages, a handful
@@ -201,54 +201,75 @@ def tile(drawing: Drawing, page: tuple[float, float] = (210.0, 297.0), overlap: 
     return replace(drawing, sheets=tuple(pages))
 
 
-def _geoms(shape):
-    """(shapely geometries, their bounds (n, 4)) of a Polygons or Polylines shape; None for
-    text."""
-    if isinstance(shape, Polygons):
-        geoms = shape.to_shapely()
-    elif isinstance(shape, Polylines):
-        geoms = shapely.linestrings(shape.coords, indices=np.repeat(
-            np.arange(len(shape.offsets) - 1), np.diff(shape.offsets)))
-    else:
-        return None
-    return geoms, shapely.bounds(geoms)
+def _geoms(layer: Layer):
+    """What :func:`_clip_layer` needs of ``layer``, once for all its pages: the shapely
+    geometries of its Polygons and Polylines (not its words) in one array, their bounds (n, 4),
+    the shape each belongs to, whether it is a line, where each shape's run of them starts
+    (S + 1); and every word's least and greatest point (S, 2; NaN for other shapes)."""
+    parts, lines = [], []
+    lo, hi = np.full((2, len(layer.shapes), 2), np.nan)
+    for i, shape in enumerate(layer.shapes):
+        if isinstance(shape, Polylines) and layer.name == WORDS:
+            if len(shape.coords):
+                lo[i], hi[i] = shape.coords.min(axis=0), shape.coords.max(axis=0)
+            geoms = np.empty(0, dtype=object)
+        elif isinstance(shape, Polygons):
+            geoms = shape.to_shapely()
+        elif isinstance(shape, Polylines):
+            geoms = shapely.linestrings(shape.coords, indices=np.repeat(
+                np.arange(len(shape.offsets) - 1), np.diff(shape.offsets)))
+        else:
+            geoms = np.empty(0, dtype=object)
+        parts.append(np.asarray(geoms, dtype=object))
+        lines.append(isinstance(shape, Polylines))
+    sizes = np.array([len(g) for g in parts], dtype=np.int64)
+    geoms = np.concatenate(parts) if parts else np.empty(0, dtype=object)
+    owner = np.repeat(np.arange(len(parts)), sizes)
+    return (geoms, shapely.bounds(geoms).reshape(-1, 4), owner,
+            np.repeat(np.array(lines, dtype=bool), sizes), np.r_[0, np.cumsum(sizes)], lo, hi)
 
 
 def _clip_layer(layer: Layer, geoms, window, shift) -> Layer:
     """``layer`` clipped to ``window`` and moved by ``shift``; ``geoms`` (:func:`_geoms` of
-    every shape) is clipped where its bounds reach the window. A single-stroke word (a
-    Polylines of a ``WORDS`` layer) is kept whole where it lies inside the window and left to
-    the neighbouring page where it does not: no number is printed cut in two (with an overlap
-    as wide as the widest word, each is whole on some page: :func:`word_overlap`)."""
+    the layer) are clipped, all in one call, where their bounds reach the window. A
+    single-stroke word (a Polylines of a ``WORDS`` layer) is kept whole where it lies inside
+    the window and left to the neighbouring page where it does not: no number is printed cut
+    in two (with an overlap as wide as the widest word, each is whole on some page:
+    :func:`word_overlap`)."""
     x0, y0, x1, y1 = window.bounds
     margin_box = np.array([x0, y0, x1, y1]) + np.r_[shift, shift]
+    every, b, owner, lines, start, lo, hi = geoms
+    near = np.flatnonzero((b[:, 0] <= x1) & (b[:, 2] >= x0) & (b[:, 1] <= y1) & (b[:, 3] >= y0))
+    parts, at = shapely.get_parts(_clip(every[near], b[near], window, lines[near]),
+                                  return_index=True)
+    at = near[at]  # each part's geometry, in shape order
+    cuts = np.searchsorted(owner[at], np.arange(len(layer.shapes) + 1))
+    kind = shapely.get_type_id(parts)
+    area = (kind == 3) & (shapely.area(parts) > 0)
+    line = (kind == 1) & ~shapely.is_empty(parts)
+    with np.errstate(invalid="ignore"):  # NaN: not a word
+        reach = np.array([s.style.stroke_width / 2 if isinstance(s, Polylines) else 0.0
+                          for s in layer.shapes]).reshape(-1, 1)
+        whole = ((lo + shift - reach >= margin_box[:2]) & (hi + shift + reach <= margin_box[2:])
+                 ).all(axis=1)
     shapes = []
-    for shape, got in zip(layer.shapes, geoms):
-        if got is not None:
-            b = got[1]
-            near = np.flatnonzero((b[:, 0] <= x1) & (b[:, 2] >= x0) & (b[:, 1] <= y1)
-                                  & (b[:, 3] >= y0))
-            clipped = _clip(got[0][near], b[near], window, isinstance(shape, Polylines))
-            parts, owner = shapely.get_parts(clipped, return_index=True)
-            owner = near[owner]
+    for i, shape in enumerate(layer.shapes):
+        mine = slice(cuts[i], cuts[i + 1])
         if isinstance(shape, Polygons):
-            keep = (shapely.get_type_id(parts) == 3) & (shapely.area(parts) > 0)
+            keep = area[mine]
             if not keep.any():
                 continue
-            fills = np.asarray(shape.fills, dtype=object)[owner[keep]].tolist() \
+            fills = np.asarray(shape.fills, dtype=object)[at[mine][keep] - start[i]].tolist() \
                 if shape.fills else None
-            moved = shapely.transform(parts[keep], lambda xy: xy + shift)
+            moved = shapely.transform(parts[mine][keep], lambda xy: xy + shift)
             shapes.append(polygons_from_shapely(moved, shape.style, fills))
         elif isinstance(shape, Polylines) and layer.name == WORDS:  # a word: whole or not
-            coords = shape.coords + shift
-            reach = shape.style.stroke_width / 2
-            if len(coords) and (coords.min(axis=0) - reach >= margin_box[:2]).all() \
-                    and (coords.max(axis=0) + reach <= margin_box[2:]).all():
-                shapes.append(Polylines(coords, shape.offsets, shape.style))
+            if whole[i]:
+                shapes.append(Polylines(shape.coords + shift, shape.offsets, shape.style))
         elif isinstance(shape, Polylines):
-            parts = parts[(shapely.get_type_id(parts) == 1) & ~shapely.is_empty(parts)]
-            if len(parts):
-                coords, idx = shapely.get_coordinates(parts, return_index=True)
+            kept = parts[mine][line[mine]]
+            if len(kept):
+                coords, idx = shapely.get_coordinates(kept, return_index=True)
                 offsets = np.r_[0, np.cumsum(np.bincount(idx))].astype(np.int64)
                 shapes.append(Polylines(coords + shift, offsets, shape.style))
         elif isinstance(shape, Text):
@@ -266,18 +287,20 @@ def word_overlap(drawing: Drawing, least: float = 10.0) -> float:
     return max([least, *(math.ceil(x + 0.5) for x in sizes)])
 
 
-def _clip(geoms: NDArray[np.object_], bounds: NDArray[np.float64], window, lines: bool
+def _clip(geoms: NDArray[np.object_], bounds: NDArray[np.float64], window, lines
           ) -> NDArray[np.object_]:
-    """``shapely.intersection(geoms, window)`` (a box). GEOS gives a line strictly inside the
+    """``shapely.intersection(geoms, window)`` (a box); ``lines``: whether they are lines (one
+    bool for all, or one each). GEOS gives a line strictly inside the
     box back as it is when the line is simple and has no point twice in a row (it drops such
     repeats and splits lines where they cross or touch themselves): those lines, open ones
     only (to be safe: a closed one might come back starting elsewhere), are kept without
     asking it (most of a guide's numbers and dashes; tests/test_tiling_clip.py)."""
     out = geoms.copy()
     cut = np.ones(len(geoms), dtype=bool)
-    if lines and len(geoms):
+    lines = np.broadcast_to(np.asarray(lines, dtype=bool), (len(geoms),))
+    if lines.any():
         x0, y0, x1, y1 = window.bounds
-        within = np.flatnonzero((bounds[:, 0] > x0) & (bounds[:, 2] < x1)
+        within = np.flatnonzero(lines & (bounds[:, 0] > x0) & (bounds[:, 2] < x1)
                                 & (bounds[:, 1] > y0) & (bounds[:, 3] < y1))
         coords, line = shapely.get_coordinates(geoms[within], return_index=True)
         repeats = (coords[1:] == coords[:-1]).all(axis=1) & (line[1:] == line[:-1])

@@ -18,6 +18,7 @@ number. Both are named in a warning, never silently.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 import shapely
@@ -58,8 +59,10 @@ class GuideNumbers:
     plates: NDArray[np.object_]
 
 
+@lru_cache(maxsize=1024)
 def _ink(fills: tuple[str, ...]) -> tuple[str, float]:
-    """Black or white, whichever reads better on all of ``fills``, and its least contrast."""
+    """Black or white, whichever reads better on all of ``fills``, and its least contrast (kept:
+    the pieces of a puzzle share a few paints)."""
     worst = {ink: min(contrast_ratio(ink, f) for f in fills) for ink in (BLACK, WHITE)}
     ink = BLACK if worst[BLACK] >= worst[WHITE] else WHITE
     return ink, worst[ink]

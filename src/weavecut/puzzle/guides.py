@@ -257,10 +257,10 @@ def _number_shapes(numbers: Labels, inks: NDArray[np.object_], plates) -> tuple:
     """One Polylines per number, in piece order (a word: its digits together), each after its
     white plate where it has one; none for a piece too small for any (height 0)."""
     shapes = []
-    for k in np.flatnonzero(numbers.heights > 0).tolist():
+    some = np.flatnonzero(numbers.heights > 0)
+    for k, (coords, offsets) in zip(some.tolist(), numbers.strokes_each(some)):
         if plates[k] is not None:
             shapes.append(polygons_from_shapely([plates[k]], Style(None, 0.0, PAPER)))
-        coords, offsets = numbers.strokes(pick=[k])
         shapes.append(Polylines(coords, offsets, Style(inks[k], NUMBER_STROKE)))
     return tuple(shapes)
 
