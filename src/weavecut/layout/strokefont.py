@@ -145,11 +145,36 @@ def labels(texts: list[str], centres: NDArray[np.float64], heights: NDArray[np.f
         offsets, owner
 
 
-_KEPT = 8192  # facts of polygons kept, by their WKB (the last asked for kept longest) ...
+class _Kept(OrderedDict):
+    """At most ``most`` answers, the last asked for kept longest; the web app's threads share
+    it (one lock for all)."""
+
+    lock = Lock()
+
+    def __init__(self, most: int) -> None:
+        super().__init__()
+        self.most = most
+
+    def take(self, keys: list) -> list:
+        """The answer kept for each key, or None."""
+        with self.lock:
+            found = [self.get(k) for k in keys]
+            for k, v in zip(keys, found):
+                if v is not None:
+                    self.move_to_end(k)
+        return found
+
+    def keep(self, answers) -> None:
+        with self.lock:
+            self.update(answers)
+            while len(self) > self.most:
+                self.popitem(last=False)
+
+
+_KEPT = 8192  # facts of polygons kept, by their WKB ...
 _FITS = 16  # ... and the last fits asked for
-_kept: OrderedDict[tuple, object] = OrderedDict()
-_fits: OrderedDict[tuple, tuple] = OrderedDict()
-_kept_lock = Lock()  # the web app's threads share them
+_kept = _Kept(_KEPT)
+_fits = _Kept(_FITS)
 
 
 def _kept_values(what, keys: list[bytes], make) -> list:
@@ -158,19 +183,12 @@ def _kept_values(what, keys: list[bytes], make) -> list:
     values): a puzzle fits its engraved and its printed numbers into the same pieces and parts
     of them, with room round them and without, so the same polygon built twice is worked out
     once."""
-    with _kept_lock:
-        known = [_kept.get((what, k)) for k in keys]
-        for k, v in zip(keys, known):
-            if v is not None:
-                _kept.move_to_end((what, k))
+    known = _kept.take([(what, k) for k in keys])
     new = list(dict.fromkeys(k for k, v in zip(keys, known) if v is None))
     if new:
         found = dict(zip(new, make(new)))
         known = [found[k] if v is None else v for k, v in zip(keys, known)]
-        with _kept_lock:
-            _kept.update(((what, k), v) for k, v in found.items())
-            while len(_kept) > _KEPT:
-                _kept.popitem(last=False)
+        _kept.keep(((what, k), v) for k, v in found.items())
     return known
 
 
@@ -221,16 +239,10 @@ def fit_labels(polygons: NDArray[np.object_], texts: list[str], margin: float, m
     top = np.asarray(max_height, dtype=float)
     call = (tuple(keys), tuple(texts), float(margin), top.shape, top.tobytes(), float(pad),
             float(level_share), float(level_least))
-    with _kept_lock:
-        found = _fits.get(call)
-        if found is not None:
-            _fits.move_to_end(call)
+    found, = _fits.take([call])
     if found is None:
         found = _fit(keys, texts, margin, top, pad, level_share, level_least)
-        with _kept_lock:
-            _fits[call] = found
-            while len(_fits) > _FITS:
-                _fits.popitem(last=False)
+        _fits.keep([(call, found)])
     return tuple(a.copy() for a in found)
 
 
