@@ -17,7 +17,8 @@ from ..weave.model import Weave
 from .book import CURL
 from .notches import widen_notches
 from .pages import FOLD, PageArea, _fits, rect_sides
-from .strips import Strip, flat_angle, outline_of, tint
+from .slim import outline_of
+from .strips import Strip, flat_angle, tint
 from .unfold import OVERLAP, Unfolding, UnfoldError, dashed
 
 MIN_FOLD = math.radians(1.0)  # joints flatter than this are not drawn as folds

@@ -21,7 +21,7 @@ from ..layout.label_checks import figures as label_figures
 from ..layout.drawing import Polygons, Polylines, Sheet, Text
 from ..layout.labels import MIN_CAP, text_box
 from .pages import FURNITURE_GAP
-from .strips import narrowest_feature
+from .slim import narrowest_feature
 
 SLACK = 1e-6  # mm
 

@@ -129,16 +129,20 @@ def widen_notches(outline: shapely.Polygon, minimum: float = MIN_CUT) -> shapely
     return shapely.Polygon(ring) if changed else outline
 
 
+def notch_mouths(polygon) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """((m, 2) corners, (m,) their :func:`mouth`) of every notch of ``polygon``: a corner cut
+    in from outside whose sides are less than ``V`` apart."""
+    ring = np.asarray(orient(polygon, 1.0).exterior.coords)[:-1]  # anticlockwise
+    u, w = np.roll(ring, 1, axis=0) - ring, np.roll(ring, -1, axis=0) - ring
+    concave = u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0] > 0  # turning right, inward
+    cosine = (u * w).sum(axis=1) / np.maximum(np.hypot(*u.T) * np.hypot(*w.T), 1e-300)
+    corners = np.flatnonzero(concave & (cosine > np.cos(V)))
+    return ring[corners], np.array([mouth(ring, int(k)) for k in corners], dtype=float)
+
+
 def narrowest_notch(polygons) -> NDArray[np.float64]:
-    """(N,) per polygon the narrowest :func:`mouth` of its notches (corners cut in from
-    outside whose sides are less than ``V`` apart), inf where it has none: the width of paper
-    a blade must clear between the notch's two sides where the shorter one ends."""
-    out = []
-    for polygon in np.asarray(polygons, dtype=object).tolist():  # outlines of a sheet
-        ring = np.asarray(orient(polygon, 1.0).exterior.coords)[:-1]  # anticlockwise
-        u, w = np.roll(ring, 1, axis=0) - ring, np.roll(ring, -1, axis=0) - ring
-        concave = u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0] > 0  # turning right, inward
-        cosine = (u * w).sum(axis=1) / np.maximum(np.hypot(*u.T) * np.hypot(*w.T), 1e-300)
-        corners = np.flatnonzero(concave & (cosine > np.cos(V)))
-        out.append(min((mouth(ring, int(k)) for k in corners), default=np.inf))
-    return np.asarray(out, dtype=float)
+    """(N,) per polygon the narrowest :func:`mouth` of its notches (:func:`notch_mouths`), inf
+    where it has none: the width of paper a blade must clear between the notch's two sides
+    where the shorter one ends."""
+    return np.array([notch_mouths(polygon)[1].min(initial=np.inf)
+                     for polygon in np.asarray(polygons, dtype=object).tolist()], dtype=float)

@@ -14,7 +14,8 @@ from ..layout.drawing import (Layer, Polygons, Polylines, Style, Text, polygons_
 from ..layout.contrast import text_colour_on
 from ..layout.labels import DESCENT, MIN_CAP, text_box, text_width, wrap
 from ..numeric import affine
-from .strips import Strip, flat_angle, outline_of, tint
+from .slim import outline_of
+from .strips import Strip, flat_angle, tint
 from .unfold import dashed
 
 HEADER = 10.0  # mm above the printable area for the title line and one line of subtitle

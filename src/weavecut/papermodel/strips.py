@@ -21,15 +21,15 @@ from ..layout.contrast import text_colour_on
 from ..layout.drawing import Text
 from ..layout.labels import uprights
 from .modules import ModulePlan
-from .notches import NotchError, narrowest_notch, widen_notches
+from .notches import NotchError, widen_notches
+from .slim import given_to_tiles, holds, outline_of, thickened, thin_parts
+from .slim import SLIVER, narrowest_feature, slimmest  # noqa: F401 (the measures, as strips.*)
 from .symmetry import tile_centres
 from ..layout.weave_figure import tile_rings
 
 LIGHT = 0.22  # share of the over strand's colour in an under-crossing tile (rest white)
 MIN_PIECE = 3.0  # mm: the narrowest part of a paper strip that scissors cut without it tearing
-SLIVER = 6.0  # mm: a part narrower than a width may stick out this far beyond the parts that
-# are as wide (a sharp corner: 2.3 mm for the star's 35-degree tips at 3 mm), no farther (a
-# sliver); a fixed length, so that a wider disc never passes what a narrower one fails
+
 
 
 def tint(colour: str, share: float = LIGHT) -> str:
@@ -233,93 +233,12 @@ def build_copies(weave: Weave, plan: ModulePlan, colours: list[str], scale: floa
     return out
 
 
-def outline_of(shapes, eps: float) -> shapely.Polygon:
-    """The cut line round ``shapes`` (tiles of one strip): their union without holes; tiles
-    that only touch at a corner are joined by growing them ``eps``."""
-    outline = shapely.union_all(shapes)
-    if outline.geom_type != "Polygon":  # tiles touching at a corner: keep one piece
-        outline = shapely.union_all(shapely.buffer(shapes, eps, join_style="mitre"))
-    if outline.geom_type != "Polygon":
-        outline = max(shapely.get_parts(outline), key=lambda g: g.area)
-    return shapely.Polygon(outline.exterior)
-
-
 def flat_angle(outline) -> float:
     """Degrees to turn ``outline`` so that its smallest rectangle's long side lies along x."""
     rect = np.asarray(shapely.minimum_rotated_rectangle(outline).exterior.coords)[:4]
     edges = np.diff(np.vstack([rect, rect[:1]]), axis=0)
     long = edges[np.argmax(snap(np.hypot(edges[:, 0], edges[:, 1])))]
     return float(-np.degrees(np.arctan2(long[1], long[0])))
-
-
-def opened(polygons, width: float) -> NDArray[np.object_]:
-    """The parts of ``polygons`` a disc ``width`` across reaches inside them (a round opening)."""
-    shrunk = shapely.buffer(np.asarray(polygons, dtype=object), -width / 2, quad_segs=8)
-    return shapely.buffer(shrunk, width / 2, quad_segs=8)
-
-
-def holds(polygons, width: float, slivers: bool = True) -> NDArray[np.bool_]:
-    """(N,) True for every polygon that is no thinner than ``width`` anywhere it matters to a
-    pair of scissors: what a disc ``width`` across reaches inside it is one piece (no neck),
-    and no corner reaches farther than ``SLIVER`` beyond it (no sliver; with ``slivers``
-    False, necks only: what widening mends and a larger size always cures)."""
-    polygons = np.asarray(polygons, dtype=object)
-    core = opened(polygons, width)
-    one = (shapely.get_num_geometries(core) == 1) & ~shapely.is_empty(core)
-    if not slivers:
-        return one
-    coords, owner = shapely.get_coordinates(polygons, return_index=True)
-    far = shapely.distance(shapely.points(coords), core[owner])
-    reach = np.zeros(len(polygons))
-    np.maximum.at(reach, owner, np.nan_to_num(far, nan=np.inf))
-    return one & (reach <= SLIVER)
-
-
-def slimmest(polygons, step: float = 0.05, largest: float = 50.0) -> NDArray[np.float64]:
-    """(N,) per polygon the largest width (to ``step`` mm, at most ``largest``) it
-    :func:`holds`: the narrowest neck or sliver a maker must cut round."""
-    polygons = np.asarray(polygons, dtype=object)
-    low, high = np.zeros(len(polygons)), np.full(len(polygons), largest)
-    while (high - low > step).any():  # bisection steps, all polygons at once
-        mid = (low + high) / 2
-        ok = holds(polygons, mid)
-        low, high = np.where(ok, mid, low), np.where(ok, high, mid)
-    return low
-
-
-def narrowest_feature(polygons) -> NDArray[np.float64]:
-    """(N,) per outline the narrowest part a blade must cut round or clear: its
-    :func:`slimmest` neck or sliver of paper, or the mouth of its narrowest notch
-    (:func:`.notches.narrowest_notch`), whichever is narrower."""
-    return np.minimum(slimmest(polygons), narrowest_notch(polygons))
-
-
-def thin_parts(outline: shapely.Polygon, width: float) -> list:
-    """The parts of ``outline`` that make it fail :func:`holds`: of what a disc ``width``
-    across does not reach, the bits that join two reached parts (necks) and those reaching
-    farther than ``SLIVER`` out of them (slivers); not the corners' small chips."""
-    core = opened([outline], width)[0]
-    cores = list(shapely.get_parts(core))
-    out = []
-    for bit in shapely.get_parts(shapely.difference(outline, core)):  # a few bits
-        if bit.area <= 0:
-            continue
-        touching = sum(shapely.distance(c, bit) < 1e-6 * width for c in cores)
-        far = shapely.distance(shapely.points(shapely.get_coordinates(bit)), core).max()
-        if touching > 1 or not far <= SLIVER:
-            out.append(bit)
-    return out
-
-
-def areal(geometry):
-    """The polygons of an overlay's result, as one (Multi)Polygon. GEOS can return the union of
-    a tile and a filled notch that meet along a nearly straight edge as a GeometryCollection:
-    the polygon, and that edge collapsed by its snap-rounding into a LineString of no area (a
-    strip of the Voronoi example). A collection has no boundary (``shapely.boundary`` gives
-    None, and its length NaN), and a tile is an area: its lines are dropped."""
-    parts = shapely.get_parts(geometry)
-    parts = parts[shapely.get_type_id(parts) == 3]
-    return parts[0] if len(parts) == 1 else shapely.multipolygons(parts)
 
 
 def widened(outline: shapely.Polygon, tiles: NDArray[np.object_], width: float | None = None
@@ -347,13 +266,7 @@ def widened(outline: shapely.Polygon, tiles: NDArray[np.object_], width: float |
     else:
         return outline, tiles
     added = [g for g in shapely.get_parts(shapely.difference(grown, outline)) if g.area > 0]
-    tiles = tiles.copy()
-    for bit in added:  # a few bits per strip
-        shared = shapely.length(shapely.intersection(shapely.boundary(tiles), bit.boundary))
-        k = int(np.lexsort((np.arange(len(tiles)), snap(shapely.distance(tiles, bit)),
-                            -snap(shared)))[0])
-        tiles[k] = areal(shapely.union(tiles[k], bit))
-    return grown, tiles
+    return grown, given_to_tiles(tiles, added)
 
 
 def _strip_shape(visits, tiles, centres, scale, tile_mm):
@@ -376,7 +289,7 @@ def _strip_shape(visits, tiles, centres, scale, tile_mm):
         opened = outline
     if opened is not outline:
         shapes = shapely.intersection(shapes, opened)
-    return opened, shapes, frame
+    return *thickened(opened, shapes, MIN_PIECE), frame
 
 
 def _strip(weave, s, visits, over, outline, shapes, frame, labels, colours) -> Strip:
