@@ -14,8 +14,8 @@ from ..layout.drawing import (Layer, Polygons, Polylines, Style, Text, polygons_
 from ..layout.contrast import text_colour_on
 from ..layout.labels import DESCENT, MIN_CAP, text_box, text_width, wrap
 from ..numeric import affine
-from .slim import outline_of
-from .strips import Strip, flat_angle, tint
+from .slim import outline_of, thickened
+from .strips import MIN_PIECE, Strip, flat_angle, tint
 from .unfold import dashed
 
 HEADER = 10.0  # mm above the printable area for the title line and one line of subtitle
@@ -127,9 +127,10 @@ def split_strip(strip: Strip, max_length: float, max_width: float) -> list[Strip
     eps = 1e-6 * max(strip.length, 1.0)
     pieces = []
     for i, (a, b) in enumerate(runs):
-        part = slice(a, b + 1)
+        part = slice(a, b + 1)  # cut where a strip was mended: mended again (see .slim)
+        outline, mine = thickened(outline_of(tiles[part], eps), tiles[part], MIN_PIECE)
         piece = replace(strip, label=f"{strip.label} {i + 1}/{len(runs)}",
-                        outline=outline_of(tiles[part], eps), tiles=tiles[part],
+                        outline=outline, tiles=mine,
                         fills=strip.fills[part], over=strip.over[part], names=strip.names[part],
                         glue=tiles[b:b + 1] if i + 1 < len(runs) else None)
         flat = piece.moved(affine(flat_angle(piece.outline)))

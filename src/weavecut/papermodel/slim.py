@@ -100,11 +100,10 @@ def areal(geometry):
     return parts[0] if len(parts) == 1 else shapely.multipolygons(parts)
 
 
-def cuts(outline: shapely.Polygon, width: float) -> bool:
-    """True if ``outline`` :func:`holds` ``width`` (no neck, no sliver) and every notch's mouth
-    is at least that wide."""
-    return bool(holds([outline], width)[0]) and bool(
-        narrowest_notch([outline])[0] >= width * (1 - 1e-9))
+def cuts(polygons, width: float) -> NDArray[np.bool_]:
+    """(N,) True for every polygon that :func:`holds` ``width`` (no neck, no sliver) and whose
+    notches all have a mouth at least that wide: what scissors cut cleanly."""
+    return holds(polygons, width) & (narrowest_notch(polygons) >= width * (1 - 1e-9))
 
 
 HAIR = 0.05  # mm: steps of a mended outline this small are rounding (GEOS's unions), not notches
@@ -120,22 +119,31 @@ def thickened(outline: shapely.Polygon, tiles: NDArray[np.object_], width: float
     steps under ``HAIR`` smoothed, each added bit printed as the tile beside it
     (:func:`given_to_tiles`). Unchanged when it already cuts, or when no radius helps (the
     caller reports it)."""
-    if cuts(outline, width):
+    if cuts([outline], width)[0]:
         return outline, tiles
     thin = shapely.union_all(thin_parts(outline, width))
     for radius in (0.5 * width, 0.75 * width, width):
         thick = shapely.union(outline, shapely.buffer(thin, radius, quad_segs=2))
         closed = shapely.buffer(shapely.buffer(thick, radius, join_style="mitre"), -radius,
                                 join_style="mitre")
-        grown = shapely.simplify(outline_of(np.array([thick, closed], dtype=object),
-                                            1e-6 * width), HAIR)
-        if cuts(grown, width):
+        grown = _smooth(outline_of(np.array([thick, closed], dtype=object), 1e-6 * width))
+        if cuts([grown], width)[0]:
             break
     else:
         return outline, tiles
     kept = np.array([areal(g) for g in shapely.intersection(tiles, grown)], dtype=object)
     added = shapely.difference(grown, shapely.union_all(kept))
     return grown, given_to_tiles(kept, [g for g in shapely.get_parts(added) if g.area > 0])
+
+
+def _smooth(outline: shapely.Polygon) -> shapely.Polygon:
+    """``outline`` without steps under ``HAIR`` and without places where it comes within a
+    tenth of that of itself (a mitred closing: turned to a strip's frame, such a place would
+    cross itself)."""
+    eps = HAIR / 10
+    closed = shapely.buffer(shapely.buffer(outline, eps, join_style="mitre"), -eps,
+                            join_style="mitre")
+    return shapely.simplify(outline_of(np.array([closed, outline], dtype=object), eps), HAIR)
 
 
 def given_to_tiles(tiles: NDArray[np.object_], added) -> NDArray[np.object_]:

@@ -22,7 +22,7 @@ from ..layout.drawing import Text
 from ..layout.labels import uprights
 from .modules import ModulePlan
 from .notches import NotchError, widen_notches
-from .slim import given_to_tiles, holds, outline_of, thickened, thin_parts
+from .slim import areal, given_to_tiles, holds, outline_of, thickened, thin_parts
 from .slim import SLIVER, narrowest_feature, slimmest  # noqa: F401 (the measures, as strips.*)
 from .symmetry import tile_centres
 from ..layout.weave_figure import tile_rings
@@ -139,7 +139,7 @@ def moved_strips(strips, matrices, angles) -> list[Strip]:
     owner = np.repeat(np.repeat([s for s, _, _ in where],
                                 [1 if k is None else k for _, _, k in where]),
                       shapely.get_num_coordinates(shapes)) if len(shapes) else np.zeros(0, int)
-    moved = iter(shapely.transform(shapes, lambda xy: _apply(m[owner], xy)))
+    moved = iter(_valid(shapely.transform(shapes, lambda xy: _apply(m[owner], xy))))
     fields: list[dict] = [{} for _ in strips]
     for s, name, k in where:
         fields[s][name] = next(moved) if k is None else np.array(
@@ -153,6 +153,18 @@ def moved_strips(strips, matrices, angles) -> list[Strip]:
     return [replace(strip, **fields[s], texts=tuple(next(texts) for _ in strip.texts),
                     frame=matmul(matrix, strip.frame))
             for s, (strip, matrix) in enumerate(zip(strips, m))]
+
+
+def _valid(shapes: NDArray[np.object_]) -> NDArray[np.object_]:
+    """``shapes`` with every polygon that turning made cross itself (an irregular strip whose
+    outline comes within rounding of itself) made valid again, as a Polygon if it was one."""
+    bad = np.flatnonzero(~shapely.is_valid(shapes))
+    for k in bad.tolist():  # rare: a few shapes of an irregular mesh's strips
+        fixed = areal(shapely.make_valid(shapes[k], method="structure", keep_collapsed=False))
+        if shapes[k].geom_type == "Polygon" and fixed.geom_type != "Polygon":
+            fixed = outline_of(shapely.get_parts(fixed), 1e-9 * max(fixed.length, 1.0))
+        shapes[k] = fixed
+    return shapes
 
 
 def _apply(m, xy) -> NDArray[np.float64]:
