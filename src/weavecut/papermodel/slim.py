@@ -126,13 +126,21 @@ def thickened(outline: shapely.Polygon, tiles: NDArray[np.object_], width: float
         thick = shapely.union(outline, shapely.buffer(thin, radius, quad_segs=2))
         closed = shapely.buffer(shapely.buffer(thick, radius, join_style="mitre"), -radius,
                                 join_style="mitre")
-        grown = _smooth(outline_of(np.array([thick, closed], dtype=object), 1e-6 * width))
+        grown = thick
+        for fill in shapely.get_parts(shapely.difference(closed, thick)).tolist():  # a few
+            more = shapely.union(grown, fill)  # a notch, not a gap between two arms of a
+            # curled strip (a hole)
+            if 0 < fill.area <= 4 * width ** 2 and not shapely.get_num_interior_rings(more):
+                grown = more
+        grown = _smooth(outline_of(np.array([grown]), 1e-6 * width))
         if cuts([grown], width)[0]:
             break
     else:
         return outline, tiles
     kept = np.array([areal(g) for g in shapely.intersection(tiles, grown)], dtype=object)
-    added = shapely.difference(grown, shapely.union_all(kept))
+    added = shapely.buffer(shapely.buffer(shapely.difference(grown, shapely.union_all(kept)),
+                                          -HAIR, join_style="mitre"), HAIR, join_style="mitre")
+    # (the smoothed outline's hairs along the tiles stay unprinted: under a cut line)
     return grown, given_to_tiles(kept, [g for g in shapely.get_parts(added) if g.area > 0])
 
 
