@@ -1,0 +1,114 @@
+"""Strips an irregular mesh makes too thin to cut are mended, not warned about (issue 29): the
+Voronoi patch of the README ("Paper models") had strip A15's end tile hung on a corner and
+ending in two needles, and 1 mm slivers and slits elsewhere (slimmest piece 0.0 mm). Every
+piece the book cuts, split pieces too, now cuts at ``MIN_PIECE`` by the product's measure and
+by ``cut_oracle``; the added paper is printed as a tile beside it, no tile loses more than a
+hair, and no tile is laid over another."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import shapely
+from hypothesis import given, strategies as st
+
+from weavecut.mesh_io import read_valid_mesh
+from weavecut.papermodel import book as book_module, slim, strips
+from weavecut.papermodel.modules import plan_modules
+from weavecut.papermodel.pages import PageArea
+from weavecut.subdivision import subdivide
+from weavecut.weave.snub_weave import snub_weaves
+
+from tests.papermodel.cut_oracle import problems
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _hung(gap: float, needle: float) -> tuple[shapely.Polygon, np.ndarray]:
+    """Three tiles: two 12 mm squares side by side, a third square meeting the second only at
+    a corner (``gap`` 0: a point; below 0 they overlap by a hair) and a needle ``needle`` mm wide, 12 mm long, as a fourth."""
+    tiles = np.array([shapely.box(0, 0, 12, 12), shapely.box(12, 0, 24, 12),
+                      shapely.box(24 + gap, 12, 36 + gap, 24),
+                      shapely.box(36 + gap, 18 - needle / 2, 48 + gap, 18 + needle / 2)],
+                     dtype=object)
+    return strips.outline_of(tiles, 1e-6), tiles
+
+
+@given(needle=st.floats(0.2, 2.5), gap=st.sampled_from([0.0, -1e-4]))
+def test_a_tile_hung_on_a_corner_with_a_needle_is_thickened(needle, gap):
+    """However thin the needle and whether the tiles touch or overlap by a hair, the mended strip
+    cuts at 3 mm, keeps every tile's paper (less hairs), prints what it adds, and its tiles do
+    not overlap."""
+    outline, tiles = _hung(gap, needle)
+    assert not slim.cuts([outline], strips.MIN_PIECE)[0]
+    grown, mended = slim.thickened(outline, tiles, strips.MIN_PIECE)
+    assert slim.cuts([grown], strips.MIN_PIECE)[0]
+    assert not problems([grown], strips.MIN_PIECE, strips.SLIVER)
+    hairs = slim.HAIR * outline.length
+    assert shapely.difference(outline, grown).area <= hairs
+    for before, after in zip(tiles, mended):
+        assert shapely.difference(before, after).area <= hairs
+    assert shapely.difference(grown, shapely.union_all(mended)).area <= hairs
+    assert sum(shapely.area(mended)) == pytest.approx(shapely.union_all(mended).area, abs=1e-6)
+
+
+def test_a_strip_that_cuts_is_left_as_it_is():
+    outline, tiles = _hung(0.0, 12.0)
+    outline = shapely.union(outline, shapely.box(12, 6, 30, 18))
+    assert slim.thickened(outline, tiles, strips.MIN_PIECE)[0] is outline
+
+
+@pytest.fixture(scope="module")
+def voronoi_pieces():
+    """Every labelled piece of the README's Voronoi patch (level 2, 20 mm tiles, A4), as
+    ``strands`` makes them, and the strips before splitting."""
+    mesh = read_valid_mesh(str(ROOT / "examples" / "voronoi-patch.json"))
+    weave = snub_weaves(subdivide(mesh, 2))[-1]
+    plan = plan_modules(weave, heading=-np.pi / 2)
+    colours = ["#336699"] * weave.n_strands
+    pieces, _ = book_module.labelled_pieces(weave, plan, colours, 20.0, "mixed",
+                                            PageArea(210.0, 297.0, 10.0, None))
+    whole = strips.build_strips(weave, plan, colours, 20.0 / strips.octagon_size(weave),
+                                range(weave.n_strands))
+    return weave, plan, pieces, whole
+
+
+@pytest.mark.slow
+def test_every_piece_of_the_voronoi_patch_cuts(voronoi_pieces):
+    """Slimmest piece 0.0 mm before (A15's corner joint, needles, slits): every piece's cut
+    outline now cuts at 3 mm, by ``slim.cuts`` and by the oracle."""
+    _, _, pieces, _ = voronoi_pieces
+    cut = [p.cut for p in pieces]
+    assert slim.cuts(cut, strips.MIN_PIECE).all(), [
+        p.label for p, ok in zip(pieces, slim.cuts(cut, strips.MIN_PIECE)) if not ok]
+    assert not problems(cut, strips.MIN_PIECE, strips.SLIVER)
+    assert slim.narrowest_feature(cut).min() >= strips.MIN_PIECE
+
+
+@pytest.mark.slow
+def test_the_voronoi_patchs_mended_tiles_keep_their_paper(voronoi_pieces):
+    """Each strip's tiles are valid areas that keep (less hairs) the paper the weave's tiles
+    give them, cover the cut outline but for hairs, and overlap no more than the weave's own
+    tiles did (its twisted tiles made valid overlap by a few mm²)."""
+    weave, plan, _, whole = voronoi_pieces
+    model = strips.model_tiles(weave)
+    mended = 0
+    for strip in whole:
+        assert shapely.is_valid(strip.tiles).all() and shapely.is_valid(strip.outline)
+        visits, _ = weave.strand(strip.strand)
+        visits = visits[::-1] if plan.reversed[strip.strand] else visits
+        raw = shapely.make_valid(shapely.transform(
+            model[visits], lambda xy: xy @ strip.frame[:2, :2].T + strip.frame[:2, 2]),
+            method="structure", keep_collapsed=False)
+        hairs = slim.HAIR * strip.outline.length
+        lost = shapely.area(shapely.difference(raw, strip.tiles))
+        assert lost.max() <= hairs, strip.label
+        bare = shapely.difference(strip.outline, shapely.union_all(strip.tiles)).area
+        assert bare <= hairs, strip.label
+        overlap = sum(shapely.area(strip.tiles)) - shapely.union_all(strip.tiles).area
+        before = sum(shapely.area(raw)) - shapely.union_all(raw).area
+        assert overlap <= before + hairs, strip.label
+        mended += strip.outline.area > shapely.union_all(raw).area + hairs
+    assert mended >= 3
