@@ -105,10 +105,12 @@ def test_the_stars_neck_is_widened_and_printed():
 
 
 def test_a_strip_no_widening_saves_is_refused_with_the_size_that_works(monkeypatch):
-    """Asked for 5 mm necks, the star at 21 mm is refused, naming a tile size at which the
-    book is made (its necks then all 5 mm wide)."""
+    """Asked for 5 mm necks with no strip thickened (``slim.thickened`` mends what closing
+    notches does not), the star at 21 mm is refused, naming a tile size at which the book is
+    made (its necks then all 5 mm wide)."""
     for module in (book_module, strips):
         monkeypatch.setattr(module, "MIN_PIECE", 5.0)
+    monkeypatch.setattr(strips, "thickened", lambda outline, tiles, width: (outline, tiles))
     with pytest.raises(SizeError, match=r"neck narrower than 5 mm, too thin to cut") as refused:
         _star_book(21.0)
     need = float(str(refused.value).split("use --tile-size ")[-1].split("mm")[0])

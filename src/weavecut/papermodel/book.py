@@ -31,7 +31,7 @@ from .modules import ModulePlan, book_colours, plan_modules
 from .strip_labels import label_strips
 from .strips import (MIN_PIECE, Strip, build_copies, build_strips, moved_strips,
                      octagon_size, strip_width)
-from .slim import cuts
+from .slim import holds
 from .wording import PRINTED, Words, strip_runs
 
 ON_COVER = 24  # at most this many unnamed crossings are tried on page 1
@@ -163,7 +163,7 @@ def strip_set(weaves: list[Weave], pal: Palette, area: PageArea, tile_size: floa
     Raises
     ------
     SizeError when strips would be narrower than 8 mm, a label smaller than 2.5 mm or a part of
-    a strip narrower than ``MIN_PIECE`` (see :func:`.slim.cuts`)
+    a strip narrower than ``MIN_PIECE`` (see :func:`.slim.holds`)
     """
     if layout not in LAYOUTS:
         raise ValueError(f"layout must be one of {LAYOUTS}, got {layout!r}")
@@ -179,11 +179,11 @@ def strip_set(weaves: list[Weave], pal: Palette, area: PageArea, tile_size: floa
         need = smallest_tile_size(weave, plan, colours, tile_size, layout, area)
         raise SizeError(f"some labels would be {small:.1f} mm tall at --tile-size {tile_size:.1f}mm"
                         f"; labels need {MIN_CAP:g} mm: {_use(weave, need)}")
-    slim = ~cuts([p.cut for p in pieces], MIN_PIECE)
-    if slim.any():  # a neck, sliver or notch no widening or filling mends
+    slim = ~holds([p.cut for p in pieces], MIN_PIECE, slivers=False)
+    if slim.any():  # a neck no widening or thickening mends (see .slim.thickened)
         worst = pieces[int(np.flatnonzero(slim)[0])]
-        neck = (f"strip {worst.label} would have a neck, sliver or notch narrower than "
-                f"{MIN_PIECE:g} mm, too thin to cut, at --tile-size {tile_size:.1f}mm")
+        neck = (f"strip {worst.label} would have a neck narrower than {MIN_PIECE:g} mm, too "
+                f"thin to cut, at --tile-size {tile_size:.1f}mm")
         try:
             need = smallest_tile_size(weave, plan, colours, tile_size, layout, area)
         except SizeError:  # tiles that touch at a corner: no size widens them
@@ -365,11 +365,11 @@ def _reads(pieces: list[Strip]) -> bool:
 def smallest_tile_size(weave: Weave, plan: ModulePlan, colours, start: float, layout: str,
                        area: PageArea) -> float:
     """The smallest tile size, ``start`` or a whole mm above it, at which every label reaches
-    ``MIN_CAP`` and every strip cuts at ``MIN_PIECE``: grown by a quarter until it works, then
+    ``MIN_CAP`` and every strip holds ``MIN_PIECE``: grown by a quarter until it works, then
     bisected."""
     def reads(t: float) -> bool:
         pieces = labelled_pieces(weave, plan, colours, t, layout, area)[0]
-        return _reads(pieces) and bool(cuts([p.cut for p in pieces], MIN_PIECE).all())
+        return _reads(pieces) and bool(holds([p.cut for p in pieces], MIN_PIECE, False).all())
 
     if reads(start):
         return start
