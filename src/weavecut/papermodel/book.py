@@ -315,7 +315,7 @@ def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitl
     sheets = []
     for n in range(first, first + n_strip):  # pages
         on_page = [p for k, p in placed if k == n]
-        names_here = strip_runs({p.label.split(" ")[0] for p in on_page})
+        names_here = strip_runs({p.label for p in on_page})
         layers = strip_layers(on_page) + page_layers(
             area, title, (f"{note(n)} " if note else "") + subtitle(names_here), n, total,
             colours[on_page[0].strand],

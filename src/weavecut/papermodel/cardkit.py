@@ -84,7 +84,7 @@ def fewer_colours(weaves: list[Weave], plan: ModulePlan, n_colours: int
 
 def card_words(cut: CardCut, files: tuple[str, ...]) -> Words:
     """The card's words, with page 1's sentence on the sheets and which strips each holds."""
-    where = "; ".join(f"sheet {n}: " + strip_runs({p.label.split(" ")[0] for p in pieces})
+    where = "; ".join(f"sheet {n}: " + strip_runs({p.label for p in pieces})
                       for n, pieces in enumerate(cut.pieces, start=1))
     names = files[0] if len(files) == 1 else f"{files[0]} to {files[-1]}"
     count = "the card sheet" if len(files) == 1 else f"the {len(files)} card sheets"

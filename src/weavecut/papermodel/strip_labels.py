@@ -53,8 +53,8 @@ def label_strips(strips: list[Strip], tile_mm: float) -> list[Strip]:
         return []
     lay = _Tiles(strips)
     own, under, ids, id_tiles = _owners(lay)
-    # IDs first (spread onto the neighbours if they must), a piece's number ("2/3") in another
-    # own tile, then the names round them
+    # IDs first (spread onto the neighbours if they must), a piece's number ("2/3") in the own
+    # tile nearest, then the names round them
     first = _place(lay, [w[:1] for w in ids], [[] for _ in strips])
     taken = [[*p, *text_boxes(t)] for t, p, _ in first]
     second = _place(lay, [w[1:] for w in ids], taken)
@@ -150,7 +150,8 @@ def _congruent(strips: list[Strip]) -> np.ndarray:
 def _owners(lay: _Tiles):
     """(own tiles, under tiles, wanted IDs, the IDs' tiles) per strip: the ID goes in the largest own tile that
     holds it (a long strip's also in the largest of its other half), a piece's number in
-    another own tile, and the first tile of a piece with a mark keeps its room for the mark."""
+    the own tile nearest that, and the first tile of a piece with a mark keeps its room for
+    the mark."""
     empty = shapely.is_empty(lay.regions)
     area = snap(shapely.area(lay.regions))
     own, under, cand = [], [], []
@@ -178,8 +179,9 @@ def _owners(lay: _Tiles):
                 tiles += [int(c[r]) for r in rank if half[r] and size[r] >= MIN_CAP][:1]
         name, _, part = strip.label.partition(" ")
         w = [(i, name, ID_SIZE) for i in tiles]
-        if part and tiles:
-            spare = [int(c[r]) for r in rank if int(c[r]) not in tiles]
+        if part and tiles:  # the part's number in the own tile nearest its ID
+            spare = sorted((int(t) for t in c if int(t) not in tiles),
+                           key=lambda t: (abs(t - tiles[0]), t))
             if spare:
                 w.append((spare[0], part, NAME_SIZE))
             else:  # one own tile: it says both ("B 2/3")

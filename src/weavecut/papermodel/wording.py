@@ -40,17 +40,27 @@ def _key_text(key) -> str:
 
 
 def strip_runs(labels) -> str:
-    """"A1-A4, A6, X1" from strip labels in any order."""
+    """"A1-A4, A6, A7 1/2, X1" from strip labels in any order: whole strips in runs, a part of
+    a split strip ("A7 1/2") by itself, where its strip would stand."""
     out, start, prev = [], None, None
-    for lab in sorted(labels, key=_label_key) + [None]:
+    whole = [lab for lab in labels if " " not in lab]
+    parts = {}
+    for lab in labels:
+        if " " in lab:
+            parts.setdefault(lab.partition(" ")[0], []).append(lab)
+    for lab in sorted([*whole, *parts], key=_label_key) + [None]:
         key = None if lab is None else _label_key(lab)
-        if prev is not None and key is not None and key[0] == prev[0] and key[1] == prev[1] + 1:
+        if (prev is not None and key is not None and key[0] == prev[0]
+                and key[1] == prev[1] + 1 and lab not in parts):
             prev = key
             continue
         if start is not None:
             out.append(_key_text(start) if start == prev
                        else f"{_key_text(start)}-{_key_text(prev)}")
         start = prev = key
+        if lab in parts:  # a split strip's parts on this page, each by itself
+            out += sorted(parts[lab])
+            start = prev = None
     return ", ".join(out)
 
 
@@ -59,7 +69,7 @@ def page_index(book) -> str:
     ``StrandBook``."""
     parts = []
     for n in book.strip_pages:
-        labels = {p.label.split(" ")[0] for k, p in book.pieces if k == n}
+        labels = {p.label for k, p in book.pieces if k == n}
         parts.append(f"p. {n}: {strip_runs(labels)}")
     return "; ".join(parts)
 
@@ -122,8 +132,9 @@ PRINTED = Words(
     unnamed="A light part with no name is a crossing too small to name on the strip: it is "
             "called out on {where} ({meaning}).",
     glue="Some strips are printed in parts, numbered beside their ID (strip {name}: \"1/{n}\" to "
-         "\"{n}/{n}\"): spread glue on the grey band at the end of a part and stick it under the "
-         "start of the next part before weaving, so the tiles line up.",
+         "\"{n}/{n}\"; page 1 says which page holds each part): spread glue on the grey band "
+         "\"glue 1\" at the end of part 1 and stick it under the tile marked \"1\" at the start "
+         "of part 2 (\"glue 2\" under \"2\", and so on) before weaving, so the tiles line up.",
     face_up="coloured side up",
     weft_under="where a weft strip is printed light it goes under the strand named there, where "
                "it shows its own colour it lies on top",
@@ -151,8 +162,9 @@ CARD = Words(
             "strip: the strip goes under there too, and the crossing is called out on {where} "
             "({meaning}).",
     glue="Some strips are cut in parts, numbered beside their ID (strip {name}: \"1/{n}\" to "
-         "\"{n}/{n}\"): spread glue on the end of a part beyond its engraved line and stick "
-         "it under the start of the next part before weaving, so the tiles line up.",
+         "\"{n}/{n}\"): spread glue on the end of a part beyond its engraved line "
+         "(\"glue 1\") and stick it under the tile marked \"1\" at the start of the next part "
+         "before weaving, so the tiles line up.",
     face_up="engraved side up",
     weft_under="where a weft strip carries a small engraved ID it goes under the strand of that "
                "ID, elsewhere it lies on top",
