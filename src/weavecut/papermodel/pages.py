@@ -172,9 +172,13 @@ def strip_layers(strips: list[Strip]) -> list[Layer]:
         layers.append(Layer("glue", "paint", (polygons_from_shapely(
             glue, Style("#555555", 0.15, GLUE)),)))
     folds_by_ink: dict[str, list] = {}
-    for s in strips:
+    for s in strips:  # a fold's dashes on the glue band in the ink that reads on the band
+        band = None if s.glue is None else shapely.union_all(s.glue)
         for fold, ink in zip(s.folds, s.fold_inks):
-            folds_by_ink.setdefault(ink, []).extend(shapely.get_parts(fold))
+            for dash in shapely.get_parts(fold).tolist():
+                on_band = band is not None and band.contains(shapely.centroid(dash))
+                folds_by_ink.setdefault(text_colour_on(GLUE) if on_band else ink,
+                                        []).append(dash)
     if folds_by_ink:
         layers.append(Layer("folds", "score", tuple(polylines_from_lines(
             [np.asarray(f.coords) for f in lines], replace(FOLD, stroke=ink))
