@@ -29,15 +29,14 @@ from .packing import pack
 from .pages import GAP, PageArea, page_layers, page_span, split_strip, strip_layers
 from .modules import ModulePlan, book_colours, plan_modules
 from .strip_labels import label_strips
-from .strips import (MIN_PIECE, Strip, build_copies, build_strips, moved_strips,
+from .strips import (MIN_PIECE, Strip, build_copies, build_strips, holds, moved_strips,
                      octagon_size, strip_width)
-from .slim import holds
 from .wording import PRINTED, Words, strip_runs
 
 ON_COVER = 24  # at most this many unnamed crossings are tried on page 1
 CURL = 0.45  # a strip wider than this share of the page (a curl) is cut into pieces
 MIN_STRIP = 8.0  # mm: narrower strips tear (paper section 5.2)
-WARN_STRIP = 12.0  # mm: below this, strips are fiddly
+WARN_STRIP = 11.0  # mm: fiddly below (the paper's 23 cm pentagon was woven from 11.1 mm strips)
 LAYOUTS = ("mixed", "module")
 
 
