@@ -71,7 +71,8 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
                      + page_index(book) + ".")
     lines.append(words.ids)
     if crossings:
-        lines.append(f"{too_small(len(crossings))} to carry a name on their strip "
+        lines.append(f"{too_small(len(crossings))} to carry a name on "
+                     f"{'its' if len(crossings) == 1 else 'their'} strip "
                      f"({words.unnamed_mark}): called out below, "
                      f"{crossing_meaning(plan.labels, crossings[0])}.")
     elif book.extra_pages[-1] > 2:
@@ -107,7 +108,7 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
     layers = [Layer("pattern", "paint", (*shapes, *callouts)), Layer("ids", "label", tuple(ids)),
               Layer("crossings", "label", tuple(named)), Layer("notes", "label", tuple(texts))]
     layers += page_layers(area, title, "Assembly sheet: the finished pattern with every "
-                          "strand's ID (copy letter + number)", 1, total,
+                          "strand's ID" + (" (copy letter + number)" if k > 1 else ""), 1, total,
                           book.colours[int(plan.copies[0, 0])] if m else "#3e9fb0",
                           legend=words.legend)
     return (Sheet(area.width, area.height, tuple(layers), "page 1: assembly"),

@@ -31,7 +31,7 @@ from .modules import ModulePlan, book_colours, plan_modules
 from .strip_labels import label_strips
 from .strips import (MIN_PIECE, Strip, build_copies, build_strips, holds, moved_strips,
                      octagon_size, strip_width)
-from .wording import PRINTED, Words, strip_runs
+from .wording import PRINTED, Words, left_out_note, strip_runs
 
 ON_COVER = 24  # at most this many unnamed crossings are tried on page 1
 CURL = 0.45  # a strip wider than this share of the page (a curl) is cut into pieces
@@ -249,13 +249,9 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         placed, sheets = strip_sheets(pieces, kinds, area, title, subtitle, colours, first,
                                       places, page_note)
         where = page_span(range(3, first) if own else [1])
-        names = "name is" if left_out == 1 else "names are"
-        strips = (f"each print's strips ({len(crossings)} on the model)" if layout == "module"
-                  else "their strips")
-        notes = warnings + ((f"{left_out} under-crossing {names} left off {strips}: the "
-                             f"tile under them, even with a plate over its neighbours, is too "
-                             f"small for {MIN_CAP:g} mm text; they are called out on {where}",)
-                           if left_out else ())
+        strips = f"each print's strips ({len(crossings)} on the model)" if (
+            layout == "module") else None
+        notes = warnings + ((left_out_note(left_out, strips, where),) if left_out else ())
         return (StrandBook(Drawing((), title), plan, tuple(colours), layout, placed,
                            tuple(range(first, first + len(sheets))), tuple(range(1, first)),
                            scale, area, width, tile_size, notes), sheets, len(sheets) + first - 1)

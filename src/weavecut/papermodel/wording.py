@@ -8,7 +8,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..layout.drawing import Text
-from ..layout.labels import text_width, wrap
+from ..layout.labels import MIN_CAP, text_width, wrap
+from ..text import counted
 
 TEXT = 2.6  # cap height of running text on these pages (mm)
 LINE = 4.4  # line pitch (mm)
@@ -62,6 +63,17 @@ def strip_runs(labels) -> str:
             out += sorted(parts[lab])
             start = prev = None
     return ", ".join(out)
+
+
+def left_out_note(n: int, strips: str | None, where: str) -> str:
+    """The warning that ``n`` under-crossing names are left off ``strips`` (None: their own
+    strips) and called out ``where``, in the singular for one."""
+    one = n == 1
+    strips = strips or ("its strip" if one else "their strips")
+    return (f"{counted(n, 'under-crossing name')} {'is' if one else 'are'} left off {strips}: "
+            f"the tile under {'it' if one else 'them'}, even with a plate over its neighbours, "
+            f"is too small for {MIN_CAP:g} mm text; {'it is' if one else 'they are'} called out "
+            f"on {where}")
 
 
 def page_index(book) -> str:
