@@ -473,3 +473,13 @@ def test_the_page_counts_its_files_and_commands_in_words(tmp_path):
     assert f"{n} files from 1 command, made by weave-cut {__version__}." in one
     two = kitpage.document.page("kit", runs * 2, tmp_path)
     assert f"{2 * n} files from 2 commands, made by weave-cut {__version__}." in two
+
+
+def test_every_kind_of_output_is_described_by_what_it_is():
+    """Issue 29: the woven ball's OBJ was described as "text". Each suffix a recipe writes
+    gets its own words; "text" is left for a file of no known kind."""
+    from weavecut.kitpage.document import _purpose
+
+    for suffix in (".obj", ".glb", ".json", ".dxf"):
+        assert _purpose([suffix], None, {}) != "text", suffix
+    assert "OBJ" in _purpose([".obj"], None, {})

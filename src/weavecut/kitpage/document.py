@@ -341,6 +341,8 @@ def _purpose(suffixes: list[str], drawing: Drawing | None, figures: dict) -> str
         return "figures for scripts (JSON)"
     if ".glb" in suffixes:
         return "the finished model in 3-D (glTF, in metres): turn it here, or open it in Blender"
+    if ".obj" in suffixes:
+        return "the woven model in 3-D (OBJ, in mm, strands coloured): open it in Blender"
     what = f"{_title(drawing)}: " if _title(drawing) else ""
     if ".png" in suffixes:
         return f"{what}picture for a screen"
