@@ -106,6 +106,8 @@ def cuts(polygons, width: float) -> NDArray[np.bool_]:
     return holds(polygons, width) & (narrowest_notch(polygons) >= width * (1 - 1e-9))
 
 
+MEND = 0.1  # share of a strip's paper thickening may add: a strip thin all along is mended by
+# a larger size (the book refuses it with one), not by a blob
 HAIR = 0.05  # mm: steps of a mended outline this small are rounding (GEOS's unions), not notches
 
 
@@ -117,8 +119,8 @@ def thickened(outline: shapely.Polygon, tiles: NDArray[np.object_], width: float
     narrower than twice it filled (a mitred closing, which leaves the other corners as they
     are), with the smallest radius of ``width`` / 2, 3/4, 1 that makes it cut; the outline's
     steps under ``HAIR`` smoothed, each added bit printed as the tile beside it
-    (:func:`given_to_tiles`). Unchanged when it already cuts, or when no radius helps (the
-    caller reports it)."""
+    (:func:`given_to_tiles`). Unchanged when it already cuts, when no radius helps, or when
+    it would add more than ``MEND`` of its paper (the caller reports it)."""
     if cuts([outline], width)[0]:
         return outline, tiles
     thin = shapely.union_all(thin_parts(outline, width))
@@ -133,6 +135,8 @@ def thickened(outline: shapely.Polygon, tiles: NDArray[np.object_], width: float
             if 0 < fill.area <= 4 * width ** 2 and not shapely.get_num_interior_rings(more):
                 grown = more
         grown = _smooth(outline_of(np.array([grown]), 1e-6 * width))
+        if grown.area > (1 + MEND) * outline.area:  # thin all along: a size question
+            return outline, tiles
         if cuts([grown], width)[0]:
             break
     else:
