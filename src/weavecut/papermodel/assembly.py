@@ -88,7 +88,8 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
     for tile, over, under in crossings:  # callouts
         spot = _crossing_spot(on_sheet[tile], obstacles)
         placed = None if spot is None else _free_spot(
-            spot, crossing_label(plan.labels, over, under), obstacles, shapely.box(*box), size)
+            spot, crossing_label(plan.labels, over, under), obstacles, shapely.box(*box), size,
+            lead=DOT)  # a callout's plate off its dot, with a leader to it
         if placed is not None:
             called.append((placed[0], placed[1], np.asarray(placed[2].coords)))
             at.append(spot)
@@ -220,9 +221,9 @@ def _crossing_spot(tile, obstacles):
     return None if free.is_empty else inner_centres([free])[0]
 
 
-def _free_spot(at, label: str, obstacles, frame, size: float):
+def _free_spot(at, label: str, obstacles, frame, size: float, lead: float = 0.0):
     """(text, white plate, leader line) near ``at``: neither the plate nor its leader line
-    touches an obstacle; None if there is no such place. The spots are tried ring by ring
+    touches an obstacle, the leader at least ``lead`` long; None if there is no such place. The spots are tried ring by ring
     outwards, each ring round from 15 degrees: the first free one wins."""
     plate_pad = 0.8
     half = np.array([text_width(label, MIN_CAP) / 2 + plate_pad, MIN_CAP * 0.65 + plate_pad])
@@ -242,6 +243,7 @@ def _free_spot(at, label: str, obstacles, frame, size: float):
         free = np.flatnonzero(~obstacles.hits(plates[ring:ring + SPOTS])) + ring if obstacles \
             else np.arange(ring, min(ring + SPOTS, len(c)))
         free = free[~obstacles.hits(leaders[free])] if obstacles else free
+        free = free[shapely.length(leaders[free]) >= lead]
         if len(free):
             first = int(free[0])
             break
