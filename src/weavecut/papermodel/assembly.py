@@ -2,7 +2,8 @@
 
 The assembly sheet shows the finished pattern at the largest scale that fits, each strand's ID at
 both ends and every few tiles along it (inside its own tiles, sized to fit), and a label on a
-white box with a leader line where a tile is too small. The weaving page turns the paper's
+white box with a leader line where a tile is too small; the strands it finds no room for are
+named on a page of their own (:func:`.crossings.id_pages`). The weaving page turns the paper's
 section 5.2 experience into numbered steps with small diagrams of the weave growing.
 """
 
@@ -41,11 +42,13 @@ def finished_size(weave: Weave, book) -> np.ndarray:
 
 
 def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str,
-                   total: int, crossings=(), words: Words = PRINTED) -> tuple[Sheet, int]:
-    """(page 1, how many of ``crossings`` found no room): what to print (or cut), where each
-    strip is, and the finished pattern with IDs; with ``crossings`` (tile, strand on top, strand
-    below) those the strips leave unnamed are called out on it too (:mod:`.crossings`);
-    ``words`` name what the maker holds."""
+                   total: int, crossings=(), words: Words = PRINTED
+                   ) -> tuple[Sheet, int, list[tuple[int, int]]]:
+    """(page 1, how many of ``crossings`` found no room, (strand, its largest own tile) of every
+    strand it names nowhere): what to print (or cut), where each strip is, and the finished
+    pattern with IDs; with ``crossings`` (tile, strand on top, strand below) those the strips
+    leave unnamed are called out on it too (:mod:`.crossings`); ``words`` name what the maker
+    holds."""
 
     plan, area = book.plan, book.area
     k, m = plan.k, plan.copies.shape[1]
@@ -70,19 +73,22 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
         lines.append(f"Print the strip pages once ({strips}). Where each strip is: "
                      + page_index(book) + ".")
     lines.append(words.ids)
+    if book.id_pages:
+        lines.append(f"The strands this page has no room to name are named on "
+                     f"{page_span(book.id_pages)}.")
     if crossings:
         lines.append(f"{too_small(len(crossings))} to carry a name on their strip "
                      f"({words.unnamed_mark}): called out below, "
                      f"{crossing_meaning(plan.labels, crossings[0])}.")
-    elif book.extra_pages[-1] > 2:
+    elif book.callout_pages:
         lines.append("Crossings too small to carry a name on their strip are called out on "
-                     f"{page_span(book.extra_pages[2:])}.")
+                     f"{page_span(book.callout_pages)}.")
     texts, bottom = paragraphs(lines, x0, y1, x1 - x0)
     box = (x0, y0, x1, bottom - GAP)
     on_sheet, fit, paint, fills = pattern(weave, turn, box, book.colours)
     centres = label_spots(on_sheet)
-    ids, boxes, leaders, arrows, obstacles = _strand_labels(weave, book, on_sheet, centres,
-                                                            fills, box)
+    ids, boxes, leaders, arrows, obstacles, found = _strand_labels(weave, book, on_sheet,
+                                                                   centres, fills, box)
     called, at, size = [], [], tile_mm(on_sheet)
     for tile, over, under in crossings:  # callouts
         spot = _crossing_spot(on_sheet[tile], obstacles)
@@ -110,8 +116,17 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
                           "strand's ID (copy letter + number)", 1, total,
                           book.colours[int(plan.copies[0, 0])] if m else "#3e9fb0",
                           legend=words.legend)
+    area_of = shapely.area(on_sheet)
+    unnamed = [(s, max(_own_tiles(weave, s), key=lambda t: (area_of[t], -t)))
+               for s in range(weave.n_strands) if s not in found]  # strands, not mesh elements
     return (Sheet(area.width, area.height, tuple(layers), "page 1: assembly"),
-            len(crossings) - len(called))
+            len(crossings) - len(called), unnamed)
+
+
+def _own_tiles(weave: Weave, s: int) -> list[int]:
+    """The tiles where strand ``s`` lies on top."""
+    visits, own = weave.strand(s)
+    return [int(t) for t in visits[own]]
 
 
 def tile_mm(on_sheet) -> float:
@@ -124,7 +139,7 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
     they fit; an end that has no room gets its ID on a white box with a leader line, unless
     the strand is short (``ALONG`` own tiles or fewer: both ends in view of one ID) and its ID
     is already on it or on a box (one box, not two side by side). Returns (IDs, white boxes,
-    leader lines, arrows by ink, everything later labels keep clear of)."""
+    leader lines, arrows by ink, everything later labels keep clear of, the strands named)."""
     plan = book.plan
     regions = shapely.buffer(on_sheet, -0.4, join_style="mitre")
     across = tile_mm(on_sheet)
@@ -203,7 +218,7 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
         boxes.append(plate)
         obstacles += [plate, shapely.buffer(leader, 0.3)]
         leaders.append(np.asarray(leader.coords))
-    return ids, boxes, leaders, arrows, obstacles
+    return ids, boxes, leaders, arrows, obstacles, named
 
 
 def _crossing_spot(tile, obstacles):
@@ -286,7 +301,7 @@ def weaving_steps(weave: Weave, book, turn: float,
     if any(p.left_out for _, p in book.pieces):
         from .crossings import crossing_meaning, left_out_crossings
         first = left_out_crossings(weave, plan, [p for _, p in book.pieces], book.layout)[0]
-        steps.append(words.unnamed.format(where=page_span(book.extra_pages[2:] or [1]),
+        steps.append(words.unnamed.format(where=page_span(book.callout_pages or [1]),
                                           meaning=crossing_meaning(ids, first)))
     if glue:
         name, _, part = next(p.label for _, p in book.pieces if p.glue is not None).partition(" ")
