@@ -24,6 +24,7 @@ from weavecut.mesh_io import read_valid_mesh
 from weavecut.papermodel import book as book_module
 from weavecut.papermodel import label_tabs, strips
 from weavecut.papermodel.pages import GAP
+from weavecut.papermodel.printcut import WASTE
 from weavecut.papermodel.book import SizeError, strand_book
 from weavecut.subdivision import subdivide
 from weavecut.units import to_mm
@@ -132,19 +133,25 @@ def test_every_cut_piece_of_a_paper_model_recipe_holds_the_minimum(recipe, tmp_p
     """Every outline on a cut layer of every Drawing the recipe's commands write (the printed
     books' strip pages, the cutters' cut files, the card sheets) holds ``MIN_PIECE``, by the
     product's measure and by ``cut_oracle`` (necks, slivers, notches: a label tab's shoulder
-    beside its tile's edge read 1.26 mm); outlines on one sheet keep the packer's gap."""
+    beside its tile's edge read 1.26 mm); outlines on one sheet keep the packer's gap, and on
+    the sheets of a print-and-cut job (the printed pages and the cut files beside them)
+    ``printcut.WASTE`` (3 mm): the waste between two strips is paper a drag knife must cut
+    past, not drag along. Planted: print-and-cut packed at the scissors' 2 mm gap fails."""
     written = []
     original = export.write
+    jobs = tomllib.loads(recipe.read_text()).get("job", [])
+    machine = {Path(j["output"]).parent for j in jobs if j.get("cutter")}
 
     def keep(drawing, path, *args, **kwargs):
-        written.append((Path(path).name, drawing))
+        folder = Path(path).parent.relative_to(tmp_path / "b")
+        written.append((Path(path).name, drawing, WASTE if folder in machine else GAP))
         return original(drawing, path, *args, **kwargs)
 
     monkeypatch.setattr(export, "write", keep)
     res = CliRunner().invoke(cli, ["-q", "build", str(recipe), "-o", str(tmp_path / "b")])
     assert res.exit_code == 0, res.output
     outlines = 0
-    for name, drawing in written:
+    for name, drawing, gap in written:
         cut = [g for sheet in drawing.sheets for layer in sheet.layers if layer.role == "cut"
                for shape in layer.shapes if isinstance(shape, Polygons)
                for g in shape.to_shapely().tolist()]
@@ -156,7 +163,7 @@ def test_every_cut_piece_of_a_paper_model_recipe_holds_the_minimum(recipe, tmp_p
         for sheet in drawing.sheets:
             cut = [g for layer in sheet.layers if layer.role == "cut" for shape in layer.shapes
                    if isinstance(shape, Polygons) for g in shape.to_shapely().tolist()]
-            assert not problems(cut, strips.MIN_PIECE, strips.SLIVER, GAP - _kerf(recipe)), name
+            assert not problems(cut, strips.MIN_PIECE, strips.SLIVER, gap - _kerf(recipe)), name
     assert outlines > 0
 
 
