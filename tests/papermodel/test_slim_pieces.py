@@ -67,6 +67,36 @@ def test_the_slimmest_part_of_a_dumbbell_is_its_neck(neck):
         assert strips.holds([shape], 3.0)[0] == (neck > 3.0)
 
 
+def _waist(joint: float) -> shapely.Polygon:
+    """Two 12 mm wide trapezoids meeting across a ``joint`` mm edge: a strip pinched to a
+    joint and at once as wide again (the pentagon flower's octagon tiles at 23 cm, two
+    pentagons meeting across their middle edge: 2.83 mm at the narrowest)."""
+    h = joint / 2
+    return shapely.Polygon([(0, -6), (10, -h), (20, -6), (20, 6), (10, h), (0, 6)])
+
+
+@pytest.mark.parametrize("joint", [2.83, 2.99])
+def test_a_waist_is_no_neck_and_a_bar_is(joint):
+    """Whether a joint between two parts of a strip counts as a cut feature, decided: a waist
+    (a joint no longer than it is wide) does not, a bar does. A 3 mm disc does not pass
+    either, but at a waist the blade turns one wide corner on each side (over 120 degrees
+    here; a V under 60 degrees is a notch, held apart) and leaves no strip of paper between
+    two near-parallel cuts to drag or tear; the joint is the tile's own outline, which
+    widening would push over the neighbouring strands' tiles in the finished weave. So what
+    the measure holds to 3 mm is the discs' reach (what they reach is one piece), not their
+    passage: the flower's 65 waists (15 octagons, 50 label-tab joints, 2.83-2.99 mm) are no
+    necks. Planted: the strict reading (the shrunk outline in one piece) calls the waist a
+    neck, and the same joint drawn 6 mm long is a neck in both readings."""
+    waist = _waist(joint)
+    assert len(shapely.get_parts(waist.buffer(-1.5, quad_segs=16))) == 2  # no disc passes
+    assert not problems([waist], strips.MIN_PIECE, strips.SLIVER)
+    assert strips.holds([waist], strips.MIN_PIECE)[0]
+    assert strips.narrowest_feature([waist])[0] >= strips.MIN_PIECE
+    bar = _dumbbell(joint)
+    assert problems([bar], strips.MIN_PIECE, strips.SLIVER) == ["outline 0: a neck under 3 mm"]
+    assert not strips.holds([bar], strips.MIN_PIECE)[0]
+
+
 @pytest.mark.parametrize("width", [0.3, 1.5, 2.5])
 def test_a_needle_is_a_sliver_and_a_sharp_corner_is_not(width):
     """A needle narrower than a disc, longer than twice it, fails; so does a hairline tip
