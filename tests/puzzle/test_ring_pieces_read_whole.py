@@ -210,6 +210,7 @@ def test_no_ring_number_falls_back_to_its_hexagon_where_a_smaller_one_fits_its_p
                 if _paint_fits(puzzle, colouring, side, k) >= gn.RING_CAP]
     h = numbers.labels.heights[ring]
     assert h[h > 0].min() >= gn.RING_CAP - 1e-9 and (h < MIN_CAP).any()
+    assert not gn.warnings(numbers, side)  # the tier is by design: nothing to warn of
     got = figures(guide(puzzle, colouring, side, numbers).sheets)
     assert got["min_label_contrast"] >= 4.5 and got["min_label_gap_mm"] >= 0.5
     with mock.patch.object(gn, "RING_CAP", MIN_CAP):

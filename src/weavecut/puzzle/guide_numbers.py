@@ -56,11 +56,13 @@ class GuideNumbers:
     """Every piece's number on one side's guide (in the puzzle's coordinates, unmirrored).
 
     ``inks`` (P,) black or white; ``plates`` (P,) the white plate under a number (None for
-    none); a height of 0: no number fits, even at ``LEAST``."""
+    none); a height of 0: no number fits, even at ``LEAST``; ``ring`` (P,) the ring pieces
+    (their numbers go down to ``RING_CAP`` on their paint by design, unwarned)."""
 
     labels: Labels
     inks: NDArray[np.object_]
     plates: NDArray[np.object_]
+    ring: NDArray[np.bool_] | None = None
 
 
 @lru_cache(maxsize=1024)
@@ -128,7 +130,7 @@ def guide_numbers(puzzle: Puzzle, colouring: Colouring, side: str) -> GuideNumbe
     if plated.any():
         plates[plated] = _plates([texts[k] for k in np.flatnonzero(plated).tolist()],
                                  best_h[plated], centres[plated], angles[plated])
-    return GuideNumbers(Labels(tuple(texts), best_h, centres, angles), inks, plates)
+    return GuideNumbers(Labels(tuple(texts), best_h, centres, angles), inks, plates, ring)
 
 
 def _choose(fits, floor: float, chosen, only=True, plates: bool = True) -> None:
@@ -189,10 +191,13 @@ def _plates(texts, heights, centres, angles) -> NDArray[np.object_]:
 
 
 def warnings(numbers: GuideNumbers, side: str) -> list[str]:
-    """Lines naming the pieces whose number on ``side``'s guide is smaller than ``MIN_CAP``,
-    and those too small for any (they are left without one: the colour key lists them)."""
+    """Lines naming the pieces whose number on ``side``'s guide is smaller than ``MIN_CAP``
+    (a ring piece's: than ``RING_CAP``, the size it is given on its paint before its bare
+    hexagon), and those too small for any (they are left without one: the colour key lists
+    them)."""
     h = numbers.labels.heights
-    small, none = np.flatnonzero((h > 0) & (h < MIN_CAP)), np.flatnonzero(h == 0)
+    least = MIN_CAP if numbers.ring is None else np.where(numbers.ring, RING_CAP, MIN_CAP)
+    small, none = np.flatnonzero((h > 0) & (h < least - 1e-9)), np.flatnonzero(h == 0)
     out = []
     if len(small):
         out.append(f"pieces {_listed(small)} are too small for {MIN_CAP:g} mm numbers on the "
