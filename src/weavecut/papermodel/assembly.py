@@ -144,11 +144,13 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
     regions = shapely.buffer(on_sheet, -0.4, join_style="mitre")
     across = tile_mm(on_sheet)
     wanted, order, short = [], [], set()  # (tile, strand, end?) per candidate
+    own_count: dict[int, int] = {}  # own tiles per strand
     for s in range(weave.n_strands):  # strands, not mesh elements
         visits, own = weave.strand(s)
         if plan.reversed[s]:
             visits, own = visits[::-1], own[::-1]
         mine = visits[own]
+        own_count[s] = len(mine)
         if len(mine) <= ALONG:
             short.add(s)
         picks = {0: True, len(mine) - 1: True}
@@ -206,18 +208,23 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
     for m in missing:  # ends
         (rest if m[1] in seen else first).append(m)
         seen.add(m[1])
+    first.sort(key=lambda m: own_count[m[1]])  # the shortest first: the fewest tiles to point at
+    def place(t, s, label, **search):
+        spot = _free_spot(centres[t], label, obstacles, frame, across, **search)
+        if spot is not None:
+            named.add(s)
+            text_at, plate, leader = spot
+            ids.append(text_at)
+            boxes.append(plate)
+            obstacles.extend([plate, shapely.buffer(leader, 0.3)])
+            leaders.append(np.asarray(leader.coords))
+
     for t, s, label in first + rest:
-        if s in short and s in named:
-            continue  # its one ID is placed
-        spot = _free_spot(centres[t], label, obstacles, frame, across)
-        if spot is None:
-            continue
-        named.add(s)
-        text_at, plate, leader = spot
-        ids.append(text_at)
-        boxes.append(plate)
-        obstacles += [plate, shapely.buffer(leader, 0.3)]
-        leaders.append(np.asarray(leader.coords))
+        if not (s in short and s in named):  # else its one ID is placed
+            place(t, s, label)
+    for t, s, label in first + rest:  # a strand still unnamed: a finer, wider search
+        if s not in named:
+            place(t, s, label, step=7.5, reach=16.0)
     return ids, boxes, leaders, arrows, obstacles, named
 
 
@@ -234,15 +241,18 @@ def _crossing_spot(tile, obstacles):
     return None if free.is_empty else inner_centres([free])[0]
 
 
-def _free_spot(at, label: str, obstacles, frame, size: float):
+def _free_spot(at, label: str, obstacles, frame, size: float, step: float = 30.0,
+               reach: float = 8.0):
     """(text, white plate, leader line) near ``at``: neither the plate nor its leader line
     touches an obstacle; None if there is no such place. The spots are tried ring by ring
-    outwards, each ring round from 15 degrees: the first free one wins."""
+    outwards (out to ``reach`` times ``size``), each ring round every ``step`` degrees from half
+    a step: the first free one wins."""
     plate_pad = 0.8
     half = np.array([text_width(label, MIN_CAP) / 2 + plate_pad, MIN_CAP * 0.65 + plate_pad])
     at = np.asarray(at, dtype=float)
-    r = (np.arange(1.0, 8.0, 0.75) * max(size, 2 * half[1]))[:, None]
-    a = np.radians(np.arange(0, 360, 30) + 15)[None, :]
+    r = (np.arange(1.0, reach, 0.75) * max(size, 2 * half[1]))[:, None]
+    a = np.radians(np.arange(0, 360, step) + step / 2)[None, :]
+    spots = 3 * a.shape[1]  # three rings at once
     c = np.stack([at[0] + r * np.cos(a), at[1] + r * np.sin(a)], axis=-1).reshape(-1, 2)
     x0, y0, x1, y1 = frame.bounds
     c = c[(c[:, 0] - half[0] >= x0) & (c[:, 1] - half[1] >= y0) & (c[:, 0] + half[0] <= x1)
@@ -252,9 +262,9 @@ def _free_spot(at, label: str, obstacles, frame, size: float):
                                             np.broadcast_to(at, c.shape)], axis=1))
     first = None
     obstacles = obstacles if isinstance(obstacles, Obstacles) else Obstacles(obstacles)
-    for ring in range(0, len(c), SPOTS):  # the nearest spots first
-        free = np.flatnonzero(~obstacles.hits(plates[ring:ring + SPOTS])) + ring if obstacles \
-            else np.arange(ring, min(ring + SPOTS, len(c)))
+    for ring in range(0, len(c), spots):  # the nearest spots first
+        free = np.flatnonzero(~obstacles.hits(plates[ring:ring + spots])) + ring if obstacles \
+            else np.arange(ring, min(ring + spots, len(c)))
         free = free[~obstacles.hits(leaders[free])] if obstacles else free
         if len(free):
             first = int(free[0])
@@ -264,7 +274,6 @@ def _free_spot(at, label: str, obstacles, frame, size: float):
     return centred_text(c[first], label, MIN_CAP, 0.0, "#000000"), plates[first], leaders[first]
 
 
-SPOTS = 36  # spots tested at once (three rings), nearest first
 REINDEX = 12  # obstacles added before the index is made again
 
 
