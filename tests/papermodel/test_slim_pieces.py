@@ -195,6 +195,7 @@ def test_every_cut_piece_of_a_paper_model_recipe_holds_the_minimum(recipe, tmp_p
                    if isinstance(shape, Polygons) for g in shape.to_shapely().tolist()]
             assert not problems(cut, strips.MIN_PIECE, strips.SLIVER, gap - _kerf(recipe)), name
     assert outlines > 0
+    assert any(gap == WASTE for _, _, gap in written) == bool(machine)  # the rule is applied
 
 
 def test_widened_tiles_of_the_voronoi_example_stay_areas():
