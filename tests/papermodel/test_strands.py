@@ -13,7 +13,7 @@ from click.testing import CliRunner
 
 from weavecut import export, inputs
 from weavecut.layout.drawing import Polylines, Text
-from weavecut.papermodel.assembly import _free_spot
+from weavecut.papermodel.plates import free_spot as _free_spot
 from weavecut.papermodel.pages import GAP, occupied
 from weavecut.papermodel.book import strand_book
 from weavecut.papermodel.checks import report, sheet_checks, text_checks

@@ -20,7 +20,6 @@ from ..layout.labels import (
     inner_centres,
     largest_fit,
     text_box,
-    text_width,
     unit_boxes,
 )
 from ..weave.model import Weave
@@ -30,6 +29,7 @@ from .pages import GAP, page_layers, page_span
 from .modules import copy_letter
 from .pattern import label_spots, pattern
 from .strip_labels import unit_arrows
+from .plates import Obstacles, free_spot
 from .symmetry import rotate, tile_centres
 from .wording import LINE, PRINTED, TEXT, Words, page_index, paragraphs
 
@@ -92,7 +92,7 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
     called, at, size = [], [], tile_mm(on_sheet)
     for tile, over, under in crossings:  # callouts
         spot = _crossing_spot(on_sheet[tile], obstacles)
-        placed = None if spot is None else _free_spot(
+        placed = None if spot is None else free_spot(
             spot, crossing_label(plan.labels, over, under), obstacles, shapely.box(*box), size)
         if placed is not None:
             called.append((placed[0], placed[1], np.asarray(placed[2].coords)))
@@ -210,7 +210,7 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
         seen.add(m[1])
     first.sort(key=lambda m: own_count[m[1]])  # the shortest first: the fewest tiles to point at
     def place(t, s, label, **search):
-        spot = _free_spot(centres[t], label, obstacles, frame, across, **search)
+        spot = free_spot(centres[t], label, obstacles, frame, across, **search)
         if spot is not None:
             named.add(s)
             text_at, plate, leader = spot
@@ -239,59 +239,6 @@ def _crossing_spot(tile, obstacles):
     if near:
         free = shapely.difference(free, shapely.buffer(shapely.union_all(near), DOT + 0.3))
     return None if free.is_empty else inner_centres([free])[0]
-
-
-def _free_spot(at, label: str, obstacles, frame, size: float, step: float = 30.0,
-               reach: float = 8.0):
-    """(text, white plate, leader line) near ``at``: neither the plate nor its leader line
-    touches an obstacle; None if there is no such place. The spots are tried ring by ring
-    outwards (out to ``reach`` times ``size``), each ring round every ``step`` degrees from half
-    a step: the first free one wins."""
-    plate_pad = 0.8
-    half = np.array([text_width(label, MIN_CAP) / 2 + plate_pad, MIN_CAP * 0.65 + plate_pad])
-    at = np.asarray(at, dtype=float)
-    r = (np.arange(1.0, reach, 0.75) * max(size, 2 * half[1]))[:, None]
-    a = np.radians(np.arange(0, 360, step) + step / 2)[None, :]
-    spots = 3 * a.shape[1]  # three rings at once
-    c = np.stack([at[0] + r * np.cos(a), at[1] + r * np.sin(a)], axis=-1).reshape(-1, 2)
-    x0, y0, x1, y1 = frame.bounds
-    c = c[(c[:, 0] - half[0] >= x0) & (c[:, 1] - half[1] >= y0) & (c[:, 0] + half[0] <= x1)
-          & (c[:, 1] + half[1] <= y1)]
-    plates = shapely.box(*(c - half).T, *(c + half).T)
-    leaders = shapely.linestrings(np.stack([np.clip(at, c - half, c + half),
-                                            np.broadcast_to(at, c.shape)], axis=1))
-    first = None
-    obstacles = obstacles if isinstance(obstacles, Obstacles) else Obstacles(obstacles)
-    for ring in range(0, len(c), spots):  # the nearest spots first
-        free = np.flatnonzero(~obstacles.hits(plates[ring:ring + spots])) + ring if obstacles \
-            else np.arange(ring, min(ring + spots, len(c)))
-        free = free[~obstacles.hits(leaders[free])] if obstacles else free
-        if len(free):
-            first = int(free[0])
-            break
-    if first is None:
-        return None
-    return centred_text(c[first], label, MIN_CAP, 0.0, "#000000"), plates[first], leaders[first]
-
-
-REINDEX = 12  # obstacles added before the index is made again
-
-
-class Obstacles(list):
-    """The shapes later labels keep clear of (a list): :meth:`hits` reads a spatial index of
-    them, made again only when many were added since (those are tested one by one)."""
-
-    def hits(self, shapes) -> np.ndarray:
-        """(n,) whether each of ``shapes`` touches an obstacle."""
-        if len(self) - getattr(self, "_indexed", -REINDEX - 1) > REINDEX:
-            self._tree, self._indexed = shapely.STRtree(list(self)), len(self)
-        hit = np.zeros(len(shapes), dtype=bool)
-        if len(shapes) and self._indexed:
-            hit[self._tree.query(shapes, predicate="intersects")[0]] = True
-        if len(shapes) and len(self) > self._indexed:
-            new = np.array(self[self._indexed:], dtype=object)
-            hit |= shapely.intersects(np.asarray(shapes)[:, None], new[None, :]).any(axis=1)
-        return hit
 
 
 def weaving_steps(weave: Weave, book, turn: float,
