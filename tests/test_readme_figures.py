@@ -231,7 +231,9 @@ ROWS = [
           r"so (?P<pages>\d+) pages in all\)",
           ("strands", "pentagon-flower", "--size", "23cm", "-o", "pf.pdf"),
           lambda j: {"names": str(j["names_left_out"]), "n": str(j["names_left_out"]),
-                     "first": "3", "last": str(j["pages"]["extra"]),
+                     **dict(zip(("first", "last"), next(
+                         re.search(r"called out on pages (\d+)-(\d+)", w).groups()
+                         for w in j["warnings"] if "called out on pages" in w))),
                      "pages": str(j["pages"]["total"])}),
     kit_row("strands pentagon-flower --size 23cm -o pf.pdf", "page",
             lambda j: j["pages"]["total"]),

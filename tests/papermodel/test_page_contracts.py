@@ -129,7 +129,7 @@ def test_weaving_steps_are_plain_sentences_naming_every_strand_once(spec, levels
     piece = SimpleNamespace(flap=shapely.box(0, 0, 1, 1), left_out=(0,),
                             glue=shapely.box(0, 0, 1, 1), label=f"{plan.labels[0]} 1/2")
     book = SimpleNamespace(plan=plan, pieces=((3, piece),), extra_pages=(1, 2, 3),
-                           layout="mixed")
+                           callout_pages=(3,), layout="mixed")
     steps, groups = assembly.weaving_steps(weave, book, 0.0)
     assert len(steps) >= 10
     problems = {s[:40]: sentence_problems(s) for s in steps if sentence_problems(s)}
@@ -178,7 +178,7 @@ def test_module_layout_names_copy_j_turned_by_j_times_360_over_k():
                        layout="module")
     k = book.plan.k
     assert k > 2
-    sheet, _ = assembly.assembly_sheet(ws[-1], book, book.tile_size, 0.0, "t", 5)
+    sheet, _, _ = assembly.assembly_sheet(ws[-1], book, book.tile_size, 0.0, "t", 5)
     notes = " ".join(t.text for t in texts_of(sheet.layers, {"notes"}))
     found = re.findall(r"copy\s+([A-Z]):\s+turned\s+by\s+([-\d.e+]+)\s+deg", notes)
     assert [c for c, _ in found] == [copy_letter(j) for j in range(k)]
@@ -190,7 +190,7 @@ def test_assembly_leaders_are_two_point_lines_one_per_plate_and_the_page_names_t
     the page number reads "page 1 / total"."""
     ws, book = grid_case()
     small = replace(book, area=PageArea(100.0, 130.0, 5.0))
-    sheet, _ = assembly.assembly_sheet(ws[-1], small, book.tile_size, 0.0, "t", 7)
+    sheet, _, _ = assembly.assembly_sheet(ws[-1], small, book.tile_size, 0.0, "t", 7)
     pattern = next(lay for lay in sheet.layers if lay.name == "pattern")
     plates = [s for s in pattern.shapes
               if isinstance(s, Polygons) and s.style.fill == "#ffffff"

@@ -24,6 +24,7 @@ from weavecut.mesh_io import read_valid_mesh
 from weavecut.papermodel import book as book_module
 from weavecut.papermodel import label_tabs, strips
 from weavecut.papermodel.pages import GAP
+from weavecut.papermodel.printcut import WASTE
 from weavecut.papermodel.book import SizeError, strand_book
 from weavecut.subdivision import subdivide
 from weavecut.units import to_mm
@@ -64,6 +65,36 @@ def test_the_slimmest_part_of_a_dumbbell_is_its_neck(neck):
         shape = affinity.rotate(_dumbbell(neck), angle)
         assert neck - strips.slimmest([shape], step=0.02)[0] == pytest.approx(0.0, abs=0.03)
         assert strips.holds([shape], 3.0)[0] == (neck > 3.0)
+
+
+def _waist(joint: float) -> shapely.Polygon:
+    """Two 12 mm wide trapezoids meeting across a ``joint`` mm edge: a strip pinched to a
+    joint and at once as wide again (the pentagon flower's octagon tiles at 23 cm, two
+    pentagons meeting across their middle edge: 2.83 mm at the narrowest)."""
+    h = joint / 2
+    return shapely.Polygon([(0, -6), (10, -h), (20, -6), (20, 6), (10, h), (0, 6)])
+
+
+@pytest.mark.parametrize("joint", [2.83, 2.99])
+def test_a_waist_is_no_neck_and_a_bar_is(joint):
+    """Whether a joint between two parts of a strip counts as a cut feature, decided: a waist
+    (a joint no longer than it is wide) does not, a bar does. A 3 mm disc does not pass
+    either, but at a waist the blade turns one wide corner on each side (over 120 degrees
+    here; a V under 60 degrees is a notch, held apart) and leaves no strip of paper between
+    two near-parallel cuts to drag or tear; the joint is the tile's own outline, which
+    widening would push over the neighbouring strands' tiles in the finished weave. So what
+    the measure holds to 3 mm is the discs' reach (what they reach is one piece), not their
+    passage: the flower's 65 waists (15 octagons, 50 label-tab joints, 2.83-2.99 mm) are no
+    necks. Planted: the strict reading (the shrunk outline in one piece) calls the waist a
+    neck, and the same joint drawn 6 mm long is a neck in both readings."""
+    waist = _waist(joint)
+    assert len(shapely.get_parts(waist.buffer(-1.5, quad_segs=16))) == 2  # no disc passes
+    assert not problems([waist], strips.MIN_PIECE, strips.SLIVER)
+    assert strips.holds([waist], strips.MIN_PIECE)[0]
+    assert strips.narrowest_feature([waist])[0] >= strips.MIN_PIECE
+    bar = _dumbbell(joint)
+    assert problems([bar], strips.MIN_PIECE, strips.SLIVER) == ["outline 0: a neck under 3 mm"]
+    assert not strips.holds([bar], strips.MIN_PIECE)[0]
 
 
 @pytest.mark.parametrize("width", [0.3, 1.5, 2.5])
@@ -134,19 +165,25 @@ def test_every_cut_piece_of_a_paper_model_recipe_holds_the_minimum(recipe, tmp_p
     """Every outline on a cut layer of every Drawing the recipe's commands write (the printed
     books' strip pages, the cutters' cut files, the card sheets) holds ``MIN_PIECE``, by the
     product's measure and by ``cut_oracle`` (necks, slivers, notches: a label tab's shoulder
-    beside its tile's edge read 1.26 mm); outlines on one sheet keep the packer's gap."""
+    beside its tile's edge read 1.26 mm); outlines on one sheet keep the packer's gap, and on
+    the sheets of a print-and-cut job (the printed pages and the cut files beside them)
+    ``printcut.WASTE`` (3 mm): the waste between two strips is paper a drag knife must cut
+    past, not drag along. Planted: print-and-cut packed at the scissors' 2 mm gap fails."""
     written = []
     original = export.write
+    jobs = tomllib.loads(recipe.read_text()).get("job", [])
+    machine = {Path(j["output"]).parent for j in jobs if j.get("cutter")}
 
     def keep(drawing, path, *args, **kwargs):
-        written.append((Path(path).name, drawing))
+        folder = Path(path).parent.relative_to(tmp_path / "b")
+        written.append((Path(path).name, drawing, WASTE if folder in machine else GAP))
         return original(drawing, path, *args, **kwargs)
 
     monkeypatch.setattr(export, "write", keep)
     res = CliRunner().invoke(cli, ["-q", "build", str(recipe), "-o", str(tmp_path / "b")])
     assert res.exit_code == 0, res.output
     outlines = 0
-    for name, drawing in written:
+    for name, drawing, gap in written:
         cut = [g for sheet in drawing.sheets for layer in sheet.layers if layer.role == "cut"
                for shape in layer.shapes if isinstance(shape, Polygons)
                for g in shape.to_shapely().tolist()]
@@ -158,8 +195,9 @@ def test_every_cut_piece_of_a_paper_model_recipe_holds_the_minimum(recipe, tmp_p
         for sheet in drawing.sheets:
             cut = [g for layer in sheet.layers if layer.role == "cut" for shape in layer.shapes
                    if isinstance(shape, Polygons) for g in shape.to_shapely().tolist()]
-            assert not problems(cut, strips.MIN_PIECE, strips.SLIVER, GAP - _kerf(recipe)), name
+            assert not problems(cut, strips.MIN_PIECE, strips.SLIVER, gap - _kerf(recipe)), name
     assert outlines > 0
+    assert any(gap == WASTE for _, _, gap in written) == bool(machine)  # the rule is applied
 
 
 def test_widened_tiles_of_the_voronoi_example_stay_areas():

@@ -13,7 +13,7 @@ from click.testing import CliRunner
 
 from weavecut import export, inputs
 from weavecut.layout.drawing import Polylines, Text
-from weavecut.papermodel.assembly import _free_spot
+from weavecut.papermodel.plates import free_spot as _free_spot
 from weavecut.papermodel.pages import GAP, occupied
 from weavecut.papermodel.book import strand_book
 from weavecut.papermodel.checks import report, sheet_checks, text_checks
@@ -731,7 +731,9 @@ def test_every_unnamed_crossing_is_called_out_once_with_a_leader_to_it(name, on)
                    for _, p in book.pieces for i in p.left_out)
     assert sum(want.values()) == report(book)["names_left_out"] == {"pentagon": 155,
                                                                     "voronoi": 5}[name]
-    assert book.strip_pages[0] == max(book.extra_pages) + 1 == max(on[-1], 2) + 1
+    assert book.callout_pages == (on if name == "pentagon" else ())
+    assert book.strip_pages[0] == max(book.extra_pages) + 1 == max(on[-1], 2) + 1 + len(
+        book.id_pages)
     assert any(f"called out on {'pages 3-4' if name == 'pentagon' else 'page 1'}" in w
                for w in book.warnings)
     seen = Counter()

@@ -19,7 +19,7 @@ def test_right_angles_are_denied_only_where_no_two_directions_meet_at_one(spec):
     says "no right angles" exactly when no such turn is 90 degrees (modulo a half turn)."""
     weave = snub_weaves(subdivide(inputs.get(spec), 2))[-1]
     plan = plan_modules(weave)
-    book = SimpleNamespace(plan=plan, pieces=(), extra_pages=(1, 2))
+    book = SimpleNamespace(plan=plan, pieces=(), extra_pages=(1, 2), callout_pages=())
     steps, _ = assembly.weaving_steps(weave, book, 0.0)
     text = " ".join(steps)
     turns = [(i * 360 / plan.k) % 180 for i in range(plan.k)]

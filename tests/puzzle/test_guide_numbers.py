@@ -23,7 +23,7 @@ from weavecut.layout import label_checks
 from weavecut.layout.contrast import MIN_CONTRAST
 from weavecut.layout.labels import MIN_CAP
 from weavecut.puzzle.colouring import colour_puzzle, palette_names
-from weavecut.puzzle.guide_numbers import LEAST, guide_numbers, warnings
+from weavecut.puzzle.guide_numbers import LEAST, RING_CAP, guide_numbers, warnings
 from weavecut.puzzle.guides import colour_key, guide, printed
 from weavecut.puzzle.pieces import build_puzzle
 from weavecut.subdivision import subdivide
@@ -64,11 +64,13 @@ def check_guide(puzzle, colouring, side) -> dict:
     assert (g >= label_checks.MIN_GAP).all(), shown[g < label_checks.MIN_GAP] + 1
     want = WORD_GAP * np.array(sizes)  # ink to ink: further than digits stand apart
     assert (ink >= want).all(), shown[ink < want] + 1
-    # a number under MIN_CAP or none at all: the pieces are named, never left out silently
+    # a number under MIN_CAP (a ring piece's on its paint: under RING_CAP, its size by design)
+    # or none at all: the pieces are named, never left out silently
     said = " ".join(warnings(numbers, side))
-    for k in np.flatnonzero(heights < MIN_CAP)[:3].tolist():
+    least = np.where(puzzle.hexagons != None, RING_CAP, MIN_CAP)  # noqa: E711
+    for k in np.flatnonzero(heights < least - 1e-9)[:3].tolist():
         assert f" {k + 1}," in said.replace("pieces ", " ").replace(" are", ",")
-    assert bool(said) == bool((heights < MIN_CAP).any())
+    assert bool(said) == bool((heights < least - 1e-9).any())
     return {"sheet": sheet, "contrast": c.min(initial=21.0), "gap": g.min(initial=np.inf),
             "numbers": numbers}
 

@@ -159,3 +159,62 @@ def test_bold_lines_follow_the_cuts_and_a_hexagons_edge_to_its_paint_is_thin(nam
     covered = shapely.intersection(shapely.linestrings(inner),
                                    shapely.union_all(shapely.buffer(thin, 1e-3)))
     assert (shapely.length(covered) >= 0.4 * shapely.length(shapely.linestrings(inner))).all()
+
+
+def _on_hexagon(puzzle, numbers) -> list[int]:
+    """The ring pieces (0-based) whose number's centre lies on their bare hexagon."""
+    c = numbers.labels.centres
+    return [k for k in np.flatnonzero(puzzle.hexagons != None).tolist()  # noqa: E711
+            if numbers.labels.heights[k] > 0 and shapely.contains_xy(puzzle.hexagons[k], *c[k])]
+
+
+def _paint_fits(puzzle, colouring, side, k) -> float:
+    """The largest number of piece ``k`` (up to ``MIN_CAP``) that fits on its painted part
+    (the piece less its hexagon, each part tried) with the guides' margin, where black or
+    white reads on all its paints; 0 where none reads."""
+    from weavecut.layout.contrast import BLACK, MIN_CONTRAST, WHITE, contrast_ratio
+    from weavecut.layout.strokefont import fit_labels
+    from weavecut.puzzle.colouring import UNPAINTED
+
+    paints = colouring.front[k] if side == "front" else [colouring.back[k]]
+    fills = ["#ffffff" if f == UNPAINTED else f for f in paints]
+    if not any(min(contrast_ratio(ink, f) for f in fills) >= MIN_CONTRAST
+               for ink in (BLACK, WHITE)):
+        return 0.0
+    paint = shapely.difference(puzzle.pieces[k], puzzle.hexagons[k])
+    parts = np.array(shapely.get_parts(paint), dtype=object)
+    texts = [str(k + 1)] * len(parts)
+    # with room round it, or without (a number up to TIGHT_CAP: the margins keep it apart)
+    return max(float(fit_labels(parts, texts, gn.MARGIN, MIN_CAP, pad)[0].max())
+               for pad in (gn.PAD, 0.0))
+
+
+@pytest.mark.parametrize("side", ["front", "back"])
+def test_no_ring_number_falls_back_to_its_hexagon_where_a_smaller_one_fits_its_paint(side):
+    """A white hexagon with a number reads as a piece of its own, so a ring piece's number goes
+    on its paint down to ``RING_CAP`` (2.3 mm) before it goes on its hexagon at 2.5 mm: on the
+    default puzzle the 11 ring pieces whose paint fits only 2.31-2.5 mm numbers (253, 259, 263,
+    278, 280, 286, 289, 290, 344, 358, 370) had theirs on the hexagon. Every ring number on its
+    hexagon is one whose paint has no room for a readable ``RING_CAP`` number (fitted here apart
+    from the guide's choice); the smallest ring number is at least ``RING_CAP``; the labels
+    still keep their contrast and gap (the figures the guide reports). Planted: the tier
+    removed (``RING_CAP`` = 2.5 mm): the 11 fall back to their hexagons and are caught."""
+    from unittest import mock
+
+    from weavecut.layout.label_checks import figures
+
+    puzzle, colouring = _puzzles()["default"]()
+    numbers = gn.guide_numbers(puzzle, colouring, side)
+    ring = puzzle.hexagons != None  # noqa: E711
+    assert not [k + 1 for k in _on_hexagon(puzzle, numbers)
+                if _paint_fits(puzzle, colouring, side, k) >= gn.RING_CAP]
+    h = numbers.labels.heights[ring]
+    assert h[h > 0].min() >= gn.RING_CAP - 1e-9 and (h < MIN_CAP).any()
+    assert not gn.warnings(numbers, side)  # the tier is by design: nothing to warn of
+    got = figures(guide(puzzle, colouring, side, numbers).sheets)
+    assert got["min_label_contrast"] >= 4.5 and got["min_label_gap_mm"] >= 0.5
+    with mock.patch.object(gn, "RING_CAP", MIN_CAP):
+        planted = gn.guide_numbers(puzzle, colouring, side)
+    fell = [k + 1 for k in _on_hexagon(puzzle, planted)
+            if _paint_fits(puzzle, colouring, side, k) >= gn.RING_CAP]
+    assert fell == [253, 259, 263, 278, 280, 286, 289, 290, 344, 358, 370]

@@ -2,7 +2,8 @@
 
 The assembly sheet shows the finished pattern at the largest scale that fits, each strand's ID at
 both ends and every few tiles along it (inside its own tiles, sized to fit), and a label on a
-white box with a leader line where a tile is too small. The weaving page turns the paper's
+white box with a leader line where a tile is too small; the strands it finds no room for are
+named on a page of their own (:func:`.crossings.id_pages`). The weaving page turns the paper's
 section 5.2 experience into numbered steps with small diagrams of the weave growing.
 """
 
@@ -19,7 +20,6 @@ from ..layout.labels import (
     inner_centres,
     largest_fit,
     text_box,
-    text_width,
     unit_boxes,
 )
 from ..weave.model import Weave
@@ -29,6 +29,7 @@ from .pages import GAP, page_layers, page_span
 from .modules import copy_letter
 from .pattern import label_spots, pattern
 from .strip_labels import unit_arrows
+from .plates import Obstacles, free_spot
 from .symmetry import rotate, tile_centres
 from .wording import LINE, PRINTED, TEXT, Words, page_index, paragraphs
 
@@ -41,11 +42,13 @@ def finished_size(weave: Weave, book) -> np.ndarray:
 
 
 def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str,
-                   total: int, crossings=(), words: Words = PRINTED) -> tuple[Sheet, int]:
-    """(page 1, how many of ``crossings`` found no room): what to print (or cut), where each
-    strip is, and the finished pattern with IDs; with ``crossings`` (tile, strand on top, strand
-    below) those the strips leave unnamed are called out on it too (:mod:`.crossings`);
-    ``words`` name what the maker holds."""
+                   total: int, crossings=(), words: Words = PRINTED
+                   ) -> tuple[Sheet, int, list[tuple[int, int]]]:
+    """(page 1, how many of ``crossings`` found no room, (strand, its largest own tile) of every
+    strand it names nowhere): what to print (or cut), where each strip is, and the finished
+    pattern with IDs; with ``crossings`` (tile, strand on top, strand below) those the strips
+    leave unnamed are called out on it too (:mod:`.crossings`); ``words`` name what the maker
+    holds."""
 
     plan, area = book.plan, book.area
     k, m = plan.k, plan.copies.shape[1]
@@ -70,24 +73,27 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
         lines.append(f"Print the strip pages once ({strips}). Where each strip is: "
                      + page_index(book) + ".")
     lines.append(words.ids)
+    if book.id_pages:
+        lines.append(f"The strands this page has no room to name are named on "
+                     f"{page_span(book.id_pages)}.")
     if crossings:
         lines.append(f"{too_small(len(crossings))} to carry a name on "
                      f"{'its' if len(crossings) == 1 else 'their'} strip "
                      f"({words.unnamed_mark}): called out below, "
                      f"{crossing_meaning(plan.labels, crossings[0])}.")
-    elif book.extra_pages[-1] > 2:
+    elif book.callout_pages:
         lines.append("Crossings too small to carry a name on their strip are called out on "
-                     f"{page_span(book.extra_pages[2:])}.")
+                     f"{page_span(book.callout_pages)}.")
     texts, bottom = paragraphs(lines, x0, y1, x1 - x0)
     box = (x0, y0, x1, bottom - GAP)
     on_sheet, fit, paint, fills = pattern(weave, turn, box, book.colours)
     centres = label_spots(on_sheet)
-    ids, boxes, leaders, arrows, obstacles = _strand_labels(weave, book, on_sheet, centres,
-                                                            fills, box)
+    ids, boxes, leaders, arrows, obstacles, found = _strand_labels(weave, book, on_sheet,
+                                                                   centres, fills, box)
     called, at, size = [], [], tile_mm(on_sheet)
     for tile, over, under in crossings:  # callouts
         spot = _crossing_spot(on_sheet[tile], obstacles)
-        placed = None if spot is None else _free_spot(
+        placed = None if spot is None else free_spot(
             spot, crossing_label(plan.labels, over, under), obstacles, shapely.box(*box), size,
             lead=DOT)  # a callout's plate off its dot, with a leader to it
         if placed is not None:
@@ -112,8 +118,17 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
                           "strand's ID" + (" (copy letter + number)" if k > 1 else ""), 1, total,
                           book.colours[int(plan.copies[0, 0])] if m else "#3e9fb0",
                           legend=words.legend)
+    area_of = shapely.area(on_sheet)
+    unnamed = [(s, max(_own_tiles(weave, s), key=lambda t: (area_of[t], -t)))
+               for s in range(weave.n_strands) if s not in found]  # strands, not mesh elements
     return (Sheet(area.width, area.height, tuple(layers), "page 1: assembly"),
-            len(crossings) - len(called))
+            len(crossings) - len(called), unnamed)
+
+
+def _own_tiles(weave: Weave, s: int) -> list[int]:
+    """The tiles where strand ``s`` lies on top."""
+    visits, own = weave.strand(s)
+    return [int(t) for t in visits[own]]
 
 
 def tile_mm(on_sheet) -> float:
@@ -126,16 +141,18 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
     they fit; an end that has no room gets its ID on a white box with a leader line, unless
     the strand is short (``ALONG`` own tiles or fewer: both ends in view of one ID) and its ID
     is already on it or on a box (one box, not two side by side). Returns (IDs, white boxes,
-    leader lines, arrows by ink, everything later labels keep clear of)."""
+    leader lines, arrows by ink, everything later labels keep clear of, the strands named)."""
     plan = book.plan
     regions = shapely.buffer(on_sheet, -0.4, join_style="mitre")
     across = tile_mm(on_sheet)
     wanted, order, short = [], [], set()  # (tile, strand, end?) per candidate
+    own_count: dict[int, int] = {}  # own tiles per strand
     for s in range(weave.n_strands):  # strands, not mesh elements
         visits, own = weave.strand(s)
         if plan.reversed[s]:
             visits, own = visits[::-1], own[::-1]
         mine = visits[own]
+        own_count[s] = len(mine)
         if len(mine) <= ALONG:
             short.add(s)
         picks = {0: True, len(mine) - 1: True}
@@ -193,19 +210,24 @@ def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):
     for m in missing:  # ends
         (rest if m[1] in seen else first).append(m)
         seen.add(m[1])
+    first.sort(key=lambda m: own_count[m[1]])  # the shortest first: the fewest tiles to point at
+    def place(t, s, label, **search):
+        spot = free_spot(centres[t], label, obstacles, frame, across, **search)
+        if spot is not None:
+            named.add(s)
+            text_at, plate, leader = spot
+            ids.append(text_at)
+            boxes.append(plate)
+            obstacles.extend([plate, shapely.buffer(leader, 0.3)])
+            leaders.append(np.asarray(leader.coords))
+
     for t, s, label in first + rest:
-        if s in short and s in named:
-            continue  # its one ID is placed
-        spot = _free_spot(centres[t], label, obstacles, frame, across)
-        if spot is None:
-            continue
-        named.add(s)
-        text_at, plate, leader = spot
-        ids.append(text_at)
-        boxes.append(plate)
-        obstacles += [plate, shapely.buffer(leader, 0.3)]
-        leaders.append(np.asarray(leader.coords))
-    return ids, boxes, leaders, arrows, obstacles
+        if not (s in short and s in named):  # else its one ID is placed
+            place(t, s, label)
+    for t, s, label in first + rest:  # a strand still unnamed: a finer, wider search
+        if s not in named:
+            place(t, s, label, step=7.5, reach=16.0)
+    return ids, boxes, leaders, arrows, obstacles, named
 
 
 def _crossing_spot(tile, obstacles):
@@ -219,58 +241,6 @@ def _crossing_spot(tile, obstacles):
     if near:
         free = shapely.difference(free, shapely.buffer(shapely.union_all(near), DOT + 0.3))
     return None if free.is_empty else inner_centres([free])[0]
-
-
-def _free_spot(at, label: str, obstacles, frame, size: float, lead: float = 0.0):
-    """(text, white plate, leader line) near ``at``: neither the plate nor its leader line
-    touches an obstacle, the leader at least ``lead`` long; None if there is no such place. The spots are tried ring by ring
-    outwards, each ring round from 15 degrees: the first free one wins."""
-    plate_pad = 0.8
-    half = np.array([text_width(label, MIN_CAP) / 2 + plate_pad, MIN_CAP * 0.65 + plate_pad])
-    at = np.asarray(at, dtype=float)
-    r = (np.arange(1.0, 8.0, 0.75) * max(size, 2 * half[1]))[:, None]
-    a = np.radians(np.arange(0, 360, 30) + 15)[None, :]
-    c = np.stack([at[0] + r * np.cos(a), at[1] + r * np.sin(a)], axis=-1).reshape(-1, 2)
-    x0, y0, x1, y1 = frame.bounds
-    c = c[(c[:, 0] - half[0] >= x0) & (c[:, 1] - half[1] >= y0) & (c[:, 0] + half[0] <= x1)
-          & (c[:, 1] + half[1] <= y1)]
-    plates = shapely.box(*(c - half).T, *(c + half).T)
-    leaders = shapely.linestrings(np.stack([np.clip(at, c - half, c + half),
-                                            np.broadcast_to(at, c.shape)], axis=1))
-    first = None
-    obstacles = obstacles if isinstance(obstacles, Obstacles) else Obstacles(obstacles)
-    for ring in range(0, len(c), SPOTS):  # the nearest spots first
-        free = np.flatnonzero(~obstacles.hits(plates[ring:ring + SPOTS])) + ring if obstacles \
-            else np.arange(ring, min(ring + SPOTS, len(c)))
-        free = free[~obstacles.hits(leaders[free])] if obstacles else free
-        free = free[shapely.length(leaders[free]) >= lead]
-        if len(free):
-            first = int(free[0])
-            break
-    if first is None:
-        return None
-    return centred_text(c[first], label, MIN_CAP, 0.0, "#000000"), plates[first], leaders[first]
-
-
-SPOTS = 36  # spots tested at once (three rings), nearest first
-REINDEX = 12  # obstacles added before the index is made again
-
-
-class Obstacles(list):
-    """The shapes later labels keep clear of (a list): :meth:`hits` reads a spatial index of
-    them, made again only when many were added since (those are tested one by one)."""
-
-    def hits(self, shapes) -> np.ndarray:
-        """(n,) whether each of ``shapes`` touches an obstacle."""
-        if len(self) - getattr(self, "_indexed", -REINDEX - 1) > REINDEX:
-            self._tree, self._indexed = shapely.STRtree(list(self)), len(self)
-        hit = np.zeros(len(shapes), dtype=bool)
-        if len(shapes) and self._indexed:
-            hit[self._tree.query(shapes, predicate="intersects")[0]] = True
-        if len(shapes) and len(self) > self._indexed:
-            new = np.array(self[self._indexed:], dtype=object)
-            hit |= shapely.intersects(np.asarray(shapes)[:, None], new[None, :]).any(axis=1)
-        return hit
 
 
 def weaving_steps(weave: Weave, book, turn: float,
@@ -289,7 +259,7 @@ def weaving_steps(weave: Weave, book, turn: float,
     if any(p.left_out for _, p in book.pieces):
         from .crossings import crossing_meaning, left_out_crossings
         first = left_out_crossings(weave, plan, [p for _, p in book.pieces], book.layout)[0]
-        steps.append(words.unnamed.format(where=page_span(book.extra_pages[2:] or [1]),
+        steps.append(words.unnamed.format(where=page_span(book.callout_pages or [1]),
                                           meaning=crossing_meaning(ids, first)))
     if glue:
         name, _, part = next(p.label for _, p in book.pieces if p.glue is not None).partition(" ")

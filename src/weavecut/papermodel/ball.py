@@ -153,12 +153,14 @@ def ball_book(weaves: list[Weave], pal: Palette, page=(210.0, 297.0),
     tile_planes = flat.non_planarity[weave.tile_faces].reshape(-1, 2).max(axis=1)
     book = BallBook(Drawing((), title), BallPlan(labels), tuple(colours), "ball", placed,
                     tuple(range(first, first + len(sheets))), (1, 2), scale, area, width,
-                    tile_mm, warnings, unfoldings, diameter, tile_planes)
+                    tile_mm, warnings, unfoldings=unfoldings, diameter=diameter,
+                    non_planarity=tile_planes)
     cover = assembly_sheet(weave, book, labels, title, total)
     weaving = weaving_sheet(weave, book, labels, title, total)
     return BallBook(Drawing((cover, weaving, *sheets), title), book.plan, tuple(colours), "ball",
                     placed, book.strip_pages, book.extra_pages, scale, area, width, tile_mm,
-                    warnings, unfoldings, diameter, tile_planes)
+                    warnings, unfoldings=unfoldings, diameter=diameter,
+                    non_planarity=tile_planes)
 
 
 def _kinds(pieces: list[Strip]) -> list[int]:

@@ -23,8 +23,8 @@ from ..layout.drawing import Drawing, Sheet
 from ..layout.labels import MIN_CAP
 from ..weave.colour import Palette
 from ..weave.model import Weave
-from .assembly import assembly_sheet, weaving_sheet
-from .crossings import crossing_pages, left_out_crossings
+from .crossings import left_out_crossings
+from .front import front_pages
 from .packing import pack
 from .pages import GAP, PageArea, page_layers, page_span, split_strip, strip_layers
 from .modules import ModulePlan, book_colours, plan_modules
@@ -33,7 +33,6 @@ from .strips import (MIN_PIECE, Strip, build_copies, build_strips, holds, moved_
                      octagon_size, strip_width)
 from .wording import PRINTED, Words, left_out_note, strip_runs
 
-ON_COVER = 24  # at most this many unnamed crossings are tried on page 1
 CURL = 0.45  # a strip wider than this share of the page (a curl) is cut into pieces
 MIN_STRIP = 8.0  # mm: narrower strips tear (paper section 5.2)
 WARN_STRIP = 11.0  # mm: fiddly below (the paper's 23 cm pentagon was woven from 11.1 mm strips)
@@ -63,6 +62,8 @@ class StrandBook:
     strip_width : mm, the median strip width
     tile_size : mm across a typical octagon
     warnings : things the maker should know (thin strips)
+    id_pages : page numbers of the pages naming the strands page 1 has no room for (the last
+        extra pages)
     """
 
     drawing: Drawing
@@ -77,6 +78,12 @@ class StrandBook:
     strip_width: float
     tile_size: float
     warnings: tuple[str, ...] = ()
+    id_pages: tuple[int, ...] = ()
+
+    @property
+    def callout_pages(self) -> tuple[int, ...]:
+        """Page numbers of the pages calling out the crossings the strips leave unnamed."""
+        return tuple(n for n in self.extra_pages[2:] if n not in self.id_pages)
 
     @property
     def ink(self) -> float:
@@ -198,7 +205,7 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
                 tile_size: float = 20.0, margin: float = 10.0, turn: float = 0.0,
                 title: str = "weave-cut strands", layout: str = "mixed",
                 limit: tuple[float, float, float, float] | None = None,
-                words: Words = PRINTED, page_note=None) -> StrandBook:
+                words: Words = PRINTED, page_note=None, gap: float = GAP) -> StrandBook:
     """Lay out every strand of ``weaves[-1]`` as printable strips.
 
     Parameters
@@ -220,6 +227,7 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         ``printcut.cutter_words``)
     page_note : a function of a strip page's number giving a note put before its list of strips
         (print and cut: the page's cut file), or None
+    gap : mm of paper left between two strips (print and cut: ``printcut.WASTE``)
 
     Raises
     ------
@@ -241,55 +249,32 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
             return f"Strips: {names}"
     crossings = left_out_crossings(weave, plan, pieces, layout) if left_out else []
     x0, y0, x1, y1 = area.box
-    places = pack([p.cut for p in pieces], x1 - x0, y1 - y0, GAP, kinds=kinds)
+    places = pack([p.cut for p in pieces], x1 - x0, y1 - y0, gap, kinds=kinds)
 
-    def pages(own: int) -> tuple[StrandBook, list[Sheet], int]:
-        """The book laid out with ``own`` pages of unnamed crossings after the weaving page."""
-        first = 3 + own  # pages 1, 2: assembly and weaving
+    def pages(own: int, ids: int) -> tuple[StrandBook, list[Sheet], int]:
+        """The book laid out with ``own`` pages of unnamed crossings after the weaving page,
+        then ``ids`` pages of the strands page 1 has no room to name."""
+        first = 3 + own + ids  # pages 1, 2: assembly and weaving
         placed, sheets = strip_sheets(pieces, kinds, area, title, subtitle, colours, first,
                                       places, page_note)
-        where = page_span(range(3, first) if own else [1])
+        where = page_span(range(3, 3 + own) if own else [1])
         strips = f"each print's strips ({len(crossings)} on the model)" if (
             layout == "module") else None
         notes = warnings + ((left_out_note(left_out, strips, where),) if left_out else ())
         return (StrandBook(Drawing((), title), plan, tuple(colours), layout, placed,
                            tuple(range(first, first + len(sheets))), tuple(range(1, first)),
-                           scale, area, width, tile_size, notes), sheets, len(sheets) + first - 1)
+                           scale, area, width, tile_size, notes, tuple(range(3 + own, first))),
+                sheets, len(sheets) + first - 1)
 
     laid: dict = {}
 
-    def book_for(own: int) -> tuple[StrandBook, int, int]:
-        book, laid["sheets"], total = pages(own)
+    def book_for(own: int, ids: int = 0) -> tuple[StrandBook, int, int]:
+        book, laid["sheets"], total = pages(own, ids)
         return book, total, 3
 
     book, extra = front_pages(weave, plan, colours, area, crossings, book_for, tile_size, turn,
                               title, words)
     return replace(book, drawing=Drawing((*extra, *laid["sheets"]), title))
-
-
-def front_pages(weave: Weave, plan: ModulePlan, colours, area: PageArea, crossings, book_for,
-                tile_size: float, turn: float, title: str, words: Words = PRINTED):
-    """(book, sheets): the assembly sheet, the weaving page and the pages of the crossings the
-    strips leave unnamed (``crossings``, see :func:`.crossings.left_out_crossings`), which are
-    called out on page 1 where they all fit, else on pages of their own. ``book_for(own)``
-    gives (the book with ``own`` such pages, its page count, the first such page's number);
-    ``words`` name what the maker holds."""
-    own_pages: list = []
-    missing = len(crossings) > ON_COVER
-    if not missing:
-        book, total, first = book_for(0)
-        cover, missing = assembly_sheet(weave, book, tile_size, turn, title, total, crossings,
-                                        words)
-    if missing:
-        own_pages = crossing_pages(weave, plan, colours, area, crossings, turn, words)
-        book, total, first = book_for(len(own_pages))
-        cover, _ = assembly_sheet(weave, book, tile_size, turn, title, total, words=words)
-    sheets = [cover, weaving_sheet(weave, book, turn, title, total, words)]
-    sheets += [Sheet(area.width, area.height, layers + tuple(page_layers(
-        area, title, "Crossings the strips do not name: the strand named first lies on top", n,
-        total, legend=words.legend)), f"page {n}: crossings")
-        for n, layers in enumerate(own_pages, start=first)]
-    return book, sheets
 
 
 def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitle, colours,

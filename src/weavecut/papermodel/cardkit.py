@@ -129,11 +129,13 @@ def card_kit(weaves: list[Weave], pal_name: str, mat: dict, las: Laser,
     fewer = fewer_colours(weaves, made.plan, n_colours) if cut.fill < FULL else ()
     words = card_words(cut, files)
 
-    def book_for(own: int) -> tuple[StrandBook, int, int]:
+    def book_for(own: int, ids: int = 0) -> tuple[StrandBook, int, int]:
         first = COLOURS_PAGE + 1
         return (StrandBook(Drawing((), title), made.plan, made.colours, "mixed", placed, (),
-                           (1, 2, *range(first, first + own)), made.scale, paper,
-                           made.strip_width, tile_size, made.warnings), COLOURS_PAGE + own, first)
+                           (1, 2, *range(first, first + own + ids)), made.scale, paper,
+                           made.strip_width, tile_size, made.warnings,
+                           tuple(range(first + own, first + own + ids))),
+                COLOURS_PAGE + own + ids, first)
 
     book, front = front_pages(weave, made.plan, made.colours, paper, crossings, book_for,
                               tile_size, turn, title, words)
@@ -148,7 +150,7 @@ def _left_out(crossings, book: StrandBook) -> tuple[str, ...]:
     """The warning on crossings no strip names, with the pages that call them out."""
     if not crossings:
         return ()
-    where = page_span(book.extra_pages[2:] or [1])
+    where = page_span(book.callout_pages or [1])
     return (f"{too_small(len(crossings))} to carry an engraved name on their strip (an "
             f"engraved dot there): they are called out on {where} of strands-assembly.pdf",)
 

@@ -99,10 +99,12 @@ def text_checks(sheet: Sheet, box=None, inner=None, strands=None) -> list[dict]:
 
 def sheet_checks(book, n: int) -> list[dict]:
     """:func:`text_checks` of page ``n`` (1-based) of a strand book, with the rules that page
-    has: on a strip page its printable box, on the assembly sheet (page 1) the strands' fills."""
+    has: on a strip page its printable box, on the assembly sheet (page 1) and the pages naming
+    the strands it has no room for the strands' fills."""
     area = book.area
     inner = (area.margin, area.margin, area.width - area.margin, area.height - area.margin)
-    strands = dict(zip(book.plan.labels, book.colours)) if n == 1 else None
+    named = n == 1 or n in getattr(book, "id_pages", ())
+    strands = dict(zip(book.plan.labels, book.colours)) if named else None
     return text_checks(book.drawing.sheets[n - 1], area.box if n in book.strip_pages else None,
                        inner, strands)
 

@@ -28,6 +28,7 @@ PLATE_PAD = 0.8  # mm of white plate round a callout's text
 LEADER = Style("#000000", 0.25)
 CASING = Style("#ffffff", 0.7)  # under the leader, so it shows on dark tiles too
 DOT = 0.7  # mm, radius of the dot on the crossing
+RING = 1.0  # mm, outer radius of the ring round a strand ID's leader end
 ROW_GAP = 0.6  # mm between two plates of a column
 
 
@@ -146,17 +147,21 @@ def column_room(frame) -> int:
     return int((frame[3] - frame[1] + ROW_GAP) // (_plate_height() + ROW_GAP))
 
 
-def callout_shapes(placed: list, spots) -> tuple[list, list[Text]]:
+def callout_shapes(placed: list, spots, dots: bool = True) -> tuple[list, list[Text]]:
     """(shapes, texts) drawing the ``callouts`` ``placed`` at ``spots``: white plates, leader
-    lines on a white casing, and a dot on every spot."""
+    lines on a white casing, and a dot on every spot (a ring round it without ``dots``: the
+    tile's own colour shows inside)."""
     placed_at = list(zip(placed, np.asarray(spots).reshape(-1, 2)))
     lines = np.concatenate([p[2] for p, _ in placed_at])
     offsets = np.arange(0, len(lines) + 1, 2, dtype=np.int64)
-    dots = shapely.buffer(shapely.points([s for _, s in placed_at]), DOT)
     shapes = [polygons_from_shapely([p[1] for p, _ in placed_at],
                                     Style("#333333", 0.15, "#ffffff")),
-              Polylines(lines, offsets, CASING), Polylines(lines, offsets, LEADER),
-              polygons_from_shapely(list(dots), Style("#ffffff", 0.2, "#000000"))]
+              Polylines(lines, offsets, CASING), Polylines(lines, offsets, LEADER)]
+    marks = shapely.buffer(shapely.points([s for _, s in placed_at]), DOT if dots else RING)
+    if not dots:
+        marks = shapely.difference(marks, shapely.buffer(shapely.points(
+            [s for _, s in placed_at]), RING - 0.4))
+    shapes.append(polygons_from_shapely(list(marks), Style("#ffffff", 0.2, "#000000")))
     return shapes, [p[0] for p, _ in placed_at]
 
 
@@ -168,16 +173,37 @@ def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float,
     columns need, the crossings of each side dealt out over them in turn from the top.
     ``words`` say how such a crossing looks on its strip."""
     ids = plan.labels
-    x0, y0, x1, y1 = area.box
     labels = [crossing_label(ids, over, under) for _, over, under in crossings]
     note = (f"{too_small(len(crossings))} to carry a name on their strip: there the "
             f"strip {words.unnamed_there}. Each is called out once: "
             f"{crossing_meaning(ids, crossings[0])}.")
+    return callout_pages(weave, colours, area, [c[0] for c in crossings], labels, note, turn,
+                         "crossings")
+
+
+def id_pages(weave: Weave, plan, colours, area, unnamed, turn: float) -> list[tuple]:
+    """The layers of the pages naming the strands page 1 has no room for, without the page
+    furniture: ``unnamed`` (strand, tile where it lies on top) each called out once with its ID
+    as the crossings are (:func:`callout_pages`), in a layer "ids" as on page 1, the leader
+    ending in a ring rather than a dot (the tile's colour, the strand's, shows inside)."""
+    n = len(unnamed)
+    note = (f"Page 1 has no room for the IDs of {n} strand{'s' if n > 1 else ''}: each is "
+            f"named here once, with a line to one of its tiles, where it lies on top.")
+    return callout_pages(weave, colours, area, [t for _, t in unnamed],
+                         [plan.labels[s] for s, _ in unnamed], note, turn, "ids", dots=False)
+
+
+def callout_pages(weave: Weave, colours, area, tiles, labels: list[str], note: str,
+                  turn: float, layer: str, dots: bool = True) -> list[tuple]:
+    """The layers of the pages calling out ``labels[i]`` at ``tiles[i]`` (a white plate in a
+    column, a leader into the tile, ending on a dot with ``dots``), with ``note`` above and the
+    texts in ``layer``."""
+    x0, y0, x1, y1 = area.box
     texts, bottom = paragraphs([note], x0, y1, x1 - x0)
     room = max((text_width(s, MIN_CAP) for s in labels), default=0.0) + 2 * PLATE_PAD + 3 * GAP
     frame = (x0, y0, x1, bottom - GAP)
     on_sheet, _, paint, _ = pattern(weave, turn, (x0 + room, y0, x1 - room, frame[3]), colours)
-    spots = label_spots(on_sheet[[c[0] for c in crossings]])
+    spots = label_spots(on_sheet[list(tiles)])
     middle = (x0 + x1) / 2
     side = spots[:, 0] >= middle
     n = max(1, -(-max(side.sum(), (~side).sum()) // column_room(frame)))
@@ -189,8 +215,8 @@ def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float,
     for p in range(n):  # pages
         on = np.flatnonzero(page == p)
         placed = column_callouts(spots[on], [labels[i] for i in on.tolist()], frame, middle)
-        shapes, named = callout_shapes(placed, spots[on])
+        shapes, named = callout_shapes(placed, spots[on], dots)
         pages.append((Layer("pattern", "paint", (paint, *shapes)),
-                      Layer("crossings", "label", tuple(named)),
+                      Layer(layer, "label", tuple(named)),
                       Layer("notes", "label", tuple(texts))))
     return pages

@@ -31,10 +31,14 @@ from ..units import to_mm
 from .modules import copy_letter
 from .pages import CUT
 from .slim import narrowest_feature
+from .strips import MIN_PIECE
 from .wording import PRINTED, Words, page_index
 
 PRINTER_EDGE = 6.35  # mm (1/4 in): the widest unprintable edge of common home printers
 MARK_INK = Style(None, 0.0, "#000000")
+WASTE = MIN_PIECE  # mm of paper between two strips a machine cuts: the waste between them is a
+# strip of paper too, and a drag knife drags a thinner one along (or tears it) instead of
+# cutting past it; the packer's 2 mm gap is for scissors, which cut each strip out on its own
 
 
 class CutterError(WeaveCutError, ValueError):

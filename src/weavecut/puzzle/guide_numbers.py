@@ -8,7 +8,8 @@ the front one half (one paint), a ring piece's bare hexagon (natural wood, print
 the whole ring piece (its paints and the white hexagon).
 The largest of these on which black or white reaches the contrast wins, level where a level
 number is nearly as large; a ring piece's hexagon (or the whole piece) only where its
-painted part has no room: a white hexagon with a number reads as a piece of its own. Where no
+painted part has no room even at ``RING_CAP``: a white hexagon with a number reads as a piece
+of its own, so a ring piece's number goes on its paint a little smaller first. Where no
 ink reads (two paints of which one wants black and the other white, or a mid-tone paint) the
 number sits on a small white plate in black ink. A number that fits nowhere at ``MIN_CAP``
 is printed smaller, down to ``LEAST``; a piece too small even for that is left without a
@@ -37,6 +38,9 @@ MAX_CAP = 6.0  # mm, the largest number on a guide
 WORD_SPAN = 9.5  # mm, the most a number spans: under the 10 mm by which printed pages overlap,
 # so each is whole on one page (layout.tiling keeps a word whole or leaves it to the next page)
 LEAST = 1.5  # mm, the smallest: a piece without room for it is named, not numbered
+RING_CAP = 2.3  # mm: a ring piece's number on its paint at this size, where an ink reads there,
+# goes before a MIN_CAP number on its bare hexagon (a white hexagon with a number reads as a
+# piece of its own; 2.3 mm is 8 % smaller, the default puzzle's last 11 ring pieces fit 2.31-2.5)
 MARGIN = 0.6  # mm from a number's box to its piece's edge
 PAD = 0.25  # of the cap height, each side of a number's ink: its room from the next number
 TIGHT_CAP = 3.0  # mm, the largest number fitted without PAD: the two MARGINs between it and
@@ -52,11 +56,13 @@ class GuideNumbers:
     """Every piece's number on one side's guide (in the puzzle's coordinates, unmirrored).
 
     ``inks`` (P,) black or white; ``plates`` (P,) the white plate under a number (None for
-    none); a height of 0: no number fits, even at ``LEAST``."""
+    none); a height of 0: no number fits, even at ``LEAST``; ``ring`` (P,) the ring pieces
+    (their numbers go down to ``RING_CAP`` on their paint by design, unwarned)."""
 
     labels: Labels
     inks: NDArray[np.object_]
     plates: NDArray[np.object_]
+    ring: NDArray[np.bool_] | None = None
 
 
 @lru_cache(maxsize=1024)
@@ -111,34 +117,39 @@ def guide_numbers(puzzle: Puzzle, colouring: Colouring, side: str) -> GuideNumbe
     on_paint = fits[:painted] + fits[len(candidates):len(candidates) + painted]
     chosen = (np.zeros(n), np.zeros((n, 2)), np.zeros(n), np.full(n, BLACK, dtype=object),
               np.zeros(n, dtype=bool))
-    # at MIN_CAP if anywhere, else smaller; on the paint before the hexagon; on a plate
-    # before smaller
-    for floor in (MIN_CAP, LEAST):
-        for group in (on_paint, fits):
-            _choose(group, floor, chosen)
+    # at MIN_CAP if anywhere, else smaller; on the paint before the hexagon (a ring piece's
+    # down to RING_CAP, where an ink reads); on a plate before smaller
+    ring = puzzle.hexagons != None  # noqa: E711
+    _choose(on_paint, MIN_CAP, chosen)
+    _choose(on_paint, RING_CAP, chosen, ring, plates=False)
+    _choose(fits, MIN_CAP, chosen)
+    for group in (on_paint, fits):
+        _choose(group, LEAST, chosen)
     best_h, centres, angles, inks, plated = chosen
     plates = np.full(n, None, dtype=object)
     if plated.any():
         plates[plated] = _plates([texts[k] for k in np.flatnonzero(plated).tolist()],
                                  best_h[plated], centres[plated], angles[plated])
-    return GuideNumbers(Labels(tuple(texts), best_h, centres, angles), inks, plates)
+    return GuideNumbers(Labels(tuple(texts), best_h, centres, angles), inks, plates, ring)
 
 
-def _choose(fits, floor: float, chosen) -> None:
+def _choose(fits, floor: float, chosen, only=True, plates: bool = True) -> None:
     """Number the pieces still without one (``chosen``: heights, centres, angles, inks, plated,
-    changed in place) from ``fits`` at ``floor`` mm or more: where an ink reads, else on a
-    plate."""
+    changed in place; of those, the pieces ``only`` marks) from ``fits`` at ``floor`` mm or
+    more: where an ink reads, else (with ``plates``) on a plate."""
     best_h, centres, angles, inks, plated = chosen
-    todo = best_h == 0
+    todo = (best_h == 0) & only
     for (h, c, a), read, pad in fits:
         ok = todo & np.array([r[1] >= MIN_CONTRAST for r in read]) & (h >= floor)
         # the first that reads wins, a larger one with room round it over it
         better = ok & ((best_h == 0) | ((h > best_h + 1e-9) & (pad > 0)))
         best_h[better], centres[better], angles[better] = h[better], c[better], a[better]
         inks[better] = np.array([r[0] for r in read], dtype=object)[better]
+    if not plates:
+        return
     # no part reads: where the number is largest, with room round it if it can, on a plate,
     # in black
-    todo = best_h == 0
+    todo = (best_h == 0) & only
     for want in (PAD, 0.0):
         for (h, c, a), _, pad in fits:
             better = todo & (pad == want) & (h >= floor) & (h > best_h + 1e-9)
@@ -180,10 +191,13 @@ def _plates(texts, heights, centres, angles) -> NDArray[np.object_]:
 
 
 def warnings(numbers: GuideNumbers, side: str) -> list[str]:
-    """Lines naming the pieces whose number on ``side``'s guide is smaller than ``MIN_CAP``,
-    and those too small for any (they are left without one: the colour key lists them)."""
+    """Lines naming the pieces whose number on ``side``'s guide is smaller than ``MIN_CAP``
+    (a ring piece's: than ``RING_CAP``, the size it is given on its paint before its bare
+    hexagon), and those too small for any (they are left without one: the colour key lists
+    them)."""
     h = numbers.labels.heights
-    small, none = np.flatnonzero((h > 0) & (h < MIN_CAP)), np.flatnonzero(h == 0)
+    least = MIN_CAP if numbers.ring is None else np.where(numbers.ring, RING_CAP, MIN_CAP)
+    small, none = np.flatnonzero((h > 0) & (h < least - 1e-9)), np.flatnonzero(h == 0)
     out = []
     if len(small):
         out.append(f"pieces {_listed(small)} are too small for {MIN_CAP:g} mm numbers on the "

@@ -1,0 +1,57 @@
+"""The pages before the strips: the assembly sheet, the weaving page, the pages calling out the
+crossings the strips leave unnamed and the pages naming the strands page 1 has no room for,
+laid out until page 1's words agree with the pages after it."""
+
+from __future__ import annotations
+
+from ..layout.drawing import Sheet
+from ..weave.model import Weave
+from .assembly import assembly_sheet, weaving_sheet
+from .crossings import crossing_pages, id_pages
+from .modules import ModulePlan
+from .pages import PageArea, page_layers
+from .wording import PRINTED, Words
+
+ON_COVER = 24  # at most this many unnamed crossings are tried on page 1
+SETTLE = 6  # page 1 laid out at most this many times: its words name the pages after it
+
+
+def front_pages(weave: Weave, plan: ModulePlan, colours, area: PageArea, crossings, book_for,
+                tile_size: float, turn: float, title: str, words: Words = PRINTED):
+    """(book, sheets): the assembly sheet, the weaving page, the pages of the crossings the
+    strips leave unnamed (``crossings``, see :func:`.crossings.left_out_crossings`), which are
+    called out on page 1 where they all fit, else on pages of their own, and the pages naming
+    the strands page 1 has no room for. ``book_for(own, ids)`` gives (the book with ``own``
+    crossing pages and ``ids`` such strand pages after them, its page count, the first
+    crossing page's number); ``words`` name what the maker holds."""
+    own_pages: list = []
+    on_cover = crossings if len(crossings) <= ON_COVER else ()
+    if not on_cover and crossings:
+        own_pages = crossing_pages(weave, plan, colours, area, crossings, turn, words)
+    named: list = []
+    for _ in range(SETTLE):  # page 1's words name the other pages: until their count holds
+        book, total, first = book_for(len(own_pages), len(named))
+        cover, missing, unnamed = assembly_sheet(weave, book, tile_size, turn, title, total,
+                                                 on_cover, words)
+        if missing:  # the crossings do not all fit on page 1: pages of their own
+            on_cover, own_pages = (), crossing_pages(weave, plan, colours, area, crossings,
+                                                     turn, words)
+            continue
+        more = id_pages(weave, plan, colours, area, unnamed, turn) if unnamed else []
+        if len(more) == len(named):
+            named = more
+            break
+        named = more
+    else:
+        raise AssertionError("page 1 and the pages of the strands it does not name never "
+                             "agreed on their number")
+    sheets = [cover, weaving_sheet(weave, book, turn, title, total, words)]
+    sheets += [Sheet(area.width, area.height, layers + tuple(page_layers(
+        area, title, "Crossings the strips do not name: the strand named first lies on top", n,
+        total, legend=words.legend)), f"page {n}: crossings")
+        for n, layers in enumerate(own_pages, start=first)]
+    sheets += [Sheet(area.width, area.height, layers + tuple(page_layers(
+        area, title, "Strand IDs page 1 has no room for: each with a line to one of its tiles",
+        n, total, legend=words.legend)), f"page {n}: strand IDs")
+        for n, layers in enumerate(named, start=first + len(own_pages))]
+    return book, sheets

@@ -1,0 +1,118 @@
+"""Every strand can be found: its ID is printed on the assembly pages and points at that
+strand, read from the Drawing alone (the pattern's tiles, the white plates, the leader lines
+and the texts of each page's "ids" layer), apart from the placement code."""
+
+from __future__ import annotations
+
+from dataclasses import replace as moved
+
+import numpy as np
+import pytest
+import shapely
+
+from weavecut.layout.drawing import Layer, Polygons, Polylines, Sheet
+from weavecut.layout.labels import text_box
+from weavecut.papermodel.checks import sheet_checks
+
+from tests.papermodel.test_strands import pentagon_book, small_book, weaves
+
+
+def pointed_at(sheet, weave, ids) -> dict[str, set[int]]:
+    """{ID: the strands it points at} over the "ids" texts of ``sheet``: a text inside a tile of
+    the pattern names the strand on top there; a text on a white plate, the strand on top where
+    the plate's leader line ends."""
+    layers = {layer.name: layer for layer in sheet.layers}
+    if "ids" not in layers:
+        return {}
+    shapes = layers["pattern"].shapes
+    tiles = shapes[0].to_shapely()
+    tree = shapely.STRtree(tiles)
+    plates = [g for s in shapes if isinstance(s, Polygons) and s.style.fill == "#ffffff"
+              for g in s.to_shapely().tolist()]
+    lines = [line for s in shapes if isinstance(s, Polylines) and s.style.stroke == "#000000"
+             for line in s.lines()]
+    out: dict[str, set[int]] = {}
+    for t in layers["ids"].shapes:
+        box = text_box(t)
+        plate = [g for g in plates if g.covers(box)]
+        if plate:
+            ends = [shapely.Point(e[-1]) for e in lines
+                    if plate[0].exterior.distance(shapely.Point(e[0])) < 1e-6]
+        else:
+            ends = [box.centroid]
+        hit = {int(k) for e in ends for k in tree.query(e, predicate="within")}
+        out.setdefault(t.text, set()).update(int(weave.tile_over[k]) for k in hit)
+    return out
+
+
+def unfound(book, weave) -> list[str]:
+    """The strand IDs that no text on the pages before the strips points at their strand."""
+    found: dict[str, set[int]] = {}
+    for n in book.extra_pages:
+        for text, strands in pointed_at(book.drawing.sheets[n - 1], weave,
+                                        book.plan.labels).items():
+            found.setdefault(text, set()).update(strands)
+    return [label for s, label in enumerate(book.plan.labels) if s not in found.get(label, ())]
+
+
+def _without(sheet, keep) -> Sheet:
+    layers = tuple(Layer("ids", "label", tuple(t for t in layer.shapes if keep(t)))
+                   if layer.name == "ids" else layer for layer in sheet.layers)
+    return Sheet(sheet.width, sheet.height, layers, sheet.name)
+
+
+def test_every_strand_of_the_pentagon_flower_is_named_and_pointed_at():
+    """The pentagon flower at 23 cm: page 1 had no room for 41 strands' IDs; with the shortest
+    unnamed strands given their plates first and a finer, wider search for the rest it has
+    none for 23 (page 1 names 157 strands); those are named on a page of their own after the
+    crossing pages, each with a leader into one of its tiles. Every one of the 180 strands is
+    then found, and that page's texts pass the page checks. Planted: one callout dropped from
+    that page, or two swapped: those strands are not found."""
+    book, weave = pentagon_book(), weaves("pentagon-flower", 3)[-1]
+    assert book.id_pages == (5,) and book.callout_pages == (3, 4)
+    assert book.strip_pages[0] == 6
+    assert not unfound(book, weave)
+    assert not [r for r in sheet_checks(book, 5) if r["broken"]]
+    sheet = book.drawing.sheets[4]
+    ids = next(layer for layer in sheet.layers if layer.name == "ids").shapes
+    assert len(ids) == 23 and len({t.text for t in ids}) == 23
+    assert sum(len(pointed_at(book.drawing.sheets[0], weave, ()).get(label, ()))
+               for label in book.plan.labels) == 180 - 23
+    cover = " ".join(t.text for layer in book.drawing.sheets[0].layers for t in layer.shapes
+                     if hasattr(t, "text"))
+    assert "are named on page 5" in cover
+    for planted in ("dropped", "swapped"):
+        a, b = ids[0], ids[1]
+        if planted == "dropped":
+            bad = _without(sheet, lambda t: t is not a)
+        else:
+            swap = {id(a): moved(a, text=b.text), id(b): moved(b, text=a.text)}
+            bad = Sheet(sheet.width, sheet.height, tuple(
+                Layer("ids", "label", tuple(swap.get(id(t), t) for t in layer.shapes))
+                if layer.name == "ids" else layer for layer in sheet.layers), sheet.name)
+        sheets = list(book.drawing.sheets)
+        sheets[4] = bad
+        bad_book = moved(book, drawing=moved(book.drawing, sheets=tuple(sheets)))
+        want = [a.text] if planted == "dropped" else sorted([a.text, b.text])
+        assert sorted(unfound(bad_book, weave)) == want, planted
+
+
+def test_a_pattern_whose_page_1_names_every_strand_has_no_strand_page():
+    """The small square grid's page 1 names every strand: no page of strand IDs."""
+    book = small_book()
+    w = weaves("square-grid:2x2", 2)[-1]
+    assert not unfound(book, w) and book.id_pages == ()
+    assert not any(s.name.endswith("strand IDs") for s in book.drawing.sheets)
+    assert np.all([n in book.extra_pages for n in (1, 2)])
+
+
+@pytest.mark.parametrize("n", [1, 5])
+def test_the_leader_ends_of_page_1_and_the_strand_page_meet_no_other_leader(n):
+    """No two leader lines meet on page 1 or on the strand page."""
+    book = pentagon_book()
+    sheet = book.drawing.sheets[n - 1]
+    shapes = next(layer for layer in sheet.layers if layer.name == "pattern").shapes
+    lines = shapely.linestrings([line for s in shapes if isinstance(s, Polylines)
+                                 and s.style.stroke == "#000000" for line in s.lines()])
+    i, j = shapely.STRtree(lines).query(lines, predicate="intersects")
+    assert not [(a, b) for a, b in zip(i.tolist(), j.tolist()) if a < b]
