@@ -133,6 +133,6 @@ def schemas() -> dict[str, Table]:
                           "thickness": Length(0, 20, open_lo=True), "clearance": Length(0, 100),
                           "max_width": Length(0, 10_000, open_lo=True),
                           "max_height": Length(0, 10_000, open_lo=True),
-                          "min_feature": Length(0, 100)},
+                          "min_feature": Length(0, 100), "brand": Text(40)},
                          ("marks", "inset", "length", "thickness", "clearance", "min_feature")),
     }

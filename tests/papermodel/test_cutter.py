@@ -51,7 +51,7 @@ def cut_book(name: str):
 def preset_values(name: str) -> dict:
     """The preset's values in mm, read from its TOML file by tomllib (not by weave-cut)."""
     doc = tomllib.loads(presets.find("cutters", name).read_text())
-    return {k: (to_mm(v) if k not in ("name", "description", "marks") else v)
+    return {k: (to_mm(v) if k not in ("name", "description", "marks", "brand") else v)
             for k, v in doc.items()}
 
 
