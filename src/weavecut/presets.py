@@ -116,7 +116,8 @@ def schemas() -> dict[str, Table]:
     return {
         "palettes": Table({**ABOUT, "colours": ListOf(Colour(), 1, 256),
                            "families": ListOf(ListOf(Colour(), 1, 16), 1, 256),
-                           "family_names": ListOf(Text(40), 1, 256)},
+                           "family_names": ListOf(Text(40), 1, 256),
+                           "colour_names": ListOf(Text(40), 1, 4096)},
                           one_of=("colours", "families")),
         "materials": Table({**ABOUT, "thickness": Length(0, 100, open_lo=True),
                             "kerf": Length(0, 5), "sheet": Sheet(page_size),
