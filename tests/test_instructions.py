@@ -143,8 +143,9 @@ CUT_FILE = re.compile(r"\b(cut-p\d\d-cut)\.svg\b")
 def test_print_and_cut_says_where_its_cut_files_are_and_how_the_cutter_uses_them(made):
     """The print-and-cut book is no printed book with marks added: it says the cut files lie
     beside it, every strip page names its own cut file (which is there, as .svg and .dxf), and
-    it says how print and cut works: registration marks the cutter reads, the PDF's page opened
-    in the cutter's software, then the cut file on it. No scissors, no red line to cut along."""
+    it says how print and cut works: registration marks the cutter reads, the page's cut file
+    opened in the cutter's software (the DXF, which the free editions open), the machine named
+    as its maker writes it. No scissors, no red line to cut along."""
     path = made / PRODUCTS["print and cut"][1][0]
     pages = pages_of(path)
     text = " ".join(pages)
@@ -156,7 +157,9 @@ def test_print_and_cut_says_where_its_cut_files_are_and_how_the_cutter_uses_them
     assert {f"cut-p{i:02d}-cut" for i in strip_pages} == files
     assert "beside this PDF" in pages[0] and "cut-p03-cut.svg or .dxf" in pages[0]
     for words in ("registration marks", "5 mm square top-left", "10 mm from the page's edges",
-                  "open that page of this PDF at 100 %", "then its cut file",
+                  "open its cut file (cut-pNN-cut.dxf", "Basic Edition",
+                  "your Silhouette cutter", "Print and cut (Silhouette)",
                   "let the cutter read the marks"):
         assert words in text, words
+    assert re.findall(r"\bsilhouette\b", text) == []  # the preset's name, not the brand
     assert [w for w in ("red line", "scissors", "Print the strip pages") if w in text] == []

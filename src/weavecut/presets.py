@@ -116,7 +116,8 @@ def schemas() -> dict[str, Table]:
     return {
         "palettes": Table({**ABOUT, "colours": ListOf(Colour(), 1, 256),
                            "families": ListOf(ListOf(Colour(), 1, 16), 1, 256),
-                           "family_names": ListOf(Text(40), 1, 256)},
+                           "family_names": ListOf(Text(40), 1, 256),
+                           "colour_names": ListOf(Text(40), 1, 4096)},
                           one_of=("colours", "families")),
         "materials": Table({**ABOUT, "thickness": Length(0, 100, open_lo=True),
                             "kerf": Length(0, 5), "sheet": Sheet(page_size),
@@ -133,6 +134,6 @@ def schemas() -> dict[str, Table]:
                           "thickness": Length(0, 20, open_lo=True), "clearance": Length(0, 100),
                           "max_width": Length(0, 10_000, open_lo=True),
                           "max_height": Length(0, 10_000, open_lo=True),
-                          "min_feature": Length(0, 100)},
+                          "min_feature": Length(0, 100), "brand": Text(40)},
                          ("marks", "inset", "length", "thickness", "clearance", "min_feature")),
     }

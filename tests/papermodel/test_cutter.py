@@ -51,7 +51,7 @@ def cut_book(name: str):
 def preset_values(name: str) -> dict:
     """The preset's values in mm, read from its TOML file by tomllib (not by weave-cut)."""
     doc = tomllib.loads(presets.find("cutters", name).read_text())
-    return {k: (to_mm(v) if k not in ("name", "description", "marks") else v)
+    return {k: (to_mm(v) if k not in ("name", "description", "marks", "brand") else v)
             for k, v in doc.items()}
 
 
@@ -296,23 +296,42 @@ def test_engraved_text_lies_inside_its_strip_with_a_margin(tmp_path):
     assert cut.smallest_label >= lasercard.MIN_ENGRAVED
 
 
-def test_the_card_colour_page_names_every_strands_card():
-    """Page 3 of the card's instructions: "card #rrggbb: sheet 1" (or "sheets 1, 2") then
-    "strands A1, A3, ...": every strand once, under its colour, on the sheets that hold it."""
+def test_the_card_colour_page_names_every_strands_card(tmp_path):
+    """Page 3 of the card's instructions: "card navy (#0b3c5d): sheet 1" (or "sheets 1, 2":
+    the colour by the palette's own name) then "strands A1, A3, ...": every strand once, under
+    its colour, on the sheets that hold it; then how much of each sheet its strips fill from
+    the top-left corner, which the cut lines read back from the sheet's DXF must fit."""
     book, cut = card()
-    page = cardkit.card_colour_sheet(cut, PageArea(*A4, 10.0), "test", laser())
+    named_in_toml = dict(zip(*(tomllib.loads(presets.find("palettes", "maritime-4").read_text())[k]
+                               for k in ("colours", "colour_names"))))
+    page = cardkit.card_colour_sheet(cut, PageArea(*A4, 10.0), "test", laser(),
+                                     called=palette("maritime-4").called)
     texts = [t.text for layer in page.layers for t in layer.shapes if isinstance(t, Text)]
-    heads = [k for k, t in enumerate(texts) if t.startswith("card #")]
+    heads = [k for k, t in enumerate(texts) if t.startswith("card ") and ": sheet" in t]
     assert len(heads) == len(set(book.colours))
     named = {}
     for k in heads:
-        colour, _, sheets = texts[k].removeprefix("card ").partition(": ")
+        name, _, sheets = texts[k].removeprefix("card ").partition(": ")
+        colour = re.fullmatch(r"(.+) \((#[0-9a-f]{6})\)", name)
+        assert colour and colour[1] == named_in_toml[colour[2]]
+        colour = colour[2]
         numbers = [int(n) for n in re.sub(r"sheets? ", "", sheets).split(", ")]
         assert [cut.colours[n - 1] for n in numbers] == [colour] * len(numbers)
-        for label in strip_names(texts[k + 1].removeprefix("strands ")):
+        runs, _, used = texts[k + 1].removeprefix("strands ").partition("; ")
+        for label in strip_names(runs):
             assert label not in named
             assert any(p.label.split(" ")[0] == label for n in numbers for p in cut.pieces[n - 1])
             named[label] = colour
+        sizes = re.findall(r"(\d+) x (\d+) mm", used)
+        assert len(sizes) == len(numbers) and used.endswith("at the top left")
+        for n, (w, h) in zip(numbers, sizes):
+            path = tmp_path / f"sheet{n}.dxf"
+            export.write(cut.sheets[n - 1], path)
+            xy = np.concatenate(dxf_rings(path, "cut"))
+            height = cut.sheets[n - 1].sheets[0].height
+            edge = lasercard.SHEET_MARGIN  # the stated size keeps the margin round the strips
+            assert abs(int(w) - (xy[:, 0].max() + edge)) <= 1.0
+            assert abs(int(h) - (height - xy[:, 1].min() + edge)) <= 1.0
     strips = {p.label.split(" ")[0]: book.colours[p.strand] for _, p in book.pieces}
     assert named == strips
 

@@ -328,8 +328,8 @@ def test_best_spot_tries_a_longer_turn_when_a_shorter_one_fits_nowhere():
 
 def test_card_colour_swatches_lie_under_the_texts():
     """The card colour page paints its swatches (and the strip drawn on it) first, so every
-    text is drawn over them; each colour's two lines ("card #rrggbb: sheet 1", "strands ...")
-    stand beside the swatch of that colour."""
+    text is drawn over them; each colour's two lines ("card navy (#rrggbb): sheet 1",
+    "strands ...") stand beside the swatch of that colour."""
     from weavecut.layout.lasersetup import laser, material
     from weavecut.papermodel.cardkit import card_kit
 
@@ -341,8 +341,8 @@ def test_card_colour_swatches_lie_under_the_texts():
     written = [i for i, s in enumerate(shapes) if isinstance(s, Text)]
     assert painted and max(painted) < min(written)
     swatches = shapes[painted[0]]
-    heads = [s for s in shapes if isinstance(s, Text) and s.text.startswith("card #")]
+    heads = [s for s in shapes if isinstance(s, Text) and re.match(r"card .*: sheets? \d", s.text)]
     assert len(heads) == swatches.n_polygons == len(set(kit.cut.colours))
     for head, ring, fill in zip(heads, swatches.rings(), swatches.fills):
-        assert head.text.startswith(f"card {fill}:")
+        assert f"({fill}): sheet" in head.text
         assert ring[:, 1].min() <= head.y <= ring[:, 1].max() and head.x > ring[:, 0].max()

@@ -35,7 +35,8 @@ BASE = {
                 "min_feature": "1mm", "max_width": "300mm", "max_height": "300mm"},
 }
 # what a list of each kind holds, one item
-ITEM = {"colours": "#ffffff", "families": ["#ffffff"], "family_names": "f", "formats": "svg"}
+ITEM = {"colours": "#ffffff", "families": ["#ffffff"], "family_names": "f", "colour_names": "f",
+        "formats": "svg"}
 
 
 def rows() -> list[dict]:

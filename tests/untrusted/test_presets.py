@@ -93,6 +93,8 @@ def test_laser_presets(tmp_path, text, needle):
     ('colours = ["#ffffff"]\nfamilies = [["#000000"]]', "exactly one of"),
     ('name = 5\ncolours = ["#ffffff"]', "name: expected a string"),
     ("colours = [1, 2]", "item 1"),
+    ('colours = ["#ffffff", "#000000"]\ncolour_names = ["white"]',
+     "1 colour_names for 2 colours"),
 ])
 def test_palette_presets(tmp_path, text, needle):
     path = tmp_path / "p.toml"

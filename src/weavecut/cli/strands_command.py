@@ -197,7 +197,7 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
                 f"({len(book.strip_pages)} of strips, {100 * book.ink:.0f} % ink); C{plan.k}, "
                 f"{counted(plan.k, 'copy')} of a {plan.copies.shape[1]}-strip module"
                 + (f" + {counted(len(plan.extras), 'extra')}" if len(plan.extras) else "")
-                + (f"; {counted(len(book.strip_pages), 'cut file')} for {machine.name}, "
+                + (f"; {counted(len(book.strip_pages), 'cut file')} for {machine.title}, "
                    f"{extra['cutter']['cut_length_mm'] / 1000:.1f} m of cuts, smallest "
                    f"feature {extra['cutter']['min_feature_mm']:.1f} mm" if extra else ""))
 

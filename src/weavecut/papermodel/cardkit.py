@@ -119,7 +119,8 @@ def card_kit(weaves: list[Weave], pal_name: str, mat: dict, las: Laser,
     sheet = PageArea(*mat["sheet"], SHEET_MARGIN, furniture=False)
     paper = PageArea(page[0], page[1], margin)
     paper.check()
-    made = strip_set(weaves, palette(pal_name), sheet, tile_size, turn)
+    pal = palette(pal_name)
+    made = strip_set(weaves, pal, sheet, tile_size, turn)
     cut = card_sheets(made.pieces, made.colours, las, mat["kerf"], mat["sheet"], title)
     files = sheet_names(cut)
     placed = tuple((n, p) for n, pieces in enumerate(cut.pieces, start=1) for p in pieces)
@@ -141,7 +142,7 @@ def card_kit(weaves: list[Weave], pal_name: str, mat: dict, las: Laser,
                               tile_size, turn, title, words)
     total = len(front) + 1
     colours = card_colour_sheet(cut, paper, title, las, hint(cut.fill, len(cut.sheets), fewer),
-                                COLOURS_PAGE, total)
+                                COLOURS_PAGE, total, pal.called)
     book = replace(book, drawing=Drawing((*front[:2], colours, *front[2:]), title))
     return CardKit(cut, book, files, fewer, made.warnings + _left_out(crossings, book))
 
@@ -160,14 +161,16 @@ SWATCH = Style("#333333", 0.2)
 
 
 def card_colour_sheet(cut: CardCut, area: PageArea, title: str, las: Laser, note: str = "",
-                      number: int = COLOURS_PAGE, total: int = COLOURS_PAGE) -> Sheet:
+                      number: int = COLOURS_PAGE, total: int = COLOURS_PAGE,
+                      called=lambda colour: colour) -> Sheet:
     """Page ``number``: how to cut the sheets (the laser's layers in order), ``note`` (the
-    fewer-colours hint), which card colour every strand is cut from and on which sheets, and a
-    strip as it comes off the laser."""
+    fewer-colours hint), which card colour every strand is cut from (``called``: its name in
+    the palette) and on which sheets, where on them its strips lie, and a strip as it comes off
+    the laser."""
     x0, y0, x1, y1 = area.box
     role = {r: las.style(r).stroke for r in ("engrave", "score", "cut")}
     lines = [f"Cut every sheet from card of its colour; its file name says which "
-             f"({sheet_names(cut)[0]}.svg: card {cut.colours[0]}). Each file has three layers "
+             f"({sheet_names(cut)[0]}.svg: card {called(cut.colours[0])}). Each file has three layers "
              f"in the colours of the {las.name} preset, to be run in this order: engrave "
              f"({role['engrave']}), then score ({role['score']}) with little power, so that it "
              f"marks and creases the card without cutting through, then cut ({role['cut']}). "
@@ -184,9 +187,10 @@ def card_colour_sheet(cut: CardCut, area: PageArea, title: str, las: Laser, note
         swatches.append(shapely.box(x0, y, x0 + 14.0, y + 8.0))
         fills.append(colour)
         word = "sheet" if len(numbers) == 1 else "sheets"
-        texts.append(Text(x0 + 18.0, y + 4.5, f"card {colour}: {word} "
+        texts.append(Text(x0 + 18.0, y + 4.5, f"card {called(colour)}: {word} "
                           f"{', '.join(map(str, numbers))}", 4.0))
-        texts.append(Text(x0 + 18.0, y, "strands " + strip_runs(labels), MIN_CAP))
+        texts.append(Text(x0 + 18.0, y, f"strands {strip_runs(labels)}; {used_card(cut, numbers)}",
+                          MIN_CAP))
     shapes = [polygons_from_shapely(swatches, SWATCH, fills)]
     figure, true_size = strip_figure(cut, (x0, y0, x1, y - 2 * GAP))
     shapes += figure
@@ -195,6 +199,18 @@ def card_colour_sheet(cut: CardCut, area: PageArea, title: str, las: Laser, note
                            "laser's layers, a strip as it comes off the laser", number, total,
                            legend=False, bar=true_size))
     return Sheet(area.width, area.height, layers, f"page {number}: card colours")
+
+
+def used_card(cut: CardCut, numbers: list[int]) -> str:
+    """Where the strips of sheets ``numbers`` (1-based) lie: the width x height from each
+    sheet's top-left corner that holds them (its margin included), so that a maker can cut a
+    piece of card that size instead of spending a whole sheet on a few strips."""
+    sizes = []
+    for n in numbers:
+        height = cut.sheets[n - 1].sheets[0].height
+        x0, y0, x1, y1 = shapely.total_bounds([p.cut for p in cut.pieces[n - 1]])
+        sizes.append(f"{x1 + SHEET_MARGIN:.0f} x {height - y0 + SHEET_MARGIN:.0f} mm")
+    return f"the strips fill {' and '.join(sizes)} at the top left"
 
 
 def strip_figure(cut: CardCut, box) -> tuple[list, bool]:

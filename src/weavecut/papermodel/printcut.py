@@ -61,6 +61,8 @@ class Cutter:
     clearance : blank paper between the marks and any strip
     max_size : (width, height) of the largest area the cutter reads, centred, or None
     min_feature : the narrowest neck or notch the drag knife cuts cleanly in paper
+    brand : the machine's name as its maker writes it ("Brother ScanNCut"); the preset's name
+        where the preset gives none
     """
 
     name: str
@@ -71,6 +73,12 @@ class Cutter:
     clearance: float
     max_size: tuple[float, float] | None = None
     min_feature: float = 1.0
+    brand: str = ""
+
+    @property
+    def title(self) -> str:
+        """What the instructions call the machine: its brand, else the preset's name."""
+        return self.brand or self.name
 
     @property
     def own_marks(self) -> bool:
@@ -140,7 +148,7 @@ def cutter(name: str) -> Cutter:
         size = (to_mm(doc.get("max_width", "10000mm")), to_mm(doc.get("max_height", "10000mm")))
     return Cutter(str(doc.get("name", name)), doc["marks"], to_mm(doc["inset"]),
                   to_mm(doc["length"]), to_mm(doc["thickness"]), to_mm(doc["clearance"]), size,
-                  to_mm(doc["min_feature"]))
+                  to_mm(doc["min_feature"]), str(doc.get("brand", "")))
 
 
 def with_marks(book, machine: Cutter):
@@ -304,7 +312,7 @@ def _design_space_words(machine: Cutter, output: Path) -> Words:
     Print Then Cut in Design Space": upload, Flatten, Make it, Design Space prints the marks)
     and 360009429814 ("How large can I Print Then Cut?": 6.75 x 9.25 in is the area every
     machine and paper takes; newer machines take more, on an area that is not a rectangle)."""
-    name, stem = machine.name, output.stem
+    name, stem = machine.title, output.stem
     w, h = (v / 25.4 for v in machine.max_size) if machine.max_size else (6.75, 9.25)
 
     def sources(book) -> str:
@@ -340,7 +348,7 @@ def cutter_words(machine: Cutter, output: Path) -> Words:
     marks has words of its own (:func:`_design_space_words`)."""
     if machine.own_marks:
         return _design_space_words(machine, output)
-    name, stem = machine.name, output.stem
+    name, stem = machine.title, output.stem
 
     def files(book) -> str:
         first, last = book.strip_pages[0], book.strip_pages[-1]
@@ -361,15 +369,16 @@ def cutter_words(machine: Cutter, output: Path) -> Words:
                    need=f"You need: the printed strip pages, your {name} cutter with its mat, "
                         "tape or paper clips, a glue stick and a piece of cardboard a little "
                         "larger than the model.",
-                   cut=f"Cut each strip page with the cutter: in its software, open that page "
-                       f"of this PDF at 100 %, then its cut file ({stem}-pNN-cut.svg or .dxf, "
-                       "NN the page number, beside this PDF) on it at the page's corner: both "
-                       "have the page's size, so the cut lines lie on the printed outlines. "
-                       "Turn on the software's registration marks with the sizes above, so they "
-                       "lie on the printed ones; put the printed page on the mat, let the "
-                       "cutter read the marks, and cut. Sort the strips by ID: the ID printed "
-                       "in the strip's own colour is its name on page 1; a small ID in a light "
-                       "part names the strand that lies on top there.")
+                   cut=f"Cut each strip page with the cutter: in its software, open its cut "
+                       f"file ({stem}-pNN-cut.dxf, NN the page number, beside this PDF: every "
+                       "edition opens DXF, Silhouette Studio's free Basic Edition too; the .svg "
+                       "needs one that reads SVG, such as Studio's Designer Edition). It has "
+                       "the page's size, so placed at the page's corner its lines lie on the "
+                       "printed outlines. Turn on the software's registration marks with the "
+                       "sizes above, so they lie on the printed ones; put the printed page on "
+                       "the mat, let the cutter read the marks, and cut. Sort the strips by ID: "
+                       "the ID printed in the strip's own colour is its name on page 1; a small "
+                       "ID in a light part names the strand that lies on top there.")
 
 
 def cut_file_note(output: Path, machine: Cutter | None = None):

@@ -18,8 +18,18 @@ from .model import Weave
 
 @dataclass(frozen=True)
 class Palette:
+    """A palette preset: its name, its families of shades and what a maker calls each colour
+    (``colour_names``, or a family's name and the shade's number; "" where the preset names
+    none)."""
+
     name: str
     families: tuple[tuple[str, ...], ...]
+    names: tuple[str, ...] = ()
+
+    def called(self, colour: str) -> str:
+        """"orange (#e69f00)", or the bare colour where the palette names none."""
+        name = dict(zip(self.flat, self.names)).get(colour, "")
+        return f"{name} ({colour})" if name else colour
 
     @property
     def flat(self) -> tuple[str, ...]:
@@ -44,7 +54,21 @@ def palette(name: str) -> Palette:
             raise presets.PresetError(f"palette {name!r}: {colour!r} is not a #rrggbb colour")
     if not families or not all(families):
         raise presets.PresetError(f"palette {name!r} has no colours")
-    return Palette(str(doc.get("name", name)), families)
+    return Palette(str(doc.get("name", name)), families, _names(name, doc, families))
+
+
+def _names(name: str, doc: dict, families) -> tuple[str, ...]:
+    """A name per colour of ``families`` (flat order), from ``colour_names`` (one per colour)
+    or ``family_names`` (a family's shades "green 1", "green 2"...), else none."""
+    if "colour_names" in doc:
+        given, count = doc["colour_names"], sum(map(len, families))
+        if len(given) != count:
+            raise presets.PresetError(f"palette {name!r}: {len(given)} colour_names for "
+                                      f"{count} colours")
+        return tuple(map(str, given))
+    given = doc.get("family_names", [])  # as the puzzle's colour key: unnamed families last
+    return tuple(f"{given[f]} {k + 1}" if f < len(given) else ""
+                 for f, family in enumerate(families) for k in range(len(family)))
 
 
 def crossing_pairs(weave: Weave) -> np.ndarray:
