@@ -204,9 +204,14 @@ def form_fields(name: str) -> tuple[Field, ...]:
 def web_help(text: str, name: str) -> str:
     """Click's help of an option of command ``name`` as the form shows it
     (:func:`.words.form_words`; its options by their fields' labels, a flag's ticked)."""
-    labels = {key(p): f"“{field_label(key(p))}”" + " ticked" * bool(getattr(p, "is_flag", 0))
-              for p in command(name).params if not is_hidden(p)}
-    return form_words(text, labels)
+    return form_words(text, labels(name))
+
+
+@functools.cache
+def labels(name: str) -> dict[str, str]:
+    """Option key -> how a sentence on command ``name``'s page names its field."""
+    return {key(p): f"“{field_label(key(p))}”" + " ticked" * bool(getattr(p, "is_flag", 0))
+            for p in command(name).params if not is_hidden(p)}
 
 
 def _field(p: click.Parameter, k: str, where: str, needs: str, name: str) -> Field:
@@ -385,16 +390,3 @@ def check(cmd: click.Command, name: str, args: list[str], kind: str = "") -> Non
         raise FormError(exc.format_message(), key(param) if param is not None else None) \
             from None
 
-
-HINT = re.compile(r"'(?:-\w' / ')?--([a-z][a-z0-9-]*)'")
-
-
-def key_of_message(message: str, name: str) -> str | None:
-    """The form key a CLI message names (``Invalid value for '--size': ...``), if any."""
-    known = {f.key for f in fields(name)}
-    for found in HINT.finditer(message):
-        if found.group(1) in known:
-            return found.group(1)
-    if re.search(r"'-o'|\.[a-z0-9]+ (?:woven model|drawing)\b", message) and format_field(name):
-        return FORMAT  # the output's format: the only part of -o the form chooses
-    return None

@@ -20,6 +20,7 @@ WEB_WORDS = (  # (the CLI's words, the form's words), in this order
     (r"(?<![\w-])-o\b", "the kit"),  # the job's output, which the form does not show
 )
 NAMED = re.compile(r"(?<![\w-])--([a-z][a-z0-9-]*)")  # an option named in a help
+HINT = re.compile(r"'(?:-\w' / ')?--([a-z][a-z0-9-]*)(?:' / '-\w)?'|'(INPUT|NAME)'")  # click's
 
 
 def form_words(text: str, labels: dict[str, str]) -> str:
@@ -35,6 +36,25 @@ def form_words(text: str, labels: dict[str, str]) -> str:
     for cli_words, web_words in WEB_WORDS:
         text = re.sub(cli_words, web_words, text)
     return NAMED.sub(lambda found: labels.get(found.group(1), found.group(0)), text)
+
+
+def refusal_words(message: str, labels: dict[str, str], fields: dict[str, str]) -> str:
+    """A refusal (click's message, a reader's) in the form's words: the option click's hint
+    names (``'--levels' / '-n'``, ``'INPUT'``) as its field, ``fields``: option key -> the
+    field's name; the rest as :func:`form_words` turns a help.
+
+    >>> refusal_words("Invalid value for '--levels' / '-n': 0 is not in the range 1<=x<=8.",
+    ...               {}, {"levels": "Levels"})
+    'Invalid value for “Levels”: 0 is not in the range 1<=x<=8.'
+    >>> refusal_words("--material goes with --laser-card", {"material": "“Material”",
+    ...               "laser-card": "“Laser-cut card” ticked"}, {})
+    '“Material” goes with “Laser-cut card” ticked'
+    """
+    def field(found: re.Match) -> str:
+        k = (found.group(1) or found.group(2)).lower()
+        return f"“{fields[k]}”" if k in fields else found.group(0)
+
+    return form_words(HINT.sub(field, message), labels)
 
 
 def bounds(t) -> str:
