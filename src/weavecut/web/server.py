@@ -5,8 +5,8 @@ the CLI's long option names), ``GET /{command}/check`` (the query checked by the
 field messages, the command line, the recipe; JSON), ``GET /{command}/preview.svg``,
 ``GET /{command}/summary.json`` (the kit's figures), ``GET /{command}.zip`` (the kit),
 ``GET /{command}/model.glb`` (the kit's woven 3-D model, from the same job; 404 if it has none),
-``POST /upload`` (a drawing as the request body, read by a job like a kit; ``{"id": SHA256}``
-for ``input=upload:ID``)
+``POST /upload`` (a drawing as the request body, read by a job like a kit; ``{"id": SHA256,
+"kind": "surface" or "flat"}`` for ``input=upload:ID``: a surface in space makes a ball)
 ``/static/`` and ``/static/viewer/`` (the kit page's 3-D viewer scripts). A bad value answers
 400 with the CLI's own message in the form's words (``refusals``; header ``X-Field``: the
 form key it belongs to), an unknown command 404, a full queue 503 with Retry-After, anything
@@ -146,7 +146,8 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
         except forms.FormError as exc:
             error = said(exc, name)
         value = raw.get("input", "")
-        offered = [(value[7:], "your drawing")] if forms.UPLOAD.fullmatch(value) else []
+        offered = [(value[7:], "your drawing", store.kind(value[7:]))] \
+            if forms.UPLOAD.fullmatch(value) else []
         return HTMLResponse(pages.command_page(name, raw, error, query, offered),
                             400 if error else 200)
 
@@ -261,8 +262,8 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
             if not result.ok:  # the reader's message; its process ended (>= 500): refused
                 return PlainTextResponse(in_form_words(result.error, None),
                                          result.status if result.status < 500 else 422)
-            await run_in_threadpool(store.keep, data)
-        return JSONResponse({"id": ident})
+            await run_in_threadpool(store.keep, data, result.summary.get("kind", ""))
+        return JSONResponse({"id": ident, "kind": store.kind(ident)})
 
     async def http_error(request: Request, exc: HTTPException) -> Response:
         if exc.status_code == 404 and "text/html" in request.headers.get("accept", ""):

@@ -19,6 +19,11 @@ WEB_WORDS = (  # (the CLI's words, the form's words), in this order
     (r"\bbeside -o\b", "in the kit"),
     (r"(?<![\w-])-o\b", "the kit"),  # the job's output, which the form does not show
 )
+FORMAT_LABELS = {"pdf": "PDF: print it", "svg": "SVG: view it, or edit it in Inkscape",
+                 "dxf": "DXF: CAD or laser software", "png": "PNG: a picture",
+                 "obj": "OBJ: the 3-D model (a surface's)",
+                 "glb": "GLB: the 3-D model, coloured", "json": "JSON: weave-cut's mesh",
+                 "lbrn2": "LightBurn project (.lbrn2): layers set for your laser"}
 NAMED = re.compile(r"(?<![\w-])--([a-z][a-z0-9-]*)")  # an option named in a help
 HINT = re.compile(r"'(?:-\w' / ')?--([a-z][a-z0-9-]*)(?:' / '-\w)?'|'(INPUT|NAME)'")  # click's
 
@@ -36,6 +41,24 @@ def form_words(text: str, labels: dict[str, str]) -> str:
     for cli_words, web_words in WEB_WORDS:
         text = re.sub(cli_words, web_words, text)
     return NAMED.sub(lambda found: labels.get(found.group(1), found.group(0)), text)
+
+
+def without(text: str, keys) -> str:
+    """Click's help ``text`` with every aside and sentence that names one of the options
+    ``keys`` left out: the help of a page on which those fields are not offered.
+
+    >>> without("a4 or WxH (with --laser-card: the instructions' pages). Blank.", {"laser-card"})
+    'a4 or WxH. Blank.'
+    >>> without("Snub steps. With --cutter: cut them. Then weave.", ["cutter"])
+    'Snub steps. Then weave.'
+    """
+    named = "|".join(re.escape(k) for k in sorted(keys))
+    if not named:
+        return text
+    option = rf"(?<![\w-])--(?:{named})\b"
+    text = re.sub(rf"\s*\((?:[^()]*?{option}[^()]*)\)", "", text)
+    sentences = re.split(r"(?<=[.!?])\s+(?=[A-Z\[])", text)
+    return " ".join(s for s in sentences if not re.search(option, s))
 
 
 def refusal_words(message: str, labels: dict[str, str], fields: dict[str, str]) -> str:
