@@ -341,9 +341,7 @@ def widened(outline: shapely.Polygon, tiles: NDArray[np.object_], width: float |
                  if g.area > 0 and g.intersects(thin)]
         grown = outline_of(np.array([outline, *fills], dtype=object), 1e-6 * width)
         grown = shapely.simplify(grown, width / 20)  # the arcs in few segments: a knife's
-        # corner check (``printcut.cut_report``) reads no chord as a narrow feature; the strip
-        # itself kept whole (a chord across its own edges would trim its tiles)
-        grown = outline_of(np.array([grown, outline], dtype=object), 1e-6 * width)
+        # corner check (``printcut.cut_report``) reads no chord as a narrow feature
         if holds([grown], width, slivers=False)[0]:
             break
     else:
