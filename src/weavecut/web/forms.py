@@ -180,10 +180,9 @@ def kit_refuses(name: str) -> dict:
 def input_kind(value: str, uploads=None) -> str:
     """"surface" or "flat" for a built-in input (``value`` as a query gives it) or an upload
     ``uploads`` (``uploads.Store``) has read, "" for an unknown one."""
-    upload = UPLOAD.fullmatch(value or "")
+    upload, found = UPLOAD.fullmatch(value or ""), INPUT.fullmatch(value or "")
     if upload:
         return uploads.kind(upload.group(1)) if uploads is not None else ""
-    found = INPUT.fullmatch(value or "")
     if found is None or found.group(1) not in inputs.INPUTS:
         return ""
     return "surface" if found.group(1) in inputs.SURFACES else "flat"
@@ -212,8 +211,7 @@ def form_fields(name: str) -> tuple[Field, ...]:
 
 
 def web_help(text: str, name: str) -> str:
-    """Click's help of an option of command ``name`` as the form shows it
-    (:func:`.words.form_words`; its options by their fields' labels, a flag's ticked)."""
+    """Click's help of an option of command ``name`` as the form shows it (``labels``)."""
     return form_words(text, labels(name))
 
 
