@@ -13,6 +13,7 @@ import time
 from pathlib import Path
 
 from weavecut import export, inputs
+from weavecut.layout.lasersetup import laser
 from weavecut.puzzle import files as pf
 from weavecut.puzzle import workshop
 from weavecut.puzzle.colouring import colour_puzzle
@@ -37,7 +38,7 @@ def run(levels: int, folder: Path) -> dict[str, float]:
     puzzle = stage("geometry", lambda: build_puzzle(hierarchy, 500.0))
     colouring = stage("colours", lambda: colour_puzzle(puzzle, palette("puzzle")))
     numbers = stage("numbers", lambda: pf.piece_numbers(puzzle))
-    las = pf.laser()
+    las = laser()
     shared = stage("shared cut", lambda: pf.shared_cut(puzzle, las, numbers))
     parts = stage("frame split", lambda: split_frame(puzzle.frame, puzzle.outer, (600, 400),
                                                      5.0, mat["kerf"]))

@@ -13,6 +13,7 @@ import shapely
 
 from weavecut import export
 from weavecut.errors import WeaveCutError
+from weavecut.layout.lasersetup import laser
 from weavecut.puzzle import files as pf
 from weavecut.puzzle.frame import split_frame
 
@@ -40,7 +41,7 @@ def _segments(points, closed):
 
 def test_shared_cut_read_back_cuts_every_outline_once_in_its_layer(tmp_path):
     puzzle = _puzzle()
-    result = pf.shared_cut(puzzle, pf.laser(), pf.piece_numbers(puzzle))
+    result = pf.shared_cut(puzzle, laser(), pf.piece_numbers(puzzle))
     width, height, shift = pf.placement(puzzle)
     sheet = result.drawing.sheets[0]
     assert (sheet.width, sheet.height) == (width, height)
@@ -86,7 +87,7 @@ def test_shared_cut_read_back_cuts_every_outline_once_in_its_layer(tmp_path):
 
 def test_score_lines_are_the_ring_cells_edges_off_the_hole(tmp_path):
     puzzle = _puzzle()
-    result = pf.shared_cut(puzzle, pf.laser())
+    result = pf.shared_cut(puzzle, laser())
     _, _, shift = pf.placement(puzzle)
     read = _read(result.drawing, tmp_path / "shared.dxf")
     score = [shapely.LineString(p) for layer, p, _ in read if layer == "score-ring"]
@@ -100,7 +101,7 @@ def test_score_lines_are_the_ring_cells_edges_off_the_hole(tmp_path):
     assert shapely.distance(pts, ring_edges).max() < 1e-6
     mids = shapely.line_interpolate_point(np.array(score, dtype=object), 0.5, normalized=True)
     assert shapely.distance(mids, hole).min() > 1e-3
-    no_score = pf.shared_cut(puzzle, pf.laser(), score_ring=False).drawing.sheets[0]
+    no_score = pf.shared_cut(puzzle, laser(), score_ring=False).drawing.sheets[0]
     assert "score-ring" not in [layer.name for layer in no_score.layers]
 
 
@@ -111,7 +112,7 @@ def test_separate_pieces_grow_and_the_hole_shrinks_by_perimeter_times_half_kerf(
     shrunk by the same rule."""
     puzzle = _puzzle(2)
     sheet = (500.0, 400.0)
-    result = pf.separate_cut(puzzle, pf.laser(), kerf, sheet)
+    result = pf.separate_cut(puzzle, laser(), kerf, sheet)
     sheets = pf.split_sheets(result.drawing)
     assert len(sheets) == result.n_sheets == len(result.drawing.sheets)
     rings, length, corners = [], 0.0, 0
@@ -149,7 +150,7 @@ def test_a_split_frame_is_cut_in_its_parts_each_labelled(tmp_path):
     sheet = (250.0, 200.0)
     parts = split_frame(puzzle.frame, puzzle.outer, sheet, 5.0, 0.2)
     assert len(parts) >= 2
-    result = pf.separate_cut(puzzle, pf.laser(), 0.2, sheet, frame_parts=parts)
+    result = pf.separate_cut(puzzle, laser(), 0.2, sheet, frame_parts=parts)
     rings = [shapely.Polygon(r) for s in result.drawing.sheets for layer in s.layers
              if layer.role == "cut" for shape in layer.shapes for r in shape.rings()]
     assert len(rings) == puzzle.n_pieces + len(parts)  # split parts have no inner ring
@@ -188,8 +189,8 @@ def test_a_kerf_as_wide_as_the_smallest_pieces_inner_radius_is_refused():
 def test_closed_rings_drop_their_repeated_last_point():
     square = np.array([(0, 0), (1, 0), (1, 1), (0, 1), (0, 0)], dtype=float)
     open_line = np.array([(0, 0), (2, 0), (2, 2)], dtype=float)
-    shape = pf._closed([square, open_line], pf.laser().style("cut"))
+    shape = pf._closed([square, open_line], laser().style("cut"))
     assert [len(r) for r in shape.rings()] == [4, 3]
     np.testing.assert_array_equal(shape.rings()[0], square[:-1])
-    empty = pf._closed([], pf.laser().style("cut"))
+    empty = pf._closed([], laser().style("cut"))
     assert len(empty.coords) == 0 and empty.ring_offsets.tolist() == [0]

@@ -13,6 +13,7 @@ from hypothesis import given, settings, strategies as st
 
 from tests.built_puzzles import pentagon_puzzle
 from weavecut.layout import nesting
+from weavecut.layout.lasersetup import laser
 from weavecut.puzzle import files as pf
 from weavecut.puzzle.frame import split_frame
 
@@ -24,7 +25,7 @@ SMALL = (4, 500.0, (600.0, 400.0), True)  # jigsaw-small-sheets: the frame in pa
 def _cut(levels, size, sheet, split):
     puzzle = pentagon_puzzle(levels, size)
     parts = split_frame(puzzle.frame, puzzle.outer, sheet, MARGIN, KERF) if split else None
-    return puzzle, parts, pf.separate_cut(puzzle, pf.laser(), KERF, sheet, frame_parts=parts)
+    return puzzle, parts, pf.separate_cut(puzzle, laser(), KERF, sheet, frame_parts=parts)
 
 
 def _sheets(result):

@@ -18,6 +18,7 @@ from weavecut import export, inputs
 from weavecut.cli import cli
 from weavecut.layout.colour_difference import colour_difference, srgb_to_lab
 from weavecut.layout.labels import text_box
+from weavecut.layout.lasersetup import laser
 from weavecut.puzzle import files as pf
 from weavecut.puzzle.frame import fits, split_frame
 from weavecut.puzzle.guides import colour_key, guide, painted, printed
@@ -138,7 +139,7 @@ def test_back_strand_pairs_wear_the_front_colour_of_the_piece_they_enclose(paper
 def test_numbers_are_strokes_inside_their_pieces_with_half_a_millimetre(tmp_path, paper):
     puzzle, _ = paper
     numbers = pf.piece_numbers(puzzle)
-    result = pf.shared_cut(puzzle, pf.laser(), numbers)
+    result = pf.shared_cut(puzzle, laser(), numbers)
     path = tmp_path / "cut.dxf"
     export.write(result.drawing, path)
     doc = ezdxf.readfile(path)

@@ -14,6 +14,7 @@ import shapely
 from weavecut.errors import WeaveCutError
 from weavecut.layout.contrast import BLACK, WHITE
 from weavecut.layout.tiling import balanced, tile, word_overlap
+from weavecut.layout.lasersetup import laser
 from weavecut.puzzle import files as pf
 from weavecut.puzzle import workshop
 from weavecut.puzzle.frame import fits
@@ -55,7 +56,7 @@ def test_separate_sheets_keep_the_documented_margin_and_spacing():
     boxes, as nested; a piece may lie in the frame's box, in its hole or a bay): the tightest
     part touches each limit."""
     puzzle = pentagon_puzzle(2)
-    result = pf.separate_cut(puzzle, pf.laser(), 0.2, (500.0, 400.0))
+    result = pf.separate_cut(puzzle, laser(), 0.2, (500.0, 400.0))
     for parts in pf.nested_parts(result):
         boxes = shapely.box(*shapely.bounds(parts).T)
         lo = shapely.bounds(parts)[:, :2].min(axis=0)
@@ -77,7 +78,7 @@ def test_separate_sheets_keep_a_margin_asked_for():
     it."""
     puzzle = pentagon_puzzle(2)
     sheet = (500.0, 400.0)
-    result = pf.separate_cut(puzzle, pf.laser(), 0.2, sheet, margin=12.0)
+    result = pf.separate_cut(puzzle, laser(), 0.2, sheet, margin=12.0)
     for parts in pf.nested_parts(result):
         bounds = shapely.bounds(parts)
         np.testing.assert_allclose(bounds[:, :2].min(axis=0), [12.0, 12.0], atol=1e-9)
@@ -97,7 +98,7 @@ def test_each_sheet_is_cut_from_the_home_corner_along_a_route_no_reversal_shorte
     ends where it starts), and the frame's outline, cut last, is entered at its corner nearest
     to where the inner cuts ended."""
     puzzle = pentagon_puzzle(2)
-    result = pf.separate_cut(puzzle, pf.laser(), 0.2, sheet)
+    result = pf.separate_cut(puzzle, laser(), 0.2, sheet)
     home = np.array([0.0, sheet[1]])
     outlines = 0
     for s in result.drawing.sheets:
@@ -123,7 +124,7 @@ def test_every_separate_piece_carries_its_number_even_alone_on_a_sheet():
     holds engraved strokes, also piece 1's, which this nesting puts alone on its sheet."""
     puzzle = pentagon_puzzle(2)
     tiny = np.array([shapely.box(0, 0, 5, 5), shapely.box(0, 0, 5, 5)], dtype=object)
-    result = pf.separate_cut(puzzle, pf.laser(), 0.2, (90.0, 90.0), frame_parts=tiny,
+    result = pf.separate_cut(puzzle, laser(), 0.2, (90.0, 90.0), frame_parts=tiny,
                              numbers=pf.piece_numbers(puzzle))
     numbered, alone = 0, 0
     for s in result.drawing.sheets:
@@ -165,7 +166,7 @@ def test_a_piece_painted_black_and_white_has_its_number_inside_one_half():
 def test_summary_times_keep_a_tenth_of_a_minute():
     """6 m of cutting at 7 mm/s and 3 m of travel at 300 mm/s: 14.29 + 0.17 = 14.5 min."""
     puzzle = pentagon_puzzle(2)
-    result = pf.CutResult(pf.shared_cut(puzzle, pf.laser()).drawing, 6000.0, 3000.0, 12, 1)
+    result = pf.CutResult(pf.shared_cut(puzzle, laser()).drawing, 6000.0, 3000.0, 12, 1)
     info = workshop.summary(puzzle, {"shared": result}, 7.0)
     assert info["modes"]["shared"] == {"cut_length_m": 6.0, "travel_m": 3.0, "paths": 12,
                                        "sheets": 1, "time_min": 14.5}
@@ -177,21 +178,21 @@ def test_a_part_too_large_for_the_sheet_is_named_as_the_maker_knows_it():
     puzzle = pentagon_puzzle(2)
     with pytest.raises(WeaveCutError, match=r"^the frame is [\d.]+ x [\d.]+ mm and does not fit "
                                             r"a 200 x 150 mm sheet with 5 mm margins"):
-        pf.separate_cut(puzzle, pf.laser(), 0.2, (200.0, 150.0))
+        pf.separate_cut(puzzle, laser(), 0.2, (200.0, 150.0))
     long = np.array([shapely.box(0, 0, 300, 10), shapely.box(0, 0, 5, 5)], dtype=object)
     with pytest.raises(WeaveCutError, match=r"^frame part F1 is 300\.2 x 10\.2 mm"):
-        pf.separate_cut(puzzle, pf.laser(), 0.2, (200.0, 150.0), frame_parts=long)
+        pf.separate_cut(puzzle, laser(), 0.2, (200.0, 150.0), frame_parts=long)
     tiny = np.array([shapely.box(0, 0, 5, 5), shapely.box(0, 0, 5, 5)], dtype=object)
     sheet = (60.0, 60.0)
     grown = shapely.buffer(puzzle.pieces, 0.1, join_style="mitre")
     first = int(np.flatnonzero(~fits(grown, sheet, 5.0))[0])
     with pytest.raises(WeaveCutError, match=rf"^piece {first + 1} is "):
-        pf.separate_cut(puzzle, pf.laser(), 0.2, sheet, frame_parts=tiny)
+        pf.separate_cut(puzzle, laser(), 0.2, sheet, frame_parts=tiny)
 
 
 def test_separate_numbers_are_engraved_in_the_lasers_engrave_style_and_travel_adds_up():
     puzzle = pentagon_puzzle(2)
-    las = pf.laser("epilog-uls")  # its engrave style is not the fallback of an unknown role
+    las = laser("epilog-uls")  # its engrave style is not the fallback of an unknown role
     assert las.style("engrave") != las.style("no such role")
     sheet = (315.0, 300.0)
     result = pf.separate_cut(puzzle, las, 0.2, sheet, numbers=pf.piece_numbers(puzzle))

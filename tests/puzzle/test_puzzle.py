@@ -15,6 +15,7 @@ import shapely
 from click.testing import CliRunner
 
 from weavecut.cli import cli
+from weavecut.layout.lasersetup import laser
 from weavecut.puzzle import files as pf
 from weavecut.puzzle.colouring import UNPAINTED, colour_puzzle
 from weavecut.puzzle.guides import guide, piece_halves
@@ -68,7 +69,7 @@ def _segments(paths):
 
 
 def test_shared_cut_cuts_every_edge_once_and_totals_the_union(puzzle):
-    result = pf.shared_cut(puzzle, pf.laser())
+    result = pf.shared_cut(puzzle, laser())
     sheet = result.drawing.sheets[0]
     lines = [ln for layer in sheet.layers if layer.role == "cut" for shape in layer.shapes
              for ln in shape.lines()]
@@ -99,7 +100,7 @@ def test_separate_pieces_grow_by_perimeter_times_half_kerf(puzzle, kerf):
 
 def test_separate_sheets_do_not_overlap(puzzle):
     kerf = 0.2
-    result = pf.separate_cut(puzzle, pf.laser(), kerf, (600.0, 450.0))
+    result = pf.separate_cut(puzzle, laser(), kerf, (600.0, 450.0))
     assert result.n_sheets >= 1
     for parts in pf.nested_parts(result):
         outlines = np.array([shapely.Polygon(p.exterior) for p in parts], dtype=object)
@@ -198,7 +199,7 @@ def test_front_guide_paints_every_piece_once(puzzle):
 
 def test_separate_sheet_dxf_has_one_closed_polyline_per_outline(tmp_path, puzzle):
     from weavecut import export
-    result = pf.separate_cut(puzzle, pf.laser("ponoko"), 0.15, (700.0, 700.0),
+    result = pf.separate_cut(puzzle, laser("ponoko"), 0.15, (700.0, 700.0),
                              numbers=pf.piece_numbers(puzzle))
     n_outlines = 0
     for n, one in enumerate(pf.split_sheets(result.drawing)):
@@ -224,7 +225,7 @@ def test_separate_sheet_dxf_has_one_closed_polyline_per_outline(tmp_path, puzzle
 
 def test_guides_are_registered_to_the_cut_sheet(puzzle):
     colouring = colour_puzzle(puzzle, palette("puzzle"))
-    cut = pf.shared_cut(puzzle, pf.laser()).drawing.sheets[0]
+    cut = pf.shared_cut(puzzle, laser()).drawing.sheets[0]
     front = guide(puzzle, colouring, "front").sheets[0]
     back = guide(puzzle, colouring, "back").sheets[0]
     assert (front.width, front.height) == (cut.width, cut.height) == (back.width, back.height)

@@ -13,6 +13,7 @@ import pytest
 import shapely
 
 from weavecut.layout.labels import MIN_CAP
+from weavecut.layout.lasersetup import laser
 from weavecut.puzzle import files as pf
 from weavecut.puzzle import guide_numbers as gn
 from weavecut.puzzle.guides import OUTLINE, colour_key, guide
@@ -137,7 +138,7 @@ def _on(segments, lines, tol=1e-3) -> np.ndarray:
 def test_bold_lines_follow_the_cuts_and_a_hexagons_edge_to_its_paint_is_thin(name, side):
     puzzle, colouring = _puzzles()[name]()
     sheet = guide(puzzle, colouring, side).sheets[0]
-    cut_sheet = pf.shared_cut(puzzle, pf.laser()).drawing.sheets[0]
+    cut_sheet = pf.shared_cut(puzzle, laser()).drawing.sheets[0]
     cuts = np.concatenate([_segments(s) for layer in cut_sheet.layers if layer.role == "cut"
                            for s in layer.shapes])
     if side == "back":  # the back guide is mirrored about the sheet's middle

@@ -14,6 +14,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from weavecut.layout.drawing import Polylines
+from weavecut.layout.lasersetup import laser
 from weavecut.puzzle import files as pf
 from weavecut.puzzle.guide_numbers import guide_numbers
 from weavecut.puzzle.guides import guide
@@ -98,7 +99,7 @@ def _engraved_words(puzzle, drawing) -> tuple[list, list]:
 @pytest.mark.parametrize("name", ["default", "heart"])
 def test_every_ambiguous_engraved_number_is_underlined_and_no_other(name):
     puzzle, _ = _puzzles()[name]
-    drawing = pf.shared_cut(puzzle, pf.laser(), pf.piece_numbers(puzzle)).drawing
+    drawing = pf.shared_cut(puzzle, laser(), pf.piece_numbers(puzzle)).drawing
     marks = _marks(*_engraved_words(puzzle, drawing))
     assert len(marks) == puzzle.n_pieces
     _check(marks)

@@ -14,7 +14,7 @@ import pytest
 import shapely
 
 from weavecut import inputs, presets
-from weavecut.layout.lasersetup import Operation
+from weavecut.layout.lasersetup import Operation, laser
 from weavecut.puzzle import files as pf
 from weavecut.puzzle import workshop
 from weavecut.puzzle.colouring import UNPAINTED, colour_puzzle
@@ -36,8 +36,8 @@ def hierarchy():
 def _small():
     puzzle = pentagon_puzzle(3)
     colouring = colour_puzzle(puzzle, palette("puzzle"))
-    results = {"shared": pf.shared_cut(puzzle, pf.laser()),
-               "separate": pf.separate_cut(puzzle, pf.laser(), 0.2, (400.0, 300.0))}
+    results = {"shared": pf.shared_cut(puzzle, laser()),
+               "separate": pf.separate_cut(puzzle, laser(), 0.2, (400.0, 300.0))}
     return puzzle, colouring, results
 
 

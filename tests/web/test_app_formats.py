@@ -83,7 +83,7 @@ def test_a_format_the_kit_cannot_have_is_refused_next_to_its_field(recording, ur
 def test_files_per_sheet_without_the_laser_card_get_the_commands_message(served):
     response = served.get("/strands/summary.json?input=square-grid&formats=svg")  # the kit
     assert response.status_code == 400
-    assert "--laser-card" in response.text and response.headers["x-field"] == "formats"
+    assert "“Laser-cut card” ticked" in response.text and response.headers["x-field"] == "formats"
 
 
 def test_a_raster_figure_is_png_and_the_link_keeps_the_choice(recording):

@@ -10,6 +10,7 @@ import html5lib
 import pytest
 from click.testing import CliRunner
 
+from weavecut import inputs, mesh_io
 from weavecut.cli import cli, strands_command
 from weavecut.web import forms
 
@@ -94,3 +95,74 @@ def test_a_query_the_kit_refuses_is_refused_before_a_job_with_the_commands_words
     out = CliRunner().invoke(cli, ["strands", spec, *args, "-o", str(kit)])
     assert out.exit_code == 2 and refused.value.message in " ".join(out.output.split())
     assert says in refused.value.message
+
+
+def uploaded(client, tmp_path, spec: str) -> tuple[str, dict, str]:
+    """Built-in input ``spec`` written as an OBJ file and uploaded: (the file, the upload's
+    answer, its ``input=`` value)."""
+    path = tmp_path / f"{spec}.obj"
+    mesh_io.write_mesh(inputs.get(spec), path)
+    answer = client.post("/upload", content=path.read_bytes())
+    assert answer.status_code == 200, answer.text
+    return str(path), answer.json(), "upload:" + answer.json()["id"]
+
+
+@pytest.mark.parametrize("name", INPUTS)
+def test_an_uploaded_mesh_is_offered_exactly_what_the_command_takes_for_it(
+        recording, monkeypatch, tmp_path, name):
+    """The same oracle for an OBJ file of the input: a closed surface in space uploaded is a
+    ball on the page as the CLI makes a ball of the file."""
+    spec, args, more = INPUTS[name]
+    path, _, value = uploaded(recording, tmp_path, spec)
+    monkeypatch.setitem(INPUTS, "file", (path, args, more))
+    for f in forms.fields("strands"):
+        if f.kind == "input" or f.needs.startswith("!"):
+            continue
+        doc = html5lib.parse(recording.get(f"/strands?input={value}{more}"
+                                           + (f"&{f.needs}=on" if f.needs else "")).text,
+                             namespaceHTMLElements=False)
+        page = {e.get("data-key"): e.get("hidden") is None for e in doc.iter()
+                if e.get("data-key")}
+        takes = accepted(monkeypatch, tmp_path, "file",
+                         [*(["--" + f.needs] if f.needs else []), *sample(f)])
+        assert page[f.key] == takes, (name, f.key, takes)
+        if not takes:  # and refused before a job, as for a built-in input
+            given = sample(f)[1] if len(sample(f)) > 1 else "on"
+            refused = recording.get(f"/strands/check?input={value}{more}&{f.key}={given}"
+                                    + (f"&{f.needs}=on" if f.needs else "")).json()
+            assert not refused["ok"], (name, f.key)
+
+
+@pytest.mark.parametrize("spec", sorted(inputs.INPUTS))
+def test_an_upload_is_the_kind_of_kit_the_cli_makes_of_the_file(recording, monkeypatch,
+                                                                tmp_path, spec):
+    """Every built-in input as an OBJ file: the kind the upload answers (and its option on the
+    page) is a ball exactly when ``strands FILE --cutter silhouette`` is refused as one."""
+    path, answer, value = uploaded(recording, tmp_path, spec)
+    monkeypatch.setitem(INPUTS, "file", (path, [], ""))
+    ball = not accepted(monkeypatch, tmp_path, "file", ["--cutter", "silhouette"])
+    assert answer["kind"] == ("surface" if ball else "flat")
+    doc = html5lib.parse(recording.get(f"/strands?input={value}").text,
+                         namespaceHTMLElements=False)
+    option, = [e for e in doc.iter("option") if e.get("value") == value]
+    assert option.get("data-kind") == answer["kind"]
+
+
+@pytest.mark.parametrize("name", ["ball", "flat"])
+def test_no_help_names_a_field_the_page_does_not_offer(recording, name):
+    """The ball's page offers no laser card: no hint on it names one (the page's help for
+    that kind, and the help the script swaps in for each kind, ``data-help-KIND``)."""
+    spec, _, more = INPUTS[name]
+    doc = html5lib.parse(recording.get(f"/strands?input={spec}{more}").text,
+                         namespaceHTMLElements=False)
+    fields = {e.get("data-key"): e for e in doc.iter() if e.get("data-key")}
+    kind = forms.input_kind(spec)
+    refused = {k for k, e in fields.items() if e.get("data-not-for") == kind}
+    gone = {k: f"“{forms.field_label(k)}”" for k, e in fields.items()
+            if k in refused or e.get("data-needs") in refused}  # or needs a refused flag
+    assert refused and all(fields[k].get("hidden") is not None for k in gone)
+    hints = {k: e.find(".//p[@class='hint']") for k, e in fields.items() if k not in gone}
+    shown = [" ".join("".join(e.itertext()).split()) for e in hints.values()]
+    shown += [e.get(f"data-help-{kind}") or e.get("data-help")  # what the script swaps in
+              for h in hints.values() for e in h.iter("span") if e.get("data-help")]
+    assert [(h, w) for h in shown for w in gone.values() if w in h] == []

@@ -18,6 +18,7 @@ from click.testing import CliRunner
 from weavecut.cli import cli
 from weavecut.cli.common import DRAWING_KEY
 from weavecut.web import forms
+from weavecut.web.refusals import in_form_words
 
 from tests.web_app import cli_files, make_client
 
@@ -86,7 +87,7 @@ def test_a_bad_value_answers_400_with_the_clis_message(recording, query, field):
     if field == "laser-card":  # a flag takes no value on the command line
         return
     printed = CliRunner().invoke(cli, [*words, "-o", "x.pdf"]).output
-    assert f"Error: {response.text}" in printed
+    assert f"Error: {response.text}" in in_form_words(printed, "strands")  # in the form's words
     assert recording.queue.specs == []
 
 
@@ -95,7 +96,7 @@ def test_the_commands_own_checks_answer_400_with_their_message(served):
     assert response.status_code == 400
     printed = CliRunner().invoke(cli, ["strands", "square-grid", "--size=27cm",
                                        "--tile-size=2cm", "--preview", "-o", "x.svg"]).output
-    assert f"Error: {response.text}" in printed
+    assert f"Error: {response.text}" in in_form_words(printed, "strands")
     assert response.headers["x-field"] == "size"
 
 

@@ -48,7 +48,7 @@ def test_the_server_process_never_reads_an_upload(served, tmp_path, monkeypatch)
     assert response.status_code == 200, response.text
     assert response.json()["id"] == hashlib.sha256(HEART).hexdigest()
     assert called == []  # the job process read it, with the real readers
-    assert kept(tmp_path) == [hashlib.sha256(HEART).hexdigest() + ".svg"]
+    assert kept(tmp_path) == [hashlib.sha256(HEART).hexdigest() + s for s in (".kind", ".svg")]
 
 
 @pytest.mark.parametrize("data", [
@@ -80,4 +80,4 @@ def test_a_reader_past_the_memory_limit_is_refused_and_the_server_goes_on(tmp_pa
         after = client.post("/upload", content=HEART)  # the server and its queue go on
         assert after.status_code == 200, after.text
         assert client.get("/").status_code == 200
-    assert kept(tmp_path) == [hashlib.sha256(HEART).hexdigest() + ".svg"]
+    assert kept(tmp_path) == [hashlib.sha256(HEART).hexdigest() + s for s in (".kind", ".svg")]

@@ -172,6 +172,8 @@ def test_choosing_a_ball_hides_what_a_ball_refuses_and_sends_none_of_it(browser,
                      "{bubbles: true})); })(document.getElementById('f-input')), 0")
     browser.wait_until(" && ".join(f"!{visible}('{k}')" for k in gone)
                        + f" && {visible}('project') && {visible}('format')", 10)
+    page_help = "document.getElementById('h-page').textContent"
+    assert "Laser-cut card" not in browser.evaluate(page_help)  # no help names a gone field
     browser.wait_until("location.search.includes('input=dodecahedron')", 10)
     assert "laser-card" not in browser.evaluate("location.search")
     browser.evaluate("(s => { s.value = 'square-grid'; s.dispatchEvent(new Event('change', "
@@ -179,4 +181,25 @@ def test_choosing_a_ball_hides_what_a_ball_refuses_and_sends_none_of_it(browser,
     browser.wait_until(f"{visible}('laser-card') && {visible}('material') && !{visible}('format')"
                        f" && !{visible}('project')", 10)
     browser.wait_until("location.search.includes('laser-card=on')", 10)
+    assert "Laser-cut card" in browser.evaluate(page_help)
+    assert browser.errors() == []
+
+
+def test_an_uploaded_ball_is_a_ball(browser, server, tmp_path):
+    """A closed surface in space uploaded as OBJ makes a ball, as ``strands FILE`` does: the
+    fields a ball refuses go, the projection comes, and no help names what went."""
+    from weavecut import inputs, mesh_io
+
+    mesh_io.write_mesh(inputs.get("dodecahedron"), tmp_path / "ball.obj")
+    browser.goto(server + "strands?input=square-grid&laser-card=on", 1280)
+    browser.wait_until("!!document.getElementById('f-upload')", 60)
+    browser.set_files("#f-upload", [tmp_path / "ball.obj"])
+    browser.wait_until("document.getElementById('f-input').value.startsWith('upload:')", 60)
+    visible = "(k => !document.querySelector(`.field[data-key=${k}]`).hidden)"
+    browser.wait_until(" && ".join(f"!{visible}('{k}')" for k in ("cutter", "laser-card",
+                                                                  "layout", "turn", "material"))
+                       + f" && {visible}('project')", 10)
+    assert "Laser-cut card" not in browser.evaluate(
+        "document.getElementById('h-page').textContent")
+    browser.wait_until(READY, 240)  # the ball's kit, made
     assert browser.errors() == []

@@ -110,13 +110,13 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
     from ..puzzle.pieces import build_puzzle
     from ..puzzle.model3d import puzzle_model
     from ..export.gltf import glb_bytes
-    from ..layout.lasersetup import kerf_note, laser_job, output_formats
+    from ..layout.lasersetup import kerf_note, laser, laser_job, output_formats
 
     mat = workshop.material(material)
     kerf = mat["kerf"] if kerf is None else kerf
     sheet = mat["sheet"] if sheet is None else sheet
     speed = mat["cut_speed"] if speed is None else speed
-    las = pf.laser(laser_name)
+    las = laser(laser_name)
     formats = output_formats(formats, laser_name)
     job = laser_job(mat, kerf_note(kerf, "the separate sheets' outlines (not the shared-edge "
                                    "cut's, whose edges are cut once)"))

@@ -136,7 +136,7 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
     from ..validation import check_layout
 
     mesh = load_mesh(input_mesh)
-    refuse_for_kit("surface" if mesh.dim == 3 else "flat", input_mesh)
+    refuse_for_kit(kit_kind(mesh), input_mesh)
     if mesh.dim == 3:
         return ball(mesh, input_mesh, levels, page, tile_size, model_size, margin, pal,
                     chirality, project, output, as_json, preview)
@@ -236,6 +236,12 @@ def write_woven_model(weave, book, output) -> None:
 
     model = woven_mm(weave, book.colours, book.scale, MODEL_THICKNESS)
     write_atomic(model_path(output), glb_bytes(model, name=Path(output).stem))
+
+
+def kit_kind(mesh) -> str:
+    """The kind of kit ``mesh`` makes (a key of ``KIT_REFUSES``): "surface" (in space: a
+    woven ball) or "flat"."""
+    return "surface" if mesh.dim == 3 else "flat"
 
 
 def refuse_for_kit(kind: str, input_mesh: str) -> None:

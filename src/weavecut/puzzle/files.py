@@ -16,7 +16,7 @@ from numpy.typing import NDArray
 
 from ..layout import cutpaths, nesting
 from ..layout import strokefont
-from ..layout.lasersetup import DEFAULT_LASER, Laser, laser  # noqa: F401 (the puzzle's API)
+from ..layout.lasersetup import Laser
 from ..layout.drawing import Drawing, Layer, Polygons, Polylines, Sheet, Style
 from ..errors import WeaveCutError
 from ..numeric import turn

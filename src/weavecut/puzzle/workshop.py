@@ -14,6 +14,7 @@ from ..layout.lasersetup import material  # noqa: F401 (the puzzle's API)
 from ..presets import LASER_FORMATS
 from .colouring import Colouring
 from .files import TRAVEL_SPEED, CutResult
+from .foresight import foresee
 from ..errors import MeshError, TurnedOverError, WeaveCutError
 from ..mesh import Mesh
 from ..mesh_geometry import signed_areas
@@ -113,12 +114,19 @@ def comfortable(puzzle: Puzzle, thickness: float) -> bool:
 
 
 def drawing_defaults(read_at: Callable[[float | None], Mesh], size: float, frame_width: float,
-                     thickness: float, levels: tuple[int, ...] | None = None
-                     ) -> tuple[float, int, Puzzle]:
+                     thickness: float, levels: tuple[int, ...] | None = None,
+                     foresight: bool = True) -> tuple[float, int, Puzzle]:
     """``(cell, levels, puzzle)`` for a drawn outline when the user gave neither: of the
     levels DEFAULT_LEVELS (highest first; a level whose pentagons turn over is passed over)
     and the cells that mesh the outline in about DEFAULT_FACES faces, the puzzle with the
     most pieces that keeps every piece ``comfortable``; else the coarsest one tried.
+
+    Candidates are tried finest first; at each level the first comfortable one ends the
+    level. With ``foresight`` a candidate is built only where what its last level says of
+    it (``foresight.foresee``) leaves it open: one whose bounds fall under the limits is
+    not comfortable, one with no more pieces than the best so far cannot replace it (built
+    only if a later one would, to see whether it ends the level first), and both are built
+    after all, coarsest first, when none is comfortable. The choice is the same either way.
 
     Parameters
     ----------
@@ -126,42 +134,77 @@ def drawing_defaults(read_at: Callable[[float | None], Mesh], size: float, frame
     size, frame_width : mm, as for ``build_puzzle`` (``size`` is the finished width)
     thickness : mm of material
     levels : the levels to try (default DEFAULT_LEVELS)
+    foresight : False builds every candidate (what the choice is checked against)
     """
     mesh = read_at(None)
     area = float(np.abs(signed_areas(mesh)).sum())
     x0, x1 = mesh.vertices[:, 0].min(), mesh.vertices[:, 0].max()
     finished = area * (size / (x1 - x0)) ** 2  # mm² of the pieces, a little less in fact
-    best = last = None
-    turned = False
+    limit = MIN_WIDTH_X_THICKNESS * thickness
+    turned = []  # a TurnedOverError seen (a cell whose pentagons turn over)
+    tried: list[list] = []  # [cell, level, hierarchy, puzzle, built] in the order tried
+
+    def build(entry: list) -> Puzzle | None:
+        if not entry[4]:
+            entry[3:] = [_built(entry[2], size, frame_width, turned), True]
+        return entry[3]
+
+    best = None
     deepest: dict[float, Hierarchy] = {}  # a cell's levels, reused for any lower level
     for level in levels or DEFAULT_LEVELS:
+        unsure = []  # this level's candidates passed over for their count
         for faces in DEFAULT_FACES:
             cell = round(math.sqrt(area / faces), 1)
             try:
                 if len(deepest.get(cell, ())) <= level:
                     deepest[cell] = subdivide(read_at(cell), level)
-                hierarchy = deepest[cell][:level + 1]
-                if finished / (hierarchy[-1].mesh.n_faces / 2) < MIN_MEAN_AREA:
-                    continue  # far too many pieces for their room
-                puzzle = build_puzzle(hierarchy, size, frame_width, "width")
             except TurnedOverError:
-                turned = True  # at this level and cell; a coarser cell may do
+                turned.append(cell)  # at this level and cell; a coarser cell may do
                 continue
             except (MeshError, shapely.errors.GEOSException):
                 continue  # this cell makes sliver faces or pieces that cross themselves
-            if not shapely.is_valid(puzzle.pieces).all():
-                continue  # pieces that cross themselves cannot be cut
-            last = (cell, level, puzzle)
-            if comfortable(puzzle, thickness):
-                if best is None or puzzle.n_pieces > best[2].n_pieces:
-                    best = last
+            hierarchy = deepest[cell][:level + 1]
+            if finished / (hierarchy[-1].mesh.n_faces / 2) < MIN_MEAN_AREA:
+                continue  # far too many pieces for their room
+            entry = [cell, level, hierarchy, None, False]
+            tried.append(entry)
+            if foresight:
+                seen = foresee(hierarchy[-1].mesh, size, frame_width)
+                if seen.across < MIN_ACROSS or seen.width < limit:
+                    continue  # not comfortable: wanted only if none is
+                if best is not None and seen.pieces <= best[2].n_pieces:
+                    unsure.append(entry)
+                    continue
+            puzzle = build(entry)
+            if puzzle is not None and comfortable(puzzle, thickness):
+                if not any(build(e) is not None and comfortable(e[3], thickness)
+                           for e in unsure):  # else the full search stopped there
+                    if best is None or puzzle.n_pieces > best[2].n_pieces:
+                        best = (cell, level, puzzle)
                 break  # coarser cells only give fewer pieces
-    if best is None and last is None:
-        why = (" (its pentagons turn over at every one: sharp corners do this; use --mesh tri)"
-               if turned else "")
-        raise WeaveCutError(f"no cell and level tried makes a puzzle of this drawing at "
-                            f"{size:g} mm{why}; give --cell and --levels to try others")
-    return best or last
+    if best is not None:
+        return best
+    for entry in reversed(tried):  # none comfortable: the coarsest that builds
+        if build(entry) is not None:
+            return entry[0], entry[1], entry[3]
+    why = (" (its pentagons turn over at every one: sharp corners do this; use --mesh tri)"
+           if turned else "")
+    raise WeaveCutError(f"no cell and level tried makes a puzzle of this drawing at "
+                        f"{size:g} mm{why}; give --cell and --levels to try others")
+
+
+def _built(hierarchy: Hierarchy, size: float, frame_width: float, turned: list
+           ) -> Puzzle | None:
+    """The puzzle of a candidate; None where it cannot be cut (slivers, pieces that cross
+    themselves, pentagons that turn over: noted in ``turned``)."""
+    try:
+        puzzle = build_puzzle(hierarchy, size, frame_width, "width")
+    except TurnedOverError:
+        turned.append(hierarchy)
+        return None
+    except (MeshError, shapely.errors.GEOSException):
+        return None
+    return puzzle if shapely.is_valid(puzzle.pieces).all() else None
 
 
 def summary(puzzle: Puzzle, results: dict[str, CutResult], speed: float,

@@ -13,8 +13,8 @@ needs) and every option naming a file.
 with the nearest key, every value is confined (no file paths; a preset is a preset name; the
 input is a built-in input or an uploaded drawing by its hash), then the command parses the
 arguments with its own types (``command.make_context``), so a bad value gets the CLI's own
-message. Values reach the command as ``--key=value`` words, so no value becomes an option.
-"""
+message (in the form's words: ``refusals``). Values reach the command as ``--key=value``
+words, so no value becomes an option."""
 
 from __future__ import annotations
 
@@ -30,7 +30,7 @@ from ..cli.common import Finite, Formats, Length, PageSize, option_key
 from ..schema import nearest
 from .jobs import JobSpec, default_output, output_formats
 from .uploads import UploadError
-from .words import bounds, field_label, form_words
+from .words import FORMAT_LABELS, bounds, field_label, form_words, without
 
 COMMANDS = ("strands", "puzzle", "weave", "subdivide", "figure")  # a page each, in this order
 HIDDEN = frozenset({"output", "output-dir", "force", "json", "preview", "html", "list"})
@@ -53,11 +53,6 @@ NEEDS = {  # fields that count only with a flag on ("laser-card") or off ("!lase
                 "format": "!laser-card"},
 }
 FORMAT = "format"  # the kit's file format: the suffix of the -o the job gives (not an option)
-FORMAT_LABELS = {"pdf": "PDF: print it", "svg": "SVG: view it, or edit it in Inkscape",
-                 "dxf": "DXF: CAD or laser software", "png": "PNG: a picture",
-                 "obj": "OBJ: the 3-D model (a surface's)",
-                 "glb": "GLB: the 3-D model, coloured", "json": "JSON: weave-cut's mesh",
-                 "lbrn2": "LightBurn project (.lbrn2): layers set for your laser"}
 MAX_PARAMS = 64  # query parameters of one request
 MAX_VALUE = 200  # characters of one value
 PLACEHOLDER = "web-check"  # a required hidden option's value while the command checks a query
@@ -102,6 +97,7 @@ class Field:
     unit: str = ""
     needs: str = ""  # a flag's key this field counts with ("!key": without), from NEEDS
     not_for: str = ""  # the kind of input the command refuses it for (``kit_refuses``)
+    help_for: tuple[tuple[str, str], ...] = ()  # (kind, help without the fields it lacks)
     param: click.Parameter | None = field(default=None, compare=False, repr=False)
 
 
@@ -158,8 +154,19 @@ def fields(name: str) -> tuple[Field, ...]:
         where = "main" if k in primary else ("drawing" if not p.expose_value else "more")
         made = _field(p, k, where, NEEDS.get(name, {}).get(k, ""), name)
         refused = [kind for kind, (_, why) in kit_refuses(name).items() if k in why]
-        out.append(replace(made, not_for=refused[0]) if refused else made)
+        own = getattr(p, "help", None) or ""
+        shorter = tuple((kind, web_help(without(own, gone), name))
+                        for kind, gone in _gone(name).items() if without(own, gone) != own)
+        out.append(replace(made, not_for=refused[0] if refused else "", help_for=shorter))
     return tuple(out)
+
+
+def _gone(name: str) -> dict[str, set[str]]:
+    """Kind of input -> the fields a page of command ``name`` does not offer for it: those
+    the command refuses for it and those that need one of them (``NEEDS``)."""
+    needs = NEEDS.get(name, {})
+    return {kind: set(why) | {k for k, flag in needs.items() if flag in why}
+            for kind, (_, why) in kit_refuses(name).items()}
 
 
 def kit_refuses(name: str) -> dict:
@@ -170,10 +177,12 @@ def kit_refuses(name: str) -> dict:
     return strands_command.KIT_REFUSES if name == "strands" else {}
 
 
-def input_kind(value: str) -> str:
-    """"surface" or "flat" for a built-in input (``value`` as a query gives it), "" for an
-    upload or an unknown name (its kind shows only when the command reads it)."""
-    found = INPUT.fullmatch(value or "")
+def input_kind(value: str, uploads=None) -> str:
+    """"surface" or "flat" for a built-in input (``value`` as a query gives it) or an upload
+    ``uploads`` (``uploads.Store``) has read, "" for an unknown one."""
+    upload, found = UPLOAD.fullmatch(value or ""), INPUT.fullmatch(value or "")
+    if upload:
+        return uploads.kind(upload.group(1)) if uploads is not None else ""
     if found is None or found.group(1) not in inputs.INPUTS:
         return ""
     return "surface" if found.group(1) in inputs.SURFACES else "flat"
@@ -202,11 +211,15 @@ def form_fields(name: str) -> tuple[Field, ...]:
 
 
 def web_help(text: str, name: str) -> str:
-    """Click's help of an option of command ``name`` as the form shows it
-    (:func:`.words.form_words`; its options by their fields' labels, a flag's ticked)."""
-    labels = {key(p): f"“{field_label(key(p))}”" + " ticked" * bool(getattr(p, "is_flag", 0))
-              for p in command(name).params if not is_hidden(p)}
-    return form_words(text, labels)
+    """Click's help of an option of command ``name`` as the form shows it (``labels``)."""
+    return form_words(text, labels(name))
+
+
+@functools.cache
+def labels(name: str) -> dict[str, str]:
+    """Option key -> how a sentence on command ``name``'s page names its field."""
+    return {key(p): f"“{field_label(key(p))}”" + " ticked" * bool(getattr(p, "is_flag", 0))
+            for p in command(name).params if not is_hidden(p)}
 
 
 def _field(p: click.Parameter, k: str, where: str, needs: str, name: str) -> Field:
@@ -312,7 +325,7 @@ def parse(name: str, items: list[tuple[str, str]], uploads=None) -> Query:
             if f.kind == "preset":
                 _preset(f, value)
             args.append(f"{_long(f.param)}={value}")
-    check(cmd, name, args, input_kind(values.get("input", "")))
+    check(cmd, name, args, input_kind(values.get("input", ""), uploads))
     return Query(name, tuple(args), tuple(files), values, _output(name, args, raw, values))
 
 
@@ -385,16 +398,3 @@ def check(cmd: click.Command, name: str, args: list[str], kind: str = "") -> Non
         raise FormError(exc.format_message(), key(param) if param is not None else None) \
             from None
 
-
-HINT = re.compile(r"'(?:-\w' / ')?--([a-z][a-z0-9-]*)'")
-
-
-def key_of_message(message: str, name: str) -> str | None:
-    """The form key a CLI message names (``Invalid value for '--size': ...``), if any."""
-    known = {f.key for f in fields(name)}
-    for found in HINT.finditer(message):
-        if found.group(1) in known:
-            return found.group(1)
-    if re.search(r"'-o'|\.[a-z0-9]+ (?:woven model|drawing)\b", message) and format_field(name):
-        return FORMAT  # the output's format: the only part of -o the form chooses
-    return None

@@ -98,15 +98,16 @@ def command_page(name: str, raw: dict[str, str], error: forms.FormError | None,
                  query: forms.Query | None, uploads: list[tuple[str, str]]) -> str:
     """The page of command ``name`` with the values ``raw`` as given (shown even when
     refused), ``error`` next to its field, ``query`` the checked values (None if refused)
-    and ``uploads`` (id, label) offered as inputs."""
+    and ``uploads`` (id, label, kind of kit: ``uploads.Store.kind``) offered as inputs."""
     cmd = forms.command(name)
     groups = {"main": [], "more": [], "drawing": []}
     starting = dict([forms.STARTING[name]]) if name in forms.STARTING else {}
-    kind = forms.input_kind(raw.get("input") or starting.get("input", ""))
+    value = raw.get("input") or starting.get("input", "")
+    kind = forms.input_kind(value) or {f"upload:{i}": k for i, _, k in uploads}.get(value, "")
     gone = {f.key for f in forms.form_fields(name) if f.not_for and f.not_for == kind}
     for f in forms.form_fields(name):
         message = error.message if error is not None and error.key == f.key else ""
-        field = _field(f, raw.get(f.key, ""), message, uploads)
+        field = _field(f, raw.get(f.key, ""), message, uploads, kind)
         hidden = f.key in gone  # not for this input (a ball's cutter): the script follows it
         if f.needs:  # shown only with (or without) a flag: the script follows the flag
             flag = f.needs.lstrip("!")
@@ -163,12 +164,18 @@ def command_page(name: str, raw: dict[str, str], error: forms.FormError | None,
     return _document(f"{TITLES.get(name, name)}: weave-cut", body, name, viewer=True)
 
 
-def _field(f: forms.Field, value: str, message: str, uploads) -> str:
+def _field(f: forms.Field, value: str, message: str, uploads, kind: str = "") -> str:
+    """A field's HTML; its help for the ``kind`` of input chosen (the script swaps in the
+    help for another kind, ``data-help-KIND``, when the input changes)."""
     fid, hid, eid = f"f-{f.key}", f"h-{f.key}", f"e-{f.key}"
-    text = re.sub(r"\s+([.;,])(?=\s|$)", r"\1", DEFAULT.sub(" ", f.help)).strip()
     shown = DEFAULT.search(f.help)
     placeholder = f.default or (shown.group(1) if shown else "")
-    hint = _e(text) + (f' <span class="unit">{_e(f.unit)}</span>' if f.unit else "")
+    hint = _e(_hint_text(dict(f.help_for).get(kind, f.help)))
+    if f.help_for:
+        hint = (f'<span class="help" data-help="{_e(_hint_text(f.help))}"'
+                + "".join(f' data-help-{k}="{_e(_hint_text(h))}"' for k, h in f.help_for)
+                + f">{hint}</span>")
+    hint += f' <span class="unit">{_e(f.unit)}</span>' if f.unit else ""
     describe = f'aria-describedby="{hid} {eid}"'
     invalid = ' aria-invalid="true"' if message else ""
     attrs = (f'data-key="{f.key}" data-default="{_e(f.default or "")}" data-kind="{f.kind}"')
@@ -219,6 +226,11 @@ def _field(f: forms.Field, value: str, message: str, uploads) -> str:
             f'<p class="hint" id="{hid}">{hint}</p>{error}</div>')
 
 
+def _hint_text(help_text: str) -> str:
+    """A help as a field's hint shows it: without click's ``[default: ...]``."""
+    return re.sub(r"\s+([.;,])(?=\s|$)", r"\1", DEFAULT.sub(" ", help_text)).strip()
+
+
 def _on(value: str) -> bool:
     """A flag's query value as the form shows it (``click.BOOL``'s true words)."""
     return value.lower() in ("1", "true", "on", "yes", "y", "t")
@@ -230,8 +242,9 @@ def _select(f: forms.Field, value: str, fid: str, extra: str, uploads) -> str:
     options, groups = [], {}
     if f.kind == "input":
         options.append('<optgroup label="Your drawings" id="uploads">' + "".join(
-            f'<option value="{_e("upload:" + i)}"{" selected" * (value == "upload:" + i)}>'
-            f'{_e(label)}</option>' for i, label in uploads) + "</optgroup>")
+            f'<option value="{_e("upload:" + i)}"' + (f' data-kind="{k}"' if k else "")
+            + f'{" selected" * (value == "upload:" + i)}>{_e(label)}</option>'
+            for i, label, k in uploads) + "</optgroup>")
     if not f.default and f.kind != "input":
         options.append(f'<option value=""{" selected" * (not value)}>—</option>')
     for c in f.choices:

@@ -5,9 +5,10 @@ the CLI's long option names), ``GET /{command}/check`` (the query checked by the
 field messages, the command line, the recipe; JSON), ``GET /{command}/preview.svg``,
 ``GET /{command}/summary.json`` (the kit's figures), ``GET /{command}.zip`` (the kit),
 ``GET /{command}/model.glb`` (the kit's woven 3-D model, from the same job; 404 if it has none),
-``POST /upload`` (a drawing as the request body, read by a job like a kit; ``{"id": SHA256}``
-for ``input=upload:ID``)
-``/static/`` and ``/static/viewer/`` (the kit page's 3-D viewer scripts). A bad value answers 400 with the CLI's own message (header ``X-Field``: the
+``POST /upload`` (a drawing as the request body, read by a job like a kit; ``{"id": SHA256,
+"kind": "surface" or "flat"}`` for ``input=upload:ID``: a surface in space makes a ball)
+``/static/`` and ``/static/viewer/`` (the kit page's 3-D viewer scripts). A bad value answers
+400 with the CLI's own message in the form's words (``refusals``; header ``X-Field``: the
 form key it belongs to), an unknown command 404, a full queue 503 with Retry-After, anything
 unexpected a plain 500 (the traceback goes to the log, never to the browser).
 
@@ -36,6 +37,7 @@ from starlette.staticfiles import StaticFiles
 
 from ..kitpage.viewer import STATIC as VIEWER_STATIC
 from . import forms, pages, summary
+from .refusals import in_form_words, said
 from .uploads import MAX_BYTES, Store, UploadError, read_spec
 
 from .jobs import JobSpec, QueueFull
@@ -79,17 +81,10 @@ def _items(request: Request) -> list[tuple[str, str]]:
     return request.query_params.multi_items()
 
 
-def _key(name: str, error: forms.FormError) -> str | None:
-    """The form key ``error`` belongs to, if any."""
-    if error.status == 404:
-        return None
-    return error.key or forms.key_of_message(error.message, name)
-
-
 def _refused(name: str, error: forms.FormError) -> Response:
-    key = _key(name, error)
+    error = said(error, name)
     return PlainTextResponse(error.message, error.status,
-                             headers={"X-Field": key} if key else None)
+                             headers={"X-Field": error.key} if error.key else None)
 
 
 async def _unless_gone(request: Request, job):
@@ -149,9 +144,10 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
                 raw.setdefault(k, v)
             query = forms.parse(name, items, store)
         except forms.FormError as exc:
-            error = exc
+            error = said(exc, name)
         value = raw.get("input", "")
-        offered = [(value[7:], "your drawing")] if forms.UPLOAD.fullmatch(value) else []
+        offered = [(value[7:], "your drawing", store.kind(value[7:]))] \
+            if forms.UPLOAD.fullmatch(value) else []
         return HTMLResponse(pages.command_page(name, raw, error, query, offered),
                             400 if error else 200)
 
@@ -162,7 +158,8 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
         try:
             query = forms.parse(name, _items(request), store)
         except forms.FormError as exc:
-            return JSONResponse({"ok": False, "errors": {_key(name, exc) or "form": exc.message}},
+            exc = said(exc, name)
+            return JSONResponse({"ok": False, "errors": {exc.key or "form": exc.message}},
                                 exc.status)
         return JSONResponse({"ok": True, "errors": {}, "command_line": command_line(query),
                              "recipe": recipe(query)})
@@ -252,7 +249,7 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
         try:
             ident, suffix = store.screen(data)  # the size and the first bytes only
         except UploadError as exc:
-            return PlainTextResponse(exc.message, exc.status)
+            return PlainTextResponse(in_form_words(exc.message, None), exc.status)
         if store.find(ident) is None:  # read in a job process, under a job's limits
             try:
                 result = await _unless_gone(request, queue.run(read_spec(data, suffix)))
@@ -263,10 +260,10 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
             if result is None:
                 return Response(status_code=499)
             if not result.ok:  # the reader's message; its process ended (>= 500): refused
-                return PlainTextResponse(result.error, result.status if result.status < 500
-                                         else 422)
-            await run_in_threadpool(store.keep, data)
-        return JSONResponse({"id": ident})
+                return PlainTextResponse(in_form_words(result.error, None),
+                                         result.status if result.status < 500 else 422)
+            await run_in_threadpool(store.keep, data, result.summary.get("kind", ""))
+        return JSONResponse({"id": ident, "kind": store.kind(ident)})
 
     async def http_error(request: Request, exc: HTTPException) -> Response:
         if exc.status_code == 404 and "text/html" in request.headers.get("accept", ""):

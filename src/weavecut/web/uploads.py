@@ -23,6 +23,7 @@ from .jobs import JobResult, JobSpec, failed
 MAX_BYTES = 8 * 2**20  # a hand-made drawing is kilobytes; an OBJ of 100,000 faces about 5 MiB
 FORMATS = (".svg", ".dxf", ".obj", ".json")
 READ = "read"  # the kind of job that reads an upload
+KINDS = ("surface", "flat")  # the kinds of kit an upload makes (``strands_command.kit_kind``)
 _OBJ_LINE = re.compile(rb"\s*(v|vt|vn|f|l|o|g|s|usemtl|mtllib)\s")
 
 
@@ -52,16 +53,19 @@ def sniff(data: bytes) -> str:
                       "or an OBJ or weave-cut JSON mesh")
 
 
-def check(data: bytes, suffix: str) -> None:
+def check(data: bytes, suffix: str) -> str:
     """Read ``data`` as the CLI reads a file of ``suffix`` (its bounded readers and the mesh
-    checks); UploadError with the reader's message, the temporary path said as 'the file'."""
+    checks): the kind of kit it makes as ``strands`` sees it ("surface": a ball, "flat";
+    ``kit_kind``); UploadError with the reader's message, the temporary path said as 'the
+    file'."""
+    from ..cli.strands_command import kit_kind
     from ..mesh_io import read_valid_mesh
 
     with tempfile.TemporaryDirectory(prefix="weavecut-upload-") as tmp:
         path = Path(tmp) / f"upload{suffix}"
         path.write_bytes(data)
         try:
-            read_valid_mesh(path, allow_nonconvex=True)
+            return kit_kind(read_valid_mesh(path, allow_nonconvex=True))
         except WeaveCutError as exc:
             raise UploadError(str(exc).replace(str(path), f"the {suffix[1:].upper()} file")
                               .replace(tmp, "")) from None
@@ -73,20 +77,21 @@ def check(data: bytes, suffix: str) -> None:
 
 def read_job(spec: JobSpec) -> JobResult:
     """Read the one file of a "read" job as ``check`` does (in the job's process, under its
-    limits): ok with the format in its summary, or the reader's message (400; 413 when the
-    reader ran out of the memory a job may use)."""
+    limits): ok with the format and the kind of kit in its summary, or the reader's message
+    (400; 413 when the reader ran out of the memory a job may use)."""
     if len(spec.files) != 1 or Path(spec.files[0][0]).suffix not in FORMATS:
         return failed(400, "a read job reads one .svg, .dxf, .obj or .json file")
     name, data = spec.files[0]
     suffix = Path(name).suffix
     try:
-        check(data, suffix)
+        kind = check(data, suffix)
     except UploadError as exc:
         return failed(exc.status, exc.message)
     except MemoryError:
         return failed(413, f"the {suffix[1:].upper()} file needs more memory to read than an "
                       "upload may use; simplify the drawing or mesh")
-    return JobResult(True, b"", "text/plain; charset=utf-8", {"format": suffix[1:]})
+    return JobResult(True, b"", "text/plain; charset=utf-8", {"format": suffix[1:],
+                                                              "kind": kind})
 
 
 def read_spec(data: bytes, suffix: str) -> JobSpec:
@@ -95,7 +100,8 @@ def read_spec(data: bytes, suffix: str) -> JobSpec:
 
 
 class Store:
-    """Uploads kept in ``folder``, each as ``SHA256.SUFFIX``."""
+    """Uploads kept in ``folder``, each as ``SHA256.SUFFIX``, with the kind of kit it makes
+    (``check``) in ``SHA256.kind``."""
 
     def __init__(self, folder: Path) -> None:
         self.folder = Path(folder)
@@ -111,13 +117,23 @@ class Store:
             raise UploadError("the upload is empty")
         return hashlib.sha256(data).hexdigest(), sniff(data)
 
-    def keep(self, data: bytes) -> str:
-        """Keep ``data``, which a read job has read; its id."""
+    def keep(self, data: bytes, kind: str = "") -> str:
+        """Keep ``data``, which a read job has read as a ``kind`` of kit; its id."""
         ident, suffix = self.screen(data)
         if self.find(ident) is None:
             self.folder.mkdir(parents=True, exist_ok=True)
+            if kind in KINDS:  # first: an upload kept is never without its kind
+                write_atomic(self.folder / f"{ident}.kind", kind.encode())
             write_atomic(self.folder / f"{ident}{suffix}", data)
         return ident
+
+    def kind(self, ident: str) -> str:
+        """The kind of kit upload ``ident`` makes ("surface", "flat"); "" if unknown."""
+        path = self.folder / f"{ident}.kind"
+        if not re.fullmatch(r"[0-9a-f]{64}", ident) or not path.is_file():
+            return ""
+        kind = path.read_text(encoding="ascii", errors="replace")
+        return kind if kind in KINDS else ""
 
     def find(self, ident: str) -> Path | None:
         if not re.fullmatch(r"[0-9a-f]{64}", ident):

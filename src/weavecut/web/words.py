@@ -19,7 +19,13 @@ WEB_WORDS = (  # (the CLI's words, the form's words), in this order
     (r"\bbeside -o\b", "in the kit"),
     (r"(?<![\w-])-o\b", "the kit"),  # the job's output, which the form does not show
 )
+FORMAT_LABELS = {"pdf": "PDF: print it", "svg": "SVG: view it, or edit it in Inkscape",
+                 "dxf": "DXF: CAD or laser software", "png": "PNG: a picture",
+                 "obj": "OBJ: the 3-D model (a surface's)",
+                 "glb": "GLB: the 3-D model, coloured", "json": "JSON: weave-cut's mesh",
+                 "lbrn2": "LightBurn project (.lbrn2): layers set for your laser"}
 NAMED = re.compile(r"(?<![\w-])--([a-z][a-z0-9-]*)")  # an option named in a help
+HINT = re.compile(r"'(?:-\w' / ')?--([a-z][a-z0-9-]*)(?:' / '-\w)?'|'(INPUT|NAME)'")  # click's
 
 
 def form_words(text: str, labels: dict[str, str]) -> str:
@@ -35,6 +41,43 @@ def form_words(text: str, labels: dict[str, str]) -> str:
     for cli_words, web_words in WEB_WORDS:
         text = re.sub(cli_words, web_words, text)
     return NAMED.sub(lambda found: labels.get(found.group(1), found.group(0)), text)
+
+
+def without(text: str, keys) -> str:
+    """Click's help ``text`` with every aside and sentence that names one of the options
+    ``keys`` left out: the help of a page on which those fields are not offered.
+
+    >>> without("a4 or WxH (with --laser-card: the instructions' pages). Blank.", {"laser-card"})
+    'a4 or WxH. Blank.'
+    >>> without("Snub steps. With --cutter: cut them. Then weave.", ["cutter"])
+    'Snub steps. Then weave.'
+    """
+    named = "|".join(re.escape(k) for k in sorted(keys))
+    if not named:
+        return text
+    option = rf"(?<![\w-])--(?:{named})\b"
+    text = re.sub(rf"\s*\((?:[^()]*?{option}[^()]*)\)", "", text)
+    sentences = re.split(r"(?<=[.!?])\s+(?=[A-Z\[])", text)
+    return " ".join(s for s in sentences if not re.search(option, s))
+
+
+def refusal_words(message: str, labels: dict[str, str], fields: dict[str, str]) -> str:
+    """A refusal (click's message, a reader's) in the form's words: the option click's hint
+    names (``'--levels' / '-n'``, ``'INPUT'``) as its field, ``fields``: option key -> the
+    field's name; the rest as :func:`form_words` turns a help.
+
+    >>> refusal_words("Invalid value for '--levels' / '-n': 0 is not in the range 1<=x<=8.",
+    ...               {}, {"levels": "Levels"})
+    'Invalid value for “Levels”: 0 is not in the range 1<=x<=8.'
+    >>> refusal_words("--material goes with --laser-card", {"material": "“Material”",
+    ...               "laser-card": "“Laser-cut card” ticked"}, {})
+    '“Material” goes with “Laser-cut card” ticked'
+    """
+    def field(found: re.Match) -> str:
+        k = (found.group(1) or found.group(2)).lower()
+        return f"“{fields[k]}”" if k in fields else found.group(0)
+
+    return form_words(HINT.sub(field, message), labels)
 
 
 def bounds(t) -> str:

@@ -170,6 +170,10 @@
       }
       field.hidden = hidden;
     }
+    for (const help of form.querySelectorAll(".help[data-help]")) {  // no help names a field
+      // this input's kit does not offer (data-help-KIND: the help without it)
+      help.textContent = help.getAttribute("data-help-" + kind) ?? help.dataset.help;
+    }
   }
 
   function later() {
@@ -216,9 +220,10 @@
           say("The drawing was not accepted.", true);
           return;
         }
-        const {id} = await sent.json();
+        const {id, kind} = await sent.json();
         const option = document.createElement("option");
         option.value = "upload:" + id;
+        if (kind) option.dataset.kind = kind;  // a surface in space: a ball, as the CLI makes
         option.textContent = `${chosen.name} (your drawing)`;
         $("uploads").append(option);
         $("f-input").value = option.value;
