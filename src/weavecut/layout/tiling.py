@@ -150,10 +150,16 @@ def balanced(sheet: Sheet, pages, overlap: float, margin: float, name: str = "pa
     xs = np.arange(box[0], box[2], SAMPLE) + SAMPLE / 2
     ys = np.arange(box[1], box[3], SAMPLE) + SAMPLE / 2
     inside = np.zeros((len(ys), len(xs)), dtype=bool)
-    for g, (x0, y0, x1, y1) in zip(polys, shapely.bounds(polys).tolist()):  # each its points
-        i0, i1 = np.searchsorted(xs, [x0, x1])
-        j0, j1 = np.searchsorted(ys, [y0, y1])
-        inside[j0:j1, i0:i1] |= shapely.contains_xy(g, xs[None, i0:i1], ys[j0:j1, None])
+    bounds = shapely.bounds(np.asarray(polys, dtype=object)).reshape(-1, 4)
+    # each polygon against the points of its bounds, all in one call
+    i0, j0, i1, j1 = (np.searchsorted(v, bounds[:, k]) for k, v in enumerate((xs, ys) * 2))
+    ni, nj = np.maximum(i1 - i0, 0), np.maximum(j1 - j0, 0)
+    per = ni * nj
+    owner = np.repeat(np.arange(len(polys)), per)
+    k = np.arange(per.sum()) - np.repeat(np.cumsum(per) - per, per)  # row by row in its box
+    i, j = i0[owner] + k % ni[owner], j0[owner] + k // ni[owner]
+    hit = shapely.contains_xy(np.asarray(polys, dtype=object)[owner], xs[i], ys[j])
+    inside[j[hit], i[hit]] = True
     held = np.zeros((len(ys) + 1, len(xs) + 1), dtype=np.int64)  # points below-left, summed
     held[1:, 1:] = inside.cumsum(axis=0).cumsum(axis=1)
     fewest = min(count(sheet, p, overlap, margin) for p in pages)
