@@ -117,23 +117,32 @@ def guide_numbers(puzzle: Puzzle, colouring: Colouring, side: str) -> GuideNumbe
     n = len(texts)
     candidates = _candidates(puzzle, colouring, side)
     painted = len(candidates) - 2 * bool((puzzle.hexagons != None).any())  # noqa: E711
-    # every candidate with room round the number, and without
-    roomy = [(_fit(r, texts, pad), [_ink(f) for f in fills], pad) for r, fills, pad in candidates]
+    reads = [[_ink(f) for f in fills] for _, fills, _ in candidates]
+
+    def fits(ks, pad, where=None):  # candidates ks fitted with room ``pad`` for ``where``
+        return [(_fit(candidates[k][0] if where is None else
+                      np.where(where, candidates[k][0], None), texts, pad), reads[k], pad)
+                for k in ks]
+
+    paint, ring = range(painted), range(painted, len(candidates))
+    roomy = fits(paint, PAD)
     # a number without room round it is looked at only for a piece that no number with room
     # round it reads on at MIN_CAP on the paint (_choose: one without room never replaces one):
     # it is fitted for those pieces alone
     chosen = _unchosen(n)
-    _read(roomy[:painted], MIN_CAP, chosen)
-    bare = chosen[0] == 0
-    fits = roomy + [(_fit(np.where(bare, r, None), texts, 0.0), read, 0.0)
-                    for (r, _, _), (_, read, _) in zip(candidates, roomy)]
-    on_paint = fits[:painted] + fits[len(candidates):len(candidates) + painted]
-    chosen = _unchosen(n)
+    _read(roomy, MIN_CAP, chosen)
+    on_paint = roomy + fits(paint, 0.0, chosen[0] == 0)
     # at MIN_CAP if anywhere, else smaller; on the paint before the hexagon; on a plate
-    # before smaller
-    for floor in (MIN_CAP, LEAST):
-        for group in (on_paint, fits):
-            _choose(group, floor, chosen)
+    # before smaller: a ring piece's hexagon (or the whole piece) is looked at only for the
+    # pieces without a number on the paint at MIN_CAP, and fitted for those alone
+    chosen = _unchosen(n)
+    _choose(on_paint, MIN_CAP, chosen)
+    left = chosen[0] == 0
+    every = (on_paint[:painted] + fits(ring, PAD, left) + on_paint[painted:]
+             + fits(ring, 0.0, left))
+    _choose(every, MIN_CAP, chosen)
+    for group in (on_paint, every):
+        _choose(group, LEAST, chosen)
     best_h, centres, angles, inks, plated = chosen
     plates = np.full(n, None, dtype=object)
     if plated.any():
