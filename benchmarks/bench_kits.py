@@ -2,6 +2,7 @@
 (prints a table; asserts nothing).
 
     .venv/bin/python benchmarks/bench_kits.py [--repeat 3] [--base COMMIT] [--only NAME]
+                                              [--also COMMIT]
     (or: make bench-kits)
 
 Each command runs in a fresh process (interpreter start and imports included, as
@@ -11,7 +12,8 @@ ratio is this checkout's over the frozen one's, best to best. The frozen source 
 ``git archive``'d once into ``build/bench-base/<commit>/``: the code of before the kits were
 made fast (``BASE``), as ``tests/subdivision/snub_oracle.py`` freezes the engine's old step.
 ``--only NAME`` (repeatable) runs only the kits whose name or command contains NAME
-("laser", "puzzle").
+("laser", "puzzle"). ``--also COMMIT`` (repeatable) measures that commit's source too, in
+the same rounds, in a column of its own (a branch's starting point beside its head).
 Pages and sheets are counted in the outputs of the last run of each.
 """
 
@@ -87,17 +89,23 @@ def main() -> None:
     parser.add_argument("--base", default=BASE, help="the frozen commit (default %(default)s)")
     parser.add_argument("--only", action="append", default=[], metavar="NAME",
                         help="only the kits whose name or command contains NAME (repeatable)")
+    parser.add_argument("--also", action="append", default=[], metavar="COMMIT",
+                        help="a commit measured beside the frozen one and this checkout "
+                        "(repeatable)")
     args = parser.parse_args()
     kits = [k for k in KITS if not args.only
             or any(w in f"{k[0]} {' '.join(k[1])}" for w in args.only)]
     if not kits:
         parser.error(f"no kit matches {args.only}; the kits: {', '.join(k[0] for k in KITS)}")
-    sources = {"before": frozen_source(args.base), "now": ROOT / "src"}
-    print(f"| command | before ({args.base}), CPU s best / median | now | ratio (target) | "
-          "pages before / now |\n| --- | --- | --- | --- | --- |", flush=True)
+    also = {c: frozen_source(c) for c in args.also}
+    sources = {"before": frozen_source(args.base), **also, "now": ROOT / "src"}
+    extra = "".join(f" {c} | ratio |" for c in also)
+    print(f"| command | before ({args.base}), CPU s best / median |{extra} now | ratio (target) | "
+          f"pages before / now |\n| --- | --- |{' --- | --- |' * len(also)} --- | --- | --- |",
+          flush=True)
     with tempfile.TemporaryDirectory() as tmp:
         for name, cmd, output, target in kits:
-            times: dict[str, list[float]] = {"before": [], "now": []}
+            times: dict[str, list[float]] = {k: [] for k in sources}
             outs = {k: Path(tmp) / k / output for k in sources}
             for _ in range(args.repeat):
                 for k, src in sources.items():
@@ -106,8 +114,9 @@ def main() -> None:
                     times[k].append(cpu_of(src, cmd, outs[k]))
             best = {k: min(v) for k, v in times.items()}
             cell = {k: f"{best[k]:.2f} / {statistics.median(times[k]):.2f}" for k in times}
-            print(f"| `weave-cut {' '.join(cmd)} -o {output}` ({name}) | {cell['before']} | "
-                  f"{cell['now']} | {best['now'] / best['before']:.2f} (≤ {target}) | "
+            beside = "".join(f" {cell[c]} | {best[c] / best['before']:.2f} |" for c in also)
+            print(f"| `weave-cut {' '.join(cmd)} -o {output}` ({name}) | {cell['before']} |"
+                  f"{beside} {cell['now']} | {best['now'] / best['before']:.2f} (≤ {target}) | "
                   f"{pages(outs['before'])} / {pages(outs['now'])} |", flush=True)
 
 

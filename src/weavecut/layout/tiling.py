@@ -150,16 +150,22 @@ def balanced(sheet: Sheet, pages, overlap: float, margin: float, name: str = "pa
     xs = np.arange(box[0], box[2], SAMPLE) + SAMPLE / 2
     ys = np.arange(box[1], box[3], SAMPLE) + SAMPLE / 2
     inside = np.zeros((len(ys), len(xs)), dtype=bool)
-    for g, (x0, y0, x1, y1) in zip(polys, shapely.bounds(polys).tolist()):  # each its points
-        i0, i1 = np.searchsorted(xs, [x0, x1])
-        j0, j1 = np.searchsorted(ys, [y0, y1])
-        inside[j0:j1, i0:i1] |= shapely.contains_xy(g, xs[None, i0:i1], ys[j0:j1, None])
+    bounds = shapely.bounds(np.asarray(polys, dtype=object)).reshape(-1, 4)
+    # each polygon against the points of its bounds, all in one call
+    i0, j0, i1, j1 = (np.searchsorted(v, bounds[:, k]) for k, v in enumerate((xs, ys) * 2))
+    ni, nj = np.maximum(i1 - i0, 0), np.maximum(j1 - j0, 0)
+    per = ni * nj
+    owner = np.repeat(np.arange(len(polys)), per)
+    k = np.arange(per.sum()) - np.repeat(np.cumsum(per) - per, per)  # row by row in its box
+    i, j = i0[owner] + k % ni[owner], j0[owner] + k // ni[owner]
+    hit = shapely.contains_xy(np.asarray(polys, dtype=object)[owner], xs[i], ys[j])
+    inside[j[hit], i[hit]] = True
     held = np.zeros((len(ys) + 1, len(xs) + 1), dtype=np.int64)  # points below-left, summed
     held[1:, 1:] = inside.cumsum(axis=0).cumsum(axis=1)
-    fewest = min(count(sheet, p, overlap, margin) for p in pages)
+    counts = [math.prod(grid(box, p, overlap, margin)[:2]) for p in pages]  # count(): box once
     best, choice = None, (pages[0], (0.5, 0.5))
-    for page in pages:
-        if count(sheet, page, overlap, margin) > fewest:
+    for page, n_pages in zip(pages, counts):
+        if n_pages > min(counts):
             continue
         for shift in ((x, y) for x in SHIFTS for y in SHIFTS):
             w = _windows(page, overlap, *grid(box, page, overlap, margin, shift))
@@ -225,8 +231,12 @@ def _geoms(layer: Layer):
     sizes = np.array([len(g) for g in parts], dtype=np.int64)
     geoms = np.concatenate(parts) if parts else np.empty(0, dtype=object)
     owner = np.repeat(np.arange(len(parts)), sizes)
+    reach = np.array([s.style.stroke_width / 2 if isinstance(s, Polylines) else 0.0
+                      for s in layer.shapes]).reshape(-1, 1)  # a word's ink beyond its points
+    drawn = np.array([isinstance(s, (Polygons, Polylines)) for s in layer.shapes], dtype=bool)
     return (geoms, shapely.bounds(geoms).reshape(-1, 4), owner,
-            np.repeat(np.array(lines, dtype=bool), sizes), np.r_[0, np.cumsum(sizes)], lo, hi)
+            np.repeat(np.array(lines, dtype=bool), sizes), np.r_[0, np.cumsum(sizes)], lo, hi,
+            reach, drawn)
 
 
 def _clip_layer(layer: Layer, geoms, window, shift) -> Layer:
@@ -238,7 +248,7 @@ def _clip_layer(layer: Layer, geoms, window, shift) -> Layer:
     :func:`word_overlap`)."""
     x0, y0, x1, y1 = window.bounds
     margin_box = np.array([x0, y0, x1, y1]) + np.r_[shift, shift]
-    every, b, owner, lines, start, lo, hi = geoms
+    every, b, owner, lines, start, lo, hi, reach, drawn = geoms
     near = np.flatnonzero((b[:, 0] <= x1) & (b[:, 2] >= x0) & (b[:, 1] <= y1) & (b[:, 3] >= y0))
     parts, at = shapely.get_parts(_clip(every[near], b[near], window, lines[near]),
                                   return_index=True)
@@ -248,12 +258,12 @@ def _clip_layer(layer: Layer, geoms, window, shift) -> Layer:
     area = (kind == 3) & (shapely.area(parts) > 0)
     line = (kind == 1) & ~shapely.is_empty(parts)
     with np.errstate(invalid="ignore"):  # NaN: not a word
-        reach = np.array([s.style.stroke_width / 2 if isinstance(s, Polylines) else 0.0
-                          for s in layer.shapes]).reshape(-1, 1)
         whole = ((lo + shift - reach >= margin_box[:2]) & (hi + shift + reach <= margin_box[2:])
                  ).all(axis=1)
     shapes = []
-    for i, shape in enumerate(layer.shapes):
+    # the shapes with a part in the window, the whole words and the rest (text), in order
+    for i in np.flatnonzero((cuts[1:] > cuts[:-1]) | whole | ~drawn).tolist():
+        shape = layer.shapes[i]
         mine = slice(cuts[i], cuts[i + 1])
         if isinstance(shape, Polygons):
             keep = area[mine]
@@ -281,10 +291,15 @@ def _clip_layer(layer: Layer, geoms, window, shift) -> Layer:
 def word_overlap(drawing: Drawing, least: float = 10.0) -> float:
     """The overlap (mm) at which every single-stroke word of ``drawing``'s first sheet lies
     whole on some page: at least ``least``, and more than the widest or tallest word."""
-    sizes = [np.ptp(s.coords, axis=0).max() + s.style.stroke_width
-             for layer in drawing.sheets[0].layers if layer.name == WORDS
+    words = [s for layer in drawing.sheets[0].layers if layer.name == WORDS
              for s in layer.shapes if isinstance(s, Polylines) and len(s.coords)]
-    return max([least, *(math.ceil(x + 0.5) for x in sizes)])
+    if not words:
+        return least
+    at = np.cumsum([0] + [len(s.coords) for s in words[:-1]])  # every word's points at once
+    xy = np.concatenate([s.coords for s in words])
+    ptp = np.maximum.reduceat(xy, at) - np.minimum.reduceat(xy, at)
+    sizes = ptp.max(axis=1) + [s.style.stroke_width for s in words]
+    return max([least, *(math.ceil(x + 0.5) for x in sizes.tolist())])
 
 
 def _clip(geoms: NDArray[np.object_], bounds: NDArray[np.float64], window, lines

@@ -148,6 +148,14 @@ def _listed(pieces: NDArray[np.int64], most: int = 12) -> str:
     return ", ".join(str(k + 1) for k in pieces[:most].tolist()) + more
 
 
+def _outlines(polygons: NDArray[np.object_]) -> list[NDArray[np.float64]]:
+    """Every polygon's exterior ring (k, 2), all read in one call."""
+    if not len(polygons):
+        return []
+    coords, of = shapely.get_coordinates(shapely.get_exterior_ring(polygons), return_index=True)
+    return np.split(coords, np.cumsum(np.bincount(of, minlength=len(polygons)))[:-1])
+
+
 def _number_layer(coords, offsets, style: Style) -> Layer:
     return Layer("engrave-numbers", "engrave", (Polylines(coords, offsets, style),))
 
@@ -246,7 +254,7 @@ def separate_cut(puzzle: Puzzle, las: Laser, kerf: float, sheet: tuple[float, fl
         home = (0.0, sheet[1])
         frame_here = on[on < n_frame]
         inner_rings = [np.asarray(r.coords) for k in frame_here for r in placed[k].interiors]
-        piece_rings = [np.asarray(placed[k].exterior.coords) for k in on[on >= n_frame]]
+        piece_rings = _outlines(placed[on[on >= n_frame]])
         # the pieces first (those in the frame's hole before the hole frees its slug), then
         # the hole, then the frame's outer outline
         pieces, here = cutpaths.order_paths(piece_rings, home)

@@ -91,15 +91,27 @@ def _candidates(puzzle: Puzzle, colouring: Colouring, side: str) -> list[tuple]:
     if side == "front":
         halves = piece_halves(puzzle)
         for j in (0, 1):
-            part = shapely.intersection(halves[:, j], base)
-            part = np.array([max(shapely.get_parts(g), key=shapely.area, default=g)
-                             for g in part.tolist()], dtype=object)  # its largest piece
+            part = _largest_parts(shapely.intersection(halves[:, j], base))
             out.append((part, [(_paper(f[j]),) for f in paints], PAD))
     if has.any():  # a ring piece: on its bare hexagon, or across hexagon and paint
         hexagon = np.where(has, hexes, None)
         out.append((hexagon, [(PAPER,)] * len(base), PAD))
         out.append((puzzle.pieces, [tuple(dict.fromkeys((*p, PAPER))) if h else p
                                     for p, h in zip(painted, has.tolist())], PAD))
+    return out
+
+
+def _largest_parts(geoms: NDArray[np.object_]) -> NDArray[np.object_]:
+    """The largest part of every geometry (the first of equal ones; itself where it has
+    none)."""
+    parts, of = shapely.get_parts(geoms, return_index=True)
+    out = geoms.copy()
+    if len(parts):
+        area = shapely.area(parts)
+        # by owner, the largest first, the first of equal ones first (a stable sort)
+        order = np.lexsort((-area, of))
+        first = order[np.r_[True, of[order][1:] != of[order][:-1]]]
+        out[of[first]] = parts[first]
     return out
 
 
@@ -111,19 +123,34 @@ def guide_numbers(puzzle: Puzzle, colouring: Colouring, side: str) -> GuideNumbe
     n = len(texts)
     candidates = _candidates(puzzle, colouring, side)
     painted = len(candidates) - 2 * bool((puzzle.hexagons != None).any())  # noqa: E711
-    # every candidate with room round the number, and without
-    fits = [(_fit(r, texts, pad), [_ink(f) for f in fills], pad)
-            for r, fills, pad in candidates + [(r, f, 0.0) for r, f, _ in candidates]]
-    on_paint = fits[:painted] + fits[len(candidates):len(candidates) + painted]
-    chosen = (np.zeros(n), np.zeros((n, 2)), np.zeros(n), np.full(n, BLACK, dtype=object),
-              np.zeros(n, dtype=bool))
+    reads = [[_ink(f) for f in fills] for _, fills, _ in candidates]
+
+    def fits(ks, pad, where=None):  # candidates ks fitted with room ``pad`` for ``where``
+        return [(_fit(candidates[k][0] if where is None else
+                      np.where(where, candidates[k][0], None), texts, pad), reads[k], pad)
+                for k in ks]
+
+    paint, hexes = range(painted), range(painted, len(candidates))
+    roomy = fits(paint, PAD)
+    # a number without room round it is looked at only for a piece that no number with room
+    # round it reads on at MIN_CAP on the paint (_choose: one without room never replaces one):
+    # it is fitted for those pieces alone
+    chosen = _unchosen(n)
+    _read(roomy, MIN_CAP, chosen)
+    on_paint = roomy + fits(paint, 0.0, chosen[0] == 0)
     # at MIN_CAP if anywhere, else smaller; on the paint before the hexagon (a ring piece's
-    # down to RING_CAP, where an ink reads); on a plate before smaller
+    # down to RING_CAP, where an ink reads); on a plate before smaller: a ring piece's hexagon
+    # (or the whole piece) is looked at only for the pieces without a number on the paint by
+    # then, and fitted for those alone
     ring = puzzle.hexagons != None  # noqa: E711
+    chosen = _unchosen(n)
     _choose(on_paint, MIN_CAP, chosen)
     _choose(on_paint, RING_CAP, chosen, ring, plates=False)
-    _choose(fits, MIN_CAP, chosen)
-    for group in (on_paint, fits):
+    left = chosen[0] == 0
+    every = (on_paint[:painted] + fits(hexes, PAD, left) + on_paint[painted:]
+             + fits(hexes, 0.0, left))
+    _choose(every, MIN_CAP, chosen)
+    for group in (on_paint, every):
         _choose(group, LEAST, chosen)
     best_h, centres, angles, inks, plated = chosen
     plates = np.full(n, None, dtype=object)
@@ -133,18 +160,31 @@ def guide_numbers(puzzle: Puzzle, colouring: Colouring, side: str) -> GuideNumbe
     return GuideNumbers(Labels(tuple(texts), best_h, centres, angles), inks, plates, ring)
 
 
+def _unchosen(n: int) -> tuple:
+    """``n`` pieces without a number: heights, centres, angles, inks, plated."""
+    return (np.zeros(n), np.zeros((n, 2)), np.zeros(n), np.full(n, BLACK, dtype=object),
+            np.zeros(n, dtype=bool))
+
+
+def _read(fits, floor: float, chosen, only=True) -> None:
+    """Number the pieces without one (``chosen``, changed in place; of those, the pieces
+    ``only`` marks) from ``fits`` at ``floor`` mm or more where an ink reads: the first that
+    reads wins, a larger one with room round it over it."""
+    best_h, centres, angles, inks, _ = chosen
+    todo = (best_h == 0) & only
+    for (h, c, a), read, pad in fits:
+        ok = todo & np.array([r[1] >= MIN_CONTRAST for r in read]) & (h >= floor)
+        better = ok & ((best_h == 0) | ((h > best_h + 1e-9) & (pad > 0)))
+        best_h[better], centres[better], angles[better] = h[better], c[better], a[better]
+        inks[better] = np.array([r[0] for r in read], dtype=object)[better]
+
+
 def _choose(fits, floor: float, chosen, only=True, plates: bool = True) -> None:
     """Number the pieces still without one (``chosen``: heights, centres, angles, inks, plated,
     changed in place; of those, the pieces ``only`` marks) from ``fits`` at ``floor`` mm or
     more: where an ink reads, else (with ``plates``) on a plate."""
-    best_h, centres, angles, inks, plated = chosen
-    todo = (best_h == 0) & only
-    for (h, c, a), read, pad in fits:
-        ok = todo & np.array([r[1] >= MIN_CONTRAST for r in read]) & (h >= floor)
-        # the first that reads wins, a larger one with room round it over it
-        better = ok & ((best_h == 0) | ((h > best_h + 1e-9) & (pad > 0)))
-        best_h[better], centres[better], angles[better] = h[better], c[better], a[better]
-        inks[better] = np.array([r[0] for r in read], dtype=object)[better]
+    best_h, centres, angles, _, plated = chosen
+    _read(fits, floor, chosen, only)
     if not plates:
         return
     # no part reads: where the number is largest, with room round it if it can, on a plate,

@@ -191,22 +191,29 @@ def build_puzzle(hierarchy: tuple[Level, ...], size: float = 500.0,
     grow = lru_cache(maxsize=2)(grow)  # the root search ends where the outline is wanted
     scale = frame_scale(base, grow, size, measure, frame_width)
     pieces, hexes, ring = _shapes(snapped * scale, parts, octagon_sizes)
-    _one_region(pieces)
+    hole = _checked_union(pieces)
     kinds = np.repeat(np.array([OCTAGON, ENNEAGON, ENNEAGON], dtype=np.int8),
                       [len(octagon_sizes), len(ennea), len(plain)])
     tiles = np.concatenate([octagon_tiles, lone_tiles, dropped]).astype(np.int32)
     hex_polys = np.concatenate([np.full(len(octagon_sizes), None, dtype=object), hexes,
                                 np.full(len(plain), None, object)])
     outer = grow(scale)
-    return Puzzle(pieces, kinds, tiles, hex_polys, ring, outer, tuple(hierarchy), weaves, scale,
-                  centre, frame_width, measure)
+    puzzle = Puzzle(pieces, kinds, tiles, hex_polys, ring, outer, tuple(hierarchy), weaves,
+                    scale, centre, frame_width, measure)
+    puzzle.__dict__["hole"] = hole  # its cached ``hole``: the union just checked, not made twice
+    return puzzle
 
 
 SLIVER = 1e-8  # of the puzzle's area: a gap or overlap smaller than this is rounding
 
 
 def _one_region(pieces: np.ndarray) -> shapely.Polygon:
-    """The outline of the pieces' union; MeshError unless each piece is a valid polygon and
+    """The outline of the pieces' union (:func:`_checked_union`)."""
+    return shapely.Polygon(_checked_union(pieces).exterior)
+
+
+def _checked_union(pieces: np.ndarray) -> shapely.Polygon:
+    """The pieces' union (``shapely.union_all``); MeshError unless each piece is a valid polygon and
     together they cover one region without overlaps or gaps between them (a ring hexagon
     dropped where two runs of the boundary meet can leave one). Slivers far below any cutter's
     resolution (ring corners computed a few micrometres off a mesh vertex) are not gaps."""
@@ -230,7 +237,7 @@ def _one_region(pieces: np.ndarray) -> shapely.Polygon:
     parts = getattr(union, "geoms", [union])
     gaps = [r for p in parts for r in p.interiors if shapely.Polygon(r).area > tiny]
     if len(parts) == 1 and not gaps:
-        return shapely.Polygon(union.exterior)
+        return union
     where = (f", one {np.hypot(gaps[0].centroid.x, gaps[0].centroid.y):.0f} mm from the centre"
              if gaps else "")
     what = (f"{len(gaps)} gap{'s' * (len(gaps) > 1)} between them{where}" if gaps
