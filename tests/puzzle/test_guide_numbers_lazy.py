@@ -20,8 +20,8 @@ from tests.built_puzzles import heart_puzzle, pentagon_paint, pentagon_puzzle
 
 def eager(puzzle, colouring, side) -> tuple:
     """(heights, centres, angles, inks, plated): every candidate fitted for every piece, with
-    room round the number and without, then chosen on the paint first, at MIN_CAP, then at
-    LEAST."""
+    room round the number and without, then chosen on the paint first, at MIN_CAP (a ring
+    piece's paint down to RING_CAP), then at LEAST."""
     texts = piece_texts(puzzle.n_pieces)
     candidates = gn._candidates(puzzle, colouring, side)
     painted = len(candidates) - 2 * bool((puzzle.hexagons != None).any())  # noqa: E711
@@ -29,8 +29,11 @@ def eager(puzzle, colouring, side) -> tuple:
             for r, fills, pad in candidates + [(r, f, 0.0) for r, f, _ in candidates]]
     on_paint = fits[:painted] + fits[len(candidates):len(candidates) + painted]
     chosen = gn._unchosen(len(texts))
+    ring = puzzle.hexagons != None  # noqa: E711
+    gn._choose(on_paint, MIN_CAP, chosen)
+    gn._choose(on_paint, gn.RING_CAP, chosen, ring, plates=False)  # a ring piece's paint
     for floor in (MIN_CAP, gn.LEAST):
-        for group in (on_paint, fits):
+        for group in (on_paint, fits)[floor == MIN_CAP:]:
             gn._choose(group, floor, chosen)
     return chosen
 
