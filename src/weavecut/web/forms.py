@@ -27,6 +27,7 @@ import click
 
 from .. import inputs, presets
 from ..cli.common import Finite, Formats, Length, PageSize, option_key
+from ..layout.lasersetup import DEFAULT_LASER, output_formats as laser_formats
 from ..schema import nearest
 from .jobs import JobSpec, default_output, output_formats
 from .uploads import UploadError
@@ -235,13 +236,20 @@ def _field(p: click.Parameter, k: str, where: str, needs: str, name: str) -> Fie
     if isinstance(t, (click.IntRange, Finite)):
         return Field(kind="integer" if isinstance(t, click.IntRange) else "number",
                      minimum=t.min, maximum=t.max, unit=bounds(t), **base)
-    if isinstance(t, Formats):
+    if isinstance(t, Formats):  # ticked: what the command writes when none is given
         return Field(kind="formats", choices=tuple(
-            Choice(f, FORMAT_LABELS.get(f, f)) for f in presets.LASER_FORMATS), **base)
+            Choice(f, FORMAT_LABELS.get(f, f)) for f in presets.LASER_FORMATS),
+            **{**base, "default": ",".join(laser_formats(None, _laser_default(name)))})
     if isinstance(t, PageSize):
         pages = ("a4", "letter", "a3", *presets.names("pages"))
         return Field(kind="page", choices=tuple(Choice(n, n) for n in pages), **base)
     return Field(kind="text", **base)
+
+
+def _laser_default(name: str) -> str:
+    """The laser preset command ``name`` uses when none is given (its --laser's default)."""
+    given = [p.default for p in command(name).params if key(p) == "laser"]
+    return given[0] if given and isinstance(given[0], str) else DEFAULT_LASER
 
 
 @functools.cache

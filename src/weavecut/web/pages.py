@@ -181,7 +181,7 @@ def _field(f: forms.Field, value: str, message: str, uploads) -> str:
     if f.kind == "preset":
         return _presets(f, value, attrs, hint, hid, error, describe)
     if f.kind == "formats":
-        chosen = set(value.split(","))
+        chosen = set((value or f.default or "").split(","))  # the command's own, at first
         boxes = "".join(
             f'<label class="check"><input type="checkbox" name="{f.key}" value="{_e(c.value)}"'
             f'{" checked" * (c.value in chosen)}> {_e(c.label)}</label>' for c in f.choices)
