@@ -5,7 +5,9 @@ A number must be found: its ink reads on whatever lies under it (WCAG contrast a
 reads upright. So every number is fitted, up to ``MAX_CAP`` mm, into a part of its piece
 whose paint is known: the piece less its ring hexagon (all its paints under the number), on
 the front one half (one paint), a ring piece's bare hexagon (natural wood, printed white), or
-the whole ring piece (its paints and the white hexagon).
+the whole ring piece (its paints and the white hexagon). No number crosses a dashed line (the
+parent edge across a two-coloured piece, a ring piece's hexagon edge): it would read as split
+in two, so a fit that meets one is dropped.
 The largest of these on which black or white reaches the contrast wins, level where a level
 number is nearly as large; a ring piece's hexagon (or the whole piece) only where its
 painted part has no room: a white hexagon with a number reads as a piece of its own. Where no
@@ -30,7 +32,7 @@ from ..layout.strokefont import fit_labels, ink_box
 from ..numeric import turn
 from .colouring import UNPAINTED, Colouring
 from .files import Labels, _listed, piece_texts
-from .guides import NUMBER_STROKE, piece_halves
+from .guides import NUMBER_STROKE, hexagon_edges, piece_halves, split_ends
 from .pieces import Puzzle
 
 MAX_CAP = 6.0  # mm, the largest number on a guide
@@ -105,8 +107,9 @@ def guide_numbers(puzzle: Puzzle, colouring: Colouring, side: str) -> GuideNumbe
     n = len(texts)
     candidates = _candidates(puzzle, colouring, side)
     painted = len(candidates) - 2 * bool((puzzle.hexagons != None).any())  # noqa: E711
-    # every candidate with room round the number, and without
-    fits = [(_fit(r, texts, pad), [_ink(f) for f in fills], pad)
+    # every candidate with room round the number, and without; never across a dashed line
+    splits = split_lines(puzzle, colouring, side)
+    fits = [(_off_the_splits(_fit(r, texts, pad), texts, splits), [_ink(f) for f in fills], pad)
             for r, fills, pad in candidates + [(r, f, 0.0) for r, f, _ in candidates]]
     on_paint = fits[:painted] + fits[len(candidates):len(candidates) + painted]
     chosen = (np.zeros(n), np.zeros((n, 2)), np.zeros(n), np.full(n, BLACK, dtype=object),
@@ -168,12 +171,45 @@ def largest_caps(texts) -> NDArray[np.float64]:
     return (WORD_SPAN - NUMBER_STROKE) / np.maximum(diagonal, 1e-9)
 
 
+def split_lines(puzzle: Puzzle, colouring: Colouring, side: str) -> NDArray[np.object_]:
+    """The dashed lines of ``side``'s guide as whole segments (linestrings): the parent edge
+    across a two-coloured piece (the front's) and a ring piece's hexagon edge (both sides')."""
+    ends = [hexagon_edges(puzzle)]
+    if side == "front":
+        u, w = split_ends(puzzle)
+        two = colouring.front[:, 0] != colouring.front[:, 1]
+        ends.append((u[two], w[two]))
+    a, b = (np.concatenate(e).reshape(-1, 2) for e in zip(*ends))
+    return shapely.linestrings(np.stack([a, b], axis=1)) if len(a) else np.array([], object)
+
+
+def _off_the_splits(fit: tuple, texts, splits: NDArray[np.object_]) -> tuple:
+    """``fit`` (heights, centres, angles) less the numbers whose ink (its box, with the
+    strokes' width) meets a dashed line of ``splits``: such a number is read as split in two,
+    its digits as belonging to two parts (issue 29's piece 377, across its hexagon's line)."""
+    h, c, a = fit
+    some = np.flatnonzero(h > 0)
+    if not len(some) or not len(splits):
+        return fit
+    boxes = _boxes([texts[k] for k in some.tolist()], h[some], c[some], a[some],
+                   NUMBER_STROKE / 2)
+    hit = shapely.STRtree(splits).query(boxes, predicate="intersects")[0]
+    h = h.copy()
+    h[some[np.unique(hit)]] = 0.0
+    return h, c, a
+
+
 def _plates(texts, heights, centres, angles) -> NDArray[np.object_]:
     """The white plates under numbers: their ink boxes widened by ``PLATE`` (inside the
     ``MARGIN`` a number keeps from its piece's edge)."""
-    box = np.array([ink_box(t) for t in texts], dtype=float)
-    hx = (box[:, 2] - box[:, 0]) / 2 * heights + PLATE
-    hy = (box[:, 3] - box[:, 1]) / 2 * heights + PLATE
+    return _boxes(texts, heights, centres, angles, PLATE)
+
+
+def _boxes(texts, heights, centres, angles, widen: float) -> NDArray[np.object_]:
+    """The ink boxes of numbers, widened by ``widen`` mm each side, turned and placed."""
+    box = np.array([ink_box(t) for t in texts], dtype=float).reshape(-1, 4)
+    hx = (box[:, 2] - box[:, 0]) / 2 * heights + widen
+    hy = (box[:, 3] - box[:, 1]) / 2 * heights + widen
     corners = np.stack([np.stack([-hx, -hy], -1), np.stack([hx, -hy], -1),
                         np.stack([hx, hy], -1), np.stack([-hx, hy], -1)], axis=1)
     return shapely.polygons(turn(corners, angles[:, None], centres[:, None]))
