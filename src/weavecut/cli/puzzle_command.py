@@ -202,6 +202,9 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
                 **({"chosen": chosen} if chosen else {}),
                 frame_parts=1 if frame_parts is None else len(frame_parts), warnings=warnings,
                 numbers=engraved is not None, **nonconvex,
+                operations={role: {"speed_mm_s": op.speed, "power_pct": op.power,
+                                   "passes": op.passes}
+                            for role, op in job.operations.items()},
                 files=sorted(list(files) + ["puzzle-summary.json", "README.txt", MODEL]))
     text = json.dumps(info, indent=2, allow_nan=False)
     folder = make_folder(out_dir)

@@ -205,7 +205,9 @@ def guide(puzzle: Puzzle, colouring: Colouring, side: str, numbers=None,
     layers.append(Layer("registration", "guide", tuple(_registration(width, height, margin))))
     title = f"weave-cut puzzle: {side} painting guide (level {puzzle.levels - (side == 'front')}" \
             " weave)" + (", mirrored" if mirror else "")
-    return Drawing((Sheet(width, height, tuple(layers), f"{side} guide"),), title)
+    paints = len(set(paint.colours.tolist()) - {UNPAINTED})  # the bare wood is no paint
+    return Drawing((Sheet(width, height, tuple(layers), f"{side} guide"),), title,
+                   (("paints", str(paints)),))
 
 
 def preview(puzzle: Puzzle, colouring: Colouring) -> Drawing:
