@@ -53,6 +53,10 @@ NEEDS = {  # fields that count only with a flag on ("laser-card") or off ("!lase
     "strands": {"material": "laser-card", "laser": "laser-card", "formats": "laser-card",
                 "format": "!laser-card"},
 }
+FOR_A_DRAWING = {  # fields whose default the command does not use for an uploaded drawing:
+    # it chooses them (the puzzle's level, with the cell: ``workshop.drawing_defaults``)
+    "puzzle": {"levels": "chosen for the drawing"},
+}
 FORMAT = "format"  # the kit's file format: the suffix of the -o the job gives (not an option)
 FORMAT_LABELS = {"pdf": "PDF: print it", "svg": "SVG: view it, or edit it in Inkscape",
                  "dxf": "DXF: CAD or laser software", "png": "PNG: a picture",

@@ -53,12 +53,19 @@
     return v;
   }
 
+  function drawn() {  // an uploaded drawing is the input
+    const input = $("f-input");
+    return Boolean(input && input.value.startsWith("upload:"));
+  }
+
   function query() {
     const params = new URLSearchParams();
     for (const field of form.querySelectorAll(".field[data-key]")) {
       if (field.hidden) continue;  // counts only with (or without) a flag, as data-needs says
       const v = value(field);
-      if (v !== "" && v !== field.dataset.default) params.append(field.dataset.key, v);
+      // a default the command does not use for a drawing (data-drawing) is sent when typed
+      const given = v !== field.dataset.default || (drawn() && field.dataset.drawing);
+      if (v !== "" && given) params.append(field.dataset.key, v);
     }
     return params.toString();
   }
@@ -169,6 +176,10 @@
         hidden = hidden || on === needs.startsWith("!");
       }
       field.hidden = hidden;
+    }
+    for (const field of form.querySelectorAll(".field[data-drawing]")) {  // chosen for one
+      const box = field.querySelector("input[type=text]");
+      if (box) box.placeholder = drawn() ? field.dataset.drawing : field.dataset.default;
     }
   }
 
