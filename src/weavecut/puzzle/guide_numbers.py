@@ -184,32 +184,30 @@ def split_lines(puzzle: Puzzle, colouring: Colouring, side: str) -> NDArray[np.o
 
 
 def _off_the_splits(fit: tuple, texts, splits: NDArray[np.object_]) -> tuple:
-    """``fit`` (heights, centres, angles) less the numbers whose ink (its box, with the
-    strokes' width) meets a dashed line of ``splits``: such a number is read as split in two,
-    its digits as belonging to two parts (issue 29's piece 377, across its hexagon's line)."""
+    """``fit`` (heights, centres, angles) less the numbers whose strokes (with their width)
+    meet a dashed line of ``splits``: such a number reads as split in two, its digits as
+    belonging to two parts (issue 29's piece 377, across its hexagon's line)."""
     h, c, a = fit
     some = np.flatnonzero(h > 0)
     if not len(some) or not len(splits):
         return fit
-    boxes = _boxes([texts[k] for k in some.tolist()], h[some], c[some], a[some],
-                   NUMBER_STROKE / 2)
-    hit = shapely.STRtree(splits).query(boxes, predicate="intersects")[0]
+    each = Labels(tuple(texts), h, c, a).strokes_each(some)
+    lines = [shapely.linestrings(xy[o0:o1]) for xy, offsets in each
+             for o0, o1 in zip(offsets[:-1].tolist(), offsets[1:].tolist())]
+    owner = np.repeat(some, [len(offsets) - 1 for _, offsets in each])
+    hit = shapely.STRtree(splits).query(np.array(lines, dtype=object), predicate="dwithin",
+                                        distance=NUMBER_STROKE / 2)[0]
     h = h.copy()
-    h[some[np.unique(hit)]] = 0.0
+    h[np.unique(owner[hit])] = 0.0
     return h, c, a
 
 
 def _plates(texts, heights, centres, angles) -> NDArray[np.object_]:
     """The white plates under numbers: their ink boxes widened by ``PLATE`` (inside the
     ``MARGIN`` a number keeps from its piece's edge)."""
-    return _boxes(texts, heights, centres, angles, PLATE)
-
-
-def _boxes(texts, heights, centres, angles, widen: float) -> NDArray[np.object_]:
-    """The ink boxes of numbers, widened by ``widen`` mm each side, turned and placed."""
-    box = np.array([ink_box(t) for t in texts], dtype=float).reshape(-1, 4)
-    hx = (box[:, 2] - box[:, 0]) / 2 * heights + widen
-    hy = (box[:, 3] - box[:, 1]) / 2 * heights + widen
+    box = np.array([ink_box(t) for t in texts], dtype=float)
+    hx = (box[:, 2] - box[:, 0]) / 2 * heights + PLATE
+    hy = (box[:, 3] - box[:, 1]) / 2 * heights + PLATE
     corners = np.stack([np.stack([-hx, -hy], -1), np.stack([hx, -hy], -1),
                         np.stack([hx, hy], -1), np.stack([-hx, hy], -1)], axis=1)
     return shapely.polygons(turn(corners, angles[:, None], centres[:, None]))
