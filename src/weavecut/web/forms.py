@@ -27,9 +27,8 @@ import click
 
 from .. import inputs, presets
 from ..cli.common import Finite, Formats, Length, PageSize, option_key
-from ..layout.lasersetup import DEFAULT_LASER, output_formats as laser_formats
 from ..schema import nearest
-from .jobs import JobSpec, default_output, output_formats
+from .jobs import JobSpec, default_output, laser_formats, output_formats
 from .uploads import UploadError
 from .words import bounds, field_label, form_words
 
@@ -52,10 +51,6 @@ STARTING = {  # what a page shows before anything is chosen (the argument has no
 NEEDS = {  # fields that count only with a flag on ("laser-card") or off ("!laser-card")
     "strands": {"material": "laser-card", "laser": "laser-card", "formats": "laser-card",
                 "format": "!laser-card"},
-}
-FOR_A_DRAWING = {  # fields whose default the command does not use for an uploaded drawing:
-    # it chooses them (the puzzle's level, with the cell: ``workshop.drawing_defaults``)
-    "puzzle": {"levels": "chosen for the drawing"},
 }
 FORMAT = "format"  # the kit's file format: the suffix of the -o the job gives (not an option)
 FORMAT_LABELS = {"pdf": "PDF: print it", "svg": "SVG: view it, or edit it in Inkscape",
@@ -240,20 +235,13 @@ def _field(p: click.Parameter, k: str, where: str, needs: str, name: str) -> Fie
     if isinstance(t, (click.IntRange, Finite)):
         return Field(kind="integer" if isinstance(t, click.IntRange) else "number",
                      minimum=t.min, maximum=t.max, unit=bounds(t), **base)
-    if isinstance(t, Formats):  # ticked: what the command writes when none is given
-        return Field(kind="formats", choices=tuple(
-            Choice(f, FORMAT_LABELS.get(f, f)) for f in presets.LASER_FORMATS),
-            **{**base, "default": ",".join(laser_formats(None, _laser_default(name)))})
+    if isinstance(t, Formats):  # ticked at first: what the command writes without --formats
+        return Field(kind="formats", choices=tuple(Choice(f, FORMAT_LABELS.get(f, f)) for f in
+                     presets.LASER_FORMATS), **{**base, "default": laser_formats(name)})
     if isinstance(t, PageSize):
         pages = ("a4", "letter", "a3", *presets.names("pages"))
         return Field(kind="page", choices=tuple(Choice(n, n) for n in pages), **base)
     return Field(kind="text", **base)
-
-
-def _laser_default(name: str) -> str:
-    """The laser preset command ``name`` uses when none is given (its --laser's default)."""
-    given = [p.default for p in command(name).params if key(p) == "laser"]
-    return given[0] if given and isinstance(given[0], str) else DEFAULT_LASER
 
 
 @functools.cache
