@@ -77,8 +77,8 @@ def test_the_puzzles_kit_page_states_the_json_figures(puzzle):
     (w, h), = re.findall(r"(\d+) × (\d+) mm finished", card)
     assert [int(w), int(h)] == pytest.approx(figures["frame_mm"], abs=0.5 + 1e-9)
     for mode, name in (("shared", "puzzle-shared-cut"), ("separate", "puzzle-separate-sheet-1")):
-        (w, h, metres), = re.findall(rf"{name} cut: .*? ([\d.]+) × ([\d.]+) mm · cut ([\d.]+) m ",
-                                     text)
+        (w, h, metres), = re.findall(
+            rf"{name} LightBurn: .*? ([\d.]+) × ([\d.]+) mm · cut ([\d.]+) m ", text)
         assert float(metres) == pytest.approx(figures["modes"][mode]["cut_length_m"],
                                               abs=0.005 + 1e-9)
     assert [float(w), float(h)] == figures["sheet_mm"]

@@ -130,7 +130,7 @@ def test_a_pdf_shows_every_page_with_pdftoppm_or_without(built, monkeypatch):
 def test_what_each_file_is_for(built):
     text = built[2]
     assert "print at 100 % on A4" in text
-    assert "cut: LightBurn: cut red, score blue, engrave black at 20 mm/s (SVG or DXF)" in text
+    assert "LightBurn: cut red at 20 mm/s (SVG or DXF)" in text
     assert "3 pages of 210 × 297 mm" in text
 
 
@@ -429,7 +429,7 @@ def test_each_card_says_what_its_files_are_for_and_links_each_format(built, tmp_
     found = cards(built[2])
     assert {k: (v["for"], v["links"]) for k, v in found.items()} == {
         "picture": ("test: 1:1 in mm, to view, print or edit", ["SVG"]),
-        "cut": ("cut: LightBurn: cut red, score blue, engrave black at 20 mm/s (SVG or DXF)",
+        "cut": ("LightBurn: cut red at 20 mm/s (SVG or DXF)",
                 ["SVG", "DXF"]),
         "pages": ("print at 100 % on A4", ["PDF"]),
         "raster": ("test: picture for a screen", ["PNG"]),

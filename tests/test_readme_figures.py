@@ -309,3 +309,61 @@ def test_a_changed_figure_fails(tmp_path, run):
     figures = claim.figures(run(claim.args))
     assert stated(claim.pattern) == figures
     assert stated(claim.pattern, tmp_path / "README.md") != figures
+
+
+LIGHTBURN = [  # (the README table's first cell, the command it runs, the project it reads)
+    ("`puzzle --numbers --formats lbrn2 -o pz`, shared cut",
+     ("puzzle", "--numbers", "--formats", "lbrn2", "-o", "pz"), "pz/puzzle-shared-cut.lbrn2"),
+    ("`puzzle --numbers --formats lbrn2 -o pz`, separate sheet 1",
+     ("puzzle", "--numbers", "--formats", "lbrn2", "-o", "pz"),
+     "pz/puzzle-separate-sheet-1.lbrn2"),
+    ("the heart puzzle (recipe `heart-puzzle`), shared cut",
+     ("build", str(ROOT / "templates" / "recipes" / "heart-puzzle.toml"), "-o", "pz"),
+     "pz/puzzle-shared-cut.lbrn2"),
+    ("the heart puzzle (recipe `heart-puzzle`), separate sheet 1",
+     ("build", str(ROOT / "templates" / "recipes" / "heart-puzzle.toml"), "-o", "pz"),
+     "pz/puzzle-separate-sheet-1.lbrn2"),
+]
+
+
+def project_layers(path: Path) -> str:
+    """A LightBurn project's layers as the README's table states them, in the project's order:
+    closed paths (a ``LineClosed`` primitive) + open ones (only the closed count where there
+    are none open), and their length in m, the closing segments counted."""
+    import xml.etree.ElementTree as ET
+
+    import numpy as np
+
+    root = ET.parse(path).getroot()
+    names = {s.find("index").get("Value"): s.find("name").get("Value")
+             for s in root.iter("CutSetting")}
+    found: dict[str, list] = {}
+    for shape in root.iter("Shape"):
+        xy = np.array(re.findall(r"V(-?[\d.]+) (-?[\d.]+)", shape.find("VertList").text),
+                      dtype=float)
+        closed = shape.find("PrimList").text == "LineClosed"
+        ring = np.vstack([xy, xy[:1]]) if closed else xy
+        counts = found.setdefault(names[shape.get("CutIndex")], [0, 0, 0.0])
+        counts[0 if closed else 1] += 1
+        counts[2] += float(np.hypot(*np.diff(ring, axis=0).T).sum())
+    return "; ".join(f"{name} {c}{f' + {o}' if o else ''}, {length / 1000:.2f} m"
+                     for name, (c, o, length) in found.items())
+
+
+@pytest.mark.parametrize("label, args, project", LIGHTBURN, ids=[r[0] for r in LIGHTBURN])
+def test_the_lightburn_table_is_what_the_command_writes(label, args, project, tmp_path_factory):
+    """The README's LightBurn table (issue 29: it said 137 + 1051 engraved paths where the
+    project had 1219): each row is read off the project its command writes now."""
+    root = session_root(tmp_path_factory)
+
+    def make() -> dict[str, str]:  # every project the command writes, as a row
+        folder = tmp_path_factory.mktemp("lbrn2")
+        with contextlib.chdir(folder):
+            result = CliRunner().invoke(cli, ["-q", *args], catch_exceptions=False)
+        assert result.exit_code == 0, result.output
+        return {p.relative_to(folder).as_posix(): project_layers(p)
+                for p in folder.rglob("*.lbrn2")}
+
+    rows = once(root, json.dumps(["lbrn2", *args]), make)
+    said = stated(rf"\| {re.escape(label)} \| (?P<row>[^|\n]+) \|\n")
+    assert said["row"] == rows[project]

@@ -25,7 +25,9 @@ def eager(puzzle, colouring, side) -> tuple:
     texts = piece_texts(puzzle.n_pieces)
     candidates = gn._candidates(puzzle, colouring, side)
     painted = len(candidates) - 2 * bool((puzzle.hexagons != None).any())  # noqa: E711
-    fits = [(gn._fit(r, texts, pad), [gn._ink(f) for f in fills], pad)
+    splits = gn.split_lines(puzzle, colouring, side)
+    fits = [(gn._off_the_splits(gn._fit(r, texts, pad), texts, splits),
+             [gn._ink(f) for f in fills], pad)
             for r, fills, pad in candidates + [(r, f, 0.0) for r, f, _ in candidates]]
     on_paint = fits[:painted] + fits[len(candidates):len(candidates) + painted]
     chosen = gn._unchosen(len(texts))

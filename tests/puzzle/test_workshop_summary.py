@@ -122,9 +122,13 @@ def test_summary_modes_time_is_cut_over_speed_plus_travel(small):
     for mode, r in results.items():
         m = info["modes"][mode]
         minutes = (r.cut_length / 7.0 + r.travel_length / pf.TRAVEL_SPEED) / 60
+        # the laser layers the files hold, in the order the laser runs them
+        run = [name for role in ("engrave", "score", "cut") for name in dict.fromkeys(
+            layer.name for sheet in r.drawing.sheets for layer in sheet.layers
+            if layer.role == role)]
         assert m == {"cut_length_m": round(r.cut_length / 1000, 3),
                      "travel_m": round(r.travel_length / 1000, 3), "paths": r.n_paths,
-                     "sheets": r.n_sheets, "time_min": round(minutes, 1)}
+                     "sheets": r.n_sheets, "time_min": round(minutes, 1), "layers": run}
     assert info["modes"]["shared"]["sheets"] == 1
 
 
@@ -192,7 +196,7 @@ def test_readme_names_the_files_layers_and_figures(small):
     assert lines[0] == "weave-cut jigsaw puzzle: workshop folder"
     assert "Material: birch, 3 mm, kerf 0.17 mm." in lines
     w, h = info["frame_mm"]
-    assert f"Frame: 300 mm diagonal ({w:g} x {h:g} mm)." in lines
+    assert f"Frame: 300 mm diagonal, {w:g} x {h:g} mm." in lines
     lo, hi = info["piece_across_mm"]
     assert f"Pieces: {info['pieces']}, {lo:g}-{hi:g} mm across." in lines
     assert (f"Paints: {info['front_colours']} on the front, {info['back_colours']} on the back "

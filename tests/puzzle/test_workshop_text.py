@@ -61,6 +61,13 @@ def test_each_laser_file_names_its_layers_in_cutting_order(levels):
         "in the frame's hole too), each outline offset by half the kerf so the pieces fit "
         "snugly. Layers in order: engrave-numbers (engrave), cut-1-inner (the pieces, then "
         "the frame's hole), cut-2-outer (cut).",
+        "In the .svg and .dxf files every cut layer has the same colour, so a laser program "
+        "that takes its layers from the colours (LightBurn) imports them as one layer and "
+        'orders them itself: in LightBurn keep "Optimize Cut Path" on, and "Cut inner shapes '
+        'first" in its Optimization Settings (both on by default): it cuts a closed shape '
+        "before the shape around it. The shared cut's cut-1-inner lines are open, not "
+        "shapes, so it may cut them after cut-2-hole: write its LightBurn project (--formats "
+        "svg,dxf,lbrn2), which keeps the order.",
         "The frame comes in 3 parts (F1, F2, F3 engraved, counter-clockwise), joined by "
         "dovetails: F1 joins F2, F2 joins F3, F3 joins F1. Glue them on a flat surface.",
         "Test first: cut a 20 mm square, measure it; kerf = 20 mm - its size. Rerun with",

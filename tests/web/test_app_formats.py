@@ -109,3 +109,34 @@ def test_the_default_format_beside_the_laser_card_is_no_choice(recording):
     # a form sent without its script sends the hidden select's default too
     found = recording.get("/strands/check?input=square-grid&laser-card=on&format=pdf").json()
     assert found["ok"] and found["command_line"].endswith("--laser-card -o strands")
+
+
+CLI_RUNS = {  # a form with a formats field: the CLI run without --formats, and its files' stem
+    "puzzle": (["puzzle", "--levels", "2", "--mode", "shared"], "puzzle-shared-cut"),
+    "strands": (["strands", "square-grid", "--laser-card"], "strands-card-01-"),
+}
+
+
+@pytest.mark.parametrize("name", sorted(CLI_RUNS))
+def test_the_formats_ticked_at_first_are_what_the_cli_writes_without_them(recording, tmp_path,
+                                                                          name):
+    """The form starts from the command's own defaults (issue 29: all boxes unticked while
+    the CLI writes svg and dxf): the boxes ticked on a fresh page are the suffixes the CLI
+    writes when --formats is not given, and each box says what its file is for."""
+    from click.testing import CliRunner
+
+    from weavecut import presets
+    from weavecut.cli import cli
+
+    from tests.web.test_app_forms import fields, page, text
+
+    field = fields(page(recording, name))["formats"]
+    boxes = [e for e in field.iter("input") if e.get("type") == "checkbox"]
+    ticked = {e.get("value") for e in boxes if e.get("checked") is not None}
+    args, stem = CLI_RUNS[name]
+    result = CliRunner().invoke(cli, [*args, "-o", str(tmp_path / "out")])
+    assert result.exit_code == 0, result.output
+    written = {p.suffix[1:] for p in (tmp_path / "out").iterdir() if p.name.startswith(stem)}
+    assert ticked == written & set(presets.LASER_FORMATS) and ticked
+    labels = [text(e) for e in field.iter("label")]
+    assert len(labels) == len(boxes) and all(":" in t or "(." in t for t in labels)

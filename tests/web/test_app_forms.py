@@ -156,3 +156,21 @@ def test_a_flag_planted_in_a_help_is_found_and_the_cli_keeps_its_words(recording
                   "(templates/cutters: silhouette, cricut, scanncut, or a .toml file)",
                   "beside -o (PAGE-cut.svg, .dxf;", "-o is a folder of cut sheets"):
         assert words in terminal
+
+
+def test_a_drawings_level_shows_no_default_the_command_does_not_use(served):
+    """For an uploaded drawing the puzzle chooses the level: its field shows that, not the
+    pentagon's default 4; for a built-in input it shows the default."""
+    from pathlib import Path
+
+    heart = Path(__file__).resolve().parents[2] / "templates" / "recipes" / "heart.svg"
+    sent = served.post("/upload", content=heart.read_bytes())
+    assert sent.status_code == 200, sent.text
+    upload = "upload:" + sent.json()["id"]
+    recording = served
+    for query, shown in ((f"puzzle?input={upload}", "chosen for the drawing"),
+                         ("puzzle", "4")):
+        box = fields(page(recording, query))["levels"].find(".//input")
+        assert box.get("placeholder") == shown, query
+    field = fields(page(recording, "puzzle"))["levels"]
+    assert field.get("data-drawing") == "chosen for the drawing"

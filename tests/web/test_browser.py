@@ -126,8 +126,12 @@ def test_the_laser_card_and_its_files_per_sheet_from_the_keyboard_on_a_phone(bro
     browser.evaluate("document.getElementById('f-laser-card').focus(), 0")
     browser.press(" ", "Space", 32)  # the check box, from the keyboard
     browser.wait_until(visible + "('formats') && !" + visible + "('format')", 10)
-    browser.evaluate("document.querySelector('input[name=formats][value=lbrn2]').focus(), 0")
-    browser.press(" ", "Space", 32)
+    # the boxes start as the command writes without --formats: SVG and DXF
+    ticked = "[...document.querySelectorAll('input[name=formats]:checked')].map(c => c.value)"
+    assert browser.evaluate(ticked + ".join()") == "svg,dxf"
+    for box in ("svg", "dxf", "lbrn2"):  # untick both, tick LightBurn
+        browser.evaluate(f"document.querySelector('input[name=formats][value={box}]').focus(), 0")
+        browser.press(" ", "Space", 32)
     browser.wait_until("location.search.includes('formats=lbrn2')", 10)
     assert "format=" not in browser.evaluate("location.search").replace("formats=", "")
     browser.wait_until("document.getElementById('cmdline').textContent"

@@ -37,3 +37,12 @@ def test_a_laser_card_kits_figures_in_their_units():
         ("Sheets", "3"), ("Card colours", "4"), ("Strip pieces", "30"),
         ("Cutting time", "about 12 min"), ("Cutting length", "5.3 m"),
         ("Smallest label", "2.5 mm")]
+
+
+def test_a_drawings_puzzle_names_the_cell_and_level_chosen():
+    """The CLI chooses a drawing's cell and level (its summary's "chosen"); the page says them
+    (issue 29: a heart upload showed a level field of 4 and a kit of level 2)."""
+    chosen = {"cell_mm": 39.0, "levels": 2, "text": "chose --cell 39mm --levels 2 (...)"}
+    rows = summary.figures({**PUZZLE, "chosen": chosen})
+    assert rows[0] == ("Chosen for the drawing", "39 mm cells, level 2")
+    assert rows[1:] == summary.figures(PUZZLE)

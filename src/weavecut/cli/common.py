@@ -348,15 +348,20 @@ def summary(text: str) -> None:
         click.echo(text)
 
 
-def flag_nonconvex(hierarchy) -> dict:
+def flag_nonconvex(hierarchy, into: list[str] | None = None) -> dict:
     """Warn on stderr about every produced level (1..N) with non-convex faces (even with -q:
-    such a mesh is refused as input without --allow-nonconvex), and return the counts for
-    --json: ``{"nonconvex_faces": total, "nonconvex_faces_by_level": {"5": 72, ...}}``."""
+    such a mesh is refused as input without --allow-nonconvex), or add the warnings to
+    ``into`` (a command's warnings, which it prints and writes down itself), and return the
+    counts for --json: ``{"nonconvex_faces": total, "nonconvex_faces_by_level": {"5": 72,
+    ...}}``."""
     from ..analysis.convexity import nonconvex_levels, nonconvex_message
 
     rows = nonconvex_levels(hierarchy) if hierarchy[0].mesh.dim == 2 else []  # flat faces only
     for row in rows:
-        click.echo(f"weave-cut: warning: {nonconvex_message(row)}; see weave-cut convexity",
-                   err=True)
+        message = f"{nonconvex_message(row)}; see weave-cut convexity"
+        if into is None:
+            click.echo(f"weave-cut: warning: {message}", err=True)
+        else:
+            into.append(message)
     return {"nonconvex_faces": sum(r["nonconvex_faces"] for r in rows),
             "nonconvex_faces_by_level": {str(r["level"]): r["nonconvex_faces"] for r in rows}}

@@ -194,13 +194,17 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
         files[f"puzzle-{side}-guide.svg"] = g
         files[f"puzzle-{side}-guide-{page}.pdf"] = printed(
             g, colour_key(puzzle, colouring, side, PAPER_SIZES[page]), PAPER_SIZES[page])
+    nonconvex = flag_nonconvex(puzzle.hierarchy, into=warnings)  # README.txt carries them
     info = workshop.summary(puzzle, results, speed, colouring)
     info.update(label_figures([g.sheets[0] for g in guides.values()]))
     info.update(material=mat["description"], thickness_mm=mat["thickness"], kerf_mm=kerf,
                 sheet_mm=list(sheet), laser=las.name,
                 **({"chosen": chosen} if chosen else {}),
                 frame_parts=1 if frame_parts is None else len(frame_parts), warnings=warnings,
-                **flag_nonconvex(puzzle.hierarchy),
+                numbers=engraved is not None, **nonconvex,
+                operations={role: {"speed_mm_s": op.speed, "power_pct": op.power,
+                                   "passes": op.passes}
+                            for role, op in job.operations.items()},
                 files=sorted(list(files) + ["puzzle-summary.json", "README.txt", MODEL]))
     text = json.dumps(info, indent=2, allow_nan=False)
     folder = make_folder(out_dir)

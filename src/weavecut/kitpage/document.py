@@ -20,6 +20,7 @@ import numpy as np
 
 from .. import __version__, presets
 from ..layout.drawing import Drawing, Polygons, Polylines
+from ..layout.lasersetup import ROLES
 from ..text import clean
 from ..units import PAPER_SIZES
 from . import overview, previews, viewer
@@ -62,6 +63,7 @@ a{{color:{INK};text-decoration:none}}}}
 """.replace("\n", "")
 
 DXF_FOR = "CAD file in mm (LibreCAD, LightBurn)"
+COLOUR_WORDS = {"#ff0000": "red", "#0000ff": "blue", "#000000": "black"}  # the laser presets'
 HAIRLINE = 0.011  # mm: laser presets draw cuts 0.01 mm wide (or 0), for a laser, not an eye
 
 
@@ -274,8 +276,11 @@ def _drawing_figures(drawing: Drawing | None, made: bool) -> list[str]:
     cut = sum(_length(s) for role, s in shapes if role == "cut") if made else 0.0
     fills = {f for _, s in shapes if isinstance(s, Polygons)
              for f in (s.fills or (s.style.fill,)) if f}
-    return ([f"cut {cut / 1000:.2f} m"] if cut else []) + (
+    paints = dict(drawing.metadata).get("paints")  # a painting guide: its paints, not the
+    # bare wood or paper it leaves white
+    count = [f"{paints} paints"] if paints else (
         [f"{len(fills)} colours"] if len(fills) > 1 else [])
+    return ([f"cut {cut / 1000:.2f} m"] if cut else []) + count
 
 
 def _length(shape) -> float:
@@ -333,8 +338,9 @@ def _purpose(suffixes: list[str], drawing: Drawing | None, figures: dict) -> str
     if what:
         return f"the desktop cutter cuts this on {what} (SVG or DXF)"
     if "cut" in roles and isinstance(laser, str):  # a laser file of the puzzle
-        at = f" at {speed:g} mm/s" if isinstance(speed, (int, float)) else ""
-        return f"cut: {_laser_description(laser)}{at}{_which(suffixes)}"
+        return (f"{_laser_description(laser).split(':')[0]}: "
+                f"{_layer_settings(drawing, figures.get('operations'), speed)}"
+                f"{_which(suffixes)}")
     if ".dxf" in suffixes:
         return DXF_FOR
     if ".json" in suffixes:
@@ -349,6 +355,31 @@ def _purpose(suffixes: list[str], drawing: Drawing | None, figures: dict) -> str
     if ".svg" in suffixes:
         return f"{what}1:1 in mm, to view, print or edit"
     return "text"
+
+
+def _layer_settings(drawing: Drawing, operations, cut_speed) -> str:
+    """'engrave black at 150 mm/s, 15 %; cut red at 20 mm/s, 100 %': each laser operation the
+    file holds (a layer with shapes), in the order they run, in its colour and with its own
+    settings (``operations``: the summary's, by role; without them the cut's ``cut_speed``)."""
+    colours = {}
+    for sheet in drawing.sheets:
+        for layer in sheet.layers:
+            if layer.role in ROLES and layer.shapes:
+                colours.setdefault(layer.role, layer.shapes[0].style.stroke)
+    out = []
+    for role in sorted(colours, key=ROLES.index):
+        op = operations.get(role) if isinstance(operations, dict) else None
+        colour = COLOUR_WORDS.get(str(colours[role]).lower(), colours[role])
+        if isinstance(op, dict):
+            passes = op.get("passes", 1)
+            out.append(f"{role} {colour} at {op.get('speed_mm_s'):g} mm/s, "
+                       f"{op.get('power_pct'):g} %" + (f", {passes} passes" if passes != 1
+                                                      else ""))
+        elif role == "cut" and isinstance(cut_speed, (int, float)):
+            out.append(f"{role} {colour} at {cut_speed:g} mm/s")
+        else:
+            out.append(f"{role} {colour}")
+    return "; ".join(out)
 
 
 def _laser_description(name: str) -> str:

@@ -5,7 +5,9 @@ A number must be found: its ink reads on whatever lies under it (WCAG contrast a
 reads upright. So every number is fitted, up to ``MAX_CAP`` mm, into a part of its piece
 whose paint is known: the piece less its ring hexagon (all its paints under the number), on
 the front one half (one paint), a ring piece's bare hexagon (natural wood, printed white), or
-the whole ring piece (its paints and the white hexagon).
+the whole ring piece (its paints and the white hexagon). No number crosses a dashed line (the
+parent edge across a two-coloured piece, a ring piece's hexagon edge): it would read as split
+in two, so a fit that meets one is dropped.
 The largest of these on which black or white reaches the contrast wins, level where a level
 number is nearly as large; a ring piece's hexagon (or the whole piece) only where its
 painted part has no room even at ``RING_CAP``: a white hexagon with a number reads as a piece
@@ -31,7 +33,7 @@ from ..layout.strokefont import fit_labels, ink_box
 from ..numeric import turn
 from .colouring import UNPAINTED, Colouring
 from .files import Labels, _listed, piece_texts
-from .guides import NUMBER_STROKE, piece_halves
+from .guides import NUMBER_STROKE, hexagon_edges, piece_halves, split_ends
 from .pieces import Puzzle
 
 MAX_CAP = 6.0  # mm, the largest number on a guide
@@ -124,10 +126,12 @@ def guide_numbers(puzzle: Puzzle, colouring: Colouring, side: str) -> GuideNumbe
     candidates = _candidates(puzzle, colouring, side)
     painted = len(candidates) - 2 * bool((puzzle.hexagons != None).any())  # noqa: E711
     reads = [[_ink(f) for f in fills] for _, fills, _ in candidates]
+    splits = split_lines(puzzle, colouring, side)  # never a number across a dashed line
 
     def fits(ks, pad, where=None):  # candidates ks fitted with room ``pad`` for ``where``
-        return [(_fit(candidates[k][0] if where is None else
-                      np.where(where, candidates[k][0], None), texts, pad), reads[k], pad)
+        return [(_off_the_splits(_fit(candidates[k][0] if where is None else
+                                      np.where(where, candidates[k][0], None), texts, pad),
+                                 texts, splits), reads[k], pad)
                 for k in ks]
 
     paint, hexes = range(painted), range(painted, len(candidates))
@@ -217,6 +221,37 @@ def largest_caps(texts) -> NDArray[np.float64]:
     box = np.array([ink_box(t) for t in texts], dtype=float).reshape(-1, 4)
     diagonal = np.hypot(box[:, 2] - box[:, 0], box[:, 3] - box[:, 1])
     return (WORD_SPAN - NUMBER_STROKE) / np.maximum(diagonal, 1e-9)
+
+
+def split_lines(puzzle: Puzzle, colouring: Colouring, side: str) -> NDArray[np.object_]:
+    """The dashed lines of ``side``'s guide as whole segments (linestrings): the parent edge
+    across a two-coloured piece (the front's) and a ring piece's hexagon edge (both sides')."""
+    ends = [hexagon_edges(puzzle)]
+    if side == "front":
+        u, w = split_ends(puzzle)
+        two = colouring.front[:, 0] != colouring.front[:, 1]
+        ends.append((u[two], w[two]))
+    a, b = (np.concatenate(e).reshape(-1, 2) for e in zip(*ends))
+    return shapely.linestrings(np.stack([a, b], axis=1)) if len(a) else np.array([], object)
+
+
+def _off_the_splits(fit: tuple, texts, splits: NDArray[np.object_]) -> tuple:
+    """``fit`` (heights, centres, angles) less the numbers whose strokes (with their width)
+    meet a dashed line of ``splits``: such a number reads as split in two, its digits as
+    belonging to two parts (issue 29's piece 377, across its hexagon's line)."""
+    h, c, a = fit
+    some = np.flatnonzero(h > 0)
+    if not len(some) or not len(splits):
+        return fit
+    each = Labels(tuple(texts), h, c, a).strokes_each(some)
+    lines = [shapely.linestrings(xy[o0:o1]) for xy, offsets in each
+             for o0, o1 in zip(offsets[:-1].tolist(), offsets[1:].tolist())]
+    owner = np.repeat(some, [len(offsets) - 1 for _, offsets in each])
+    hit = shapely.STRtree(splits).query(np.array(lines, dtype=object), predicate="dwithin",
+                                        distance=NUMBER_STROKE / 2)[0]
+    h = h.copy()
+    h[np.unique(owner[hit])] = 0.0
+    return h, c, a
 
 
 def _plates(texts, heights, centres, angles) -> NDArray[np.object_]:

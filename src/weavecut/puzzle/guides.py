@@ -33,6 +33,8 @@ OUTLINE = Style("#000000", 0.5)
 SPLIT = Style("#000000", 0.2)
 THIN = Style("#555555", 0.25)
 DASH, GAP = 1.5, 1.2  # mm, the split lines' dashes
+CAPTION, CAPTION_SIZE = (12.0, 8.0), 6.0  # mm: a preview half's caption: its start from the
+# sheet's top left corner (past the crosshair, above the frame: the margin is 10 mm), cap height
 NUMBER_STROKE = 0.3  # mm, the numbers' strokes: bolder than the split lines, lighter than outlines
 
 
@@ -205,14 +207,23 @@ def guide(puzzle: Puzzle, colouring: Colouring, side: str, numbers=None,
     layers.append(Layer("registration", "guide", tuple(_registration(width, height, margin))))
     title = f"weave-cut puzzle: {side} painting guide (level {puzzle.levels - (side == 'front')}" \
             " weave)" + (", mirrored" if mirror else "")
-    return Drawing((Sheet(width, height, tuple(layers), f"{side} guide"),), title)
+    paints = len(set(paint.colours.tolist()) - {UNPAINTED})  # the bare wood is no paint
+    return Drawing((Sheet(width, height, tuple(layers), f"{side} guide"),), title,
+                   (("paints", str(paints)),))
 
 
 def preview(puzzle: Puzzle, colouring: Colouring) -> Drawing:
     """A quick look at the painted puzzle: the front and the back guide without numbers, one
     sheet each (``weave-cut puzzle --preview``; the web app's live preview)."""
-    sheets = tuple(guide(puzzle, colouring, side).sheets[0] for side in ("front", "back"))
-    return Drawing(sheets, f"weave-cut puzzle: preview, level {puzzle.levels}")
+    sheets = []
+    for side, what in (("front", f"level {puzzle.levels - 1} weave"),
+                       ("back", f"level {puzzle.levels} weave, mirrored as the turned board")):
+        sheet = guide(puzzle, colouring, side).sheets[0]
+        caption = Text(CAPTION[0], sheet.height - CAPTION[1], f"{side} ({what})",
+                       CAPTION_SIZE)  # in the margin above the frame, which half is which
+        sheets.append(replace(sheet, layers=sheet.layers + (Layer("caption", "label",
+                                                                   (caption,)),)))
+    return Drawing(tuple(sheets), f"weave-cut puzzle: preview, level {puzzle.levels}")
 
 
 def _split_lines(puzzle: Puzzle, colouring: Colouring, place_xy) -> Polylines:

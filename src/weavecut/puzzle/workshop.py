@@ -10,8 +10,7 @@ from collections.abc import Callable
 import numpy as np
 import shapely
 
-from ..layout.lasersetup import material  # noqa: F401 (the puzzle's API)
-from ..presets import LASER_FORMATS
+from ..layout.lasersetup import ROLES, material  # noqa: F401 (the puzzle's API)
 from .colouring import Colouring
 from .files import TRAVEL_SPEED, CutResult
 from .foresight import foresee
@@ -21,6 +20,7 @@ from ..mesh_geometry import signed_areas
 from ..subdivision import Hierarchy, subdivide
 from ..text import counted
 from .frame_size import diameter, extent
+from .workshop_readme import frame_text, readme  # noqa: F401 (the puzzle's API)
 from .pieces import KIND_NAMES, OCTAGON, Puzzle, build_puzzle
 
 MIN_ACROSS = 15.0  # mm: a piece smaller than this is fiddly to hold and easy to lose
@@ -217,6 +217,7 @@ def summary(puzzle: Puzzle, results: dict[str, CutResult], speed: float,
            "piece_width_min_mm": round(float(width.min()), 1),
            "ring_hexagons_in_frame": int(len(puzzle.ring)),
            "frame_diagonal_mm": round(diameter(puzzle.outer), 2),
+           "frame_measure": puzzle.measure,
            "frame_mm": [round(v, 1) for v in np.subtract(puzzle.outer.bounds[2:],
                                                          puzzle.outer.bounds[:2]).tolist()],
            "speed_mm_s": speed, "modes": {}}
@@ -234,7 +235,8 @@ def summary(puzzle: Puzzle, results: dict[str, CutResult], speed: float,
         out["modes"][mode] = {"cut_length_m": round(r.cut_length / 1000, 3),
                               "travel_m": round(r.travel_length / 1000, 3),
                               "paths": r.n_paths, "sheets": r.n_sheets,
-                              "time_min": round(seconds / 60, 1)}
+                              "time_min": round(seconds / 60, 1),
+                              "layers": running_order(r.drawing)}
     return out
 
 
@@ -246,9 +248,8 @@ def summary_text(info: dict) -> str:
     lines += [f"level {info['levels']} puzzle: {counted(info['pieces'], 'piece')} ({kinds}), {lo:g}-{hi:g} "
               f"mm across, narrowest {info['piece_width_min_mm']:g} mm; "
               f"{info['ring_hexagons_in_frame']} ring hexagons stay in the frame",
-              f"frame: {info['frame_diagonal_mm']:g} mm diagonal, {info['frame_mm'][0]:g} x "
-              f"{info['frame_mm'][1]:g} mm" + (f", in {info['frame_parts']} dovetailed parts"
-                                               if info.get("frame_parts", 1) > 1 else "")]
+              f"frame: {frame_text(info)}" + (f", in {info['frame_parts']} dovetailed parts"
+                                                if info.get("frame_parts", 1) > 1 else "")]
     if "material" in info:
         lines.append(f"material: {info['material']}, kerf {info['kerf_mm']:g} mm, sheet "
                      f"{info['sheet_mm'][0]:g} x {info['sheet_mm'][1]:g} mm")
@@ -267,121 +268,9 @@ def summary_text(info: dict) -> str:
     return "\n".join(lines)
 
 
-def readme(info: dict, page: str) -> str:
-    """README.txt for the workshop folder: what goes to the laser, what to print, the order of
-    work, and the summary's figures."""
-    modes = info["modes"]
-    files = info.get("files", [])
-    laser = []
-    if "shared" in modes:
-        laser.append(_fit(f"  puzzle-shared-cut{_suffixes(files, 'puzzle-shared-cut')} - "
-                          "everything from one board, every shared edge cut once.")
-                     + "\n    Layers in order: engrave-numbers (engrave, lowest "
-                     "power), score-ring (score: low power,\n    fast), cut-1-inner, "
-                     "cut-2-hole, cut-3-outer (cut: full power). Keep the order: the\n    "
-                     "outline last, so nothing shifts before its inner cuts are done.")
-    if "separate" in modes:
-        n = modes["separate"]["sheets"]
-        laser.append(_fit(f"  puzzle-separate-sheet-1{f'..{n}' if n > 1 else ''}"
-                          f"{_suffixes(files, 'puzzle-separate-sheet-1')} - pieces and frame "
-                          f"nested on {counted(n, 'sheet')} (pieces in the frame's hole "
-                          "too),")
-                     + "\n    each outline offset by half the kerf so the pieces fit "
-                     "snugly. Layers in order:\n    engrave-numbers (engrave), cut-1-inner "
-                     "(the pieces, then the frame's hole), cut-2-outer (cut).")
-    if any(name.endswith(".lbrn2") for name in files):
-        laser.append("  The .lbrn2 files are LightBurn projects (File > Open) with these layers, "
-                     "in this order,\n    each with the material's speed, power and passes; "
-                     "a project's note says how it\n    was made. Test the settings on a "
-                     "scrap first.")
-    parts = info.get("frame_parts", 1)
-    if parts > 1:
-        ring = "F1 and F2 join at both ends" if parts == 2 else ", ".join(
-            f"F{k} joins F{k % parts + 1}" for k in range(1, parts + 1))
-        names = ", ".join(f"F{k}" for k in range(1, parts + 1))
-        laser.append(_fit(f"  The frame comes in {parts} parts ({names} engraved, "
-                          f"counter-clockwise), joined by dovetails: {ring}. Glue them on a flat surface."))
-    cuts = []
-    if "shared" in modes:
-        cuts.append("the shared cut: engrave, score, then cut (outlines last); the pieces stay "
-                    "in the frame.")
-    if "separate" in modes:
-        cuts.append("the separate sheets: engrave, then cut (outlines last)"
-                    + (f"; glue the frame's {parts} parts on a flat surface and let them dry"
-                       if parts > 1 else "")
-                    + "; lay the pieces into the frame by their numbers, as the front guide "
-                    "shows them.")
-    cut = textwrap.fill(("Cut " if len(cuts) == 1 else "Cut either ") + " Or ".join(cuts), 89,
-                        initial_indent="  a. ", subsequent_indent="     ")
-    warnings = "".join(textwrap.fill(w, 92, initial_indent="  - ", subsequent_indent="    ",
-                                     break_on_hyphens=False) + "\n"
-                       for w in info.get("warnings", [])) or "  none\n"
-    (width, height), across = info["frame_mm"], info["piece_across_mm"]
-    intro = textwrap.fill(
-        "The paper's two-sided puzzle (Lipschuetz, Reitebuch, Skrodzki, Polthier, section 6): "
-        f"level {info['levels']} pieces of the pentagon snub subdivision; the front is painted "
-        f"with the level {info['levels'] - 1} weave, the back with the level {info['levels']} "
-        "weave.", 92)
-    return f"""weave-cut jigsaw puzzle: workshop folder
-==========================================
-
-{intro}
-
-Material: {info.get('material', '?')}, kerf {info.get('kerf_mm', 0):g} mm.
-Frame: {info['frame_diagonal_mm']:g} mm diagonal ({width:g} x {height:g} mm).
-Pieces: {info['pieces']}, {across[0]:g}-{across[1]:g} mm across.
-Paints: {info.get('front_colours', '?')} on the front, {info.get('back_colours', '?')} on the \
-back (the same paints).
-{_modes_text(info)}
-1. To the laser
-{chr(10).join(laser)}
-  Test first: cut a 20 mm square, measure it; kerf = 20 mm - its size. Rerun with
-  --kerf if it differs from {info.get('kerf_mm', 0):g} mm.
-
-2. To the printer (at 100 %, no scaling; check the 100 mm bar)
-  puzzle-front-guide-{page}.pdf - colour key, then the front guide tiled on pages.
-  puzzle-back-guide-{page}.pdf  - the same for the back (mirrored, as the flipped board).
-  puzzle-front-guide.svg, puzzle-back-guide.svg - the same guides in one piece at 1:1.
-  The colour key lists every paint: swatch, name, hex code, the pieces that carry it and the
-  area it covers, so you know how much to buy.
-
-3. Order of work
-{cut}
-  b. Sand the burr off lightly; prime both sides if the wood is porous.
-  c. Paint the front from the front guide: bold lines are piece outlines, thin dashed
-     lines split two-coloured pieces along the parent edge (the paper's diagonal) and
-     split a ring piece's hexagon (white: bare wood, left unpainted) off its paint. Numbers
-     tell you which piece is which; a number that reads as another one upside down (6, 9,
-     16, 91, 86, 98, ...) is underlined, on the guides and on the wood: the line goes
-     under it. Single-coloured pieces sit at the centres of the large octagons of the
-     coarser weave.
-  d. Let it dry, turn the whole puzzle over in its frame, paint the back from the back guide.
-  e. Seal. Paint swells the wood a little and closes the cutting gaps.
-
-Warnings:
-{warnings}
-Files:
-{''.join(f'  {name}{chr(10)}' for name in files)}"""
-
-
-def _fit(line: str, width: int = 92) -> str:
-    """``line``, broken at the last space before ``width`` columns (the rest indented 4)."""
-    if len(line) <= width:
-        return line
-    cut = line.rindex(" ", 0, width)
-    return line[:cut] + "\n    " + line[cut + 1:]
-
-
-def _suffixes(files: list[str], stem: str) -> str:
-    """'.svg / .dxf' and so on: the laser formats written of ``stem`` (svg and dxf when the
-    file list is not given)."""
-    written = [f for f in LASER_FORMATS if f"{stem}.{f}" in files] or ["svg", "dxf"]
-    return "." + " / .".join(written)
-
-
-def _modes_text(info: dict) -> str:
-    lines = []
-    for mode, m in info["modes"].items():
-        lines.append(f"{mode.capitalize()} cut: {counted(m['sheets'], 'sheet')}, "
-                     f"{m['cut_length_m']:.1f} m of cutting, about {m['time_min']:g} min at {info['speed_mm_s']:g} mm/s.")
-    return "\n".join(lines) + "\n"
+def running_order(drawing) -> list[str]:
+    """The names of ``drawing``'s laser layers on any sheet, in the order they run: by role
+    (engrave, score, cut: ``lasersetup.ROLES``), then in the drawing's order."""
+    found = {layer.name: layer.role for sheet in drawing.sheets for layer in sheet.layers
+             if layer.role in ROLES and layer.shapes}
+    return sorted(found, key=lambda name: ROLES.index(found[name]))

@@ -28,7 +28,7 @@ import click
 from .. import inputs, presets
 from ..cli.common import Finite, Formats, Length, PageSize, option_key
 from ..schema import nearest
-from .jobs import JobSpec, default_output, output_formats
+from .jobs import JobSpec, default_output, laser_formats, output_formats
 from .uploads import UploadError
 from .words import FORMAT_LABELS, bounds, field_label, form_words, without
 
@@ -248,9 +248,9 @@ def _field(p: click.Parameter, k: str, where: str, needs: str, name: str) -> Fie
     if isinstance(t, (click.IntRange, Finite)):
         return Field(kind="integer" if isinstance(t, click.IntRange) else "number",
                      minimum=t.min, maximum=t.max, unit=bounds(t), **base)
-    if isinstance(t, Formats):
-        return Field(kind="formats", choices=tuple(
-            Choice(f, FORMAT_LABELS.get(f, f)) for f in presets.LASER_FORMATS), **base)
+    if isinstance(t, Formats):  # ticked at first: what the command writes without --formats
+        return Field(kind="formats", choices=tuple(Choice(f, FORMAT_LABELS.get(f, f)) for f in
+                     presets.LASER_FORMATS), **{**base, "default": laser_formats(name)})
     if isinstance(t, PageSize):
         pages = ("a4", "letter", "a3", *presets.names("pages"))
         return Field(kind="page", choices=tuple(Choice(n, n) for n in pages), **base)

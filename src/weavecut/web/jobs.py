@@ -197,6 +197,17 @@ def output_formats(command: str, args=()) -> tuple[str, ...]:
     return ("png",) if command == "levels" else ("svg",)
 
 
+def laser_formats(command: str) -> str:
+    """'svg,dxf': the files per sheet ``command`` writes without --formats (the formats of the
+    laser preset its --laser gives by default, else ``lasersetup.DEFAULT_FORMATS``)."""
+    from ..layout.lasersetup import DEFAULT_LASER, output_formats as written
+
+    cmd = _command(command)
+    laser = next((p.default for p in (cmd.params if cmd else ()) if "--laser" in p.opts
+                  and isinstance(p.default, str)), DEFAULT_LASER)
+    return ",".join(written(None, laser))
+
+
 def default_output(spec: JobSpec, file_format: str = "") -> str:
     """The kit's -o: a folder named after the command where -o takes a folder (``puzzle``,
     ``strands --laser-card``), else a file in ``file_format`` (by default the first of

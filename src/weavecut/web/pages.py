@@ -13,6 +13,11 @@ from .. import __version__
 from ..kitpage.viewer import HINT
 from . import forms
 
+FOR_A_DRAWING = {  # fields whose default the command does not use for an uploaded drawing:
+    # it chooses them (the puzzle's level, with the cell: ``workshop.drawing_defaults``)
+    "puzzle": {"levels": "chosen for the drawing"},
+}
+
 PRODUCTS = [  # (picture, title, what it is, link)
     ("paper-model", "Paper model", "Print strips on A4, weave them by hand into the square "
      "grid's pattern: four copies of a twelve-strip module.",
@@ -108,13 +113,19 @@ def command_page(name: str, raw: dict[str, str], error: forms.FormError | None,
     for f in forms.form_fields(name):
         message = error.message if error is not None and error.key == f.key else ""
         field = _field(f, raw.get(f.key, ""), message, uploads, kind)
+        if f.key in FOR_A_DRAWING.get(name, {}) and raw.get("input", "").startswith(
+                "upload:"):  # the command chooses it for a drawing: no default to show
+            field = field.replace(f'placeholder="{_e(f.default or "")}"',
+                                  f'placeholder="{_e(FOR_A_DRAWING[name][f.key])}"', 1)
         hidden = f.key in gone  # not for this input (a ball's cutter): the script follows it
         if f.needs:  # shown only with (or without) a flag: the script follows the flag
             flag = f.needs.lstrip("!")
             on = _on(raw.get(flag, "")) and flag not in gone
             hidden = hidden or on == f.needs.startswith("!")
+        drawn = FOR_A_DRAWING.get(name, {}).get(f.key)  # a default a drawing lacks
         extra = (f' data-not-for="{f.not_for}"' if f.not_for else "") + (
-            f' data-needs="{_e(f.needs)}"' if f.needs else "")
+            f' data-needs="{_e(f.needs)}"' if f.needs else "") + (
+            f' data-drawing="{_e(drawn)}"' if drawn else "")
         field = field.replace(' data-key=', f'{extra}{" hidden" * hidden} data-key=', 1)
         groups[f.group].append(field)
     general = error.message if error is not None and error.key is None else ""
@@ -188,7 +199,7 @@ def _field(f: forms.Field, value: str, message: str, uploads, kind: str = "") ->
     if f.kind == "preset":
         return _presets(f, value, attrs, hint, hid, error, describe)
     if f.kind == "formats":
-        chosen = set(value.split(","))
+        chosen = set((value or f.default or "").split(","))  # the command's own, at first
         boxes = "".join(
             f'<label class="check"><input type="checkbox" name="{f.key}" value="{_e(c.value)}"'
             f'{" checked" * (c.value in chosen)}> {_e(c.label)}</label>' for c in f.choices)

@@ -27,6 +27,8 @@ ROWS = [  # (key, label, text of the value); a row shows when its key is in the 
     ("strip_width_mm", "Strip width", lambda v: _n(v, "mm")),
     ("tile_size_mm", "Octagons across", lambda v: _n(v, "mm")),
     ("ink_fraction", "Ink", lambda v: _n(100 * v, "%", 0)),
+    ("chosen", "Chosen for the drawing", lambda v: f"{_n(v['cell_mm'], 'mm')} cells, "
+     f"level {v['levels']}"),
     ("pieces", "Pieces", _n),
     ("piece_across_mm", "Pieces across", lambda v: f"{_n(v[0])}–{_n(v[1], 'mm')}"),
     ("frame_mm", "Frame", lambda v: f"{_n(v[0], '', 0)} × {_n(v[1], 'mm', 0)}"),

@@ -53,12 +53,19 @@
     return v;
   }
 
+  function drawn() {  // an uploaded drawing is the input
+    const input = $("f-input");
+    return Boolean(input && input.value.startsWith("upload:"));
+  }
+
   function query() {
     const params = new URLSearchParams();
     for (const field of form.querySelectorAll(".field[data-key]")) {
       if (field.hidden) continue;  // counts only with (or without) a flag, as data-needs says
       const v = value(field);
-      if (v !== "" && v !== field.dataset.default) params.append(field.dataset.key, v);
+      // a default the command does not use for a drawing (data-drawing) is sent when typed
+      const given = v !== field.dataset.default || (drawn() && field.dataset.drawing);
+      if (v !== "" && given) params.append(field.dataset.key, v);
     }
     return params.toString();
   }
@@ -173,6 +180,10 @@
     for (const help of form.querySelectorAll(".help[data-help]")) {  // no help names a field
       // this input's kit does not offer (data-help-KIND: the help without it)
       help.textContent = help.getAttribute("data-help-" + kind) ?? help.dataset.help;
+    }
+    for (const field of form.querySelectorAll(".field[data-drawing]")) {  // chosen for one
+      const box = field.querySelector("input[type=text]");
+      if (box) box.placeholder = drawn() ? field.dataset.drawing : field.dataset.default;
     }
   }
 
