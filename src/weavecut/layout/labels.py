@@ -210,9 +210,11 @@ def _distinct(geoms) -> tuple[np.ndarray, np.ndarray]:
     """(which of the distinct geometries each of ``geoms`` equals, the distinct geometries):
     equal means the same coordinates (the same WKB); each object is read once."""
     geoms = np.asarray(geoms, dtype=object)
-    by_id: dict[int, int] = {}
-    of = np.array([by_id.setdefault(id(g), len(by_id)) for g in geoms], dtype=np.int64)
-    objects = geoms[np.unique(of, return_index=True)[1]]
+    ids = np.fromiter(map(id, geoms), dtype=np.uintp, count=len(geoms))
+    _, first, back = np.unique(ids, return_index=True, return_inverse=True)
+    order = np.argsort(first)  # the objects in the order they first come
+    objects = geoms[first[order]]
+    of = np.argsort(order)[back.reshape(-1)]
     by_wkb: dict[bytes, int] = {}
     same = np.array([by_wkb.setdefault(b, len(by_wkb)) for b in shapely.to_wkb(objects)],
                     dtype=np.int64)
