@@ -8,9 +8,9 @@ so a mask may reach ``gap / 2`` beyond the packing area. Where a mask fits on a 
 narrowed by block tests that never refuse a place that fits (:mod:`.packing_grid`): one FFT
 correlation of every turn's core on 8 x 8 blocks of cells gives each turn's least possible
 edge along the filling axis, turns go least edge first and stop where none can beat the best
-place found, and a turn's cores on finer blocks, read at all the places left at once, leave
-the cells tried in order, a batch at a time, the first that holds the mask being the turn's
-best. A page with too few free cells is skipped.
+place found, and a turn's core on 4 x 4 blocks leaves the places tried cell by cell, in order,
+the first that holds the mask being the turn's best (finer tests, down to an exact
+correlation, take over where many places fail). A page with too few free cells is skipped.
 
 Congruent pieces (the k copies of a module strip, the same ``kind``) are nested into a stack
 first. Stacks go largest first (by their pieces' convex hulls: a curled strip takes up more
@@ -37,10 +37,11 @@ import shapely
 from numpy.typing import NDArray
 
 from ..numeric import affine, snap, transform
-from .packing_grid import Options, Page, best_place, turned_masks
+from .packing_grid import BLOCKS, Options, Page, turned_masks
 from .stacks import nest_offset
 
 ANGLE_STEP = 15.0  # degrees between the turns tried
+TRIES = 256  # places tried one by one before the next finer block test
 
 
 @dataclass(frozen=True)
@@ -306,6 +307,94 @@ def _best_spot(grid: Page, options, axis: int = 1):
     edge, filling rows from the bottom) is least, then the one nearest the origin across it,
     then the turn shortest along ``axis``; None if the piece fits nowhere.
 
-    See :func:`best_place`."""
-    best = best_place(grid, options, axis)
-    return None if best is None else (best[2], *options[best[1]])
+    The coarsest block test of every turn at once gives each turn's least possible edge; the
+    turns go least edge first and stop where none can beat the best place found. A turn's
+    places are those its next block test leaves, tried cell by cell in order; after ``TRIES``
+    that fail, the next finer test cuts down the rest, the last (on single cells) exact."""
+    best, best_key = None, None
+    free = grid.places(BLOCKS[0], options.cores)  # every turn's coarse places at once
+    lines = free.any(axis=2 - axis)  # block rows (axis 0) or columns any place is on
+    first = np.where(lines.any(axis=1), lines.argmax(axis=1), -1).tolist()
+    bounds = []
+    for t, (line, core, offset) in enumerate(zip(first, options.cores, options.offsets)):
+        if core is not None and line < 0:
+            continue  # no place
+        edge = 0 if core is None else max(BLOCKS[0] * (line - offset[axis]), 0)
+        bounds.append((edge + int(options.sizes[t, axis]), options.rank[axis][t], t))
+    ny, nx = free.shape[1:]
+    for edge, r, t in sorted(bounds):
+        if best_key is not None and edge > best_key[0]:
+            break
+        last = None  # the key of the last place tried
+        core = options.cores[t]  # the finest test with a core
+        test = (1, None, (0, 0)) if core is None else (BLOCKS[0], free[
+            t, :ny - core.shape[0] + 1, :nx - core.shape[1] + 1], options.offsets[t])
+        for k in BLOCKS[1:]:
+            core, offset = options.core(k, t)
+            if core is not None:
+                test = (k, _finer(grid, k, core, offset, test), offset)
+            tries = TRIES if k > 1 else -1
+            last, at, more = _try(grid, options[t][1], test, axis, (r, best_key, last), tries)
+            if not more:
+                break
+        if at is not None:
+            best, best_key = (at, *options[t]), last
+    return best
+
+
+def _finer(grid: Page, k: int, core, offset, coarser):
+    """The block places where ``core`` (at ``offset``) lies on free k x k blocks among those
+    the ``coarser`` test (k, fits, offset) leaves: read directly at those places when they are
+    few, else everywhere by FFT (both leave every place that fits)."""
+    step, fits, at = coarser
+    if fits is not None:
+        r, c = np.nonzero(fits)
+        m = step // k
+        if len(r) * m * m * np.count_nonzero(core) <= DIRECT:
+            d = np.arange(m)
+            rows = ((r - at[0]) * m + offset[0])[:, None, None] + d[:, None]
+            columns = ((c - at[1]) * m + offset[1])[:, None, None] + d
+            rows, columns = (a.ravel() for a in np.broadcast_arrays(rows, columns))
+            return grid.fits_at(k, core, rows, columns)
+    return grid.fits(k, [core])[0]
+
+
+DIRECT = 8192  # a finer test reads the blocks under a core at a few places up to this often
+
+
+def _try(grid, mask, test, axis: int, keys, tries: int):
+    """(last, at, more): the first place ``at`` (iy, ix) that holds ``mask`` among those
+    ``test`` leaves (see :func:`_places`), trying at most ``tries`` (-1: all) of those whose
+    key comes after ``last`` (None: from the first) and before ``bound``, ``keys`` being (rank,
+    bound, last) and a place's key (its edge along ``axis``, its place across, rank); None if
+    none holds it. ``last`` is the key last tried, ``more`` whether untried places remain."""
+    rank, bound, last = keys
+    for iy, ix in _places(*test, mask.shape, grid.taken.shape, axis):
+        key = ((iy, ix)[axis] + mask.shape[axis], (iy, ix)[1 - axis], rank)
+        if bound is not None and key >= bound:
+            break
+        if last is not None and key <= last:
+            continue  # tried before
+        if tries == 0:
+            return last, None, True
+        tries, last = tries - 1, key
+        if not (grid.taken[iy:iy + mask.shape[0], ix:ix + mask.shape[1]] & mask).any():
+            return key, (iy, ix), False
+    return last, None, False
+
+
+def _places(k: int, fits, offset, size, page, axis: int):
+    """The cells (iy, ix) where a mask of ``size`` (rows, columns) may start on a page of
+    ``page`` cells: those of the k x k blocks at the places ``fits`` leaves less ``offset``
+    (see :func:`block_cores`; None: everywhere), least along ``axis`` first, then across."""
+    last = [p - s for p, s in zip(page, size)]  # the farthest start
+    fits = np.ones((last[0] + 1, last[1] + 1), dtype=bool) if fits is None else fits
+    fits = fits if axis == 1 else fits.T  # (across, along)
+    for b in np.flatnonzero(fits.any(axis=0)).tolist():
+        across = (np.flatnonzero(fits[:, b]) - offset[1 - axis])[:, None] * k + np.arange(k)
+        across = across[(across >= 0) & (across <= last[1 - axis])].tolist()
+        for along in range(max((b - offset[axis]) * k, 0), (b - offset[axis] + 1) * k):
+            if along > last[axis]:
+                return
+            for c in across:
+                yield (c, along) if axis == 1 else (along, c)

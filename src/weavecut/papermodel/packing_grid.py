@@ -102,7 +102,6 @@ class Options(list):
             self.rank.append(np.argsort(order).tolist())
         self.cells = min((int(np.count_nonzero(m)) for _, m, _ in turns), default=0)
         self._cores: dict = {}
-        self._cells: dict = {}
         cores = [self.core(BLOCKS[0], t) for t in range(len(turns))]
         self.cores, self.offsets = [c for c, _ in cores], [o for _, o in cores]
         self.sizes = np.array([m.shape for _, m, _ in turns], dtype=np.int64).reshape(-1, 2)
@@ -114,143 +113,6 @@ class Options(list):
             first, half = t % (len(self) // 2), len(self) // 2
             self._cores[k, first], self._cores[k, first + half] = block_cores(self[first][1], k)
         return self._cores[k, t]
-
-
-    def flat_cells(self, t: int, nx: int) -> np.ndarray:
-        """(cells,) where the cells of turn ``t``'s mask lie on a page ``nx`` cells wide, as
-        offsets in its flat cells from the mask's cell (0, 0)."""
-        if (t, nx) not in self._cells:
-            cy, cx = np.nonzero(self[t][1])
-            self._cells[t, nx] = cy * nx + cx
-        return self._cells[t, nx]
-
-
-def best_place(page: "Page", options: Options, axis: int):
-    """(key, t, (iy, ix)): of the places where a turn ``t`` of ``options`` holds on ``page``, the
-    one of least key, a place's key being (its far edge along ``axis``, its place across, the
-    turn's ``options.rank[axis]``); None if the piece fits nowhere.
-
-    Every turn's core on the coarsest blocks is read at once (one FFT correlation): it gives
-    each turn's least possible edge. The turns go least edge first and stop where none can
-    beat the best place found; a turn's best is found by :func:`_first_place`."""
-    k = BLOCKS[0]
-    free = page.places(k, options.cores)
-    edges = _least_edges(free, options.cores, options.offsets, options.sizes, k, axis)
-    best = None
-    for edge, rank, t in sorted((e, options.rank[axis][t], t) for t, e in enumerate(edges)
-                                if e is not None):
-        if best is not None and edge > best[0][0]:
-            break
-        found = _first_place(page, options, t, free[t], axis, rank,
-                             None if best is None else best[0])
-        if found is not None:
-            best = (found[0], t, found[1])
-    return best
-
-
-def _least_edges(fits, cores, offsets, sizes, k: int, axis: int) -> list:
-    """For each core, the least far edge along ``axis`` (cells) a mask of ``sizes`` can have at
-    the block places of ``fits`` (k x k blocks); None where there is none (a turn without a
-    core may lie anywhere: 0 and its size)."""
-    lines = fits.any(axis=2 - axis)  # block rows (axis 0) or columns any place is on
-    first = np.where(lines.any(axis=1), lines.argmax(axis=1), -1).tolist()
-    return [None if core is not None and line < 0 else
-            (0 if core is None else max(k * (line - offset[axis]), 0)) + int(size[axis])
-            for line, core, offset, size in zip(first, cores, offsets, sizes)]
-
-
-def _first_place(page: "Page", options: Options, t: int, coarse, axis: int, rank: int, bound):
-    """(key, (iy, ix)) of the place of least key (see :func:`best_place`) where the mask of turn
-    ``t`` holds, if it comes before ``bound`` (None: no bound); None where none does.
-
-    ``coarse`` are the coarsest block places where the turn's core lies on free blocks. The
-    next block test reads its blocks at all the places those leave at once
-    (:meth:`Page.free_at`); the lines across the filling axis of the places it leaves go in
-    order, a few more each time, to :func:`_first_cell`. Every test leaves every place that
-    holds the mask: the answer is exact."""
-    mask = options[t][1]
-    ny, nx = page.taken.shape
-    last = (ny - mask.shape[0], nx - mask.shape[1])  # the farthest start
-    if min(last) < 0:
-        return None
-    k, core = BLOCKS[0], options.cores[t]
-    if core is None:  # every block place
-        rows, columns = (a.ravel() for a in np.indices((last[0] // k + 1, last[1] // k + 1)))
-    else:  # the block of the mask's cell (0, 0)
-        rows, columns = np.nonzero(coarse)
-        rows, columns = rows - options.offsets[t][0], columns - options.offsets[t][1]
-    rows, columns, k = _split(rows, columns, k, BLOCKS[1], last, axis, mask.shape, bound)
-    core, offset = options.core(k, t)
-    if core is not None:
-        free = page.free_at(k, core, rows + offset[0], columns + offset[1])
-        rows, columns = rows[free], columns[free]
-    if not len(rows):
-        return None
-    along = (rows, columns)[axis]
-    order = np.argsort(along, kind="stable")
-    along = along[order]
-    done, span = 0, LINES
-    while done < len(order):
-        end = int(np.searchsorted(along, along[done] + span))
-        pick = order[done:end]
-        found = _first_cell(page, options, t, rows[pick], columns[pick], axis, rank, bound)
-        if found is not None:
-            return found
-        done, span = end, span * 2
-    return None
-
-
-def _split(rows, columns, k: int, fine: int, last, axis: int, size, bound):
-    """(rows, columns, fine): the blocks of ``fine`` cells in the blocks of k cells (``rows``,
-    ``columns``) where a mask of ``size`` may start: on the page (``last``, its farthest
-    start) and, with a ``bound`` (a key), not past its edge along ``axis``."""
-    m = k // fine
-    dy, dx = np.divmod(np.arange(m * m), m)
-    rows, columns = (rows[:, None] * m + dy).ravel(), (columns[:, None] * m + dx).ravel()
-    keep = (rows >= 0) & (columns >= 0) & (rows * fine <= last[0]) & (columns * fine <= last[1])
-    if bound is not None:
-        keep &= np.maximum((rows, columns)[axis], 0) * fine <= bound[0] - size[axis]
-    return rows[keep], columns[keep], fine
-
-
-def _first_cell(page: "Page", options: Options, t: int, rows, columns, axis: int, rank: int,
-                bound):
-    """:func:`_first_place` among the cells of the blocks (``rows``, ``columns``) of
-    ``BLOCKS[1]`` cells: narrowed by the finer block tests where more than ``FEW`` cells are
-    left, then tried in order of key, a batch at a time, each batch one gather of the page's
-    cells under the mask."""
-    mask = options[t][1]
-    ny, nx = page.taken.shape
-    last = (ny - mask.shape[0], nx - mask.shape[1])
-    k = BLOCKS[1]
-    for fine in BLOCKS[2:]:
-        rows, columns, k = _split(rows, columns, k, fine, last, axis, mask.shape, bound)
-        if k > 1 and len(rows) * k * k > FEW and (core := options.core(k, t))[0] is not None:
-            free = page.free_at(k, core[0], rows + core[1][0], columns + core[1][1], np.inf)
-            rows, columns = rows[free], columns[free]
-    along, across = (rows, columns) if axis == 0 else (columns, rows)
-    if bound is not None:
-        end = along + mask.shape[axis]
-        keep = (end < bound[0]) | ((end == bound[0]) & (
-            (across < bound[1]) | ((across == bound[1]) & (rank < bound[2]))))
-        rows, columns, along, across = rows[keep], columns[keep], along[keep], across[keep]
-    order = np.lexsort((across, along))
-    starts, cells, flat = (rows * nx + columns)[order], options.flat_cells(t, nx), page.taken.ravel()
-    lo, batch = 0, BATCH
-    while lo < len(starts):
-        hit = np.take(flat, starts[lo:lo + batch, None] + cells).any(axis=1)
-        if not hit.all():
-            i = order[lo + int(np.argmin(hit))]
-            key = (int(along[i]) + mask.shape[axis], int(across[i]), rank)
-            return key, (int(rows[i]), int(columns[i]))
-        lo, batch = lo + batch, batch * 4
-    return None
-
-
-DIRECT = 8192  # blocks a finer test reads directly at most (else one FFT of the page)
-LINES = 2  # block lines across the filling axis whose cells are tried first (then twice as many)
-FEW = 16  # cells left by the 4 x 4 block test that are tried without the 2 x 2 one
-BATCH = 8  # cells tried at once first (then four times as many each time)
 
 
 def block_cores(mask, k: int) -> list:
@@ -318,22 +180,16 @@ class Page:
         return [None if c is None else f[:ny - c.shape[0] + 1, :nx - c.shape[1] + 1]
                 for f, c in zip(free, cores)]
 
-    def free_at(self, k: int, core, rows, columns, direct: float = DIRECT) -> np.ndarray:
-        """(n,) bool: :meth:`fits` of ``core`` read at the block places (``rows``, ``columns``)
-        only (False for a place off the page): the blocks under the core's cells at every place
-        at once, read as one gather from the page's flat blocks, or where that would read more
-        than ``direct`` blocks, from the FFT of the whole page (:meth:`fits`)."""
+    def fits_at(self, k: int, core, rows, columns) -> np.ndarray:
+        """:meth:`fits` of ``core`` read at the block places (``rows``, ``columns``) only,
+        False elsewhere: the blocks under the core's cells at each place, at once."""
         blocks = self.blocks(k)
-        (ny, nx), (h, w) = blocks.shape, core.shape
-        inside = (rows >= 0) & (columns >= 0) & (rows <= ny - h) & (columns <= nx - w)
-        rows, columns = rows[inside], columns[inside]
-        out = np.zeros(len(inside), dtype=bool)
+        out = np.zeros((blocks.shape[0] - core.shape[0] + 1, blocks.shape[1] - core.shape[1] + 1),
+                       dtype=bool)
+        keep = (rows >= 0) & (columns >= 0) & (rows < out.shape[0]) & (columns < out.shape[1])
+        rows, columns = rows[keep], columns[keep]
         cy, cx = np.nonzero(core)
-        if len(rows) * len(cy) > direct:
-            out[inside] = self.fits(k, [core])[0][rows, columns]
-        else:
-            out[inside] = ~np.take(blocks, (rows * nx + columns)[:, None] + (cy * nx + cx)).any(
-                axis=1)
+        out[rows, columns] = ~blocks[rows[:, None] + cy, columns[:, None] + cx].any(axis=1)
         return out
 
     def blocks(self, k: int) -> np.ndarray:
@@ -362,21 +218,16 @@ class Page:
             self._blocks[k] = blocks, (shape, rfft2(blocks.astype(np.float32), shape))
         shape, page = self._blocks[k][1]
         ny, nx = blocks.shape
-        if not len(cores):
-            return np.zeros((0, ny, nx), dtype=bool)
-        keys = [(k, shape, ny, nx, id(c)) for c in cores]
-        new = {key: c for key, c in zip(keys, cores) if key not in self.spectra}
-        if new:  # the cores' transforms not made before, at once
-            stack = np.zeros((len(new), *shape), dtype=np.float32)
-            size = np.array([(ny + 1, nx + 1) if c is None else c.shape for c in new.values()],
-                            dtype=np.int64).reshape(-1, 2)
-            for s, c in zip(stack, new.values()):
+        key = (k, shape, *map(id, cores))
+        if key not in self.spectra:
+            stack = np.zeros((len(cores), *shape), dtype=np.float32)
+            for s, c in zip(stack, cores):
                 if c is not None:
                     s[:c.shape[0], :c.shape[1]] = c
+            size = np.array([(ny + 1, nx + 1) if c is None else c.shape for c in cores],
+                            dtype=np.int64).reshape(-1, 2)
             inside = (np.arange(ny)[:, None] <= ny - size[:, :1, None]) & \
                 (np.arange(nx) <= nx - size[:, 1:, None])  # the places inside the page
-            for (key, c), f, i in zip(new.items(), np.conj(rfft2(stack, shape)), inside):
-                self.spectra[key] = c, f, i  # keeps the core alive (its id is in the key)
-        spectrum = np.stack([self.spectra[key][1] for key in keys])
-        inside = np.stack([self.spectra[key][2] for key in keys])
+            self.spectra[key] = cores, np.conj(rfft2(stack, shape)), inside  # keeps cores alive
+        _, spectrum, inside = self.spectra[key]
         return (irfft2(page * spectrum, shape)[:, :ny, :nx] < 0.5) & inside
