@@ -250,7 +250,7 @@ def _off_the_splits(fit: tuple, texts, splits: NDArray[np.object_]) -> tuple:
     hit = shapely.STRtree(splits).query(np.array(lines, dtype=object), predicate="dwithin",
                                         distance=NUMBER_STROKE / 2)[0]
     h = h.copy()
-    h[np.unique(owner[hit])] = 0.0
+    h[owner[hit]] = 0.0  # (no np.unique: it would import numpy.ma)
     return h, c, a
 
 
