@@ -14,6 +14,8 @@ from click.testing import CliRunner
 
 from weavecut.cli import cli
 
+from .built_recipes import built
+from .once import session_root
 from .test_readback import program
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -42,13 +44,11 @@ def _machine_paths(folder: Path, *roots: Path) -> list[str]:
 
 
 @pytest.mark.parametrize("recipe", RECIPES, ids=lambda p: p.stem)
-def test_a_recipe_built_by_absolute_paths_writes_none(recipe, tmp_path, monkeypatch):
-    out = tmp_path / "kit"
-    args = ["-q", "build", str(recipe), "-o", str(out)]
-    monkeypatch.setattr("sys.argv", ["weave-cut", *args])  # the command files record
-    res = CliRunner().invoke(cli, args)
-    assert res.exit_code == 0, res.output
-    assert _machine_paths(out, ROOT, tmp_path) == []
+def test_a_recipe_built_by_absolute_paths_writes_none(recipe, tmp_path_factory):
+    """The session's build of the recipe (``built_recipes``: absolute paths, the command line
+    recorded as a shell gives it) names neither the project's folder nor the session's."""
+    out = built(tmp_path_factory, recipe)[0]
+    assert _machine_paths(out, ROOT, session_root(tmp_path_factory)) == []
 
 
 def test_a_command_given_absolute_paths_writes_none(tmp_path, monkeypatch):

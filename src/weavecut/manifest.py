@@ -206,6 +206,8 @@ class Ledger:
         if self.force or self.ours(path):
             return
         claim(path)  # wait for another weave-cut writing there, then look again
+        if not os.path.lexists(path):  # gone meanwhile (its temporary file, a stale page)
+            return
         if not self.ours(path, again=True):
             raise ExportError(f"{shown} exists and weave-cut did not write it (it is not listed "
                               f"in {MANIFEST}, or was changed since); use --force to replace "

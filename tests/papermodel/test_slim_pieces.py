@@ -14,12 +14,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 import shapely
-from click.testing import CliRunner
 from shapely import affinity
 
-from weavecut import export, presets
-from weavecut.cli import cli
-from weavecut.layout.drawing import Polygons
+from weavecut import presets
 from weavecut.mesh_io import read_valid_mesh
 from weavecut.papermodel import book as book_module
 from weavecut.papermodel import label_tabs, strips
@@ -31,6 +28,7 @@ from weavecut.units import to_mm
 from weavecut.weave.colour import palette
 from weavecut.weave.snub_weave import snub_weaves
 
+from tests.built_recipes import built
 from tests.papermodel.cut_oracle import notch_mouths, problems
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -161,43 +159,31 @@ def _kerf(recipe: Path) -> float:
 
 @pytest.mark.slow
 @pytest.mark.parametrize("recipe", RECIPES, ids=lambda p: p.stem)
-def test_every_cut_piece_of_a_paper_model_recipe_holds_the_minimum(recipe, tmp_path, monkeypatch):
+def test_every_cut_piece_of_a_paper_model_recipe_holds_the_minimum(recipe, tmp_path_factory):
     """Every outline on a cut layer of every Drawing the recipe's commands write (the printed
     books' strip pages, the cutters' cut files, the card sheets) holds ``MIN_PIECE``, by the
     product's measure and by ``cut_oracle`` (necks, slivers, notches: a label tab's shoulder
     beside its tile's edge read 1.26 mm); outlines on one sheet keep the packer's gap, and on
     the sheets of a print-and-cut job (the printed pages and the cut files beside them)
     ``printcut.WASTE`` (3 mm): the waste between two strips is paper a drag knife must cut
-    past, not drag along. Planted: print-and-cut packed at the scissors' 2 mm gap fails."""
-    written = []
-    original = export.write
+    past, not drag along. Planted: print-and-cut packed at the scissors' 2 mm gap fails. (The
+    build is the session's: ``built_recipes``.)"""
     jobs = tomllib.loads(recipe.read_text()).get("job", [])
     machine = {Path(j["output"]).parent for j in jobs if j.get("cutter")}
-
-    def keep(drawing, path, *args, **kwargs):
-        folder = Path(path).parent.relative_to(tmp_path / "b")
-        written.append((Path(path).name, drawing, WASTE if folder in machine else GAP))
-        return original(drawing, path, *args, **kwargs)
-
-    monkeypatch.setattr(export, "write", keep)
-    res = CliRunner().invoke(cli, ["-q", "build", str(recipe), "-o", str(tmp_path / "b")])
-    assert res.exit_code == 0, res.output
-    outlines = 0
-    for name, drawing, gap in written:
-        cut = [g for sheet in drawing.sheets for layer in sheet.layers if layer.role == "cut"
-               for shape in layer.shapes if isinstance(shape, Polygons)
-               for g in shape.to_shapely().tolist()]
+    outlines, gaps = 0, []
+    for name, sheets in built(tmp_path_factory, recipe)[1]:
+        gap = WASTE if Path(name).parent in machine else GAP
+        gaps.append(gap)
+        cut = [g for sheet in sheets for g in sheet]
         if cut:
             slim = strips.narrowest_feature(cut)
             # a notch opened to MIN_PIECE by bisection may read a hair under it
             assert slim.min() >= strips.MIN_PIECE - 1e-9, (name, float(slim.min()))
             outlines += len(cut)
-        for sheet in drawing.sheets:
-            cut = [g for layer in sheet.layers if layer.role == "cut" for shape in layer.shapes
-                   if isinstance(shape, Polygons) for g in shape.to_shapely().tolist()]
+        for cut in sheets:
             assert not problems(cut, strips.MIN_PIECE, strips.SLIVER, gap - _kerf(recipe)), name
     assert outlines > 0
-    assert any(gap == WASTE for _, _, gap in written) == bool(machine)  # the rule is applied
+    assert (WASTE in gaps) == bool(machine)  # the rule is applied
 
 
 def test_widened_tiles_of_the_voronoi_example_stay_areas():

@@ -10,7 +10,6 @@ import select
 import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
@@ -42,7 +41,30 @@ def first_line(process: subprocess.Popen, bound: float = 300.0) -> str:
     return process.stderr.readline() if ready else ""
 
 
-def test_a_second_writer_waits_and_the_folder_holds_one_whole_run(tmp_path):
+# ``python -c STOPS WHERE ARGS...``: weave-cut ARGS, stopping itself (SIGSTOP) once at its
+# first tile, before the rename (its temporary file lies in the folder) or after it
+STOPS = """
+import os, signal, sys
+where, rename, stopped = sys.argv[1], os.replace, []
+def replace(src, dst, *args, **kwargs):
+    first = str(dst).endswith(".png") and not stopped
+    if first and where == "before":
+        stopped.append(os.kill(os.getpid(), signal.SIGSTOP))
+    rename(src, dst, *args, **kwargs)
+    if first and where == "after":
+        stopped.append(os.kill(os.getpid(), signal.SIGSTOP))
+os.replace = replace
+sys.argv = ["weave-cut", *sys.argv[2:]]
+from weavecut.cli import main
+main()
+"""
+
+
+@pytest.mark.parametrize("where", ["after", "before"])
+def test_a_second_writer_waits_and_the_folder_holds_one_whole_run(tmp_path, where):
+    """The first run stops itself mid-run, at a known point (no race with the test's clock):
+    just after a tile, or with a tile's temporary file in the folder, which is gone when the
+    second gets the folder (the second refused it as a file weave-cut did not write)."""
     expected = {}
     for levels in (2, 3):  # the same tiles, other colours
         assert run("levels", *TILES, "-n", levels, "--tiles", tmp_path / f"r{levels}"
@@ -50,13 +72,16 @@ def test_a_second_writer_waits_and_the_folder_holds_one_whole_run(tmp_path):
         expected[levels] = contents(tmp_path / f"r{levels}")
     assert expected[2].keys() == expected[3].keys() and expected[2] != expected[3]
     folder = tmp_path / "tiles"
-    first = weave_cut("levels", *TILES, "-n", 2, "--tiles", folder)
-    while not list(folder.glob("levels_files/*/*.png")):
-        assert first.poll() is None, first.stderr.read()
-        time.sleep(0.005)
-    first.send_signal(signal.SIGSTOP)  # mid-run: it holds the folder
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(sys.path)}
+    first = subprocess.Popen([sys.executable, "-c", STOPS, where, "levels", *TILES, "-n", "2",
+                              "--tiles", str(folder)], env=env, stdout=subprocess.DEVNULL,
+                             stderr=subprocess.PIPE, text=True)
     try:
+        _, status = os.waitpid(first.pid, os.WUNTRACED)  # until it stops (or ends)
+        assert os.WIFSTOPPED(status), (status, first.stderr.read())
         assert not (folder / "levels.dzi").exists()  # written last: the first is not done
+        parts = list(folder.rglob(".wc-*.part"))
+        assert len(parts) == (where == "before")
         second = weave_cut("levels", *TILES, "-n", 3, "--tiles", folder)
         said = first_line(second)
     finally:

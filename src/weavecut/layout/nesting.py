@@ -229,23 +229,30 @@ def _place(inside: NDArray[np.bool_], sizes: list[list[int]]) -> list[tuple[int,
     the lowest, then leftmost, spot where all its cells are ``inside`` and none is taken by a
     window placed before; None where it has none."""
     free = _free_above(inside)
-    failed: list[tuple[int, int]] = []  # sizes with no spot: larger ones have none either
-    found: list[tuple[int, int, int]] = []  # (wx, wy, row) of every spot found
+    # sizes with no spot (larger ones have none either), and (wx, wy, row) of the spots found;
+    # each keeps only the entries no other one makes redundant (a smaller failed size; a
+    # smaller size found no lower), so thousands of parts look through a few, not thousands
+    failed: list[tuple[int, int]] = []
+    found: list[tuple[int, int, int]] = []
     out: list[tuple[int, int] | None] = []
     for wx, wy in sizes:
         spot = None
-        if not any(wx >= fx and wy >= fy for fx, fy in failed):
+        hopeless = any(wx >= fx and wy >= fy for fx, fy in failed)
+        if not hopeless:
             # a window at least as large as one found before lies no lower than it did then
             low = max((row for fx, fy, row in found if wx >= fx and wy >= fy), default=0)
             spot = _lowest_free(free, wx, wy, low)
         out.append(spot)
         if spot is None:
-            failed.append((wx, wy))
+            if not hopeless:
+                failed = [(fx, fy) for fx, fy in failed if fx < wx or fy < wy] + [(wx, wy)]
             continue
         j, i = spot  # its cells are taken: the free runs below it now end at it
         free[j:j + wy, i:i + wx] = 0
         free[:j, i:i + wx] = np.minimum(free[:j, i:i + wx], np.arange(j, 0, -1)[:, None])
-        found.append((wx, wy, j))
+        if j > low or not any(wx >= fx and wy >= fy for fx, fy, _ in found):
+            found = [(fx, fy, row) for fx, fy, row in found
+                     if fx < wx or fy < wy or row > j] + [(wx, wy, j)]
     return out
 
 
