@@ -73,3 +73,13 @@ def test_a_build_refuses_a_file_where_a_jobs_folder_goes(tmp_path):
             "job 1 (puzzle): output: ", "is a file, but here -o is the folder the files go into")
     assert files_under(tmp_path) == {"r.toml", "out/kit"}
     assert (tmp_path / "out" / "kit").read_text() == "mine"
+
+
+def test_a_shared_cut_larger_than_the_sheet_is_refused_in_shared_mode(tmp_path):
+    """--mode shared asks for the one board only: on a smaller sheet that is a refusal saying
+    what to do, not a folder of other files (--mode both writes the separate sheets)."""
+    refused(run("puzzle", "pentagon", "--levels", "2", "--sheet", "100x100mm", "--mode",
+                "shared", "-o", tmp_path / "kit"),
+            "larger than the 100 x 100 mm sheet; use --mode separate (the frame is then split "
+            "into parts) or a larger --sheet")
+    assert files_under(tmp_path) == set()
