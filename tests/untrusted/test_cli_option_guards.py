@@ -22,6 +22,9 @@ CASES = [
      "pentagon is flat; a .glb woven model needs a surface in space"),
     (("weave", "pentagon", "--levels", "1", "--scheme", "dual", "-o", "TMP/w.svg"), 1,
      "dual of pentagon has no faces at level 1"),
+    (("weave", "pentagon", "--levels", "1", "--scheme", "midedge", "-o", "TMP/w.svg"), 1,
+     "the midedge weave of pentagon at level 1 has no tiles: no two faces glue into one; try "
+     "--face-split or another scheme"),
     (("worker", "--queue", "http://127.0.0.1:6379/0"), 2,
      "'http://127.0.0.1:6379/0' is not a Redis URL like redis://HOST:PORT/DB"),
     (("strands", "pentagon-flower", "--preview", "--json", "-o", "TMP/look.svg"), 2,
@@ -83,3 +86,16 @@ def test_a_shared_cut_larger_than_the_sheet_is_refused_in_shared_mode(tmp_path):
             "larger than the 100 x 100 mm sheet; use --mode separate (the frame is then split "
             "into parts) or a larger --sheet")
     assert files_under(tmp_path) == set()
+
+
+def test_a_level_with_coordinates_too_small_for_floating_point_is_refused(tmp_path):
+    """Faces 1e-160 across: their area centroids divide by areas of 1e-320, which floating
+    point cannot hold; the level is refused with what to do, not written with NaN."""
+    mesh = tmp_path / "tiny.obj"
+    mesh.write_text("v 0 0\nv 1e-160 0\nv 1e-160 1e-160\nv 0 1e-160\nv 2e-160 0\n"
+                    "f 1 2 3 4\nf 2 5 3\n")
+    refused(run("subdivide", mesh, "--levels", "2", "--centre", "area", "-o",
+                tmp_path / "t.svg"),
+            "has coordinates that are not finite at level 2 (faces too small for --centre "
+            "area?); scale the mesh up or use --centre vertex")
+    assert files_under(tmp_path) == {"tiny.obj"}
