@@ -1,62 +1,11 @@
-"""The commands' own option checks and the output-path checks that no test failed without
-(each disabled once by ``tests/hand_audit/guards.py``, #34): a combination of options a person
-could type, refused in one line that says what to do, before any file is written."""
+"""Guards of the command line that no test failed without and that need more than one
+command line (``test_cli_guards`` holds those that do not; each disabled once by
+``tests/hand_audit/guards.py``, #34): a refusal in one line that says what to do, and nothing
+written but what the refused run had already finished."""
 
 from __future__ import annotations
 
-import pytest
-
 from .helpers import files_under, refused, run
-
-# arguments (TMP: the test's empty folder), exit status, what the one line says
-CASES = [
-    (("subdivide", "pentagon", "--levels", "1", "--scheme", "loop", "--no-smooth", "-o",
-      "TMP/s.svg"), 2, "--no-smooth, --chirality, --centre and --project apply to --scheme snub"),
-    (("stats", "dodecahedron", "--levels", "1", "--scheme", "loop"), 1,
-     "dodecahedron is a surface in space; only --scheme snub subdivides surfaces so far"),
-    (("weave", "pentagon", "--levels", "1"), 2,
-     "give -o OUTPUT for a picture, or --json for the counts"),
-    (("weave", "pentagon", "--levels", "2", "--outline-level", "2", "-o", "TMP/w.svg"), 2,
-     "'--outline-level': must be below --levels 2"),
-    (("weave", "pentagon", "--levels", "1", "-o", "TMP/w.glb"), 1,
-     "pentagon is flat; a .glb woven model needs a surface in space"),
-    (("weave", "pentagon", "--levels", "1", "--scheme", "dual", "-o", "TMP/w.svg"), 1,
-     "dual of pentagon has no faces at level 1"),
-    (("weave", "pentagon", "--levels", "1", "--scheme", "midedge", "-o", "TMP/w.svg"), 1,
-     "the midedge weave of pentagon at level 1 has no tiles: no two faces glue into one; try "
-     "--face-split or another scheme"),
-    (("worker", "--queue", "http://127.0.0.1:6379/0"), 2,
-     "'http://127.0.0.1:6379/0' is not a Redis URL like redis://HOST:PORT/DB"),
-    (("strands", "pentagon-flower", "--preview", "--json", "-o", "TMP/look.svg"), 2,
-     "--preview draws the pattern only; give it without --cutter, --laser-card and --json"),
-    (("strands", "pentagon-flower", "--cutter", "silhouette", "--laser-card", "-o", "TMP/card"),
-     2, "give --cutter (print and cut) or --laser-card, not both"),
-    (("strands", "pentagon-flower", "--material", "poplar-3mm", "-o", "TMP/s.pdf"), 2,
-     "--material goes with --laser-card"),
-    (("strands", "pentagon-flower", "--formats", "svg", "-o", "TMP/s.pdf"), 2,
-     "--formats goes with --laser-card"),
-    (("strands", "pentagon-flower", "--laser-card", "--layout", "module", "-o", "TMP/card"), 2,
-     "--laser-card cuts every strip once: leave --layout out"),
-    (("strands", "pentagon-flower", "--size", "1001m", "-o", "TMP/s.pdf"), 2,
-     "'1001m' is larger than a kilometre"),
-    (("subdivide", "pentagon", "--levels", "1", "-o", ""), 2,
-     "an empty path names no file or folder"),
-    (("subdivide", "pentagon", "--levels", "1", "-o", "TMP/.weave-cut-manifest.json"), 2,
-     "is weave-cut's manifest of the folder; choose another name"),
-    (("subdivide", "pentagon", "--levels", "1", "-o", "TMP/new/"), 2,
-     "is a folder, but here it names the one file written; give a file name"),
-    (("puzzle", "pentagon", "--levels", "2", "-o", "TMP/kit.svg"), 2,
-     "is named like a file, but here it is the folder the files go into; name it without "
-     "'.svg'"),
-]
-
-
-@pytest.mark.parametrize("args, status, says", CASES,
-                         ids=[" ".join(a[:1] + a[3:7]) for a, _, _ in CASES])
-def test_a_bad_option_combination_is_one_line_and_writes_nothing(tmp_path, args, status,
-                                                                  says):
-    refused(run(*[a.replace("TMP", str(tmp_path)) for a in args]), says, status=(status,))
-    assert files_under(tmp_path) == set()
 
 
 def test_the_kit_page_never_replaces_an_output(tmp_path):
