@@ -8,7 +8,8 @@ import pytest
 
 from .helpers import files_under, refused, run
 
-# arguments (OUT: a path in the test's folder), exit status, what the one line says
+# arguments (OUT: a path in the test's folder, TMP: the folder), exit status, what the one
+# line says
 CASES = [
     (("fractal", "pentagon", "--levels", "3", "--curve", "-1:3"), 2,
      "'-1:3': level and edge must be >= 0"),
@@ -31,6 +32,46 @@ CASES = [
     (("figure",), 2, "give a figure NAME, or --list"),
     (("build", "weaves", "--dry-run", "--set", "levels"), 2, "'levels' is not KEY=VALUE"),
     (("build", "weaves", "--dry-run", "--set", " =3"), 2, "' =3' is not KEY=VALUE"),
+    (("subdivide", "pentagon", "--levels", "1", "--scheme", "loop", "--no-smooth", "-o",
+      "TMP/s.svg"), 2, "--no-smooth, --chirality, --centre and --project apply to --scheme snub"),
+    (("stats", "dodecahedron", "--levels", "1", "--scheme", "loop"), 1,
+     "dodecahedron is a surface in space; only --scheme snub subdivides surfaces so far"),
+    (("weave", "pentagon", "--levels", "1"), 2,
+     "give -o OUTPUT for a picture, or --json for the counts"),
+    (("weave", "pentagon", "--levels", "2", "--outline-level", "2", "-o", "TMP/w.svg"), 2,
+     "'--outline-level': must be below --levels 2"),
+    (("weave", "pentagon", "--levels", "1", "-o", "TMP/w.glb"), 1,
+     "pentagon is flat; a .glb woven model needs a surface in space"),
+    (("weave", "pentagon", "--levels", "1", "--scheme", "dual", "-o", "TMP/w.svg"), 1,
+     "dual of pentagon has no faces at level 1"),
+    (("weave", "pentagon", "--levels", "1", "--scheme", "midedge", "-o", "TMP/w.svg"), 1,
+     "the midedge weave of pentagon at level 1 has no tiles: no two faces glue into one; try "
+     "--face-split or another scheme"),
+    (("worker", "--queue", "http://127.0.0.1:6379/0"), 2,
+     "'http://127.0.0.1:6379/0' is not a Redis URL like redis://HOST:PORT/DB"),
+    (("strands", "pentagon-flower", "--preview", "--json", "-o", "TMP/look.svg"), 2,
+     "--preview draws the pattern only; give it without --cutter, --laser-card and --json"),
+    (("strands", "pentagon-flower", "--cutter", "silhouette", "--laser-card", "-o", "TMP/card"),
+     2, "give --cutter (print and cut) or --laser-card, not both"),
+    (("strands", "pentagon-flower", "--material", "poplar-3mm", "-o", "TMP/s.pdf"), 2,
+     "--material goes with --laser-card"),
+    (("strands", "pentagon-flower", "--formats", "svg", "-o", "TMP/s.pdf"), 2,
+     "--formats goes with --laser-card"),
+    (("strands", "pentagon-flower", "--laser-card", "--layout", "module", "-o", "TMP/card"), 2,
+     "--laser-card cuts every strip once: leave --layout out"),
+    (("strands", "pentagon-flower", "--size", "1001m", "-o", "TMP/s.pdf"), 2,
+     "'1001m' is larger than a kilometre"),
+    (("subdivide", "pentagon", "--levels", "1", "-o", ""), 2,
+     "an empty path names no file or folder"),
+    (("subdivide", "pentagon", "--levels", "1", "-o", "TMP/.weave-cut-manifest.json"), 2,
+     "is weave-cut's manifest of the folder; choose another name"),
+    (("subdivide", "pentagon", "--levels", "1", "-o", "TMP/new/"), 2,
+     "is a folder, but here it names the one file written; give a file name"),
+    (("puzzle", "pentagon", "--levels", "2", "-o", "TMP/kit.svg"), 2,
+     "is named like a file, but here it is the folder the files go into; name it without "
+     "'.svg'"),
+    (("strands", "pentagon-flower", "--tile-size", "3cm", "--size", "27cm", "-o", "TMP/s.pdf"),
+     2, "'--size': give --tile-size or --size, not both"),
 ]
 
 
@@ -38,7 +79,8 @@ CASES = [
                          ids=[" ".join(a[:1] + a[3:5]) or a[0] for a, _, _ in CASES])
 def test_a_bad_option_value_is_one_line_and_writes_nothing(tmp_path, args, status, says):
     out = str(tmp_path / "out")
-    refused(run(*[a.replace("OUT", out) for a in args]), says, status=(status,))
+    refused(run(*[a.replace("OUT", out).replace("TMP", str(tmp_path)) for a in args]), says,
+            status=(status,))
     assert files_under(tmp_path) == set()
 
 

@@ -223,14 +223,20 @@ class Slow:
         pass
 
 
-def test_a_client_that_leaves_cancels_its_job(tmp_path, cwd):
+@pytest.mark.parametrize("method, path, query, body", [
+    ("GET", "/weave.zip", b"input=square-grid", b""),
+    ("POST", "/upload", b"", b"v 0 0\nv 1 0\nv 0 1\nf 1 2 3\n"),  # read by a job
+])
+def test_a_client_that_leaves_cancels_its_job(tmp_path, cwd, method, path, query, body):
+    """The job is cancelled, the answer (to nobody) is 499, not a crash's 500, and an upload
+    whose reading was cancelled is not kept."""
     from weavecut.web.server import create_app
     from weavecut.web.cache import Cache
 
-    async def scenario() -> Slow:
+    async def scenario() -> tuple[Slow, list]:
         queue = Slow()
         app = create_app(queue, Cache(tmp_path / "app" / "results", 2**20), tmp_path / "app")
-        messages = [{"type": "http.request", "body": b"", "more_body": False}]
+        messages = [{"type": "http.request", "body": body, "more_body": False}]
         gone, sent = asyncio.Event(), []
 
         async def receive():
@@ -242,10 +248,11 @@ def test_a_client_that_leaves_cancels_its_job(tmp_path, cwd):
         async def send(message):
             sent.append(message)
 
-        scope = {"type": "http", "method": "GET", "path": "/weave.zip", "raw_path": b"/weave.zip",
-                 "query_string": b"input=square-grid", "headers": [], "scheme": "http",
-                 "server": ("test", 80), "client": ("test", 1), "root_path": "",
-                 "http_version": "1.1", "asgi": {"version": "3.0"}}
+        scope = {"type": "http", "method": method, "path": path, "raw_path": path.encode(),
+                 "query_string": query, "scheme": "http", "server": ("test", 80),
+                 "headers": [(b"content-length", str(len(body)).encode())],
+                 "client": ("test", 1), "root_path": "", "http_version": "1.1",
+                 "asgi": {"version": "3.0"}}
         served = asyncio.ensure_future(app(scope, receive, send))
         await asyncio.wait_for(queue.started.wait(), 30)
         assert not queue.cancelled
@@ -253,9 +260,13 @@ def test_a_client_that_leaves_cancels_its_job(tmp_path, cwd):
         await asyncio.wait_for(served, 30)
         for _ in range(3):  # the cancellation reaches the job (not the loop's end)
             await asyncio.sleep(0)
-        return queue.cancelled
+        return queue, sent
 
-    assert asyncio.run(scenario())
+    queue, sent = asyncio.run(scenario())
+    assert queue.cancelled
+    assert sent[0]["type"] == "http.response.start" and sent[0]["status"] == 499
+    uploads = tmp_path / "app" / "uploads"
+    assert not uploads.exists() or not any(uploads.rglob("upload-*"))
 
 
 def test_a_recipe_cannot_start_a_server(tmp_path):

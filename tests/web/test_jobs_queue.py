@@ -192,3 +192,21 @@ def test_a_job_past_its_wall_clock_time_is_killed_and_answers_422(tmp_path, monk
     assert (result.status, result.error.split(";")[0]) == (
         422, "the preview took more than 1 s")
     assert gone(pid) and job_folders(tmp_path) == []
+
+
+def test_a_job_killed_by_closing_the_queue_answers_503_and_leaves_no_folder(tmp_path):
+    """A server shutting down kills its running jobs: the answer says so (try again), not a
+    job that died by its limits (422) or crashed (500)."""
+    async def main():
+        queue = limited(tmp_path, workers=1, waiting=0)
+        task = await running(queue)
+        pid = queue.pids()[0]
+        await queue.close()
+        result = await asyncio.wait_for(task, 60)
+        with pytest.raises(RuntimeError, match="the job queue is closed"):
+            await queue.run(QUICK)
+        return result, pid
+
+    result, pid = run(main())
+    assert (result.status, result.error) == (503, "the server is shutting down; try again")
+    assert gone(pid) and job_folders(tmp_path) == []

@@ -32,7 +32,7 @@ import time
 from pathlib import Path
 
 from rq import Queue, Worker, get_current_job
-from rq.exceptions import NoSuchJobError
+from rq.exceptions import InvalidJobOperation, NoSuchJobError
 from rq.job import Job, JobStatus
 from rq.results import Result
 
@@ -190,8 +190,8 @@ class RedisQueue:
                 return self._answer(spec, result)
             try:
                 status = await asyncio.to_thread(job.get_status)
-            except NoSuchJobError:
-                status = None
+            except (NoSuchJobError, InvalidJobOperation):  # rq 2 raises the latter when the
+                status = None  # job's key is gone (its queued TTL passed, or it was deleted)
             if status in (None, JobStatus.CANCELED, JobStatus.STOPPED) \
                     or loop.time() > deadline:
                 return failed(503, f"no weave-cut worker took the job (is one running for "
