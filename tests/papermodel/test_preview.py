@@ -120,9 +120,11 @@ def test_puzzle_preview_is_the_painted_front_and_back_without_numbers(tmp_path):
     assert [s.name for s in drawing.sheets] == ["front guide", "back guide"]
     for side, sheet in zip(("front", "back"), drawing.sheets):
         full = guide(puzzle, colouring, side).sheets[0]
-        assert [layer.name for layer in sheet.layers] == [layer.name for layer in full.layers]
+        shown = [layer for layer in sheet.layers if layer.name != "caption"]  # "front (...)"
+        assert [layer.name for layer in sheet.layers][-1] == "caption"
+        assert [layer.name for layer in shown] == [layer.name for layer in full.layers]
         assert "numbers" not in [layer.name for layer in sheet.layers]
-        for mine, theirs in zip(sheet.layers, full.layers):
+        for mine, theirs in zip(shown, full.layers):
             for a, b in zip(mine.shapes, theirs.shapes, strict=True):
                 assert np.array_equal(a.coords, b.coords)
                 assert getattr(a, "fills", None) == getattr(b, "fills", None)

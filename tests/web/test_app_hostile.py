@@ -85,7 +85,7 @@ def test_an_upload_is_kept_under_its_hash(recording, tmp_path):
     assert ident == hashlib.sha256(heart).hexdigest()
     assert written(tmp_path, tmp_path / "app") == []
     kept = sorted(p.name for p in (tmp_path / "app" / "uploads").iterdir())
-    assert kept == [f"{ident}.svg"]
+    assert kept == [f"{ident}.kind", f"{ident}.svg"]  # the upload, and what kind of kit it is
     response = recording.get(f"/puzzle/preview.svg?input=upload:{ident}&cell=39mm&levels=2")
     assert response.status_code == 200
     spec = recording.queue.specs[-1]

@@ -27,6 +27,7 @@ CUT = Style("#ff0000", 0.25)
 TILE_LINE = Style("#555555", 0.12)
 GLUE = "#c8c8c8"
 FOLD = Style("#333333", 0.3)  # dashed fold lines of strips unfolded from a surface
+EDGE = 1e-6  # mm: a point this near a band's edge is on the edge, not on the band
 FLAP_LINE = Style("#333333", 0.3)  # dashed line where a label tab is cut off after weaving
 FLAP_DASH = (0.6, 0.4)  # mm dash and gap
 
@@ -173,7 +174,9 @@ def strip_layers(strips: list[Strip]) -> list[Layer]:
             glue, Style("#555555", 0.15, GLUE)),)))
     folds_by_ink: dict[str, list] = {}
     for s in strips:  # a fold's dashes on the glue band in the ink that reads on the band
-        band = None if s.glue is None else shapely.union_all(s.glue)
+        # (a dash along the band's edge, its centre on the edge, keeps its ink: the band is
+        # shrunk by far more than rounding moves a point, so no last bit decides)
+        band = None if s.glue is None else shapely.buffer(shapely.union_all(s.glue), -EDGE)
         for fold, ink in zip(s.folds, s.fold_inks):
             for dash in shapely.get_parts(fold).tolist():
                 on_band = band is not None and band.contains(shapely.centroid(dash))

@@ -68,7 +68,7 @@ def _names(name: str, doc: dict, families) -> tuple[str, ...]:
         return tuple(map(str, given))
     given = doc.get("family_names", [])  # as the puzzle's colour key: unnamed families last
     return tuple(f"{given[f]} {k + 1}" if f < len(given) else ""
-                 for f, family in enumerate(families) for k in range(len(family)))
+                 for f, family in enumerate(families) for k in range(len(family))) if given else ()
 
 
 def crossing_pairs(weave: Weave) -> np.ndarray:
