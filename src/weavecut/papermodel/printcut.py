@@ -39,6 +39,11 @@ MARK_INK = Style(None, 0.0, "#000000")
 WASTE = MIN_PIECE  # mm of paper between two strips a machine cuts: the waste between them is a
 # strip of paper too, and a drag knife drags a thinner one along (or tears it) instead of
 # cutting past it; the packer's 2 mm gap is for scissors, which cut each strip out on its own
+BLEED = 1.0  # mm the strips' colours are printed past their cut lines (no cut line printed):
+# a print-and-cut machine cuts up to 0.3-0.5 mm off the printed page (its eye's reading of the
+# marks, the paper shifting on the mat), so twice that keeps white paper and a printed edge
+# off every strip; two strips WASTE (3 mm) apart keep 3 - 2 * 1 = 1 mm of blank paper between
+# their bleeds, and the marks' clearance (3 mm) keeps them 2 mm clear of the marks
 
 
 class CutterError(WeaveCutError, ValueError):
@@ -255,11 +260,13 @@ def print_files(book) -> list[tuple[int, Drawing]]:
     """(page number, print image) for every strip page: the page's strips as printed (tiles,
     labels, arrows), at the page's size and place, without its cut lines, marks, title or
     legend: the image Cricut Design Space prints with its own sensor marks and cuts round
-    (its cut line is the outline of what the image covers: the strips' outlines)."""
+    (its cut line is the outline of what the image covers: the strips' outlines, so without the
+    page's bleed; Design Space bleeds the image itself)."""
     out = []
     for n in book.strip_pages:
         page = book.drawing.sheets[n - 1]
-        layers = tuple(x for x in page.layers if x.name not in ("page", "cut", "registration"))
+        layers = tuple(x for x in page.layers
+                       if x.name not in ("page", "cut", "bleed", "registration"))
         sheet = Sheet(page.width, page.height, layers, f"page {n}: print image")
         out.append((n, Drawing((sheet,), f"{book.drawing.title}: print image of page {n}",
                                (*book.drawing.metadata, ("print_image", str(n))))))
