@@ -368,8 +368,9 @@ def cutter_words(machine: Cutter, output: Path) -> Words:
         return (f"Print and cut ({name}): print the strip pages ({strips}) {times}. Each carries "
                 f"registration marks ({marks_text(machine)}) that the cutter's eye reads to "
                 f"find the page, and has its cut file beside this PDF ({files(book)}): the "
-                "outlines of its strips, at the page's size. Where each strip is: "
-                f"{page_index(book)}.")
+                "outlines of its strips, at the page's size. No cut line is printed: each "
+                f"strip's colours reach {BLEED:g} mm past where the cutter cuts, so a cut a "
+                f"little off leaves no white edge. Where each strip is: {page_index(book)}.")
 
     return replace(PRINTED, scale=" Print at 100 % (no fit to page), marks and all.",
                    sources=sources,
@@ -380,8 +381,8 @@ def cutter_words(machine: Cutter, output: Path) -> Words:
                        f"file ({stem}-pNN-cut.dxf, NN the page number, beside this PDF: every "
                        "edition opens DXF, Silhouette Studio's free Basic Edition too; the .svg "
                        "needs one that reads SVG, such as Studio's Designer Edition). It has "
-                       "the page's size, so placed at the page's corner its lines lie on the "
-                       "printed outlines. Turn on the software's registration marks with the "
+                       "the page's size, so placed at the page's corner its lines lie round the "
+                       "printed strips. Turn on the software's registration marks with the "
                        "sizes above, so they lie on the printed ones; put the printed page on "
                        "the mat, let the cutter read the marks, and cut. Sort the strips by ID: "
                        "the ID printed in the strip's own colour is its name on page 1; a small "
