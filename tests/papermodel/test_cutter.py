@@ -133,6 +133,16 @@ def assert_bled(sheet, strips, bleed: float) -> None:
                 and (s.style.stroke or "").lower() == CUT.stroke.lower()]
     assert "cut" not in [s.text for layer in sheet.layers if layer.name == "page"
                          for s in layer.shapes if isinstance(s, Text)]
+    # nor a tile's thin outline along the cut line: it would show on the strip's edge too
+    stroked = shapely.union_all([
+        g for layer in sheet.layers for s in layer.shapes if getattr(s, "style", None)
+        and s.style.stroke for g in (
+            shapely.boundary(s.to_shapely()).tolist() if isinstance(s, Polygons)
+            else [shapely.LineString(xy) for xy in s.lines()] if isinstance(s, Polylines)
+            else [])])
+    for s in strips:
+        edge = shapely.boundary(s.cut)
+        assert shapely.intersection(stroked, edge.buffer(0.05)).length < 0.05 * edge.length
     paint = painted(sheet)
     grown = [shapely.buffer(s.cut, bleed + 1e-6) for s in strips]
     for s, room in zip(strips, grown):
@@ -152,8 +162,9 @@ def test_a_print_and_cut_page_prints_no_cut_line_and_bleeds_the_strips_colours(n
     """A cutter that cuts 0.3-0.5 mm off the printed page would leave a printed cut line (or
     white paper) on the strip's edge: print-and-cut pages print no cut line and no "cut" legend
     entry, and every strip's colours reach ``BLEED`` past its cut line, clear of its
-    neighbours' (packed ``WASTE`` apart). Planted: the bleed 0 (the cut lines printed again),
-    the cut lines printed over the bleed, or the bleed half as wide, fails."""
+    neighbours' (packed ``WASTE`` apart); no tile outline runs along the cut line either.
+    Planted: the bleed 0 (the cut lines printed again), the cut lines printed over the bleed,
+    the tiles' outlines kept along it, or the bleed half as wide, fails."""
     assert 2 * printcut.BLEED < printcut.WASTE  # a blank gap between two strips' bleeds
     machine, book = cut_book(name)
     assert printcut.BLEED < machine.clearance  # and between a bleed and the marks

@@ -167,7 +167,9 @@ def strip_layers(strips: list[Strip], bleed: float = 0.0) -> list[Layer]:
         outlines.extend(_parts([s.cut]))
     # the label plates over the tiles as a shape of their own: a writer may paint one shape's
     # polygons grouped by fill, which would put a plate under the tile it covers
-    layers = [Layer("strips", "paint", (polygons_from_shapely(tiles, TILE_LINE, fills),) + (
+    painted = (polygons_from_shapely(tiles, TILE_LINE, fills),) if bleed <= 0 else (
+        polygons_from_shapely(tiles, Style(None, 0.0), fills), inner_borders(strips))
+    layers = [Layer("strips", "paint", painted + (
         (polygons_from_shapely(plates, TILE_LINE, plate_fills),) if plates else ()))]
     if glue:
         layers.append(Layer("glue", "paint", (polygons_from_shapely(
@@ -202,6 +204,19 @@ def strip_layers(strips: list[Strip], bleed: float = 0.0) -> list[Layer]:
         return [bleed_layer(strips, bleed), *layers]
     layers.append(Layer("cut", "cut", (polygons_from_shapely(outlines, CUT),)))
     return layers
+
+
+def inner_borders(strips: list[Strip]) -> Polylines:
+    """The tiles' thin outlines where they border each other, not along a strip's cut line
+    (print and cut: a line there would show on the strip's edge as a cut line would)."""
+    lines = []
+    for s in strips:
+        flap = () if s.flap is None else (s.flap,)
+        edge = shapely.buffer(shapely.boundary(s.cut), 1e-6)
+        borders = shapely.difference(shapely.union_all(shapely.boundary([*s.tiles, *flap])), edge)
+        lines += [np.asarray(g.coords) for g in shapely.get_parts(shapely.line_merge(borders))
+                  if g.length > 1e-6]
+    return polylines_from_lines(lines, TILE_LINE)
 
 
 def bleed_layer(strips: list[Strip], bleed: float) -> Layer:
