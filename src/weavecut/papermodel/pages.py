@@ -146,6 +146,12 @@ def _parts(geoms) -> list:
     return [p for p in parts if p.geom_type == "Polygon" and p.area > 1e-9]
 
 
+def _tiles(s: Strip) -> list[tuple]:
+    """(polygon, fill) of a strip's tiles and of its label tab, if it has one."""
+    flap = () if s.flap is None else (s.flap,)
+    return list(zip([*s.tiles, *flap], s.fills + (s.flap_fill,) * len(flap)))
+
+
 def strip_layers(strips: list[Strip], bleed: float = 0.0) -> list[Layer]:
     """Layers for strips already on the page: tiles (fills and thin outlines), glue bands,
     fold lines, arrows, labels and the cut lines; with a ``bleed`` (mm, print and cut) no cut
@@ -153,8 +159,7 @@ def strip_layers(strips: list[Strip], bleed: float = 0.0) -> list[Layer]:
     tiles, fills, arrows_by_ink, glue, texts, outlines = [], [], {}, [], [], []
     plates, plate_fills = [], []
     for s in strips:
-        flap = () if s.flap is None else (s.flap,)
-        for tile, fill in zip([*s.tiles, *flap], s.fills + (s.flap_fill,) * len(flap)):
+        for tile, fill in _tiles(s):
             for part in _parts([tile]):
                 tiles.append(part)
                 fills.append(fill)
@@ -211,9 +216,9 @@ def inner_borders(strips: list[Strip]) -> Polylines:
     (print and cut: a line there would show on the strip's edge as a cut line would)."""
     lines = []
     for s in strips:
-        flap = () if s.flap is None else (s.flap,)
         edge = shapely.buffer(shapely.boundary(s.cut), 1e-6)
-        borders = shapely.difference(shapely.union_all(shapely.boundary([*s.tiles, *flap])), edge)
+        borders = shapely.difference(
+            shapely.union_all(shapely.boundary([tile for tile, _ in _tiles(s)])), edge)
         lines += [np.asarray(g.coords) for g in shapely.get_parts(shapely.line_merge(borders))
                   if g.length > 1e-6]
     return polylines_from_lines(lines, TILE_LINE)
@@ -227,9 +232,8 @@ def bleed_layer(strips: list[Strip], bleed: float) -> Layer:
     cover it and nothing changes."""
     grown, fills = [], []
     for s in strips:
-        flap = () if s.flap is None else (s.flap,)
         room = shapely.buffer(s.cut, bleed)
-        for tile, fill in zip([*s.tiles, *flap], s.fills + (s.flap_fill,) * len(flap)):
+        for tile, fill in _tiles(s):
             for part in _parts([shapely.intersection(shapely.buffer(tile, bleed), room)]):
                 grown.append(part)
                 fills.append(fill)
