@@ -45,7 +45,9 @@ def cut_book(name: str, bleed: float = printcut.BLEED):
     """The print-and-cut book of cutter ``name``, laid out as ``strands --cutter`` lays it."""
     machine = printcut.cutter(name)
     book = strand_book(list(weaves()), palette("maritime-4"), A4, 20.0, machine.margin,
-                       limit=machine.limit(*A4), gap=printcut.WASTE, bleed=bleed)
+                       limit=machine.limit(*A4), gap=printcut.WASTE, bleed=bleed,
+                       **({"words": printcut.cutter_words(machine, Path("sq.pdf"))} if bleed
+                          else {}))
     return machine, printcut.with_marks(book, machine)
 
 
@@ -124,6 +126,12 @@ def painted(sheet) -> list[tuple[shapely.Geometry, str]]:
             for g, fill in zip(s.to_shapely().tolist(), s.fills or [s.style.fill] * s.n_polygons)]
 
 
+def legend(sheet) -> list[str]:
+    """The texts of the page's furniture (title, legend, scale bar)."""
+    return [s.text for layer in sheet.layers if layer.name == "page" for s in layer.shapes
+            if isinstance(s, Text)]
+
+
 def assert_bled(sheet, strips, bleed: float) -> None:
     """No stroke in the cut colour and no "cut" legend entry on ``sheet``; a band ``bleed``
     wide outside every strip's cut line is painted, in that strip's colours only, and by
@@ -131,8 +139,7 @@ def assert_bled(sheet, strips, bleed: float) -> None:
     assert not [s for layer in sheet.layers for s in layer.shapes
                 if isinstance(s, (Polygons, Polylines))
                 and (s.style.stroke or "").lower() == CUT.stroke.lower()]
-    assert "cut" not in [s.text for layer in sheet.layers if layer.name == "page"
-                         for s in layer.shapes if isinstance(s, Text)]
+    assert "cut" not in legend(sheet)
     # nor a tile's thin outline along the cut line: it would show on the strip's edge too
     stroked = shapely.union_all([
         g for layer in sheet.layers for s in layer.shapes if getattr(s, "style", None)
@@ -171,6 +178,9 @@ def test_a_print_and_cut_page_prints_no_cut_line_and_bleeds_the_strips_colours(n
     for n in book.strip_pages:
         assert_bled(book.drawing.sheets[n - 1], [p for k, p in book.pieces if k == n],
                     printcut.BLEED)
+    for sheet in book.drawing.sheets:  # page 1's and page 2's legends say no "cut" either
+        assert "on top" not in legend(sheet) or "cut" not in legend(sheet)
+    assert "on top" in legend(book.drawing.sheets[0])
     _, plain = cut_book(name, 0.0)  # without a bleed the page is as printed for scissors
     sheet = plain.drawing.sheets[plain.strip_pages[0] - 1]
     with pytest.raises(AssertionError):

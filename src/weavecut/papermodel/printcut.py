@@ -333,8 +333,9 @@ def _design_space_words(machine: Cutter, output: Path) -> Words:
                 f"cut file ({stem}-pNN-cut.svg or .dxf, the outlines alone). Make each page "
                 f"{times}. Where each strip is: {page_index(book)}.")
 
-    return replace(PRINTED, scale=" Design Space prints at 100 %: keep its print dialog at "
-                                  "actual size.", sources=sources,
+    return replace(PRINTED, cut_line=False,
+                   scale=" Design Space prints at 100 %: keep its print dialog at actual size.",
+                   sources=sources,
                    need=f"You need: your {name} cutter with its mat, a printer Design Space "
                         "prints to, tape or paper clips, a glue stick and a piece of cardboard "
                         "a little larger than the model.",
@@ -372,7 +373,8 @@ def cutter_words(machine: Cutter, output: Path) -> Words:
                 f"strip's colours reach {BLEED:g} mm past where the cutter cuts, so a cut a "
                 f"little off leaves no white edge. Where each strip is: {page_index(book)}.")
 
-    return replace(PRINTED, scale=" Print at 100 % (no fit to page), marks and all.",
+    return replace(PRINTED, cut_line=False,
+                   scale=" Print at 100 % (no fit to page), marks and all.",
                    sources=sources,
                    need=f"You need: the printed strip pages, your {name} cutter with its mat, "
                         "tape or paper clips, a glue stick and a piece of cardboard a little "
