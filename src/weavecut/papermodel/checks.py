@@ -108,8 +108,9 @@ def sheet_checks(book, n: int) -> list[dict]:
     named = n == 1 or n in getattr(book, "id_pages", ())
     strands = dict(zip(book.plan.labels, book.colours)) if named else None
     strip = n in book.strip_pages
+    cuts = [p.cut for k, p in book.pieces if k == n] or None  # none printed for print and cut
     return text_checks(book.drawing.sheets[n - 1], area.box if strip else None, inner, strands,
-                       [p.cut for k, p in book.pieces if k == n] if strip else None)
+                       cuts if strip else None)
 
 
 def report(book) -> dict:
