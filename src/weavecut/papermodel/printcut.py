@@ -4,7 +4,8 @@ The home printer prints the strip page with the registration marks of the cutter
 cutter's optical eye (or scanner) finds the marks and cuts the outlines of the page's cut file.
 The cut file of a page has the page's size and the page's coordinates (millimetres, origin at
 the bottom-left corner), so the page transform between them is the identity: every strip's cut
-outline lies exactly on its printed outline.
+outline lies exactly on its printed strip's edge. No cut line is printed: the strips' colours
+bleed ``BLEED`` past it, so a cut a little off the page leaves neither a line nor white paper.
 
 A cutter preset (``templates/cutters``) gives the marks as plain values: their kind, ``inset``
 from the page's edges, ``length`` (the square's side, an L's arm, the frame's line) and
