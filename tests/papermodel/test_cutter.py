@@ -24,7 +24,7 @@ from weavecut.layout.labels import text_box
 from weavecut.layout.lasersetup import laser
 from weavecut.papermodel import cardkit, lasercard, printcut
 from weavecut.papermodel.book import strand_book
-from weavecut.papermodel.pages import PageArea
+from weavecut.papermodel.pages import CUT, PageArea
 from weavecut.subdivision import subdivide
 from weavecut.units import to_mm
 from weavecut.weave.colour import palette
@@ -41,10 +41,13 @@ def weaves():
 
 
 @lru_cache(maxsize=None)
-def cut_book(name: str):
+def cut_book(name: str, bleed: float = printcut.BLEED):
+    """The print-and-cut book of cutter ``name``, laid out as ``strands --cutter`` lays it."""
     machine = printcut.cutter(name)
     book = strand_book(list(weaves()), palette("maritime-4"), A4, 20.0, machine.margin,
-                       limit=machine.limit(*A4))
+                       limit=machine.limit(*A4), gap=printcut.WASTE, bleed=bleed,
+                       **({"words": printcut.cutter_words(machine, Path("sq.pdf"))} if bleed
+                          else {}))
     return machine, printcut.with_marks(book, machine)
 
 
@@ -102,8 +105,9 @@ def test_cut_file_is_registered_to_the_printed_page(name, fmt, tmp_path):
         path = tmp_path / f"p{n}.{fmt}"
         export.write(drawing, path)
         rings = svg_rings(path) if fmt == "svg" else dxf_rings(path, "cut")
-        # the page transform is the identity: the cut file has the page's size and frame
-        assert_coincide(layer_polygons(page, "cut"), rings)
+        # the page transform is the identity: the cut file has the page's size and frame, its
+        # outlines those of the strips on the page (printed without cut lines, see below)
+        assert_coincide([p.cut for k, p in book.pieces if k == n], rings)
         # and nothing else (the README: "no frame: only the cuts"): no entity on another
         # layer, no shape besides the paths
         if fmt == "dxf":
@@ -113,6 +117,76 @@ def test_cut_file_is_registered_to_the_printed_page(name, fmt, tmp_path):
                       if e.tag.split("}")[-1] in ("path", "rect", "line", "polyline", "polygon",
                                                   "circle", "ellipse", "text")]
             assert len(shapes) == len(drawing.sheets[0].layers) == 1
+
+
+def painted(sheet) -> list[tuple[shapely.Geometry, str]]:
+    """(polygon, fill) of every painted polygon of ``sheet``."""
+    return [(g, fill) for layer in sheet.layers if layer.role == "paint"
+            for s in layer.shapes if isinstance(s, Polygons)
+            for g, fill in zip(s.to_shapely().tolist(), s.fills or [s.style.fill] * s.n_polygons)]
+
+
+def legend(sheet) -> list[str]:
+    """The texts of the page's furniture (title, legend, scale bar)."""
+    return [s.text for layer in sheet.layers if layer.name == "page" for s in layer.shapes
+            if isinstance(s, Text)]
+
+
+def assert_bled(sheet, strips, bleed: float) -> None:
+    """No stroke in the cut colour and no "cut" legend entry on ``sheet``; a band ``bleed``
+    wide outside every strip's cut line is painted, in that strip's colours only, and by
+    nothing that reaches past that strip's own bleed (a neighbour's)."""
+    assert not [s for layer in sheet.layers for s in layer.shapes
+                if isinstance(s, (Polygons, Polylines))
+                and (s.style.stroke or "").lower() == CUT.stroke.lower()]
+    assert "cut" not in legend(sheet)
+    # nor a tile's thin outline along the cut line: it would show on the strip's edge too
+    stroked = shapely.union_all([
+        g for layer in sheet.layers for s in layer.shapes if getattr(s, "style", None)
+        and s.style.stroke for g in (
+            shapely.boundary(s.to_shapely()).tolist() if isinstance(s, Polygons)
+            else [shapely.LineString(xy) for xy in s.lines()] if isinstance(s, Polylines)
+            else [])])
+    for s in strips:
+        edge = shapely.boundary(s.cut)
+        assert shapely.intersection(stroked, edge.buffer(0.05)).length < 0.05 * edge.length
+    paint = painted(sheet)
+    grown = [shapely.buffer(s.cut, bleed + 1e-6) for s in strips]
+    for s, room in zip(strips, grown):
+        band = shapely.buffer(s.cut, 0.98 * bleed).difference(s.cut)  # 0.98: round-off
+        over = [(g, fill) for g, fill in paint if g.intersection(band).area > 1e-9]
+        assert over, s.label
+        colours = {*s.fills, *(() if s.flap is None else (s.flap_fill,))}
+        assert {fill for _, fill in over} <= colours, s.label
+        assert all(room.covers(g) for g, _ in over), s.label
+        assert band.difference(shapely.union_all([g for g, _ in over])).area < 1e-6 * band.area
+    # two bleeds never meet: the strips are packed more than two bleeds apart
+    assert all(not a.intersects(b) for i, a in enumerate(grown) for b in grown[i + 1:])
+
+
+@pytest.mark.parametrize("name", CUTTERS)
+def test_a_print_and_cut_page_prints_no_cut_line_and_bleeds_the_strips_colours(name):
+    """A cutter that cuts 0.3-0.5 mm off the printed page would leave a printed cut line (or
+    white paper) on the strip's edge: print-and-cut pages print no cut line and no "cut" legend
+    entry, and every strip's colours reach ``BLEED`` past its cut line, clear of its
+    neighbours' (packed ``WASTE`` apart); no tile outline runs along the cut line either.
+    Planted: the bleed 0 (the cut lines printed again), the cut lines printed over the bleed,
+    the tiles' outlines kept along it, or the bleed half as wide, fails."""
+    assert 2 * printcut.BLEED < printcut.WASTE  # a blank gap between two strips' bleeds
+    machine, book = cut_book(name)
+    assert printcut.BLEED < machine.clearance  # and between a bleed and the marks
+    for n in book.strip_pages:
+        assert_bled(book.drawing.sheets[n - 1], [p for k, p in book.pieces if k == n],
+                    printcut.BLEED)
+    for sheet in book.drawing.sheets:  # page 1's and page 2's legends say no "cut" either
+        assert "on top" not in legend(sheet) or "cut" not in legend(sheet)
+    assert "on top" in legend(book.drawing.sheets[0])
+    _, plain = cut_book(name, 0.0)  # without a bleed the page is as printed for scissors
+    sheet = plain.drawing.sheets[plain.strip_pages[0] - 1]
+    with pytest.raises(AssertionError):
+        assert_bled(sheet, [p for k, p in plain.pieces if k == plain.strip_pages[0]],
+                    printcut.BLEED)
+    assert layer_polygons(sheet, "cut") and "bleed" not in {x.name for x in sheet.layers}
 
 
 @pytest.mark.parametrize("name", CUTTERS)

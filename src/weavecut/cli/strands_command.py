@@ -160,13 +160,14 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
                            margin, tile_size or 20.0, turn, title, output, as_json)
     limit, machine, words = None, None, {}
     if cutter_name is not None:
-        from ..papermodel.printcut import WASTE, cut_file_note, cutter, cutter_words
+        from ..papermodel.printcut import BLEED, WASTE, cut_file_note, cutter, cutter_words
 
         machine = cutter(cutter_name)
         machine.check(*page)
         margin, limit = max(margin, machine.margin), machine.limit(*page)
         words = {"words": cutter_words(machine, Path(output)),
-                 "page_note": cut_file_note(Path(output), machine), "gap": WASTE}
+                 "page_note": cut_file_note(Path(output), machine), "gap": WASTE,
+                 "bleed": BLEED}
     try:
         book = strand_book(weaves, pal, page, tile_size or 20.0, margin, turn, title=title,
                            layout=layout, limit=limit, **words)

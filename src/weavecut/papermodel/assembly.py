@@ -117,7 +117,7 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
     layers += page_layers(area, title, "Assembly sheet: the finished pattern with every "
                           "strand's ID" + (" (copy letter + number)" if k > 1 else ""), 1, total,
                           book.colours[int(plan.copies[0, 0])] if m else "#3e9fb0",
-                          legend=words.legend)
+                          legend=words.legend, cut=words.cut_line)
     area_of = shapely.area(on_sheet)
     unnamed = [(s, max(_own_tiles(weave, s), key=lambda t: (area_of[t], -t)))
                for s in range(weave.n_strands) if s not in found]  # strands, not mesh elements
@@ -358,6 +358,6 @@ def weaving_sheet(weave: Weave, book, turn: float, title: str, total: int,
             shapes.append(pattern(weave, turn, box, book.colours, shown.copy())[2])
     layers = [Layer("diagrams", "paint", tuple(shapes)), Layer("steps", "label", tuple(texts))]
     layers += page_layers(area, title, "How to weave: numbered steps; the diagrams show the "
-                          "weave growing", 2, total, legend=words.legend)
+                          "weave growing", 2, total, legend=words.legend, cut=words.cut_line)
     return Sheet(area.width, area.height, tuple(layers), "page 2: weaving")
 

@@ -205,7 +205,8 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
                 tile_size: float = 20.0, margin: float = 10.0, turn: float = 0.0,
                 title: str = "weave-cut strands", layout: str = "mixed",
                 limit: tuple[float, float, float, float] | None = None,
-                words: Words = PRINTED, page_note=None, gap: float = GAP) -> StrandBook:
+                words: Words = PRINTED, page_note=None, gap: float = GAP,
+                bleed: float = 0.0) -> StrandBook:
     """Lay out every strand of ``weaves[-1]`` as printable strips.
 
     Parameters
@@ -228,6 +229,8 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
     page_note : a function of a strip page's number giving a note put before its list of strips
         (print and cut: the page's cut file), or None
     gap : mm of paper left between two strips (print and cut: ``printcut.WASTE``)
+    bleed : mm the strips' colours reach past their cut lines, printed without them (print
+        and cut: ``printcut.BLEED``), or 0: cut lines printed
 
     Raises
     ------
@@ -256,7 +259,7 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         then ``ids`` pages of the strands page 1 has no room to name."""
         first = 3 + own + ids  # pages 1, 2: assembly and weaving
         placed, sheets = strip_sheets(pieces, kinds, area, title, subtitle, colours, first,
-                                      places, page_note)
+                                      places, page_note, bleed)
         where = page_span(range(3, 3 + own) if own else [1])
         strips = f"each print's strips ({len(crossings)} on the model)" if (
             layout == "module") else None
@@ -278,12 +281,13 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
 
 
 def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitle, colours,
-                 first: int, places=None, note=None
+                 first: int, places=None, note=None, bleed: float = 0.0
                  ) -> tuple[tuple[tuple[int, Strip], ...], list[Sheet]]:
     """(placed, sheets): ``pieces`` packed onto pages numbered from ``first`` on (or placed at
     ``places``, the packer's answer), each page with its strips, title, ``subtitle(names of
-    its strips)`` (after ``note(page number)`` if given), scale bar and legend; placed holds
-    (page number, piece on the page)."""
+    its strips)`` (after ``note(page number)`` if given), scale bar and legend (with a
+    ``bleed``, print and cut: no cut lines, colour bled past them); placed holds (page number,
+    piece on the page)."""
     x0, y0, x1, y1 = area.box
     if places is None:
         places = pack([p.cut for p in pieces], x1 - x0, y1 - y0, GAP, kinds=kinds)
@@ -296,12 +300,12 @@ def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitl
     for n in range(first, first + n_strip):  # pages
         on_page = [p for k, p in placed if k == n]
         names_here = strip_runs({p.label for p in on_page})
-        layers = strip_layers(on_page) + page_layers(
+        layers = strip_layers(on_page, bleed) + page_layers(
             area, title, (f"{note(n)} " if note else "") + subtitle(names_here), n, total,
             colours[on_page[0].strand],
             glue=any(p.glue is not None for p in on_page),
             folds=any(len(p.folds) for p in on_page),
-            tabs=any(p.flap is not None for p in on_page))
+            tabs=any(p.flap is not None for p in on_page), cut=not bleed)
         sheets.append(Sheet(area.width, area.height, tuple(layers), f"page {n}: strips"))
     return placed, sheets
 

@@ -32,7 +32,7 @@ def _fill_at(polys, fills, tree, point) -> str:
     return fills[hits[-1]] if hits else PAPER
 
 
-def text_checks(sheet: Sheet, box=None, inner=None, strands=None) -> list[dict]:
+def text_checks(sheet: Sheet, box=None, inner=None, strands=None, cuts=None) -> list[dict]:
     """One record per text: size, contrast, and the rules it breaks (empty when readable).
 
     ``box`` is the printable box of a strip page: texts of the "labels" layer must then lie inside
@@ -40,11 +40,13 @@ def text_checks(sheet: Sheet, box=None, inner=None, strands=None) -> list[dict]:
     clear of the others. ``inner`` (x0, y0, x1, y1): the sheet inside
     its margins, where every text must lie. ``strands`` maps a strand's ID to its fill: a text of
     the "ids" layer (the assembly sheet) naming a strand must lie on that fill, or on a white
-    plate whose leader line ends on it."""
+    plate whose leader line ends on it. ``cuts``: the strips' cut outlines, where the sheet
+    prints none (print and cut), else those of its cut layers."""
     polys, fills = filled(sheet)
     tree = shapely.STRtree(polys) if polys else None
-    cuts = [g for layer in sheet.layers if layer.role == "cut" for s in layer.shapes
-            if isinstance(s, Polygons) for g in s.to_shapely().tolist()]
+    if cuts is None:
+        cuts = [g for layer in sheet.layers if layer.role == "cut" for s in layer.shapes
+                if isinstance(s, Polygons) for g in s.to_shapely().tolist()]
     texts = [(layer.name, t) for layer in sheet.layers for t in layer.shapes
              if isinstance(t, Text)]
     boxes = [text_box(t) for _, t in texts]
@@ -105,8 +107,10 @@ def sheet_checks(book, n: int) -> list[dict]:
     inner = (area.margin, area.margin, area.width - area.margin, area.height - area.margin)
     named = n == 1 or n in getattr(book, "id_pages", ())
     strands = dict(zip(book.plan.labels, book.colours)) if named else None
-    return text_checks(book.drawing.sheets[n - 1], area.box if n in book.strip_pages else None,
-                       inner, strands)
+    strip = n in book.strip_pages
+    cuts = [p.cut for k, p in book.pieces if k == n] or None  # none printed for print and cut
+    return text_checks(book.drawing.sheets[n - 1], area.box if strip else None, inner, strands,
+                       cuts if strip else None)
 
 
 def report(book) -> dict:

@@ -48,10 +48,10 @@ def front_pages(weave: Weave, plan: ModulePlan, colours, area: PageArea, crossin
     sheets = [cover, weaving_sheet(weave, book, turn, title, total, words)]
     sheets += [Sheet(area.width, area.height, layers + tuple(page_layers(
         area, title, "Crossings the strips do not name: the strand named first lies on top", n,
-        total, legend=words.legend)), f"page {n}: crossings")
+        total, legend=words.legend, cut=words.cut_line)), f"page {n}: crossings")
         for n, layers in enumerate(own_pages, start=first)]
     sheets += [Sheet(area.width, area.height, layers + tuple(page_layers(
         area, title, "Strand IDs page 1 has no room for: each with a line to one of its tiles",
-        n, total, legend=words.legend)), f"page {n}: strand IDs")
+        n, total, legend=words.legend, cut=words.cut_line)), f"page {n}: strand IDs")
         for n, layers in enumerate(named, start=first + len(own_pages))]
     return book, sheets

@@ -147,14 +147,20 @@ def _parts(geoms) -> list:
     return [p for p in parts if p.geom_type == "Polygon" and p.area > 1e-9]
 
 
-def strip_layers(strips: list[Strip]) -> list[Layer]:
+def _tiles(s: Strip) -> list[tuple]:
+    """(polygon, fill) of a strip's tiles and of its label tab, if it has one."""
+    flap = () if s.flap is None else (s.flap,)
+    return list(zip([*s.tiles, *flap], s.fills + (s.flap_fill,) * len(flap)))
+
+
+def strip_layers(strips: list[Strip], bleed: float = 0.0) -> list[Layer]:
     """Layers for strips already on the page: tiles (fills and thin outlines), glue bands,
-    fold lines, arrows, labels and the cut lines."""
+    fold lines, arrows, labels and the cut lines; with a ``bleed`` (mm, print and cut) no cut
+    lines but the strips' colours bled that far past them (:func:`bleed_layer`)."""
     tiles, fills, arrows_by_ink, glue, texts, outlines = [], [], {}, [], [], []
     plates, plate_fills = [], []
     for s in strips:
-        flap = () if s.flap is None else (s.flap,)
-        for tile, fill in zip([*s.tiles, *flap], s.fills + (s.flap_fill,) * len(flap)):
+        for tile, fill in _tiles(s):
             for part in _parts([tile]):
                 tiles.append(part)
                 fills.append(fill)
@@ -167,7 +173,9 @@ def strip_layers(strips: list[Strip]) -> list[Layer]:
         outlines.extend(_parts([s.cut]))
     # the label plates over the tiles as a shape of their own: a writer may paint one shape's
     # polygons grouped by fill, which would put a plate under the tile it covers
-    layers = [Layer("strips", "paint", (polygons_from_shapely(tiles, TILE_LINE, fills),) + (
+    painted = (polygons_from_shapely(tiles, TILE_LINE, fills),) if bleed <= 0 else (
+        polygons_from_shapely(tiles, Style(None, 0.0), fills), inner_borders(strips))
+    layers = [Layer("strips", "paint", painted + (
         (polygons_from_shapely(plates, TILE_LINE, plate_fills),) if plates else ()))]
     if glue:
         layers.append(Layer("glue", "paint", (polygons_from_shapely(
@@ -200,8 +208,39 @@ def strip_layers(strips: list[Strip]) -> list[Layer]:
                          for ink, g in sorted(arrows_by_ink.items()) if g)
     layers.append(Layer("arrows", "paint", arrow_shapes))
     layers.append(Layer("labels", "label", tuple(texts)))
+    if bleed > 0:
+        return [bleed_layer(strips, bleed), *layers]
     layers.append(Layer("cut", "cut", (polygons_from_shapely(outlines, CUT),)))
     return layers
+
+
+def inner_borders(strips: list[Strip]) -> Polylines:
+    """The tiles' thin outlines where they border each other, not along a strip's cut line
+    (print and cut: a line there would show on the strip's edge as a cut line would)."""
+    lines = []
+    for s in strips:
+        edge = shapely.buffer(shapely.boundary(s.cut), 1e-6)
+        borders = shapely.difference(
+            shapely.union_all(shapely.boundary([tile for tile, _ in _tiles(s)])), edge)
+        lines += [np.asarray(g.coords) for g in shapely.get_parts(shapely.line_merge(borders))
+                  if g.length > 1e-6]
+    return polylines_from_lines(lines, TILE_LINE)
+
+
+def bleed_layer(strips: list[Strip], bleed: float) -> Layer:
+    """What a print-and-cut page prints under its strips in place of their cut lines: every
+    tile (and tab) grown by ``bleed`` mm, clipped to its strip's outline grown as far, in the
+    tile's colour and without an outline, so a cutter that cuts up to ``bleed`` off the
+    printed page still leaves colour to the strip's edge; inside the strip the true tiles
+    cover it and nothing changes."""
+    grown, fills = [], []
+    for s in strips:
+        room = shapely.buffer(s.cut, bleed)
+        for tile, fill in _tiles(s):
+            for part in _parts([shapely.intersection(shapely.buffer(tile, bleed), room)]):
+                grown.append(part)
+                fills.append(fill)
+    return Layer("bleed", "paint", (polygons_from_shapely(grown, Style(None, 0.0), fills),))
 
 
 def scale_bar(x: float, y: float, length: float = 100.0) -> tuple:
@@ -232,12 +271,14 @@ LEGEND = (
 
 def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: int,
                 sample: str = "#3e9fb0", glue: bool = False, folds: bool = False,
-                tabs: bool = False, legend: bool = True, bar: bool = False) -> list[Layer]:
+                tabs: bool = False, legend: bool = True, bar: bool = False,
+                cut: bool = True) -> list[Layer]:
     """Title, page number, a 100 mm scale bar and a legend for one page (all text at least
     ``MIN_CAP`` tall, in the margins outside the printable box); ``glue``, ``folds`` and ``tabs``
     add their entries. Without ``legend`` (pages that neither show printed strips nor need
     printing at true scale) the bar and the legend are left out, the bar kept with ``bar`` (a
-    page with one drawing at 100 %)."""
+    page with one drawing at 100 %). Without ``cut`` (print and cut: no cut line is printed)
+    the legend has no "cut" entry."""
     w, h, m = area.width, area.height, area.margin
     number_text = f"page {number} / {total}"
     room = w - 2 * m - text_width(number_text, 3.2) - 4
@@ -257,7 +298,7 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
     x, y = (m + 106.0, m + 0.5) if w - 2 * m >= 190 else (m, above)
     start = x
     swatches, fills, strokes, dashes = [], [], [], []
-    shown = {"glue": glue, "fold": folds, "tab": tabs}
+    shown = {"glue": glue, "fold": folds, "tab": tabs, "cut": cut}
     for kind, text in (e for e in LEGEND if shown.get(e[0], True)):
         step = 6.5 + text_width(text, SMALL) + 2.5
         if x + step > w - m and x > start:

@@ -4,7 +4,8 @@ The home printer prints the strip page with the registration marks of the cutter
 cutter's optical eye (or scanner) finds the marks and cuts the outlines of the page's cut file.
 The cut file of a page has the page's size and the page's coordinates (millimetres, origin at
 the bottom-left corner), so the page transform between them is the identity: every strip's cut
-outline lies exactly on its printed outline.
+outline lies exactly on its printed strip's edge. No cut line is printed: the strips' colours
+bleed ``BLEED`` past it, so a cut a little off the page leaves neither a line nor white paper.
 
 A cutter preset (``templates/cutters``) gives the marks as plain values: their kind, ``inset``
 from the page's edges, ``length`` (the square's side, an L's arm, the frame's line) and
@@ -39,6 +40,11 @@ MARK_INK = Style(None, 0.0, "#000000")
 WASTE = MIN_PIECE  # mm of paper between two strips a machine cuts: the waste between them is a
 # strip of paper too, and a drag knife drags a thinner one along (or tears it) instead of
 # cutting past it; the packer's 2 mm gap is for scissors, which cut each strip out on its own
+BLEED = 1.0  # mm the strips' colours are printed past their cut lines (no cut line printed):
+# a print-and-cut machine cuts up to 0.3-0.5 mm off the printed page (its eye's reading of the
+# marks, the paper shifting on the mat), so twice that keeps white paper and a printed edge
+# off every strip; two strips WASTE (3 mm) apart keep 3 - 2 * 1 = 1 mm of blank paper between
+# their bleeds, and the marks' clearance (3 mm) keeps them 2 mm clear of the marks
 
 
 class CutterError(WeaveCutError, ValueError):
@@ -255,11 +261,13 @@ def print_files(book) -> list[tuple[int, Drawing]]:
     """(page number, print image) for every strip page: the page's strips as printed (tiles,
     labels, arrows), at the page's size and place, without its cut lines, marks, title or
     legend: the image Cricut Design Space prints with its own sensor marks and cuts round
-    (its cut line is the outline of what the image covers: the strips' outlines)."""
+    (its cut line is the outline of what the image covers: the strips' outlines, so without the
+    page's bleed; Design Space bleeds the image itself)."""
     out = []
     for n in book.strip_pages:
         page = book.drawing.sheets[n - 1]
-        layers = tuple(x for x in page.layers if x.name not in ("page", "cut", "registration"))
+        layers = tuple(x for x in page.layers
+                       if x.name not in ("page", "cut", "bleed", "registration"))
         sheet = Sheet(page.width, page.height, layers, f"page {n}: print image")
         out.append((n, Drawing((sheet,), f"{book.drawing.title}: print image of page {n}",
                                (*book.drawing.metadata, ("print_image", str(n))))))
@@ -326,8 +334,9 @@ def _design_space_words(machine: Cutter, output: Path) -> Words:
                 f"cut file ({stem}-pNN-cut.svg or .dxf, the outlines alone). Make each page "
                 f"{times}. Where each strip is: {page_index(book)}.")
 
-    return replace(PRINTED, scale=" Design Space prints at 100 %: keep its print dialog at "
-                                  "actual size.", sources=sources,
+    return replace(PRINTED, cut_line=False,
+                   scale=" Design Space prints at 100 %: keep its print dialog at actual size.",
+                   sources=sources,
                    need=f"You need: your {name} cutter with its mat, a printer Design Space "
                         "prints to, tape or paper clips, a glue stick and a piece of cardboard "
                         "a little larger than the model.",
@@ -361,10 +370,12 @@ def cutter_words(machine: Cutter, output: Path) -> Words:
         return (f"Print and cut ({name}): print the strip pages ({strips}) {times}. Each carries "
                 f"registration marks ({marks_text(machine)}) that the cutter's eye reads to "
                 f"find the page, and has its cut file beside this PDF ({files(book)}): the "
-                "outlines of its strips, at the page's size. Where each strip is: "
-                f"{page_index(book)}.")
+                "outlines of its strips, at the page's size. No cut line is printed: each "
+                f"strip's colours reach {BLEED:g} mm past where the cutter cuts, so a cut a "
+                f"little off leaves no white edge. Where each strip is: {page_index(book)}.")
 
-    return replace(PRINTED, scale=" Print at 100 % (no fit to page), marks and all.",
+    return replace(PRINTED, cut_line=False,
+                   scale=" Print at 100 % (no fit to page), marks and all.",
                    sources=sources,
                    need=f"You need: the printed strip pages, your {name} cutter with its mat, "
                         "tape or paper clips, a glue stick and a piece of cardboard a little "
@@ -373,8 +384,8 @@ def cutter_words(machine: Cutter, output: Path) -> Words:
                        f"file ({stem}-pNN-cut.dxf, NN the page number, beside this PDF: every "
                        "edition opens DXF, Silhouette Studio's free Basic Edition too; the .svg "
                        "needs one that reads SVG, such as Studio's Designer Edition). It has "
-                       "the page's size, so placed at the page's corner its lines lie on the "
-                       "printed outlines. Turn on the software's registration marks with the "
+                       "the page's size, so placed at the page's corner its lines lie round the "
+                       "printed strips. Turn on the software's registration marks with the "
                        "sizes above, so they lie on the printed ones; put the printed page on "
                        "the mat, let the cutter read the marks, and cut. Sort the strips by ID: "
                        "the ID printed in the strip's own colour is its name on page 1; a small "

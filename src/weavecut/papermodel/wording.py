@@ -107,6 +107,8 @@ class Words:
     face_up : which side of a strip lies up
     weft_under, strip_under : where a strip goes under (a weft strip; any strip)
     legend : the pages carry the printed strips' scale bar and legend
+    cut_line : the strips are printed with their cut lines (and the legend has "cut"); not
+        for print and cut, whose strips bleed past theirs
     """
 
     scale: str
@@ -124,6 +126,7 @@ class Words:
     weft_under: str
     strip_under: str
     legend: bool = True
+    cut_line: bool = True
 
 
 PRINTED = Words(
