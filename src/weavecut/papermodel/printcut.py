@@ -31,8 +31,7 @@ from ..layout.drawing import Drawing, Layer, Polygons, Sheet, Style, polygons_fr
 from ..units import to_mm
 from .modules import copy_letter
 from .pages import CUT
-from .slim import narrowest_feature
-from .strips import MIN_PIECE
+from .strips import MIN_PIECE, narrowest_feature
 from .wording import PRINTED, Words, page_index
 
 PRINTER_EDGE = 6.35  # mm (1/4 in): the widest unprintable edge of common home printers
