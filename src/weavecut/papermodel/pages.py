@@ -186,10 +186,12 @@ def strip_layers(strips: list[Strip], bleed: float = 0.0) -> list[Layer]:
         # shrunk by far more than rounding moves a point, so no last bit decides)
         band = None if s.glue is None else shapely.buffer(shapely.union_all(s.glue), -EDGE)
         for fold, ink in zip(s.folds, s.fold_inks):
-            for dash in shapely.get_parts(fold).tolist():
-                on_band = band is not None and band.contains(shapely.centroid(dash))
-                folds_by_ink.setdefault(text_colour_on(GLUE) if on_band else ink,
-                                        []).append(dash)
+            dashes = shapely.get_parts(fold)
+            on_band = (np.zeros(len(dashes), dtype=bool) if band is None
+                       else shapely.contains(band, shapely.centroid(dashes)))
+            for where, dash_ink in ((on_band, text_colour_on(GLUE)), (~on_band, ink)):
+                if where.any():
+                    folds_by_ink.setdefault(dash_ink, []).extend(dashes[where].tolist())
     if folds_by_ink:
         layers.append(Layer("folds", "score", tuple(polylines_from_lines(
             [np.asarray(f.coords) for f in lines], replace(FOLD, stroke=ink))
