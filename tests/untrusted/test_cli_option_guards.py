@@ -9,10 +9,16 @@ from .helpers import files_under, refused, run
 
 
 def test_the_kit_page_never_replaces_an_output(tmp_path):
+    """A page named as -o is refused before any work (nothing written); a page named as a
+    file the command writes into its folder is refused once the files are known."""
     refused(run("weave", "pentagon", "--levels", "1", "-o", tmp_path / "w.svg", "--html",
-                tmp_path / "w.svg"), "'--html': the page would replace an output",
+                tmp_path / "." / "w.svg"), "'--html': -o writes ", "give each output its own name",
             status=(2,))
-    assert (tmp_path / "w.svg").read_bytes().rstrip().endswith(b"</svg>")  # the drawing
+    assert files_under(tmp_path) == set()
+    refused(run("puzzle", "pentagon", "--levels", "2", "-o", tmp_path / "kit", "--html",
+                tmp_path / "kit" / "README.txt"), "'--html': the page would replace an output",
+            status=(2,))
+    assert "jigsaw puzzle" in (tmp_path / "kit" / "README.txt").read_text()  # the kit's
 
 
 def test_a_build_refuses_a_file_where_a_jobs_folder_goes(tmp_path):

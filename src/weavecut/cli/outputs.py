@@ -156,9 +156,13 @@ def writing(ctx: click.Context | None):
         return
     command, values = ctx.command, ctx.params
     made = {os.path.abspath(path) for p, path in written(command, values) if is_folder(p, values)}
+    named: dict[str, click.Parameter] = {}
     for p, path in written(command, values):  # (a page into the -o folder: made by then)
         inside = os.path.dirname(os.path.abspath(path)) in made
         message = problem(path, is_folder(p, values), parent_made=inside)
+        first = named.setdefault(os.path.abspath(path), p)
+        if message is None and first is not p:
+            message = f"{first.opts[0]} writes {path!r} too; give each output its own name"
         if message:
             raise click.BadParameter(message, ctx=ctx, param=p)
     folders = roots(command, values)
