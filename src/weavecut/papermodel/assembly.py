@@ -77,12 +77,10 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
         lines.append(f"The strands this page has no room to name are named on "
                      f"{page_span(book.id_pages)}.")
     if crossings:
-        lines.append(f"{too_small(len(crossings))} to carry a name on "
-                     f"{'its' if len(crossings) == 1 else 'their'} strip "
-                     f"({words.unnamed_mark}): called out below, "
+        lines.append(f"{too_small(len(crossings))} ({words.unnamed_mark}): called out below, "
                      f"{crossing_meaning(plan.labels, crossings[0])}.")
     elif book.callout_pages:
-        lines.append("Crossings too small to carry a name on their strip are called out on "
+        lines.append("Crossings too small to carry a name on their strips are called out on "
                      f"{page_span(book.callout_pages)}.")
     texts, bottom = paragraphs(lines, x0, y1, x1 - x0)
     box = (x0, y0, x1, bottom - GAP)

@@ -152,8 +152,9 @@ def _left_out(crossings, book: StrandBook) -> tuple[str, ...]:
     if not crossings:
         return ()
     where = page_span(book.callout_pages or [1])
-    return (f"{too_small(len(crossings))} to carry an engraved name on their strip (an "
-            f"engraved dot there): they are called out on {where} of strands-assembly.pdf",)
+    return (f"{too_small(len(crossings), 'an engraved name')} (an "
+            f"engraved dot there): {'it is' if len(crossings) == 1 else 'they are'} called out on "
+            f"{where} of strands-assembly.pdf",)
 
 
 ROW = 14.0  # mm between two card colours on the colours page

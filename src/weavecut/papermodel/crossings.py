@@ -55,9 +55,12 @@ def left_out_crossings(weave: Weave, plan, pieces, layout: str) -> list[tuple[in
     return list(zip(t.tolist(), weave.tile_over[t].tolist(), weave.tile_under[t].tolist()))
 
 
-def too_small(n: int) -> str:
-    """"3 crossings are too small" (or "1 crossing is")."""
-    return f"{n} crossing is too small" if n == 1 else f"{n} crossings are too small"
+def too_small(n: int, name: str = "a name") -> str:
+    """"3 crossings are too small to carry a name on their strips" (or "1 crossing is ... its
+    strip")."""
+    if n == 1:
+        return f"1 crossing is too small to carry {name} on its strip"
+    return f"{n} crossings are too small to carry {name} on their strips"
 
 
 def crossing_label(ids, over: int, under: int) -> str:
@@ -174,7 +177,7 @@ def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float,
     ``words`` say how such a crossing looks on its strip."""
     ids = plan.labels
     labels = [crossing_label(ids, over, under) for _, over, under in crossings]
-    note = (f"{too_small(len(crossings))} to carry a name on their strip: there the "
+    note = (f"{too_small(len(crossings))}: there the "
             f"strip {words.unnamed_there}. Each is called out once: "
             f"{crossing_meaning(ids, crossings[0])}.")
     return callout_pages(weave, colours, area, [c[0] for c in crossings], labels, note, turn,
