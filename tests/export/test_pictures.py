@@ -21,6 +21,7 @@ from weavecut.layout.drawing import (Drawing, Layer, Raster, Sheet, Style, polyg
                                      polylines_from_lines)
 from weavecut.layout.tiling import on_pages
 
+from tests.svg_readback import assert_svg_shows
 from tests.test_readback import program
 
 PX = 4  # pixels per mm the pages are drawn at
@@ -84,6 +85,10 @@ def test_svg_has_the_picture_as_an_image_in_mm():
         assert im.mode == "L"
         assert im.info["dpi"] == pytest.approx((127, 127), abs=0.01)  # 0.2 mm pixels
         assert (np.asarray(im) == pixels()).all()
+
+
+def test_svg_shows_every_layer_shape_and_picture():
+    assert_svg_shows(drawing(), svg.render(drawing()))
 
 
 def test_svg_picture_drawn_by_rsvg_is_in_its_box(tmp_path):
