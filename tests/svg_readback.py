@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 import xml.etree.ElementTree as ET
 
-from weavecut.layout.drawing import Drawing, Text
+from weavecut.layout.drawing import Drawing, Polygons, Polylines, Raster, Text
 
 SVG_NS = "{http://www.w3.org/2000/svg}"
 LABEL = "{http://www.inkscape.org/namespaces/inkscape}label"
@@ -14,7 +14,8 @@ POINT = re.compile(r"-?\d+(?:\.\d+)?(?:e-?\d+)?,-?\d+(?:\.\d+)?(?:e-?\d+)?")
 
 def assert_svg_shows(drawing: Drawing, data: bytes) -> None:
     """Every sheet and layer of ``drawing`` is an Inkscape layer (in order), every text is a
-    <text> with its string, and every point of its polygons and polylines is in a path."""
+    <text> with its string, every point of its polygons and polylines is in a path, and every
+    picture is an <image> of its size."""
     root = ET.fromstring(data)
     assert root.get("width").endswith("mm") and root.get("height").endswith("mm")
     many = len(drawing.sheets) > 1
@@ -28,4 +29,7 @@ def assert_svg_shows(drawing: Drawing, data: bytes) -> None:
         [s.text for s in shapes if isinstance(s, Text)]
     points = sum(len(POINT.findall(p.get("d", ""))) for p in root.iter(f"{SVG_NS}path"))
     points -= 4 * many * len(drawing.sheets)  # the sheet frames are rects, not paths
-    assert points == sum(len(s.coords) for s in shapes if not isinstance(s, Text))
+    assert points == sum(len(s.coords) for s in shapes if isinstance(s, (Polygons, Polylines)))
+    assert [(float(i.get("width")), float(i.get("height"))) for i in root.iter(f"{SVG_NS}image")
+            ] == [(round(s.width, 3), round(s.height, 3)) for s in shapes
+                  if isinstance(s, Raster)]

@@ -11,7 +11,7 @@ import codecs
 
 import numpy as np
 
-from ..layout.drawing import Drawing, Layer, Polygons, Text
+from ..layout.drawing import Drawing, Layer, Polygons, Text, vectors
 from . import dxf_skeleton as skeleton
 from .numbers import shortest
 
@@ -36,10 +36,13 @@ def render(drawing: Drawing) -> bytes:
 
 
 def plain(drawing: Drawing) -> bool:
-    """Whether ``drawing`` makes nothing but LWPOLYLINEs (no text, no fill)."""
+    """Whether ``drawing`` makes nothing but LWPOLYLINEs (no text, no fill). A picture is
+    written as the lines it is a picture of (``vectors``): DXF has no good picture element (an
+    IMAGE entity only links to a file beside the drawing), and a CAD program or a cutter wants
+    the lines."""
     return not any(isinstance(shape, Text) or isinstance(shape, Polygons) and any(fills(shape))
                    for sheet in drawing.sheets for layer in sheet.layers
-                   for shape in layer.shapes)
+                   for shape in vectors(layer.shapes))
 
 
 def fills(shape: Polygons) -> tuple:
@@ -98,7 +101,7 @@ def entities(drawing: Drawing, doc) -> None:
     for n, sheet in enumerate(drawing.sheets):
         suffix = "" if len(drawing.sheets) == 1 else f"-{n + 1}"
         for layer in sheet.layers:
-            for shape in layer.shapes:
+            for shape in vectors(layer.shapes):
                 name = layer.name + suffix
                 if isinstance(shape, Text):
                     doc.text(shape, layer, name, dx)

@@ -33,7 +33,7 @@ import numpy as np
 
 from .. import __version__
 from ..errors import ExportError
-from ..layout.drawing import Drawing, Layer, Polygons, Polylines, Text
+from ..layout.drawing import Drawing, Layer, Polygons, Polylines, Text, vectors
 from ..layout.lasersetup import ROLES, LaserJob
 
 SUFFIX = "lbrn2"
@@ -108,7 +108,7 @@ def laser_layers(layers: tuple[Layer, ...]) -> list[tuple[Layer, int, list]]:
 
 def _colour(layer: Layer) -> str | None:
     """The stroke colour of the layer's first stroked shape (lower case)."""
-    for shape in layer.shapes:
+    for shape in vectors(layer.shapes):
         stroke = getattr(getattr(shape, "style", None), "stroke", None)
         if stroke:
             return stroke.lower()
@@ -120,7 +120,7 @@ def _paths(layer: Layer) -> list[tuple[np.ndarray, bool]]:
     at least two points; a polyline whose last point is its first (after rounding) is a closed
     ring without the repeat."""
     paths = []
-    for shape in layer.shapes:
+    for shape in vectors(layer.shapes):  # a picture's lines: a laser cuts or scores them
         if isinstance(shape, Text):
             raise ExportError(f"layer {layer.name!r} holds text {shape.text!r}; a laser layer "
                               "takes text as single strokes (layout.strokefont)")

@@ -1,7 +1,8 @@
 """PDF writer (reportlab): one page per sheet at its exact size, drawn in millimetres.
 
 ``invariant=1`` drops reportlab's timestamps and random document id, so the same drawing gives
-the same bytes. Hidden layers are left out.
+the same bytes. Hidden layers are left out. A picture (Raster) is a greyscale image XObject at
+its box's exact size.
 """
 
 from __future__ import annotations
@@ -12,10 +13,12 @@ import io
 from reportlab.lib.colors import HexColor
 from reportlab.lib.rl_accel import fp_str
 from reportlab.lib.units import mm
+from reportlab.pdfbase import pdfdoc
 from reportlab.pdfgen import canvas
 from reportlab.pdfgen.pathobject import PDFPathObject
 
-from ..layout.drawing import Drawing, Polygons, Polylines, Style, Text
+from ..layout.drawing import Drawing, Polygons, Polylines, Raster, Style, Text
+from . import picture
 
 SUFFIX = "pdf"
 FONT = "Helvetica"
@@ -53,6 +56,9 @@ def render(drawing: Drawing) -> bytes:
 
 
 def _draw(c, shape) -> None:
+    if isinstance(shape, Raster):
+        _image(c, shape)
+        return
     if isinstance(shape, Text):
         c.saveState()
         c.setFillColor(_colour(shape.fill))
@@ -83,6 +89,48 @@ def _draw(c, shape) -> None:
             c.drawPath(_path(points, rings, True), stroke=1 if style.stroke else 0,
                        fill=1 if fill else 0,
                        fillMode=canvas.FILL_EVEN_ODD)  # holes stay open, however wound
+
+
+class _Picture(pdfdoc.PDFImageXObject):
+    """A Raster as an 8-bit DeviceGray image XObject: the PNG writer's zlib stream with PNG
+    predictors (``DecodeParms``), not re-encoded by reportlab (which makes every image RGB)."""
+
+    def __init__(self, name: str, raster: Raster) -> None:
+        super().__init__(name)
+        self.height, self.width = raster.pixels.shape
+        self.bitsPerComponent = 8
+        self.colorSpace = "DeviceGray"
+        self.streamContent = picture.deflated(raster.pixels)
+
+    def format(self, document) -> bytes:
+        stream = pdfdoc.PDFStream(content=self.streamContent)
+        stream.dictionary.dict.update({
+            "Type": pdfdoc.PDFName("XObject"), "Subtype": pdfdoc.PDFName("Image"),
+            "Width": self.width, "Height": self.height, "BitsPerComponent": 8,
+            "ColorSpace": pdfdoc.PDFName("DeviceGray"),
+            # one filter as a name, not an array: poppler pairs an array of filters with an
+            # array of parameters only, and drew the rows unpredicted (sheared)
+            "Filter": pdfdoc.PDFName("FlateDecode"),
+            "DecodeParms": pdfdoc.PDFDictionary({
+                "Predictor": 15, "Colors": 1, "BitsPerComponent": 8, "Columns": self.width})})
+        return stream.format(document)
+
+
+def _image(c, raster: Raster) -> None:
+    """``raster`` stretched over its box, as ``canvas.drawImage`` places an image (one
+    XObject per picture, named by its number in the document)."""
+    c._currentPageHasImages = 1
+    name = f"picture{len(c._doc.idToObject)}"
+    image = _Picture(name, raster)
+    c._setXObjects(image)
+    c._doc.Reference(image, c._doc.getXObjectName(name))
+    c._doc.addForm(name, image)
+    c.saveState()
+    c.translate(raster.x, raster.y)
+    c.scale(raster.width, raster.height)
+    c._code.append(f"/{c._doc.getXObjectName(name)} Do")
+    c.restoreState()
+    c._formsinuse.append(name)
 
 
 def _points(coords) -> list[str]:

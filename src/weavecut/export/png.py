@@ -1,7 +1,8 @@
 """PNG writer (Pillow): sheets rasterised at ``DPI``, supersampled for smooth edges; several
-sheets are stacked top to bottom. Hidden layers are left out. The title and the metadata
-(generator, command) are text chunks, which ``with_text`` also adds to raster figures. Pillow installs from wheels with
-no system libraries, so PNG output works everywhere weave-cut does."""
+sheets are stacked top to bottom; a picture (Raster) is pasted over its box. Hidden layers are
+left out. The title and the metadata (generator, command) are text chunks, which ``with_text``
+also adds to raster figures. Pillow installs from wheels with no system libraries, so PNG
+output works everywhere weave-cut does."""
 
 from __future__ import annotations
 
@@ -17,7 +18,7 @@ from PIL import Image, ImageDraw, ImageFont
 
 from .. import budget
 from ..errors import ExportError
-from ..layout.drawing import Drawing, Polylines, Text
+from ..layout.drawing import Drawing, Polylines, Raster, Text
 from ..layout.labels import CAP_RATIO, text_width
 
 SUFFIX = "png"
@@ -106,6 +107,9 @@ def _sheet(sheet, dpi: float) -> Image.Image:
         if not layer.visible:
             continue
         for shape in layer.shapes:
+            if isinstance(shape, Raster):
+                _picture(img, shape, px, sheet.height)
+                continue
             if isinstance(shape, Text):
                 font = _font(shape.text, shape.size, px)
                 anchor = {"start": "ls", "middle": "ms", "end": "rs"}[shape.anchor]
@@ -144,6 +148,17 @@ def _sheet(sheet, dpi: float) -> Image.Image:
                         draw.line(pts + pts[:2], fill=shape.style.stroke, width=width,
                                   joint="curve")
     return img.resize((max(1, w // SUPERSAMPLE), max(1, h // SUPERSAMPLE)), Image.LANCZOS)
+
+
+def _picture(img: Image.Image, raster: Raster, px: float, height: float) -> None:
+    """``raster`` over its box (whole pixels of ``img``, ``px`` a mm), averaged down or
+    repeated up to the box's size (Pillow's box filter)."""
+    left, right = round(raster.x * px), round((raster.x + raster.width) * px)
+    top, bottom = (round((height - raster.y - raster.height) * px),
+                   round((height - raster.y) * px))
+    pic = Image.fromarray(np.ascontiguousarray(raster.pixels), "L")
+    img.paste(pic.resize((max(1, right - left), max(1, bottom - top)), Image.BOX).convert("RGB"),
+              (left, top))
 
 
 def _font(text: str, size: float, px: float) -> ImageFont.FreeTypeFont:

@@ -1,5 +1,6 @@
 """SVG writer: width/height and viewBox in mm, one Inkscape layer per Drawing layer; a stroke of
-width 0 (a laser hairline) is drawn one screen pixel wide at any zoom.
+width 0 (a laser hairline) is drawn one screen pixel wide at any zoom; a picture (Raster) is an
+``<image>`` holding its PNG.
 
 The text is written as svgwrite wrote it through ElementTree (the tests hold svgwrite as the
 oracle): attributes sorted by name, empty ones left out, an element without content closed as
@@ -8,9 +9,12 @@ oracle): attributes sorted by name, empty ones left out, an element without cont
 
 from __future__ import annotations
 
+import base64
+
 import numpy as np
 
-from ..layout.drawing import Drawing, Polygons, Polylines, Sheet, Style, Text
+from ..layout.drawing import Drawing, Polygons, Polylines, Raster, Sheet, Style, Text
+from . import picture
 from .numbers import shortest
 
 SUFFIX = "svg"
@@ -63,13 +67,13 @@ def _document(drawing: Drawing, page: Sheet, placed) -> bytes:
 def _layer(layer, height: float) -> str:
     # the points of all the layer's lines and rings written at once (a guide has a shape
     # per number), then handed out shape by shape
-    drawn = [s.coords for s in layer.shapes if not isinstance(s, Text)]
+    drawn = [s.coords for s in layer.shapes if isinstance(s, (Polygons, Polylines))]
     pts = _points(np.concatenate(drawn), height) if drawn else []
     ends = np.cumsum([len(c) for c in drawn]).tolist()
     spans = iter(zip([0, *ends], ends))
     return _group(f"{layer.role}-{layer.name}".replace(" ", "-"), layer.name,
                   [e for shape in layer.shapes for e in _elements(
-                      shape, height, None if isinstance(shape, Text) else pts, spans)],
+                      shape, height, pts, spans)],
                   style=None if layer.visible else "display:none")
 
 
@@ -99,10 +103,12 @@ def _escape(text: str, attribute: bool = False) -> str:
 
 
 def _elements(shape, height: float, pts, spans):
-    """The elements of ``shape``: a Text's, or the paths of a Polylines or Polygons whose
-    points are ``pts[a:b]`` for the next (a, b) of ``spans``."""
+    """The elements of ``shape``: a Text's, a Raster's ``<image>``, or the paths of a
+    Polylines or Polygons whose points are ``pts[a:b]`` for the next (a, b) of ``spans``."""
     if isinstance(shape, Text):
         yield _text(shape, height)
+    elif isinstance(shape, Raster):
+        yield _image(shape, height)
     else:
         a, b = next(spans)
         for d, style in _paths(shape, height, pts[a:b]):
@@ -139,6 +145,15 @@ def _text(t: Text, height: float) -> str:
     if t.angle:
         attributes["transform"] = f"rotate({-t.angle},{_n(t.x)},{y})"
     return _element("text", attributes, text=str(t.text))
+
+
+def _image(r: Raster, height: float) -> str:
+    """A picture as an ``<image>`` of its PNG (a data URI) stretched over its box in mm."""
+    data = base64.b64encode(picture.png(r.pixels, picture.dpi(r))).decode("ascii")
+    return _element("image", {"x": _n(r.x), "y": _n(height - r.y - r.height),
+                              "width": _n(r.width), "height": _n(r.height),
+                              "preserveAspectRatio": "none",
+                              "xlink:href": f"data:image/png;base64,{data}"})
 
 
 def _style(style: Style, closed: bool) -> dict:

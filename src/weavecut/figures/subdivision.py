@@ -31,6 +31,7 @@ from ..layout.drawing import (
     mesh_polygons,
     polygons_from_rings,
 )
+from ..layout import raster
 from ..layout.mesh_figure import line_width
 from .fractal import fig_fractal_curves, fig_z_triplet, z_triplet_panel
 from .level_image import level_image_png
@@ -217,7 +218,8 @@ ZOOM_HALF = 0.09
 
 def edge_render_panel(hierarchy, caption: str, zoom_centre=ZOOM_CENTRE,
                       zoom_half: float = ZOOM_HALF) -> Panel:
-    """All edges of the last level, width scaled to the edge length; a zoom-in box magnified
+    """All edges of the last level, width scaled to the edge length (a greyscale picture of
+    them where they are too fine to print as lines: ``layout.raster``); a zoom-in box magnified
     into an inset to the right of the mesh."""
     mesh = hierarchy[-1].mesh
     x0, y0, x1, y1 = grow(mesh_bounds(mesh), 0.01)
@@ -239,6 +241,8 @@ def edge_render_panel(hierarchy, caption: str, zoom_centre=ZOOM_CENTRE,
         # grey, not black (the paper's level 9 would be black at its line width)
         lw = float(np.clip(COVERAGE * area / total * fit.scale, 0.01, 0.3))
         curves = curve_polylines(hierarchy, Style("#000000", lw), fit)
+        if raster.too_fine(curves):  # levels 7 and 8: lines finer than a printer's dot
+            curves = (raster.picture(curves),)
         segs = clip_segments(edge_coords(mesh), zoom)
         to_inset = (segs - np.array(zoom[:2])) * magnify + np.array(inset[:2])
         lw_in = float(np.clip(lw * magnify, 0.01, 0.3))

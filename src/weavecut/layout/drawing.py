@@ -1,7 +1,8 @@
 """The Drawing: what every layout produces and every writer consumes.
 
 Drawing -> sheets (size in mm) -> layers (a role: cut, score, engrave, paint, label, guide)
--> shapes. Coordinates are millimetres with the origin at the sheet's bottom-left corner and
+-> shapes (polygons, polylines, text, and pictures of line work too fine for vectors).
+Coordinates are millimetres with the origin at the sheet's bottom-left corner and
 y pointing up (the CAD convention); the SVG and PNG writers flip y. Shapes are batches held as
 ragged arrays so that a million faces cost a few arrays, not a million objects.
 """
@@ -100,7 +101,71 @@ class Text:
     fill: str = "#000000"
 
 
-Shape = Polygons | Polylines | Text
+@dataclass(frozen=True, eq=False)
+class Raster:
+    """A greyscale picture stretched over the box from (``x``, ``y``) (its bottom-left corner,
+    mm) to (``x + width``, ``y + height``): line work too fine to draw as vectors
+    (``layout.raster``). Opaque: white where there is no ink.
+
+    Parameters
+    ----------
+    pixels : (H, W) uint8, row 0 at the top (as image files hold them); 0 black, 255 white
+    vector : the Polygons and Polylines it is a picture of, which a writer without a good
+        picture element (DXF) draws instead; empty for a cropped picture (a tiled page)
+    """
+
+    x: float
+    y: float
+    width: float
+    height: float
+    pixels: NDArray[np.uint8]
+    vector: tuple[Polygons | Polylines, ...] = ()
+
+    def __post_init__(self) -> None:
+        pixels = np.array(self.pixels, dtype=np.uint8)  # a private copy, read-only
+        if pixels.ndim != 2 or not pixels.size:
+            raise ValueError(f"a picture needs (H, W) pixels, got shape {pixels.shape}")
+        if not (np.isfinite([self.x, self.y, self.width, self.height]).all()
+                and self.width > 0 and self.height > 0):
+            raise ValueError(f"a picture needs a finite box of positive size, got "
+                             f"{self.width} x {self.height} mm at ({self.x}, {self.y})")
+        pixels.flags.writeable = False
+        object.__setattr__(self, "pixels", pixels)
+
+    @property
+    def coords(self) -> NDArray[np.float64]:
+        """(4, 2) the box's corners, counter-clockwise from the bottom left (what bounds are
+        taken from)."""
+        x0, y0, x1, y1 = self.x, self.y, self.x + self.width, self.y + self.height
+        return np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]], dtype=float)
+
+    def moved(self, dx: float, dy: float) -> Raster:
+        return replace(self, x=self.x + dx, y=self.y + dy, vector=tuple(
+            replace(s, coords=s.coords + (dx, dy)) for s in self.vector))
+
+    def cropped(self, x0: float, y0: float, x1: float, y1: float) -> Raster | None:
+        """The whole pixels that reach into the box (x0, y0, x1, y1), or None for none; the
+        crop stands for no vector."""
+        h, w = self.pixels.shape
+        px, py = self.width / w, self.height / h
+        c0 = max(0, int(np.floor((x0 - self.x) / px)))
+        c1 = min(w, int(np.ceil((x1 - self.x) / px)))
+        r0 = max(0, int(np.floor((self.y + self.height - y1) / py)))  # rows from the top
+        r1 = min(h, int(np.ceil((self.y + self.height - y0) / py)))
+        if c1 <= c0 or r1 <= r0:
+            return None
+        return Raster(self.x + c0 * px, self.y + self.height - r1 * py, (c1 - c0) * px,
+                      (r1 - r0) * py, self.pixels[r0:r1, c0:c1])
+
+
+Shape = Polygons | Polylines | Text | Raster
+
+
+def vectors(shapes):
+    """``shapes`` with every picture (Raster) replaced by the shapes it is a picture of (for
+    writers with no good picture element: DXF, a laser project)."""
+    for shape in shapes:
+        yield from shape.vector if isinstance(shape, Raster) else (shape,)
 
 
 @dataclass(frozen=True)

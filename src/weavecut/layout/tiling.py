@@ -22,7 +22,8 @@ import shapely
 from numpy.typing import NDArray
 
 from .. import budget
-from .drawing import Drawing, Layer, Polygons, Polylines, Sheet, Style, Text, polygons_from_shapely
+from .drawing import (Drawing, Layer, Polygons, Polylines, Raster, Sheet, Style, Text,
+                      polygons_from_shapely)
 from .label_checks import WORDS
 from .labels import text_width
 
@@ -90,6 +91,8 @@ def _content_box(sheet: Sheet) -> tuple[float, float, float, float]:
 
 
 def _moved(shape, dx: float, dy: float):
+    if isinstance(shape, Raster):
+        return shape.moved(dx, dy)
     if isinstance(shape, Text):
         return replace(shape, x=shape.x + dx, y=shape.y + dy)
     return replace(shape, coords=shape.coords + (dx, dy))
@@ -285,6 +288,10 @@ def _clip_layer(layer: Layer, geoms, window, shift) -> Layer:
         elif isinstance(shape, Text):
             if window.contains(shapely.Point(shape.x, shape.y)):
                 shapes.append(replace(shape, x=shape.x + shift[0], y=shape.y + shift[1]))
+        elif isinstance(shape, Raster):  # the whole pixels that reach into the window
+            part = shape.cropped(x0, y0, x1, y1)
+            if part is not None:
+                shapes.append(part.moved(*shift))
     return replace(layer, shapes=tuple(shapes))
 
 
