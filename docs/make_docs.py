@@ -85,7 +85,7 @@ IMAGES = {
          "-o", "{out}/b.svg"), "b.svg", 360),
     "docs/ball-strips.png": Image(
         ("strands", "dodecahedron", "-n", "1", "--project", "sphere", "--size", "12cm",
-         "-o", "{out}/b.svg"), "b.svg", 360, sheet=2),
+         "-o", "{out}/b.svg"), "b.svg", 360, sheet=1),
     "docs/puzzle-front.png": Image(
         ("puzzle", "--mode", "shared", "-o", "{out}"), "puzzle-front-guide.svg", 520),
     "docs/puzzle-back.png": Image(

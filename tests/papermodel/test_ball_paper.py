@@ -120,11 +120,11 @@ def test_a_stacks_pieces_go_alone_to_an_earlier_page_with_room():
 def test_the_twelve_centimetre_ball_takes_three_pieces_a_page(twelve):
     # 12 congruent pieces 54.6 mm wide and 234 mm long on a 190 x 254.5 mm area: upright,
     # three fit across (3 x 54.6 + 2 x 2 mm = 168 mm), a fourth does not (224 mm), and a
-    # piece aslant takes the room of two: 4 pages of strips after the assembly and weaving
-    # pages
+    # piece aslant takes the room of two: 4 pages of strips after the one page of assembly
+    # notes, weaving steps and views
     b = twelve
     assert len(b.pieces) == 12
-    assert len(b.strip_pages) == 4 and len(b.drawing.sheets) == 6
+    assert len(b.strip_pages) == 4 and len(b.drawing.sheets) == 5
     per_page = np.bincount([n for n, _ in b.pieces])[list(b.strip_pages)]
     assert per_page.tolist() == [3, 3, 3, 3]
 
@@ -194,3 +194,82 @@ def test_a_refused_ball_names_a_size_that_needs_no_widening(monkeypatch):
     b = ball(size * 10.0)
     outlines = [o for n in b.strip_pages for o in occupied(b.drawing.sheets[n - 1].layers)]
     assert shapely.minimum_clearance(np.array(outlines, dtype=object)).min() >= MIN_CUT
+
+
+# -- the pages before the strips: one page of notes, steps and views when every ID keeps its
+# room there, two pages of their own else ---------------------------------------------------
+
+def facing_ids(weave, caption: str) -> int:
+    """How many IDs a view captioned ``caption`` ("front", "A-D, back") must show: the tiles
+    whose normal (Newell's, summed over the tile's pentagons) is within 60 degrees of the
+    viewer's side, with a shown strand on top (a stage "A-D" shows A to D)."""
+    sides = {"front": (0, 0, 1), "right": (1, 0, 0), "back": (0, 0, -1), "left": (-1, 0, 0),
+             "top": (0, 1, 0), "bottom": (0, -1, 0)}
+    stage, _, side = caption.rpartition(", ")
+    shown = weave.n_strands if not stage else ord(stage[-1]) - ord("A") + 1
+    v, offsets, idx = weave.mesh.vertices, weave.mesh.face_offsets, weave.mesh.face_indices
+    normals = np.zeros((weave.mesh.n_faces, 3))
+    for f in range(weave.mesh.n_faces):  # Newell's normal, a loop over corners
+        ring = v[idx[offsets[f]:offsets[f + 1]]]
+        normals[f] = np.cross(ring, np.roll(ring, -1, axis=0)).sum(axis=0)
+    normals /= np.linalg.norm(normals, axis=1)[:, None]
+    count = 0
+    for t in range(weave.n_tiles):
+        n = normals[weave.tile_faces[weave.tile_offsets[t]:weave.tile_offsets[t + 1]]].sum(0)
+        if n @ sides[side] / np.linalg.norm(n) > 0.5 and weave.tile_over[t] < shown:
+            count += 1
+    return count
+
+
+def texts_on(sheet, name):
+    return [t for layer in sheet.layers if layer.name == name for t in layer.shapes]
+
+
+@pytest.fixture(scope="module")
+def icosphere():
+    """A ball of 12 strands whose views are too small on a shared page for every ID."""
+    weaves = snub_weaves(subdivide(get("icosphere:1"), 1, project="sphere"))
+    return weaves[-1], ball_book(weaves, palette("maritime-12"), (210.0, 297.0))
+
+
+def test_the_twelve_centimetre_balls_notes_steps_and_views_share_page_one(twelve):
+    # pages are used before new ones are started: the notes, the six weaving steps, the ball
+    # from six sides and the ball growing (after A-B and A-D, front and back) all on page 1,
+    # every view inside the printable area and below the last line of text, and under the
+    # views no room left for another row of them
+    b = twelve
+    page = b.drawing.sheets[0]
+    assert b.extra_pages == (1,) and b.strip_pages == (2, 3, 4, 5)
+    assert "Weaving steps: below" in " ".join(t.text for t in texts_on(page, "notes"))
+    assert [t.text for t in texts_on(page, "steps") if t.text[:-1].isdigit()] == [
+        f"{k}." for k in range(1, 7)]
+    captions = [t.text for t in texts_on(page, "captions")]
+    assert captions == ["front", "right", "back", "left", "top", "bottom", "A-B, front",
+                        "A-D, front", "A-B, back", "A-D, back"]
+    views = shapely.union_all(texts_on(page, "views")[0].to_shapely())
+    x0, y0, x1, y1 = b.area.box
+    assert shapely.box(x0, y0, x1, y1).contains(views)
+    lowest_text = min(t.y for name in ("notes", "steps") for t in texts_on(page, name))
+    assert views.bounds[3] < lowest_text
+    row = views.bounds[3] - views.bounds[1]  # three rows of views and their captions
+    bottom = min(t.y for t in texts_on(page, "captions"))
+    assert bottom - y0 < row / 3
+
+
+@pytest.mark.parametrize("which", ["twelve", "icosphere"])
+def test_a_ball_shares_page_one_only_where_every_id_keeps_its_room(which, twelve, icosphere):
+    # on a shared page 1 each view names the strand on top in every tile that faces the
+    # viewer well (the oracle above); the 12 strands of icosphere:1 have tiles too small for
+    # that in views a third of the page high: the assembly sheet and the weaving steps keep
+    # pages of their own there
+    weave, b = icosphere if which == "icosphere" else (dodecahedron_weave(), twelve)
+    if b.extra_pages == (1,):
+        page = b.drawing.sheets[0]
+        expected = sum(facing_ids(weave, t.text) for t in texts_on(page, "captions"))
+        assert len(texts_on(page, "ids")) == expected
+    assert b.extra_pages == ((1, 2) if which == "icosphere" else (1,))
+    assert b.strip_pages[0] == len(b.extra_pages) + 1
+
+
+def dodecahedron_weave():
+    return snub_weaves(subdivide(get("dodecahedron"), 1, project="sphere"))[-1]

@@ -129,7 +129,7 @@ def test_weaving_steps_are_plain_sentences_naming_every_strand_once(spec, levels
     piece = SimpleNamespace(flap=shapely.box(0, 0, 1, 1), left_out=(0,),
                             glue=shapely.box(0, 0, 1, 1), label=f"{plan.labels[0]} 1/2")
     book = SimpleNamespace(plan=plan, pieces=((3, piece),), extra_pages=(1, 2, 3),
-                           callout_pages=(3,), layout="mixed")
+                           callout_pages=(3,), layout="mixed", diagram_colours=())
     steps, groups = assembly.weaving_steps(weave, book, 0.0)
     assert len(steps) >= 10
     problems = {s[:40]: sentence_problems(s) for s in steps if sentence_problems(s)}

@@ -67,8 +67,9 @@ def test_every_option_of_the_query_reaches_the_command(recording, name):
 
 
 def test_values_left_empty_are_the_defaults(recording):
+    # the form's defaults: the command's, but for the flags the form ticks at first (Numbers)
     assert recording.get("/puzzle/preview.svg?size=&levels=&numbers=").status_code == 200
-    assert recording.queue.specs[-1].args == ()
+    assert recording.queue.specs[-1].args == tuple(f"--{k}" for k in forms.TICKED["puzzle"])
 
 
 @pytest.mark.parametrize(("query", "field"), [

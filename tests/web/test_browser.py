@@ -207,3 +207,23 @@ def test_an_uploaded_ball_is_a_ball(browser, server, tmp_path):
         "document.getElementById('h-page').textContent")
     browser.wait_until(READY, 240)  # the ball's kit, made
     assert browser.errors() == []
+
+
+def test_the_puzzles_numbers_start_ticked_and_unticking_sends_off(browser, server):
+    """The form ticks the puzzle's Numbers at first (``forms.TICKED``), though ``puzzle``
+    engraves none without ``--numbers``: the command line shown has it; unticked from the
+    keyboard, the query says numbers=off and the command line loses it; ticked again, the
+    query drops it (the form's default) and the command line has it back."""
+    browser.goto(server + "puzzle", 1280)
+    browser.wait_until("!!document.getElementById('f-numbers')", 60)
+    assert browser.evaluate("document.getElementById('f-numbers').checked")
+    line = "document.getElementById('cmdline').textContent"
+    browser.wait_until(f"{line}.includes('--numbers')", 60)
+    browser.evaluate("document.getElementById('f-numbers').focus(), 0")
+    browser.press(" ", "Space", 32)
+    browser.wait_until("location.search.includes('numbers=off')", 10)
+    browser.wait_until(f"!{line}.includes('--numbers')", 60)
+    browser.press(" ", "Space", 32)
+    browser.wait_until("!location.search.includes('numbers')", 10)
+    browser.wait_until(f"{line}.includes('--numbers')", 60)
+    assert browser.errors() == []

@@ -1,6 +1,6 @@
 """SVG writer: width/height and viewBox in mm, one Inkscape layer per Drawing layer; a stroke of
-width 0 (a laser hairline) is drawn one screen pixel wide at any zoom; a picture (Raster) is an
-``<image>`` holding its PNG.
+width 0 (a laser hairline) is written ``HAIRLINE`` mm wide, a width every viewer draws; a
+picture (Raster) is an ``<image>`` holding its PNG.
 
 The text is written as svgwrite wrote it through ElementTree (the tests hold svgwrite as the
 oracle): attributes sorted by name, empty ones left out, an element without content closed as
@@ -19,10 +19,13 @@ from .numbers import shortest
 
 SUFFIX = "svg"
 DECIMALS = 3
-# a hairline (stroke width 0): one screen pixel at any zoom, as cairo and Inkscape write it, so
-# it shows on screen; LightBurn ignores stroke widths, Inkscape prints it as a 0-width line
-HAIRLINE = {"stroke-width": "1", "vector-effect": "non-scaling-stroke",
-            "style": "-inkscape-stroke:hairline"}
+# a hairline (stroke width 0) in mm, about one pixel at 96 dpi so it shows on screen. Not
+# Inkscape's hairline (1 px with vector-effect non-scaling-stroke): librsvg 2.54 (GNOME's
+# viewers) ignores the vector-effect and draws such a line 1 mm wide, so engraved labels blot.
+# A line of any width is a line to LightBurn (it ignores stroke widths), Inkscape and the laser
+# programs that read SVG; presets whose drivers need thinner lines (Epilog/ULS, Ponoko) give
+# their own width, which is written as it is
+HAIRLINE = 0.25
 NAMESPACES = {"xmlns": "http://www.w3.org/2000/svg", "xmlns:ev": "http://www.w3.org/2001/xml-events",
               "xmlns:inkscape": "http://www.inkscape.org/namespaces/inkscape",
               "xmlns:xlink": "http://www.w3.org/1999/xlink"}
@@ -160,8 +163,7 @@ def _style(style: Style, closed: bool) -> dict:
     out = {"fill": style.fill if (closed and style.fill) else "none",
            "stroke": style.stroke or "none"}
     if style.stroke:
-        out.update({"stroke-width": _n(style.stroke_width)} if style.stroke_width > 0
-                   else HAIRLINE)
+        out["stroke-width"] = _n(style.stroke_width if style.stroke_width > 0 else HAIRLINE)
         out["stroke-linejoin"] = "round"
     if closed and style.fill:
         out["fill-rule"] = "evenodd"

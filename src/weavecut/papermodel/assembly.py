@@ -275,7 +275,10 @@ def weaving_steps(weave: Weave, book, turn: float,
             "Lay page 1 in front of you: it is turned by 45 degrees, so the strands run up-down "
             "(the warp: copies A and C) and left-right (the weft: copies B and D).",
             f"Warp: lay the A and C strips side by side on the cardboard, {words.face_up}, in "
-            "the order page 1 shows, arrows as on page 1. Tape the top end of each one down.",
+            "the order page 1 shows, arrows as on page 1. Tape the top end of each one down."
+            + (" The diagrams below colour each copy in a hue of its own (A and C the warp, B "
+               "and D the weft); the strips are printed in the module's colours."
+               if book.diagram_colours else ""),
             "Weft: take the next two B or D strips from the top and weave them across the warp "
             f"together, one beside the other: {words.weft_under}. Push the "
             "pair up against the strips above. Do not twist two strips round each other first "
@@ -353,7 +356,8 @@ def weaving_sheet(weave: Weave, book, turn: float, title: str, total: int,
         texts.append(Text(bx, by + cell_h - TEXT, caption, TEXT))
         if cell_h - LINE > 10:
             box = (bx, by, bx + cell_w, by + cell_h - LINE)
-            shapes.append(pattern(weave, turn, box, book.colours, shown.copy())[2])
+            shapes.append(pattern(weave, turn, box, book.diagram_colours or book.colours,
+                                  shown.copy())[2])
     layers = [Layer("diagrams", "paint", tuple(shapes)), Layer("steps", "label", tuple(texts))]
     layers += page_layers(area, title, "How to weave: numbered steps; the diagrams show the "
                           "weave growing", 2, total, legend=words.legend, cut=words.cut_line)

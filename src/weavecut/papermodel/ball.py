@@ -10,7 +10,7 @@ of the next piece, or of the first piece where the loop closes).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import shapely
@@ -23,6 +23,7 @@ from ..surface import face_normals
 from ..weave.colour import Palette, strand_colours
 from ..weave.model import Weave
 from .book import MIN_STRIP, WARN_STRIP, SizeError, StrandBook, strip_sheets
+from .packing import pack
 from .pages import GAP, PageArea, page_layers, page_span
 from .pattern import OUTLINE
 from ..numeric import dot, snap
@@ -34,6 +35,7 @@ from .strips import Strip, tint
 from .unfold import Unfolding, UnfoldError, flatten, unfold
 from .wording import TEXT, page_index, paragraphs
 
+GROWING = 4  # views in the row of the ball growing on a one-page guide (two stages, two sides)
 PREVIEW, PREVIEW_MARGIN = 200.0, 5.0  # mm: the width of the quick look's two views, margin
 # (name, towards the viewer, up): six views, every tile seen head-on in one of them
 VIEWS = (("front", (0, 0, 1), (0, 1, 0)), ("right", (1, 0, 0), (0, 1, 0)),
@@ -145,22 +147,28 @@ def ball_book(weaves: list[Weave], pal: Palette, page=(210.0, 297.0),
         raise SizeError(f"some labels would be {small:.1f} mm tall on a {diameter / 10:g} cm "
                         f"ball; labels need {MIN_CAP:g} mm: use --size "
                         f"{math.ceil(diameter * MIN_CAP / small / 10)}cm or more")
-    kinds = _kinds(pieces)
-    first = 3  # pages 1, 2: assembly and weaving
-    placed, sheets = strip_sheets(pieces, kinds, area, title,
-                                  lambda names: f"Strips: {names}", colours, first)
-    total = len(sheets) + first - 1
+    x0, y0, x1, y1 = area.box
+    places = pack([p.cut for p in pieces], x1 - x0, y1 - y0, GAP, kinds=_kinds(pieces))
     tile_planes = flat.non_planarity[weave.tile_faces].reshape(-1, 2).max(axis=1)
-    book = BallBook(Drawing((), title), BallPlan(labels), tuple(colours), "ball", placed,
-                    tuple(range(first, first + len(sheets))), (1, 2), scale, area, width,
-                    tile_mm, warnings, unfoldings=unfoldings, diameter=diameter,
-                    non_planarity=tile_planes)
-    cover = assembly_sheet(weave, book, labels, title, total)
-    weaving = weaving_sheet(weave, book, labels, title, total)
-    return BallBook(Drawing((cover, weaving, *sheets), title), book.plan, tuple(colours), "ball",
-                    placed, book.strip_pages, book.extra_pages, scale, area, width, tile_mm,
-                    warnings, unfoldings=unfoldings, diameter=diameter,
-                    non_planarity=tile_planes)
+
+    def book_from(first: int) -> tuple[BallBook, list[Sheet], int]:
+        placed, sheets = strip_sheets(pieces, None, area, title,
+                                      lambda names: f"Strips: {names}", colours, first, places)
+        book = BallBook(Drawing((), title), BallPlan(labels), tuple(colours), "ball", placed,
+                        tuple(range(first, first + len(sheets))), tuple(range(1, first)), scale,
+                        area, width, tile_mm, warnings, unfoldings=unfoldings,
+                        diameter=diameter, non_planarity=tile_planes)
+        return book, sheets, len(sheets) + first - 1
+
+    # one page of notes, steps and views before the strips when every view keeps its IDs
+    # there, else the assembly sheet and the weaving steps on pages of their own
+    book, sheets, total = book_from(2)
+    guide = (guide_sheet(weave, book, labels, title, total),)
+    if guide[0] is None:
+        book, sheets, total = book_from(3)
+        guide = (assembly_sheet(weave, book, labels, title, total),
+                 weaving_sheet(weave, book, labels, title, total))
+    return replace(book, drawing=Drawing((*guide, *sheets), title))
 
 
 def _kinds(pieces: list[Strip]) -> list[int]:
@@ -186,7 +194,7 @@ def _views(weave: Weave, colours, labels, box, cells, columns: int = 3, rows: in
     x0, y0, x1, y1 = box
     cell = min((x1 - x0) / columns, (y1 - y0 - rows * (TEXT + 2)) / rows)
     scale = (cell - 2 * GAP) / (2 * radius(weave))
-    polys, fills, ids, captions = [], [], [], []
+    polys, fills, ids, captions, missing = [], [], [], [], 0
     for k, (name, toward, up, shown) in enumerate(cells):  # six views
         d, u = np.array(toward, float), np.array(up, float)
         r = np.cross(u, d)
@@ -208,15 +216,28 @@ def _views(weave: Weave, colours, labels, box, cells, columns: int = 3, rows: in
         size = largest_fit(regions, unit_boxes(text, np.zeros(len(text))), at, MIN_CAP, 5.0)
         ids += [centred_text(c, t, float(z), 0.0, text_colour_on(f))
                 for c, t, z, f in zip(at, text, size, fill[good].tolist()) if np.isfinite(z)]
+        missing += int((~np.isfinite(size)).sum())
         captions.append(Text(cx, cy - cell / 2 - TEXT - 0.5, name, TEXT, "middle"))
-    return polys, fills, ids, captions
+    return polys, fills, ids, captions, missing
 
 
 def _view_layers(weave, colours, labels, box, cells, columns: int = 3,
                  rows: int = 2) -> list[Layer]:
-    polys, fills, ids, captions = _views(weave, colours, labels, box, cells, columns, rows)
+    return _view_shapes(weave, colours, labels, [(box, cells, columns, rows)])[0]
+
+
+def _view_shapes(weave, colours, labels, grids) -> tuple[list[Layer], int]:
+    """(layers, IDs missing): the views of every grid (box, cells, columns, rows) in one set
+    of layers, and how many tiles that face the viewer well found no room for their ID."""
+    polys, fills, ids, captions, missing = [], [], [], [], 0
+    for grid in grids:
+        more = _views(weave, colours, labels, *grid)
+        for have, new in zip((polys, fills, ids, captions), more):
+            have += new
+        missing += more[4]
     return [Layer("views", "paint", (polygons_from_shapely(polys, OUTLINE, fills),)),
-            Layer("ids", "label", tuple(ids)), Layer("captions", "label", tuple(captions))]
+            Layer("ids", "label", tuple(ids)),
+            Layer("captions", "label", tuple(captions))], missing
 
 
 def ball_preview(weaves: list[Weave], pal: Palette,
@@ -241,10 +262,24 @@ def assembly_sheet(weave: Weave, book: BallBook, labels, title: str, total: int)
     """Page 1: what to print, where each strip is, and the ball from six sides."""
     area = book.area
     x0, y0, x1, y1 = area.box
+    texts, bottom = paragraphs(_notes(weave, book, labels, "Weaving steps: page 2."), x0, y1,
+                               x1 - x0)
+    every = np.ones(weave.n_strands, dtype=bool)
+    layers = _view_layers(weave, book.colours, labels, (x0, y0, x1, bottom - GAP),
+                          [(*v, every) for v in VIEWS])
+    layers.append(Layer("notes", "label", tuple(texts)))
+    layers += page_layers(area, title, "Assembly sheet: the woven ball from six sides, every "
+                          "tile with the ID of the strand on top", 1, total, book.colours[0])
+    return Sheet(area.width, area.height, tuple(layers), "page 1: assembly")
+
+
+def _notes(weave: Weave, book: BallBook, labels, steps: str) -> list[str]:
+    """The assembly notes: what to print, where each strip is, lengths, what flattening cost,
+    and where the weaving ``steps`` are."""
     n = weave.n_strands
     lengths = weave.strand_lengths() * book.scale
     strips = page_span(book.strip_pages, short=True)
-    lines = [f"{n} strands, each a closed loop: {n} strips ({labels[0]}-{labels[-1]}) in "
+    return [f"{n} strands, each a closed loop: {n} strips ({labels[0]}-{labels[-1]}) in "
              f"{len(book.pieces)} pieces. Finished ball {book.diameter / 10:.1f} cm across, "
              f"octagons {book.tile_size:.1f} mm across. Print the strip pages ({strips}) once, "
              "at 100 % (no fit to page).",
@@ -255,15 +290,7 @@ def assembly_sheet(weave: Weave, book: BallBook, labels, title: str, total: int)
              f"{100 * float(book.non_planarity.max()):.1f} % of its size off its plane, edges "
              f"longer or shorter by at most {100 * book.stretch:.2f} %.",
              "The views show each tile in the colour of the strand on top there, with its "
-             "ID. Weaving steps: page 2."]
-    texts, bottom = paragraphs(lines, x0, y1, x1 - x0)
-    every = np.ones(n, dtype=bool)
-    layers = _view_layers(weave, book.colours, labels, (x0, y0, x1, bottom - GAP),
-                          [(*v, every) for v in VIEWS])
-    layers.append(Layer("notes", "label", tuple(texts)))
-    layers += page_layers(area, title, "Assembly sheet: the woven ball from six sides, every "
-                          "tile with the ID of the strand on top", 1, total, book.colours[0])
-    return Sheet(area.width, area.height, tuple(layers), "page 1: assembly")
+             f"ID. {steps}"]
 
 
 def weaving_sheet(weave: Weave, book: BallBook, labels, title: str, total: int) -> Sheet:
@@ -271,9 +298,51 @@ def weaving_sheet(weave: Weave, book: BallBook, labels, title: str, total: int) 
     two thirds and all of the strips are in."""
     area = book.area
     x0, y0, x1, y1 = area.box
-    n = weave.n_strands
+    texts, bottom = paragraphs(_steps(book, labels, "the views below (front above, back "
+                                      "below) and page 1 show"), x0, y1, x1 - x0, numbered=True)
+    cells = [c for side in (VIEWS[0], VIEWS[2]) for c in _stages(weave, labels, side)]
+    layers = _view_layers(weave, book.colours, labels, (x0, y0, x1, bottom - GAP), cells)
+    layers.append(Layer("steps", "label", tuple(texts)))
+    layers += page_layers(area, title, "Weaving steps", 2, total, book.colours[0])
+    return Sheet(area.width, area.height, tuple(layers), "page 2: weaving")
+
+
+def guide_sheet(weave: Weave, book: BallBook, labels, title: str, total: int) -> Sheet | None:
+    """Page 1 of a ball whose strips start on page 2: the assembly notes, the weaving steps,
+    the ball from six sides and, in a row below, growing (front and back after a third and
+    two thirds of the strips: all of them in is the front and back above); None when a
+    tile there would lose its ID (the views too small: the two pages of their own)."""
+    area = book.area
+    x0, y0, x1, y1 = area.box
+    notes, bottom = paragraphs(_notes(weave, book, labels, "Weaving steps: below."), x0, y1,
+                               x1 - x0)
+    steps, bottom = paragraphs(_steps(book, labels, "the bottom row of views shows (the ball "
+                                      "growing, front then back)"), x0, bottom - GAP, x1 - x0,
+                               numbered=True)
+    growing = [c for side in (VIEWS[0], VIEWS[2]) for c in _stages(weave, labels, side)[:-1]]
+    row = TEXT + 2  # a view's caption under it
+    cell = min((x1 - x0) / GROWING, (bottom - GAP - y0) / 3 - row)
+    if cell <= 2 * GAP:
+        return None
+    every = np.ones(weave.n_strands, dtype=bool)
+    split = bottom - GAP - 2 * (cell + row)
+    grids = [((x0, split, x1, bottom - GAP), [(*v, every) for v in VIEWS], 3, 2)]
+    if growing:
+        grids.append(((x0, split - cell - row, x1, split), growing, GROWING, 1))
+    layers, missing = _view_shapes(weave, book.colours, labels, grids)
+    if missing:
+        return None
+    layers += [Layer("notes", "label", tuple(notes)), Layer("steps", "label", tuple(steps))]
+    layers += page_layers(area, title, "Assembly and weaving: the woven ball from six sides, "
+                          "every tile with the ID of the strand on top", 1, total,
+                          book.colours[0])
+    return Sheet(area.width, area.height, tuple(layers), "page 1: assembly and weaving")
+
+
+def _steps(book: BallBook, labels, views: str) -> list[str]:
+    """The numbered weaving steps; the fifth points to the ``views`` of the ball growing."""
     valleys = any((u.fold_angles < -MIN_FOLD).any() for u in book.unfoldings)
-    steps = [
+    return [
         "Cut out every strip along its red outline, the narrow V-shaped notches between "
         "tiles too: they let the strip curve round the ball.",
         "Crease every dashed line with the coloured side outwards (mountain folds): each "
@@ -285,17 +354,17 @@ def weaving_sheet(weave: Weave, book: BallBook, labels, title: str, total: int) 
         "A strip's own tiles (its colour) lie on top; a light tile names the strip on top "
         "of it there: slide it under that strip.",
         f"Start with {labels[0]}; add the others in order, one at a time, over and under as "
-        "printed, as the views below (front above, back below) and page 1 show.",
+        f"printed, as {views}.",
         "Close every loop last: glue its band 'glue j' under its own tile marked 'j'.",
     ]
-    texts, bottom = paragraphs(steps, x0, y1, x1 - x0, numbered=True)
-    stages = sorted({max(1, math.ceil(k * n / 3)) for k in (1, 2, 3)})
+
+
+def _stages(weave: Weave, labels, side) -> list[tuple]:
+    """View cells of the ball from ``side`` (a VIEWS row) after a third, two thirds and all
+    of its strands are in (fewer for fewer than three strands)."""
+    n = weave.n_strands
     cells = []
-    for side in VIEWS[0], VIEWS[2]:  # front, back
-        for m in stages:
-            name = f"{labels[0]}-{labels[m - 1]}" if m > 1 else labels[0]
-            cells.append((f"{name}, {side[0]}", side[1], side[2], np.arange(n) < m))
-    layers = _view_layers(weave, book.colours, labels, (x0, y0, x1, bottom - GAP), cells)
-    layers.append(Layer("steps", "label", tuple(texts)))
-    layers += page_layers(area, title, "Weaving steps", 2, total, book.colours[0])
-    return Sheet(area.width, area.height, tuple(layers), "page 2: weaving")
+    for m in sorted({max(1, math.ceil(k * n / 3)) for k in (1, 2, 3)}):
+        name = f"{labels[0]}-{labels[m - 1]}" if m > 1 else labels[0]
+        cells.append((f"{name}, {side[0]}", side[1], side[2], np.arange(n) < m))
+    return cells

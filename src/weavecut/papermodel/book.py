@@ -27,7 +27,7 @@ from .crossings import left_out_crossings
 from .front import front_pages
 from .packing import pack
 from .pages import GAP, PageArea, page_layers, page_span, split_strip, strip_layers
-from .modules import ModulePlan, book_colours, plan_modules
+from .modules import ModulePlan, book_colours, copy_family_colours, plan_modules
 from .strip_labels import label_strips
 from .strips import (MIN_PIECE, Strip, build_copies, build_strips, holds, moved_strips,
                      octagon_size, strip_width)
@@ -64,6 +64,9 @@ class StrandBook:
     warnings : things the maker should know (thin strips)
     id_pages : page numbers of the pages naming the strands page 1 has no room for (the last
         extra pages)
+    diagram_colours : (S,) strand colours of the weaving page's diagrams where ``colours`` do
+        not tell the copies apart (a four-copy module layout in shade families: every copy
+        printed in the module's colours), else empty (the diagrams in ``colours``)
     """
 
     drawing: Drawing
@@ -79,6 +82,7 @@ class StrandBook:
     tile_size: float
     warnings: tuple[str, ...] = ()
     id_pages: tuple[int, ...] = ()
+    diagram_colours: tuple[str, ...] = ()
 
     @property
     def callout_pages(self) -> tuple[int, ...]:
@@ -251,6 +255,10 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         def subtitle(names):
             return f"Strips: {names}"
     crossings = left_out_crossings(weave, plan, pieces, layout) if left_out else []
+    # the warp (copies A, C) and the weft (B, D) told apart on the weaving page, as the mixed
+    # layout's colours tell them: one shade family per copy
+    diagram_colours = tuple(copy_family_colours(weave, plan, pal)) if (
+        layout == "module" and pal.shaded and plan.k == 4) else ()
     x0, y0, x1, y1 = area.box
     places = pack([p.cut for p in pieces], x1 - x0, y1 - y0, gap, kinds=kinds)
 
@@ -266,7 +274,8 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         notes = warnings + ((left_out_note(left_out, strips, where),) if left_out else ())
         return (StrandBook(Drawing((), title), plan, tuple(colours), layout, placed,
                            tuple(range(first, first + len(sheets))), tuple(range(1, first)),
-                           scale, area, width, tile_size, notes, tuple(range(3 + own, first))),
+                           scale, area, width, tile_size, notes, tuple(range(3 + own, first)),
+                           diagram_colours),
                 sheets, len(sheets) + first - 1)
 
     laid: dict = {}

@@ -30,7 +30,7 @@ from ..cli.common import Finite, Formats, Length, PageSize, option_key
 from ..schema import nearest
 from .jobs import JobSpec, default_output, laser_formats, output_formats
 from .uploads import UploadError
-from .words import FORMAT_LABELS, bounds, field_label, form_words, without
+from .words import FORMAT_LABELS, TICKED, bounds, field_label, form_words, without
 
 COMMANDS = ("strands", "puzzle", "weave", "subdivide", "figure")  # a page each, in this order
 HIDDEN = frozenset({"output", "output-dir", "force", "json", "preview", "html", "list"})
@@ -170,8 +170,7 @@ def _gone(name: str) -> dict[str, set[str]]:
 
 
 def kit_refuses(name: str) -> dict:
-    """The command's own table of the options it refuses for a kind of input (the CLI's
-    ``KIT_REFUSES``: a ball takes no cutter); {} for a command without one."""
+    """The CLI's ``KIT_REFUSES`` of command ``name`` (a ball takes no cutter), or {}."""
     from ..cli import strands_command
 
     return strands_command.KIT_REFUSES if name == "strands" else {}
@@ -223,10 +222,10 @@ def labels(name: str) -> dict[str, str]:
 
 
 def _field(p: click.Parameter, k: str, where: str, needs: str, name: str) -> Field:
-    default = p.default  # click's UNSET, None, False: no default to show
-    default = str(default) if isinstance(default, (str, int, float)) and default is not False \
-        else None
-    text = web_help(getattr(p, "help", None) or "", name)
+    ticked = TICKED.get(name, {}).get(k, "")  # a flag the form ticks at first (sent as "off")
+    default = "on" if ticked else str(p.default) if isinstance(p.default, (str, int, float)) \
+        and p.default is not False else None  # click's UNSET, None, False: no default to show
+    text = " ".join(filter(None, (web_help(getattr(p, "help", None) or "", name), ticked)))
     base = {"key": k, "label": field_label(k), "help": text,
             "required": p.required or k == "name",
             "group": where, "param": p, "default": default, "needs": needs}
@@ -295,19 +294,20 @@ def parse(name: str, items: list[tuple[str, str]], uploads=None) -> Query:
             why = ("the web app names and packs the files itself" if k in HIDDEN else
                    f"{name} takes {', '.join(by_key)}")
             raise FormError(f"unknown parameter {k[:40]!r}{nearest(k, by_key)}; {why}")
-        if k in raw and not (by_key[k].kind == "formats" and value.strip()):
+        kind = by_key[k].kind  # a flag's last value counts: a form's hidden "off", then "on"
+        if k in raw and kind != "flag" and not (kind == "formats" and value.strip()):
             raise FormError(f"{k} is given twice", k)
         if (len(value) > MAX_VALUE or any(ord(c) < 32 or c in "/\\" for c in value)
                 or value.lower().endswith(".toml") or value.startswith((".", "~"))):
             raise FormError(f"{k}: a value of at most {MAX_VALUE} characters, no file (the web "
                             "app reads no file named by a request) and no control character", k)
         if value.strip():  # a form's checkboxes send formats=svg&formats=dxf: svg,dxf
-            raw[k] = ",".join(filter(None, (raw.get(k), value.strip())))
+            raw[k] = ",".join(filter(None, (raw.get(k) if kind != "flag" else "", value.strip())))
     args, files, values = [], [], {}
     for f in fields(name):
-        if f.key not in raw:
+        if f.key not in raw and not (f.kind == "flag" and f.default):
             continue
-        value = values[f.key] = raw[f.key]
+        value = values[f.key] = raw.get(f.key, f.default)
         if f.kind == "input":
             word, file = _input(value, uploads)
             args.append(word)

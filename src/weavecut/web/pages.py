@@ -191,9 +191,10 @@ def _field(f: forms.Field, value: str, message: str, uploads, kind: str = "") ->
     invalid = ' aria-invalid="true"' if message else ""
     attrs = (f'data-key="{f.key}" data-default="{_e(f.default or "")}" data-kind="{f.kind}"')
     error = f'<p class="error" id="{eid}" role="alert"{"" if message else " hidden"}>{_e(message)}</p>'
-    if f.kind == "flag":
-        checked = " checked" if _on(value) else ""
-        return (f'<div class="field flag" {attrs}><input type="checkbox" id="{fid}" '
+    if f.kind == "flag":  # ticked at first (``forms.TICKED``): "off" sent without a script
+        checked = " checked" if _on(value or f.default or "") else ""
+        off = f'<input type="hidden" name="{f.key}" value="off">' if f.default else ""
+        return (f'<div class="field flag" {attrs}>{off}<input type="checkbox" id="{fid}" '
                 f'name="{f.key}"{checked} {describe}{invalid}><label for="{fid}">{_e(f.label)}'
                 f'</label><p class="hint" id="{hid}">{hint}</p>{error}</div>')
     if f.kind == "preset":

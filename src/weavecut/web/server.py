@@ -140,8 +140,8 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
             start = forms.STARTING.get(name)
             if start and all(k != start[0] for k, _ in items):
                 items = [start, *items]
-            for k, v in items:
-                raw.setdefault(k, v)
+            for k, v in items:  # the first value, but a ticked box's after its hidden "off"
+                raw[k] = v if raw.get(k) == "off" else raw.get(k, v)
             query = forms.parse(name, items, store)
         except forms.FormError as exc:
             error = said(exc, name)

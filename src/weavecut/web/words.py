@@ -19,6 +19,10 @@ WEB_WORDS = (  # (the CLI's words, the form's words), in this order
     (r"\bbeside -o\b", "in the kit"),
     (r"(?<![\w-])-o\b", "the kit"),  # the job's output, which the form does not show
 )
+TICKED = {  # command -> flag -> why the form ticks it at first (the command's default is off)
+    "puzzle": {"numbers": "Ticked at first here: a maker finds each piece's place by its "
+                          "number (the guides show the same numbers); untick it for pieces "
+                          "without numbers."}}
 FORMAT_LABELS = {"pdf": "PDF: print it", "svg": "SVG: view it, or edit it in Inkscape",
                  "dxf": "DXF: CAD or laser software", "png": "PNG: a picture",
                  "obj": "OBJ: the 3-D model (a surface's)",

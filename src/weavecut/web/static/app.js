@@ -36,7 +36,10 @@
 
   function value(field) {
     const kind = field.dataset.kind, key = field.dataset.key;
-    if (kind === "flag") return field.querySelector("input").checked ? "on" : "";
+    if (kind === "flag") {  // a box the form ticks at first (data-default "on") sends "off"
+      const on = field.querySelector("input[type=checkbox]").checked;
+      return on ? "on" : field.dataset.default === "on" ? "off" : "";
+    }
     if (kind === "formats") {
       return [...field.querySelectorAll("input:checked")].map((c) => c.value).join(",");
     }
