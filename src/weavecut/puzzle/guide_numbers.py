@@ -29,6 +29,7 @@ from numpy.typing import NDArray
 
 from ..layout.contrast import BLACK, MIN_CONTRAST, WHITE, contrast_ratio
 from ..layout.labels import MIN_CAP
+from ..layout import strokefont
 from ..layout.strokefont import fit_labels, ink_box
 from ..numeric import turn
 from .colouring import UNPAINTED, Colouring
@@ -243,12 +244,13 @@ def _off_the_splits(fit: tuple, texts, splits: NDArray[np.object_]) -> tuple:
     some = np.flatnonzero(h > 0)
     if not len(some) or not len(splits):
         return fit
-    each = Labels(tuple(texts), h, c, a).strokes_each(some)
-    lines = [shapely.linestrings(xy[o0:o1]) for xy, offsets in each
-             for o0, o1 in zip(offsets[:-1].tolist(), offsets[1:].tolist())]
-    owner = np.repeat(some, [len(offsets) - 1 for _, offsets in each])
-    hit = shapely.STRtree(splits).query(np.array(lines, dtype=object), predicate="dwithin",
+    xy, offsets, owner = strokefont.labels([texts[k] for k in some.tolist()], c[some], h[some],
+                                           a[some])
+    lines = shapely.linestrings(xy, indices=np.repeat(np.arange(len(offsets) - 1),
+                                                      np.diff(offsets)))
+    hit = shapely.STRtree(splits).query(lines, predicate="dwithin",
                                         distance=NUMBER_STROKE / 2)[0]
+    owner = some[owner]
     h = h.copy()
     h[owner[hit]] = 0.0  # (no np.unique: it would import numpy.ma)
     return h, c, a
