@@ -40,8 +40,6 @@ def shortest(values: NDArray[np.float64], places: int, point_zero: bool = False
 
 FIXED = 6  # fp_str's most decimals: 6 below 10, one fewer per digit before the point
 ZERO = 1e-7  # fp_str writes a value this small (or smaller) as 0
-TIE = 1e-6  # a value this near half a last decimal is left to fp_str (its printf rounds the
-# exact double; the product by 10**places here is within 1e-9 of it)
 
 
 def fixed(values: NDArray[np.float64], per: int = 1) -> tuple[list[str], NDArray[np.intp]]:
@@ -50,8 +48,9 @@ def fixed(values: NDArray[np.float64], per: int = 1) -> tuple[list[str], NDArray
     N = 6 up to 10 and one fewer per digit before the point beyond (none from 1e6), trailing
     zeros and a bare point dropped, a leading "0." as "." (not "-0."), and 0 for a value of
     at most 1e-7; and the indices of the values this does not write (their strings are
-    placeholders; their strings hold ``per`` of them): near half a last decimal, or near a
-    power of ten (where fp_str's log10 decides the decimals), 1e15 and up, not finite."""
+    placeholders; their strings hold ``per`` of them): at half a last decimal (times 10**N),
+    near a power of ten (where fp_str's log10 decides the decimals), 1e15 and up, not
+    finite."""
     x = np.asarray(values, dtype=float).ravel()
     size = np.abs(x)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
@@ -60,7 +59,10 @@ def fixed(values: NDArray[np.float64], per: int = 1) -> tuple[list[str], NDArray
         places = np.clip(FIXED - digits, 0, FIXED)
         scaled = size * 10.0 ** places
         k = np.rint(scaled)
-        fast = (size < LARGEST) & (np.abs(scaled - np.floor(scaled) - 0.5) > TIE) & (
+        # printf rounds the exact value times 10**places, rint the double nearest it: they
+        # agree but where that double is half a unit (rounding keeps order, so the exact
+        # value is then on the same side of the half as the double, or on it)
+        fast = (size < LARGEST) & (scaled - np.floor(scaled) != 0.5) & (
             (size <= 1.0) | (np.abs(exponent - np.rint(exponent)) > 1e-9))
     zero = size <= ZERO
     k = np.where(fast & ~zero, k, 0.0).astype(np.int64)
