@@ -34,7 +34,7 @@ from ..layout.strokefont import fit_labels, ink_box
 from ..numeric import turn
 from .colouring import UNPAINTED, Colouring
 from .files import Labels, _listed, piece_texts
-from .guides import NUMBER_STROKE, hexagon_edges, piece_halves, split_ends
+from .guides import NUMBER_STROKE, bare_pieces, hexagon_edges, piece_halves, split_ends
 from .pieces import Puzzle
 
 MAX_CAP = 6.0  # mm, the largest number on a guide
@@ -86,8 +86,7 @@ def _candidates(puzzle: Puzzle, colouring: Colouring, side: str) -> list[tuple]:
     the paints it then lies on; the whole piece less its hexagon first."""
     hexes = puzzle.hexagons
     has = hexes != None  # noqa: E711
-    base = puzzle.pieces.copy()
-    base[has] = shapely.difference(base[has], hexes[has].astype(object))
+    base = bare_pieces(puzzle)
     paints = (colouring.front if side == "front" else colouring.back[:, None]).tolist()
     painted = [tuple(dict.fromkeys(map(_paper, f))) for f in paints]
     out = [(base, painted, PAD)]
