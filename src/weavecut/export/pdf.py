@@ -10,6 +10,8 @@ from __future__ import annotations
 import functools
 import io
 
+import numpy as np
+
 from reportlab.lib.colors import HexColor
 from reportlab.lib.rl_accel import fp_str
 from reportlab.lib.units import mm
@@ -19,6 +21,7 @@ from reportlab.pdfgen.pathobject import PDFPathObject
 
 from ..layout.drawing import Drawing, Polygons, Polylines, Raster, Style, Text
 from . import picture
+from .numbers import fixed
 
 SUFFIX = "pdf"
 FONT = "Helvetica"
@@ -47,15 +50,27 @@ def render(drawing: Drawing) -> bytes:
         c.scale(mm, mm)
         for layer in sheet.layers:
             if layer.visible:
+                points = _layer_points(layer)
                 for shape in layer.shapes:
-                    _draw(c, shape)
+                    _draw(c, shape, points)
         c.restoreState()
         c.showPage()
     c.save()
     return buf.getvalue()
 
 
-def _draw(c, shape) -> None:
+def _layer_points(layer):
+    """The points of each of ``layer``'s lines and polygons in turn (:func:`_points`), all
+    written at once (a guide has a shape per number)."""
+    drawn = [s.coords for s in layer.shapes if isinstance(s, (Polylines, Polygons))]
+    pts = _points(np.concatenate(drawn)) if drawn else []
+    ends = np.cumsum([len(c) for c in drawn]).tolist()
+    return (pts[a:b] for a, b in zip([0, *ends], ends))
+
+
+def _draw(c, shape, points) -> None:
+    """Draw ``shape``; a line's or polygon's points (:func:`_points`) are the next of
+    ``points``."""
     if isinstance(shape, Raster):
         _image(c, shape)
         return
@@ -72,7 +87,7 @@ def _draw(c, shape) -> None:
     if isinstance(shape, Polylines):
         _stroke(c, shape.style)
         o = shape.offsets.tolist()
-        c.drawPath(_path(_points(shape.coords), zip(o[:-1], o[1:]), False), stroke=1, fill=0)
+        c.drawPath(_path(next(points), zip(o[:-1], o[1:]), False), stroke=1, fill=0)
         return
     if isinstance(shape, Polygons):
         groups: dict[str | None, list[int]] = {}
@@ -81,7 +96,7 @@ def _draw(c, shape) -> None:
             groups.setdefault(fill, []).append(i)
         po = shape.polygon_rings().tolist()
         ro = shape.ring_offsets.tolist()
-        points = _points(shape.coords)
+        points = next(points)
         for fill in sorted(groups, key=lambda f: f or ""):
             style = Style(shape.style.stroke, shape.style.stroke_width, fill, shape.style.opacity)
             _stroke(c, style)
@@ -134,9 +149,12 @@ def _image(c, raster: Raster) -> None:
 
 
 def _points(coords) -> list[str]:
-    """Every point as reportlab's path operators write it (``fp_str``): one call for all."""
-    numbers = fp_str(coords.ravel().tolist()).split(" ") if len(coords) else []
-    return list(map(" ".join, zip(numbers[0::2], numbers[1::2])))
+    """Every point as reportlab's path operators write it (``fp_str``), all at once
+    (:func:`numbers.fixed`; the few values it leaves, one by one by ``fp_str``)."""
+    points, slow = fixed(coords, per=2)
+    for i in sorted(set((slow // 2).tolist())):
+        points[i] = fp_str(coords[i].tolist())
+    return points
 
 
 def _path(points: list[str], spans, close: bool) -> PDFPathObject:

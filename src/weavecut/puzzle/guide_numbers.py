@@ -29,11 +29,12 @@ from numpy.typing import NDArray
 
 from ..layout.contrast import BLACK, MIN_CONTRAST, WHITE, contrast_ratio
 from ..layout.labels import MIN_CAP
+from ..layout import strokefont
 from ..layout.strokefont import fit_labels, ink_box
 from ..numeric import turn
 from .colouring import UNPAINTED, Colouring
 from .files import Labels, _listed, piece_texts
-from .guides import NUMBER_STROKE, hexagon_edges, piece_halves, split_ends
+from .guides import NUMBER_STROKE, bare_pieces, hexagon_edges, piece_halves, split_ends
 from .pieces import Puzzle
 
 MAX_CAP = 6.0  # mm, the largest number on a guide
@@ -85,8 +86,7 @@ def _candidates(puzzle: Puzzle, colouring: Colouring, side: str) -> list[tuple]:
     the paints it then lies on; the whole piece less its hexagon first."""
     hexes = puzzle.hexagons
     has = hexes != None  # noqa: E711
-    base = puzzle.pieces.copy()
-    base[has] = shapely.difference(base[has], hexes[has].astype(object))
+    base = bare_pieces(puzzle)
     paints = (colouring.front if side == "front" else colouring.back[:, None]).tolist()
     painted = [tuple(dict.fromkeys(map(_paper, f))) for f in paints]
     out = [(base, painted, PAD)]
@@ -243,12 +243,13 @@ def _off_the_splits(fit: tuple, texts, splits: NDArray[np.object_]) -> tuple:
     some = np.flatnonzero(h > 0)
     if not len(some) or not len(splits):
         return fit
-    each = Labels(tuple(texts), h, c, a).strokes_each(some)
-    lines = [shapely.linestrings(xy[o0:o1]) for xy, offsets in each
-             for o0, o1 in zip(offsets[:-1].tolist(), offsets[1:].tolist())]
-    owner = np.repeat(some, [len(offsets) - 1 for _, offsets in each])
-    hit = shapely.STRtree(splits).query(np.array(lines, dtype=object), predicate="dwithin",
+    xy, offsets, owner = strokefont.labels([texts[k] for k in some.tolist()], c[some], h[some],
+                                           a[some])
+    lines = shapely.linestrings(xy, indices=np.repeat(np.arange(len(offsets) - 1),
+                                                      np.diff(offsets)))
+    hit = shapely.STRtree(splits).query(lines, predicate="dwithin",
                                         distance=NUMBER_STROKE / 2)[0]
+    owner = some[owner]
     h = h.copy()
     h[owner[hit]] = 0.0  # (no np.unique: it would import numpy.ma)
     return h, c, a

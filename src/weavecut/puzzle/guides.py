@@ -38,8 +38,10 @@ CAPTION, CAPTION_SIZE = (12.0, 8.0), 6.0  # mm: a preview half's caption: its st
 NUMBER_STROKE = 0.3  # mm, the numbers' strokes: bolder than the split lines, lighter than outlines
 
 
+@lru_cache(maxsize=2)
 def piece_halves(puzzle: Puzzle) -> NDArray[np.object_]:
-    """(P, 2) the two painted halves of every piece, in the order of its tile's faces.
+    """(P, 2) the two painted halves of every piece, in the order of its tile's faces (kept,
+    read-only, for the last two puzzles: the front's paint and its numbers ask for them).
 
     An octagon is split along the straight line between its two corners that are level-(t-1)
     vertices: the parent edge its Z-triplet replaced, so the paint shows the coarser weave
@@ -68,7 +70,21 @@ def piece_halves(puzzle: Puzzle) -> NDArray[np.object_]:
     half1[octagon] = np.where(inside, np.where(swap, cut0, cut1), half1[octagon])
     # a cut through a corner leaves near-duplicate corners (1e-13 mm apart) that turn into a
     # self-intersection once moved onto a sheet: drop them
-    return shapely.simplify(np.column_stack([half0, half1]), 1e-7)
+    out = shapely.simplify(np.column_stack([half0, half1]), 1e-7)
+    out.flags.writeable = False
+    return out
+
+
+@lru_cache(maxsize=2)
+def bare_pieces(puzzle: Puzzle) -> NDArray[np.object_]:
+    """(P,) every piece less its ring hexagon, if it has one (kept, read-only, for the last two
+    puzzles: the back's paint and both sides' numbers ask for them)."""
+    hexes = puzzle.hexagons
+    has = hexes != None  # noqa: E711
+    out = puzzle.pieces.copy()
+    out[has] = shapely.difference(out[has], hexes[has].astype(object))
+    out.flags.writeable = False
+    return out
 
 
 def _cut_along(polygons, u, w):
@@ -151,10 +167,7 @@ def painted(puzzle: Puzzle, colouring: Colouring, side: str) -> Painted:
         polys, colours = halves.ravel()[pick], colouring.front.ravel()[pick]
         piece = np.repeat(np.arange(puzzle.n_pieces), 2)[pick]
     else:
-        hexes = puzzle.hexagons
-        has = hexes != None  # noqa: E711
-        polys = puzzle.pieces.copy()
-        polys[has] = shapely.difference(polys[has], hexes[has].astype(object))
+        polys = bare_pieces(puzzle)
         colours, piece = colouring.back, np.arange(puzzle.n_pieces)
     keep = colours != UNPAINTED
     out = (polys[keep], colours[keep].astype(object), piece[keep].astype(np.int64))
