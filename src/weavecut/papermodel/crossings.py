@@ -73,10 +73,10 @@ def crossing_meaning(ids, crossing) -> str:
             f"{ids[over]} at the dot")
 
 
-def column_callouts(spots, labels: list[str], frame, middle: float) -> list:
+def column_callouts(spots, labels: list[str], frame, middle: float, right=None) -> list:
     """A (text, plate, leader) for every ``spots[i]`` (sheet mm) saying ``labels[i]`` at
     ``MIN_CAP``: a spot left of ``middle`` (x) gets its plate in a column at the left edge of
-    ``frame`` (x0, y0, x1, y1), the others at the right edge. The plates of a column are as wide
+    ``frame`` (x0, y0, x1, y1), the others at the right edge (or those where ``right``). The plates of a column are as wide
     as its widest, so every leader starts on one line and runs away from the column (clear of
     its plates); their slots lie in the order of the spots from top to bottom, each as near its
     spot's height as the slots above and below allow, and :func:`uncrossed` then deals the slots
@@ -85,8 +85,9 @@ def column_callouts(spots, labels: list[str], frame, middle: float) -> list:
     x0, y0, x1, y1 = frame
     h = _plate_height()
     out: list = [None] * len(spots)
+    side = spots[:, 0] >= middle if right is None else np.asarray(right, dtype=bool)
     for right in (False, True):  # the two columns
-        mine = np.flatnonzero((spots[:, 0] >= middle) == right)
+        mine = np.flatnonzero(side == right)
         mine = mine[np.argsort(-spots[mine, 1], kind="stable")]  # top first
         y = np.clip(spots[mine, 1], y0 + h / 2, y1 - h / 2)  # ideal heights, then pushed
         for k in range(1, len(y)):  # push down below the plate above
@@ -170,8 +171,10 @@ def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float,
     """The layers of the pages naming every crossing in ``crossings``
     (:func:`left_out_crossings`) and the strands page 1 has no room for (``unnamed``: strand,
     tile where it lies on top), without the page furniture: the pattern between two columns
-    of callouts, 3 GAP clear of the widest plate (room for the leaders); as many pages as the
-    columns need, the callouts of each side dealt out over them in turn from the top. A
+    of callouts, 3 GAP clear of the widest plate (room for the leaders); as few pages as the
+    columns hold them in (a side with more than its columns hold gives the callouts nearest
+    the middle to the other), the callouts of each side dealt out over them in turn from the
+    top. A
     crossing's leader ends on a dot, its text in a layer "crossings"; a strand's on a ring (the
     tile's colour, the strand's, shows inside), its ID in a layer "ids" as on page 1. ``words``
     say how such a crossing looks on its strip."""
@@ -188,9 +191,26 @@ def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float,
                      f"on top{ring}.")
     labels = ([crossing_label(ids, over, under) for _, over, under in crossings]
               + [ids[s] for s, _ in unnamed])
-    tiles = [c[0] for c in crossings] + [t for _, t in unnamed]
+    tiles = [c[0] for c in crossings] + id_tiles(weave, unnamed, crossings)
     kinds = ["crossings"] * len(crossings) + ["ids"] * len(unnamed)
     return callout_pages(weave, colours, area, tiles, labels, " ".join(notes), turn, kinds)
+
+
+def id_tiles(weave: Weave, unnamed, crossings) -> list[int]:
+    """The tile each of ``unnamed`` (strand, tile where it lies on top) is called out at beside
+    ``crossings``: that tile, or where it is a crossing called out too (a ring round its dot
+    would show the dot, not the strand's colour), the strand's largest other tile where it
+    lies on top; the same tile where it has no other."""
+    called = {c[0] for c in crossings}
+    if not called.intersection(t for _, t in unnamed):
+        return [t for _, t in unnamed]
+    area = shapely.area(model_tiles(weave))
+    out = []
+    for s, t in unnamed:  # strands, not mesh elements
+        visits, own = weave.strand(s)
+        free = [int(v) for v in visits[own] if int(v) not in called]
+        out.append(max(free, key=lambda v: (area[v], -v)) if t in called and free else t)
+    return out
 
 
 def id_pages(weave: Weave, plan, colours, area, unnamed, turn: float) -> list[tuple]:
@@ -212,7 +232,13 @@ def callout_pages(weave: Weave, colours, area, tiles, labels: list[str], note: s
     spots = label_spots(on_sheet[list(tiles)])
     middle = (x0 + x1) / 2
     side = spots[:, 0] >= middle
-    n = max(1, -(-max(side.sum(), (~side).sum()) // column_room(frame)))
+    room = column_room(frame)
+    n = max(1, -(-len(spots) // (2 * room)))
+    for heavy in (False, True):  # a side with more than its columns hold: those nearest the
+        mine = np.flatnonzero(side == heavy)  # middle go to the other side (no leaders cross)
+        if len(mine) > n * room:
+            near = np.argsort(np.abs(spots[mine, 0] - middle), kind="stable")
+            side[mine[near[:len(mine) - n * room]]] = not heavy
     page = np.zeros(len(spots), dtype=np.int64)
     for right in (False, True):  # deal each side's callouts out over the pages, top first
         mine = np.flatnonzero(side == right)
@@ -221,7 +247,8 @@ def callout_pages(weave: Weave, colours, area, tiles, labels: list[str], note: s
     pages = []
     for p in range(n):  # pages
         on = np.flatnonzero(page == p)
-        placed = column_callouts(spots[on], [labels[i] for i in on.tolist()], frame, middle)
+        placed = column_callouts(spots[on], [labels[i] for i in on.tolist()], frame, middle,
+                                 side[on])
         shapes, named = callout_shapes(placed, spots[on], dots[on])
         pages.append((Layer("pattern", "paint", (paint, *shapes)),
                       *(Layer(k, "label", tuple(t for t, i in zip(named, on.tolist())
