@@ -125,9 +125,9 @@ def test_the_leader_ends_of_page_1_and_the_strand_pages_meet_no_other_leader(n):
 def test_strands_whose_one_tile_is_a_called_out_crossing_keep_a_page_of_their_own():
     """The pentagon flower at 23 cm in the module layout: its 70 crossings and 24 unnamed
     strands would fit page 3 together, but three of those strands (C2, C14, D8) lie on top of
-    one tile only, itself a crossing called out: a ring round its dot would show the dot, not
-    the strand's colour. The strands keep page 4 and every page passes the checks. Planted:
-    shared all the same: page 3 has IDs outside their strands."""
+    one tile only, itself a crossing called out on that page: a ring round its dot would show
+    the dot, not the strand's colour. The strands keep page 4 and every page passes the
+    checks. Planted: shared all the same: page 3 has IDs outside their strands."""
     from tests.papermodel.test_strands import pentagon_module_book
 
     book = pentagon_module_book()

@@ -223,7 +223,8 @@ def callout_pages(weave: Weave, colours, area, tiles, labels: list[str], note: s
                   turn: float, kinds: list[str]) -> list[tuple]:
     """The layers of the pages calling out ``labels[i]`` at ``tiles[i]`` (a white plate in a
     column, a leader into the tile, ending on a dot for a crossing, on a ring for a strand's ID:
-    ``kinds[i]`` "crossings" or "ids", the layer of its text), with ``note`` above."""
+    ``kinds[i]`` "crossings" or "ids", the layer of its text), with ``note`` above; None where
+    a ring would go round a dot on one page (the ring shows the strand's colour inside)."""
     x0, y0, x1, y1 = area.box
     texts, bottom = paragraphs([note], x0, y1, x1 - x0)
     room = max((text_width(s, MIN_CAP) for s in labels), default=0.0) + 2 * PLATE_PAD + 3 * GAP
@@ -244,6 +245,10 @@ def callout_pages(weave: Weave, colours, area, tiles, labels: list[str], note: s
         mine = np.flatnonzero(side == right)
         page[mine[np.argsort(-spots[mine, 1], kind="stable")]] = np.arange(len(mine)) % n
     dots = np.array([k == "crossings" for k in kinds], dtype=bool)
+    at = np.asarray(tiles)
+    if len({(int(p), int(t)) for p, t in zip(page[dots], at[dots])}.intersection(
+            zip(page[~dots].tolist(), at[~dots].tolist()))):
+        return None  # a strand's ring round a crossing's dot on one page
     pages = []
     for p in range(n):  # pages
         on = np.flatnonzero(page == p)

@@ -7,7 +7,7 @@ from __future__ import annotations
 from ..layout.drawing import Sheet
 from ..weave.model import Weave
 from .assembly import assembly_sheet, weaving_sheet
-from .crossings import crossing_pages, id_pages, id_tiles
+from .crossings import crossing_pages, id_pages
 from .modules import ModulePlan
 from .pages import PageArea, page_layers
 from .wording import PRINTED, Words
@@ -22,8 +22,8 @@ def front_pages(weave: Weave, plan: ModulePlan, colours, area: PageArea, crossin
     strips leave unnamed (``crossings``, see :func:`.crossings.left_out_crossings`), which are
     called out on page 1 where they all fit, else on pages of their own, and the strands page 1
     has no room to name: called out on those crossing pages beside the crossings where that
-    takes no page more and none of them has only tiles called out as crossings, else on pages
-    of their own. ``book_for(own, ids, shared)`` gives (the book
+    takes no page more and no strand's ring would go round a crossing's dot on one page (a
+    strand whose only tiles are called out as crossings), else on pages of their own. ``book_for(own, ids, shared)`` gives (the book
     with ``own`` crossing pages, naming the strands too where ``shared``, and ``ids`` strand
     pages after them, its page count, the first crossing page's number); ``words`` name what
     the maker holds. Page 1 is laid out first as if the crossing pages named strands too (a
@@ -45,8 +45,7 @@ def front_pages(weave: Weave, plan: ModulePlan, colours, area: PageArea, crossin
                                                words)
             continue
         both = crossing_pages(weave, plan, colours, area, crossings, turn, words, unnamed) if (
-            alone and unnamed and {c[0] for c in crossings}.isdisjoint(
-                id_tiles(weave, unnamed, crossings))) else []  # a ring round a dot: not there
+            alone and unnamed) else []  # None where a ring would go round a dot
         was = (len(own_pages), len(named), shared)
         shared = bool(both) and len(both) <= len(alone)  # where they take no page more
         own_pages = both if shared else alone
