@@ -13,7 +13,7 @@ import shapely
 
 from weavecut import inputs
 from weavecut.layout.contrast import MIN_CONTRAST, contrast_ratio
-from weavecut.layout.drawing import Polygons
+from weavecut.layout.drawing import Polygons, Polylines
 from weavecut.papermodel.assembly import _crossing_spot
 from weavecut.papermodel.crossings import (
     CASING,
@@ -154,3 +154,29 @@ def test_the_crossing_pages_keep_the_pattern_clear_of_the_callout_columns():
                  for p in layers[0].shapes[1].to_shapely())
     x0, _, x1, _ = area.box
     assert px1 - px0 == pytest.approx(x1 - x0 - 2 * (widest + 3 * GAP), abs=1e-6)
+
+
+def test_a_side_with_more_callouts_than_its_columns_hold_lends_them_to_the_other(monkeypatch):
+    """The 26 tiles of the small square grid left of its middle, called out with a column
+    holding 15 plates: one page, not two, the callouts nearest the middle in the right column;
+    every label once, no two leaders crossing. Planted: the side by the spot's x alone (all 26
+    in the left column, more than it holds)."""
+    from weavecut.papermodel import crossings
+    from weavecut.papermodel.strips import model_tiles
+
+    weave, _, colours = grid()
+    x = shapely.get_coordinates(shapely.centroid(model_tiles(weave)))[:, 0]
+    left = np.argsort(x, kind="stable")[:26].tolist()
+    labels = [f"T{t}" for t in left]
+    monkeypatch.setattr(crossings, "column_room", lambda frame: 15)
+    pages = crossings.callout_pages(weave, colours, PageArea(210.0, 297.0, 10.0), left, labels,
+                                    "note", 0.0, ["ids"] * len(left))
+    assert len(pages) == 1
+    layers = {layer.name: layer for layer in pages[0]}
+    assert sorted(t.text for t in layers["ids"].shapes) == sorted(labels)
+    xs = [t.x for t in layers["ids"].shapes]
+    assert sum(v > 105.0 for v in xs) == 11
+    lines = [line for s in layers["pattern"].shapes if isinstance(s, Polylines)
+             and s.style.stroke == "#000000" for line in s.lines()]
+    a, b = np.array([line[0] for line in lines]), np.array([line[1] for line in lines])
+    assert not crossings.segments_cross(a, b).any()

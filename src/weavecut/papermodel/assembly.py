@@ -73,15 +73,17 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
         lines.append(f"Print the strip pages once ({strips}). Where each strip is: "
                      + page_index(book) + ".")
     lines.append(words.ids)
-    if book.id_pages:
+    shared = book.id_pages and book.id_pages == book.callout_pages  # one sentence for both
+    if book.id_pages and not shared:
         lines.append(f"The strands this page has no room to name are named on "
                      f"{page_span(book.id_pages)}.")
     if crossings:
         lines.append(f"{too_small(len(crossings))} ({words.unnamed_mark}): called out below, "
                      f"{crossing_meaning(plan.labels, crossings[0])}.")
     elif book.callout_pages:
-        lines.append("Crossings too small to carry a name on their strips are called out on "
-                     f"{page_span(book.callout_pages)}.")
+        lines.append("Crossings too small to carry a name on their strips"
+                     + (", and the strands this page has no room to name," if shared else "")
+                     + f" are called out on {page_span(book.callout_pages)}.")
     texts, bottom = paragraphs(lines, x0, y1, x1 - x0)
     box = (x0, y0, x1, bottom - GAP)
     on_sheet, fit, paint, fills = pattern(weave, turn, box, book.colours)

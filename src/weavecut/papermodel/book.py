@@ -62,8 +62,10 @@ class StrandBook:
     strip_width : mm, the median strip width
     tile_size : mm across a typical octagon
     warnings : things the maker should know (thin strips)
-    id_pages : page numbers of the pages naming the strands page 1 has no room for (the last
-        extra pages)
+    id_pages : page numbers of the pages naming the strands page 1 has no room for (the
+        crossing pages, else the last extra pages)
+    callout_pages : page numbers of the pages calling out the crossings the strips leave
+        unnamed
     diagram_colours : (S,) strand colours of the weaving page's diagrams where ``colours`` do
         not tell the copies apart (a four-copy module layout in shade families: every copy
         printed in the module's colours), else empty (the diagrams in ``colours``)
@@ -82,12 +84,8 @@ class StrandBook:
     tile_size: float
     warnings: tuple[str, ...] = ()
     id_pages: tuple[int, ...] = ()
+    callout_pages: tuple[int, ...] = ()
     diagram_colours: tuple[str, ...] = ()
-
-    @property
-    def callout_pages(self) -> tuple[int, ...]:
-        """Page numbers of the pages calling out the crossings the strips leave unnamed."""
-        return tuple(n for n in self.extra_pages[2:] if n not in self.id_pages)
 
     @property
     def ink(self) -> float:
@@ -262,9 +260,10 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
     x0, y0, x1, y1 = area.box
     places = pack([p.cut for p in pieces], x1 - x0, y1 - y0, gap, kinds=kinds)
 
-    def pages(own: int, ids: int) -> tuple[StrandBook, list[Sheet], int]:
-        """The book laid out with ``own`` pages of unnamed crossings after the weaving page,
-        then ``ids`` pages of the strands page 1 has no room to name."""
+    def pages(own: int, ids: int, shared: bool) -> tuple[StrandBook, list[Sheet], int]:
+        """The book laid out with ``own`` pages of unnamed crossings after the weaving page
+        (naming the strands page 1 has no room for too where ``shared``), then ``ids`` pages of
+        those strands."""
         first = 3 + own + ids  # pages 1, 2: assembly and weaving
         placed, sheets = strip_sheets(pieces, kinds, area, title, subtitle, colours, first,
                                       places, page_note, bleed)
@@ -274,14 +273,15 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         notes = warnings + ((left_out_note(left_out, strips, where),) if left_out else ())
         return (StrandBook(Drawing((), title), plan, tuple(colours), layout, placed,
                            tuple(range(first, first + len(sheets))), tuple(range(1, first)),
-                           scale, area, width, tile_size, notes, tuple(range(3 + own, first)),
-                           diagram_colours),
+                           scale, area, width, tile_size, notes,
+                           tuple(range(3, first) if shared else range(3 + own, first)),
+                           tuple(range(3, 3 + own)), diagram_colours),
                 sheets, len(sheets) + first - 1)
 
     laid: dict = {}
 
-    def book_for(own: int, ids: int = 0) -> tuple[StrandBook, int, int]:
-        book, laid["sheets"], total = pages(own, ids)
+    def book_for(own: int, ids: int = 0, shared: bool = False) -> tuple[StrandBook, int, int]:
+        book, laid["sheets"], total = pages(own, ids, shared)
         return book, total, 3
 
     book, extra = front_pages(weave, plan, colours, area, crossings, book_for, tile_size, turn,

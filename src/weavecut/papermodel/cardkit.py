@@ -130,12 +130,13 @@ def card_kit(weaves: list[Weave], pal_name: str, mat: dict, las: Laser,
     fewer = fewer_colours(weaves, made.plan, n_colours) if cut.fill < FULL else ()
     words = card_words(cut, files)
 
-    def book_for(own: int, ids: int = 0) -> tuple[StrandBook, int, int]:
+    def book_for(own: int, ids: int = 0, shared: bool = False) -> tuple[StrandBook, int, int]:
         first = COLOURS_PAGE + 1
         return (StrandBook(Drawing((), title), made.plan, made.colours, "mixed", placed, (),
                            (1, 2, *range(first, first + own + ids)), made.scale, paper,
                            made.strip_width, tile_size, made.warnings,
-                           tuple(range(first + own, first + own + ids))),
+                           tuple(range(first + (0 if shared else own), first + own + ids)),
+                           tuple(range(first, first + own))),
                 COLOURS_PAGE + own + ids, first)
 
     book, front = front_pages(weave, made.plan, made.colours, paper, crossings, book_for,

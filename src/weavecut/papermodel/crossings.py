@@ -76,10 +76,10 @@ def crossing_meaning(ids, crossing) -> str:
             f"{ids[over]} at the dot")
 
 
-def column_callouts(spots, labels: list[str], frame, middle: float) -> list:
+def column_callouts(spots, labels: list[str], frame, middle: float, right=None) -> list:
     """A (text, plate, leader) for every ``spots[i]`` (sheet mm) saying ``labels[i]`` at
     ``MIN_CAP``: a spot left of ``middle`` (x) gets its plate in a column at the left edge of
-    ``frame`` (x0, y0, x1, y1), the others at the right edge. The plates of a column are as wide
+    ``frame`` (x0, y0, x1, y1), the others at the right edge (or those where ``right``). The plates of a column are as wide
     as its widest, so every leader starts on one line and runs away from the column (clear of
     its plates); their slots lie in the order of the spots from top to bottom, each as near its
     spot's height as the slots above and below allow, and :func:`uncrossed` then deals the slots
@@ -88,8 +88,9 @@ def column_callouts(spots, labels: list[str], frame, middle: float) -> list:
     x0, y0, x1, y1 = frame
     h = _plate_height()
     out: list = [None] * len(spots)
+    side = spots[:, 0] >= middle if right is None else np.asarray(right, dtype=bool)
     for right in (False, True):  # the two columns
-        mine = np.flatnonzero((spots[:, 0] >= middle) == right)
+        mine = np.flatnonzero(side == right)
         mine = mine[np.argsort(-spots[mine, 1], kind="stable")]  # top first
         y = np.clip(spots[mine, 1], y0 + h / 2, y1 - h / 2)  # ideal heights, then pushed
         for k in range(1, len(y)):  # push down below the plate above
@@ -150,57 +151,83 @@ def column_room(frame) -> int:
     return int((frame[3] - frame[1] + ROW_GAP) // (_plate_height() + ROW_GAP))
 
 
-def callout_shapes(placed: list, spots, dots: bool = True) -> tuple[list, list[Text]]:
+def callout_shapes(placed: list, spots, dots=True) -> tuple[list, list[Text]]:
     """(shapes, texts) drawing the ``callouts`` ``placed`` at ``spots``: white plates, leader
-    lines on a white casing, and a dot on every spot (a ring round it without ``dots``: the
-    tile's own colour shows inside)."""
+    lines on a white casing, and a dot on every spot where ``dots`` (one bool, or one per
+    callout), a ring round it elsewhere (the tile's own colour shows inside)."""
     placed_at = list(zip(placed, np.asarray(spots).reshape(-1, 2)))
     lines = np.concatenate([p[2] for p, _ in placed_at])
     offsets = np.arange(0, len(lines) + 1, 2, dtype=np.int64)
     shapes = [polygons_from_shapely([p[1] for p, _ in placed_at],
                                     Style("#333333", 0.15, "#ffffff")),
               Polylines(lines, offsets, CASING), Polylines(lines, offsets, LEADER)]
-    marks = shapely.buffer(shapely.points([s for _, s in placed_at]), DOT if dots else RING)
-    if not dots:
-        marks = shapely.difference(marks, shapely.buffer(shapely.points(
-            [s for _, s in placed_at]), RING - 0.4))
+    points = shapely.points([s for _, s in placed_at])
+    ring = ~np.broadcast_to(np.asarray(dots, dtype=bool), (len(placed_at),))
+    marks = shapely.buffer(points, np.where(ring, RING, DOT))
+    marks[ring] = shapely.difference(marks[ring], shapely.buffer(points[ring], RING - 0.4))
     shapes.append(polygons_from_shapely(list(marks), Style("#ffffff", 0.2, "#000000")))
     return shapes, [p[0] for p, _ in placed_at]
 
 
 def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float,
-                   words: Words = PRINTED) -> list[tuple]:
+                   words: Words = PRINTED, unnamed=()) -> list[tuple]:
     """The layers of the pages naming every crossing in ``crossings``
-    (:func:`left_out_crossings`), without the page furniture: the pattern between two columns
-    of callouts, 3 GAP clear of the widest plate (room for the leaders); as many pages as the
-    columns need, the crossings of each side dealt out over them in turn from the top.
-    ``words`` say how such a crossing looks on its strip."""
+    (:func:`left_out_crossings`) and the strands page 1 has no room for (``unnamed``: strand,
+    tile where it lies on top), without the page furniture: the pattern between two columns
+    of callouts, 3 GAP clear of the widest plate (room for the leaders); as few pages as the
+    columns hold them in (a side with more than its columns hold gives the callouts nearest
+    the middle to the other), the callouts of each side dealt out over them in turn from the
+    top. A
+    crossing's leader ends on a dot, its text in a layer "crossings"; a strand's on a ring (the
+    tile's colour, the strand's, shows inside), its ID in a layer "ids" as on page 1. ``words``
+    say how such a crossing looks on its strip."""
     ids = plan.labels
-    labels = [crossing_label(ids, over, under) for _, over, under in crossings]
-    note = (f"{too_small(len(crossings))}: there the "
-            f"strip {words.unnamed_there}. Each is called out once: "
-            f"{crossing_meaning(ids, crossings[0])}.")
-    return callout_pages(weave, colours, area, [c[0] for c in crossings], labels, note, turn,
-                         "crossings")
+    notes = []
+    if crossings:
+        notes.append(f"{too_small(len(crossings))}: there the "
+                     f"strip {words.unnamed_there}. Each is called out once: "
+                     f"{crossing_meaning(ids, crossings[0])}.")
+    if unnamed:
+        n, ring = len(unnamed), " (a ring round the line's end)" if crossings else ""
+        notes.append(f"Page 1 has no room for the IDs of {n} strand{'s' if n > 1 else ''}: "
+                     f"each is named here once, with a line to one of its tiles, where it lies "
+                     f"on top{ring}.")
+    labels = ([crossing_label(ids, over, under) for _, over, under in crossings]
+              + [ids[s] for s, _ in unnamed])
+    tiles = [c[0] for c in crossings] + id_tiles(weave, unnamed, crossings)
+    kinds = ["crossings"] * len(crossings) + ["ids"] * len(unnamed)
+    return callout_pages(weave, colours, area, tiles, labels, " ".join(notes), turn, kinds)
+
+
+def id_tiles(weave: Weave, unnamed, crossings) -> list[int]:
+    """The tile each of ``unnamed`` (strand, tile where it lies on top) is called out at beside
+    ``crossings``: that tile, or where it is a crossing called out too (a ring round its dot
+    would show the dot, not the strand's colour), the strand's largest other tile where it
+    lies on top; the same tile where it has no other."""
+    called = {c[0] for c in crossings}
+    if not called.intersection(t for _, t in unnamed):
+        return [t for _, t in unnamed]
+    area = shapely.area(model_tiles(weave))
+    out = []
+    for s, t in unnamed:  # strands, not mesh elements
+        visits, own = weave.strand(s)
+        free = [int(v) for v in visits[own] if int(v) not in called]
+        out.append(max(free, key=lambda v: (area[v], -v)) if t in called and free else t)
+    return out
 
 
 def id_pages(weave: Weave, plan, colours, area, unnamed, turn: float) -> list[tuple]:
-    """The layers of the pages naming the strands page 1 has no room for, without the page
-    furniture: ``unnamed`` (strand, tile where it lies on top) each called out once with its ID
-    as the crossings are (:func:`callout_pages`), in a layer "ids" as on page 1, the leader
-    ending in a ring rather than a dot (the tile's colour, the strand's, shows inside)."""
-    n = len(unnamed)
-    note = (f"Page 1 has no room for the IDs of {n} strand{'s' if n > 1 else ''}: each is "
-            f"named here once, with a line to one of its tiles, where it lies on top.")
-    return callout_pages(weave, colours, area, [t for _, t in unnamed],
-                         [plan.labels[s] for s, _ in unnamed], note, turn, "ids", dots=False)
+    """The layers of the pages naming the strands page 1 has no room for where no crossing is
+    called out on a page of its own: :func:`crossing_pages` of ``unnamed`` alone."""
+    return crossing_pages(weave, plan, colours, area, (), turn, unnamed=unnamed)
 
 
 def callout_pages(weave: Weave, colours, area, tiles, labels: list[str], note: str,
-                  turn: float, layer: str, dots: bool = True) -> list[tuple]:
+                  turn: float, kinds: list[str]) -> list[tuple]:
     """The layers of the pages calling out ``labels[i]`` at ``tiles[i]`` (a white plate in a
-    column, a leader into the tile, ending on a dot with ``dots``), with ``note`` above and the
-    texts in ``layer``."""
+    column, a leader into the tile, ending on a dot for a crossing, on a ring for a strand's ID:
+    ``kinds[i]`` "crossings" or "ids", the layer of its text), with ``note`` above; None where
+    a ring would go round a dot on one page (the ring shows the strand's colour inside)."""
     x0, y0, x1, y1 = area.box
     texts, bottom = paragraphs([note], x0, y1, x1 - x0)
     room = max((text_width(s, MIN_CAP) for s in labels), default=0.0) + 2 * PLATE_PAD + 3 * GAP
@@ -209,17 +236,31 @@ def callout_pages(weave: Weave, colours, area, tiles, labels: list[str], note: s
     spots = label_spots(on_sheet[list(tiles)])
     middle = (x0 + x1) / 2
     side = spots[:, 0] >= middle
-    n = max(1, -(-max(side.sum(), (~side).sum()) // column_room(frame)))
+    room = column_room(frame)
+    n = max(1, -(-len(spots) // (2 * room)))
+    for heavy in (False, True):  # a side with more than its columns hold: those nearest the
+        mine = np.flatnonzero(side == heavy)  # middle go to the other side (no leaders cross)
+        if len(mine) > n * room:
+            near = np.argsort(np.abs(spots[mine, 0] - middle), kind="stable")
+            side[mine[near[:len(mine) - n * room]]] = not heavy
     page = np.zeros(len(spots), dtype=np.int64)
-    for right in (False, True):  # deal each side's crossings out over the pages, top first
+    for right in (False, True):  # deal each side's callouts out over the pages, top first
         mine = np.flatnonzero(side == right)
         page[mine[np.argsort(-spots[mine, 1], kind="stable")]] = np.arange(len(mine)) % n
+    dots = np.array([k == "crossings" for k in kinds], dtype=bool)
+    at = np.asarray(tiles)
+    if len({(int(p), int(t)) for p, t in zip(page[dots], at[dots])}.intersection(
+            zip(page[~dots].tolist(), at[~dots].tolist()))):
+        return None  # a strand's ring round a crossing's dot on one page
     pages = []
     for p in range(n):  # pages
         on = np.flatnonzero(page == p)
-        placed = column_callouts(spots[on], [labels[i] for i in on.tolist()], frame, middle)
-        shapes, named = callout_shapes(placed, spots[on], dots)
+        placed = column_callouts(spots[on], [labels[i] for i in on.tolist()], frame, middle,
+                                 side[on])
+        shapes, named = callout_shapes(placed, spots[on], dots[on])
         pages.append((Layer("pattern", "paint", (paint, *shapes)),
-                      Layer(layer, "label", tuple(named)),
+                      *(Layer(k, "label", tuple(t for t, i in zip(named, on.tolist())
+                                                if kinds[i] == k))
+                        for k in ("crossings", "ids") if k in kinds),
                       Layer("notes", "label", tuple(texts))))
     return pages

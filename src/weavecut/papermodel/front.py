@@ -1,6 +1,6 @@
 """The pages before the strips: the assembly sheet, the weaving page, the pages calling out the
-crossings the strips leave unnamed and the pages naming the strands page 1 has no room for,
-laid out until page 1's words agree with the pages after it."""
+crossings the strips leave unnamed and naming the strands page 1 has no room for, laid out
+until page 1's words agree with the pages after it."""
 
 from __future__ import annotations
 
@@ -20,35 +20,49 @@ def front_pages(weave: Weave, plan: ModulePlan, colours, area: PageArea, crossin
                 tile_size: float, turn: float, title: str, words: Words = PRINTED):
     """(book, sheets): the assembly sheet, the weaving page, the pages of the crossings the
     strips leave unnamed (``crossings``, see :func:`.crossings.left_out_crossings`), which are
-    called out on page 1 where they all fit, else on pages of their own, and the pages naming
-    the strands page 1 has no room for. ``book_for(own, ids)`` gives (the book with ``own``
-    crossing pages and ``ids`` such strand pages after them, its page count, the first
-    crossing page's number); ``words`` name what the maker holds."""
-    own_pages: list = []
+    called out on page 1 where they all fit, else on pages of their own, and the strands page 1
+    has no room to name: called out on those crossing pages beside the crossings where that
+    takes no page more and no strand's ring would go round a crossing's dot on one page (a
+    strand whose only tiles are called out as crossings), else on pages of their own. ``book_for(own, ids, shared)`` gives (the book
+    with ``own`` crossing pages, naming the strands too where ``shared``, and ``ids`` strand
+    pages after them, its page count, the first crossing page's number); ``words`` name what
+    the maker holds. Page 1 is laid out first as if the crossing pages named strands too (a
+    pattern too big to call out its crossings on page 1 mostly has strands it cannot name):
+    once where it has such strands."""
+    alone: list = []  # the crossing pages without strands
     on_cover = crossings if len(crossings) <= ON_COVER else ()
     if not on_cover and crossings:
-        own_pages = crossing_pages(weave, plan, colours, area, crossings, turn, words)
-    named: list = []
+        alone = crossing_pages(weave, plan, colours, area, crossings, turn, words)
+    own_pages, named = alone, []  # the crossing pages; pages of strand IDs of their own
+    shared = bool(alone)  # the crossing pages name strands too
     for _ in range(SETTLE):  # page 1's words name the other pages: until their count holds
-        book, total, first = book_for(len(own_pages), len(named))
+        book, total, first = book_for(len(own_pages), len(named), shared)
         cover, missing, unnamed = assembly_sheet(weave, book, tile_size, turn, title, total,
                                                  on_cover, words)
         if missing:  # the crossings do not all fit on page 1: pages of their own
-            on_cover, own_pages = (), crossing_pages(weave, plan, colours, area, crossings,
-                                                     turn, words)
+            on_cover = ()
+            own_pages = alone = crossing_pages(weave, plan, colours, area, crossings, turn,
+                                               words)
             continue
-        more = id_pages(weave, plan, colours, area, unnamed, turn) if unnamed else []
-        if len(more) == len(named):
-            named = more
+        both = crossing_pages(weave, plan, colours, area, crossings, turn, words, unnamed) if (
+            alone and unnamed) else []  # None where a ring would go round a dot
+        was = (len(own_pages), len(named), shared)
+        shared = bool(both) and len(both) <= len(alone)  # where they take no page more
+        own_pages = both if shared else alone
+        named = [] if shared or not unnamed else id_pages(weave, plan, colours, area, unnamed,
+                                                          turn)
+        if (len(own_pages), len(named), shared) == was:
             break
-        named = more
     else:
         raise AssertionError("page 1 and the pages of the strands it does not name never "
                              "agreed on their number")
     sheets = [cover, weaving_sheet(weave, book, turn, title, total, words)]
+    what = ("Crossings the strips do not name (the strand named first lies on top) and strand "
+            "IDs page 1 has no room for" if shared else
+            "Crossings the strips do not name: the strand named first lies on top")
     sheets += [Sheet(area.width, area.height, layers + tuple(page_layers(
-        area, title, "Crossings the strips do not name: the strand named first lies on top", n,
-        total, legend=words.legend, cut=words.cut_line)), f"page {n}: crossings")
+        area, title, what, n, total, legend=words.legend, cut=words.cut_line)),
+        f"page {n}: crossings{' and strand IDs' if shared else ''}")
         for n, layers in enumerate(own_pages, start=first)]
     sheets += [Sheet(area.width, area.height, layers + tuple(page_layers(
         area, title, "Strand IDs page 1 has no room for: each with a line to one of its tiles",
