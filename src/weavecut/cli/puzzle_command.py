@@ -201,6 +201,8 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
                 sheet_mm=list(sheet), laser=las.name,
                 **({"chosen": chosen} if chosen else {}),
                 frame_parts=1 if frame_parts is None else len(frame_parts), warnings=warnings,
+                guide_pages={side: len(files[f"puzzle-{side}-guide-{page}.pdf"].sheets)
+                             for side in guides},
                 numbers=engraved is not None, **nonconvex,
                 operations={role: {"speed_mm_s": op.speed, "power_pct": op.power,
                                    "passes": op.passes}

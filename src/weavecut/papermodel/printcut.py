@@ -382,13 +382,16 @@ def cutter_words(machine: Cutter, output: Path) -> Words:
                    cut=f"Cut each strip page with the cutter: in its software, open its cut "
                        f"file ({stem}-pNN-cut.dxf, NN the page number, beside this PDF: every "
                        "edition opens DXF, Silhouette Studio's free Basic Edition too; the .svg "
-                       "needs one that reads SVG, such as Studio's Designer Edition). It has "
-                       "the page's size, so placed at the page's corner its lines lie round the "
-                       "printed strips. Turn on the software's registration marks with the "
-                       "sizes above, so they lie on the printed ones; put the printed page on "
-                       "the mat, let the cutter read the marks, and cut. Sort the strips by ID: "
-                       "the ID printed in the strip's own colour is its name on page 1; a small "
-                       "ID in a light part names the strand that lies on top there.")
+                       "needs one that reads SVG, such as Studio's Designer Edition). The DXF's "
+                       "origin (0, 0) is the page's bottom-left corner and its limits and "
+                       "extents are the page, and the SVG is the page's size: put either at the "
+                       "page's corner and its lines lie round the printed strips. Turn on the "
+                       "software's registration marks as page 1 gives them "
+                       f"({marks_text(machine)}), so they lie on the printed ones; put the "
+                       "printed page on the mat, let the cutter read the marks, and cut. Sort "
+                       "the strips by ID: the ID printed in the strip's own colour is its name "
+                       "on page 1; a small ID in a light part names the strand that lies on top "
+                       "there.")
 
 
 def cut_file_note(output: Path, machine: Cutter | None = None):
