@@ -196,3 +196,17 @@ def test_every_dxf_has_its_pages_limits_and_extents_and_nothing_outside(made):
         assert box.extmax.x <= high[0] + 1e-6 and box.extmax.y <= high[1] + 1e-6, path
         if path.name.startswith("cut-p"):
             assert tuple(high) == (210, 297), path  # the A4 strip page it cuts
+
+
+def test_a_cricut_strip_page_names_its_files_whole(tmp_path):
+    """Walk of issue #29: on a Cricut kit's strip pages the subtitle stopped at "cut file:
+    ..." (the recipe's output name): every strip page names its print image and its cut file
+    in full, whatever its strips' list leaves out."""
+    stem = "square-grid-strands"  # recipe square-grid-cut-by-machine
+    res = CliRunner().invoke(main, ["-q", "strands", *GRID, "--cutter", "cricut", "--page",
+                                    "letter", "-o", str(tmp_path / f"{stem}.pdf")])
+    assert res.exit_code == 0, res.output
+    pages = pages_of(tmp_path / f"{stem}.pdf")
+    for i in range(3, len(pages) + 1):  # the strip pages
+        assert (f"Print image: {stem}-p{i:02d}-print.svg; cut file: {stem}-p{i:02d}-cut.svg "
+                "/ .dxf.") in pages[i - 1], pages[i - 1][:300]

@@ -398,6 +398,7 @@ def cut_file_note(output: Path, machine: Cutter | None = None):
     """A strip page's subtitle note: its cut file's name, and its print image's where the
     cutter's software prints the marks (``page_note`` of ``strand_book``)."""
     if machine is not None and machine.own_marks:
-        return lambda n: (f"Print image: {output.stem}-p{n:02d}-print.svg (Design Space "
-                          f"prints it); cut file: {output.stem}-p{n:02d}-cut.svg / .dxf.")
+        return lambda n: (f"Print image: {output.stem}-p{n:02d}-print.svg; cut file: "
+                          f"{output.stem}-p{n:02d}-cut.svg / .dxf.")  # in one line (page 1
+        # says Design Space prints the image)
     return lambda n: f"Cut file: {output.stem}-p{n:02d}-cut.svg / .dxf, beside this PDF."
