@@ -65,6 +65,12 @@ def strip_runs(labels) -> str:
     return ", ".join(out)
 
 
+def colours_said(colours) -> str:
+    """The colours a maker prints or buys, in words: "6 strand colours, each with a light
+    tint" (where a strip lies under another it is printed in its colour's light tint)."""
+    return f"{counted(len(set(colours)), 'strand colour')}, each with a light tint"
+
+
 def left_out_note(n: int, strips: str | None, where: str) -> str:
     """The warning that ``n`` under-crossing names are left off ``strips`` (None: their own
     strips) and called out ``where``, in the singular for one."""
