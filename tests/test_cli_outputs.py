@@ -265,6 +265,31 @@ def test_a_makers_readme_in_the_puzzle_folder_is_kept(world):
     assert files_under(kit) == {"README.txt"} and (kit / "README.txt").read_text() == "my notes"
 
 
+
+@pytest.mark.parametrize("preview", [[], ["--preview"]])
+def test_the_puzzle_checks_only_the_files_it_writes(world, preview):
+    """Walk of issue #29: ``puzzle --preview`` refused a folder holding the maker's
+    README.txt (or a guide of an earlier run) though it writes only puzzle-preview.svg. What
+    the command says it may replace (``beside``) is what a run writes: a stray file of any
+    other name, the maker's or weave-cut's, neither refuses the run nor is touched."""
+    kit = world / "out" / "kit"
+    args = ("puzzle", "-n", "2", "--mode", "shared", *preview, "-o", kit)
+    assert run(*args).exit_code == 0
+    wrote = files_under(kit) - {MANIFEST}
+    command = cli.commands["puzzle"]
+    values = command.make_context("puzzle", [str(a) for a in args[1:]]).params
+    assert {p.name for p in command.beside(values)} == wrote
+    other = world / "out" / "other"
+    other.mkdir()
+    strays = {"README.txt", "puzzle-front-guide.svg", "puzzle-notes.txt", "puzzle-preview.svg",
+              "puzzle-3d.glb.bak"} - wrote
+    for name in strays:
+        (other / name).write_text("mine")
+    assert run(*args[:-1], other).exit_code == 0
+    assert {n: (other / n).read_text() for n in strays} == dict.fromkeys(strays, "mine")
+    assert files_under(other) - {MANIFEST} == wrote | strays
+
+
 @pytest.mark.parametrize("command", sorted(n for n in cli.commands if n != "build"
                                            and path_options(cli.commands[n])))
 def test_a_recipe_cannot_say_force(tmp_path, command):

@@ -36,6 +36,8 @@ PRODUCTS = {
 }
 FOOTER = re.compile(r"\bpage (\d+) / (\d+)\b")
 REFERENCE = re.compile(r"\b(?:p\.|pages?) (\d+)(?: ?- ?(\d+))?")
+# what a page points at on the page it stands on, or names the page of ("the sizes above")
+PAGELESS = re.compile(r"\b(?:sizes?|list|table|figures|values|settings|marks) (?:above|below)\b")
 TILE = re.compile(r"\brow (\d+)/(\d+), column (\d+)/(\d+)\b")
 CARD_SHEET = re.compile(r"\bstrands-card-(\d\d)-([0-9a-f]{6})\b")
 # words that belong to one product only
@@ -77,6 +79,7 @@ def reference_problems(pages: list[str]) -> list[str]:
         for m in REFERENCE.finditer(FOOTER.sub("", text)):
             out += [f"page {i}: {m[0]!r} of {n} pages" for g in m.groups()
                     if g is not None and not 1 <= int(g) <= n]
+        out += [f"page {i}: {m[0]!r} names no page" for m in PAGELESS.finditer(text)]
         for m in TILE.finditer(text):
             r, rows, c, cols = map(int, m.groups())
             cells.append((r, c))
@@ -92,10 +95,11 @@ def test_the_reference_check_finds_what_the_laser_card_used_to_say():
     3-page file), and on a guide with a tile named twice; well-formed pages pass."""
     old = ["weave-cut strands page 1 / 8 Print the strip pages once (p. 3-8). Where each strip "
            "is: p. 3: A1; p. 4: A2. Weaving steps: page 2.",
-           "page 2 / 8 check every crossing against page 1", "Card colours"]
+           "page 2 / 8 check every crossing against page 1, marks with the sizes above",
+           "Card colours"]
     assert reference_problems(old) == [
         "page 1: footer 1 / 8", "page 1: 'p. 3-8' of 3 pages", "page 1: 'p. 4' of 3 pages",
-        "page 2: footer 2 / 8"]
+        "page 2: footer 2 / 8", "page 2: 'sizes above' names no page"]
     good = ["page 1 / 3 steps: page 2; crossings: pages 2-3", "page 2 / 3 see p. 1",
             "page 3 / 3"]
     assert reference_problems(good) == []
@@ -161,5 +165,48 @@ def test_print_and_cut_says_where_its_cut_files_are_and_how_the_cutter_uses_them
                   "your Silhouette cutter", "Print and cut (Silhouette)",
                   "let the cutter read the marks"):
         assert words in text, words
+    # walk of issue #29: page 2 set the marks "with the sizes above", which stand on page 1
+    marks = "a 5 mm square top-left and L corners top-right and bottom-left, 10 mm from the " \
+            "page's edges"
+    assert marks in pages[0] and f"registration marks as page 1 gives them ({marks})" in pages[1]
+    assert "The DXF's origin (0, 0) is the page's bottom-left corner" in pages[1]
     assert re.findall(r"\bsilhouette\b", text) == []  # the preset's name, not the brand
     assert [w for w in ("red line", "scissors", "Print the strip pages") if w in text] == []
+
+
+def test_every_dxf_has_its_pages_limits_and_extents_and_nothing_outside(made):
+    """Walk of issue #29: the cut files said ezdxf's default limits (420 x 297 mm) and no
+    extents, though page 2 says a cut file is the page. Every DXF the products write (cut
+    pages, card sheets, puzzle sheets) passes ezdxf's audit, its limits and extents start at
+    the origin and hold every entity; a print-and-cut page's are its printed page's size."""
+    import ezdxf
+    from ezdxf import bbox
+
+    found = sorted(made.rglob("*.dxf"))
+    assert {f.parent.name for f in found} >= {"card", "pz"} and any(
+        f.name.startswith("cut-p") for f in found)
+    for path in found:
+        doc = ezdxf.readfile(path)
+        assert not doc.audit().has_errors, path
+        low, high = doc.header["$LIMMIN"], doc.header["$LIMMAX"]
+        assert tuple(low) == (0, 0) and tuple(doc.header["$EXTMIN"]) == (0, 0, 0), path
+        assert tuple(doc.header["$EXTMAX"])[:2] == tuple(high), path
+        box = bbox.extents(doc.modelspace())
+        assert box.has_data and min(box.extmin.x, box.extmin.y) >= -1e-6, path
+        assert box.extmax.x <= high[0] + 1e-6 and box.extmax.y <= high[1] + 1e-6, path
+        if path.name.startswith("cut-p"):
+            assert tuple(high) == (210, 297), path  # the A4 strip page it cuts
+
+
+def test_a_cricut_strip_page_names_its_files_whole(tmp_path):
+    """Walk of issue #29: on a Cricut kit's strip pages the subtitle stopped at "cut file:
+    ..." (the recipe's output name): every strip page names its print image and its cut file
+    in full, whatever its strips' list leaves out."""
+    stem = "square-grid-strands"  # recipe square-grid-cut-by-machine
+    res = CliRunner().invoke(main, ["-q", "strands", *GRID, "--cutter", "cricut", "--page",
+                                    "letter", "-o", str(tmp_path / f"{stem}.pdf")])
+    assert res.exit_code == 0, res.output
+    pages = pages_of(tmp_path / f"{stem}.pdf")
+    for i in range(3, len(pages) + 1):  # the strip pages
+        assert (f"Print image: {stem}-p{i:02d}-print.svg; cut file: {stem}-p{i:02d}-cut.svg "
+                "/ .dxf.") in pages[i - 1], pages[i - 1][:300]

@@ -483,3 +483,20 @@ def test_every_kind_of_output_is_described_by_what_it_is():
     for suffix in (".obj", ".glb", ".json", ".dxf"):
         assert _purpose([suffix], None, {}) != "text", suffix
     assert "OBJ" in _purpose([".obj"], None, {})
+
+
+def test_a_strand_books_card_counts_what_the_maker_prints(tmp_path):
+    """Walk of issue #29: the card of a paper model's PDF said "11 colours" (every fill of its
+    pages: the light under-tints, the glue bands' grey): it says how many strand colours the
+    strips have, each with its light tint, as the book's own palette has them."""
+    from weavecut.papermodel.wording import colours_said
+
+    with recording() as record:
+        result = CliRunner().invoke(cli, ["-q", "strands", "square-grid:2x2", "--tile-size",
+                                          "20mm", "--palette", "maritime-4", "-o",
+                                          str(tmp_path / "sq.pdf")])
+        assert result.exit_code == 0, result.output
+    kitpage.write(tmp_path / "k.html", "kit", [kitpage.Run.of(record, "weave-cut strands")])
+    facts = cards((tmp_path / "k.html").read_text(encoding="utf-8"))["sq"]["facts"]
+    said = [f for f in facts if "colour" in f]
+    assert said == ["4 strand colours, each with a light tint"] == [colours_said("abcd")]

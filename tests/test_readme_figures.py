@@ -144,6 +144,22 @@ CLAIMS = [
           r"\| (?P<t1>\d+) / (?P<t2>\d+) min \|",
           ("puzzle", "--levels", "4", "--size", "50cm", "--material", "poplar-3mm",
            "--numbers", "-o", "pz"), puzzle),
+    Claim("kit page: the jigsaw's guides",
+          r"jigsaw build \([\d.]+ s; (?P<front>\d+) \+ (?P<back>\d+) PDF pages of painting "
+          r"guides and",
+          ("puzzle", "--levels", "4", "--size", "50cm", "--material", "poplar-3mm",
+           "--numbers", "-o", "pz"), lambda j: {k: str(n) for k, n in j["guide_pages"].items()}),
+    Claim("kit page: the pentagon paper model",  # recipe pentagon-paper-model
+          r"each paper model \(the pentagon's (?P<pages>\d+) PDF pages, the square grid's",
+          ("strands", "pentagon-flower", "--palette", "maritime-12", "--size", "23cm", "-o",
+           "pf.pdf"), lambda j: {"pages": str(j["pages"]["total"])}),
+    Claim("kit page: the square grid's module layout",  # recipe square-grid-paper-model
+          r"the square grid's\s+(?P<pages>\d+) \+ \d+\),",
+          ("strands", "square-grid", "--palette", "maritime-12", "--size", "27cm", "--layout",
+           "module", "-o", "sq.pdf"), lambda j: {"pages": str(j["pages"]["total"])}),
+    Claim("kit page: the square grid, mixed",
+          r"the square grid's\s+\d+ \+ (?P<pages>\d+)\),",
+          (*SQUARE_4, "-o", "sq.pdf"), lambda j: {"pages": str(j["pages"]["total"])}),
 ]
 ROWS = [
     Claim("puzzle table: --size 30cm", row(r"`--size 30cm`", r"300 mm"),

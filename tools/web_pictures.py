@@ -1,7 +1,8 @@
 """Draw the web app's pictures into ``src/weavecut/web/static/``: a picture per product of the
 start page (``products/NAME.webp``, 480 x 360, from weave-cut's own previews, a laser card
 sheet drawn by librsvg's ``rsvg-convert``, and the README's images) and the logo (``logo.svg``: the pentagon after one snub step, in the paper model's
-colours). Run after a change that redraws them: ``python tools/web_pictures.py``.
+colours). Run after a change that redraws them: ``python tools/web_pictures.py [NAME ...]``
+(the names of the pictures to draw again; none: all and the logo).
 """
 
 from __future__ import annotations
@@ -22,8 +23,8 @@ BACKGROUND = (255, 255, 255)
 PRODUCTS = {
     "paper-model": ("strands", "square-grid", "--preview", "-o", "{out}"),
     "pentagon-flower": ("strands", "pentagon-flower", "--preview", "-o", "{out}"),
-    "woven-ball": ("weave", "dodecahedron", "--levels", "1", "--project", "sphere", "-o",
-                   "{out}"),
+    "woven-ball": ("strands", "dodecahedron", "--levels", "1", "--project", "sphere", "--size",
+                   "12cm", "--preview", "-o", "{out}"),  # the kit's own view: the front
     "cut-by-machine": ("strands", "square-grid", "--size", "27cm", "--laser-card", "--palette",
                        "maritime-4", "-o", "{out}.card"),
     "jigsaw-puzzle": "docs/puzzle-front.png",
@@ -32,7 +33,7 @@ PRODUCTS = {
     "subdivide": "docs/pentagon-level4.png",
     "figures": "docs/level-image.png",
 }
-CROPS = {"woven-ball": (0.0, 0.0, 0.5, 0.5), "cut-by-machine": (0.0, 0.0, 1.0, 0.56)}
+CROPS = {"woven-ball": (0.0, 0.0, 0.5, 0.9), "cut-by-machine": (0.0, 0.0, 1.0, 0.56)}
 
 
 def picture(name: str, source, tmp: Path) -> Image.Image:
@@ -74,14 +75,19 @@ def logo() -> str:
             f'stroke="#fff" stroke-width="0.8" stroke-linejoin="round">{polys}</svg>\n')
 
 
-def main() -> None:
+def save(image: Image.Image, path) -> None:
+    image.save(path, "WEBP", quality=82, method=6)
+
+
+def main(names: list[str]) -> None:
+    """Draw the pictures ``names`` (all, and the logo, for none)."""
     (STATIC / "products").mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory() as tmp:
-        for name, source in PRODUCTS.items():
-            picture(name, source, Path(tmp)).save(STATIC / "products" / f"{name}.webp",
-                                                  "WEBP", quality=82, method=6)
-    (STATIC / "logo.svg").write_text(logo())
+        for name in names or PRODUCTS:
+            save(picture(name, PRODUCTS[name], Path(tmp)), STATIC / "products" / f"{name}.webp")
+    if not names:
+        (STATIC / "logo.svg").write_text(logo())
 
 
 if __name__ == "__main__":
-    main()
+    main(sys.argv[1:])

@@ -80,6 +80,27 @@ def test_every_entity_of_a_later_sheet_moves_right_by_the_sheets_before_it():
     assert [t for t, _ in texts] == ["s0", "s1", "s2"]
 
 
+
+@pytest.mark.parametrize("plain", [False, True])  # ezdxf's writer, and the cut files' own
+@pytest.mark.parametrize("widths", [(210.0,), (40.0, 25.5, 30.0)])
+def test_the_headers_extents_and_limits_are_the_sheets(plain, widths):
+    """Walk of issue #29: a cut page's DXF said ezdxf's 420 x 297 mm limits and no extents.
+    Its limits and extents are its sheets, from the origin at the first sheet's bottom-left
+    corner; every entity lies inside them."""
+    sheets = tuple(Sheet(w, 297.0 - 10 * n, everything(f"s{n}")[:1 if plain else 4])
+                   for n, w in enumerate(widths))
+    doc = read(Drawing(sheets))
+    right, top = sum(widths) + GAP * (len(widths) - 1), 297.0
+    assert tuple(doc.header["$LIMMIN"]) == (0, 0) and tuple(doc.header["$LIMMAX"]) == (right, top)
+    assert tuple(doc.header["$EXTMIN"]) == (0, 0, 0)
+    assert tuple(doc.header["$EXTMAX"]) == (right, top, 0)
+    from ezdxf import bbox
+    box = bbox.extents(doc.modelspace())
+    assert box.has_data and 0 <= box.extmin.x and 0 <= box.extmin.y
+    assert box.extmax.x <= right and box.extmax.y <= top
+    assert not doc.audit().has_errors
+
+
 def test_one_sheet_keeps_its_layer_names():
     doc = read(Drawing((Sheet(20, 20, everything()),)))
     names = {layer.dxf.name for layer in doc.layers}

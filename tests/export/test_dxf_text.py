@@ -53,7 +53,8 @@ sheets = st.builds(Sheet, st.floats(1, 1000), st.floats(1, 1000), st.lists(
 def entity_by_entity(drawing: Drawing) -> bytes:
     """``drawing`` written through ezdxf's own API, every line an LWPOLYLINE entity: layers by
     role colour (off when hidden), a true colour unless black on a laser layer, the nearest
-    line weight off laser layers, coordinates to 1 nm, sheets side by side 10 mm apart."""
+    line weight off laser layers, coordinates to 1 nm, sheets side by side 10 mm apart, the
+    limits and extents the sheets'."""
     fixed = ezdxf.options.write_fixed_meta_data_for_testing
     ezdxf.options.write_fixed_meta_data_for_testing = True
     doc = ezdxf.new("R2004", setup=False)
@@ -85,6 +86,12 @@ def entity_by_entity(drawing: Drawing) -> bytes:
                     msp.add_lwpolyline((np.round(xy + (dx, 0.0), 6) + 0.0).tolist(),
                                        close=closed, dxfattribs=attribs)
         dx += sheet.width + 10.0
+    if drawing.sheets:  # limits and extents: the sheets, from the first one's corner
+        size = (round(dx - 10.0, 6) + 0.0, round(max(s.height for s in drawing.sheets), 6) + 0.0)
+        doc.modelspace().reset_extents((0, 0, 0), (*size, 0))
+        doc.modelspace().reset_limits((0, 0), size)
+        doc.active_layout().reset_limits((0, 0), size)
+        doc.header["$EXTMIN"], doc.header["$EXTMAX"] = (0, 0, 0), (*size, 0)
     doc.classes.add_required_classes(doc.dxfversion)
     doc.classes.classes = dict(sorted(doc.classes.classes.items()))
     buf = io.StringIO()

@@ -587,3 +587,19 @@ def test_a_strip_figure_says_whether_it_is_true_size_as_its_caption_does(box):
     (percent,) = re.findall(r"drawn at (\d+) %", said)
     assert true_size == (int(percent) == 100)
     assert true_size == (box[2] > 8.0)  # no tile of 20 mm fits 8 mm
+
+
+@pytest.mark.parametrize("name", CUTTERS)
+def test_a_cutters_description_says_the_marks_weave_cut_prints(name):
+    """Walk of issue #29: the web form's Cricut card said "black frame", though weave-cut
+    prints no marks for a Cricut (Design Space prints its own): what a preset's description
+    (the web card, --help) says of marks is what its strip pages carry."""
+    v = preset_values(name)
+    machine, book = cut_book(name)
+    said = v["description"].lower()
+    printed = any(layer_polygons(book.drawing.sheets[n - 1], "registration")
+                  for n in book.strip_pages)
+    if not printed:
+        assert machine.own_marks and "frame" not in said and "design space prints its own" in said
+    else:
+        assert "corner" in said and "no marks" not in said

@@ -10,6 +10,7 @@ import re
 from functools import lru_cache
 
 import numpy as np
+import pytest
 import shapely
 
 from weavecut import inputs
@@ -76,19 +77,47 @@ def test_a_parts_number_sits_by_its_id():
         assert min(abs(n - i) for n in number for i in ids) <= 2, piece.label
 
 
-def test_page_one_says_which_page_holds_each_part():
-    """On A5 the 3x3 grid's strips are split: page 1's index names every part with the
-    page that holds it, and the page's subtitle names it too."""
+@lru_cache(maxsize=None)
+def _book(layout: str):
+    """The 3x3 grid on A5, its strips split: ``layout`` "mixed" or "module" (the module's
+    strips once, named by number alone: "10 1/2")."""
     ws = list(snub_weaves(subdivide(inputs.get("square-grid:3x3"), 2)))
-    book = strand_book(ws, palette("maritime-12"), (148.0, 210.0), tile_size=30.0, margin=6.0)
-    page_one = " ".join(t.text for lay in book.drawing.sheets[0].layers for t in lay.shapes
-                        if isinstance(t, Text))
-    index = dict(re.findall(r"p\. (\d+): ((?:[A-Z]+\d+(?: \d+/\d+)?(?:-[A-Z]+\d+)?,? ?)+)",
+    return strand_book(ws, palette("maritime-12"), (148.0, 210.0), tile_size=30.0, margin=6.0,
+                       layout=layout)
+
+
+def _words(book, n: int) -> str:
+    return " ".join(t.text for lay in book.drawing.sheets[n - 1].layers for t in lay.shapes
+                    if isinstance(t, Text))
+
+
+@pytest.mark.parametrize("layout", ["mixed", "module"])
+def test_page_one_says_which_page_holds_each_part(layout):
+    """On A5 the 3x3 grid's strips are split: page 1's index names every part with the
+    page that holds it, as page 2's step says it does, and the page's subtitle names it too
+    (walk of issue #29: the module layout's page 1 had no index)."""
+    book = _book(layout)
+    page_one = _words(book, 1)
+    index = dict(re.findall(r"p\. (\d+): ((?:[A-Z]*\d+(?: \d+/\d+)?(?:-[A-Z]*\d+)?,? ?)+)",
                             page_one))
     parts = [(n, p.label) for n, p in book.pieces if " " in p.label]
-    assert parts
+    assert parts and "page 1 says which page holds each part" in _words(book, 2)
     for n, label in parts:
-        assert label in index[str(n)].replace("\n", " "), (n, label, index.get(str(n)))
-        subtitle = " ".join(t.text for lay in book.drawing.sheets[n - 1].layers
-                            for t in lay.shapes if isinstance(t, Text))
-        assert label in subtitle
+        assert re.search(rf"(?<![\w/]){re.escape(label)}(?![\w/])",
+                         index.get(str(n), "")), (n, label, index.get(str(n)))
+        assert label in _words(book, n)
+
+
+@pytest.mark.parametrize("layout", ["mixed", "module"])
+def test_a_glue_mark_is_no_strands_id_and_page_two_names_it(layout):
+    """The mark on the tile a glue band goes under reads as no ID printed in the book (the
+    module layout's IDs are bare numbers: its "1" was strand 1's), and page 2 names that mark."""
+    book = _book(layout)
+    marks = {p.mark for _, p in book.pieces if p.mark}
+    ids = {p.label.partition(" ")[0] for _, p in book.pieces} | set(book.plan.labels)
+    assert marks and not marks & ids, sorted(marks & ids)
+    for mark in marks:
+        on = [t for _, p in book.pieces if p.mark == mark for t in p.texts if t.text == mark]
+        assert on, mark  # printed on its part
+    first = min(marks, key=len)
+    assert f'under the tile marked "{first}"' in " ".join(_words(book, 2).split())

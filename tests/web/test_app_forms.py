@@ -119,6 +119,25 @@ def test_a_page_keeps_the_values_of_its_link(recording):
             is not None] == ["maritime-4"]
 
 
+
+@pytest.mark.parametrize("query, key", [("strands?input=squre-grid", "input"),
+                                        ("strands?input=squre-grid:3x3", "input"),
+                                        ("strands?cutter=silhuette", "cutter"),
+                                        ("strands?input=square-grid&palette=maritme", "palette"),
+                                        ("puzzle?input=pentagn", "input")])
+def test_a_link_with_an_unknown_item_keeps_it_chosen_with_its_refusal(recording, query, key):
+    """A mistyped item of a list is the chosen option, as given, next to its refusal: the
+    browser does not fall back on the list's first item (which the script would then make)."""
+    response = recording.get("/" + query)
+    assert response.status_code == 400
+    found = fields(html5lib.parse(response.text, namespaceHTMLElements=False))[key]
+    given = query.rpartition("=")[2]
+    chosen = [e.get("value") for e in found.iter() if e.get("selected") is not None
+              or e.get("checked") is not None]
+    assert chosen == [given]
+    assert "did you mean" in text(found.find(".//p[@class='error']"))
+
+
 CLI_WORDS = re.compile(r"(?<![\w-])--?[a-z][a-z0-9-]*|templates/[a-z]+|\.toml\b")
 PAGES = [*COMMANDS, "strands?input=square-grid&laser-card=on&cutter=silhouette",
          "strands?input=dodecahedron&levels=1&project=sphere"]

@@ -227,3 +227,27 @@ def test_the_puzzles_numbers_start_ticked_and_unticking_sends_off(browser, serve
     browser.wait_until("!location.search.includes('numbers')", 10)
     browser.wait_until(f"{line}.includes('--numbers')", 60)
     assert browser.errors() == []
+
+
+def test_a_mistyped_input_in_a_shared_link_keeps_its_refusal_and_makes_nothing(browser, server):
+    """A link with an input the command does not know (``squre-grid``) opens with the
+    refusal next to the input, and the script sends that input again: no other item of the
+    list is drawn or made in its place until the maker chooses one."""
+    browser.goto(server + "strands?input=squre-grid&size=15cm", 1280)
+    browser.wait_until("!!document.getElementById('f-input')", 60)
+    error = "document.getElementById('e-input')"
+    browser.wait_until("document.getElementById('status').textContent.includes('Fix the marked')",
+                       60)
+    time.sleep(1.5)  # past the form's debounce: nothing redraws over the message
+    assert not browser.evaluate(f"{error}.hidden")
+    assert "square-grid" in browser.evaluate(f"{error}.textContent")  # its "did you mean"
+    assert browser.evaluate("document.getElementById('f-input').value") == "squre-grid"
+    assert not browser.evaluate("document.getElementById('preview').getAttribute('src')")
+    assert browser.evaluate("document.getElementById('download').getAttribute('aria-disabled')"
+                            ) == "true"
+    assert "input=squre-grid" in browser.evaluate("location.search")
+    browser.evaluate("(s => { s.value = 'square-grid'; s.dispatchEvent(new Event('change', "
+                     "{bubbles: true})); })(document.getElementById('f-input')), 0")
+    browser.wait_until(READY, 240)  # a known input chosen: the kit is made
+    assert browser.evaluate(f"{error}.hidden")
+    assert [e for e in browser.errors() if "status of 400" not in e] == []  # the refusals

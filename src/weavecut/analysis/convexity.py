@@ -168,6 +168,10 @@ def _where(mesh: Mesh, corners, faces, origin: NDArray[np.int8] | None) -> list[
     return out
 
 
+SEE = "; see weave-cut convexity"  # ends a non-convex warning: for the terminal, not the
+# workshop (a maker can do nothing about a face of the subdivision)
+
+
 def nonconvex_message(row: dict) -> str:
     """One line for a row of :func:`nonconvex_levels`, e.g. ``level 5: 72 of 15,000 faces are
     non-convex (72 at outer Z vertices of degree 3)``."""

@@ -354,11 +354,11 @@ def flag_nonconvex(hierarchy, into: list[str] | None = None) -> dict:
     ``into`` (a command's warnings, which it prints and writes down itself), and return the
     counts for --json: ``{"nonconvex_faces": total, "nonconvex_faces_by_level": {"5": 72,
     ...}}``."""
-    from ..analysis.convexity import nonconvex_levels, nonconvex_message
+    from ..analysis.convexity import SEE, nonconvex_levels, nonconvex_message
 
     rows = nonconvex_levels(hierarchy) if hierarchy[0].mesh.dim == 2 else []  # flat faces only
     for row in rows:
-        message = f"{nonconvex_message(row)}; see weave-cut convexity"
+        message = nonconvex_message(row) + SEE
         if into is None:
             click.echo(f"weave-cut: warning: {message}", err=True)
         else:

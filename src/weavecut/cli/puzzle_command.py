@@ -154,7 +154,7 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
                               "diagonal" if input_mesh == "pentagon" else "width")
     if preview:
         colouring = colour_puzzle(puzzle, pal, palette_names(palette_name, pal))
-        path = make_folder(out_dir) / "puzzle-preview.svg"
+        path = make_folder(out_dir) / PREVIEW
         export.write(painted_preview(puzzle, colouring).with_metadata(**provenance()), path)
         return summary(f"{path}: the front and back of {puzzle.n_pieces} pieces, painted")
     pf.check_kerf(puzzle, kerf)
@@ -201,6 +201,8 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
                 sheet_mm=list(sheet), laser=las.name,
                 **({"chosen": chosen} if chosen else {}),
                 frame_parts=1 if frame_parts is None else len(frame_parts), warnings=warnings,
+                guide_pages={side: len(files[f"puzzle-{side}-guide-{page}.pdf"].sheets)
+                             for side in guides},
                 numbers=engraved is not None, **nonconvex,
                 operations={role: {"speed_mm_s": op.speed, "power_pct": op.power,
                                    "passes": op.passes}
@@ -226,12 +228,19 @@ def puzzle_command(input_mesh, out_dir, levels, size, mode, material, kerf, shee
 MODEL = "puzzle-3d.glb"  # the finished puzzle in 3-D, painted, in its frame
 
 
+WRITES = ("puzzle-shared-cut.*", "puzzle-separate-sheet-*.*", "puzzle-front-guide*.*",
+          "puzzle-back-guide*.*", "puzzle-summary.json", MODEL, "README.txt")  # its names
+PREVIEW = "puzzle-preview.svg"  # all that --preview writes
+
+
 def _beside(values: dict) -> list[Path]:
-    """The existing files a run may replace in its -o folder (puzzle-*, README.txt): checked
-    before any work (``outputs.may_replace``)."""
+    """The existing files a run may replace in its -o folder (only what it writes: the
+    preview's one file with --preview, else WRITES): checked before any work
+    (``outputs.may_replace``); the maker's other files there are no concern of the run."""
     folder = Path(values["out_dir"])
-    return sorted(p for p in (*folder.glob("puzzle-*"), folder / "README.txt")
-                  if os.path.lexists(p))
+    names = (PREVIEW,) if values.get("preview") else WRITES
+    return sorted({p for n in names for p in (folder.glob(n) if "*" in n else [folder / n])
+                   if os.path.lexists(p)})
 
 
 puzzle_command.beside = _beside

@@ -179,7 +179,7 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
     if machine is not None:
         extra = _print_and_cut(book, machine, output)
     else:
-        export.write(book.drawing.with_metadata(**provenance()), output)
+        export.write(book.drawing.with_metadata(**_said(book)), output)
     write_woven_model(weaves[-1], book, output)
     plan = book.plan
     if as_json:
@@ -286,7 +286,7 @@ def ball(mesh, input_mesh, levels, page, tile_size, diameter, margin, pal, chira
                      tile_size=tile_size or BALL_TILE)
     for warning in book.warnings:
         click.echo(f"weave-cut: warning: {warning}", err=True)
-    export.write(book.drawing.with_metadata(**provenance()), output)
+    export.write(book.drawing.with_metadata(**_said(book)), output)
     write_woven_model(weave, book, output)
     if as_json:
         click.echo(json.dumps({"input": input_title(input_mesh),
@@ -305,6 +305,14 @@ def ball(mesh, input_mesh, levels, page, tile_size, diameter, margin, pal, chira
                 f"{100 * float(book.non_planarity.max()):.1f} % off their planes")
 
 
+def _said(book) -> dict[str, str]:
+    """A strand book's metadata: its provenance, and its colours in a maker's words (the kit
+    page's card shows them, not every fill the pages hold)."""
+    from ..papermodel.wording import colours_said
+
+    return {**provenance(), "colours": colours_said(book.colours)}
+
+
 def _print_and_cut(book, machine, output: str) -> dict:
     """Write the strip pages with the cutter's marks to ``output`` and a cut file per strip
     page beside it (SVG and DXF); return the --json figures."""
@@ -312,7 +320,7 @@ def _print_and_cut(book, machine, output: str) -> dict:
                                        print_files, with_marks)
 
     marked = with_marks(book, machine)
-    export.write(marked.drawing.with_metadata(**provenance()), output)
+    export.write(marked.drawing.with_metadata(**_said(book)), output)
     base = Path(output)
     files, report = [], cut_report([])
     for n, drawing in cut_files(marked):

@@ -18,10 +18,11 @@ from ezdxf import colors
 from ezdxf.enums import TextEntityAlignment
 
 from ..layout.drawing import Drawing, Layer, Text
-from .dxf_text import (ROLE_COLOURS, VERSION, comments, encode, entities, fills, layer_name,
-                       mm, rgb, tags)
+from .dxf_text import (ROLE_COLOURS, VERSION, comments, encode, entities, extent, fills,
+                       layer_name, mm, rgb, tags)
 
 ALIGN = {"start": "BOTTOM_LEFT", "middle": "BOTTOM_CENTER", "end": "BOTTOM_RIGHT"}
+BOUNDS = (1234.5, 6789.25)  # a size no empty document writes: where its bounds go
 
 
 @contextlib.contextmanager
@@ -36,17 +37,24 @@ def _fixed_metadata():
 
 
 def render(drawing: Drawing) -> bytes:
-    return encode(comments(drawing) + _document(drawing))
+    return encode(comments(drawing) + _document(drawing, size=extent(drawing)))
 
 
-def _document(drawing: Drawing, spare: int = 0) -> str:
+def _document(drawing: Drawing, spare: int = 0, size: tuple[float, float] | None = None) -> str:
     """The DXF text of ``drawing`` (without the comments); ``spare`` handles are used up
-    after its entities (to see which handles of the document follow them)."""
+    after its entities (to see which handles of the document follow them); its limits and
+    extents from the origin to ``size`` (``dxf_text.extent``), ezdxf's defaults for None."""
     with _fixed_metadata():
         doc = _Ezdxf()
         entities(drawing, doc)
         for _ in range(spare):
             doc.handle()
+        if size is not None:  # the header's extents too: ezdxf takes them from the model
+            msp = doc.doc.modelspace()  # space only where they are not at the origin
+            msp.reset_extents((0.0, 0.0, 0.0), (*size, 0.0))
+            msp.reset_limits((0.0, 0.0), size)
+            doc.doc.active_layout().reset_limits((0.0, 0.0), size)  # the paper (LibreCAD's)
+            doc.doc.header["$EXTMIN"], doc.doc.header["$EXTMAX"] = (0.0, 0.0, 0.0), (*size, 0.0)
         # ezdxf adds the CLASSES of the entity types in use in set order; fix the order first
         doc.doc.classes.add_required_classes(doc.doc.dxfversion)
         doc.doc.classes.classes = dict(sorted(doc.doc.classes.classes.items()))
@@ -139,7 +147,8 @@ def _aci(hex_colour: str) -> int:
 def skeleton() -> dict:
     """The empty drawing's document cut where a drawing fills it in: ``PARTS`` of text with a
     ``SLOTS`` entry between each two: ``"layer count"``, ``"layers"`` (their records, before
-    the layer table ends), ``"entities"``, or the handle (int) an object written after the
+    the layer table ends), ``"entities"``, a limit's or an extent's value (``("w", ezdxf's
+    default line)``, "h", or "0": the origin's), or the handle (int) an object written after the
     entities has in the empty document (it moves on by the handles a drawing uses). Also the
     first handle a drawing takes, the layers there already, and the handles a layer record
     or an entity refers to."""
@@ -150,12 +159,16 @@ def skeleton() -> dict:
     first = str(probe.doc.entitydb.handles)
     lines = _document(empty).splitlines(keepends=True)
     moved = _document(empty, spare).splitlines(keepends=True)
-    assert len(lines) == len(moved)
+    bounded = _document(empty, size=BOUNDS).splitlines(keepends=True)
+    assert len(lines) == len(moved) == len(bounded)
     cuts = []  # (line, slot, lines replaced)
-    for i, (a, b) in enumerate(zip(lines, moved)):
+    for i, (a, b, c) in enumerate(zip(lines, moved, bounded)):
         if a != b:
             assert int(b, 16) - int(a, 16) == spare and int(a, 16) >= int(first, 16), (a, b)
             cuts.append((i, int(a, 16), 1))
+        elif a != c:  # a limit or extent: the width, the height or the origin's 0
+            key = {repr(BOUNDS[0]): "w", repr(BOUNDS[1]): "h", "0.0": "0"}[c.strip()]
+            cuts.append((i, (key, a), 1))
     table = _after(lines, ["  0\n", "TABLE\n", "  2\n", "LAYER\n"], 0)
     count = _after(lines, [" 70\n"], table)
     cuts.append((count, "layer count", 1))
@@ -191,7 +204,7 @@ def skeleton_source() -> str:
     made = skeleton()
     parts = made.pop("PARTS")
     made["FIRST_HANDLE"] = f"0x{made['FIRST_HANDLE']:X}"
-    made["SLOTS"] = "(" + ", ".join(repr(s) if isinstance(s, str) else f"0x{s:X}"
+    made["SLOTS"] = "(" + ", ".join(f"0x{s:X}" if isinstance(s, int) else repr(s)
                                     for s in made["SLOTS"]) + ")"
     head = ("# over 400 lines: ezdxf's empty document as data, made by "
             "dxf_ezdxf.skeleton_source\n"

@@ -32,7 +32,21 @@ def render(drawing: Drawing) -> bytes:
     """A drawing of strokes only (see ``plain``) as DXF."""
     doc = _Text()
     entities(drawing, doc)
-    return encode(comments(drawing) + doc.document())
+    return encode(comments(drawing) + doc.document(extent(drawing)))
+
+
+def extent(drawing: Drawing) -> tuple[float, float] | None:
+    """(width, height) in mm, to ``DECIMALS``, of the drawing's sheets in the file from the
+    origin (the first sheet's bottom-left corner): side by side, ``GAP`` apart; the file's
+    limits and extents (a program that zooms or places by them sees the pages, not ezdxf's
+    default 420 x 297 mm). None for no sheet (ezdxf's defaults stay)."""
+    if not drawing.sheets:
+        return None
+    right = 0.0
+    for sheet in drawing.sheets:  # as ``entities`` moves them
+        right += sheet.width + GAP
+    size = (right - GAP, max(s.height for s in drawing.sheets))
+    return tuple(float(v) for v in mm(size, 0.0)[0])
 
 
 def plain(drawing: Drawing) -> bool:
@@ -81,14 +95,21 @@ class _Text:
     def fills(self, shape, layer: Layer, name: str, dx: float) -> None:
         """None: a plain drawing has no fills."""
 
-    def document(self) -> str:
+    def document(self, size: tuple[float, float] | None) -> str:
+        """The document, its limits and extents from the origin to ``size`` (``extent``)."""
         used = self.next - skeleton.FIRST_HANDLE
         fill = {"layer count": f"{len(self.layers)}\n", "layers": "".join(self.records),
                 "entities": "".join(self.entities)}
+        if size is not None:  # a bound's slot: ("w", "h" or "0", ezdxf's default there)
+            w, h = _points([size], 0.0)[0].split("\n 20\n")
+            fill.update(w=f"{w}\n", h=f"{h}\n", **{"0": "0.0\n"})
         out = [skeleton.PARTS[0]]
         for slot, part in zip(skeleton.SLOTS, skeleton.PARTS[1:]):
             # a handle of the empty document's last objects moves by the handles used
-            out.append(fill[slot] if isinstance(slot, str) else f"{slot + used:X}\n")
+            if isinstance(slot, tuple):
+                out.append(fill.get(slot[0], slot[1]))
+            else:
+                out.append(fill[slot] if isinstance(slot, str) else f"{slot + used:X}\n")
             out.append(part)
         return "".join(out)
 

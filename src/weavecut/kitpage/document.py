@@ -276,9 +276,11 @@ def _drawing_figures(drawing: Drawing | None, made: bool) -> list[str]:
     cut = sum(_length(s) for role, s in shapes if role == "cut") if made else 0.0
     fills = {f for _, s in shapes if isinstance(s, Polygons)
              for f in (s.fills or (s.style.fill,)) if f}
-    paints = dict(drawing.metadata).get("paints")  # a painting guide: its paints, not the
-    # bare wood or paper it leaves white
-    count = [f"{paints} paints"] if paints else (
+    meta = dict(drawing.metadata)
+    paints = meta.get("paints")  # a painting guide: its paints, not the bare wood or paper it
+    # leaves white; a strand book: its strand colours ("6 strand colours, each with a light
+    # tint"), not every fill its pages hold (the tints, the glue bands' grey)
+    count = [f"{paints} paints"] if paints else [meta["colours"]] if "colours" in meta else (
         [f"{len(fills)} colours"] if len(fills) > 1 else [])
     return ([f"cut {cut / 1000:.2f} m"] if cut else []) + count
 

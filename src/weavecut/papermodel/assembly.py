@@ -25,7 +25,7 @@ from ..layout.labels import (
 from ..weave.model import Weave
 from ..text import counted
 from .crossings import DOT, callout_shapes, crossing_label, crossing_meaning, too_small
-from .pages import GAP, page_layers, page_span
+from .pages import GAP, GLUE_MARKS, page_layers, page_span
 from .modules import copy_letter
 from .pattern import label_spots, pattern
 from .strip_labels import unit_arrows
@@ -68,7 +68,8 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
         turns = "; ".join(f"print {j + 1} = copy {copy_letter(j)}: turned by {j * 360 / k:g} deg"
                           for j in range(k))
         lines.append(f"Print the strip pages ({strips}) {k} times, once per direction, and write "
-                     f"the copy letter on the back of each strip: {turns}.")
+                     f"the copy letter on the back of each strip: {turns}. Where each strip "
+                     f"is: {page_index(book)}.")
     else:
         lines.append(f"Print the strip pages once ({strips}). Where each strip is: "
                      + page_index(book) + ".")
@@ -264,7 +265,8 @@ def weaving_steps(weave: Weave, book, turn: float,
     if glue:
         name, _, part = next(p.label for _, p in book.pieces if p.glue is not None).partition(" ")
         n = part.partition("/")[2]
-        steps.append(words.glue.format(name=name, n=n))
+        mark = GLUE_MARKS.get(book.layout, "{}")
+        steps.append(words.glue.format(name=name, n=n, one=mark.format(1), two=mark.format(2)))
     if k == 4:
         heads = plan.copies
         warp = np.concatenate([heads[0], heads[2]])

@@ -26,7 +26,8 @@ from ..weave.model import Weave
 from .crossings import left_out_crossings
 from .front import front_pages
 from .packing import pack
-from .pages import GAP, PageArea, page_layers, page_span, split_strip, strip_layers
+from .pages import (GAP, GLUE_MARKS, PageArea, page_layers, page_span, split_strip,
+                    strip_layers)
 from .modules import ModulePlan, book_colours, copy_family_colours, plan_modules
 from .strip_labels import label_strips
 from .strips import (MIN_PIECE, Strip, build_copies, build_strips, holds, moved_strips,
@@ -340,12 +341,12 @@ def labelled_pieces(weave: Weave, plan: ModulePlan, colours, tile_size: float, l
     for strips in build_copies(weave, plan, colours, scale, plan.copies[0],
                                range(plan.k) if layout == "mixed" else [0], names):
         for i, s in enumerate(strips):
-            parts = split_strip(s, longest, widest)
+            parts = split_strip(s, longest, widest, GLUE_MARKS[layout])
             pieces += parts
             kinds += [i * 64 + n for n in range(len(parts))]
     if len(plan.extras):
         for i, s in enumerate(build_strips(weave, plan, colours, scale, plan.extras, 0, names)):
-            parts = split_strip(s, longest, widest)
+            parts = split_strip(s, longest, widest, GLUE_MARKS[layout])
             pieces += parts
             kinds += [(m + i) * 64 + n for n in range(len(parts))]
     return label_strips(pieces, tile_size), kinds

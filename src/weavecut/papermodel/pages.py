@@ -103,11 +103,17 @@ def _fits(geom, length: float, width: float) -> bool:
     return bool(long <= length and short <= width)
 
 
-def split_strip(strip: Strip, max_length: float, max_width: float) -> list[Strip]:
+GLUE_MARKS = {"mixed": "{}", "module": "({})"}  # per layout: what marks the tile a glue band
+# goes under; a module strip's ID is a bare number ("1"), so its marks are bracketed ("(1)")
+
+
+def split_strip(strip: Strip, max_length: float, max_width: float,
+                mark: str = "{}") -> list[Strip]:
     """``strip`` (unlabelled) as it is if it fits a ``max_length`` x ``max_width`` rectangle,
     else cut into runs of whole tiles that do, each laid flat. Consecutive pieces share one
     tile: on the earlier piece it is the glue band ("glue 1"), glued under the same tile of the
-    next, which is marked ("1") as the ball's are. Pieces are named "A7 1/2", "A7 2/2"."""
+    next, which is marked (``mark`` of 1: "1" as the ball's are, "(1)" in the module layout,
+    ``GLUE_MARKS``). Pieces are named "A7 1/2", "A7 2/2"."""
     if _fits(strip.outline, max_length, max_width):
         return [strip]
     tiles, n = strip.tiles, len(strip.tiles)
@@ -135,7 +141,7 @@ def split_strip(strip: Strip, max_length: float, max_width: float) -> list[Strip
                         fills=strip.fills[part], over=strip.over[part], names=strip.names[part],
                         glue=tiles[b:b + 1] if i + 1 < len(runs) else None,
                         tab=f"glue {i + 1}" if i + 1 < len(runs) else "glue",
-                        mark=str(i) if i else "")
+                        mark=mark.format(i) if i else "")
         flat = piece.moved(affine(flat_angle(piece.outline)))
         x0, y0 = flat.outline.bounds[:2]
         pieces.append(flat.moved(affine(0.0, (-x0, -y0))))

@@ -379,22 +379,22 @@ def cutter_words(machine: Cutter, output: Path) -> Words:
                    need=f"You need: the printed strip pages, your {name} cutter with its mat, "
                         "tape or paper clips, a glue stick and a piece of cardboard a little "
                         "larger than the model.",
-                   cut=f"Cut each strip page with the cutter: in its software, open its cut "
-                       f"file ({stem}-pNN-cut.dxf, NN the page number, beside this PDF: every "
-                       "edition opens DXF, Silhouette Studio's free Basic Edition too; the .svg "
-                       "needs one that reads SVG, such as Studio's Designer Edition). It has "
-                       "the page's size, so placed at the page's corner its lines lie round the "
-                       "printed strips. Turn on the software's registration marks with the "
-                       "sizes above, so they lie on the printed ones; put the printed page on "
-                       "the mat, let the cutter read the marks, and cut. Sort the strips by ID: "
-                       "the ID printed in the strip's own colour is its name on page 1; a small "
-                       "ID in a light part names the strand that lies on top there.")
+                   cut="Cut each strip page with the cutter: in its software, open its cut file "
+                       f"({stem}-pNN-cut.dxf, NN the page number, beside this PDF: every edition "
+                       "opens DXF, Silhouette Studio's free Basic Edition too; the .svg needs "
+                       "one that reads SVG, such as Studio's Designer Edition). The DXF's origin "
+                       "(0, 0) is the page's bottom-left corner and its limits and extents are "
+                       "the page, and the SVG is the page's size: put either at the page's "
+                       "corner and its lines lie round the printed strips. Turn on the software's "
+                       f"registration marks as page 1 gives them ({marks_text(machine)}), so "
+                       "they lie on the printed ones; put the printed page on the mat, let the "
+                       "cutter read the marks, and cut. " + PRINTED.cut.partition(". ")[2])
 
 
 def cut_file_note(output: Path, machine: Cutter | None = None):
-    """A strip page's subtitle note: its cut file's name, and its print image's where the
-    cutter's software prints the marks (``page_note`` of ``strand_book``)."""
+    """A strip page's subtitle note, in one line: its cut file's name, and its print image's
+    where the cutter's software prints the marks (``page_note`` of ``strand_book``)."""
     if machine is not None and machine.own_marks:
-        return lambda n: (f"Print image: {output.stem}-p{n:02d}-print.svg (Design Space "
-                          f"prints it); cut file: {output.stem}-p{n:02d}-cut.svg / .dxf.")
+        return lambda n: (f"Print image: {output.stem}-p{n:02d}-print.svg; cut file: "
+                          f"{output.stem}-p{n:02d}-cut.svg / .dxf.")
     return lambda n: f"Cut file: {output.stem}-p{n:02d}-cut.svg / .dxf, beside this PDF."

@@ -65,6 +65,12 @@ def strip_runs(labels) -> str:
     return ", ".join(out)
 
 
+def colours_said(colours) -> str:
+    """The colours a maker prints or buys, in words: "6 strand colours, each with a light
+    tint" (where a strip lies under another it is printed in its colour's light tint)."""
+    return f"{counted(len(set(colours)), 'strand colour')}, each with a light tint"
+
+
 def left_out_note(n: int, strips: str | None, where: str) -> str:
     """The warning that ``n`` under-crossing names are left off ``strips`` (None: their own
     strips) and called out ``where``, in the singular for one."""
@@ -148,8 +154,9 @@ PRINTED = Words(
             "called out on {where} ({meaning}).",
     glue="Some strips are printed in parts, numbered beside their ID (strip {name}: \"1/{n}\" to "
          "\"{n}/{n}\"; page 1 says which page holds each part): spread glue on the grey band "
-         "\"glue 1\" at the end of part 1 and stick it under the tile marked \"1\" at the start "
-         "of part 2 (\"glue 2\" under \"2\", and so on) before weaving, so the tiles line up.",
+         "\"glue 1\" at the end of part 1 and stick it under the tile marked \"{one}\" at the "
+         "start of part 2 (\"glue 2\" under \"{two}\", and so on) before weaving, so the tiles "
+         "line up.",
     face_up="coloured side up",
     weft_under="where a weft strip is printed light it goes under the strand named there, where "
                "it shows its own colour it lies on top",
@@ -178,7 +185,7 @@ CARD = Words(
             "({meaning}).",
     glue="Some strips are cut in parts, numbered beside their ID (strip {name}: \"1/{n}\" to "
          "\"{n}/{n}\"): spread glue on the end of a part beyond its engraved line "
-         "(\"glue 1\") and stick it under the tile marked \"1\" at the start of the next part "
+         "(\"glue 1\") and stick it under the tile marked \"{one}\" at the start of the next part "
          "before weaving, so the tiles line up.",
     face_up="engraved side up",
     weft_under="where a weft strip carries a small engraved ID it goes under the strand of that "

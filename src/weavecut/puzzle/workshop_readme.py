@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import textwrap
 
+from ..analysis.convexity import SEE
 from ..presets import LASER_FORMATS
 from ..text import counted
 
@@ -39,13 +40,14 @@ def frame_text(info: dict) -> str:
 
 def readme(info: dict, page: str) -> str:
     """README.txt for the workshop folder: what goes to the laser, what to print, the order of
-    work, the warnings and the summary's figures."""
+    work, the warnings a maker can act on (not the subdivision's non-convex faces: those stay
+    in the terminal and the JSON) and the summary's figures."""
     modes = info["modes"]
     numbers = bool(info.get("numbers"))
     parts = info.get("frame_parts", 1)
     warnings = "".join(textwrap.fill(w, 92, initial_indent="  - ", subsequent_indent="    ",
                                      break_on_hyphens=False) + "\n"
-                       for w in info.get("warnings", [])) or "  none\n"
+                       for w in info.get("warnings", []) if not w.endswith(SEE)) or "  none\n"
     across = info["piece_across_mm"]
     intro = textwrap.fill(
         "The paper's two-sided puzzle (Lipschuetz, Reitebuch, Skrodzki, Polthier, section 6): "

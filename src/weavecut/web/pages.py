@@ -51,6 +51,9 @@ NONE = {  # the choice of no preset, where the option has no default: (name, wha
 }
 
 
+UNKNOWN = "not known: choose one"  # an item a link names that the list lacks
+
+
 def _e(text) -> str:
     return escape(str(text), quote=True)
 
@@ -259,6 +262,12 @@ def _select(f: forms.Field, value: str, fid: str, extra: str, uploads) -> str:
             for i, label, k in uploads) + "</optgroup>")
     if not f.default and f.kind != "input":
         options.append(f'<option value=""{" selected" * (not value)}>—</option>')
+    known = {c.value for c in f.choices} | {"upload:" + i for i, _, _ in uploads}
+    if chosen and chosen not in known:
+        # a value the command refuses (a mistyped link): offered as given and chosen, so the
+        # script sends it and its refusal stays, not the first item silently made instead
+        options.append(f'<option value="{_e(value)}" data-unknown selected>{_e(value)} '
+                       f'({UNKNOWN})</option>')
     for c in f.choices:
         groups.setdefault(c.group, []).append(
             f'<option value="{_e(c.value)}" data-description="{_e(c.description)}"'
@@ -280,6 +289,10 @@ def _presets(f: forms.Field, value: str, attrs: str, hint: str, hid: str, error:
         f'<label class="preset"><input type="radio" name="{f.key}" value=""'
         f'{" checked" * (not current)}><span class="name">{_e(name)}</span>'
         f'<span class="what">{_e(what)}</span></label>']
+    if current and all(c.value != current for c in f.choices):  # as _select: kept, refused
+        cards.append(f'<label class="preset"><input type="radio" name="{f.key}" '
+                     f'value="{_e(current)}" data-unknown checked><span class="name">'
+                     f'{_e(current)}</span><span class="what">{UNKNOWN}</span></label>')
     for c in f.choices:
         n = len(c.swatches)
         dots = "".join(f'<rect x="{i}" width="1" height="1" fill="{_e(s)}"/>'
