@@ -51,6 +51,7 @@ def test_a_recipe_built_by_absolute_paths_writes_none(recipe, tmp_path_factory):
     assert _machine_paths(out, ROOT, session_root(tmp_path_factory)) == []
 
 
+@pytest.mark.slow
 def test_a_command_given_absolute_paths_writes_none(tmp_path, monkeypatch):
     """The star's paper model and weave, with the drawing and -o given absolutely: the titles
     say star.svg."""

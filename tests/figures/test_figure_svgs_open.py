@@ -22,6 +22,8 @@ from weavecut.export import png, svg
 from weavecut.figures import gallery
 from weavecut.layout.drawing import Drawing, Text
 
+pytestmark = pytest.mark.slow  # every figure drawn, then opened in rsvg
+
 RECIPE = Path(__file__).parents[2] / "templates" / "recipes" / "figures.toml"
 # edge-renders: issue #29 is open (its level-8 panel: 1.5 million points in strokes 0.015 mm
 # wide, which cairo's sampled coverage drops below about a tenth of a pixel, so rsvg draws the

@@ -56,6 +56,8 @@ def replace(src, dst, *args, **kwargs):
 os.replace = replace
 sys.argv = ["weave-cut", *sys.argv[2:]]
 from weavecut.cli import main
+
+pytestmark = pytest.mark.slow  # whole builds in concurrent processes
 main()
 """
 
