@@ -20,6 +20,8 @@ from weavecut.cli.common import path_options
 
 from .helpers import files_under, refused, run
 
+pytestmark = pytest.mark.slow  # whole builds in concurrent processes
+
 TILES = ["pentagon", "--size", "256", "--tile-size", "16", "-j", "1"]  # 345 tiles, one by one
 
 
@@ -56,8 +58,6 @@ def replace(src, dst, *args, **kwargs):
 os.replace = replace
 sys.argv = ["weave-cut", *sys.argv[2:]]
 from weavecut.cli import main
-
-pytestmark = pytest.mark.slow  # whole builds in concurrent processes
 main()
 """
 
