@@ -31,7 +31,7 @@ $(STAMP): pyproject.toml setup.py $(LOCK)
 
 # Python keeps compiled modules (and pytest its rewritten test modules) in __pycache__ (ignored
 # by git) even where the environment says not to: every test process and every command the
-# tests start would compile the package and the tests anew (about 7 s CPU per test process)
+# tests start would compile the package and the tests anew (about 6 s CPU per test process)
 unexport PYTHONDONTWRITEBYTECODE
 
 JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
