@@ -1,6 +1,7 @@
 # weave-cut: `make run` builds every recipe in templates/recipes into build/<recipe>/ (the
 # figures recipe is also `make figures`) with a page build/<recipe>/index.html each, and
-# build/index.html linking them; `make test` runs the tests, `make docs` redraws the
+# build/index.html linking them; `make test` runs the tests but the slow ones, `make test-slow`
+# those (`make test-all` both, as CI does), `make docs` redraws the
 # README's images. All create .venv and install the project first when needed, with the exact
 # versions of constraints.txt (`make lock` renews it; `make test-latest` tries the newest).
 
@@ -16,7 +17,7 @@ OUT    := build
 RECIPES := $(wildcard templates/recipes/*.toml) $(wildcard examples/*.toml)
 BUILT   := $(patsubst %.toml,$(OUT)/%/.built,$(notdir $(RECIPES)))
 
-.PHONY: run figures docs test test-latest lock fuzz bench bench-engine bench-kits mutation clean help
+.PHONY: run figures docs test test-slow test-all test-latest lock fuzz bench bench-engine bench-kits mutation clean help
 .DELETE_ON_ERROR:
 
 help:  ## list the targets
@@ -27,6 +28,11 @@ $(STAMP): pyproject.toml setup.py $(LOCK)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -c $(LOCK) -e '.[test]'
 	touch $(STAMP)
+
+# Python keeps compiled modules (and pytest its rewritten test modules) in __pycache__ (ignored
+# by git) even where the environment says not to: every test process and every command the
+# tests start would compile the package and the tests anew (about 6 s CPU per test process)
+unexport PYTHONDONTWRITEBYTECODE
 
 JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 
@@ -54,8 +60,15 @@ figures: $(OUT)/figures/.built  ## every paper figure weave-cut reproduces, into
 docs: $(STAMP)  ## redraw the README's images (docs/, examples/previews/) from the code
 	$(PY) docs/make_docs.py
 
-test: $(STAMP)  ## run the whole test suite in parallel processes (with the versions of constraints.txt)
-	$(PY) -m pytest -n auto --dist worksteal
+PYTEST := $(PY) -m pytest -n auto --dist worksteal
+
+test: $(STAMP)  ## the tests but those marked slow, in parallel processes (with the versions of constraints.txt)
+	$(PYTEST) -m "not slow"
+
+test-slow: $(STAMP)  ## the tests marked slow (whole commands, browsers, servers, subprocesses), in parallel processes
+	$(PYTEST) -m slow
+
+test-all: test test-slow  ## every test: the quick ones, then the slow ones (what CI runs)
 
 test-latest:  ## the tests with the newest release of every dependency (.venv-latest); says which versions differ from constraints.txt
 	$(PYTHON) -m venv .venv-latest

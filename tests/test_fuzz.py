@@ -183,6 +183,7 @@ def _rest(main: int) -> str:
     return out.decode(errors="replace")
 
 
+@pytest.mark.slow
 def test_interrupt_leaves_earlier_outputs_and_no_partial_files(tmp_path):
     """Each signal arrives while level 8 (a minute of work) is being made: the run stops with
     status 130 and one line, leaves no output nor temporary file, and keeps earlier outputs."""
@@ -201,6 +202,7 @@ def test_interrupt_leaves_earlier_outputs_and_no_partial_files(tmp_path):
     assert done.read_bytes() == before
 
 
+@pytest.mark.slow
 def test_same_bytes_across_hash_seeds_for_every_format(tmp_path):
     outputs = {}
     for seed in ("0", "123"):
@@ -226,6 +228,7 @@ def _grid_obj(n: int) -> str:
     return verts + "\n" + faces + "\n"
 
 
+@pytest.mark.slow
 def test_a_million_faces_are_read_and_checked(tmp_path):
     text = _grid_obj(1000)
     path = tmp_path / "big.obj"

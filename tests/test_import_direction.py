@@ -167,6 +167,7 @@ def test_no_import_cycles():
     assert cycles(import_graph(SRC)) == []
 
 
+@pytest.mark.slow
 def test_a_planted_cycle_is_found(tmp_path):
     """Plant the bug: a copy of the package where a low module imports a product inside a
     function (as units once imported presets) has a cycle; each import style is followed."""

@@ -107,6 +107,7 @@ def test_the_reference_check_finds_what_the_laser_card_used_to_say():
     assert reference_problems(guide) == ["a guide's tile named twice: [(1, 1), (1, 1)]"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("product", PRODUCTS)
 def test_every_page_reference_names_a_page_of_its_file(made, product):
     for name in PRODUCTS[product][1]:

@@ -68,6 +68,7 @@ def page(tmp_path_factory) -> Path:
     return kit_page(tmp_path_factory, RECIPE)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("width", [1280, 390])
 def test_the_page_in_chromium(browser, page, width):
     visit = browser.visit(page, width)

@@ -17,6 +17,8 @@ from PIL import Image
 
 from .test_kitpage_browser import chromium, kit_page
 
+pytestmark = pytest.mark.slow  # Chromium drawing every kit page's model viewer
+
 RECIPE = """[recipe]
 name = "models"
 [[job]]

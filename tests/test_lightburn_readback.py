@@ -54,6 +54,7 @@ def kits(tmp_path_factory) -> dict:
     return out
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", KITS)
 def test_every_project_holds_what_the_dxf_of_its_sheet_holds(kits, name):
     folder, _, projects = kits[name]

@@ -20,6 +20,7 @@ names = st.lists(st.from_regex(r"weavecut\.[a-z]{1,6}\.x_[a-z]{1,6}__mutmut_[0-9
                                fullmatch=True), unique=True, max_size=60)
 
 
+@pytest.mark.slow
 @given(names, names, st.integers(0, 40))
 def test_a_sample_keeps_its_mutants_when_others_are_added(old, new, size):
     status = dict.fromkeys(old, "not checked")

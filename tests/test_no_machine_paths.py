@@ -43,6 +43,7 @@ def _machine_paths(folder: Path, *roots: Path) -> list[str]:
             if str(root) in _text(p)]
 
 
+@pytest.mark.slow  # every recipe built (the builds test_slim_pieces reads)
 @pytest.mark.parametrize("recipe", RECIPES, ids=lambda p: p.stem)
 def test_a_recipe_built_by_absolute_paths_writes_none(recipe, tmp_path_factory):
     """The session's build of the recipe (``built_recipes``: absolute paths, the command line
@@ -51,6 +52,7 @@ def test_a_recipe_built_by_absolute_paths_writes_none(recipe, tmp_path_factory):
     assert _machine_paths(out, ROOT, session_root(tmp_path_factory)) == []
 
 
+@pytest.mark.slow
 def test_a_command_given_absolute_paths_writes_none(tmp_path, monkeypatch):
     """The star's paper model and weave, with the drawing and -o given absolutely: the titles
     say star.svg."""

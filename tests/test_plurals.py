@@ -7,6 +7,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+import pytest
 from click.testing import CliRunner
 
 from weavecut.cli import cli
@@ -23,6 +24,7 @@ def test_counted_is_singular_for_one_only():
     assert counted(2, "strip piece") == "2 strip pieces"
 
 
+@pytest.mark.slow
 def test_the_star_and_the_puzzle_say_one_in_the_singular(tmp_path):
     star = str(ROOT / "examples" / "star.svg")
     said = []

@@ -7,6 +7,7 @@ import json
 import re
 from pathlib import Path
 
+import pytest
 from click.testing import CliRunner
 
 from weavecut.analysis import findings as fd
@@ -22,6 +23,7 @@ def readme_table() -> list[str]:
     return [line for line in block.splitlines() if line.startswith("|")]
 
 
+@pytest.mark.slow
 def test_readme_findings_are_the_command_output():
     result = CliRunner().invoke(cli, ["findings", "--fast", "--json"])
     assert result.exit_code == 0, result.output

@@ -11,6 +11,7 @@ import re
 
 import ezdxf
 import numpy as np
+import pytest
 from ezdxf.lldxf.const import VALID_DXF_LINEWEIGHTS
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -102,6 +103,7 @@ def entity_by_entity(drawing: Drawing) -> bytes:
     return doc.encode(comments + buf.getvalue())
 
 
+@pytest.mark.slow
 @settings(max_examples=150, deadline=None)
 @given(sheets=st.lists(sheets, max_size=3), title=st.text(max_size=8))
 def test_a_drawing_of_strokes_gets_ezdxfs_bytes(sheets, title):

@@ -6,6 +6,7 @@ the same bytes."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -53,6 +54,7 @@ sheets = st.builds(Sheet, st.one_of(st.floats(1, 900), st.integers(1, 900)),
                    st.lists(layers, max_size=3).map(tuple), words)
 
 
+@pytest.mark.slow
 @settings(max_examples=150, deadline=None)
 @given(st.lists(sheets, min_size=1, max_size=3), words,
        st.lists(st.tuples(words, words), max_size=2).map(tuple))

@@ -26,6 +26,8 @@ from weavecut.figures import gallery
 from weavecut.layout import raster
 from weavecut.layout.drawing import Drawing, Raster, Text
 
+pytestmark = pytest.mark.slow  # every figure drawn, then opened in rsvg
+
 RECIPE = Path(__file__).parents[2] / "templates" / "recipes" / "figures.toml"
 # edge-renders was the one that failed (issue #29: its level-8 panel was 1.5 million points in
 # strokes 0.015 mm wide, which cairo's sampled coverage drops below about a tenth of a pixel,

@@ -82,6 +82,7 @@ def test_no_earlier_page_has_room_for_a_piece_of_the_last_page(twelve):
             assert room_for(piece, pages[n], b.area.box) is None, f"page {n} has room"
 
 
+@pytest.mark.slow
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.lists(st.tuples(st.integers(4, 30), st.integers(4, 30), st.booleans()), min_size=3,
                 max_size=9))

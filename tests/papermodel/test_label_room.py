@@ -63,6 +63,7 @@ def _recount(sheet) -> tuple[float, float]:
     return least, gap
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", BOOKS)
 def test_labels_read_on_what_is_under_them_and_keep_apart(name):
     book = BOOKS[name]()

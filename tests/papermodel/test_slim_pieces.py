@@ -133,6 +133,7 @@ def test_the_stars_neck_is_widened_and_printed():
     assert widened >= 1  # A8 (and A7, 2.9 mm) needed it
 
 
+@pytest.mark.slow
 def test_a_strip_no_widening_saves_is_refused_with_the_size_that_works(monkeypatch):
     """Asked for 5 mm necks with no strip thickened (``slim.thickened`` mends what closing
     notches does not), the star at 21 mm is refused, naming a tile size at which the book is
@@ -255,6 +256,7 @@ def _old_tab(a, b, normal, base, depth, before, after):
             shapely.LineString([p, q]))
 
 
+@pytest.mark.slow
 def test_a_label_tab_leaves_no_notch_beside_its_tile(monkeypatch):
     """The pentagon flower's 70 label tabs at 23 cm: each tab wider than its edge is lifted on
     chamfers, so no corner of a tabbed strip is a notch under ``MIN_PIECE``; the old

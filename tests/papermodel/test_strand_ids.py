@@ -16,6 +16,8 @@ from weavecut.papermodel.checks import sheet_checks
 
 from tests.papermodel.test_strands import pentagon_book, small_book, weaves
 
+pytestmark = pytest.mark.slow  # the pentagon flower's whole book, read back page by page
+
 
 def pointed_at(sheet, weave, ids) -> dict[str, set[int]]:
     """{ID: the strands it points at} over the "ids" texts of ``sheet``: a text inside a tile of

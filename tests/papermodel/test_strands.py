@@ -26,6 +26,8 @@ from weavecut.subdivision import subdivide
 from weavecut.weave.colour import palette
 from weavecut.weave.snub_weave import snub_weaves
 
+pytestmark = pytest.mark.slow  # whole paper-model books (the pentagon flower's), shared
+
 PRESETS = {"square-grid": (2, 4), "pentagon-flower": (3, 5)}
 
 

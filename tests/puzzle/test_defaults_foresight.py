@@ -60,6 +60,7 @@ def same_choice(monkeypatch, read_at, size, frame_width, thickness) -> int:
     return n_full
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("path", SHIPPED, ids=lambda p: p.name)
 @pytest.mark.parametrize("size, thickness", [(500.0, 3.0), (300.0, 4.0)])
 def test_the_shipped_drawings_get_the_full_searchs_choice(monkeypatch, path, size, thickness):
@@ -83,6 +84,7 @@ def outlines(draw) -> shapely.Polygon:
     return shapely.Polygon(xy)
 
 
+@pytest.mark.slow
 @settings(max_examples=8, deadline=None)
 @given(outline=outlines(), size=st.sampled_from([200.0, 350.0, 500.0]),
        thickness=st.sampled_from([2.0, 3.0, 6.0]), frame_width=st.sampled_from([12.0, 20.0]))

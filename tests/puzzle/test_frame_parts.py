@@ -122,6 +122,7 @@ def _no_fewer_parts_fit(puzzle, sheet, kerf, n):
                                              sheet, 5.0).all(), (k, start)
 
 
+@pytest.mark.slow
 def test_a_frame_that_needs_the_most_parts_is_split_into_them():
     """On a 156 x 117 mm sheet the 400 mm pentagon's frame fits in no fewer than MAX_PARTS
     parts; split_frame still finds the split, and every part fits the sheet as cut (grown by

@@ -111,6 +111,7 @@ def test_printed_pages_show_every_number_whole_and_readable(name, side):
     assert figures["min_label_gap_mm"] >= label_checks.MIN_GAP
 
 
+@pytest.mark.slow
 @settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(name=st.sampled_from(["pentagon", "square-grid", "ngon", "tiling-8-4", "hex-grid"]),
        levels=st.integers(2, 3), size=st.floats(150.0, 600.0), frame=st.floats(8.0, 30.0),

@@ -140,6 +140,7 @@ def test_even_runs_keep_corners_and_have_one_length(points, dent, side):
         assert np.ptp(step[stretch == k]) < 1e-9
 
 
+@pytest.mark.slow
 @settings(max_examples=8, deadline=None)
 @given(st.integers(4, 8), st.floats(0.55, 1.0), st.floats(0.0, 0.3), st.integers(0, 2**16))
 @example(5, 0.65625, 0.296875, 640)  # the ring left three gaps between the pieces: refused
@@ -185,6 +186,7 @@ SQUARE = ('<svg xmlns="http://www.w3.org/2000/svg" width="80mm" height="80mm" '
           'viewBox="0 0 80 80"><rect x="0" y="0" width="80" height="80"/></svg>')
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("shape", ["heart", "square"])
 def test_a_drawing_without_cell_or_levels_gets_comfortable_pieces(shape, tmp_path):
     """Neither --cell nor --levels: the chosen values are reported, and every piece at the
@@ -205,6 +207,7 @@ def test_a_drawing_without_cell_or_levels_gets_comfortable_pieces(shape, tmp_pat
     assert not [w for w in info["warnings"] if "pieces are" in w]
 
 
+@pytest.mark.slow
 def test_the_small_pieces_warning_names_a_cell_that_passes(tmp_path):
     """A drawing meshed too finely: the warning names a larger --cell, and that cell passes."""
     args = ["puzzle", str(HEART), "--size", "30cm", "--levels", "2", "--mode", "shared",

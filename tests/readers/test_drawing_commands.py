@@ -55,6 +55,7 @@ def test_stats_counts_follow_the_mesh_options():
     assert 3 < counts[1] / counts[0] < 5  # a quarter of the area each: about 4 times as many
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name, options", [
     ("heart.svg", ["--levels", "1", "--tile-size", "31mm"]),  # what the size checks ask for
     ("star.svg", ["--levels", "1", "--cell", "10mm", "--tile-size", "19mm"])])

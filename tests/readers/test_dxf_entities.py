@@ -78,6 +78,7 @@ def test_an_ellipse_from_any_start_is_closed_when_it_turns_once(tmp_path):
     assert (x / 20) ** 2 + (y / 10) ** 2 == pytest.approx(1.0, abs=2e-3)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("units, mm", [(0, 1.0), (1, 25.4), (4, 1.0), (5, 10.0), (6, 1000.0)])
 def test_curves_are_flattened_to_the_tolerance_in_mm(tmp_path, units, mm):
     """A circle of radius 1 drawing unit: in mm, within the 0.2 mm tolerance of the true circle

@@ -14,6 +14,8 @@ from weavecut.subdivision import subdivide
 from weavecut.weave.ribbons import ribbons, tile_normals
 from weavecut.weave.snub_weave import snub_weaves
 
+pytestmark = pytest.mark.slow  # woven 3D models read back by trimesh
+
 trimesh = pytest.importorskip("trimesh")
 
 

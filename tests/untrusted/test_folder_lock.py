@@ -20,6 +20,8 @@ from weavecut.cli.common import path_options
 
 from .helpers import files_under, refused, run
 
+pytestmark = pytest.mark.slow  # whole builds in concurrent processes
+
 TILES = ["pentagon", "--size", "256", "--tile-size", "16", "-j", "1"]  # 345 tiles, one by one
 
 

@@ -60,6 +60,7 @@ def test_drawings_stay_well_formed(tmp_path, mesh, suffix):
         assert proc.returncode == 0 and "Syntax Error" not in proc.stderr, proc.stderr
 
 
+@pytest.mark.slow
 def test_weave_svg_and_json_stay_well_formed(tmp_path, mesh):
     weave_cut(b"weave", mesh, b"--levels", b"1", b"-o", os.fsencode(tmp_path / "w.svg"))
     well_formed_xml(tmp_path / "w.svg")

@@ -16,6 +16,8 @@ from weavecut.web import forms
 from tests.web.test_app_forms import help_options
 from tests.web_app import cli_files
 
+pytestmark = pytest.mark.slow  # whole kits in every format, against the command line's files
+
 
 @pytest.mark.parametrize("name", forms.COMMANDS)
 def test_the_formats_offered_are_the_ones_the_help_names(name):

@@ -15,6 +15,7 @@ from weavecut.kitpage.viewer import STATIC as VIEWER
 SQUARE = "input=square-grid&size=27cm"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("command", "query", "member"), [
     ("strands", SQUARE, "strands-3d.glb"),
     ("puzzle", "levels=2&size=20cm", "puzzle/puzzle-3d.glb"),

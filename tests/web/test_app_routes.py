@@ -162,6 +162,7 @@ def test_the_kit_is_the_clis_files(served, tmp_path):
     assert kit.read("index.html") == made["index.html"]
 
 
+@pytest.mark.slow
 def test_figures_of_the_kit(served):
     response = served.get("/strands/summary.json?input=square-grid&size=27cm")
     assert response.status_code == 200

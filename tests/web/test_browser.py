@@ -21,6 +21,8 @@ import pytest
 from tests.test_readback import program
 from tests.web_app import cli_files
 
+pytestmark = pytest.mark.slow  # Chromium driving the web app through whole kits
+
 ROOT = Path(__file__).resolve().parents[2]
 READY = "document.getElementById('status').textContent.includes('ready to download')"
 

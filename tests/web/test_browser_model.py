@@ -15,6 +15,8 @@ from tests.test_kitpage_browser import chromium
 from tests.test_kitpage_viewer import canvas_shot, model_box
 from tests.web.test_browser import server  # noqa: F401  (the fixture: the app as users start it)
 
+pytestmark = pytest.mark.slow  # Chromium drawing a kit's 3D model
+
 SHOWN = ("(() => { const f = document.querySelector('#model figure.model3d');"
          " return f && f.dataset.state !== 'loading' ? f.dataset.state : null; })()")
 

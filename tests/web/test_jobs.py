@@ -18,6 +18,8 @@ from hypothesis import given, strategies as st
 from weavecut import __version__
 from weavecut.web.jobs import JobResult, JobSpec, code_version, command_line, run_job
 
+pytestmark = pytest.mark.slow  # whole kits through the job queue, against the command line's
+
 ROOT = Path(__file__).resolve().parents[2]
 HEART = (ROOT / "examples" / "heart.svg").read_bytes()
 

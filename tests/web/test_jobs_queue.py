@@ -95,6 +95,7 @@ def test_over_its_cpu_limit_a_job_answers_422_and_the_queue_goes_on(tmp_path):
     assert (cpu.status, cpu.error.split(";")[0]) == (422, "the kit took more than 1 s of CPU")
 
 
+@pytest.mark.slow
 def test_over_its_memory_limit_a_job_answers_422_and_the_queue_goes_on(tmp_path):
     memory, estimate = then_quick(
         tmp_path, 120, 60,
