@@ -72,6 +72,12 @@ CASES = [
      "'.svg'"),
     (("strands", "pentagon-flower", "--tile-size", "3cm", "--size", "27cm", "-o", "TMP/s.pdf"),
      2, "'--size': give --tile-size or --size, not both"),
+    (("subdivide", "dodecahedron", "--levels", "1", "-o", "TMP/d.svg"), 1,
+     "dodecahedron is a surface in space (x, y, z vertices); a .svg drawing needs a flat mesh "
+     "so far"),
+    (("weave", "dodecahedron", "--levels", "1", "-o", "TMP/w.pdf"), 1,
+     "dodecahedron is a surface in space (x, y, z vertices); a .pdf drawing needs a flat mesh "
+     "so far"),
 ]
 
 
@@ -93,5 +99,31 @@ def test_a_bad_option_value_is_one_line_and_writes_nothing(tmp_path, args, statu
 def test_a_recipe_jobs_input_is_a_name_or_a_file_beside_it(tmp_path, body, says):
     recipe = tmp_path / "r.toml"
     recipe.write_text('[[job]]\ncommand = "weave"\n' + body)
+    refused(run("build", recipe, "-o", tmp_path / "out"), says)
+    assert files_under(tmp_path) == {"r.toml"}
+
+
+def test_a_recipe_page_size_given_as_a_number_is_refused(tmp_path):
+    """A page is a name or WxH with units: a number (TOML lets one through) is a usage error
+    of the job, not an internal error."""
+    recipe = tmp_path / "r.toml"
+    recipe.write_text('[[job]]\ncommand = "subdivide"\ninput = "pentagon"\nlevels = 1\n'
+                      'output = "s.pdf"\npage = 5\n')
+    refused(run("build", recipe, "-o", tmp_path / "out"), "job 1 (subdivide)",
+            "5 is not a page size: use a4, a3, letter, a preset or WxH like 200x300mm")
+    assert files_under(tmp_path) == {"r.toml"}
+
+
+@pytest.mark.parametrize("output, says", [
+    ("index.html", "job 2 (weave): output 'index.html' is weave-cut's page of the build"),
+    ("sub/.weave-cut-manifest.json", "job 2 (weave): output 'sub/.weave-cut-manifest.json' is "
+                                     "weave-cut's manifest"),
+])
+def test_a_recipe_job_never_writes_the_builds_page_or_a_manifest(tmp_path, output, says):
+    """The build writes its kit page at the top of its folder and a manifest in each folder
+    it writes: a job naming either is refused before any job runs (a job before it too)."""
+    recipe = tmp_path / "r.toml"
+    job = '[[job]]\ncommand = "weave"\ninput = "pentagon"\nlevels = 1\noutput = "{}"\n'
+    recipe.write_text(job.format("first.svg") + job.format(output))
     refused(run("build", recipe, "-o", tmp_path / "out"), says)
     assert files_under(tmp_path) == {"r.toml"}
