@@ -118,7 +118,8 @@ PACKAGES: dict[str, Package] = {
     # by their own table, not worth 4000 mutants); the layout tools' own tests only (the
     # products' tests reach a layout function many calls down; the figures', the puzzle's
     # cut files' and the strips' paint tests are the nearest that reach the figure drawing,
-    # the nesting and the stroke-font labels), and no max_stack_depth:
+    # the nesting and the stroke-font labels; the commands' figures, the packer, the room
+    # search and the tiled pages have tests of their own), and no max_stack_depth:
     # mutmut 3.8's stack walk fails on the frame of a dataclass's generated __init__ (file
     # "<string>"), which every Drawing is built through (as for mesh-core)
     "layout": Package(tuple(f"src/weavecut/layout/{m}.py" for m in (
@@ -133,7 +134,9 @@ PACKAGES: dict[str, Package] = {
                        "tests/untrusted/test_layout_guards.py",
                        "tests/papermodel/test_label_checks.py", "tests/figures",
                        "tests/puzzle/test_cut_readback.py",
-                       "tests/papermodel/test_strip_paint.py")),
+                       "tests/papermodel/test_strip_paint.py", "tests/test_figure_drawings.py",
+                       "tests/test_nesting_packing.py", "tests/test_nesting_room_search.py",
+                       "tests/test_tiled_pages.py")),
     # the kit page: its own tests build small kits in process (the CLI's build and --html are
     # a few frames above kitpage), and the figures a maker reads against --json
     "kitpage": Package(("src/weavecut/kitpage/*",),
@@ -183,7 +186,8 @@ def configure(work: Path, package: Package) -> None:
     settings = {"source_paths": ["src"], "only_mutate": list(package.mutate),
                 "pytest_add_cli_args_test_selection": list(package.tests),
                 "pytest_add_cli_args": args,
-                "also_copy": ["templates/", "examples/", "benchmarks/", "docs/", "README.md"],
+                "also_copy": ["templates/", "examples/", "benchmarks/", "docs/", "README.md",
+                              "Makefile"],
                 "timeout_multiplier": TIMEOUT_MULTIPLIER, **package.settings}
     text += "\n[tool.mutmut]\n" + "".join(f"{key} = {json.dumps(value)}\n"
                                           for key, value in settings.items())
