@@ -157,7 +157,8 @@ PACKAGES: dict[str, Package] = {
                    ("tests/test_cli.py", "tests/test_cli_names.py", "tests/test_cli_outputs.py",
                     "tests/test_cli_shell.py", "tests/test_formats_option.py",
                     "tests/untrusted/test_options.py", "tests/untrusted/test_recipes.py",
-                    "tests/untrusted/test_confinement.py"),
+                    "tests/untrusted/test_confinement.py", "tests/untrusted/test_cli_guards.py",
+                    "tests/untrusted/test_cli_option_guards.py"),
                    settings={"timeout_multiplier": 20}),
 }
 

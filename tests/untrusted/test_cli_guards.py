@@ -43,7 +43,8 @@ CASES = [
     (("weave", "pentagon", "--levels", "1", "-o", "TMP/w.glb"), 1,
      "pentagon is flat; a .glb woven model needs a surface in space"),
     (("weave", "pentagon", "--levels", "1", "--scheme", "dual", "-o", "TMP/w.svg"), 1,
-     "dual of pentagon has no faces at level 1"),
+     "dual of pentagon has no faces at level 1 (the scheme needs inner vertices or edges this "
+     "mesh does not have); try another scheme or input"),
     (("weave", "pentagon", "--levels", "1", "--scheme", "midedge", "-o", "TMP/w.svg"), 1,
      "the midedge weave of pentagon at level 1 has no tiles: no two faces glue into one; try "
      "--face-split or another scheme"),
@@ -127,3 +128,20 @@ def test_a_recipe_job_never_writes_the_builds_page_or_a_manifest(tmp_path, outpu
     recipe.write_text(job.format("first.svg") + job.format(output))
     refused(run("build", recipe, "-o", tmp_path / "out"), says)
     assert files_under(tmp_path) == {"r.toml"}
+
+
+def test_a_path_is_too_long_only_past_the_file_systems_limits(tmp_path):
+    """4,096 bytes of path and 255 of a name are allowed; one byte more of either is refused."""
+    from weavecut.cli.outputs import NAME_MAX, PATH_MAX, too_long
+
+    name = "n" * NAME_MAX
+    assert too_long(tmp_path / name) is None
+    assert "(this one 256)" in too_long(tmp_path / (name + "n"))
+    head = str(tmp_path) + "/"
+    rest = PATH_MAX - len(head)
+    parts = [name] * (rest // (NAME_MAX + 1)) + ["n" * (rest % (NAME_MAX + 1) or 1)]
+    path = head + "/".join(parts)
+    path = path[:PATH_MAX] if len(path) > PATH_MAX else path + "n" * (PATH_MAX - len(path))
+    assert len(path) == PATH_MAX and max(map(len, path.split("/"))) <= NAME_MAX
+    assert too_long(path) is None
+    assert "and a path 4,096" in too_long(path + "n")
