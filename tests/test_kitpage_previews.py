@@ -11,7 +11,8 @@ from PIL import Image
 
 from weavecut import export
 from weavecut.kitpage import previews
-from weavecut.layout.drawing import Drawing, Layer, Polygons, Sheet, Style
+from weavecut.kitpage.document import _layer_settings
+from weavecut.layout.drawing import Drawing, Layer, Polygons, Sheet, Style, polylines_from_lines
 
 from .test_readback import program
 
@@ -58,3 +59,19 @@ def test_a_cut_drawn_over_its_page_or_card_is_an_outline_whatever_its_fill():
         assert not green.any()
         edge = image[h // 2, :w // 2]  # the outline crosses the left half of the middle row
         assert (np.abs(edge - inside).sum(axis=1) > 60).any()
+
+
+def test_a_laser_files_settings_name_its_passes_only_where_there_are_several():
+    """A laser file's card lists each operation in the order it runs: its colour, speed and
+    power, and its passes where an operation takes more than one (none said: one)."""
+    line = [np.array([[0.0, 0.0], [10.0, 0.0]])]
+    layers = tuple(Layer(role, role, (polylines_from_lines(line, Style(colour, 0.1)),))
+                   for role, colour in (("cut", "#ff0000"), ("engrave", "#000000"),
+                                        ("score", "#0000ff")))
+    drawing = Drawing((Sheet(100.0, 100.0, layers),), "t")
+    operations = {"engrave": {"speed_mm_s": 150, "power_pct": 15},
+                  "score": {"speed_mm_s": 80, "power_pct": 25, "passes": 1},
+                  "cut": {"speed_mm_s": 20, "power_pct": 100, "passes": 2}}
+    assert _layer_settings(drawing, operations, 20.0) == (
+        "engrave black at 150 mm/s, 15 %; score blue at 80 mm/s, 25 %; "
+        "cut red at 20 mm/s, 100 %, 2 passes")

@@ -5,6 +5,7 @@ of it. Read from the pages as drawn: the label's text, the window's corner ticks
 
 from __future__ import annotations
 
+import itertools
 import math
 import re
 
@@ -16,7 +17,8 @@ from hypothesis import strategies as st
 
 from weavecut.layout.drawing import Drawing, Layer, Polylines, Sheet, Style, Text
 from weavecut.layout.drawing import polygons_from_rings
-from weavecut.layout.tiling import on_pages, tile
+from weavecut.layout.labels import text_width
+from weavecut.layout.tiling import SHIFTS, balanced, on_pages, tile
 from weavecut.puzzle.guide_numbers import guide_numbers
 from weavecut.puzzle.guides import colour_key, guide, printed
 
@@ -225,3 +227,47 @@ def test_the_emptiest_page_holds_as_much_paint_as_the_centred_grids_does(name, s
     assert len(tiles) <= fewest
     best = max(min(_paint_shares(c)) for c in centred if len(c) == fewest)
     assert min(_paint_shares(tiles)) >= best - 0.01
+
+
+ISLANDS = {  # (sheet width, height), 30 mm squares of paint whose centred grid paints a page more
+    "four": ((352.3, 387.4), [(23.1, 261.7), (172.3, 123.0), (15.0, 15.0), (307.3, 342.4)]),
+    "six": ((341.3, 362.1), [(45.9, 76.4), (94.8, 109.9), (103.0, 189.2), (288.3, 249.0),
+                             (15.0, 15.0), (296.3, 317.1)]),
+}
+
+
+@pytest.mark.parametrize("name", sorted(ISLANDS))
+def test_the_balanced_grid_paints_the_fewest_pages_of_any_shift(name):
+    """``balanced`` (which weighs paint by points on a grid) against every shift of each page
+    that needs the fewest windows, each tiled and its pages' paint measured with shapely: the
+    choice paints no more pages than the best of them, and fewer than the centred grid."""
+    (w, h), corners = ISLANDS[name]
+    rings = [np.array([[x, y], [x + 30, y], [x + 30, y + 30], [x, y + 30]]) for x, y in corners]
+    shape = polygons_from_rings(rings, Style("#000000", 0.3), ["#88aa44"] * len(rings))
+    drawing = Drawing((Sheet(w, h, (Layer("paint", "paint", (shape,)),)),), name)
+
+    def painted(page, shift):
+        pages = tile(drawing, page, 10.0, 10.0, shift=shift).sheets
+        return sum(shapely.union_all([g for layer in s.layers if layer.name == "paint"
+                                      for p in layer.shapes for g in p.to_shapely().tolist()]
+                                     ).area > 1.0 for s in pages)
+
+    windows = {page: len(tile(drawing, page, 10.0, 10.0).sheets) for page in (A4, A4[::-1])}
+    pages = [page for page in windows if windows[page] == min(windows.values())]
+    every = {(page, shift): painted(page, shift) for page in pages
+             for shift in itertools.product(SHIFTS, SHIFTS)}
+    page, shift = balanced(drawing.sheets[0], (A4, A4[::-1]), 10.0, 10.0)
+    assert every[(tuple(page), tuple(shift))] == min(every.values()) < every[(pages[0],
+                                                                              (0.5, 0.5))]
+
+
+def test_the_scale_bars_length_is_written_on_the_page_right_of_the_bar():
+    """Each page's 100 mm bar: its words start past the bar's right end and end on the page
+    (a ruler a maker checks the print against, so it must be readable beside the bar)."""
+    for sheet in tile(_box_drawing(400, 500), A4).sheets:
+        marks = _marks(sheet)
+        label = next(s for s in marks.shapes if isinstance(s, Text) and s.text == "100 mm")
+        bar = next(line for s in marks.shapes if isinstance(s, Polylines) for line in s.lines()
+                   if len(line) == 2 and abs(line[1, 0] - line[0, 0]) == 100.0)
+        assert label.anchor == "start" and label.x > bar[:, 0].max()
+        assert label.x + text_width(label.text, label.size) <= sheet.width

@@ -118,7 +118,8 @@ PACKAGES: dict[str, Package] = {
     # by their own table, not worth 4000 mutants); the layout tools' own tests only (the
     # products' tests reach a layout function many calls down; the figures', the puzzle's
     # cut files' and the strips' paint tests are the nearest that reach the figure drawing,
-    # the nesting and the stroke-font labels), and no max_stack_depth:
+    # the nesting and the stroke-font labels; the commands' figures, the packer, the room
+    # search and the tiled pages have tests of their own), and no max_stack_depth:
     # mutmut 3.8's stack walk fails on the frame of a dataclass's generated __init__ (file
     # "<string>"), which every Drawing is built through (as for mesh-core)
     "layout": Package(tuple(f"src/weavecut/layout/{m}.py" for m in (
@@ -133,11 +134,15 @@ PACKAGES: dict[str, Package] = {
                        "tests/untrusted/test_layout_guards.py",
                        "tests/papermodel/test_label_checks.py", "tests/figures",
                        "tests/puzzle/test_cut_readback.py",
-                       "tests/papermodel/test_strip_paint.py")),
+                       "tests/papermodel/test_strip_paint.py", "tests/test_figure_drawings.py",
+                       "tests/test_nesting_packing.py", "tests/test_nesting_room_search.py",
+                       "tests/test_tiled_pages.py")),
     # the kit page: its own tests build small kits in process (the CLI's build and --html are
-    # a few frames above kitpage), and the figures a maker reads against --json
+    # a few frames above kitpage), the figures a maker reads against --json, and the
+    # previews' and laser settings' own tests
     "kitpage": Package(("src/weavecut/kitpage/*",),
-                       ("tests/test_kitpage.py", "tests/test_figures_agree.py")),
+                       ("tests/test_kitpage.py", "tests/test_figures_agree.py",
+                        "tests/test_kitpage_previews.py")),
     # lengths with units and presets (the untrusted-input tests read presets and options
     # through the same functions)
     "units-presets": Package(("src/weavecut/units.py", "src/weavecut/presets.py"),
@@ -154,7 +159,8 @@ PACKAGES: dict[str, Package] = {
                    ("tests/test_cli.py", "tests/test_cli_names.py", "tests/test_cli_outputs.py",
                     "tests/test_cli_shell.py", "tests/test_formats_option.py",
                     "tests/untrusted/test_options.py", "tests/untrusted/test_recipes.py",
-                    "tests/untrusted/test_confinement.py"),
+                    "tests/untrusted/test_confinement.py", "tests/untrusted/test_cli_guards.py",
+                    "tests/untrusted/test_cli_option_guards.py"),
                    settings={"timeout_multiplier": 20}),
 }
 
@@ -183,7 +189,8 @@ def configure(work: Path, package: Package) -> None:
     settings = {"source_paths": ["src"], "only_mutate": list(package.mutate),
                 "pytest_add_cli_args_test_selection": list(package.tests),
                 "pytest_add_cli_args": args,
-                "also_copy": ["templates/", "examples/", "benchmarks/", "docs/", "README.md"],
+                "also_copy": ["templates/", "examples/", "benchmarks/", "docs/", "README.md",
+                              "Makefile"],
                 "timeout_multiplier": TIMEOUT_MULTIPLIER, **package.settings}
     text += "\n[tool.mutmut]\n" + "".join(f"{key} = {json.dumps(value)}\n"
                                           for key, value in settings.items())

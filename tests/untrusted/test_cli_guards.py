@@ -43,7 +43,8 @@ CASES = [
     (("weave", "pentagon", "--levels", "1", "-o", "TMP/w.glb"), 1,
      "pentagon is flat; a .glb woven model needs a surface in space"),
     (("weave", "pentagon", "--levels", "1", "--scheme", "dual", "-o", "TMP/w.svg"), 1,
-     "dual of pentagon has no faces at level 1"),
+     "dual of pentagon has no faces at level 1 (the scheme needs inner vertices or edges this "
+     "mesh does not have); try another scheme or input"),
     (("weave", "pentagon", "--levels", "1", "--scheme", "midedge", "-o", "TMP/w.svg"), 1,
      "the midedge weave of pentagon at level 1 has no tiles: no two faces glue into one; try "
      "--face-split or another scheme"),
@@ -72,6 +73,12 @@ CASES = [
      "'.svg'"),
     (("strands", "pentagon-flower", "--tile-size", "3cm", "--size", "27cm", "-o", "TMP/s.pdf"),
      2, "'--size': give --tile-size or --size, not both"),
+    (("subdivide", "dodecahedron", "--levels", "1", "-o", "TMP/d.svg"), 1,
+     "dodecahedron is a surface in space (x, y, z vertices); a .svg drawing needs a flat mesh "
+     "so far"),
+    (("weave", "dodecahedron", "--levels", "1", "-o", "TMP/w.pdf"), 1,
+     "dodecahedron is a surface in space (x, y, z vertices); a .pdf drawing needs a flat mesh "
+     "so far"),
 ]
 
 
@@ -95,3 +102,46 @@ def test_a_recipe_jobs_input_is_a_name_or_a_file_beside_it(tmp_path, body, says)
     recipe.write_text('[[job]]\ncommand = "weave"\n' + body)
     refused(run("build", recipe, "-o", tmp_path / "out"), says)
     assert files_under(tmp_path) == {"r.toml"}
+
+
+def test_a_recipe_page_size_given_as_a_number_is_refused(tmp_path):
+    """A page is a name or WxH with units: a number (TOML lets one through) is a usage error
+    of the job, not an internal error."""
+    recipe = tmp_path / "r.toml"
+    recipe.write_text('[[job]]\ncommand = "subdivide"\ninput = "pentagon"\nlevels = 1\n'
+                      'output = "s.pdf"\npage = 5\n')
+    refused(run("build", recipe, "-o", tmp_path / "out"), "job 1 (subdivide)",
+            "5 is not a page size: use a4, a3, letter, a preset or WxH like 200x300mm")
+    assert files_under(tmp_path) == {"r.toml"}
+
+
+@pytest.mark.parametrize("output, says", [
+    ("index.html", "job 2 (weave): output 'index.html' is weave-cut's page of the build"),
+    ("sub/.weave-cut-manifest.json", "job 2 (weave): output 'sub/.weave-cut-manifest.json' is "
+                                     "weave-cut's manifest"),
+])
+def test_a_recipe_job_never_writes_the_builds_page_or_a_manifest(tmp_path, output, says):
+    """The build writes its kit page at the top of its folder and a manifest in each folder
+    it writes: a job naming either is refused before any job runs (a job before it too)."""
+    recipe = tmp_path / "r.toml"
+    job = '[[job]]\ncommand = "weave"\ninput = "pentagon"\nlevels = 1\noutput = "{}"\n'
+    recipe.write_text(job.format("first.svg") + job.format(output))
+    refused(run("build", recipe, "-o", tmp_path / "out"), says)
+    assert files_under(tmp_path) == {"r.toml"}
+
+
+def test_a_path_is_too_long_only_past_the_file_systems_limits(tmp_path):
+    """4,096 bytes of path and 255 of a name are allowed; one byte more of either is refused."""
+    from weavecut.cli.outputs import NAME_MAX, PATH_MAX, too_long
+
+    name = "n" * NAME_MAX
+    assert too_long(tmp_path / name) is None
+    assert "(this one 256)" in too_long(tmp_path / (name + "n"))
+    head = str(tmp_path) + "/"
+    rest = PATH_MAX - len(head)
+    parts = [name] * (rest // (NAME_MAX + 1)) + ["n" * (rest % (NAME_MAX + 1) or 1)]
+    path = head + "/".join(parts)
+    path = path[:PATH_MAX] if len(path) > PATH_MAX else path + "n" * (PATH_MAX - len(path))
+    assert len(path) == PATH_MAX and max(map(len, path.split("/"))) <= NAME_MAX
+    assert too_long(path) is None
+    assert "and a path 4,096" in too_long(path + "n")
