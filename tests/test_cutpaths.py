@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 from weavecut.layout.cutpaths import (_two_opt, are_closed, is_closed, order_paths,
                                       travel_length)
-from weavecut.layout.cutpaths import FAR
+from weavecut.layout.cutpaths import FAR, EdgeGraph, trails
 from weavecut.numeric import snap
 
 
@@ -130,3 +130,26 @@ def test_paths_ordered_as_the_book_orders_them(n, seed):
     want = order_by_the_book(paths, (1.0, 2.0))
     assert len(got) == len(want) and all(np.array_equal(a, b) for a, b in zip(got, want))
     assert end == tuple(want[-1][-1])
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.integers(2, 12), st.integers(0, 2**16))
+def test_trails_cover_every_edge_once_even_at_a_corner_that_is_not_finite(n, seed):
+    """A walk takes an unused edge at every step, whatever the corners' coordinates: a NaN
+    corner (a level too small for floating point, refused before layout) once made the
+    straightest-edge choice pick none and the walk loop forever. Each edge of a random graph
+    is walked exactly once."""
+    rng = np.random.default_rng(seed)
+    points = rng.random((n, 2))
+    points[rng.integers(n)] = np.nan
+    pairs = {tuple(sorted(p)) for p in rng.integers(0, n, (3 * n, 2)).tolist() if p[0] != p[1]}
+    edges = np.array(sorted(pairs), dtype=np.int64).reshape(-1, 2)
+    walks = trails(EdgeGraph(points, edges, np.ones(len(edges), np.int64)))
+    index = {tuple(p): i for i, p in enumerate(points.tolist()) if np.isfinite(p).all()}
+    walked = []
+    for w in walks:
+        ids = [index.get(tuple(p), -1) for p in w.tolist()]  # -1: the NaN corner
+        nan_id = next(i for i, p in enumerate(points.tolist()) if not np.isfinite(p).all())
+        ids = [nan_id if i < 0 else i for i in ids]
+        walked += [tuple(sorted(e)) for e in zip(ids[:-1], ids[1:])]
+    assert sorted(walked) == sorted(map(tuple, edges.tolist()))

@@ -84,7 +84,7 @@ def trails(graph: EdgeGraph, select: NDArray[np.bool_] | None = None) -> list[ND
                     ex, ey = px[w] - px[v], py[w] - py[v]
                     norm = (ex * ex + ey * ey) ** 0.5 or 1.0
                     c = (ex * dx + ey * dy) / norm
-                    if c > best_cos:
+                    if best < 0 or c > best_cos:  # (a NaN corner still takes an edge)
                         best, best_cos = k, c
                 e, w = adj_edge[best], adj_other[best]
                 used[e] = True
