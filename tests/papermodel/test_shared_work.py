@@ -1,6 +1,7 @@
 """Work shared or skipped for speed gives what the plain way gives: congruent strips labelled
 together as each alone, fits in one batch as one by one, strips moved together as one by one,
-a spot skipped only where the text cannot fit, obstacles indexed as tested one by one."""
+a spot skipped only where the text cannot fit, obstacles indexed as tested one by one, a plate's
+search skipped only where it finds nothing."""
 
 from __future__ import annotations
 
@@ -18,6 +19,7 @@ from weavecut.papermodel import book
 from weavecut.papermodel.assembly import Obstacles
 from weavecut.papermodel.modules import book_colours, plan_modules
 from weavecut.papermodel.pages import PageArea
+from weavecut.papermodel.plates import free_spot, search_spot
 from weavecut.papermodel.strip_labels import _fit_text, _may_reach, label_strips
 from weavecut.papermodel.strips import GEOMETRY, moved_strips
 from weavecut.weave.colour import palette
@@ -144,6 +146,30 @@ def test_obstacles_answer_as_tested_one_by_one(boxes, seed):
                             *(rng.uniform(0, 50, (5, 2)) + 2.0).T)
         brute = shapely.intersects(probe[:, None], np.array(obstacles)[None, :]).any(axis=1)
         np.testing.assert_array_equal(obstacles.hits(probe), brute)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.floats(-30, 30), st.floats(-30, 30), st.floats(0.5, 12),
+                          st.floats(0.5, 12), st.booleans()), max_size=30),
+       st.tuples(st.floats(-5, 5), st.floats(-5, 5)), st.sampled_from([0, 1, 2, 3]))
+def test_a_plate_search_is_skipped_only_where_it_finds_nothing(boxes, at, touch):
+    """A plate's spot round ``at`` is what trying every spot gives, also where ``at`` lies on
+    an obstacle's corner or edge (touch 1, 2) or 0.2 mm off one (3), inside one or clear of all
+    (boxes and the thick lines leaders leave)."""
+    obstacles = [shapely.box(x, y, x + w, y + h) if box else
+                 shapely.buffer(shapely.LineString([(x, y), (x + w, y - h)]), 0.3)
+                 for x, y, w, h, box in boxes]
+    if touch:
+        off = 0.2 if touch == 3 else 0.0
+        obstacles.append(shapely.box(at[0] - 3.0 * (touch == 2), at[1] + off, at[0] + 3.0,
+                                     at[1] + off + 2.0))
+    frame = shapely.box(-50, -50, 50, 50)
+    quick = free_spot(at, "A1", obstacles, frame, 5.0)
+    full = search_spot(at, "A1", obstacles, frame, 5.0)
+    assert (quick is None) == (full is None)
+    if full is not None:
+        assert shapely.equals_exact(quick[1], full[1], 0.0)
+        assert shapely.equals_exact(quick[2], full[2], 0.0)
 
 
 @settings(max_examples=40, deadline=None)
