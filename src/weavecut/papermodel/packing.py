@@ -113,7 +113,7 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 0.
                     masks[key] = Options(turned_masks(stack, angles, gap, size, width, height))
                 return masks[key]
 
-            grids[size] = Grid(options, int(width // size), int(height // size), size, {})
+            grids[size] = Grid(options, int(width // size), int(height // size), size, {}, {})
         return grids[size]
 
     hulls = shapely.area(shapely.convex_hull(shapes))
@@ -154,13 +154,15 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 0.
 @dataclass(frozen=True)
 class Grid:
     """A raster to pack on: ``options(members, move)`` the turns of a stack, the page's
-    ``nx`` x ``ny`` cells of ``cell`` mm, and the masks' transforms shared by its pages."""
+    ``nx`` x ``ny`` cells of ``cell`` mm, the masks' transforms shared by its pages, and the
+    best spots found (:func:`_spot`)."""
 
     options: object
     nx: int
     ny: int
     cell: float
     spectra: dict
+    spots: dict
 
 
 MERGE_SLACK = 50_000  # millionths of the area: a last page is emptied into an earlier one where
@@ -223,7 +225,8 @@ def _settle(run, laid, grid: Grid, kinds, axis: int):
     for number, members, _, _ in laid:
         for i in (members if number == last and len(members) > 1 else []):
             opts = grid.options([i], np.zeros(2))
-            if (spot := _first_fit(pages, opts, (int(kinds[i]), 1), full, axis)) is not None:
+            if (spot := _first_fit(pages, opts, (int(kinds[i]), 1), full, axis,
+                                   grid.spots)) is not None:
                 _place(out, [], pages, [i], np.zeros(2), *spot, grid.cell)
     return out
 
@@ -257,8 +260,8 @@ def _fill(units, shapes, kinds, grid: Grid, area, first, axis: int, most: int | 
     laid: list = []
     while queue:  # stacks of pieces
         members, move = queue.pop(0)
-        spot = _first_fit(pages, options(members, move), (int(kinds[members[0]]), len(members)),
-                          full, axis)
+        key = (int(kinds[members[0]]), len(members))
+        spot = _first_fit(pages, options(members, move), key, full, axis, grid.spots)
         if spot is None and (len(members) > 1 and (pages or not options(members, move))):
             half = (len(members) + 1) // 2
             queue = sorted(queue + [(members[:half], move), (members[half:], move)], key=order)
@@ -271,17 +274,17 @@ def _fill(units, shapes, kinds, grid: Grid, area, first, axis: int, most: int | 
             if most is not None and len(pages) == most:
                 return None  # no better than a packing found before
             pages.append(Page(ny, nx, grid.spectra))
-            spot = len(pages) - 1, _best_spot(pages[-1], options(members, move), axis)
+            spot = len(pages) - 1, _spot(pages[-1], options(members, move), key, axis, grid.spots)
         _place(out, laid, pages, members, move, *spot, cell)
     return out, laid
 
 
-def _first_fit(pages, opts, key, full: set, axis: int):
+def _first_fit(pages, opts, key, full: set, axis: int, spots: dict):
     """(page, spot) of the first of ``pages`` with room for the stack of ``opts`` (see
     :func:`_best_spot`), or None; ``full`` holds the (key, page) already found without."""
     for number, page in enumerate(pages):
         if opts and (key, number) not in full and page.may_hold(opts):
-            if (best := _best_spot(page, opts, axis)) is not None:
+            if (best := _spot(page, opts, key, axis, spots)) is not None:
                 return number, best
             full.add((key, number))  # pages only fill up: no need to try again
     return None
@@ -299,6 +302,16 @@ def _place(out, laid, pages, members, move, number: int, spot, cell: float) -> N
         at = shift + turn(j * move)
         out[i] = Place(number, float(angle), (float(at[0]), float(at[1])))
     laid.append((number, members, mask, (iy, ix)))
+
+
+def _spot(page: Page, opts, key, axis: int, spots: dict):
+    """:func:`_best_spot` of the stack of ``opts`` (``key``: its kind and size) on ``page``,
+    looked up in ``spots`` by the page's cells where a run before asked the same (a packing
+    redone, or its other stacks' pieces settled, meets the same pages now and then)."""
+    at = (np.packbits(page.taken).tobytes(), key, axis)
+    if at not in spots:
+        spots[at] = _best_spot(page, opts, axis)
+    return spots[at]
 
 
 def _best_spot(grid: Page, options, axis: int = 1):
