@@ -37,7 +37,7 @@ import shapely
 from numpy.typing import NDArray
 
 from ..numeric import affine, snap, transform
-from .packing_grid import BLOCKS, Options, Page, turned_masks
+from .packing_grid import BLOCKS, Options, Page, start_cells, turned_masks
 from .stacks import nest_offset
 
 ANGLE_STEP = 15.0  # degrees between the turns tried
@@ -377,12 +377,12 @@ DIRECT = 8192  # a finer test reads the blocks under a core at a few places up t
 
 def _try(grid, mask, test, axis: int, keys, tries: int):
     """(last, at, more): the first place ``at`` (iy, ix) that holds ``mask`` among those
-    ``test`` leaves (see :func:`_places`), trying at most ``tries`` (-1: all) of those whose
+    ``test`` leaves (see :func:`start_cells`), trying at most ``tries`` (-1: all) of those whose
     key comes after ``last`` (None: from the first) and before ``bound``, ``keys`` being (rank,
     bound, last) and a place's key (its edge along ``axis``, its place across, rank); None if
     none holds it. ``last`` is the key last tried, ``more`` whether untried places remain."""
     rank, bound, last = keys
-    for iy, ix in _places(*test, mask.shape, grid.taken.shape, axis):
+    for iy, ix in start_cells(*test, mask.shape, grid.taken.shape, axis):
         key = ((iy, ix)[axis] + mask.shape[axis], (iy, ix)[1 - axis], rank)
         if bound is not None and key >= bound:
             break
@@ -394,20 +394,3 @@ def _try(grid, mask, test, axis: int, keys, tries: int):
         if not (grid.taken[iy:iy + mask.shape[0], ix:ix + mask.shape[1]] & mask).any():
             return key, (iy, ix), False
     return last, None, False
-
-
-def _places(k: int, fits, offset, size, page, axis: int):
-    """The cells (iy, ix) where a mask of ``size`` (rows, columns) may start on a page of
-    ``page`` cells: those of the k x k blocks at the places ``fits`` leaves less ``offset``
-    (see :func:`block_cores`; None: everywhere), least along ``axis`` first, then across."""
-    last = [p - s for p, s in zip(page, size)]  # the farthest start
-    fits = np.ones((last[0] + 1, last[1] + 1), dtype=bool) if fits is None else fits
-    fits = fits if axis == 1 else fits.T  # (across, along)
-    for b in np.flatnonzero(fits.any(axis=0)).tolist():
-        across = (np.flatnonzero(fits[:, b]) - offset[1 - axis])[:, None] * k + np.arange(k)
-        across = across[(across >= 0) & (across <= last[1 - axis])].tolist()
-        for along in range(max((b - offset[axis]) * k, 0), (b - offset[axis] + 1) * k):
-            if along > last[axis]:
-                return
-            for c in across:
-                yield (c, along) if axis == 1 else (along, c)
