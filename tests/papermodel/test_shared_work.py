@@ -1,6 +1,7 @@
 """Work shared or skipped for speed gives what the plain way gives: congruent strips labelled
 together as each alone, fits in one batch as one by one, strips moved together as one by one,
-a spot skipped only where the text cannot fit, obstacles indexed as tested one by one."""
+a spot skipped only where the text cannot fit, obstacles indexed as tested one by one, a plate's
+search skipped only where it finds nothing, a best spot remembered as found again."""
 
 from __future__ import annotations
 
@@ -18,6 +19,7 @@ from weavecut.papermodel import book
 from weavecut.papermodel.assembly import Obstacles
 from weavecut.papermodel.modules import book_colours, plan_modules
 from weavecut.papermodel.pages import PageArea
+from weavecut.papermodel.plates import free_spot, search_spot
 from weavecut.papermodel.strip_labels import _fit_text, _may_reach, label_strips
 from weavecut.papermodel.strips import GEOMETRY, moved_strips
 from weavecut.weave.colour import palette
@@ -144,6 +146,59 @@ def test_obstacles_answer_as_tested_one_by_one(boxes, seed):
                             *(rng.uniform(0, 50, (5, 2)) + 2.0).T)
         brute = shapely.intersects(probe[:, None], np.array(obstacles)[None, :]).any(axis=1)
         np.testing.assert_array_equal(obstacles.hits(probe), brute)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.floats(-30, 30), st.floats(-30, 30), st.floats(0.5, 12),
+                          st.floats(0.5, 12), st.booleans()), max_size=30),
+       st.tuples(st.floats(-5, 5), st.floats(-5, 5)), st.sampled_from([0, 1, 2, 3]))
+def test_a_plate_search_is_skipped_only_where_it_finds_nothing(boxes, at, touch):
+    """A plate's spot round ``at`` is what trying every spot gives, also where ``at`` lies on
+    an obstacle's corner or edge (touch 1, 2) or 0.2 mm off one (3), inside one or clear of all
+    (boxes and the thick lines leaders leave)."""
+    obstacles = [shapely.box(x, y, x + w, y + h) if box else
+                 shapely.buffer(shapely.LineString([(x, y), (x + w, y - h)]), 0.3)
+                 for x, y, w, h, box in boxes]
+    if touch:
+        off = 0.2 if touch == 3 else 0.0
+        obstacles.append(shapely.box(at[0] - 3.0 * (touch == 2), at[1] + off, at[0] + 3.0,
+                                     at[1] + off + 2.0))
+    frame = shapely.box(-50, -50, 50, 50)
+    quick = free_spot(at, "A1", obstacles, frame, 5.0)
+    full = search_spot(at, "A1", obstacles, frame, 5.0)
+    assert (quick is None) == (full is None)
+    if full is not None:
+        assert shapely.equals_exact(quick[1], full[1], 0.0)
+        assert shapely.equals_exact(quick[2], full[2], 0.0)
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.integers(0, 2**32 - 1), st.lists(st.tuples(st.integers(0, 2), st.integers(0, 1),
+                                                     st.booleans()), min_size=1, max_size=8))
+def test_a_remembered_best_spot_is_the_one_found_again(seed, asks):
+    """Stacks (one of three) asked for along an axis (each way to a spot of its own) on a page
+    that fills up, some asked again on the same cells: the spot remembered is the one a fresh
+    search finds."""
+    from weavecut.papermodel.packing import _best_spot, _spot
+    from weavecut.papermodel.packing_grid import Options, Page, turned_masks
+    rng = np.random.default_rng(seed)
+    pieces = [shapely.box(0, 0, 30, 6), shapely.box(0, 0, 12, 12),
+              shapely.Polygon([(0, 0), (25, 0), (0, 9)])]
+    options = [Options(turned_masks(p, [0.0, 45.0, 90.0, 135.0], 2.0, 1.0, 80.0, 60.0))
+               for p in pieces]
+    page, spots = Page(60, 80, {}), {}
+    page.taken[:] = rng.random(page.taken.shape) < 0.002
+    page.taken[:30, :40] = True  # the least right edge is up the left, the least top right
+    for kind, axis, lay in asks:
+        got = _spot(page, options[kind], (kind, 1), axis, spots)
+        twin = Page(60, 80, {})
+        twin.taken[:] = page.taken  # the same cells, asked afresh
+        want = _best_spot(twin, options[kind], axis)
+        assert (got is None) == (want is None)
+        if want is not None:
+            assert got[:2] == want[:2] and (got[2] == want[2]).all()
+            if lay:
+                page.add(got[2], *got[0])
 
 
 @settings(max_examples=40, deadline=None)

@@ -37,7 +37,7 @@ import shapely
 from numpy.typing import NDArray
 
 from ..numeric import affine, snap, transform
-from .packing_grid import BLOCKS, Options, Page, turned_masks
+from .packing_grid import BLOCKS, Options, Page, start_cells, turned_masks
 from .stacks import nest_offset
 
 ANGLE_STEP = 15.0  # degrees between the turns tried
@@ -113,7 +113,7 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 0.
                     masks[key] = Options(turned_masks(stack, angles, gap, size, width, height))
                 return masks[key]
 
-            grids[size] = Grid(options, int(width // size), int(height // size), size, {})
+            grids[size] = Grid(options, int(width // size), int(height // size), size, {}, {})
         return grids[size]
 
     hulls = shapely.area(shapely.convex_hull(shapes))
@@ -154,13 +154,15 @@ def pack(shapes, width: float, height: float, gap: float = 2.0, cell: float = 0.
 @dataclass(frozen=True)
 class Grid:
     """A raster to pack on: ``options(members, move)`` the turns of a stack, the page's
-    ``nx`` x ``ny`` cells of ``cell`` mm, and the masks' transforms shared by its pages."""
+    ``nx`` x ``ny`` cells of ``cell`` mm, the masks' transforms shared by its pages, and the
+    best spots found (:func:`_spot`)."""
 
     options: object
     nx: int
     ny: int
     cell: float
     spectra: dict
+    spots: dict
 
 
 MERGE_SLACK = 50_000  # millionths of the area: a last page is emptied into an earlier one where
@@ -223,7 +225,8 @@ def _settle(run, laid, grid: Grid, kinds, axis: int):
     for number, members, _, _ in laid:
         for i in (members if number == last and len(members) > 1 else []):
             opts = grid.options([i], np.zeros(2))
-            if (spot := _first_fit(pages, opts, (int(kinds[i]), 1), full, axis)) is not None:
+            if (spot := _first_fit(pages, opts, (int(kinds[i]), 1), full, axis,
+                                   grid.spots)) is not None:
                 _place(out, [], pages, [i], np.zeros(2), *spot, grid.cell)
     return out
 
@@ -257,8 +260,8 @@ def _fill(units, shapes, kinds, grid: Grid, area, first, axis: int, most: int | 
     laid: list = []
     while queue:  # stacks of pieces
         members, move = queue.pop(0)
-        spot = _first_fit(pages, options(members, move), (int(kinds[members[0]]), len(members)),
-                          full, axis)
+        key = (int(kinds[members[0]]), len(members))
+        spot = _first_fit(pages, options(members, move), key, full, axis, grid.spots)
         if spot is None and (len(members) > 1 and (pages or not options(members, move))):
             half = (len(members) + 1) // 2
             queue = sorted(queue + [(members[:half], move), (members[half:], move)], key=order)
@@ -271,17 +274,17 @@ def _fill(units, shapes, kinds, grid: Grid, area, first, axis: int, most: int | 
             if most is not None and len(pages) == most:
                 return None  # no better than a packing found before
             pages.append(Page(ny, nx, grid.spectra))
-            spot = len(pages) - 1, _best_spot(pages[-1], options(members, move), axis)
+            spot = len(pages) - 1, _spot(pages[-1], options(members, move), key, axis, grid.spots)
         _place(out, laid, pages, members, move, *spot, cell)
     return out, laid
 
 
-def _first_fit(pages, opts, key, full: set, axis: int):
+def _first_fit(pages, opts, key, full: set, axis: int, spots: dict):
     """(page, spot) of the first of ``pages`` with room for the stack of ``opts`` (see
     :func:`_best_spot`), or None; ``full`` holds the (key, page) already found without."""
     for number, page in enumerate(pages):
         if opts and (key, number) not in full and page.may_hold(opts):
-            if (best := _best_spot(page, opts, axis)) is not None:
+            if (best := _spot(page, opts, key, axis, spots)) is not None:
                 return number, best
             full.add((key, number))  # pages only fill up: no need to try again
     return None
@@ -299,6 +302,16 @@ def _place(out, laid, pages, members, move, number: int, spot, cell: float) -> N
         at = shift + turn(j * move)
         out[i] = Place(number, float(angle), (float(at[0]), float(at[1])))
     laid.append((number, members, mask, (iy, ix)))
+
+
+def _spot(page: Page, opts, key, axis: int, spots: dict):
+    """:func:`_best_spot` of the stack of ``opts`` (``key``: its kind and size) on ``page``,
+    looked up in ``spots`` by the page's cells where a run before asked the same (a packing
+    redone, or its other stacks' pieces settled, meets the same pages now and then)."""
+    at = (np.packbits(page.taken).tobytes(), key, axis)
+    if at not in spots:
+        spots[at] = _best_spot(page, opts, axis)
+    return spots[at]
 
 
 def _best_spot(grid: Page, options, axis: int = 1):
@@ -364,12 +377,12 @@ DIRECT = 8192  # a finer test reads the blocks under a core at a few places up t
 
 def _try(grid, mask, test, axis: int, keys, tries: int):
     """(last, at, more): the first place ``at`` (iy, ix) that holds ``mask`` among those
-    ``test`` leaves (see :func:`_places`), trying at most ``tries`` (-1: all) of those whose
+    ``test`` leaves (see :func:`start_cells`), trying at most ``tries`` (-1: all) of those whose
     key comes after ``last`` (None: from the first) and before ``bound``, ``keys`` being (rank,
     bound, last) and a place's key (its edge along ``axis``, its place across, rank); None if
     none holds it. ``last`` is the key last tried, ``more`` whether untried places remain."""
     rank, bound, last = keys
-    for iy, ix in _places(*test, mask.shape, grid.taken.shape, axis):
+    for iy, ix in start_cells(*test, mask.shape, grid.taken.shape, axis):
         key = ((iy, ix)[axis] + mask.shape[axis], (iy, ix)[1 - axis], rank)
         if bound is not None and key >= bound:
             break
@@ -381,20 +394,3 @@ def _try(grid, mask, test, axis: int, keys, tries: int):
         if not (grid.taken[iy:iy + mask.shape[0], ix:ix + mask.shape[1]] & mask).any():
             return key, (iy, ix), False
     return last, None, False
-
-
-def _places(k: int, fits, offset, size, page, axis: int):
-    """The cells (iy, ix) where a mask of ``size`` (rows, columns) may start on a page of
-    ``page`` cells: those of the k x k blocks at the places ``fits`` leaves less ``offset``
-    (see :func:`block_cores`; None: everywhere), least along ``axis`` first, then across."""
-    last = [p - s for p, s in zip(page, size)]  # the farthest start
-    fits = np.ones((last[0] + 1, last[1] + 1), dtype=bool) if fits is None else fits
-    fits = fits if axis == 1 else fits.T  # (across, along)
-    for b in np.flatnonzero(fits.any(axis=0)).tolist():
-        across = (np.flatnonzero(fits[:, b]) - offset[1 - axis])[:, None] * k + np.arange(k)
-        across = across[(across >= 0) & (across <= last[1 - axis])].tolist()
-        for along in range(max((b - offset[axis]) * k, 0), (b - offset[axis] + 1) * k):
-            if along > last[axis]:
-                return
-            for c in across:
-                yield (c, along) if axis == 1 else (along, c)

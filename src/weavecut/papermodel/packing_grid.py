@@ -231,3 +231,20 @@ class Page:
             self.spectra[key] = cores, np.conj(rfft2(stack, shape)), inside  # keeps cores alive
         _, spectrum, inside = self.spectra[key]
         return (irfft2(page * spectrum, shape)[:, :ny, :nx] < 0.5) & inside
+
+
+def start_cells(k: int, fits, offset, size, page, axis: int):
+    """The cells (iy, ix) where a mask of ``size`` (rows, columns) may start on a page of
+    ``page`` cells: those of the k x k blocks at the places ``fits`` leaves less ``offset``
+    (see :func:`block_cores`; None: everywhere), least along ``axis`` first, then across."""
+    last = [p - s for p, s in zip(page, size)]  # the farthest start
+    fits = np.ones((last[0] + 1, last[1] + 1), dtype=bool) if fits is None else fits
+    fits = fits if axis == 1 else fits.T  # (across, along)
+    for b in np.flatnonzero(fits.any(axis=0)).tolist():
+        across = (np.flatnonzero(fits[:, b]) - offset[1 - axis])[:, None] * k + np.arange(k)
+        across = across[(across >= 0) & (across <= last[1 - axis])].tolist()
+        for along in range(max((b - offset[axis]) * k, 0), (b - offset[axis] + 1) * k):
+            if along > last[axis]:
+                return
+            for c in across:
+                yield (c, along) if axis == 1 else (along, c)

@@ -11,12 +11,23 @@ from ..layout.labels import MIN_CAP, centred_text, text_width
 
 
 def free_spot(at, label: str, obstacles, frame, size: float, step: float = 30.0,
-               reach: float = 8.0, lead: float = 0.0):
+              reach: float = 8.0, lead: float = 0.0):
     """(text, white plate, leader line) near ``at``: neither the plate nor its leader line
     touches an obstacle, the leader at least ``lead`` long; None if there is no such place. The
     spots are tried ring by ring outwards (out to ``reach`` times ``size``), each ring round
     every ``step`` degrees from half a step: the first free one wins (the first three rings
-    are tested together, then the others: most plates find a spot there)."""
+    are tested together, then the others: most plates find a spot there). Where ``at`` itself
+    touches an obstacle, none is tried: every leader ends there (or its plate holds it), so
+    :func:`search_spot` would find none."""
+    obstacles = obstacles if isinstance(obstacles, Obstacles) else Obstacles(obstacles)
+    if obstacles and obstacles.hits([shapely.Point(at)])[0]:
+        return None
+    return search_spot(at, label, obstacles, frame, size, step, reach, lead)
+
+
+def search_spot(at, label: str, obstacles, frame, size: float, step: float = 30.0,
+                reach: float = 8.0, lead: float = 0.0):
+    """:func:`free_spot`, every spot tried."""
     plate_pad = 0.8
     half = np.array([text_width(label, MIN_CAP) / 2 + plate_pad, MIN_CAP * 0.65 + plate_pad])
     at = np.asarray(at, dtype=float)
