@@ -57,7 +57,8 @@ def test_make_the_paper_model_and_download_it(browser, server, tmp_path):
     browser.goto(server, 1280)
     assert browser.evaluate("[...document.images].every(i => i.complete && i.naturalWidth)")
     browser.click('a[href^="/strands?input=square-grid"]')
-    browser.wait_until("location.pathname === '/strands' && !!document.getElementById('form')")
+    # the whole page parsed: a loaded machine once answered on the form with the rest unread
+    browser.wait_until("location.pathname === '/strands' && document.readyState === 'complete'")
     browser.wait_until(READY, 240)
     before = browser.evaluate("document.getElementById('preview').src")
     assert browser.evaluate("document.getElementById('preview').naturalWidth") > 0
