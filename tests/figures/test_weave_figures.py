@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import typing
+
 import pytest
 
 from click.testing import CliRunner
@@ -36,6 +38,10 @@ def test_gallery_has_every_figure_once():
     assert names == list(gallery.FIGURES)
     assert set(gallery.FIGURES) >= {"first-steps", "square-grid-weaving", "pentagon-weave",
                                      "schemes", "scheme-weaves", "level-image"}
+    returns = {name: typing.get_type_hints(builder).get("return")
+               for name, (_, builder) in gallery.FIGURES.items()}  # what is_picture reads
+    assert set(returns.values()) == {Drawing, bytes}
+    assert [name for name in gallery.FIGURES if gallery.is_picture(name)] == ["level-image"]
 
 
 def test_square_grid_split_panel_uses_two_shades():

@@ -370,10 +370,9 @@ def figure_command(name, list_all, output, page) -> None:
                                  "see weave-cut figure --list", param_hint="'NAME'")
     if output is None:
         raise click.UsageError("give an output file with -o")
-    _suffix_check(output, tuple(export.formats()))  # before the figure is drawn
-    result = gallery.FIGURES[name][1]()
+    _suffix_check(output, ("png",) if gallery.is_picture(name) else tuple(export.formats()))
+    result = gallery.FIGURES[name][1]()  # (checked first: a picture takes seconds)
     if isinstance(result, bytes):
-        _suffix_check(output, ("png",))
         write_png(result, output, gallery.FIGURES[name][0])
     else:
         write_drawing(result, output, page)
