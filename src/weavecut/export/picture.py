@@ -31,9 +31,9 @@ def png(pixels: NDArray[np.uint8], dpi: float) -> bytes:
     """``pixels`` (H, W) uint8 as an 8-bit greyscale PNG stating ``dpi``."""
     h, w = np.shape(pixels)
     per_metre = round(dpi / 0.0254)
-    return (b"\x89PNG\r\n\x1a\n" + _chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 0, 0, 0, 0))
-            + _chunk(b"pHYs", struct.pack(">IIB", per_metre, per_metre, 1))
-            + _chunk(b"IDAT", deflated(pixels)) + _chunk(b"IEND", b""))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 0, 0, 0, 0))
+            + chunk(b"pHYs", struct.pack(">IIB", per_metre, per_metre, 1))
+            + chunk(b"IDAT", deflated(pixels)) + chunk(b"IEND", b""))
 
 
 def dpi(raster) -> float:
@@ -41,5 +41,6 @@ def dpi(raster) -> float:
     return raster.pixels.shape[1] / raster.width * 25.4
 
 
-def _chunk(kind: bytes, body: bytes) -> bytes:
+def chunk(kind: bytes, body: bytes) -> bytes:
+    """A PNG chunk: its length, ``kind``, ``body`` and their CRC."""
     return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))

@@ -8,8 +8,6 @@ from __future__ import annotations
 
 import io
 import math
-import struct
-import zlib
 from collections.abc import Iterable
 from functools import lru_cache
 
@@ -20,6 +18,7 @@ from .. import budget
 from ..errors import ExportError
 from ..layout.drawing import Drawing, Polylines, Raster, Text
 from ..layout.labels import CAP_RATIO, text_width
+from .picture import chunk
 
 SUFFIX = "png"
 DPI = 150
@@ -90,7 +89,7 @@ def _text_chunk(keyword: str, text: str) -> bytes:
         kind, body = b"tEXt", keyword.encode("latin-1") + b"\0" + text.encode("latin-1")
     except UnicodeEncodeError:  # keyword, no compression, no language, no translated keyword
         kind, body = b"iTXt", keyword.encode("latin-1") + b"\0\0\0\0\0" + text.encode("utf-8")
-    return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+    return chunk(kind, body)
 
 
 def _sheet(sheet, dpi: float) -> Image.Image:
