@@ -11,7 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from weavecut.web import forms
+from weavecut.web import forms, queries
 from weavecut.web.uploads import MAX_BYTES
 
 from tests.web_app import written
@@ -49,7 +49,7 @@ def test_strange_values_answer_4xx_or_a_job(recording, name, key):
         response = recording.get(f"/{name}/check", params=query(name, key, value))
         assert response.status_code in (200, 400), (key, value)
         if response.status_code == 200:  # a value the command takes (a layer named "[]")
-            assert forms.parse(name, list(query(name, key, value).items())).args
+            assert queries.parse(name, list(query(name, key, value).items())).args
     for spec in recording.queue.specs:
         assert not any(a.startswith("-o") or a == "--help" for a in spec.args)
 

@@ -12,7 +12,7 @@ from click.testing import CliRunner
 
 from weavecut import inputs, mesh_io
 from weavecut.cli import cli, strands_command
-from weavecut.web import forms
+from weavecut.web import forms, queries
 
 INPUTS = {"ball": ("dodecahedron", ["--project", "sphere"], "&project=sphere"),
           "flat": ("square-grid", [], ""), "cube": ("cube", [], "")}
@@ -88,7 +88,7 @@ def test_the_form_follows_the_commands_table():
 def test_a_query_the_kit_refuses_is_refused_before_a_job_with_the_commands_words(
         query, says, tmp_path):
     with pytest.raises(forms.FormError) as refused:
-        forms.parse("strands", query)
+        queries.parse("strands", query)
     spec = dict(query)["input"]
     args = [w for k, v in query[1:] for w in ([f"--{k}"] if v == "on" else [f"--{k}", v])]
     kit = tmp_path / ("kit" if "--laser-card" in args else "kit.pdf")

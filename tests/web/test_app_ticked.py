@@ -10,7 +10,7 @@ from __future__ import annotations
 import html5lib
 import pytest
 
-from weavecut.web import forms
+from weavecut.web import forms, queries
 
 
 def box(client, url: str):
@@ -53,7 +53,7 @@ def test_an_unticked_box_is_sent_as_off_and_makes_a_kit_without_numbers(recordin
     # field's "off" comes first, the box's "on" after it
     assert ("--numbers" in job_args(recording, query)) == on
     assert ticked(box(recording, f"/puzzle?{query}"), "numbers") == on
-    assert ("--numbers" in forms.parse("puzzle", [tuple(p.split("=")) for p in
+    assert ("--numbers" in queries.parse("puzzle", [tuple(p.split("=")) for p in
                                                   query.split("&") if p]).args) == on
 
 

@@ -6,7 +6,8 @@ from __future__ import annotations
 import json
 import shlex
 
-from .forms import Query, fields
+from .forms import fields
+from .queries import Query
 
 
 def output(query: Query) -> str:

@@ -11,7 +11,7 @@ from urllib.parse import urlencode
 
 from .. import __version__
 from ..kitpage.viewer import HINT
-from . import forms
+from . import forms, queries
 
 FOR_A_DRAWING = {  # fields whose default the command does not use for an uploaded drawing:
     # it chooses them (the puzzle's level, with the cell: ``workshop.drawing_defaults``)
@@ -103,7 +103,7 @@ def failed(message: str) -> str:
 
 
 def command_page(name: str, raw: dict[str, str], error: forms.FormError | None,
-                 query: forms.Query | None, uploads: list[tuple[str, str]]) -> str:
+                 query: queries.Query | None, uploads: list[tuple[str, str]]) -> str:
     """The page of command ``name`` with the values ``raw`` as given (shown even when
     refused), ``error`` next to its field, ``query`` the checked values (None if refused)
     and ``uploads`` (id, label, kind of kit: ``uploads.Store.kind``) offered as inputs."""

@@ -36,7 +36,7 @@ from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
 from ..kitpage.viewer import STATIC as VIEWER_STATIC
-from . import forms, pages, summary
+from . import forms, pages, queries, summary
 from .refusals import in_form_words, said
 from .uploads import MAX_BYTES, Store, UploadError, read_spec
 
@@ -142,7 +142,7 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
                 items = [start, *items]
             for k, v in items:  # the first value, but a ticked box's after its hidden "off"
                 raw[k] = v if raw.get(k) == "off" else raw.get(k, v)
-            query = forms.parse(name, items, store)
+            query = queries.parse(name, items, store)
         except forms.FormError as exc:
             error = said(exc, name)
         value = raw.get("input", "")
@@ -156,7 +156,7 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
         from .equivalents import command_line, recipe
 
         try:
-            query = forms.parse(name, _items(request), store)
+            query = queries.parse(name, _items(request), store)
         except forms.FormError as exc:
             exc = said(exc, name)
             return JSONResponse({"ok": False, "errors": {exc.key or "form": exc.message}},
@@ -169,7 +169,7 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
         Response that refuses it."""
         name = request.path_params["command"]
         try:
-            query = forms.parse(name, _items(request), store)
+            query = queries.parse(name, _items(request), store)
         except forms.FormError as exc:
             return _refused(name, exc)
         spec = JobSpec(kind, name, query.args, await run_in_threadpool(query.job_files),
