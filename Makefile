@@ -70,14 +70,16 @@ test-slow: $(STAMP)  ## the tests marked slow (whole commands, browsers, servers
 
 test-all: test test-slow  ## every test: the quick ones, then the slow ones (what CI runs)
 
-test-latest:  ## the tests with the newest release of every dependency (.venv-latest); says which versions differ from constraints.txt
+# test-latest runs the halves of make test and make test-slow (the same pytest lines: the
+# targets themselves, with .venv-latest for .venv and no stamp, so nothing installs the lock)
+test-latest:  ## make test and make test-slow with the newest release of every dependency (.venv-latest); says which versions differ from constraints.txt
 	$(PYTHON) -m venv .venv-latest
 	.venv-latest/bin/python -m pip install --quiet --upgrade pip
 	.venv-latest/bin/python -m pip install --quiet --upgrade --upgrade-strategy eager -e '.[test]'
 	.venv-latest/bin/python -m pip freeze --exclude-editable > .venv-latest/versions.txt
 	@grep -v '^#' $(LOCK) | diff - .venv-latest/versions.txt | grep '^[<>]' \
 		| sed 's/^</  locked:/; s/^>/  newest:/' || echo "  the newest releases are the locked ones"
-	.venv-latest/bin/python -m pytest -n auto --dist worksteal
+	$(MAKE) --no-print-directory --keep-going test test-slow VENV=.venv-latest STAMP=
 
 lock:  ## renew constraints.txt: the newest release of every dependency and test tool, pinned
 	rm -rf .venv-lock
