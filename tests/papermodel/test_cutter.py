@@ -22,7 +22,7 @@ from weavecut import export, inputs, presets
 from weavecut.layout.drawing import Polygons, Polylines, Text
 from weavecut.layout.labels import text_box
 from weavecut.layout.lasersetup import laser
-from weavecut.papermodel import cardkit, lasercard, printcut
+from weavecut.papermodel import cardkit, cutter_words, lasercard, printcut
 from weavecut.papermodel.book import strand_book
 from weavecut.papermodel.pages import CUT, PageArea
 from weavecut.subdivision import subdivide
@@ -46,7 +46,7 @@ def cut_book(name: str, bleed: float = printcut.BLEED):
     machine = printcut.cutter(name)
     book = strand_book(list(weaves()), palette("maritime-4"), A4, 20.0, machine.margin,
                        limit=machine.limit(*A4), gap=printcut.WASTE, bleed=bleed,
-                       **({"words": printcut.cutter_words(machine, Path("sq.pdf"))} if bleed
+                       **({"words": cutter_words.cutter_words(machine, Path("sq.pdf"))} if bleed
                           else {}))
     return machine, printcut.with_marks(book, machine)
 
@@ -261,7 +261,7 @@ def test_a_cricut_page_is_a_print_image_design_space_prints_and_cuts_round():
         assert x1 - x0 <= 6.75 * 25.4 and y1 - y0 <= 9.25 * 25.4
     from weavecut.kitpage.document import _purpose  # the kit page's card says what it is for
     assert "Design Space" in _purpose([".svg"], drawing, {})
-    words = printcut.cutter_words(machine, Path("kit/sq.pdf"))
+    words = cutter_words.cutter_words(machine, Path("kit/sq.pdf"))
     said = words.sources(book) + " " + words.cut
     assert "sq-pNN-print.svg" in said and "sensor marks" in said and "Flatten" in said
     assert "do not print the strip pages" in said and "registration marks" not in said

@@ -160,7 +160,8 @@ def strands_command(input_mesh, levels, page, tile_size, model_size, layout, mar
                            margin, tile_size or 20.0, turn, title, output, as_json)
     limit, machine, words = None, None, {}
     if cutter_name is not None:
-        from ..papermodel.printcut import BLEED, WASTE, cut_file_note, cutter, cutter_words
+        from ..papermodel.cutter_words import cut_file_note, cutter_words
+        from ..papermodel.printcut import BLEED, WASTE, cutter
 
         machine = cutter(cutter_name)
         machine.check(*page)

@@ -228,7 +228,7 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
     limit : (x0, y0, x1, y1) mm, the part of the page strips may use besides the margins (the
         area a print-and-cut machine reads), or None
     words : what page 1 and the weaving page say the maker holds (print and cut:
-        ``printcut.cutter_words``)
+        ``cutter_words.cutter_words``)
     page_note : a function of a strip page's number giving a note put before its list of strips
         (print and cut: the page's cut file), or None
     gap : mm of paper left between two strips (print and cut: ``printcut.WASTE``)
