@@ -1,7 +1,7 @@
 """The kit's woven 3-D model in the web app: ``GET /{command}/model.glb`` answers the very
 ``.glb`` of the kit's ZIP (the same job, the same cache), a bad value 400 and an unknown
-command 404 as the other routes, a kit without a model 404; the viewer's scripts are the kit
-page's own, served by the app."""
+command 404 as the other routes, a kit without a model 404 (``summary.json`` says which kits
+have one); the viewer's scripts are the kit page's own, served by the app."""
 
 from __future__ import annotations
 
@@ -28,11 +28,15 @@ def test_the_model_is_the_glb_of_the_kit_byte_for_byte(served, command, query, m
     glbs = [n for n in kit.namelist() if n.endswith(".glb")]
     assert glbs == [member]
     assert model.content == kit.read(member) and model.content[:4] == b"glTF"
+    assert served.get(f"/{command}/summary.json?{query}").json()["model"] is True
 
 
-def test_a_kit_without_a_model_answers_404(served):
+def test_a_kit_without_a_model_answers_404_and_its_summary_says_so(served):
+    """summary.json's ``model`` is False: the page then asks for no model (its 404 is a
+    console error in the browser)."""
     response = served.get("/weave/model.glb?input=square-grid&levels=2")
     assert response.status_code == 404 and "no 3-D model" in response.text
+    assert served.get("/weave/summary.json?input=square-grid&levels=2").json()["model"] is False
 
 
 def test_a_bad_value_is_400_and_an_unknown_command_404(recording):

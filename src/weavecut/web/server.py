@@ -3,8 +3,9 @@
 Routes: ``GET /`` (start page), ``GET /{command}`` (form and preview; options in the query under
 the CLI's long option names), ``GET /{command}/check`` (the query checked by the command:
 field messages, the command line, the recipe; JSON), ``GET /{command}/preview.svg``,
-``GET /{command}/summary.json`` (the kit's figures), ``GET /{command}.zip`` (the kit),
-``GET /{command}/model.glb`` (the kit's woven 3-D model, from the same job; 404 if it has none),
+``GET /{command}/summary.json`` (the kit's figures; ``model``: whether it has a 3-D model),
+``GET /{command}.zip`` (the kit), ``GET /{command}/model.glb`` (the kit's woven 3-D model, from
+the same job; 404 if it has none: the page asks for it only when ``model`` says it has one),
 ``POST /upload`` (a drawing as the request body, read by a job like a kit; ``{"id": SHA256,
 "kind": "surface" or "flat"}`` for ``input=upload:ID``: a surface in space makes a ball)
 ``/static/`` and ``/static/viewer/`` (the kit page's 3-D viewer scripts). A bad value answers
@@ -107,12 +108,12 @@ async def _unless_gone(request: Request, job):
     return None
 
 
-def _model_of(kit: bytes) -> bytes | None:
-    """The woven 3-D model (the first ``.glb`` by name) in the ZIP ``kit``, None if none."""
+def _model_name(kit: bytes) -> str | None:
+    """The woven 3-D model's name in the ZIP ``kit`` (its first ``.glb`` by name), None if
+    it has none."""
     try:
         with zipfile.ZipFile(io.BytesIO(kit)) as z:
-            names = sorted(n for n in z.namelist() if n.endswith(".glb"))
-            return z.read(names[0]) if names else None
+            return min((n for n in z.namelist() if n.endswith(".glb")), default=None)
     except zipfile.BadZipFile:
         return None
 
@@ -213,9 +214,10 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
         result = await job(request, "kit")
         if isinstance(result, Response):
             return result
+        model = await run_in_threadpool(_model_name, result.body)
         return JSONResponse({"figures": summary.figures(result.summary),
                              "warnings": summary.warnings(result.summary),
-                             "summary": result.summary})
+                             "model": model is not None, "summary": result.summary})
 
     async def kit(request: Request) -> Response:
         result = await job(request, "kit")
@@ -229,9 +231,11 @@ def create_app(queue, cache, folder: Path, hosts: list[str] | None = None) -> St
         result = await job(request, "kit")
         if isinstance(result, Response):
             return result
-        data = await run_in_threadpool(_model_of, result.body)
-        if data is None:
+        name = await run_in_threadpool(_model_name, result.body)
+        if name is None:
             return PlainTextResponse("this kit has no 3-D model", 404)
+        with zipfile.ZipFile(io.BytesIO(result.body)) as z:
+            data = await run_in_threadpool(z.read, name)
         return Response(data, media_type="model/gltf-binary")
 
     async def upload(request: Request) -> Response:

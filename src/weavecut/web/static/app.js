@@ -22,7 +22,7 @@
     model.hidden = true;
   }
 
-  async function showModel(qs, signal) {  // nothing when the kit has no model (404)
+  async function showModel(qs, signal) {  // asked only of a kit with a model (no 404 logged)
     const url = `/${command}/model.glb?${qs}`;
     const got = await fetch(url, {signal});
     if (!got.ok || !window.WeaveCutViewer) return;
@@ -154,11 +154,12 @@
       warnings.replaceChildren();
       const made = await fetch(`/${command}/summary.json?${qs}`, {signal});
       if (!made.ok) return refused(made);
-      showFigures(await made.json());
+      const kit = await made.json();
+      showFigures(kit);
       figures.classList.add("made");
       say("The kit is ready to download.");
       download.dataset.ready = qs;
-      await showModel(qs, signal);
+      if (kit.model) await showModel(qs, signal);
     } catch (err) {
       if (err.name === "AbortError") return;
       sheet.classList.remove("busy");
