@@ -131,11 +131,13 @@ def test_a_long_list_of_strips_is_cut_after_a_whole_item_and_counted():
        st.floats(60.0, 300.0), st.integers(1, 3))
 def test_a_fitted_list_fits_and_accounts_for_every_strip(strips, width, lines):
     """However many strips and however narrow the header, the fitted subtitle takes at most
-    ``lines`` lines and names every strip or says how many it leaves out."""
+    ``lines`` lines, breaks no strip part's name and names every strip or says how many it
+    leaves out. Planted: a part's name broken at its space fails."""
     labels = {f"{c}{k}" + (f" {part}/2" if part else "") for c, k, part in strips}
     labels = {lab for lab in labels if lab.split(" ")[0] not in labels}  # whole or in parts
     out = wrapped(strips_subtitle("", labels, width, lines), width, lines)
     assert len(out) <= lines and not out[-1].endswith("...")
+    assert not any(re.match(r"\d+/\d+", line) for line in out)  # "A7" | "1/2"
     text = " ".join(out)
     if text.endswith(" strips (page 1 lists them)") or text.endswith(" strip (page 1 lists them)"):
         assert text.startswith(f"{len(labels)} strip")
