@@ -15,7 +15,7 @@ from ..layout.contrast import text_colour_on
 from ..layout.labels import DESCENT, MIN_CAP, text_box, text_width
 from ..numeric import affine
 from .header import shortened, wrapped
-from .slim import outline_of, thickened
+from .slim import outline_of, printed_once, thickened
 from .strips import MIN_PIECE, Strip, flat_angle, tint
 from .unfold import dashed
 
@@ -167,9 +167,11 @@ def _parts(geoms) -> list:
 
 
 def _tiles(s: Strip) -> list[tuple]:
-    """(polygon, fill) of a strip's tiles and of its label tab, if it has one."""
+    """(polygon, fill) of a strip's tiles and of its label tab, if it has one, as printed:
+    the paper two tiles share printed once (:func:`.slim.printed_once`)."""
     flap = () if s.flap is None else (s.flap,)
-    return list(zip([*s.tiles, *flap], s.fills + (s.flap_fill,) * len(flap)))
+    return list(zip(printed_once(np.array([*s.tiles, *flap], dtype=object)),
+                    s.fills + (s.flap_fill,) * len(flap)))
 
 
 def strip_layers(strips: list[Strip], bleed: float = 0.0) -> list[Layer]:
