@@ -15,7 +15,6 @@ from ..text import counted
 from .wording import runs
 
 SMALL = MIN_CAP  # cap height of the subtitle (mm)
-KEEP = "\u00a0"  # a space no line breaks at: the one inside a strip part's name ("B7 1/2")
 MORE = "and {} more (page 1 lists them)"
 
 
@@ -33,15 +32,15 @@ def shortened(text: str, width: float, size: float) -> str:
 
 
 def wrapped(text: str, width: float, lines: int) -> list[str]:
-    """``text`` broken at spaces (not at ``KEEP``) into at most ``lines`` lines no wider than
-    ``width`` mm (the last line is shortened with an ellipsis if it must be)."""
+    """``text`` broken at spaces into at most ``lines`` lines no wider than ``width`` mm (the
+    last line is shortened with an ellipsis if it must be)."""
     out = wrap(text, width, SMALL)
     if len(out) > lines:
         last = " ".join(out[lines - 1:])
         while text_width(last + " ...", SMALL) > width and " " in last:
             last = last.rsplit(" ", 1)[0]
         out = out[:lines - 1] + [last + " ..."]
-    return [line.replace(KEEP, " ") for line in out]
+    return out
 
 
 def header_lines(head: str, width: float) -> int:
@@ -54,7 +53,7 @@ def strips_subtitle(head: str, labels, width: float, lines: int) -> str:
     """``head`` and "Strips: A1-A4, B7 1/2" naming ``labels`` where that fits ``lines`` lines
     of ``width`` mm; else the list's first items that fit and "and 12 more (page 1 lists
     them)": the page's strips are named on them, and the whole list is on page 1."""
-    items = [(text.replace(" ", KEEP), n) for text, n in runs(labels)]
+    items = runs(labels)
     for k in range(len(items), 0, -1):
         left = sum(n for _, n in items[k:])
         text = (f"{head}Strips: {', '.join(t for t, _ in items[:k])}"
