@@ -255,8 +255,8 @@ def wrap(text: str, width: float, size: float) -> list[str]:
     """``text`` broken at spaces into lines no wider than ``width`` mm at cap height ``size``,
     never before a part number ("A7" | "1/2") nor after "p." ("p." | "5").
 
-    >>> wrap("p. 5: A21, A22 1/2, A23", 20.0, 2.5)
-    ['p. 5: A21,', 'A22 1/2,', 'A23']
+    >>> wrap("A21, A22 1/2, on p. 5, A23", 16.0, 2.5)  # not "A21, A22" | "1/2, on p." | "5, A23"
+    ['A21,', 'A22 1/2,', 'on p. 5,', 'A23']
     """
     words: list[str] = []
     for word in text.split(" "):
