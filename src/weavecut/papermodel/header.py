@@ -14,7 +14,7 @@ from ..layout.labels import MIN_CAP, text_width, wrap
 from ..text import counted
 from .wording import runs
 
-SMALL = MIN_CAP  # cap height of the subtitle (mm)
+SMALL = MIN_CAP  # cap height of the subtitle and the rest of the page furniture (mm)
 MORE = "and {} more (page 1 lists them)"
 
 

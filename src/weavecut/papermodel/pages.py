@@ -14,7 +14,7 @@ from ..layout.drawing import (Layer, Polygons, Polylines, Style, Text, polygons_
 from ..layout.contrast import text_colour_on
 from ..layout.labels import DESCENT, MIN_CAP, text_box, text_width
 from ..numeric import affine
-from .header import shortened, wrapped
+from .header import SMALL, shortened, wrapped
 from .slim import outline_of, printed_once, thickened
 from .strips import MIN_PIECE, Strip, flat_angle, tint
 from .unfold import dashed
@@ -23,7 +23,6 @@ HEADER = 10.0  # mm above the printable area for the title line and one line of 
 FOOTER = 8.5  # mm below it for the scale bar and the legend
 GAP = 2.0  # mm between strips (at least), and between the area and header / footer
 FURNITURE_GAP = 1.0  # mm at least between the boxes of two texts of the page furniture
-SMALL = MIN_CAP  # cap height of the page furniture (mm)
 PITCH = SMALL * (1 + DESCENT) + FURNITURE_GAP  # mm from one subtitle line to the next
 CUT = Style("#ff0000", 0.25)
 TILE_LINE = Style("#555555", 0.12)
