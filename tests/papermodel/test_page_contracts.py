@@ -283,8 +283,7 @@ def test_the_legend_shows_the_tab_entry_only_on_pages_with_label_tabs():
     colours = copy_colours(plan, palette("maritime-12"))
     area = PageArea(210.0, 297.0, 10.0)
     pieces, kinds = labelled_pieces(w, plan, colours, 20.0, "mixed", area)
-    placed, sheets = strip_sheets(pieces, kinds, area, "t", lambda names: f"Strips: {names}",
-                                  colours, 3)
+    placed, sheets = strip_sheets(pieces, kinds, area, "t", colours, 3)
     assert sheets
     for n, sheet in enumerate(sheets, start=3):  # pages
         flaps = any(p.flap is not None for k, p in placed if k == n)

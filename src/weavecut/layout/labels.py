@@ -14,6 +14,7 @@ box in either format.
 
 from __future__ import annotations
 
+import re
 from functools import lru_cache
 
 import numpy as np
@@ -29,6 +30,7 @@ CAP_RATIO = 0.72  # Helvetica cap height per em (the PDF writer sets size / 0.72
 WIDEN = 1.1  # margin for the SVG writer's DejaVu Sans, a little wider than Helvetica
 DESCENT = 0.3  # share of the cap height below the baseline for texts with descenders
 DESCENDERS = frozenset("gjpqy,;()[]{}/|_")
+PART = re.compile(r"\d+/\d+\W?")  # "1/2,": the number of a strip's part, kept with its strip
 
 
 def text_width(text: str, size: float) -> float:
@@ -250,9 +252,20 @@ def inner_centres(regions) -> np.ndarray:
 
 
 def wrap(text: str, width: float, size: float) -> list[str]:
-    """``text`` broken at spaces into lines no wider than ``width`` mm at cap height ``size``."""
-    out, line = [], ""
+    """``text`` broken at spaces into lines no wider than ``width`` mm at cap height ``size``,
+    never before a part number ("A7" | "1/2") nor after "p." ("p." | "5").
+
+    >>> wrap("A21, A22 1/2, on p. 5, A23", 16.0, 2.5)  # not "A21, A22" | "1/2, on p." | "5, A23"
+    ['A21,', 'A22 1/2,', 'on p. 5,', 'A23']
+    """
+    words: list[str] = []
     for word in text.split(" "):
+        if words and (PART.fullmatch(word) or words[-1] == "p."):
+            words[-1] += f" {word}"
+        else:
+            words.append(word)
+    out, line = [], ""
+    for word in words:
         trial = f"{line} {word}" if line else word
         if line and text_width(trial, size) > width:
             out.append(line)

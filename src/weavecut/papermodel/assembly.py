@@ -50,7 +50,7 @@ def assembly_sheet(weave: Weave, book, tile_size: float, turn: float, title: str
     leave unnamed are called out on it too (:mod:`.crossings`); ``words`` name what the maker
     holds."""
 
-    plan, area = book.plan, book.area
+    plan, area = book.plan, book.area.plain
     k, m = plan.k, plan.copies.shape[1]
     x0, y0, x1, y1 = area.box
     size_mm = finished_size(weave, book)
@@ -335,7 +335,7 @@ def _mean_y(weave, centres, s, turn) -> float:
 def weaving_sheet(weave: Weave, book, turn: float, title: str, total: int,
                   words: Words = PRINTED) -> Sheet:
     """Page 2: how to weave, as numbered steps, with diagrams of the weave growing."""
-    area = book.area
+    area = book.area.plain
     x0, y0, x1, y1 = area.box
     steps, groups = weaving_steps(weave, book, turn, words)
     texts, bottom = paragraphs(steps, x0, y1, x1 - x0, numbered=True)

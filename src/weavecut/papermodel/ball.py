@@ -152,8 +152,7 @@ def ball_book(weaves: list[Weave], pal: Palette, page=(210.0, 297.0),
     tile_planes = flat.non_planarity[weave.tile_faces].reshape(-1, 2).max(axis=1)
 
     def book_from(first: int) -> tuple[BallBook, list[Sheet], int]:
-        placed, sheets = strip_sheets(pieces, None, area, title,
-                                      lambda names: f"Strips: {names}", colours, first, places)
+        placed, sheets = strip_sheets(pieces, None, area, title, colours, first, places)
         book = BallBook(Drawing((), title), BallPlan(labels), tuple(colours), "ball", placed,
                         tuple(range(first, first + len(sheets))), tuple(range(1, first)), scale,
                         area, width, tile_mm, warnings, unfoldings=unfoldings,

@@ -25,6 +25,7 @@ from ..weave.colour import Palette
 from ..weave.model import Weave
 from .crossings import left_out_crossings
 from .front import front_pages
+from .header import header_lines, strips_subtitle
 from .packing import pack
 from .pages import (GAP, GLUE_MARKS, PageArea, page_layers, page_span, split_strip,
                     strip_layers)
@@ -32,7 +33,7 @@ from .modules import ModulePlan, book_colours, copy_family_colours, plan_modules
 from .strip_labels import label_strips
 from .strips import (MIN_PIECE, Strip, build_copies, build_strips, holds, moved_strips,
                      octagon_size, strip_width)
-from .wording import PRINTED, Words, left_out_note, strip_runs
+from .wording import PRINTED, Words, left_out_note
 
 CURL = 0.45  # a strip wider than this share of the page (a curl) is cut into pieces
 MIN_STRIP = 8.0  # mm: narrower strips tear (paper section 5.2)
@@ -153,6 +154,7 @@ class StripSet:
     scale : mm per model unit
     strip_width : mm, the median strip width
     warnings : things the maker should know (thin strips)
+    area : the page area the pieces are cut to fit, its header holding the subtitle's head
     """
 
     plan: ModulePlan
@@ -162,12 +164,14 @@ class StripSet:
     scale: float
     strip_width: float
     warnings: tuple[str, ...]
+    area: PageArea
 
 
 def strip_set(weaves: list[Weave], pal: Palette, area: PageArea, tile_size: float,
-              turn: float = 0.0, layout: str = "mixed") -> StripSet:
+              turn: float = 0.0, layout: str = "mixed", head=None) -> StripSet:
     """The labelled strip pieces of ``weaves[-1]`` at ``tile_size``, each short enough for
-    ``area``'s box (see :func:`strand_book` for the parameters).
+    ``area``'s box (see :func:`strand_book` for the parameters), its header given the lines
+    ``head(plan)`` needs, the strip pages' subtitle before their list of strips, if given.
 
     Raises
     ------
@@ -177,8 +181,10 @@ def strip_set(weaves: list[Weave], pal: Palette, area: PageArea, tile_size: floa
     if layout not in LAYOUTS:
         raise ValueError(f"layout must be one of {LAYOUTS}, got {layout!r}")
     weave = weaves[-1]
-    area.check()
     plan = plan_modules(weave, heading=-np.pi / 2 - turn)
+    if head is not None:
+        area = replace(area, header_lines=header_lines(head(plan), area.width - 2 * area.margin))
+    area.check()
     colours = book_colours(weaves, plan, pal, layout)
     width, warnings = check_strip_width(weave, tile_size, lambda t: smallest_tile_size(
         weave, plan, colours, t, layout, area))
@@ -201,7 +207,7 @@ def strip_set(weaves: list[Weave], pal: Palette, area: PageArea, tile_size: floa
         else:
             raise SizeError(f"{neck}: {_use(weave, need)}")
     return StripSet(plan, tuple(colours), pieces, kinds, tile_size / octagon_size(weave), width,
-                    warnings)
+                    warnings, area)
 
 
 def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (210.0, 297.0),
@@ -240,19 +246,17 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
     SizeError when strips would be narrower than 8 mm or a label smaller than 2.5 mm
     """
     weave = weaves[-1]
-    area = PageArea(page[0], page[1], margin, limit)
-    made = strip_set(weaves, pal, area, tile_size, turn, layout)
+
+    def head(plan: ModulePlan, n: int = 0) -> str:  # strip page n's subtitle before its strips
+        return (f"{page_note(n)} " if page_note else "") + (
+            f"Print this page {plan.k} times, once per direction (see page 1). "
+            if layout == "module" else "")
+    made = strip_set(weaves, pal, PageArea(page[0], page[1], margin, limit), tile_size, turn,
+                     layout, head)
+    area = made.area
     plan, colours, pieces, kinds = made.plan, made.colours, made.pieces, made.kinds
     width, warnings, scale = made.strip_width, made.warnings, made.scale
     left_out = sum(len(p.left_out) for p in pieces)
-
-    if layout == "module":
-        def subtitle(names):
-            return (f"Module pages: print every one of them {plan.k} times, once per direction "
-                    f"(see page 1). Strips: {names}")
-    else:
-        def subtitle(names):
-            return f"Strips: {names}"
     crossings = left_out_crossings(weave, plan, pieces, layout) if left_out else []
     # the warp (copies A, C) and the weft (B, D) told apart on the weaving page, as the mixed
     # layout's colours tell them: one shade family per copy
@@ -266,8 +270,8 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
         (naming the strands page 1 has no room for too where ``shared``), then ``ids`` pages of
         those strands."""
         first = 3 + own + ids  # pages 1, 2: assembly and weaving
-        placed, sheets = strip_sheets(pieces, kinds, area, title, subtitle, colours, first,
-                                      places, page_note, bleed)
+        placed, sheets = strip_sheets(pieces, kinds, area, title, colours, first, places,
+                                      lambda n: head(plan, n), bleed)
         where = page_span(range(3, 3 + own) if own else [1])
         strips = f"each print's strips ({len(crossings)} on the model)" if (
             layout == "module") else None
@@ -290,14 +294,14 @@ def strand_book(weaves: list[Weave], pal: Palette, page: tuple[float, float] = (
     return replace(book, drawing=Drawing((*extra, *laid["sheets"]), title))
 
 
-def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitle, colours,
-                 first: int, places=None, note=None, bleed: float = 0.0
+def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, colours, first: int,
+                 places=None, head=None, bleed: float = 0.0
                  ) -> tuple[tuple[tuple[int, Strip], ...], list[Sheet]]:
     """(placed, sheets): ``pieces`` packed onto pages numbered from ``first`` on (or placed at
-    ``places``, the packer's answer), each page with its strips, title, ``subtitle(names of
-    its strips)`` (after ``note(page number)`` if given), scale bar and legend (with a
-    ``bleed``, print and cut: no cut lines, colour bled past them); placed holds (page number,
-    piece on the page)."""
+    ``places``, the packer's answer), each page with its strips, title, a subtitle
+    (``head(page number)`` if given, then the list of its strips), scale bar and legend (with
+    a ``bleed``, print and cut: no cut lines, colour bled past them); placed holds (page
+    number, piece on the page)."""
     x0, y0, x1, y1 = area.box
     if places is None:
         places = pack([p.cut for p in pieces], x1 - x0, y1 - y0, GAP, kinds=kinds)
@@ -309,9 +313,10 @@ def strip_sheets(pieces: list[Strip], kinds, area: PageArea, title: str, subtitl
     sheets = []
     for n in range(first, first + n_strip):  # pages
         on_page = [p for k, p in placed if k == n]
-        names_here = strip_runs({p.label for p in on_page})
+        subtitle = strips_subtitle(head(n) if head else "", {p.label for p in on_page},
+                                   area.width - 2 * area.margin, area.header_lines)
         layers = strip_layers(on_page, bleed) + page_layers(
-            area, title, (f"{note(n)} " if note else "") + subtitle(names_here), n, total,
+            area, title, subtitle, n, total,
             colours[on_page[0].strand],
             glue=any(p.glue is not None for p in on_page),
             folds=any(len(p.folds) for p in on_page),

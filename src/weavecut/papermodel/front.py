@@ -29,6 +29,7 @@ def front_pages(weave: Weave, plan: ModulePlan, colours, area: PageArea, crossin
     the maker holds. Page 1 is laid out first as if the crossing pages named strands too (a
     pattern too big to call out its crossings on page 1 mostly has strands it cannot name):
     once where it has such strands."""
+    area = area.plain  # their subtitles are short
     alone: list = []  # the crossing pages without strands
     on_cover = crossings if len(crossings) <= ON_COVER else ()
     if not on_cover and crossings:

@@ -34,7 +34,7 @@ from ..layout.drawing import (
     Text,
     polylines_from_lines,
 )
-from ..layout.labels import inner_centres, text_boxes
+from ..layout.labels import inner_centres, largest_fit, text_boxes
 from ..layout.lasersetup import Laser
 from .packing import pack
 from .pages import GAP
@@ -189,6 +189,26 @@ def rings(centres: NDArray[np.float64], radius: float = DOT, n: int = 16
     return [c + circle for c in np.asarray(centres).reshape(-1, 2)]
 
 
+def clear_arrows(strip: Strip, clear: float = SCORE_CLEAR) -> Strip:
+    """``strip`` with each direction arrow shrunk about its centroid until it keeps ``clear``
+    off its tile's borders (where the score lines go: an arrow over one would break it) and
+    ``ENGRAVE_MARGIN`` inside the strip; an arrow that would shrink under half its printed
+    size is left out."""
+    arrows = strip.arrows
+    if not len(arrows):
+        return strip
+    corners = np.array([np.asarray(a.exterior.coords)[:-1] for a in arrows.tolist()])
+    centres = shapely.get_coordinates(shapely.centroid(arrows))
+    tile = np.argmax(shapely.contains_xy(strip.tiles[:, None], centres[:, 0], centres[:, 1]),
+                     axis=0)
+    room = shapely.intersection(shapely.buffer(strip.tiles[tile], -clear, join_style="mitre"),
+                                shapely.buffer(strip.cut, -ENGRAVE_MARGIN, join_style="mitre"))
+    scale = largest_fit(room, corners - centres[:, None], centres, 0.5, 1.0)
+    ok = np.isfinite(scale)
+    shrunk = (corners - centres[:, None]) * scale[:, None, None] + centres[:, None]
+    return replace(strip, arrows=shapely.polygons(shrunk[ok]))
+
+
 def marks(strip: Strip, margin: float = ENGRAVE_MARGIN) -> list[NDArray[np.float64]]:
     """What is engraved besides the labels, ``margin`` inside the strip: the direction arrows'
     outlines, on a piece of a split strip the edge of its glue band, and the line where a label
@@ -244,7 +264,7 @@ def card_sheets(pieces: list[Strip], colours, las: Laser, kerf: float,
     score_style = las.style("score")
     drawings, sheet_colours, placed_all, texts_all, scores_all, dots_all = [], [], [], [], [], []
     report, smallest = cut_report([]), np.inf
-    groups = colour_groups(pieces, colours)
+    groups = colour_groups([clear_arrows(p) for p in pieces], colours)
     for colour, group in groups.items():  # card colours
         places = pack_card(nesting.offset(np.array([p.cut for p in group], dtype=object), kerf),
                            width - 2 * margin, height - 2 * margin, gap)

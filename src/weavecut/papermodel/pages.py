@@ -12,9 +12,10 @@ import shapely
 from ..layout.drawing import (Layer, Polygons, Polylines, Style, Text, polygons_from_shapely,
                               polylines_from_lines)
 from ..layout.contrast import text_colour_on
-from ..layout.labels import DESCENT, MIN_CAP, text_box, text_width, wrap
+from ..layout.labels import DESCENT, MIN_CAP, text_box, text_width
 from ..numeric import affine
-from .slim import outline_of, thickened
+from .header import SMALL, shortened, wrapped
+from .slim import outline_of, printed_once, thickened
 from .strips import MIN_PIECE, Strip, flat_angle, tint
 from .unfold import dashed
 
@@ -22,7 +23,7 @@ HEADER = 10.0  # mm above the printable area for the title line and one line of 
 FOOTER = 8.5  # mm below it for the scale bar and the legend
 GAP = 2.0  # mm between strips (at least), and between the area and header / footer
 FURNITURE_GAP = 1.0  # mm at least between the boxes of two texts of the page furniture
-SMALL = MIN_CAP  # cap height of the page furniture (mm)
+PITCH = SMALL * (1 + DESCENT) + FURNITURE_GAP  # mm from one subtitle line to the next
 CUT = Style("#ff0000", 0.25)
 TILE_LINE = Style("#555555", 0.12)
 GLUE = "#c8c8c8"
@@ -47,13 +48,24 @@ class PageArea:
     """A page and the rectangle strips may use, all in mm; ``limit`` (x0, y0, x1, y1), when
     given, bounds that rectangle further (the area a cutter reads). A sheet without
     ``furniture`` (a sheet of card: no title, page number or legend) gives strips all of it
-    inside the margin."""
+    inside the margin; the header above it holds ``header_lines`` lines of subtitle."""
 
     width: float
     height: float
     margin: float
     limit: tuple[float, float, float, float] | None = None
     furniture: bool = True
+    header_lines: int = 1
+
+    @property
+    def header(self) -> float:
+        """Header height: the title line and the subtitle's lines."""
+        return HEADER + (self.header_lines - 1) * PITCH
+
+    @property
+    def plain(self) -> PageArea:
+        """The page with one line of subtitle, as the pages before the strips have."""
+        return replace(self, header_lines=1)
 
     @property
     def footer(self) -> float:
@@ -63,7 +75,7 @@ class PageArea:
     @property
     def box(self) -> tuple[float, float, float, float]:
         m = self.margin
-        box = ((m, m + self.footer + GAP, self.width - m, self.height - m - HEADER - GAP)
+        box = ((m, m + self.footer + GAP, self.width - m, self.height - m - self.header - GAP)
                if self.furniture else (m, m, self.width - m, self.height - m))
         if self.limit is None:
             return box
@@ -154,9 +166,11 @@ def _parts(geoms) -> list:
 
 
 def _tiles(s: Strip) -> list[tuple]:
-    """(polygon, fill) of a strip's tiles and of its label tab, if it has one."""
+    """(polygon, fill) of a strip's tiles and of its label tab, if it has one, as printed:
+    the paper two tiles share printed once (:func:`.slim.printed_once`)."""
     flap = () if s.flap is None else (s.flap,)
-    return list(zip([*s.tiles, *flap], s.fills + (s.flap_fill,) * len(flap)))
+    return list(zip(printed_once(np.array([*s.tiles, *flap], dtype=object)),
+                    s.fills + (s.flap_fill,) * len(flap)))
 
 
 def strip_layers(strips: list[Strip], bleed: float = 0.0) -> list[Layer]:
@@ -290,12 +304,13 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
     w, h, m = area.width, area.height, area.margin
     number_text = f"page {number} / {total}"
     room = w - 2 * m - text_width(number_text, 3.2) - 4
-    title = _shortened(title, room, MIN_CAP)
+    title = shortened(title, room, MIN_CAP)
     title_size = max(MIN_CAP, min(4.0, 4.0 * room / max(text_width(title, 4.0), 1e-9)))
     head = Text(m, h - m - 4.0, title, title_size)
     below = min(h - m - 8.5, text_box(head).bounds[1] - FURNITURE_GAP - SMALL)  # the subtitle
     texts = [head, Text(w - m, h - m - 4.0, number_text, 3.2, "end"),
-             Text(m, below, _wrap(subtitle, w - 2 * m, 1)[0], SMALL)]
+             *(Text(m, below - i * PITCH, line, SMALL) for i, line in
+               enumerate(wrapped(subtitle, w - 2 * m, area.header_lines)))]
     if not legend:
         return [Layer("page", "label", (scale_bar(m, m + 1.5) if bar else ()) + tuple(texts))]
     bar, marks, caption = scale_bar(m, m + 1.5)
@@ -330,29 +345,6 @@ def page_layers(area: PageArea, title: str, subtitle: str, number: int, total: i
     return [Layer("page", "label", tuple(shapes) + tuple(texts))]
 
 
-def _shortened(text: str, width: float, size: float) -> str:
-    """``text``, or where it is wider than ``width`` mm at cap height ``size`` (a title naming
-    a deep input path), its start and end joined by "..." in place of as little of its middle
-    as must go."""
-    if text_width(text, size) <= width:
-        return text
-    for keep in range(len(text) - 1, 0, -1):  # characters kept, not mesh elements
-        short = text[:(keep + 1) // 2] + "..." + text[len(text) - keep // 2:]
-        if text_width(short, size) <= width:
-            return short
-    return "..."
-
-
-def _wrap(text: str, width: float, lines: int) -> list[str]:
-    """``text`` broken at spaces into at most ``lines`` lines no wider than ``width`` mm (the
-    last line is shortened with an ellipsis if it must be)."""
-    out = wrap(text, width, SMALL)
-    if len(out) > lines:
-        last = " ".join(out[lines - 1:])
-        while text_width(last + " ...", SMALL) > width and " " in last:
-            last = last.rsplit(" ", 1)[0]
-        out = out[:lines - 1] + [last + " ..."]
-    return out
 def occupied(layers: list[Layer]) -> list[shapely.Geometry]:
     """The cut outlines on a sheet's "cut" layer as shapely polygons (for checks)."""
     out = []

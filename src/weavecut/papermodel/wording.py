@@ -43,6 +43,12 @@ def _key_text(key) -> str:
 def strip_runs(labels) -> str:
     """"A1-A4, A6, A7 1/2, X1" from strip labels in any order: whole strips in runs, a part of
     a split strip ("A7 1/2") by itself, where its strip would stand."""
+    return ", ".join(text for text, _ in runs(labels))
+
+
+def runs(labels) -> list[tuple[str, int]]:
+    """The items of :func:`strip_runs` ("A1-A4", "A7 1/2"), each with the number of labels
+    it stands for (4, 1)."""
     out, start, prev = [], None, None
     whole = [lab for lab in labels if " " not in lab]
     parts = {}
@@ -56,13 +62,13 @@ def strip_runs(labels) -> str:
             prev = key
             continue
         if start is not None:
-            out.append(_key_text(start) if start == prev
-                       else f"{_key_text(start)}-{_key_text(prev)}")
+            out.append((_key_text(start), 1) if start == prev
+                       else (f"{_key_text(start)}-{_key_text(prev)}", prev[1] - start[1] + 1))
         start = prev = key
         if lab in parts:  # a split strip's parts on this page, each by itself
-            out += sorted(parts[lab])
+            out += [(part, 1) for part in sorted(parts[lab])]
             start = prev = None
-    return ", ".join(out)
+    return out
 
 
 def colours_said(colours) -> str:
