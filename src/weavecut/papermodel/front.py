@@ -22,8 +22,10 @@ def front_pages(weave: Weave, plan: ModulePlan, colours, area: PageArea, crossin
     strips leave unnamed (``crossings``, see :func:`.crossings.left_out_crossings`), which are
     called out on page 1 where they all fit, else on pages of their own, and the strands page 1
     has no room to name: named first in the callout of a crossing where one lies on top
-    (:func:`.crossings.named_by_callouts`), the others called out on those crossing pages
-    beside the crossings where that takes no page more, else on pages of their own.
+    (:func:`.crossings.named_by_callouts`), the others called out beside the crossings on
+    their pages (columns of m plates, IDs or callouts alike: ceil((a + b) / m) pages, never
+    more than ceil(a / m) + ceil(b / m) apart), or where the crossings are on page 1 or there
+    are none, on pages of their own.
     ``book_for(own, ids, shared)`` gives (the book with ``own`` crossing pages, naming strands
     too where ``shared``, and ``ids`` strand pages after them, its page count, the first
     crossing page's number); ``words`` name what the maker holds. Page 1 is laid out first as
@@ -46,18 +48,10 @@ def front_pages(weave: Weave, plan: ModulePlan, colours, area: PageArea, crossin
             continue
         called, rest = named_by_callouts(unnamed, crossings)
         was = (len(own_pages), len(named), shared)
-        own_pages, shared = alone, bool(alone and unnamed)  # the crossing pages name strands
-        if shared:
-            both = crossing_pages(weave, plan, colours, area, crossings, turn, words, rest,
-                                  called)
-            if rest and len(both) > len(alone):  # the rest would take a page more: their own
-                shared = bool(called)
-                both = crossing_pages(weave, plan, colours, area, crossings, turn, words,
-                                      called=called) if called else alone
-            else:
-                rest = []
-            own_pages = both
-        named = id_pages(weave, plan, colours, area, rest, turn) if rest else []
+        shared = bool(alone and unnamed)  # the crossing pages name strands too
+        own_pages = crossing_pages(weave, plan, colours, area, crossings, turn, words, rest,
+                                   called) if shared else alone
+        named = id_pages(weave, plan, colours, area, rest, turn) if rest and not shared else []
         if (len(own_pages), len(named), shared) == was:
             break
     else:
