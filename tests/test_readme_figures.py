@@ -205,12 +205,13 @@ ROWS = [
           lambda j: {"sheets": str(j["sheets"]), "colours": str(j["card_colours"]),
                      "m": f"{j['cut_length_mm'] / 1000:.1f}"}),
     Claim("cut by machine: pentagon flower, Silhouette",
-          r"its (?P<strands>\d+) strips: (?P<strip>\d+) strip pages for a Silhouette, "
-          r"(?P<m>[\d.]+) m of cuts,\s+smallest feature (?P<f>[\d.]+) mm \(it was 1\.26 mm"
-          r"[\s\S]*?The (?P<tabs>\d+) label tabs",
+          r"its (?P<strands>\d+) strips: (?P<strip>\d+) strip pages for a Silhouette "
+          r"\((?P<total>\d+) pages in all, 9\s+while a page named the strands page 1 has no "
+          r"room for\), (?P<m>[\d.]+) m of cuts,\s+smallest feature (?P<f>[\d.]+) mm \(it was "
+          r"1\.26 mm[\s\S]*?The (?P<tabs>\d+) label tabs",
           (*FLOWER_OKABE, "--cutter", "silhouette", "-o", "pf.pdf"),
           lambda j: {"strands": str(j["strands"]), "tabs": str(j["label_tabs"]),
-                     **{k: v for k, v in cutter_figures(j).items() if k != "total"}}),
+                     **cutter_figures(j)}),
     Claim("cut by machine: pentagon flower, card",
           r"from card, one 12 x 12 in\s+sheet per colour, (?P<m>[\d.]+) m, smallest engraved "
           r"label (?P<label>[\d.]+) mm, (?P<dots>\d+) engraved dots, and (?P<pages>\d+) A4 pages",
@@ -251,6 +252,10 @@ ROWS = [
                          re.search(r"called out on pages (\d+)-(\d+)", w).groups()
                          for w in j["warnings"] if "called out on pages" in w))),
                      "pages": str(j["pages"]["total"])}),
+    Claim("strand IDs: the module layout's pages",
+          r"the module layout at 23 cm (?P<pages>\d+), not 5\)",
+          ("strands", "pentagon-flower", "--size", "23cm", "--layout", "module", "-o", "pf.pdf"),
+          lambda j: {"pages": str(j["pages"]["total"])}),
     kit_row("strands pentagon-flower --size 23cm -o pf.pdf", "page",
             lambda j: j["pages"]["total"]),
     kit_row("strands square-grid --size 27cm --laser-card -o card", "sheet",

@@ -1,10 +1,13 @@
 """Every strand can be found: its ID is printed on the assembly pages and points at that
 strand, read from the Drawing alone (the pattern's tiles, the white plates, the leader lines
-and the texts of each page's "ids" layer), apart from the placement code."""
+and the texts of each page's "ids" and "crossings" layers), apart from the placement code."""
 
 from __future__ import annotations
 
 from dataclasses import replace as moved
+from functools import lru_cache
+from pathlib import Path
+from unittest import mock
 
 import numpy as np
 import pytest
@@ -12,19 +15,27 @@ import shapely
 
 from weavecut.layout.drawing import Layer, Polygons, Polylines, Sheet
 from weavecut.layout.labels import text_box
+from weavecut.papermodel import front, printcut
+from weavecut.papermodel.book import strand_book, tile_size_for
 from weavecut.papermodel.checks import sheet_checks
+from weavecut.weave.colour import palette
 
 from tests.papermodel.test_strands import pentagon_book, small_book, weaves
 
 pytestmark = pytest.mark.slow  # the pentagon flower's whole book, read back page by page
 
 
-def pointed_at(sheet, weave, ids) -> dict[str, set[int]]:
-    """{ID: the strands it points at} over the "ids" texts of ``sheet``: a text inside a tile of
-    the pattern names the strand on top there; a text on a white plate, the strand on top where
-    the plate's leader line ends."""
+def pointed_at(sheet, weave) -> dict[str, set[int]]:
+    """{ID: the strands it points at} over the texts of ``sheet`` that name strands: an "ids"
+    text inside a tile of the pattern names the strand on top there; one on a white plate, the
+    strand on top where the plate's leader line ends; a "crossings" callout "C8 over A14" (on
+    a plate) names its first strand only, C8, as the strand on top where its leader ends (A14
+    is hidden there)."""
     layers = {layer.name: layer for layer in sheet.layers}
-    if "ids" not in layers:
+    texts = [(t, t.text) for t in layers["ids"].shapes] if "ids" in layers else []
+    texts += [(t, t.text.split(" over ")[0]) for t in layers["crossings"].shapes] if (
+        "crossings" in layers) else []
+    if not texts:
         return {}
     shapes = layers["pattern"].shapes
     tiles = shapes[0].to_shapely()
@@ -34,7 +45,7 @@ def pointed_at(sheet, weave, ids) -> dict[str, set[int]]:
     lines = [line for s in shapes if isinstance(s, Polylines) and s.style.stroke == "#000000"
              for line in s.lines()]
     out: dict[str, set[int]] = {}
-    for t in layers["ids"].shapes:
+    for t, name in texts:
         box = text_box(t)
         plate = [g for g in plates if g.covers(box)]
         if plate:
@@ -43,7 +54,7 @@ def pointed_at(sheet, weave, ids) -> dict[str, set[int]]:
         else:
             ends = [box.centroid]
         hit = {int(k) for e in ends for k in tree.query(e, predicate="within")}
-        out.setdefault(t.text, set()).update(int(weave.tile_over[k]) for k in hit)
+        out.setdefault(name, set()).update(int(weave.tile_over[k]) for k in hit)
     return out
 
 
@@ -51,25 +62,36 @@ def unfound(book, weave) -> list[str]:
     """The strand IDs that no text on the pages before the strips points at their strand."""
     found: dict[str, set[int]] = {}
     for n in book.extra_pages:
-        for text, strands in pointed_at(book.drawing.sheets[n - 1], weave,
-                                        book.plan.labels).items():
+        for text, strands in pointed_at(book.drawing.sheets[n - 1], weave).items():
             found.setdefault(text, set()).update(strands)
     return [label for s, label in enumerate(book.plan.labels) if s not in found.get(label, ())]
 
 
-def _without(sheet, keep) -> Sheet:
-    layers = tuple(Layer("ids", "label", tuple(t for t in layer.shapes if keep(t)))
-                   if layer.name == "ids" else layer for layer in sheet.layers)
-    return Sheet(sheet.width, sheet.height, layers, sheet.name)
+def planted(book, n: int, layer: str, text, new=None):
+    """``book`` with the text ``text`` of page ``n``'s layer ``layer`` replaced by ``new``, or
+    dropped."""
+    sheet = book.drawing.sheets[n - 1]
+    layers = tuple(Layer(la.name, la.role, tuple(new if t is text else t for t in la.shapes
+                                                 if t is not text or new is not None))
+                   if la.name == layer else la for la in sheet.layers)
+    sheets = list(book.drawing.sheets)
+    sheets[n - 1] = Sheet(sheet.width, sheet.height, layers, sheet.name)
+    return moved(book, drawing=moved(book.drawing, sheets=tuple(sheets)))
+
+
+def texts_of(book, pages, layer: str) -> list[tuple[int, object]]:
+    """(page, text) of every text of ``layer`` on ``pages``."""
+    return [(n, t) for n in pages for la in book.drawing.sheets[n - 1].layers
+            if la.name == layer for t in la.shapes]
 
 
 def test_every_strand_of_the_pentagon_flower_is_named_and_pointed_at():
-    """The pentagon flower at 23 cm: page 1 had no room for 41 strands' IDs; with the shortest
-    unnamed strands given their plates first and a finer, wider search for the rest it has
-    none for 22 (page 1 names 158 strands); those are named on the two pages of crossing
-    callouts (pages 3-4, 7 pages in all, as before they had a page of their own), each with a
-    leader into one of its tiles. Every one of the 180 strands is then found, and those pages'
-    texts pass the page checks. Planted: one callout dropped from a page, or two swapped: those
+    """The pentagon flower at 23 cm: page 1 has no room for 22 strands' IDs (it names 158).
+    19 of them lie on top at a crossing called out on pages 3-4, whose callout ("C8 over A14")
+    names them; the other 3 get a callout of their own there (22 before the callouts counted;
+    7 pages in all either way). Every one of the 180 strands is then found, and those pages'
+    texts pass the page checks. Planted: an ID callout or the one crossing callout naming a
+    strand dropped, that callout told backwards ("A14 over C8"), two IDs swapped: those
     strands are not found."""
     book, weave = pentagon_book(), weaves("pentagon-flower", 3)[-1]
     assert book.id_pages == book.callout_pages == (3, 4)
@@ -77,30 +99,59 @@ def test_every_strand_of_the_pentagon_flower_is_named_and_pointed_at():
     assert not unfound(book, weave)
     for n in (3, 4):
         assert not [r for r in sheet_checks(book, n) if r["broken"]]
-    ids = [t for n in (3, 4) for layer in book.drawing.sheets[n - 1].layers
-           if layer.name == "ids" for t in layer.shapes]
-    assert len(ids) == 22 and len({t.text for t in ids}) == 22
-    assert sum(len(pointed_at(book.drawing.sheets[0], weave, ()).get(label, ()))
-               for label in book.plan.labels) == 180 - 22
+    ids = texts_of(book, (3, 4), "ids")
+    assert len(ids) == 3 and len({t.text for _, t in ids}) == 3
+    on_cover = pointed_at(book.drawing.sheets[0], weave)
+    assert sum(s in on_cover.get(label, ()) for s, label in enumerate(book.plan.labels)) == 158
     cover = " ".join(t.text for layer in book.drawing.sheets[0].layers for t in layer.shapes
                      if hasattr(t, "text"))
     assert "and the strands this page has no room to name, are called out on pages 3-4" in cover
-    sheet = book.drawing.sheets[2]
-    ids = next(layer for layer in sheet.layers if layer.name == "ids").shapes
-    for planted in ("dropped", "swapped"):
-        a, b = ids[0], ids[1]
-        if planted == "dropped":
-            bad = _without(sheet, lambda t: t is not a)
-        else:
-            swap = {id(a): moved(a, text=b.text), id(b): moved(b, text=a.text)}
-            bad = Sheet(sheet.width, sheet.height, tuple(
-                Layer("ids", "label", tuple(swap.get(id(t), t) for t in layer.shapes))
-                if layer.name == "ids" else layer for layer in sheet.layers), sheet.name)
-        sheets = list(book.drawing.sheets)
-        sheets[2] = bad
-        bad_book = moved(book, drawing=moved(book.drawing, sheets=tuple(sheets)))
-        want = [a.text] if planted == "dropped" else sorted([a.text, b.text])
-        assert sorted(unfound(bad_book, weave)) == want, planted
+    callouts = texts_of(book, (3, 4), "crossings")
+    firsts = [t.text.split(" over ")[0] for _, t in callouts]
+    n, only = next((n, t) for n, t in callouts if t.text.split(" over ")[0] not in on_cover
+                   and firsts.count(t.text.split(" over ")[0]) == 1)  # one callout names it
+    top, below = only.text.split(" over ")
+    assert sorted(unfound(planted(book, n, "crossings", only), weave)) == [top]
+    backwards = moved(only, text=f"{below} over {top}")
+    assert sorted(unfound(planted(book, n, "crossings", only, backwards), weave)) == [top]
+    (n, a), (m, b) = ids[:2]
+    assert unfound(planted(book, n, "ids", a), weave) == [a.text]
+    swapped = planted(planted(book, n, "ids", a, moved(a, text=b.text)), m, "ids", b,
+                      moved(b, text=a.text))
+    assert sorted(unfound(swapped, weave)) == sorted([a.text, b.text])
+
+
+@lru_cache(maxsize=None)
+def default_pentagon_book(cutter: str | None = None):
+    """The pentagon flower as ``strands pentagon-flower`` lays it out (20 mm octagons), or at
+    23 cm for a cutter as ``--cutter`` does (the Silhouette kit of the recipe
+    pentagon-flower-cut-by-machine)."""
+    ws = list(weaves("pentagon-flower", 3))
+    if cutter is None:
+        return strand_book(ws, palette("maritime-12"), tile_size=20.0)
+    machine, out = printcut.cutter(cutter), Path("pf.pdf")
+    return strand_book(ws, palette("okabe-ito"), (210.0, 297.0), tile_size_for(ws[-1], 230.0),
+                       max(10.0, machine.margin), limit=machine.limit(210.0, 297.0),
+                       words=printcut.cutter_words(machine, out), gap=printcut.WASTE,
+                       page_note=printcut.cut_file_note(out, machine), bleed=printcut.BLEED)
+
+
+@pytest.mark.parametrize("cutter, pages, callouts, ids", [(None, 8, (3,), 14),
+                                                          ("silhouette", 8, (3, 4), 8)])
+def test_the_crossing_callouts_name_strands_so_no_page_of_strand_ids(cutter, pages, callouts,
+                                                                     ids):
+    """The pentagon flower at its default size (62 crossings called out, page 1 has no room
+    for 22 strands: 8 named by their crossings' callouts, 14 beside them) and the Silhouette
+    kit at 23 cm (155 crossings, page 1 has no room for 44 strands: 36 named by callouts, 8
+    beside them): no page of strand IDs of its own, 8 pages each (9 before the callouts
+    counted), every strand found and every page passing the checks."""
+    book = default_pentagon_book(cutter)
+    weave = weaves("pentagon-flower", 3)[-1]
+    assert len(book.drawing.sheets) == pages and book.callout_pages == book.id_pages == callouts
+    assert len(texts_of(book, callouts, "ids")) == ids
+    assert not unfound(book, weave)
+    for n in range(1, len(book.extra_pages) + 1):
+        assert not [r for r in sheet_checks(book, n) if r["broken"]], n
 
 
 def test_a_pattern_whose_page_1_names_every_strand_has_no_strand_page():
@@ -124,16 +175,31 @@ def test_the_leader_ends_of_page_1_and_the_strand_pages_meet_no_other_leader(n):
     assert not [(a, b) for a, b in zip(i.tolist(), j.tolist()) if a < b]
 
 
-def test_strands_whose_one_tile_is_a_called_out_crossing_keep_a_page_of_their_own():
-    """The pentagon flower at 23 cm in the module layout: its 70 crossings and 24 unnamed
-    strands would fit page 3 together, but three of those strands (C2, C14, D8) lie on top of
-    one tile only, itself a crossing called out on that page: a ring round its dot would show
-    the dot, not the strand's colour. The strands keep page 4 and every page passes the
-    checks. Planted: shared all the same: page 3 has IDs outside their strands."""
+def test_strands_on_top_of_one_called_out_crossing_only_are_named_by_its_callout():
+    """The pentagon flower at 23 cm in the module layout: page 1 has no room for 24 strands'
+    IDs. Three of them (C2, C14, D8) lie on top of one tile only, a crossing called out on page
+    3, where an ID's ring could only go round the crossing's dot: they had a page 4 of their
+    own (5 pages). That callout names them now; 9 of the 24 are named by callouts, 15 by IDs
+    beside them: 4 pages, every strand found, every page passing the checks. Planted: a
+    callout counted as naming the strand below it too: strands named nowhere."""
     from tests.papermodel.test_strands import pentagon_module_book
 
-    book = pentagon_module_book()
-    assert book.callout_pages == (3,) and book.id_pages == (4,)
-    assert not unfound(book, weaves("pentagon-flower", 3)[-1])
+    book, weave = pentagon_module_book(), weaves("pentagon-flower", 3)[-1]
+    assert book.callout_pages == book.id_pages == (3,) and len(book.drawing.sheets) == 4
+    assert len(texts_of(book, (3,), "ids")) == 15
+    assert not unfound(book, weave)
     for n in range(1, len(book.drawing.sheets) + 1):
         assert not [r for r in sheet_checks(book, n) if r["broken"]], n
+    labels = list(book.plan.labels)
+    alone = [labels[s] for s in range(weave.n_strands) if weave.strand(s)[1].sum() == 1]
+    firsts = {t.text.split(" over ")[0] for _, t in texts_of(book, (3,), "crossings")}
+    assert {"C2", "C14", "D8"} <= set(alone) and {"C2", "C14", "D8"} <= firsts
+
+    def both(unnamed, crossings):  # the strand below named too
+        strands = {s for c in crossings for s in c[1:]}
+        return ([u for u in unnamed if u[0] in strands],
+                [u for u in unnamed if u[0] not in strands])
+
+    with mock.patch.object(front, "named_by_callouts", both):
+        bad = pentagon_module_book.__wrapped__()
+    assert unfound(bad, weave)

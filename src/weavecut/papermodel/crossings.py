@@ -169,56 +169,61 @@ def callout_shapes(placed: list, spots, dots=True) -> tuple[list, list[Text]]:
     return shapes, [p[0] for p, _ in placed_at]
 
 
+def named_by_callouts(unnamed, crossings) -> tuple[list, list]:
+    """(called, rest): the strands of ``unnamed`` (strand, tile where it lies on top) that a
+    callout of ``crossings`` (tile, strand on top, strand below) names, and the others. A
+    callout "C8 over A14" names C8 only: its dot lies in a tile of C8's colour, as an ID's ring
+    would; A14 is hidden there (the maker learns that it passes, not where it shows)."""
+    tops = {over for _, over, _ in crossings}
+    return [u for u in unnamed if u[0] in tops], [u for u in unnamed if u[0] not in tops]
+
+
+def strand_notes(ids, crossings, unnamed, called) -> list[str]:
+    """What the pages of :func:`crossing_pages` say about the strands page 1 has no room to
+    name: ``called`` named first in a callout of ``crossings``, ``unnamed`` once here."""
+    parts = []
+    if called:
+        s = called[0][0]
+        over, under = next((o, u) for _, o, u in crossings if o == s)
+        parts.append(f"{len(called)} {'is' if len(called) == 1 else 'are'} named first in a "
+                     f"callout, on top at its dot ({ids[s]} in "
+                     f"\"{crossing_label(ids, over, under)}\")")
+    if unnamed:
+        n, ring = len(unnamed), " (a ring round the line's end)" if crossings else ""
+        parts.append(f"{n} {'is' if n == 1 else 'are'} named here once{' each' if n > 1 else ''}"
+                     f", with a line to a tile where the strand lies on top{ring}")
+    return [f"Of the strands page 1 has no room to name, {'; '.join(parts)}."] if parts else []
+
+
 def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float,
-                   words: Words = PRINTED, unnamed=()) -> list[tuple]:
+                   words: Words = PRINTED, unnamed=(), called=()) -> list[tuple]:
     """The layers of the pages naming every crossing in ``crossings``
-    (:func:`left_out_crossings`) and the strands page 1 has no room for (``unnamed``: strand,
-    tile where it lies on top), without the page furniture: the pattern between two columns
+    (:func:`left_out_crossings`) and the strands page 1 has no room for that no callout names
+    (``unnamed``: strand, tile where it lies on top; ``called``: those a callout names, see
+    :func:`named_by_callouts`), without the page furniture: the pattern between two columns
     of callouts, 3 GAP clear of the widest plate (room for the leaders); as few pages as the
     columns hold them in (a side with more than its columns hold gives the callouts nearest
     the middle to the other), the callouts of each side dealt out over them in turn from the
-    top. A
-    crossing's leader ends on a dot, its text in a layer "crossings"; a strand's on a ring (the
-    tile's colour, the strand's, shows inside), its ID in a layer "ids" as on page 1. ``words``
-    say how such a crossing looks on its strip."""
+    top. A crossing's leader ends on a dot, its text in a layer "crossings"; a strand's on a
+    ring (the tile's colour, the strand's, shows inside), its ID in a layer "ids" as on page
+    1. ``words`` say how such a crossing looks on its strip."""
     ids = plan.labels
     notes = []
     if crossings:
         notes.append(f"{too_small(len(crossings))}: there the "
                      f"strip {words.unnamed_there}. Each is called out once: "
                      f"{crossing_meaning(ids, crossings[0])}.")
-    if unnamed:
-        n, ring = len(unnamed), " (a ring round the line's end)" if crossings else ""
-        notes.append(f"Page 1 has no room for the IDs of {n} strand{'s' if n > 1 else ''}: "
-                     f"each is named here once, with a line to one of its tiles, where it lies "
-                     f"on top{ring}.")
+    notes += strand_notes(ids, crossings, unnamed, called)
     labels = ([crossing_label(ids, over, under) for _, over, under in crossings]
               + [ids[s] for s, _ in unnamed])
-    tiles = [c[0] for c in crossings] + id_tiles(weave, unnamed, crossings)
+    tiles = [c[0] for c in crossings] + [t for _, t in unnamed]
     kinds = ["crossings"] * len(crossings) + ["ids"] * len(unnamed)
     return callout_pages(weave, colours, area, tiles, labels, " ".join(notes), turn, kinds)
 
 
-def id_tiles(weave: Weave, unnamed, crossings) -> list[int]:
-    """The tile each of ``unnamed`` (strand, tile where it lies on top) is called out at beside
-    ``crossings``: that tile, or where it is a crossing called out too (a ring round its dot
-    would show the dot, not the strand's colour), the strand's largest other tile where it
-    lies on top; the same tile where it has no other."""
-    called = {c[0] for c in crossings}
-    if not called.intersection(t for _, t in unnamed):
-        return [t for _, t in unnamed]
-    area = shapely.area(model_tiles(weave))
-    out = []
-    for s, t in unnamed:  # strands, not mesh elements
-        visits, own = weave.strand(s)
-        free = [int(v) for v in visits[own] if int(v) not in called]
-        out.append(max(free, key=lambda v: (area[v], -v)) if t in called and free else t)
-    return out
-
-
 def id_pages(weave: Weave, plan, colours, area, unnamed, turn: float) -> list[tuple]:
-    """The layers of the pages naming the strands page 1 has no room for where no crossing is
-    called out on a page of its own: :func:`crossing_pages` of ``unnamed`` alone."""
+    """The layers of the pages of their own naming ``unnamed``, the strands page 1 has no room
+    for that no callout names: :func:`crossing_pages` of ``unnamed`` alone."""
     return crossing_pages(weave, plan, colours, area, (), turn, unnamed=unnamed)
 
 
@@ -226,8 +231,7 @@ def callout_pages(weave: Weave, colours, area, tiles, labels: list[str], note: s
                   turn: float, kinds: list[str]) -> list[tuple]:
     """The layers of the pages calling out ``labels[i]`` at ``tiles[i]`` (a white plate in a
     column, a leader into the tile, ending on a dot for a crossing, on a ring for a strand's ID:
-    ``kinds[i]`` "crossings" or "ids", the layer of its text), with ``note`` above; None where
-    a ring would go round a dot on one page (the ring shows the strand's colour inside)."""
+    ``kinds[i]`` "crossings" or "ids", the layer of its text), with ``note`` above."""
     x0, y0, x1, y1 = area.box
     texts, bottom = paragraphs([note], x0, y1, x1 - x0)
     room = max((text_width(s, MIN_CAP) for s in labels), default=0.0) + 2 * PLATE_PAD + 3 * GAP
@@ -248,10 +252,6 @@ def callout_pages(weave: Weave, colours, area, tiles, labels: list[str], note: s
         mine = np.flatnonzero(side == right)
         page[mine[np.argsort(-spots[mine, 1], kind="stable")]] = np.arange(len(mine)) % n
     dots = np.array([k == "crossings" for k in kinds], dtype=bool)
-    at = np.asarray(tiles)
-    if len({(int(p), int(t)) for p, t in zip(page[dots], at[dots])}.intersection(
-            zip(page[~dots].tolist(), at[~dots].tolist()))):
-        return None  # a strand's ring round a crossing's dot on one page
     pages = []
     for p in range(n):  # pages
         on = np.flatnonzero(page == p)

@@ -7,7 +7,7 @@ from __future__ import annotations
 from ..layout.drawing import Sheet
 from ..weave.model import Weave
 from .assembly import assembly_sheet, weaving_sheet
-from .crossings import crossing_pages, id_pages
+from .crossings import crossing_pages, id_pages, named_by_callouts
 from .modules import ModulePlan
 from .pages import PageArea, page_layers
 from .wording import PRINTED, Words
@@ -21,14 +21,16 @@ def front_pages(weave: Weave, plan: ModulePlan, colours, area: PageArea, crossin
     """(book, sheets): the assembly sheet, the weaving page, the pages of the crossings the
     strips leave unnamed (``crossings``, see :func:`.crossings.left_out_crossings`), which are
     called out on page 1 where they all fit, else on pages of their own, and the strands page 1
-    has no room to name: called out on those crossing pages beside the crossings where that
-    takes no page more and no strand's ring would go round a crossing's dot on one page (a
-    strand whose only tiles are called out as crossings), else on pages of their own. ``book_for(own, ids, shared)`` gives (the book
-    with ``own`` crossing pages, naming the strands too where ``shared``, and ``ids`` strand
-    pages after them, its page count, the first crossing page's number); ``words`` name what
-    the maker holds. Page 1 is laid out first as if the crossing pages named strands too (a
-    pattern too big to call out its crossings on page 1 mostly has strands it cannot name):
-    once where it has such strands."""
+    has no room to name: named first in the callout of a crossing where one lies on top
+    (:func:`.crossings.named_by_callouts`), the others called out beside the crossings on
+    their pages (columns of m plates, IDs or callouts alike: ceil((a + b) / m) pages, never
+    more than ceil(a / m) + ceil(b / m) apart), or where the crossings are on page 1 or there
+    are none, on pages of their own.
+    ``book_for(own, ids, shared)`` gives (the book with ``own`` crossing pages, naming strands
+    too where ``shared``, and ``ids`` strand pages after them, its page count, the first
+    crossing page's number); ``words`` name what the maker holds. Page 1 is laid out first as
+    if the crossing pages named strands too (a pattern too big to call out its crossings on
+    page 1 mostly has strands it cannot name): once where it has such strands."""
     area = area.plain  # their subtitles are short
     alone: list = []  # the crossing pages without strands
     on_cover = crossings if len(crossings) <= ON_COVER else ()
@@ -45,21 +47,20 @@ def front_pages(weave: Weave, plan: ModulePlan, colours, area: PageArea, crossin
             own_pages = alone = crossing_pages(weave, plan, colours, area, crossings, turn,
                                                words)
             continue
-        both = crossing_pages(weave, plan, colours, area, crossings, turn, words, unnamed) if (
-            alone and unnamed) else []  # None where a ring would go round a dot
+        called, rest = named_by_callouts(unnamed, crossings)
         was = (len(own_pages), len(named), shared)
-        shared = bool(both) and len(both) <= len(alone)  # where they take no page more
-        own_pages = both if shared else alone
-        named = [] if shared or not unnamed else id_pages(weave, plan, colours, area, unnamed,
-                                                          turn)
+        shared = bool(alone and unnamed)  # the crossing pages name strands too
+        own_pages = crossing_pages(weave, plan, colours, area, crossings, turn, words, rest,
+                                   called) if shared else alone
+        named = id_pages(weave, plan, colours, area, rest, turn) if rest and not shared else []
         if (len(own_pages), len(named), shared) == was:
             break
     else:
         raise AssertionError("page 1 and the pages of the strands it does not name never "
                              "agreed on their number")
     sheets = [cover, weaving_sheet(weave, book, turn, title, total, words)]
-    what = ("Crossings the strips do not name (the strand named first lies on top) and strand "
-            "IDs page 1 has no room for" if shared else
+    what = ("Crossings the strips and strands page 1 do not name (the strand named first lies "
+            "on top)" if shared else
             "Crossings the strips do not name: the strand named first lies on top")
     sheets += [Sheet(area.width, area.height, layers + tuple(page_layers(
         area, title, what, n, total, legend=words.legend, cut=words.cut_line)),
