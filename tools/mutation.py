@@ -139,10 +139,10 @@ PACKAGES: dict[str, Package] = {
                        "tests/test_tiled_pages.py")),
     # the kit page: its own tests build small kits in process (the CLI's build and --html are
     # a few frames above kitpage), the figures a maker reads against --json, and the
-    # previews' and laser settings' own tests
+    # previews', laser settings' and cards' own tests
     "kitpage": Package(("src/weavecut/kitpage/*",),
                        ("tests/test_kitpage.py", "tests/test_figures_agree.py",
-                        "tests/test_kitpage_previews.py")),
+                        "tests/test_kitpage_previews.py", "tests/test_kitpage_cards.py")),
     # lengths with units and presets (the untrusted-input tests read presets and options
     # through the same functions)
     "units-presets": Package(("src/weavecut/units.py", "src/weavecut/presets.py"),
