@@ -139,10 +139,10 @@ PACKAGES: dict[str, Package] = {
                        "tests/test_tiled_pages.py")),
     # the kit page: its own tests build small kits in process (the CLI's build and --html are
     # a few frames above kitpage), the figures a maker reads against --json, and the
-    # previews' and laser settings' own tests
+    # previews', laser settings' and cards' own tests
     "kitpage": Package(("src/weavecut/kitpage/*",),
                        ("tests/test_kitpage.py", "tests/test_figures_agree.py",
-                        "tests/test_kitpage_previews.py")),
+                        "tests/test_kitpage_previews.py", "tests/test_kitpage_cards.py")),
     # lengths with units and presets (the untrusted-input tests read presets and options
     # through the same functions)
     "units-presets": Package(("src/weavecut/units.py", "src/weavecut/presets.py"),
@@ -153,11 +153,16 @@ PACKAGES: dict[str, Package] = {
                               "tests/untrusted/test_options.py", "tests/test_cli_names.py",
                               "tests/papermodel/test_cutter.py")),
     "surface": Package(("src/weavecut/surface.py",), ("tests/surface",)),
-    # the command line: the CLI tests run whole commands (seconds each); the interrupt and
-    # install tests start processes of their own, which mutmut's trampoline does not reach
+    # the command line: the CLI tests run whole commands (seconds each), the printouts' and
+    # models' tests read what they print and write back, the entry point's run main in
+    # process (the interrupt and install tests start processes of their own, which mutmut's
+    # trampoline does not reach), and the parts' tests build the option groups anew (the
+    # commands build theirs at import, before any mutant is switched on)
     "cli": Package(("src/weavecut/cli/*",),
                    ("tests/test_cli.py", "tests/test_cli_names.py", "tests/test_cli_outputs.py",
                     "tests/test_cli_shell.py", "tests/test_formats_option.py",
+                    "tests/test_cli_printouts.py", "tests/test_cli_models.py",
+                    "tests/test_cli_parts.py", "tests/untrusted/test_entry_point.py",
                     "tests/untrusted/test_options.py", "tests/untrusted/test_recipes.py",
                     "tests/untrusted/test_confinement.py", "tests/untrusted/test_cli_guards.py",
                     "tests/untrusted/test_cli_option_guards.py"),

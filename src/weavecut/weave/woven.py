@@ -121,7 +121,8 @@ def woven_model(weave: Weave, colours, lift: float, names=None) -> Model:
     """The strips of every strand of ``weave`` (a snub weave, flat or in space), one part per
     strand in ``colours[strand]``, ``lift`` (mesh units) over and under each other."""
     mesh = weave.mesh
-    if mesh.dense_faces() is None or weave.n_tiles == 0:
+    faces = mesh.dense_faces()
+    if faces is None or faces.shape[1] != 5 or weave.n_tiles == 0:
         raise MeshError("a woven 3-D model needs a snub weave (pentagons glued into octagons)")
     v3 = mesh.vertices if mesh.dim == 3 else np.column_stack([mesh.vertices,
                                                               np.zeros(mesh.n_vertices)])
