@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from weavecut import inputs
 from weavecut.layout.drawing import Text
 from weavecut.layout.labels import text_box
-from weavecut.papermodel import printcut
+from weavecut.papermodel import cutter_words, printcut
 from weavecut.papermodel.book import strand_book
 from weavecut.papermodel.header import strips_subtitle, wrapped
 from weavecut.papermodel.pages import FURNITURE_GAP
@@ -42,8 +42,8 @@ def cricut_book(output: Path = LONG):
     machine = printcut.cutter("cricut")
     return strand_book(list(weaves()), palette("maritime-4"), LETTER, 20.0, machine.margin,
                        limit=machine.limit(*LETTER), gap=printcut.WASTE, bleed=printcut.BLEED,
-                       words=printcut.cutter_words(machine, output),
-                       page_note=printcut.cut_file_note(output, machine))
+                       words=cutter_words.cutter_words(machine, output),
+                       page_note=cutter_words.cut_file_note(output, machine))
 
 
 def narrow_book(layout: str, page: tuple[float, float]):

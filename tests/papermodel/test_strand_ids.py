@@ -15,7 +15,7 @@ import shapely
 
 from weavecut.layout.drawing import Layer, Polygons, Polylines, Sheet
 from weavecut.layout.labels import text_box
-from weavecut.papermodel import front, printcut
+from weavecut.papermodel import cutter_words, front, printcut
 from weavecut.papermodel.book import strand_book, tile_size_for
 from weavecut.papermodel.checks import sheet_checks
 from weavecut.weave.colour import palette
@@ -132,8 +132,8 @@ def default_pentagon_book(cutter: str | None = None):
     machine, out = printcut.cutter(cutter), Path("pf.pdf")
     return strand_book(ws, palette("okabe-ito"), (210.0, 297.0), tile_size_for(ws[-1], 230.0),
                        max(10.0, machine.margin), limit=machine.limit(210.0, 297.0),
-                       words=printcut.cutter_words(machine, out), gap=printcut.WASTE,
-                       page_note=printcut.cut_file_note(out, machine), bleed=printcut.BLEED)
+                       words=cutter_words.cutter_words(machine, out), gap=printcut.WASTE,
+                       page_note=cutter_words.cut_file_note(out, machine), bleed=printcut.BLEED)
 
 
 @pytest.mark.parametrize("cutter, pages, callouts, ids", [(None, 8, (3,), 14),
