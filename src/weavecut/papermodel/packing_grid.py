@@ -199,8 +199,11 @@ class Page:
                        dtype=bool)
         keep = (rows >= 0) & (columns >= 0) & (rows < out.shape[0]) & (columns < out.shape[1])
         rows, columns = rows[keep], columns[keep]
-        cy, cx = np.nonzero(core)
-        out[rows, columns] = ~blocks[rows[:, None] + cy, columns[:, None] + cx].any(axis=1)
+        width = blocks.shape[1]  # the blocks read by their numbers, row by row
+        under = np.flatnonzero(core.ravel()) + np.arange(core.shape[0]).repeat(core.shape[1])[
+            core.ravel()] * (width - core.shape[1])
+        out[rows, columns] = ~blocks.ravel()[(rows * width + columns)[:, None] + under].any(
+            axis=1)
         return out
 
     def blocks(self, k: int) -> np.ndarray:
