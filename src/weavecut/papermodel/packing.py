@@ -249,8 +249,12 @@ def _fill(units, shapes, kinds, grid: Grid, area, first, axis: int, most: int | 
     ``first`` before all others), first fit, each where its far edge along ``axis`` is least
     (:func:`_best_spot`); None as soon as it needs more than ``most`` pages. Returns the places
     and what was laid where: (page, members, mask, (iy, ix)) per stack."""
-    def order(u):
-        return (not first.intersection(u[0]), area(u), u[0][0])
+    keys: dict = {}
+
+    def order(u):  # worked out once per stack: the queue is sorted again at every halving
+        if (at := tuple(u[0])) not in keys:
+            keys[at] = (not first.intersection(at), area(u), at[0])
+        return keys[at]
 
     queue = sorted(units, key=order)
     options, nx, ny, cell = grid.options, grid.nx, grid.ny, grid.cell
@@ -364,11 +368,9 @@ def _finer(grid: Page, k: int, core, offset, coarser):
         r, c = np.nonzero(fits)
         m = step // k
         if len(r) * m * m * np.count_nonzero(core) <= DIRECT:
-            d = np.arange(m)
-            rows = ((r - at[0]) * m + offset[0])[:, None, None] + d[:, None]
-            columns = ((c - at[1]) * m + offset[1])[:, None, None] + d
-            rows, columns = (a.ravel() for a in np.broadcast_arrays(rows, columns))
-            return grid.fits_at(k, core, rows, columns)
+            dy, dx = np.divmod(np.arange(m * m), m)  # the finer blocks of each coarse one
+            return grid.fits_at(k, core, (((r - at[0]) * m + offset[0])[:, None] + dy).ravel(),
+                                (((c - at[1]) * m + offset[1])[:, None] + dx).ravel())
     return grid.fits(k, [core])[0]
 
 

@@ -8,6 +8,8 @@ that fits, and it narrows the places to try to the cells of the blocks it leaves
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import shapely
 from numpy.fft import irfft2, rfft2
@@ -46,8 +48,8 @@ def turned_masks(shape, angles, gap: float, cell: float, width: float, height: f
     grown = shapely.buffer(shape, reach / np.cos(np.pi / 16), quad_segs=4)  # holds the disc
     xy, ring = shapely.get_coordinates(shapely.get_rings(shapely.get_parts(grown)),
                                        return_index=True)
-    half = [a for a in angles if a < 180]
-    turn = np.array([affine(a)[:2, :2] for a in half])[:, None]  # (A, 1, 2, 2)
+    half = tuple(a for a in angles if a < 180)
+    turn = _turns(half)  # (A, 1, 2, 2)
 
     def turned(points):  # (A, N, 2)
         return points[:, 0, None] * turn[..., 0] + points[:, 1, None] * turn[..., 1]
@@ -61,6 +63,15 @@ def turned_masks(shape, angles, gap: float, cell: float, width: float, height: f
     out = [(half[a], m, origin[a]) for a, m in zip(fit.tolist(), masks)]
     return out + [(a + 180.0, m[::-1, ::-1].copy(), -o - np.array(m.shape[::-1]) * cell)
                   for a, m, o in out]
+
+
+@functools.cache
+def _turns(angles: tuple) -> np.ndarray:
+    """(A, 1, 2, 2) read-only: the matrices turning by each of ``angles`` (degrees), made once
+    per packing's angles."""
+    turn = np.array([affine(a)[:2, :2] for a in angles])[:, None]
+    turn.flags.writeable = False
+    return turn
 
 
 def raster(uv, edges, shapes) -> list:
@@ -82,7 +93,7 @@ def raster(uv, edges, shapes) -> list:
     at = line + np.clip(np.ceil(u), 0, nx[grid]).astype(np.int64)  # first cell right of it
     total = int(starts[-1] + shapes[-1, 0] * (nx[-1] + 1)) if len(shapes) else 0
     # inside: an odd number of crossings left of the centre (each row has an even number)
-    inside = np.logical_xor.accumulate((np.bincount(at, minlength=total) & 1).astype(bool))
+    inside = (np.cumsum(np.bincount(at, minlength=total)) & 1).astype(bool)
     return [inside[s:s + h * (w + 1)].reshape(h, w + 1)[:, :w]
             for s, (h, w) in zip(starts.tolist(), shapes.tolist())]
 
@@ -188,8 +199,11 @@ class Page:
                        dtype=bool)
         keep = (rows >= 0) & (columns >= 0) & (rows < out.shape[0]) & (columns < out.shape[1])
         rows, columns = rows[keep], columns[keep]
-        cy, cx = np.nonzero(core)
-        out[rows, columns] = ~blocks[rows[:, None] + cy, columns[:, None] + cx].any(axis=1)
+        width = blocks.shape[1]  # the blocks read by their numbers, row by row
+        under = np.flatnonzero(core.ravel()) + np.arange(core.shape[0]).repeat(core.shape[1])[
+            core.ravel()] * (width - core.shape[1])
+        out[rows, columns] = ~blocks.ravel()[(rows * width + columns)[:, None] + under].any(
+            axis=1)
         return out
 
     def blocks(self, k: int) -> np.ndarray:

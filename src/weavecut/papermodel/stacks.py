@@ -30,6 +30,8 @@ def nest_offset(shape, gap: float, step: float = 0.25,
         mid = (low + high) / 2
         clear = shapely.distance(shape, copies(mid)) >= gap
         low, high = np.where(clear, low, mid), np.where(clear, mid, high)
-    box = shapely.area(shapely.convex_hull(shapely.union(shape, copies(high))))
+    pairs = np.column_stack([np.full(len(dxs), shape, dtype=object), copies(high)]).ravel()
+    box = shapely.area(shapely.convex_hull(shapely.geometrycollections(  # the pairs' hulls, no
+        pairs, indices=np.repeat(np.arange(len(dxs)), 2))))  # union needed
     best = np.lexsort((np.abs(dxs), np.round(box, 3)))[0]
     return np.array([dxs[best], high[best]])

@@ -273,11 +273,14 @@ def _place(lay: _Tiles, wanted, taken):
         blocked = [[g for g in (lay.bands[s], *taken[s], *out[s][1]) if g is not None]
                    + [boxes[j] for j in mine[s] if j != k and texts[j].size >= MIN_CAP]
                    for k, s in zip(ks, ss)]
-        rows = [row for row, b in enumerate(blocked) if b]
-        if rows:
+        flat = np.array([g for b in blocked for g in b], dtype=object)
+        of = np.repeat(np.arange(len(blocked)), [len(b) for b in blocked])
+        box, room = shapely.bounds(flat), shapely.bounds(wide)[of]
+        near = ((box[:, :2] <= room[:, 2:] + PAD) & (room[:, :2] <= box[:, 2:] + PAD)).all(axis=1)
+        rows = np.flatnonzero(np.bincount(of[near], minlength=len(blocked)))  # what reaches the
+        if len(rows):  # tiles' boxes: the rest of the strip is far
             keep_out = shapely.buffer(shapely.geometrycollections(
-                [g for row in rows for g in blocked[row]],
-                indices=np.repeat(np.arange(len(rows)), [len(blocked[row]) for row in rows])), PAD)
+                flat[near], indices=np.searchsorted(rows, of[near])), PAD)
             wide[rows] = shapely.difference(wide[rows], keep_out)
         wide = shapely.buffer(wide, -PAD - PLATE, join_style="mitre")
         zone = shapely.intersection(wide, _once(lambda t: shapely.buffer(t, 2 * MIN_CAP),
