@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 from ..numeric import turn
 from .hershey_futural import FONT, GLYPHS  # Hershey Simplex Roman: the engravers' font
 from .labels import largest_fit
+from .poles import poles
 
 _CAP, _BASE = -12, 9  # raw cap and base lines (raw y points down)
 
@@ -196,7 +197,7 @@ def _kept_values(what, keys: list[bytes], make) -> list:
 
 def _poles(polygons: NDArray[np.object_]) -> NDArray[np.float64]:
     """(N, 2) every polygon's pole of inaccessibility (the centre of its largest inscribed
-    circle, to 0.01 mm), kept (:func:`_kept_values`)."""
+    circle, :func:`~weavecut.layout.poles.poles`), kept (:func:`_kept_values`)."""
     keys = shapely.to_wkb(np.asarray(polygons, dtype=object).ravel()).tolist()
     return _facts(keys)[:, :2]
 
@@ -206,9 +207,7 @@ def _facts(keys: list[bytes]) -> NDArray[np.float64]:
     by its WKB, kept (:func:`_kept_values`)."""
     def make(new):
         polygons = shapely.from_wkb(new)
-        circles = shapely.maximum_inscribed_circle(polygons, tolerance=0.01)
-        pole = shapely.get_coordinates(shapely.get_point(circles, 0))
-        return map(tuple, np.column_stack([pole, _long_axes(polygons)]).tolist())
+        return map(tuple, np.column_stack([poles(polygons), _long_axes(polygons)]).tolist())
 
     return np.array(_kept_values("facts", keys, make), dtype=float).reshape(-1, 3)
 
