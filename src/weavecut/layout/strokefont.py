@@ -136,13 +136,14 @@ def labels(texts: list[str], centres: NDArray[np.float64], heights: NDArray[np.f
     h = np.asarray(heights, dtype=float)[inked]
     x0, y0, x1, y1 = (np.array([ink_box(texts[k]) for k in inked]) * h[:, None]).T
     points = [len(units[k][0]) for k in inked]
-    counts = np.concatenate([np.diff(units[k][1]) for k in inked])
+    lines = [len(units[k][1]) - 1 for k in inked]
     # each label's strokes at its height, less its ink box's centre, as text_strokes has them
     coords = np.concatenate([units[k][0] for k in inked]) * np.repeat(h, points)[:, None]
     coords -= np.repeat(np.column_stack([(x0 + x1) / 2, (y0 + y1) / 2]), points, axis=0)
-    offsets = np.r_[0, np.cumsum(counts)].astype(np.int64)
-    owner = np.repeat(np.array(inked, dtype=np.int64),
-                      [len(units[k][1]) - 1 for k in inked])
+    # every label's stroke ends after the points of the labels before it
+    ends = np.concatenate([units[k][1][1:] for k in inked])
+    offsets = np.r_[0, ends + np.repeat(np.cumsum(points) - points, lines)].astype(np.int64)
+    owner = np.repeat(np.array(inked, dtype=np.int64), lines)
     point_owner = np.repeat(owner, np.diff(offsets))
     return turn(coords, angles[point_owner], np.asarray(centres, dtype=float)[point_owner]), \
         offsets, owner
