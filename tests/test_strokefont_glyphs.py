@@ -47,9 +47,7 @@ def test_poles_are_kept_for_the_same_polygons_only():
     b = np.array([shapely.Point(7, 1).buffer(2), shapely.Point(-9, 4).buffer(5)], dtype=object)
     rebuilt = np.array([shapely.Point(0, 0).buffer(3)], dtype=object)  # a[0], another object
 
-    def fresh(p):
-        return shapely.get_coordinates(shapely.get_point(
-            shapely.maximum_inscribed_circle(p, tolerance=0.01), 0))
+    from weavecut.layout.poles import poles as fresh
 
     for polygons in (a, a.copy(), b, a, a[:1], rebuilt, np.concatenate([b, a, b[::-1]]),
                      np.array([a[1], a[1], b[0]], dtype=object), a[:0]):

@@ -124,8 +124,8 @@ PACKAGES: dict[str, Package] = {
     # "<string>"), which every Drawing is built through (as for mesh-core)
     "layout": Package(tuple(f"src/weavecut/layout/{m}.py" for m in (
                           "__init__", "colour_difference", "contrast", "cutpaths", "drawing",
-                          "labels", "lasersetup", "mesh_figure", "nesting", "strokefont",
-                          "tiling", "weave_figure")),
+                          "labels", "lasersetup", "mesh_figure", "nesting", "poles",
+                          "strokefont", "tiling", "weave_figure")),
                       ("tests/test_drawing.py", "tests/test_cutpaths.py",
                        "tests/test_contrast.py", "tests/test_nesting_moves.py",
                        "tests/test_tiling_clip.py", "tests/test_strokefont_glyphs.py",
@@ -136,7 +136,7 @@ PACKAGES: dict[str, Package] = {
                        "tests/puzzle/test_cut_readback.py",
                        "tests/papermodel/test_strip_paint.py", "tests/test_figure_drawings.py",
                        "tests/test_nesting_packing.py", "tests/test_nesting_room_search.py",
-                       "tests/test_tiled_pages.py")),
+                       "tests/test_tiled_pages.py", "tests/test_poles.py")),
     # the kit page: its own tests build small kits in process (the CLI's build and --html are
     # a few frames above kitpage), the figures a maker reads against --json, and the
     # previews', laser settings' and cards' own tests

@@ -82,16 +82,20 @@ def _written(negative, whole, part, places: int, lead, point_zero: bool, per: in
     digits = len(str(int(whole.max()))) if len(whole) else 1
     chars = np.zeros((len(whole), digits + places + 3), dtype=np.uint8)  # 0: no character
     chars[:, 0] = np.where(negative, ord("-"), 0)
-    for d in range(digits):
+    # the digits from the last: one divmod a column
+    rest = whole
+    for d in reversed(range(digits)):
         power = 10 ** (digits - 1 - d)
-        chars[:, 1 + d] = np.where((whole >= power) | ((power == 1) & lead),
-                                   48 + whole // power % 10, 0)
+        rest, digit = np.divmod(rest, 10)
+        chars[:, 1 + d] = np.where((whole >= power) | ((power == 1) & lead), 48 + digit, 0)
     point = digits + 1
     chars[:, point] = np.where((part > 0) | point_zero, ord("."), 0)
-    for d in range(places):
-        power = 10 ** (places - 1 - d)
-        shown = (part % (10 * power) > 0) | (point_zero & (d == 0) & (part == 0))
-        chars[:, point + 1 + d] = np.where(shown, 48 + part // power % 10, 0)
+    later = np.zeros(len(part), dtype=bool)  # this digit or one after it is not 0
+    for d in reversed(range(places)):
+        part, digit = np.divmod(part, 10)
+        later |= digit > 0
+        shown = later | (point_zero & (d == 0))
+        chars[:, point + 1 + d] = np.where(shown, 48 + digit, 0)
     chars[:, -1] = ord("\n")
     chars[np.arange(len(chars)) % per < per - 1, -1] = ord(" ")
     return chars[chars > 0].tobytes().decode("ascii").split("\n")[:-1]

@@ -92,12 +92,14 @@ def _strokes(words: list[Polylines]) -> list:
         return [shapely.multilinestrings(shapely.linestrings(
             w.coords, indices=np.repeat(np.arange(len(w.offsets) - 1), np.diff(w.offsets))))
             for w in words]
-    counts = [np.diff(w.offsets) for w in words]
+    per_word = [len(w.offsets) - 1 for w in words]
+    counts = np.diff(np.concatenate([w.offsets for w in words]))
+    counts = np.delete(counts, np.cumsum(per_word)[:-1] + np.arange(len(words) - 1))  # (the
+    # steps from one word's last offset to the next's first)
     lines = shapely.linestrings(np.concatenate([w.coords for w in words]),
-                                indices=np.repeat(np.arange(sum(map(len, counts))),
-                                                  np.concatenate(counts)))
+                                indices=np.repeat(np.arange(len(counts)), counts))
     return shapely.multilinestrings(lines, indices=np.repeat(
-        np.arange(len(words)), [len(c) for c in counts])).tolist()
+        np.arange(len(words)), per_word)).tolist()
 
 
 def fills_under(polys, fills, tree, outline) -> list[str]:

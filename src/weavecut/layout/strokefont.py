@@ -26,6 +26,7 @@ from numpy.typing import NDArray
 from ..numeric import turn
 from .hershey_futural import FONT, GLYPHS  # Hershey Simplex Roman: the engravers' font
 from .labels import largest_fit
+from .poles import poles
 
 _CAP, _BASE = -12, 9  # raw cap and base lines (raw y points down)
 
@@ -135,13 +136,14 @@ def labels(texts: list[str], centres: NDArray[np.float64], heights: NDArray[np.f
     h = np.asarray(heights, dtype=float)[inked]
     x0, y0, x1, y1 = (np.array([ink_box(texts[k]) for k in inked]) * h[:, None]).T
     points = [len(units[k][0]) for k in inked]
-    counts = np.concatenate([np.diff(units[k][1]) for k in inked])
+    lines = [len(units[k][1]) - 1 for k in inked]
     # each label's strokes at its height, less its ink box's centre, as text_strokes has them
     coords = np.concatenate([units[k][0] for k in inked]) * np.repeat(h, points)[:, None]
     coords -= np.repeat(np.column_stack([(x0 + x1) / 2, (y0 + y1) / 2]), points, axis=0)
-    offsets = np.r_[0, np.cumsum(counts)].astype(np.int64)
-    owner = np.repeat(np.array(inked, dtype=np.int64),
-                      [len(units[k][1]) - 1 for k in inked])
+    # every label's stroke ends after the points of the labels before it
+    ends = np.concatenate([units[k][1][1:] for k in inked])
+    offsets = np.r_[0, ends + np.repeat(np.cumsum(points) - points, lines)].astype(np.int64)
+    owner = np.repeat(np.array(inked, dtype=np.int64), lines)
     point_owner = np.repeat(owner, np.diff(offsets))
     return turn(coords, angles[point_owner], np.asarray(centres, dtype=float)[point_owner]), \
         offsets, owner
@@ -196,7 +198,7 @@ def _kept_values(what, keys: list[bytes], make) -> list:
 
 def _poles(polygons: NDArray[np.object_]) -> NDArray[np.float64]:
     """(N, 2) every polygon's pole of inaccessibility (the centre of its largest inscribed
-    circle, to 0.01 mm), kept (:func:`_kept_values`)."""
+    circle, :func:`~weavecut.layout.poles.poles`), kept (:func:`_kept_values`)."""
     keys = shapely.to_wkb(np.asarray(polygons, dtype=object).ravel()).tolist()
     return _facts(keys)[:, :2]
 
@@ -206,9 +208,7 @@ def _facts(keys: list[bytes]) -> NDArray[np.float64]:
     by its WKB, kept (:func:`_kept_values`)."""
     def make(new):
         polygons = shapely.from_wkb(new)
-        circles = shapely.maximum_inscribed_circle(polygons, tolerance=0.01)
-        pole = shapely.get_coordinates(shapely.get_point(circles, 0))
-        return map(tuple, np.column_stack([pole, _long_axes(polygons)]).tolist())
+        return map(tuple, np.column_stack([poles(polygons), _long_axes(polygons)]).tolist())
 
     return np.array(_kept_values("facts", keys, make), dtype=float).reshape(-1, 3)
 

@@ -43,7 +43,7 @@ WORD_SPAN = 9.5  # mm, the most a number spans: under the 10 mm by which printed
 LEAST = 1.5  # mm, the smallest: a piece without room for it is named, not numbered
 RING_CAP = 2.3  # mm: a ring piece's number on its paint at this size, where an ink reads there,
 # goes before a MIN_CAP number on its bare hexagon (a white hexagon with a number reads as a
-# piece of its own; 2.3 mm is 8 % smaller, the default puzzle's last 11 ring pieces fit 2.31-2.5)
+# piece of its own; 2.3 mm is 8 % smaller, the default puzzle's last 12 ring pieces fit 2.31-2.5)
 MARGIN = 0.6  # mm from a number's box to its piece's edge
 PAD = 0.25  # of the cap height, each side of a number's ink: its room from the next number
 TIGHT_CAP = 3.0  # mm, the largest number fitted without PAD: the two MARGINs between it and
