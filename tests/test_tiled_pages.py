@@ -15,8 +15,9 @@ import shapely
 from hypothesis import given
 from hypothesis import strategies as st
 
-from weavecut.layout.drawing import Drawing, Layer, Polylines, Sheet, Style, Text
-from weavecut.layout.drawing import polygons_from_rings
+from weavecut.layout import raster
+from weavecut.layout.drawing import Drawing, Layer, Polylines, Raster, Sheet, Style, Text
+from weavecut.layout.drawing import polygons_from_rings, polylines_from_lines, vectors
 from weavecut.layout.labels import text_width
 from weavecut.layout.tiling import SHIFTS, balanced, on_pages, tile
 from weavecut.puzzle.guide_numbers import guide_numbers
@@ -271,3 +272,23 @@ def test_the_scale_bars_length_is_written_on_the_page_right_of_the_bar():
                    if len(line) == 2 and abs(line[1, 0] - line[0, 0]) == 100.0)
         assert label.anchor == "start" and label.x > bar[:, 0].max()
         assert label.x + text_width(label.text, label.size) <= sheet.width
+
+
+def test_a_picture_centred_on_a_page_takes_the_lines_it_stands_for_along():
+    """A picture's lines (what a DXF or a laser job draws instead of its pixels) lie on the
+    picture wherever the page puts it: the lines' bounds inside its box, as far from its
+    corner as before it was centred."""
+    lines = polylines_from_lines([[(40.0, 60.0), (90.0, 75.0)], [(45.0, 90.0), (70.0, 62.0)]],
+                                 Style("#000000", 0.03))
+    picture = raster.picture([lines])
+    drawing = Drawing((Sheet(300.0, 400.0, (Layer("fine", "engrave", (picture,)),)),), "pic")
+    page, = on_pages(drawing, A4).sheets
+    moved, = (s for layer in page.layers for s in layer.shapes if isinstance(s, Raster))
+    assert (moved.x, moved.y) != (picture.x, picture.y)  # centred: moved on the page
+    drawn, = vectors([moved])
+    x0, y0 = drawn.coords.min(axis=0)
+    x1, y1 = drawn.coords.max(axis=0)
+    assert moved.x < x0 and x1 < moved.x + moved.width
+    assert moved.y < y0 and y1 < moved.y + moved.height
+    assert np.allclose(drawn.coords - (moved.x, moved.y), lines.coords - (picture.x, picture.y),
+                       rtol=0, atol=1e-9)

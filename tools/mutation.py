@@ -136,7 +136,8 @@ PACKAGES: dict[str, Package] = {
                        "tests/puzzle/test_cut_readback.py",
                        "tests/papermodel/test_strip_paint.py", "tests/test_figure_drawings.py",
                        "tests/test_nesting_packing.py", "tests/test_nesting_room_search.py",
-                       "tests/test_tiled_pages.py", "tests/test_poles.py")),
+                       "tests/test_tiled_pages.py", "tests/test_poles.py",
+                       "tests/test_label_fits.py")),
     # the kit page: its own tests build small kits in process (the CLI's build and --html are
     # a few frames above kitpage), the figures a maker reads against --json, and the
     # previews', laser settings' and cards' own tests
