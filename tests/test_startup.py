@@ -44,3 +44,28 @@ def test_a_whole_puzzle_loads_no_masked_arrays(tmp_path):
                             f"    main(['-q', 'puzzle', '--levels', '2', '--numbers', '-o', "
                             f"{str(tmp_path / 'pz')!r}])\n")
     assert "weavecut.export.gltf" in modules and "numpy.ma" not in modules
+
+
+def _threads_after_numpy(**env: str) -> int:
+    """The threads of a fresh interpreter that loaded the CLI, then numpy (OpenBLAS starts
+    its pool on import), with ``env`` for OpenBLAS's own variable (absent where not given)."""
+    import os
+    import subprocess
+    import sys
+
+    clean = {k: v for k, v in os.environ.items()
+             if k not in ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS")}
+    code = ("import os, weavecut.cli, numpy\n"
+            "print(len(os.listdir('/proc/self/task')))\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, env={**clean, **env}).stdout
+    return int(out)
+
+
+@pytest.mark.skipif(not __import__("os").path.isdir("/proc/self/task"), reason="Linux only")
+def test_the_cli_runs_blas_on_one_thread_unless_asked():
+    """OpenBLAS's pool of a thread per core spins after each call: CPU burnt for arrays far
+    too small to share. The CLI asks for one thread; a caller's own setting is kept."""
+    assert _threads_after_numpy() == 1
+    if (__import__("os").cpu_count() or 1) >= 2:
+        assert _threads_after_numpy(OPENBLAS_NUM_THREADS="2") == 2

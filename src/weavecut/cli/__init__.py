@@ -13,6 +13,12 @@ import sys
 
 import _signal  # builtin: no import time (``signal`` itself imports enum)
 
+# OpenBLAS starts a thread per core when numpy is imported and keeps them spinning after every
+# call: 0.07-0.13 s of CPU per command for arrays far too small to share (a whole kit's CPU
+# time, 1.0 -> 0.9 s for the puzzle). One thread, unless the caller asks for more; before
+# anything imports numpy. Its results do not change (tests/test_determinism.py).
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
 INTERRUPTED = "weave-cut: interrupted; no output was left half-written"
 
 
