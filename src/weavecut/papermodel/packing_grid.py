@@ -93,7 +93,8 @@ def raster(uv, edges, shapes) -> list:
     at = line + np.clip(np.ceil(u), 0, nx[grid]).astype(np.int64)  # first cell right of it
     total = int(starts[-1] + shapes[-1, 0] * (nx[-1] + 1)) if len(shapes) else 0
     # inside: an odd number of crossings left of the centre (each row has an even number)
-    inside = (np.cumsum(np.bincount(at, minlength=total)) & 1).astype(bool)
+    odd = (np.bincount(at, minlength=total) & 1).astype(np.uint8)
+    inside = np.bitwise_xor.accumulate(odd).view(bool)
     return [inside[s:s + h * (w + 1)].reshape(h, w + 1)[:, :w]
             for s, (h, w) in zip(starts.tolist(), shapes.tolist())]
 
