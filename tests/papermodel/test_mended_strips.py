@@ -15,6 +15,7 @@ import shapely
 from hypothesis import given, strategies as st
 
 from weavecut.mesh_io import read_valid_mesh
+from weavecut.numeric import affine
 from weavecut.papermodel import book as book_module, slim, strips
 from weavecut.papermodel.modules import plan_modules
 from weavecut.papermodel.pages import PageArea, strip_layers
@@ -139,6 +140,21 @@ def test_two_tiles_are_never_painted_over_each_other():
                          np.array([True, False]), ("A1", "B1"), np.eye(3))
     first, second = painted_tiles(strip)
     assert first.equals(shapely.box(0, 0, 10, 10)) and second.equals(tiles[1])
+
+
+def test_the_paper_of_two_strips_is_theirs_alone():
+    """One page's strips are painted together, but the paper left to the later tile is a
+    strip's own: a strip lying over another (here the same strip moved 5 mm) keeps every
+    tile whole. Planted: pairs of tiles of different strips trimmed too fails."""
+    tiles = np.array([shapely.box(0, 0, 10, 10), shapely.box(10, 0, 20, 10)], dtype=object)
+    strip = strips.Strip(0, "A1", shapely.box(0, 0, 20, 10), tiles, ("#336699", "#eeeeee"),
+                         np.array([True, False]), ("A1", "B1"), np.eye(3))
+    moved = strip.moved(affine(0.0, (5.0, 0.0)))
+    (layer,) = [lay for lay in strip_layers([strip, moved]) if lay.name == "strips"]
+    painted = layer.shapes[0].to_shapely().tolist()
+    assert len(painted) == 4
+    for got, want in zip(painted, [*tiles, *moved.tiles]):
+        assert got.equals(want)
 
 
 @pytest.mark.slow

@@ -8,6 +8,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 import shapely
+from numpy.typing import NDArray
 
 from ..layout.drawing import (Layer, Polygons, Polylines, Style, Text, polygons_from_shapely,
                               polylines_from_lines)
@@ -160,37 +161,43 @@ def split_strip(strip: Strip, max_length: float, max_width: float,
     return pieces
 
 
-def _parts(geoms) -> list:
-    parts = shapely.get_parts(np.asarray(geoms, dtype=object))
-    return [p for p in parts if p.geom_type == "Polygon" and p.area > 1e-9]
+def _parts(geoms, tags=None):
+    """The polygons of some area among the parts of ``geoms``, in order; with ``tags`` (one per
+    geometry: its fill, its ink) also each part's tag."""
+    parts, of = shapely.get_parts(np.asarray(geoms, dtype=object), return_index=True)
+    keep = (shapely.get_type_id(parts) == 3) & (shapely.area(parts) > 1e-9)
+    if tags is None:
+        return parts[keep].tolist()
+    return parts[keep].tolist(), [tags[i] for i in of[keep].tolist()]
 
 
-def _tiles(s: Strip) -> list[tuple]:
-    """(polygon, fill) of a strip's tiles and of its label tab, if it has one, as printed:
-    the paper two tiles share printed once (:func:`.slim.printed_once`)."""
-    flap = () if s.flap is None else (s.flap,)
-    return list(zip(printed_once(np.array([*s.tiles, *flap], dtype=object)),
-                    s.fills + (s.flap_fill,) * len(flap)))
+def _printed(strips: list[Strip]) -> tuple[NDArray[np.object_], list, NDArray[np.intp]]:
+    """(tiles, fills, owner): every strip's tiles and its label tab, if it has one, as
+    printed, with each one's fill and strip: the paper two tiles of a strip share printed once
+    (:func:`.slim.printed_once`)."""
+    tiles = [(*s.tiles, *(() if s.flap is None else (s.flap,))) for s in strips]
+    fills = [f for s, t in zip(strips, tiles) for f in (s.fills + (s.flap_fill,))[:len(t)]]
+    owner = np.repeat(np.arange(len(strips)), [len(t) for t in tiles])
+    return printed_once(np.array([g for t in tiles for g in t], dtype=object), owner), fills, \
+        owner
 
 
 def strip_layers(strips: list[Strip], bleed: float = 0.0) -> list[Layer]:
     """Layers for strips already on the page: tiles (fills and thin outlines), glue bands,
     fold lines, arrows, labels and the cut lines; with a ``bleed`` (mm, print and cut) no cut
     lines but the strips' colours bled that far past them (:func:`bleed_layer`)."""
-    tiles, fills, arrows_by_ink, glue, texts, outlines = [], [], {}, [], [], []
-    plates, plate_fills = [], []
-    for s in strips:
-        for tile, fill in _tiles(s):
-            for part in _parts([tile]):
-                tiles.append(part)
-                fills.append(fill)
-        plates += s.plates.tolist()
-        plate_fills += s.plate_fills
-        arrows_by_ink.setdefault(s.arrow_ink, []).extend(_parts(s.arrows))
-        if s.glue is not None:
-            glue.extend(_parts(s.glue))
-        texts.extend(s.texts)
-        outlines.extend(_parts([s.cut]))
+    printed, fills, _ = _printed(strips)
+    tiles, fills = _parts(printed, fills)
+    plates = [g for s in strips for g in s.plates.tolist()]
+    plate_fills = [f for s in strips for f in s.plate_fills]
+    arrows, inks = _parts([a for s in strips for a in s.arrows],
+                          [s.arrow_ink for s in strips for _ in s.arrows])
+    arrows_by_ink: dict[str, list] = {}
+    for arrow, ink in zip(arrows, inks):
+        arrows_by_ink.setdefault(ink, []).append(arrow)
+    glue = _parts([g for s in strips if s.glue is not None for g in s.glue])
+    texts = [t for s in strips for t in s.texts]
+    outlines = _parts([s.cut for s in strips])
     # the label plates over the tiles as a shape of their own: a writer may paint one shape's
     # polygons grouped by fill, which would put a plate under the tile it covers
     painted = (polygons_from_shapely(tiles, TILE_LINE, fills),) if bleed <= 0 else (
@@ -240,10 +247,11 @@ def inner_borders(strips: list[Strip]) -> Polylines:
     """The tiles' thin outlines where they border each other, not along a strip's cut line
     (print and cut: a line there would show on the strip's edge as a cut line would)."""
     lines = []
-    for s in strips:
+    tiles, _, owner = _printed(strips)
+    for i, s in enumerate(strips):
         edge = shapely.buffer(shapely.boundary(s.cut), 1e-6)
         borders = shapely.difference(
-            shapely.union_all(shapely.boundary([tile for tile, _ in _tiles(s)])), edge)
+            shapely.union_all(shapely.boundary(tiles[owner == i])), edge)
         lines += [np.asarray(g.coords) for g in shapely.get_parts(shapely.line_merge(borders))
                   if g.length > 1e-6]
     return polylines_from_lines(lines, TILE_LINE)
@@ -255,13 +263,10 @@ def bleed_layer(strips: list[Strip], bleed: float) -> Layer:
     tile's colour and without an outline, so a cutter that cuts up to ``bleed`` off the
     printed page still leaves colour to the strip's edge; inside the strip the true tiles
     cover it and nothing changes."""
-    grown, fills = [], []
-    for s in strips:
-        room = shapely.buffer(s.cut, bleed)
-        for tile, fill in _tiles(s):
-            for part in _parts([shapely.intersection(shapely.buffer(tile, bleed), room)]):
-                grown.append(part)
-                fills.append(fill)
+    tiles, fills, owner = _printed(strips)
+    rooms = shapely.buffer(np.array([s.cut for s in strips], dtype=object), bleed)
+    grown, fills = _parts(shapely.intersection(shapely.buffer(tiles, bleed), rooms[owner]),
+                          fills)
     return Layer("bleed", "paint", (polygons_from_shapely(grown, Style(None, 0.0), fills),))
 
 

@@ -158,13 +158,16 @@ def _smooth(outline: shapely.Polygon) -> shapely.Polygon:
     return shapely.simplify(outline_of(np.array([closed, outline], dtype=object), eps), HAIR)
 
 
-def printed_once(tiles: NDArray[np.object_]) -> NDArray[np.object_]:
-    """``tiles`` (one strip's) with the paper two of them share (more than a ``HAIR`` square)
-    left to the later one: a tile of an irregular mesh twisted over its neighbour (the Voronoi
-    example's strip A32: a 0.9 mm² lobe) printed both tiles there, one outline showing through
-    the other. The strip's tiles themselves keep the weave's paper (labels, crossings)."""
+def printed_once(tiles: NDArray[np.object_], owner=None) -> NDArray[np.object_]:
+    """``tiles`` (one strip's, or several strips': ``owner`` gives each tile's strip) with the
+    paper two tiles of a strip share (more than a ``HAIR`` square) left to the later one: a
+    tile of an irregular mesh twisted over its neighbour (the Voronoi example's strip A32: a
+    0.9 mm² lobe) printed both tiles there, one outline showing through the other. The
+    strip's tiles themselves keep the weave's paper (labels, crossings)."""
     first, second = shapely.STRtree(tiles).query(tiles, predicate="overlaps")
     pairs = first < second
+    if owner is not None:
+        pairs &= owner[first] == owner[second]
     first, second = first[pairs], second[pairs]
     shared = shapely.area(shapely.intersection(tiles[first], tiles[second])) > HAIR ** 2
     if not shared.any():
