@@ -42,14 +42,27 @@ def y_up(points: np.ndarray) -> np.ndarray:
 
 def glb_bytes(model, metres_per_unit: float = 0.001, name: str = "weave-cut model") -> bytes:
     """The model as glTF binary, its lengths times ``metres_per_unit`` (mm -> m by default)."""
-    parts = distinct(model.part).tolist()  # in order (without np.unique's numpy.ma import)
-    colours = sorted(set(model.colours[p] for p in parts))
+    order = np.argsort(model.part, kind="stable")  # the parts' triangles, part after part
+    part, triangles = model.part[order], model.triangles[order]
+    parts = distinct(part)  # in order (without np.unique's numpy.ma import)
+    colours = sorted(set(model.colours[p] for p in parts.tolist()))
     material_of = {c: k for k, c in enumerate(colours)}
+    # each part's own vertices, ascending, and its triangles' indices into them, all at once
+    rank = np.searchsorted(parts, part)
+    n = len(model.vertices)
+    used, local = np.unique((rank[:, None] * n + triangles).ravel(), return_inverse=True)
+    first = np.searchsorted(used // n, np.arange(len(parts) + 1))  # each part's first vertex
+    cuts = np.searchsorted(rank, np.arange(len(parts) + 1)) * 3  # ... and first index
+    positions = (y_up(model.vertices[used % n]) * metres_per_unit).astype("<f4")
+    normals = y_up(model.normals[used % n]).astype("<f4")
+    low = np.minimum.reduceat(positions, first[:-1]).tolist() if len(parts) else []
+    high = np.maximum.reduceat(positions, first[:-1]).tolist() if len(parts) else []
+    local = (local.reshape(-1) - np.repeat(first[:-1], np.diff(cuts))).astype("<u4")
     chunks: list[bytes] = []
     views, accessors, primitives = [], [], []
     offset = 0
 
-    def add(data: np.ndarray, target: int, component: int, kind: str, bounds: bool) -> int:
+    def add(data: np.ndarray, target: int, component: int, kind: str, bounds=None) -> int:
         nonlocal offset
         raw = data.tobytes()
         views.append({"buffer": 0, "byteOffset": offset, "byteLength": len(raw),
@@ -58,21 +71,16 @@ def glb_bytes(model, metres_per_unit: float = 0.001, name: str = "weave-cut mode
         offset += len(raw) + (-len(raw) % 4)
         accessor = {"bufferView": len(views) - 1, "componentType": component,
                     "count": len(data) if kind != "SCALAR" else data.size, "type": kind}
-        if bounds:
-            accessor["min"] = [float(x) for x in data.min(axis=0)]
-            accessor["max"] = [float(x) for x in data.max(axis=0)]
+        if bounds is not None:
+            accessor["min"], accessor["max"] = bounds
         accessors.append(accessor)
         return len(accessors) - 1
 
-    for p in parts:
-        tri = model.triangles[model.part == p]
-        used, local = np.unique(tri, return_inverse=True)
-        position = add((y_up(model.vertices[used]) * metres_per_unit).astype("<f4"),
-                       ARRAY_BUFFER, FLOAT, "VEC3", True)
-        normal = add(y_up(model.normals[used]).astype("<f4"), ARRAY_BUFFER, FLOAT, "VEC3",
-                     False)
-        index = add(local.reshape(-1).astype("<u4"), ELEMENT_ARRAY_BUFFER, UINT, "SCALAR",
-                    False)
+    for i, p in enumerate(parts.tolist()):
+        mine = slice(first[i], first[i + 1])
+        position = add(positions[mine], ARRAY_BUFFER, FLOAT, "VEC3", (low[i], high[i]))
+        normal = add(normals[mine], ARRAY_BUFFER, FLOAT, "VEC3")
+        index = add(local[cuts[i]:cuts[i + 1]], ELEMENT_ARRAY_BUFFER, UINT, "SCALAR")
         primitives.append({"attributes": {"POSITION": position, "NORMAL": normal},
                            "indices": index, "material": material_of[model.colours[p]],
                            "extras": {"name": model.names[p]}})
