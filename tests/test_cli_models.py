@@ -51,6 +51,9 @@ def test_a_woven_ball_is_its_size_in_each_file_with_a_colour_per_strand(tmp_path
                                           str(tmp_path / f"ball.{suffix}")])
         assert result.exit_code == 0, result.output
     doc, parts = glb_parts(tmp_path / "ball.glb")
+    kind = "face-split" if how else "snub"  # the model names the weave it is
+    assert doc["nodes"][0]["name"] == f"dodecahedron, {kind} weave, level 1"
+    assert f"{kind} weave" in (tmp_path / "ball.obj").read_text().splitlines()[0]
     colours = [doc["materials"][p["material"]]["name"] for p in doc["meshes"][0]["primitives"]]
     assert len(parts) == len(set(colours)) == 6  # six strands round the ball
     points, painted = obj_points(tmp_path / "ball.obj")

@@ -96,7 +96,8 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
         raise MeshError(f"{input_mesh} is flat; a .{suffix} woven model needs a surface in space "
                         "(draw a flat weave as .svg, .pdf, .png or .dxf)")
     nonconvex = flag_nonconvex(hierarchy)
-    what = f"the {scheme} weave of {input_mesh} at level {levels}"
+    kind = "face-split" if face_split else scheme  # the weave's own name
+    what = f"the {kind} weave of {input_mesh} at level {levels}"
     try:
         weaves = scheme_weaves(hierarchy, scheme, face_split)
         weaves[-1].mesh.topology  # noqa: B018  (a face-split mesh can pinch at a vertex)
@@ -112,7 +113,7 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
             indent=2, allow_nan=False))
     if output and surface:
         write_model(weaves, strand_colours(weaves, pal), size, thickness, output,
-                    f"{input_title(input_mesh)}, {scheme} weave, level {levels}")
+                    f"{input_title(input_mesh)}, {kind} weave, level {levels}")
     elif output:
         snub = scheme == "snub" and not face_split
         outline = None
@@ -122,7 +123,7 @@ def weave_command(input_mesh, levels, scheme, no_smooth, chirality, centre, allo
             weaves, strand_colours(weaves, pal), size, outline=outline,
             middle_edges=middle_edges and snub, crossings=crossings, ribbons=style == "ribbons",
             under_points=snub_under_points(weaves[-1]) if snub else None,
-            title=f"{input_title(input_mesh)}, {scheme} weave, level {levels}")
+            title=f"{input_title(input_mesh)}, {kind} weave, level {levels}")
         write_drawing(drawing, output, page)
 
 
