@@ -56,10 +56,10 @@ def label_strips(strips: list[Strip], tile_mm: float) -> list[Strip]:
     # IDs first (spread onto the neighbours if they must), a piece's number ("2/3") in the own
     # tile nearest, then the names round them
     first = _place(lay, [w[:1] for w in ids], [[] for _ in strips])
-    taken = [[*p, *text_boxes(t)] for t, p, _ in first]
+    taken = _taken(first)
     second = _place(lay, [w[1:] for w in ids], taken)
     placed = [(a + b, c + d, e + f) for (a, c, e), (b, d, f) in zip(first, second)]
-    taken = [[*p, *text_boxes(t)] for t, p, _ in placed]
+    taken = _taken(placed)
     lay.clear_of(taken, recentre=True)
     empty = shapely.is_empty(lay.regions)
     names = [[(int(i), strip.names[i], NAME_SIZE) for i in under[s].tolist()
@@ -91,6 +91,14 @@ def label_strips(strips: list[Strip], tile_mm: float) -> list[Strip]:
                            plates=np.array(placed[s][1], dtype=object),
                            plate_fills=tuple(placed[s][2]), left_out=left_out[s]))
     return [replace(s, texts=tuple(t)) for s, t in zip(out, _glue_words(lay, texts))]
+
+
+def _taken(placed) -> list[list]:
+    """Per strip what later labels keep clear of: its plates and its texts' boxes (the boxes of
+    every strip made at once)."""
+    boxes = text_boxes([t for texts, _, _ in placed for t in texts])
+    ends = np.cumsum([len(texts) for texts, _, _ in placed]).tolist()
+    return [[*p, *boxes[a:b]] for (_, p, _), a, b in zip(placed, [0, *ends], ends)]
 
 
 class _Tiles:
