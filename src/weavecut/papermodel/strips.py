@@ -10,6 +10,7 @@ puts the labels, arrows and label tabs on a strip.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 
 import numpy as np
 import shapely
@@ -92,9 +93,10 @@ class Strip:
     flap_fill: str = "#ffffff"
     left_out: tuple[int, ...] = ()
 
-    @property
+    @cached_property
     def cut(self) -> shapely.Polygon:
-        """The cut line: the outline and the label tab, if any."""
+        """The cut line: the outline and the label tab, if any (made once per strip: a page,
+        its packing and its checks each ask)."""
         if self.flap is None:
             return self.outline
         # the tab grown by a hair: its base, collinear with its tile's edge only up to rounding,
