@@ -65,6 +65,21 @@ def test_same_bytes_every_time():
     assert pdf.render(drawing) == pdf.render(drawing)
 
 
+def test_page_streams_are_deflated_binary_and_read_back(tmp_path):
+    """Every stream is FlateDecode alone (reportlab's default wraps pages in ASCII85 too, a
+    fifth larger) and inflates to the page's operators: planted, useA85 back on fails."""
+    import re
+    import zlib
+
+    drawing = Drawing((Sheet(30, 20, (Layer("l", "paint", (polygons_from_shapely(
+        [shapely.box(2, 2, 12, 8)], Style("#0000ff", 0.5, "#00a000")),)),)),), "t")
+    data = pdf.render(drawing)
+    filters = re.findall(rb"/Filter\s*(\[[^\]]*\]|/\w+)", data)
+    assert filters and all(f.strip(b"[] ") == b"/FlateDecode" for f in filters)
+    body = data[data.index(b"stream", data.index(b"/Filter")) + 6:].lstrip(b"\r\n")
+    assert b"n 12 2 m 12 8 l 2 8 l 2 2 l h\nB*" in zlib.decompressobj().decompress(body)
+
+
 def test_lines_in_colour_width_and_opacity_never_filled(tmp_path):
     # a V of a 2 mm blue line whose style also names a fill: the V's inside stays white
     vee = Layer("fold", "score", (polylines_from_lines(
