@@ -301,10 +301,9 @@ def _non_overlapping(cells, claimed, level_mesh: Mesh, to_mm) -> NDArray[np.bool
     polys = shapely.polygons(cells)
     scale = np.linalg.norm(cells[:, 0] - cells[:, 1], axis=1)
     centres = cells.mean(axis=1)
-    inner = shapely.union_all(shapely.polygons(to_mm(level_mesh.vertices[
-        level_mesh.dense_faces()])))
     tol = 1e-6 * float(scale.mean()) ** 2
-    keep = shapely.area(shapely.intersection(polys, inner)) <= tol
+    keep = _overlap(polys, shapely.polygons(to_mm(level_mesh.vertices[
+        level_mesh.dense_faces()]))) <= tol
     tree = shapely.STRtree(polys)
     i, j = tree.query(polys, predicate="intersects")
     pair = i < j
@@ -324,6 +323,14 @@ def _non_overlapping(cells, claimed, level_mesh: Mesh, to_mm) -> NDArray[np.bool
             if keep[first[k]]:
                 keep[second[k]] = False
     return keep  # copies of an unclaimed cell that is claimed elsewhere: see _unique_cells
+
+
+def _overlap(polys: NDArray[np.object_], faces: NDArray[np.object_]) -> NDArray[np.float64]:
+    """(N,) the area every polygon shares with the faces of a mesh (which do not overlap one
+    another): summed over the faces it meets, without their union (a ring cell meets a few)."""
+    i, j = shapely.STRtree(faces).query(polys, predicate="intersects")
+    area = shapely.area(shapely.intersection(polys[i], faces[j]))
+    return np.bincount(i, weights=area, minlength=len(polys))
 
 
 def _snap(points: NDArray[np.float64], tol: float) -> NDArray[np.float64]:
