@@ -148,12 +148,14 @@ def balanced(sheet: Sheet, pages, overlap: float, margin: float, name: str = "pa
     left out), then whose emptiest window holds the most of them (points on a ``SAMPLE`` mm
     grid); the first of equals (centred, on the first page)."""
     box = _cover(sheet)
-    polys = [g for layer in sheet.layers if layer.name == name for shape in layer.shapes
-             if isinstance(shape, Polygons) for g in shape.to_shapely().tolist()]
+    polys = np.array([g for layer in sheet.layers if layer.name == name
+                      for shape in layer.shapes if isinstance(shape, Polygons)
+                      for g in shape.to_shapely().tolist()], dtype=object)
+    shapely.prepare(polys)  # each is asked about many points
     xs = np.arange(box[0], box[2], SAMPLE) + SAMPLE / 2
     ys = np.arange(box[1], box[3], SAMPLE) + SAMPLE / 2
     inside = np.zeros((len(ys), len(xs)), dtype=bool)
-    bounds = shapely.bounds(np.asarray(polys, dtype=object)).reshape(-1, 4)
+    bounds = shapely.bounds(polys).reshape(-1, 4)
     # each polygon against the points of its bounds, all in one call
     i0, j0, i1, j1 = (np.searchsorted(v, bounds[:, k]) for k, v in enumerate((xs, ys) * 2))
     ni, nj = np.maximum(i1 - i0, 0), np.maximum(j1 - j0, 0)
@@ -161,7 +163,7 @@ def balanced(sheet: Sheet, pages, overlap: float, margin: float, name: str = "pa
     owner = np.repeat(np.arange(len(polys)), per)
     k = np.arange(per.sum()) - np.repeat(np.cumsum(per) - per, per)  # row by row in its box
     i, j = i0[owner] + k % ni[owner], j0[owner] + k // ni[owner]
-    hit = shapely.contains_xy(np.asarray(polys, dtype=object)[owner], xs[i], ys[j])
+    hit = shapely.contains_xy(polys[owner], xs[i], ys[j])
     inside[j[hit], i[hit]] = True
     held = np.zeros((len(ys) + 1, len(xs) + 1), dtype=np.int64)  # points below-left, summed
     held[1:, 1:] = inside.cumsum(axis=0).cumsum(axis=1)
