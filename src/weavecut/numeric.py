@@ -173,14 +173,14 @@ def snap(values: ArrayLike, grid: float = GRID) -> NDArray[np.int64]:
     [123457, 0]
     """
     keys = np.rint(np.asarray(values, dtype=float) / grid)
-    keyless = ~(np.abs(keys) < 2.0 ** 63)  # NaN compares false
-    if keyless.any():
-        raise SnapError(_keyless(np.asarray(values, dtype=float), keyless, sys._getframe(1)))
+    if keys.size and not np.abs(keys).max() < 2.0 ** 63:  # the max of a NaN is NaN
+        raise SnapError(_keyless(np.asarray(values, dtype=float), keys, sys._getframe(1)))
     return keys.astype(np.int64)
 
 
-def _keyless(values: NDArray[np.float64], keyless: NDArray[np.bool_], caller) -> str:
+def _keyless(values: NDArray[np.float64], keys: NDArray[np.float64], caller) -> str:
     """What :func:`snap` refuses: the first keyless value, where, and who asked."""
+    keyless = ~(np.abs(keys) < 2.0 ** 63)  # NaN compares false
     first = tuple(int(i) for i in np.argwhere(keyless)[0])
     at = "" if not first else f" at index {first[0] if len(first) == 1 else first}"
     file = Path(caller.f_code.co_filename)
