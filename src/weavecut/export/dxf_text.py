@@ -157,10 +157,13 @@ def _points(coords, dx: float) -> list[str]:
     """Every point as ``x\\n 20\\ny`` (moved ``dx`` along x and rounded to ``DECIMALS``, no
     negative zero), as ``repr`` writes floats (what ezdxf writes)."""
     xy = (np.asarray(coords, dtype=float).reshape(-1, 2) + (dx, 0.0)).ravel()
-    text, slow = shortest(xy, DECIMALS, point_zero=True)
-    for i in slow.tolist():  # an exponent (below 1e-4, 1e16 and up), 1e9 and up, not finite
-        text[i] = repr(float(np.round(xy[i], DECIMALS)) + 0.0)
-    return list(map("\n 20\n".join, zip(text[0::2], text[1::2])))
+    points, slow = shortest(xy, DECIMALS, point_zero=True, per=2, sep="\n 20\n")
+    # a point with a number shortest leaves (an exponent: below 1e-4, 1e16 and up; 1e9 and
+    # up; not finite): both its numbers as repr writes them
+    for i in sorted(set((slow // 2).tolist())):
+        points[i] = "\n 20\n".join(repr(float(v) + 0.0)
+                                   for v in np.round(xy[2 * i:2 * i + 2], DECIMALS))
+    return points
 
 
 def mm(xy, dx: float) -> np.ndarray:
