@@ -219,10 +219,12 @@ def _geoms(layer: Layer):
     (S + 1); and every word's least and greatest point (S, 2; NaN for other shapes)."""
     parts, lines = [], []
     lo, hi = np.full((2, len(layer.shapes), 2), np.nan)
-    for i, shape in enumerate(layer.shapes):
+    words = [i for i, s in enumerate(layer.shapes)
+             if layer.name == WORDS and isinstance(s, Polylines) and len(s.coords)]
+    if words:
+        lo[words], hi[words] = _extents([layer.shapes[i] for i in words])
+    for shape in layer.shapes:
         if isinstance(shape, Polylines) and layer.name == WORDS:
-            if len(shape.coords):
-                lo[i], hi[i] = shape.coords.min(axis=0), shape.coords.max(axis=0)
             geoms = np.empty(0, dtype=object)
         elif isinstance(shape, Polygons):
             geoms = shape.to_shapely()
@@ -304,11 +306,16 @@ def word_overlap(drawing: Drawing, least: float = 10.0) -> float:
              for s in layer.shapes if isinstance(s, Polylines) and len(s.coords)]
     if not words:
         return least
-    at = np.cumsum([0] + [len(s.coords) for s in words[:-1]])  # every word's points at once
-    xy = np.concatenate([s.coords for s in words])
-    ptp = np.maximum.reduceat(xy, at) - np.minimum.reduceat(xy, at)
-    sizes = ptp.max(axis=1) + [s.style.stroke_width for s in words]
+    lo, hi = _extents(words)
+    sizes = (hi - lo).max(axis=1) + [s.style.stroke_width for s in words]
     return max([least, *(math.ceil(x + 0.5) for x in sizes.tolist())])
+
+
+def _extents(words: list[Polylines]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(W, 2) twice: every word's least and greatest point (each has points), all at once."""
+    at = np.cumsum([0] + [len(s.coords) for s in words[:-1]])
+    xy = np.concatenate([s.coords for s in words])
+    return np.minimum.reduceat(xy, at), np.maximum.reduceat(xy, at)
 
 
 def _clip(geoms: NDArray[np.object_], bounds: NDArray[np.float64], window, lines
