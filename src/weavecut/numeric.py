@@ -42,6 +42,16 @@ def distinct(values: ArrayLike, axis: int | None = None) -> NDArray:
     return np.unique(values, axis=axis, return_counts=True)[0]
 
 
+def offsets_of(counts: ArrayLike) -> NDArray[np.int64]:
+    """(n + 1,) where each of ``n`` runs of ``counts`` items starts, then where the last ends:
+    ``np.r_[0, np.cumsum(counts)]`` without ``np.r_``'s parsing (8 us a call).
+
+    >>> offsets_of([2, 0, 3]).tolist()
+    [0, 2, 2, 5]
+    """
+    return np.concatenate([[0], np.cumsum(counts, dtype=np.int64)])
+
+
 def matmul(a: ArrayLike, b: ArrayLike) -> NDArray[np.float64]:
     """``a @ b`` for 1-D, 2-D and stacked arrays, as numpy defines it, without BLAS."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)

@@ -22,6 +22,7 @@ import shapely
 from numpy.typing import NDArray
 
 from .. import budget
+from ..numeric import offsets_of
 from .drawing import (Drawing, Layer, Polygons, Polylines, Raster, Sheet, Style, Text,
                       polygons_from_shapely)
 from .label_checks import WORDS
@@ -242,7 +243,7 @@ def _geoms(layer: Layer):
                       for s in layer.shapes]).reshape(-1, 1)  # a word's ink beyond its points
     drawn = np.array([isinstance(s, (Polygons, Polylines)) for s in layer.shapes], dtype=bool)
     return (geoms, shapely.bounds(geoms).reshape(-1, 4), owner,
-            np.repeat(np.array(lines, dtype=bool), sizes), np.r_[0, np.cumsum(sizes)], lo, hi,
+            np.repeat(np.array(lines, dtype=bool), sizes), offsets_of(sizes), lo, hi,
             reach, drawn)
 
 
@@ -287,7 +288,7 @@ def _clip_layer(layer: Layer, geoms, window, shift) -> Layer:
             kept = parts[mine][line[mine]]
             if len(kept):
                 coords, idx = shapely.get_coordinates(kept, return_index=True)
-                offsets = np.r_[0, np.cumsum(np.bincount(idx))].astype(np.int64)
+                offsets = offsets_of(np.bincount(idx))
                 shapes.append(Polylines(coords + shift, offsets, shape.style))
         elif isinstance(shape, Text):
             if window.contains(shapely.Point(shape.x, shape.y)):

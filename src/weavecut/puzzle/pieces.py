@@ -46,6 +46,7 @@ from numpy.typing import NDArray
 from ..errors import MeshError, TurnedOverError, WeaveCutError
 from ..graphs import components
 from ..mesh import Mesh
+from ..numeric import offsets_of
 from ..subdivision.hierarchy import Level
 from ..weave.model import Weave
 from ..weave.snub_weave import snub_weaves
@@ -268,7 +269,7 @@ def _shapes(points: NDArray[np.float64], parts: list, octagon_sizes) -> tuple:
     octagon_xy, ennea, plain, hexes, ring_cells = (
         points[bounds[k]:bounds[k + 1]].reshape(parts[k].shape if k == 0 else (-1,) + shape)
         for k, shape in enumerate([None, (9, 2), (5, 2), (6, 2), (6, 2)]))
-    octagons = _polygons(octagon_xy, np.r_[0, np.cumsum(octagon_sizes)])
+    octagons = _polygons(octagon_xy, offsets_of(octagon_sizes))
     pieces = np.concatenate([octagons, shapely.polygons(ennea), shapely.polygons(plain)])
     ring = shapely.polygons(ring_cells) if len(ring_cells) else np.empty(0, dtype=object)
     return pieces, shapely.polygons(hexes), ring
