@@ -47,3 +47,7 @@ def test_a_grid_key_at_the_edge_of_int64_is_refused_and_a_scalar_has_no_index():
         snap(9.3e12)
     with pytest.raises(SnapError, match=r"at index \(1, 0\)"):
         snap([[1.0, 2.0], [math.nan, 3.0]])
+
+
+def test_no_values_have_no_keys():
+    assert snap(np.zeros(0)).tolist() == [] and snap(np.zeros((0, 2))).shape == (0, 2)

@@ -1,8 +1,8 @@
 """Clipping a printed page's window: what tiling keeps of every line is what GEOS's
 intersection with the window gives, to the last bit, whether GEOS is asked (lines across the
 edge, lines that touch or cross themselves, closed ones, ones with a point twice in a row)
-or the line is kept as it is (simple, open, strictly inside); and a layer's shapes clipped
-together are each clipped as alone."""
+or the line is kept as it is (simple, open, strictly inside); a layer's shapes clipped
+together are each clipped as alone; and a word is printed whole or not at all."""
 
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 from weavecut.layout.drawing import Drawing, Layer, Sheet, Style, Text, polygons_from_rings
 from weavecut.layout.drawing import polylines_from_lines
 from weavecut.layout.label_checks import WORDS
-from weavecut.layout.tiling import _clip, tile
+from weavecut.layout.tiling import _clip, _cover, grid, tile, word_overlap
 
 inside = st.sampled_from([1.0, 2.0, 3.0, 5.5, 9.5])  # a coarse grid: repeats and crossings
 point = st.one_of(st.tuples(inside, inside), st.tuples(
@@ -84,3 +84,23 @@ def test_a_layer_clipped_at_once_is_its_shapes_clipped_each_alone(polys, lines, 
     for page_a, page_b in zip(a, b):
         assert [_key(s) for layer in page_a.layers for s in layer.shapes] == \
             [_key(s) for layer in page_b.layers for s in layer.shapes]
+
+
+def test_a_word_is_on_a_page_whole_inside_its_window_or_left_to_the_next():
+    # words of every length on a 3 mm grid, so that many cross a window's edge; each is known
+    # by its length (0.01 mm apart)
+    words = [np.array([[x, y], [x + 1 + 0.01 * k, y]]) for k, (x, y) in enumerate(
+        (x, y) for x in np.arange(5.0, 495.0, 3.0) for y in np.arange(5.0, 495.0, 29.0))]
+    drawing = Drawing((Sheet(500.0, 500.0, tuple(Layer(WORDS, "label", (polylines_from_lines(
+        [w], Style("#000000", 0.4)),)) for w in words)),), "t")
+    page, overlap = (210.0, 297.0), word_overlap(drawing)
+    margin = grid(_cover(drawing.sheets[0]), page, overlap, 10.0)[2]  # the window's, on a page
+    seen = set()
+    for sheet in tile(drawing, page, overlap, 10.0).sheets:
+        for layer in sheet.layers:
+            for shape in layer.shapes if layer.name == WORDS else ():
+                (x0, y0), (x1, y1) = shape.coords.min(axis=0), shape.coords.max(axis=0)
+                assert x0 - 0.2 >= margin and y0 - 0.2 >= margin  # its ink, on the window
+                assert x1 + 0.2 <= page[0] - margin and y1 + 0.2 <= page[1] - margin
+                seen.add(round((x1 - x0 - 1) / 0.01))
+    assert seen == set(range(len(words)))

@@ -42,6 +42,16 @@ def distinct(values: ArrayLike, axis: int | None = None) -> NDArray:
     return np.unique(values, axis=axis, return_counts=True)[0]
 
 
+def offsets_of(counts: ArrayLike) -> NDArray[np.int64]:
+    """(n + 1,) where each of ``n`` runs of ``counts`` items starts, then where the last ends:
+    ``np.r_[0, np.cumsum(counts)]`` without ``np.r_``'s parsing (8 us a call).
+
+    >>> offsets_of([2, 0, 3]).tolist()
+    [0, 2, 2, 5]
+    """
+    return np.concatenate([[0], np.cumsum(counts, dtype=np.int64)])
+
+
 def matmul(a: ArrayLike, b: ArrayLike) -> NDArray[np.float64]:
     """``a @ b`` for 1-D, 2-D and stacked arrays, as numpy defines it, without BLAS."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
@@ -173,14 +183,14 @@ def snap(values: ArrayLike, grid: float = GRID) -> NDArray[np.int64]:
     [123457, 0]
     """
     keys = np.rint(np.asarray(values, dtype=float) / grid)
-    keyless = ~(np.abs(keys) < 2.0 ** 63)  # NaN compares false
-    if keyless.any():
-        raise SnapError(_keyless(np.asarray(values, dtype=float), keyless, sys._getframe(1)))
+    if keys.size and not np.abs(keys).max() < 2.0 ** 63:  # the max of a NaN is NaN
+        raise SnapError(_keyless(np.asarray(values, dtype=float), keys, sys._getframe(1)))
     return keys.astype(np.int64)
 
 
-def _keyless(values: NDArray[np.float64], keyless: NDArray[np.bool_], caller) -> str:
+def _keyless(values: NDArray[np.float64], keys: NDArray[np.float64], caller) -> str:
     """What :func:`snap` refuses: the first keyless value, where, and who asked."""
+    keyless = ~(np.abs(keys) < 2.0 ** 63)  # NaN compares false
     first = tuple(int(i) for i in np.argwhere(keyless)[0])
     at = "" if not first else f" at index {first[0] if len(first) == 1 else first}"
     file = Path(caller.f_code.co_filename)

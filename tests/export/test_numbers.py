@@ -34,6 +34,19 @@ def test_every_number_is_the_repr_of_its_rounded_value(xs, places, point_zero):
         assert got[i] == (text if point_zero else text.removesuffix(".0"))
 
 
+@settings(max_examples=100, deadline=None)
+@given(values.map(lambda xs: xs[:len(xs) // 2 * 2]), st.sampled_from([3, 6]),
+       st.sampled_from([" ", ",", "\n 20\n"]))
+def test_numbers_written_in_pairs_are_the_pairs_of_them_written_one_by_one(xs, places, sep):
+    one, slow = shortest(np.array(xs, dtype=float), places)
+    two, slow_pairs = shortest(np.array(xs, dtype=float), places, per=2, sep=sep)
+    assert slow_pairs.tolist() == slow.tolist()
+    assert len(two) == len(xs) // 2
+    for i, text in enumerate(two):
+        if not {2 * i, 2 * i + 1} & set(slow.tolist()):
+            assert text == sep.join(one[2 * i:2 * i + 2])
+
+
 # reportlab's fp_str: 6 decimals below 10, one fewer per digit beyond, none from 1e6; the
 # values about a power of ten, at half a last decimal and at fp_str's 1e-7 zero
 edges = st.integers(-7, 14).flatmap(lambda e: st.sampled_from([1.0, -1.0]).flatmap(

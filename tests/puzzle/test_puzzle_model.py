@@ -14,7 +14,7 @@ import shapely
 
 from weavecut.export.gltf import glb_bytes, linear
 from weavecut.puzzle.guides import painted
-from weavecut.puzzle.model3d import WOOD, puzzle_model
+from weavecut.puzzle.model3d import WOOD, painted_union, puzzle_model
 
 from tests.built_puzzles import pentagon_paint, pentagon_puzzle
 
@@ -98,3 +98,23 @@ def test_top_and_bottom_cover_the_board_once_and_the_edges_face_out(parts):
     same = set(zip(hits_in[0].tolist(), hits_in[1].tolist())) & set(
         zip(hits_out[0].tolist(), hits_out[1].tolist()))
     assert not same
+
+
+@pytest.mark.parametrize("side", ["front", "back"])
+def test_the_painted_union_is_union_all_s(side):
+    # the paints meet edge to edge: GEOS's coverage union makes union_all's union
+    paint = painted(pentagon_puzzle(2), pentagon_paint(2), side).polygons
+    union = painted_union(paint)
+    assert shapely.is_valid(union)
+    assert shapely.equals(union, shapely.union_all(paint))
+
+
+@pytest.mark.parametrize("polygons", [
+    [shapely.box(0, 0, 1, 1), shapely.box(0.5, 0, 1.5, 1)],  # overlapping
+    [shapely.Polygon([(0, 0), (1, 0), (1, 0.5), (1, 1), (0, 1)]), shapely.box(1, 0, 2, 1)],
+    # a corner on one side of a shared edge only
+], ids=["overlap", "corner on one side"])
+def test_polygons_that_do_not_meet_edge_to_edge_are_united_by_union_all(polygons):
+    union = painted_union(np.array(polygons, dtype=object))
+    assert shapely.is_valid(union) and union.geom_type == "Polygon"
+    assert shapely.equals(union, shapely.union_all(polygons))

@@ -157,10 +157,13 @@ def _points(coords, dx: float) -> list[str]:
     """Every point as ``x\\n 20\\ny`` (moved ``dx`` along x and rounded to ``DECIMALS``, no
     negative zero), as ``repr`` writes floats (what ezdxf writes)."""
     xy = (np.asarray(coords, dtype=float).reshape(-1, 2) + (dx, 0.0)).ravel()
-    text, slow = shortest(xy, DECIMALS, point_zero=True)
-    for i in slow.tolist():  # an exponent (below 1e-4, 1e16 and up), 1e9 and up, not finite
-        text[i] = repr(float(np.round(xy[i], DECIMALS)) + 0.0)
-    return list(map("\n 20\n".join, zip(text[0::2], text[1::2])))
+    points, slow = shortest(xy, DECIMALS, point_zero=True, per=2, sep="\n 20\n")
+    # a point with a number shortest leaves (an exponent: below 1e-4, 1e16 and up; 1e9 and
+    # up; not finite): both its numbers as repr writes them
+    for i in sorted(set((slow // 2).tolist())):
+        points[i] = "\n 20\n".join(repr(float(v) + 0.0)
+                                   for v in np.round(xy[2 * i:2 * i + 2], DECIMALS))
+    return points
 
 
 def mm(xy, dx: float) -> np.ndarray:
@@ -202,7 +205,10 @@ codecs.register_error("weavecut-dxf", _escape)
 
 
 def encode(text: str) -> bytes:
-    """``text`` in the file's code page, as ezdxf's ``Drawing.encode`` does it."""
+    """``text`` in the file's code page, as ezdxf's ``Drawing.encode`` does it (ASCII text, as
+    the code page holds it, by the ASCII codec: a hundredth of the charmap codec's time)."""
+    if text.isascii():
+        return text.encode("ascii")
     return text.encode(ENCODING, errors="weavecut-dxf")
 
 

@@ -22,11 +22,12 @@ from numpy.typing import NDArray
 LARGEST = 10**15  # K with more digits: left to ``repr``
 
 
-def shortest(values: NDArray[np.float64], places: int, point_zero: bool = False
-             ) -> tuple[list[str], NDArray[np.intp]]:
-    """The values (any shape, flattened) rounded to ``places`` as ``repr`` writes them, a
-    whole number without its ".0" unless ``point_zero``; and the indices of the values this
-    does not write (their strings are placeholders)."""
+def shortest(values: NDArray[np.float64], places: int, point_zero: bool = False, per: int = 1,
+             sep: str = " ") -> tuple[list[str], NDArray[np.intp]]:
+    """The values (any shape, flattened; ``per`` of them to a string, ``sep`` between) rounded
+    to ``places`` as ``repr`` writes them, a whole number without its ".0" unless
+    ``point_zero``; and the indices of the values this does not write (their strings are
+    placeholders; their strings hold ``per`` of them)."""
     scale = 10.0 ** places
     with np.errstate(over="ignore", invalid="ignore"):  # huge or not finite: left over
         k = np.rint(np.asarray(values, dtype=float).ravel() * scale)  # as np.round rounds
@@ -35,7 +36,8 @@ def shortest(values: NDArray[np.float64], places: int, point_zero: bool = False
         fast &= (k == 0) | (np.abs(k) >= 10 ** (places - 4))
     k = np.where(fast, k, 0.0).astype(np.int64)
     whole, part = np.divmod(np.abs(k), 10**places)
-    return _written(k < 0, whole, part, places, True, point_zero), np.flatnonzero(~fast)
+    return (_written(k < 0, whole, part, places, True, point_zero, per, sep),
+            np.flatnonzero(~fast))
 
 
 FIXED = 6  # fp_str's most decimals: 6 below 10, one fewer per digit before the point
@@ -74,11 +76,16 @@ def fixed(values: NDArray[np.float64], per: int = 1) -> tuple[list[str], NDArray
             np.flatnonzero(~fast & ~zero))
 
 
-def _written(negative, whole, part, places: int, lead, point_zero: bool, per: int = 1
-             ) -> list[str]:
+END, SEP = "\x1e", "\x1f"  # what ends a string and parts its numbers as written (control
+# characters, in no number), then split at and replaced by the separator
+
+
+def _written(negative, whole, part, places: int, lead, point_zero: bool, per: int = 1,
+             sep: str = " ") -> list[str]:
     """Each number from its sign, whole part and decimals (``part``, ``places`` digits): the
     whole part's 0 written where ``lead``, the decimals' trailing zeros dropped (all of them
-    with the point, unless ``point_zero``: then ".0"); ``per`` numbers to a string."""
+    with the point, unless ``point_zero``: then ".0"); ``per`` numbers to a string, ``sep``
+    between them."""
     digits = len(str(int(whole.max()))) if len(whole) else 1
     chars = np.zeros((len(whole), digits + places + 3), dtype=np.uint8)  # 0: no character
     chars[:, 0] = np.where(negative, ord("-"), 0)
@@ -96,6 +103,6 @@ def _written(negative, whole, part, places: int, lead, point_zero: bool, per: in
         later |= digit > 0
         shown = later | (point_zero & (d == 0))
         chars[:, point + 1 + d] = np.where(shown, 48 + digit, 0)
-    chars[:, -1] = ord("\n")
-    chars[np.arange(len(chars)) % per < per - 1, -1] = ord(" ")
-    return chars[chars > 0].tobytes().decode("ascii").split("\n")[:-1]
+    chars[:, -1] = ord(END)
+    chars[np.arange(len(chars)) % per < per - 1, -1] = ord(SEP)
+    return chars[chars > 0].tobytes().decode("ascii").replace(SEP, sep).split(END)[:-1]

@@ -180,10 +180,11 @@ def _pairs(offsets):
 def _points(coords, height: float) -> list[str]:
     """Every point as ``x,y`` (y flipped), each number as ``_decimal`` writes it."""
     xy = np.column_stack([coords[:, 0], height - coords[:, 1]]).ravel()
-    text, slow = shortest(xy, DECIMALS)
-    for i in slow.tolist():  # 1e12 and up (or not finite): as repr does it
-        text[i] = _decimal(float(np.round(xy[i], DECIMALS)) + 0.0)
-    return list(map(",".join, zip(text[0::2], text[1::2])))
+    points, slow = shortest(xy, DECIMALS, per=2, sep=",")
+    for i in sorted(set((slow // 2).tolist())):  # 1e12 and up (or not finite): as repr does it
+        points[i] = ",".join(_decimal(float(v) + 0.0) for v in np.round(xy[2 * i:2 * i + 2],
+                                                                       DECIMALS))
+    return points
 
 
 def _n(x: float) -> str:

@@ -172,8 +172,8 @@ def _two_opt(paths: list[NDArray], start: NDArray, passes: int,
         for i in range(n - 1):  # segment [i, j] for j in i+1 .. stop-1; before it: prev
             prev = start if i == 0 else e[i - 1]
             stop = min(n, i + 1 + window)
-            d = prev - s[i]
-            old = link[i + 1:stop] + np.hypot(d[0], d[1])
+            # the way out of each path j and the way into path i (kept, but from the start)
+            old = link[i + 1:stop] + (link[i - 1] if i else _hypot(start - s[0]))
             d = prev - e[i + 1:stop]
             new = np.hypot(d[:, 0], d[:, 1])
             d = s[i] - after[i + 1:stop]

@@ -15,6 +15,8 @@ import numpy as np
 import shapely
 from numpy.typing import NDArray
 
+from ..numeric import offsets_of
+
 ROLES = ("cut", "score", "engrave", "paint", "label", "guide")
 
 
@@ -225,7 +227,7 @@ def polygons_from_shapely(geoms, style: Style = Style(), fills=None) -> Polygons
     polys = np.empty(len(geoms), dtype=object)
     polys[:] = geoms
     polys = shapely.orient_polygons(polys)
-    po = np.r_[0, np.cumsum(shapely.get_num_interior_rings(polys) + 1)].astype(np.int64)
+    po = offsets_of(shapely.get_num_interior_rings(polys) + 1)
     rings, owner = shapely.get_rings(polys, return_index=True)  # none for an empty polygon
     first = np.searchsorted(owner, owner)  # the polygon's first ring among ``rings``
     slot = po[owner] + np.arange(len(owner)) - first
@@ -235,7 +237,7 @@ def polygons_from_shapely(geoms, style: Style = Style(), fills=None) -> Polygons
     keep = np.ones(n.sum(), dtype=bool)
     keep[(np.cumsum(n) - 1)[n > 0]] = False
     coords = shapely.get_coordinates(rings)[keep] if len(rings) else np.zeros((0, 2))
-    return Polygons(coords, np.r_[0, np.cumsum(counts)].astype(np.int64), style, po,
+    return Polygons(coords, offsets_of(counts), style, po,
                     None if fills is None else tuple(fills))
 
 

@@ -134,11 +134,15 @@ def _under(polys, fills, found) -> list[list[str]]:
     if tree is not None and found:
         core = np.array([f.core for f in found], dtype=object)
         pad = np.array([f.pad for f in found])
-        label, poly = tree.query(core, predicate="dwithin", distance=pad)
+        shapes = np.array(polys, dtype=object)
+        # the fills whose bounds reach a label's, then those within its pad (in one call:
+        # the tree's own dwithin prepares every label, twice the time)
+        label, poly = tree.query(shapely.box(*_reach(core, pad).T))
+        near = shapely.dwithin(core[label], shapes[poly], pad[label])
         top = np.full(len(found), -1)
-        np.maximum.at(top, label, poly)
+        np.maximum.at(top, label[near], poly[near])
         k = np.flatnonzero(top >= 0)
-        cover = np.array(polys, dtype=object)[top[k]]
+        cover = shapes[top[k]]
         held = shapely.within(core[k], cover)
         held &= shapely.distance(core[k], shapely.boundary(cover)) >= pad[k] + 1e-9
         held &= (pad[k] > 0) | (shapely.area(core[k]) > 1e-9)  # no empty Text box
@@ -146,6 +150,11 @@ def _under(polys, fills, found) -> list[list[str]]:
             out[i] = [fills[top[i]]]
     return [fills_under(polys, fills, tree, f.ink()) if o is None else o
             for f, o in zip(found, out)]
+
+
+def _reach(core, pad) -> np.ndarray:
+    """(n, 4) the bounds of every label's ink: its core's grown by its pad."""
+    return shapely.bounds(core) + pad[:, None] * [-1, -1, 1, 1]
 
 
 def gaps(sheet: Sheet, found=None) -> list[float]:
@@ -163,7 +172,7 @@ def gaps(sheet: Sheet, found=None) -> list[float]:
     pad = np.array([f.pad for f in found])
     plate = np.array([f.plate for f in found], dtype=object)
     has = ~shapely.is_missing(plate)
-    box = shapely.bounds(core) + pad[:, None] * [-1, -1, 1, 1]
+    box = _reach(core, pad)
     plated = shapely.bounds(plate[has])
     box[has] = np.hstack([np.minimum(box[has, :2], plated[:, :2]),
                           np.maximum(box[has, 2:], plated[:, 2:])])

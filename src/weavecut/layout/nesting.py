@@ -28,7 +28,7 @@ import shapely
 from numpy.typing import NDArray
 
 from ..errors import WeaveCutError
-from ..numeric import affine, snap
+from ..numeric import cos_sin, snap
 
 HOLE_GRID = 1.0  # mm: the grid parts are placed on inside a hole
 
@@ -57,15 +57,16 @@ class Placement:
 
 def moved(parts: NDArray[np.object_], angles: NDArray[np.float64], shifts: NDArray[np.float64]
           ) -> NDArray[np.object_]:
-    """Every part turned by its angle (degrees, about the origin), then shifted: one affine
-    matrix per part, applied to all points at once as ``transform`` applies one."""
-    m = np.array([affine(a, t) for a, t in zip(angles, shifts)]).reshape(-1, 3, 3)
-    m = m[np.repeat(np.arange(len(parts)), shapely.get_num_coordinates(parts))]
+    """Every part turned by its angle (degrees, about the origin), then shifted: each part's
+    ``affine`` matrix, all made at once and applied to all points at once as ``transform``
+    applies one."""
+    per = shapely.get_num_coordinates(parts)
+    c, s = (np.repeat(v, per) for v in cos_sin(angles))
+    tx, ty = (np.repeat(v, per) for v in np.asarray(shifts, dtype=float).reshape(-1, 2).T)
 
     def move(xy: NDArray) -> NDArray[np.float64]:
         x, y = xy[:, 0], xy[:, 1]
-        return np.stack([m[:, 0, 0] * x + m[:, 0, 1] * y + m[:, 0, 2],
-                         m[:, 1, 0] * x + m[:, 1, 1] * y + m[:, 1, 2]], axis=-1)
+        return np.stack([c * x + -s * y + tx, s * x + c * y + ty], axis=-1)
 
     return shapely.transform(np.asarray(parts, dtype=object), move)
 

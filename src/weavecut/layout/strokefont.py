@@ -23,7 +23,7 @@ import numpy as np
 import shapely
 from numpy.typing import NDArray
 
-from ..numeric import turn
+from ..numeric import offsets_of, turn
 from .hershey_futural import FONT, GLYPHS  # Hershey Simplex Roman: the engravers' font
 from .labels import largest_fit
 from .poles import poles
@@ -104,7 +104,7 @@ def _unit_strokes(text: str) -> tuple[NDArray[np.float64], NDArray[np.int64], fl
         strokes.append(np.array([[ink.min(), -UNDER], [ink.max(), -UNDER]]))
     coords = np.concatenate(strokes) if strokes else np.zeros((0, 2))
     coords.flags.writeable = False
-    return coords, np.r_[0, np.cumsum([len(s) for s in strokes])].astype(np.int64), x
+    return coords, offsets_of([len(s) for s in strokes]), x
 
 
 # 4 floats each, and a puzzle's numbers are asked for again and again: 4,096 kept none of the

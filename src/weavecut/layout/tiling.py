@@ -22,6 +22,7 @@ import shapely
 from numpy.typing import NDArray
 
 from .. import budget
+from ..numeric import offsets_of
 from .drawing import (Drawing, Layer, Polygons, Polylines, Raster, Sheet, Style, Text,
                       polygons_from_shapely)
 from .label_checks import WORDS
@@ -148,12 +149,14 @@ def balanced(sheet: Sheet, pages, overlap: float, margin: float, name: str = "pa
     left out), then whose emptiest window holds the most of them (points on a ``SAMPLE`` mm
     grid); the first of equals (centred, on the first page)."""
     box = _cover(sheet)
-    polys = [g for layer in sheet.layers if layer.name == name for shape in layer.shapes
-             if isinstance(shape, Polygons) for g in shape.to_shapely().tolist()]
+    polys = np.array([g for layer in sheet.layers if layer.name == name
+                      for shape in layer.shapes if isinstance(shape, Polygons)
+                      for g in shape.to_shapely().tolist()], dtype=object)
+    shapely.prepare(polys)  # each is asked about many points
     xs = np.arange(box[0], box[2], SAMPLE) + SAMPLE / 2
     ys = np.arange(box[1], box[3], SAMPLE) + SAMPLE / 2
     inside = np.zeros((len(ys), len(xs)), dtype=bool)
-    bounds = shapely.bounds(np.asarray(polys, dtype=object)).reshape(-1, 4)
+    bounds = shapely.bounds(polys).reshape(-1, 4)
     # each polygon against the points of its bounds, all in one call
     i0, j0, i1, j1 = (np.searchsorted(v, bounds[:, k]) for k, v in enumerate((xs, ys) * 2))
     ni, nj = np.maximum(i1 - i0, 0), np.maximum(j1 - j0, 0)
@@ -161,7 +164,7 @@ def balanced(sheet: Sheet, pages, overlap: float, margin: float, name: str = "pa
     owner = np.repeat(np.arange(len(polys)), per)
     k = np.arange(per.sum()) - np.repeat(np.cumsum(per) - per, per)  # row by row in its box
     i, j = i0[owner] + k % ni[owner], j0[owner] + k // ni[owner]
-    hit = shapely.contains_xy(np.asarray(polys, dtype=object)[owner], xs[i], ys[j])
+    hit = shapely.contains_xy(polys[owner], xs[i], ys[j])
     inside[j[hit], i[hit]] = True
     held = np.zeros((len(ys) + 1, len(xs) + 1), dtype=np.int64)  # points below-left, summed
     held[1:, 1:] = inside.cumsum(axis=0).cumsum(axis=1)
@@ -217,10 +220,12 @@ def _geoms(layer: Layer):
     (S + 1); and every word's least and greatest point (S, 2; NaN for other shapes)."""
     parts, lines = [], []
     lo, hi = np.full((2, len(layer.shapes), 2), np.nan)
-    for i, shape in enumerate(layer.shapes):
+    words = [i for i, s in enumerate(layer.shapes)
+             if layer.name == WORDS and isinstance(s, Polylines) and len(s.coords)]
+    if words:
+        lo[words], hi[words] = _extents([layer.shapes[i] for i in words])
+    for shape in layer.shapes:
         if isinstance(shape, Polylines) and layer.name == WORDS:
-            if len(shape.coords):
-                lo[i], hi[i] = shape.coords.min(axis=0), shape.coords.max(axis=0)
             geoms = np.empty(0, dtype=object)
         elif isinstance(shape, Polygons):
             geoms = shape.to_shapely()
@@ -238,7 +243,7 @@ def _geoms(layer: Layer):
                       for s in layer.shapes]).reshape(-1, 1)  # a word's ink beyond its points
     drawn = np.array([isinstance(s, (Polygons, Polylines)) for s in layer.shapes], dtype=bool)
     return (geoms, shapely.bounds(geoms).reshape(-1, 4), owner,
-            np.repeat(np.array(lines, dtype=bool), sizes), np.r_[0, np.cumsum(sizes)], lo, hi,
+            np.repeat(np.array(lines, dtype=bool), sizes), offsets_of(sizes), lo, hi,
             reach, drawn)
 
 
@@ -283,7 +288,7 @@ def _clip_layer(layer: Layer, geoms, window, shift) -> Layer:
             kept = parts[mine][line[mine]]
             if len(kept):
                 coords, idx = shapely.get_coordinates(kept, return_index=True)
-                offsets = np.r_[0, np.cumsum(np.bincount(idx))].astype(np.int64)
+                offsets = offsets_of(np.bincount(idx))
                 shapes.append(Polylines(coords + shift, offsets, shape.style))
         elif isinstance(shape, Text):
             if window.contains(shapely.Point(shape.x, shape.y)):
@@ -302,11 +307,16 @@ def word_overlap(drawing: Drawing, least: float = 10.0) -> float:
              for s in layer.shapes if isinstance(s, Polylines) and len(s.coords)]
     if not words:
         return least
-    at = np.cumsum([0] + [len(s.coords) for s in words[:-1]])  # every word's points at once
-    xy = np.concatenate([s.coords for s in words])
-    ptp = np.maximum.reduceat(xy, at) - np.minimum.reduceat(xy, at)
-    sizes = ptp.max(axis=1) + [s.style.stroke_width for s in words]
+    lo, hi = _extents(words)
+    sizes = (hi - lo).max(axis=1) + [s.style.stroke_width for s in words]
     return max([least, *(math.ceil(x + 0.5) for x in sizes.tolist())])
+
+
+def _extents(words: list[Polylines]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(W, 2) twice: every word's least and greatest point (each has points), all at once."""
+    at = np.cumsum([0] + [len(s.coords) for s in words[:-1]])
+    xy = np.concatenate([s.coords for s in words])
+    return np.minimum.reduceat(xy, at), np.maximum.reduceat(xy, at)
 
 
 def _clip(geoms: NDArray[np.object_], bounds: NDArray[np.float64], window, lines

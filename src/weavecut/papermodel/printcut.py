@@ -29,6 +29,7 @@ from .. import presets
 from ..errors import WeaveCutError
 from ..layout import cutpaths
 from ..layout.drawing import Drawing, Layer, Polygons, Sheet, Style, polygons_from_shapely
+from ..numeric import offsets_of
 from ..units import to_mm
 from .pages import CUT
 from .strips import MIN_PIECE, narrowest_feature
@@ -212,7 +213,7 @@ def cut_report(outlines) -> CutReport:
     last = np.r_[np.flatnonzero(np.diff(index)), len(index) - 1]  # the repeated closing points
     keep = np.ones(len(coords), dtype=bool)
     keep[last] = False
-    offsets = np.r_[0, np.cumsum(np.bincount(index[keep]))].astype(np.int64)
+    offsets = offsets_of(np.bincount(index[keep]))
     graph = cutpaths.shared_edges(coords[keep], offsets, decimals=4)
     return CutReport(float(shapely.length(rings).sum()), len(polys), simple,
                      int((graph.uses > 1).sum()),
@@ -231,7 +232,7 @@ def cut_layer(rings: list[NDArray[np.float64]], style: Style = CUT, name: str = 
     """A cut layer of closed rings (their repeated last points dropped), in the given order."""
     rings = [r[:-1] if cutpaths.is_closed(r) else r for r in rings]
     coords = np.concatenate(rings) if rings else np.zeros((0, 2))
-    offsets = np.r_[0, np.cumsum([len(r) for r in rings])].astype(np.int64)
+    offsets = offsets_of([len(r) for r in rings])
     return Layer(name, "cut", (Polygons(coords, offsets, style),))
 
 

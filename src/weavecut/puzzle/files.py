@@ -19,7 +19,7 @@ from ..layout import strokefont
 from ..layout.lasersetup import Laser
 from ..layout.drawing import Drawing, Layer, Polygons, Polylines, Sheet, Style
 from ..errors import WeaveCutError
-from ..numeric import turn
+from ..numeric import offsets_of, turn
 from .pieces import Puzzle
 
 TRAVEL_SPEED = 300.0  # mm/s head moves between cuts, for the time estimate
@@ -40,7 +40,7 @@ class CutResult:
 
 def _lines(paths: list[NDArray], style: Style) -> Polylines:
     coords = np.concatenate(paths) if paths else np.zeros((0, 2))
-    offsets = np.r_[0, np.cumsum([len(p) for p in paths])].astype(np.int64)
+    offsets = offsets_of([len(p) for p in paths])
     return Polylines(coords, offsets, style)
 
 
@@ -181,7 +181,7 @@ def shared_cut(puzzle: Puzzle, las: Laser, numbers: Labels | None = None,
     coords = shapely.get_coordinates(rings)
     keep = np.ones(len(coords), dtype=bool)
     keep[np.cumsum(n + 1) - 1] = False
-    graph = cutpaths.shared_edges(coords[keep], np.r_[0, np.cumsum(n)].astype(np.int64))
+    graph = cutpaths.shared_edges(coords[keep], offsets_of(n))
     home = (0.0, height)
     inner, here = cutpaths.order_paths(cutpaths.trails(graph, graph.uses > 1), home)
     hole, here = cutpaths.order_paths(cutpaths.trails(graph, graph.uses == 1), here)
@@ -278,8 +278,7 @@ def separate_cut(puzzle: Puzzle, las: Laser, kerf: float, sheet: tuple[float, fl
         if engrave:
             coords = np.concatenate([c for c, _ in engrave])
             counts = np.concatenate([np.diff(o) for _, o in engrave])
-            layers.append(_number_layer(coords, np.r_[0, np.cumsum(counts)].astype(np.int64),
-                                        eng))
+            layers.append(_number_layer(coords, offsets_of(counts), eng))
         sheets.append(Sheet(sheet[0], sheet[1], tuple(layers), f"sheet {s + 1}"))
     drawing = Drawing(tuple(sheets), "weave-cut puzzle: separate pieces",
                       (("mode", "separate"), ("kerf", f"{kerf:g} mm")))
@@ -300,7 +299,7 @@ def _closed(paths: list[NDArray], style: Style) -> Polygons:
     """Closed rings (drop the repeated last point) in cutting order."""
     rings = [p[:-1] if closed else p for p, closed in zip(paths, cutpaths.are_closed(paths, 2))]
     coords = np.concatenate(rings) if rings else np.zeros((0, 2))
-    offsets = np.r_[0, np.cumsum([len(r) for r in rings])].astype(np.int64)
+    offsets = offsets_of([len(r) for r in rings])
     return Polygons(coords, offsets, style)
 
 

@@ -50,6 +50,15 @@ def _walls(polygons, thickness: float):
     return corners.reshape(-1, 3), triangles, np.repeat(normal, 4, axis=0)
 
 
+def painted_union(polygons) -> shapely.Geometry:
+    """The union of a side's painted polygons. They meet edge to edge (the pieces share their
+    corners, the halves their chords: a coverage), whose union GEOS makes from the edges used
+    once, twenty times faster than ``union_all``; that union is invalid where they do not (an
+    overlap, a corner on one side of an edge only), and ``union_all`` makes it then."""
+    union = shapely.coverage_union_all(polygons)
+    return union if shapely.is_valid(union) else shapely.union_all(polygons)
+
+
 def puzzle_model(puzzle: Puzzle, colouring: Colouring, thickness: float) -> Model:
     """The puzzle in its frame, pieces and frame ``thickness`` mm thick."""
     parts = []  # (name, colour, vertices, triangles, normals)
@@ -63,7 +72,7 @@ def puzzle_model(puzzle: Puzzle, colouring: Colouring, thickness: float) -> Mode
     wood = []
     for paint, z, up in ((front, thickness, True), (back, 0.0, False)):
         bare = shapely.difference(shapely.Polygon(puzzle.outer.exterior),
-                                  shapely.union_all(paint.polygons))
+                                  painted_union(paint.polygons))
         v, t = _flat(shapely.get_parts(bare), z, up)
         wood.append((v, t, np.tile([0.0, 0.0, 1.0 if up else -1.0], (len(v), 1))))
     wood.append(_walls(np.concatenate([puzzle.pieces, [puzzle.frame]]), thickness))

@@ -46,6 +46,7 @@ from numpy.typing import NDArray
 from ..errors import MeshError, TurnedOverError, WeaveCutError
 from ..graphs import components
 from ..mesh import Mesh
+from ..numeric import offsets_of
 from ..subdivision.hierarchy import Level
 from ..weave.model import Weave
 from ..weave.snub_weave import snub_weaves
@@ -268,7 +269,7 @@ def _shapes(points: NDArray[np.float64], parts: list, octagon_sizes) -> tuple:
     octagon_xy, ennea, plain, hexes, ring_cells = (
         points[bounds[k]:bounds[k + 1]].reshape(parts[k].shape if k == 0 else (-1,) + shape)
         for k, shape in enumerate([None, (9, 2), (5, 2), (6, 2), (6, 2)]))
-    octagons = _polygons(octagon_xy, np.r_[0, np.cumsum(octagon_sizes)])
+    octagons = _polygons(octagon_xy, offsets_of(octagon_sizes))
     pieces = np.concatenate([octagons, shapely.polygons(ennea), shapely.polygons(plain)])
     ring = shapely.polygons(ring_cells) if len(ring_cells) else np.empty(0, dtype=object)
     return pieces, shapely.polygons(hexes), ring
@@ -301,10 +302,9 @@ def _non_overlapping(cells, claimed, level_mesh: Mesh, to_mm) -> NDArray[np.bool
     polys = shapely.polygons(cells)
     scale = np.linalg.norm(cells[:, 0] - cells[:, 1], axis=1)
     centres = cells.mean(axis=1)
-    inner = shapely.union_all(shapely.polygons(to_mm(level_mesh.vertices[
-        level_mesh.dense_faces()])))
     tol = 1e-6 * float(scale.mean()) ** 2
-    keep = shapely.area(shapely.intersection(polys, inner)) <= tol
+    keep = _overlap(polys, shapely.polygons(to_mm(level_mesh.vertices[
+        level_mesh.dense_faces()]))) <= tol
     tree = shapely.STRtree(polys)
     i, j = tree.query(polys, predicate="intersects")
     pair = i < j
@@ -324,6 +324,14 @@ def _non_overlapping(cells, claimed, level_mesh: Mesh, to_mm) -> NDArray[np.bool
             if keep[first[k]]:
                 keep[second[k]] = False
     return keep  # copies of an unclaimed cell that is claimed elsewhere: see _unique_cells
+
+
+def _overlap(polys: NDArray[np.object_], faces: NDArray[np.object_]) -> NDArray[np.float64]:
+    """(N,) the area every polygon shares with the faces of a mesh (which do not overlap one
+    another): summed over the faces it meets, without their union (a ring cell meets a few)."""
+    i, j = shapely.STRtree(faces).query(polys, predicate="intersects")
+    area = shapely.area(shapely.intersection(polys[i], faces[j]))
+    return np.bincount(i, weights=area, minlength=len(polys))
 
 
 def _snap(points: NDArray[np.float64], tol: float) -> NDArray[np.float64]:
