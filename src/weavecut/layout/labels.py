@@ -150,7 +150,7 @@ def largest_fit(regions, shapes, centres, low: float, high) -> np.ndarray:
         return np.zeros(0)
     w = np.asarray(shapes, dtype=float).reshape(n, -1, 2)
     top = np.broadcast_to(np.asarray(high, dtype=float), (n,))
-    of, distinct = _distinct(regions)
+    of, distinct = distinct_geoms(regions)
     first, back = _distinct_rows(np.column_stack([of, centres, w.reshape(n, -1), top]))
     return _least_scales(distinct, of[first], w[first], centres[first], low, top[first])[back]
 
@@ -208,7 +208,7 @@ def _least_scales(distinct, of, w, centres, low: float, top) -> np.ndarray:
     return np.where(inside & (least >= low), np.minimum(least, top), np.nan)
 
 
-def _distinct(geoms) -> tuple[np.ndarray, np.ndarray]:
+def distinct_geoms(geoms) -> tuple[np.ndarray, np.ndarray]:
     """(which of the distinct geometries each of ``geoms`` equals, the distinct geometries):
     equal means the same coordinates (the same WKB); each object is read once."""
     geoms = np.asarray(geoms, dtype=object)
@@ -243,7 +243,7 @@ def inner_centres(regions) -> np.ndarray:
     regions = np.asarray(regions, dtype=object)
     if len(regions) == 0:
         return np.zeros((0, 2))
-    of, distinct = _distinct(regions)
+    of, distinct = distinct_geoms(regions)
     tolerance = np.maximum(np.sqrt(shapely.area(distinct)) * 0.01, 1e-3)
     ok = ~shapely.is_empty(distinct)
     out = np.zeros((len(distinct), 2))

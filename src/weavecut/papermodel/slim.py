@@ -10,6 +10,7 @@ import numpy as np
 import shapely
 from numpy.typing import NDArray
 
+from ..layout.labels import distinct_geoms
 from ..numeric import snap
 from .notches import narrowest_notch
 
@@ -39,8 +40,14 @@ def holds(polygons, width: float, slivers: bool = True) -> NDArray[np.bool_]:
     """(N,) True for every polygon that is no thinner than ``width`` anywhere it matters to a
     pair of scissors: what a disc ``width`` across reaches inside it is one piece (no neck),
     and no corner reaches farther than ``SLIVER`` beyond it (no sliver; with ``slivers``
-    False, necks only: what widening mends and a larger size always cures)."""
-    polygons = np.asarray(polygons, dtype=object)
+    False, necks only: what widening mends and a larger size always cures). Equal polygons (a
+    module's copies) are looked at once."""
+    of, distinct = distinct_geoms(polygons)
+    return _holds(distinct, width, slivers)[of]
+
+
+def _holds(polygons, width, slivers: bool = True) -> NDArray[np.bool_]:
+    """:func:`holds` of every polygon, ``width`` one for all or one each."""
     core = opened(polygons, width)
     one = (shapely.get_num_geometries(core) == 1) & ~shapely.is_empty(core)
     if not slivers:
@@ -56,13 +63,13 @@ def slimmest(polygons, step: float = 0.05, largest: float = 50.0) -> NDArray[np.
     """(N,) per polygon the largest multiple of ``step`` mm (at most ``largest``) it
     :func:`holds`: the narrowest neck or sliver a maker must cut round (a polygon that holds
     3 mm reads 3 mm, not the bisection's last point under it)."""
-    polygons = np.asarray(polygons, dtype=object)
+    of, polygons = distinct_geoms(polygons)
     low, high = np.zeros(len(polygons), int), np.full(len(polygons), int(largest / step))
     while (high - low > 1).any():  # bisection steps on the grid, all polygons at once
         mid = (low + high) // 2
-        ok = holds(polygons, mid * step)
+        ok = _holds(polygons, mid * step)
         low, high = np.where(ok, mid, low), np.where(ok, high, mid)
-    return low * step
+    return (low * step)[of]
 
 
 def narrowest_feature(polygons) -> NDArray[np.float64]:
