@@ -207,7 +207,19 @@ def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float,
     top. A crossing's leader ends on a dot, its text in a layer "crossings"; a strand's on a
     ring (the tile's colour, the strand's, shows inside), its ID in a layer "ids" as on page
     1. ``words`` say how such a crossing looks on its strip."""
-    ids = plan.labels
+    tiles, labels, kinds, note = _callouts(plan.labels, crossings, words, unnamed, called)
+    return callout_pages(weave, colours, area, tiles, labels, note, turn, kinds)
+
+
+def crossing_page_count(plan, area, crossings, words: Words = PRINTED, unnamed=(),
+                        called=()) -> int:
+    """How many pages :func:`crossing_pages` has, without drawing them."""
+    _, labels, _, note = _callouts(plan.labels, crossings, words, unnamed, called)
+    return _frame(area, note, len(labels))[2]
+
+
+def _callouts(ids, crossings, words: Words, unnamed, called):
+    """(tiles, labels, kinds, note) of the callouts of :func:`crossing_pages`."""
     notes = []
     if crossings:
         notes.append(f"{too_small(len(crossings))}: there the "
@@ -218,7 +230,7 @@ def crossing_pages(weave: Weave, plan, colours, area, crossings, turn: float,
               + [ids[s] for s, _ in unnamed])
     tiles = [c[0] for c in crossings] + [t for _, t in unnamed]
     kinds = ["crossings"] * len(crossings) + ["ids"] * len(unnamed)
-    return callout_pages(weave, colours, area, tiles, labels, " ".join(notes), turn, kinds)
+    return tiles, labels, kinds, " ".join(notes)
 
 
 def id_pages(weave: Weave, plan, colours, area, unnamed, turn: float) -> list[tuple]:
@@ -227,21 +239,28 @@ def id_pages(weave: Weave, plan, colours, area, unnamed, turn: float) -> list[tu
     return crossing_pages(weave, plan, colours, area, (), turn, unnamed=unnamed)
 
 
+def _frame(area, note: str, count: int):
+    """(the note's texts, the frame below it, pages): the pages ``count`` callouts take in two
+    columns of :func:`column_room` each."""
+    x0, y0, x1, y1 = area.box
+    texts, bottom = paragraphs([note], x0, y1, x1 - x0)
+    frame = (x0, y0, x1, bottom - GAP)
+    return texts, frame, max(1, -(-count // (2 * column_room(frame))))
+
+
 def callout_pages(weave: Weave, colours, area, tiles, labels: list[str], note: str,
                   turn: float, kinds: list[str]) -> list[tuple]:
     """The layers of the pages calling out ``labels[i]`` at ``tiles[i]`` (a white plate in a
     column, a leader into the tile, ending on a dot for a crossing, on a ring for a strand's ID:
     ``kinds[i]`` "crossings" or "ids", the layer of its text), with ``note`` above."""
     x0, y0, x1, y1 = area.box
-    texts, bottom = paragraphs([note], x0, y1, x1 - x0)
+    texts, frame, n = _frame(area, note, len(tiles))
     room = max((text_width(s, MIN_CAP) for s in labels), default=0.0) + 2 * PLATE_PAD + 3 * GAP
-    frame = (x0, y0, x1, bottom - GAP)
     on_sheet, _, paint, _ = pattern(weave, turn, (x0 + room, y0, x1 - room, frame[3]), colours)
     spots = label_spots(on_sheet[list(tiles)])
     middle = (x0 + x1) / 2
     side = spots[:, 0] >= middle
     room = column_room(frame)
-    n = max(1, -(-len(spots) // (2 * room)))
     for heavy in (False, True):  # a side with more than its columns hold: those nearest the
         mine = np.flatnonzero(side == heavy)  # middle go to the other side (no leaders cross)
         if len(mine) > n * room:

@@ -7,7 +7,7 @@ from __future__ import annotations
 from ..layout.drawing import Sheet
 from ..weave.model import Weave
 from .assembly import assembly_sheet, weaving_sheet
-from .crossings import crossing_pages, id_pages, named_by_callouts
+from .crossings import crossing_page_count, crossing_pages, id_pages, named_by_callouts
 from .modules import ModulePlan
 from .pages import PageArea, page_layers
 from .wording import PRINTED, Words
@@ -32,32 +32,34 @@ def front_pages(weave: Weave, plan: ModulePlan, colours, area: PageArea, crossin
     if the crossing pages named strands too (a pattern too big to call out its crossings on
     page 1 mostly has strands it cannot name): once where it has such strands."""
     area = area.plain  # their subtitles are short
-    alone: list = []  # the crossing pages without strands
+    alone = 0  # the crossing pages without strands (counted until page 1 settles, then drawn)
     on_cover = crossings if len(crossings) <= ON_COVER else ()
     if not on_cover and crossings:
-        alone = crossing_pages(weave, plan, colours, area, crossings, turn, words)
-    own_pages, named = alone, []  # the crossing pages; pages of strand IDs of their own
+        alone = crossing_page_count(plan, area, crossings, words)
+    own, ids = alone, 0  # the crossing pages; pages of strand IDs of their own
     shared = bool(alone)  # the crossing pages name strands too
     for _ in range(SETTLE):  # page 1's words name the other pages: until their count holds
-        book, total, first = book_for(len(own_pages), len(named), shared)
+        book, total, first = book_for(own, ids, shared)
         cover, missing, unnamed = assembly_sheet(weave, book, tile_size, turn, title, total,
                                                  on_cover, words)
         if missing:  # the crossings do not all fit on page 1: pages of their own
             on_cover = ()
-            own_pages = alone = crossing_pages(weave, plan, colours, area, crossings, turn,
-                                               words)
+            own = alone = crossing_page_count(plan, area, crossings, words)
             continue
         called, rest = named_by_callouts(unnamed, crossings)
-        was = (len(own_pages), len(named), shared)
+        was = (own, ids, shared)
         shared = bool(alone and unnamed)  # the crossing pages name strands too
-        own_pages = crossing_pages(weave, plan, colours, area, crossings, turn, words, rest,
-                                   called) if shared else alone
-        named = id_pages(weave, plan, colours, area, rest, turn) if rest and not shared else []
-        if (len(own_pages), len(named), shared) == was:
+        own = crossing_page_count(plan, area, crossings, words, rest, called) if shared \
+            else alone
+        ids = crossing_page_count(plan, area, (), unnamed=rest) if rest and not shared else 0
+        if (own, ids, shared) == was:
             break
     else:
         raise AssertionError("page 1 and the pages of the strands it does not name never "
                              "agreed on their number")
+    own_pages = [] if not alone else crossing_pages(
+        weave, plan, colours, area, crossings, turn, words, *((rest, called) if shared else ()))
+    named = id_pages(weave, plan, colours, area, rest, turn) if ids else []
     sheets = [cover, weaving_sheet(weave, book, turn, title, total, words)]
     what = ("Crossings the strips and strands page 1 do not name (the strand named first lies "
             "on top)" if shared else
