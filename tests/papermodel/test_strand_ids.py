@@ -203,3 +203,28 @@ def test_strands_on_top_of_one_called_out_crossing_only_are_named_by_its_callout
     with mock.patch.object(front, "named_by_callouts", both):
         bad = pentagon_module_book.__wrapped__()
     assert unfound(bad, weave)
+
+
+def test_the_counted_crossing_pages_are_the_pages_drawn():
+    """Page 1 settles on counts (``crossing_page_count``) and the pages are drawn once after:
+    the count is the number drawn, for crossings, strands of their own or both, about where
+    a second page starts (found by drawing) and at the pentagon flower's 155 and 22. Planted:
+    the count leaving out the strands (or the crossings) fails."""
+    from weavecut.papermodel.crossings import (crossing_page_count, crossing_pages,
+                                               left_out_crossings)
+    from weavecut.papermodel.pages import PageArea
+
+    book, weave = pentagon_book(), weaves("pentagon-flower", 3)[-1]
+    found = left_out_crossings(weave, book.plan, [p for _, p in book.pieces], book.layout)
+    area = PageArea(210.0, 297.0, 10.0).plain
+    strands = [(int(weave.tile_over[t]), t) for t, _, _ in found]
+
+    def drawn(c: int, u: int) -> int:
+        return len(crossing_pages(weave, book.plan, book.colours, area, found[:c], 0.0,
+                                  unnamed=strands[:u]))
+
+    one = max(c for c in range(4, len(found) + 1, 4) if drawn(c, 0) == 1)  # a page's worth
+    assert drawn(one + 8, 0) == 2
+    for c, u in ((one, 0), (one, 8), (one - 4, 8), (0, one + 8), (len(found), 22), (3, 0)):
+        assert crossing_page_count(book.plan, area, found[:c], unnamed=strands[:u]) == \
+            drawn(c, u), (c, u)
