@@ -31,3 +31,18 @@ def test_numpy_ma_is_not_imported():
     assert "numpy.ma" not in modules_after(
         "import numpy as np\nfrom weavecut.numeric import distinct\n"
         "distinct(np.array([3, 1, 3])); distinct(np.array([[1, 2], [1, 2]]), axis=0)")
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.tuples(st.integers(-3, 3), st.integers(-2**62, 2**62), st.integers(0, 2)),
+                max_size=40))
+def test_unique_rows_is_np_uniques_first_and_inverse(rows):
+    """numeric.unique_rows against np.unique(axis=0): the first of each distinct row, in the
+    rows' order, and which each row is (large and negative values, repeats, no rows)."""
+    from weavecut.numeric import unique_rows
+
+    keys = np.array(rows, dtype=np.int64).reshape(-1, 3)
+    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
+    got_first, got_inverse = unique_rows(keys)
+    assert got_first.tolist() == first.tolist()
+    assert got_inverse.tolist() == inverse.reshape(-1).tolist()

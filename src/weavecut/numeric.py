@@ -52,6 +52,25 @@ def offsets_of(counts: ArrayLike) -> NDArray[np.int64]:
     return np.concatenate([[0], np.cumsum(counts, dtype=np.int64)])
 
 
+def unique_rows(rows: NDArray[np.integer]) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
+    """(first, inverse) of ``np.unique(rows, axis=0, return_index=True, return_inverse=True)``
+    for integer rows (N, k): the first row of each distinct one, in ascending order, and which
+    of them each row is; by a stable lexsort (np.unique's sort of structured rows is three
+    times slower).
+
+    >>> [a.tolist() for a in unique_rows(np.array([[2, 1], [0, 5], [2, 1]]))]
+    [[1, 0], [1, 0, 1]]
+    """
+    rows = np.asarray(rows)
+    order = np.lexsort(rows.T[::-1])
+    ordered = rows[order]
+    new = np.ones(len(rows), dtype=bool)
+    new[1:] = (ordered[1:] != ordered[:-1]).any(axis=1)
+    inverse = np.empty(len(rows), dtype=np.intp)
+    inverse[order] = np.cumsum(new) - 1
+    return order[new], inverse
+
+
 def matmul(a: ArrayLike, b: ArrayLike) -> NDArray[np.float64]:
     """``a @ b`` for 1-D, 2-D and stacked arrays, as numpy defines it, without BLAS."""
     a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)

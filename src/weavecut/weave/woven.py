@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import MeshError
-from ..numeric import snap
+from ..numeric import snap, unique_rows
 from ..surface import circumsphere, face_normals, onto_sphere
 from .model import Weave, tile_ring_ids
 
@@ -75,9 +75,7 @@ def merged(points: NDArray[np.float64], group: NDArray[np.int64], triangles: NDA
            ) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.bool_]]:
     """Points of one ``group`` at the same place (to ``numeric.GRID``) made one vertex:
     (vertices, triangles, which triangles are kept: those with three distinct corners)."""
-    keys = np.column_stack([group, snap(points)])
-    _, first, inverse = np.unique(keys, axis=0, return_index=True, return_inverse=True)
-    inverse = inverse.reshape(-1)
+    first, inverse = unique_rows(np.column_stack([group, snap(points)]))
     tri = inverse[triangles]
     keep = (tri[:, 0] != tri[:, 1]) & (tri[:, 1] != tri[:, 2]) & (tri[:, 0] != tri[:, 2])
     return points[first], tri, keep
