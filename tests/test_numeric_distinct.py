@@ -46,3 +46,24 @@ def test_unique_rows_is_np_uniques_first_and_inverse(rows):
     got_first, got_inverse = unique_rows(keys)
     assert got_first.tolist() == first.tolist()
     assert got_inverse.tolist() == inverse.reshape(-1).tolist()
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.integers(-6, 6), max_size=30), st.lists(st.integers(-4, 4), max_size=10))
+def test_among_is_np_isin_for_distinct_keys(values, keys):
+    """numeric.among against np.isin, for the sorted distinct keys it is given (no keys, values
+    below, between and above them)."""
+    from weavecut.numeric import among
+
+    want = np.isin(np.array(values, dtype=np.int64), np.array(keys, dtype=np.int64))
+    got = among(np.array(values, dtype=np.int64), distinct(np.array(keys, dtype=np.int64)))
+    assert got.tolist() == want.tolist()
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.floats(-1e6, 1e6, allow_nan=False), min_size=1, max_size=25))
+def test_median_is_np_median(values):
+    """numeric.median against np.median, bit for bit (odd and even counts, repeats)."""
+    from weavecut.numeric import median
+
+    assert median(values) == float(np.median(np.array(values)))

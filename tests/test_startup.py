@@ -69,3 +69,17 @@ def test_the_cli_runs_blas_on_one_thread_unless_asked():
     assert _threads_after_numpy() == 1
     if (__import__("os").cpu_count() or 1) >= 2:
         assert _threads_after_numpy(OPENBLAS_NUM_THREADS="2") == 2
+
+
+def test_a_paper_model_and_a_ball_load_no_masked_arrays(tmp_path):
+    """numpy.ma (6 ms) comes with np.median, a plain np.unique and np.isin: the paper models
+    ask numeric.median, distinct and among instead (the flower's crossings, labels, woven
+    model; the ball's hull)."""
+    for args in (["strands", "pentagon-flower", "--size", "23cm", "-o", "pf.pdf"],
+                 ["strands", "dodecahedron", "--levels", "1", "--project", "sphere", "--size",
+                  "12cm", "-o", "ball.pdf"]):
+        args[-1] = str(tmp_path / args[-1])
+        modules = modules_after("from weavecut.cli import main\nimport contextlib\n"
+                                "with contextlib.suppress(SystemExit):\n"
+                                f"    main(['-q', *{args!r}])\n")
+        assert "weavecut.papermodel.book" in modules and "numpy.ma" not in modules, args

@@ -14,7 +14,7 @@ import numpy as np
 
 from .errors import MeshError
 from .mesh import Mesh
-from .numeric import dot
+from .numeric import distinct, dot
 from .text import nearest
 
 MAX_GRID = 2000
@@ -169,7 +169,7 @@ def _convex_solid(points) -> Mesh:
     planes, face = np.unique(np.round(equations, 9), axis=0, return_inverse=True)
     face = face.reshape(-1)
     corner_face = np.repeat(face, 3)
-    pairs = np.unique(np.column_stack([corner_face, simplices.reshape(-1)]), axis=0)
+    pairs = distinct(np.column_stack([corner_face, simplices.reshape(-1)]), axis=0)
     f, v = pairs.T
     normal = planes[f, :3]
     centre = np.add.reduceat(points[v], np.flatnonzero(np.r_[True, f[1:] != f[:-1]]))

@@ -8,6 +8,7 @@ from numpy.typing import NDArray
 
 from ..mesh import Mesh
 from ..weave.model import Weave, tile_ring_ids
+from ..numeric import distinct, median
 from .drawing import Drawing, Fit, Layer, Polylines, Sheet, Style, mesh_polygons
 from .mesh_figure import line_width
 
@@ -22,7 +23,7 @@ def tile_rings(weave: Weave) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
 def middle_edge_lines(mesh: Mesh) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """The Z middle edges of a snub level (local edge 1 of every pentagon), each once."""
     topo = mesh.topology
-    middle = np.unique(topo.half_edge_edge[5 * np.arange(mesh.n_faces) + 1])
+    middle = distinct(topo.half_edge_edge[5 * np.arange(mesh.n_faces) + 1])
     seg = topo.edges[middle].ravel()
     return np.take(mesh.vertices, seg, axis=0), np.arange(0, len(seg) + 1, 2, dtype=np.int64)
 
@@ -114,7 +115,7 @@ def weave_layers(weave: Weave, colours: list[str], fit: Fit, outline: Weave | No
     colour_of = np.array([c or "#ffffff" for c in colours] + ["#ffffff"], dtype=object)
     layers = []
     if ribbons:
-        band = 0.3 * float(np.median(np.hypot(*np.diff(
+        band = 0.3 * float(median(np.hypot(*np.diff(
             centres[weave.strand_visits], axis=0).T))) * fit.scale
         lc, lo, ls = crossing_lines(weave, centres, unders, gap=0.2)
         layers.append(Layer("faces", "guide", (mesh_polygons(mesh, fit, Style("#dddddd", lw)),)))

@@ -24,6 +24,7 @@ from ..layout.labels import (
 )
 from ..weave.model import Weave
 from ..text import counted
+from ..numeric import median
 from .crossings import DOT, callout_shapes, crossing_label, crossing_meaning, too_small
 from .pages import GAP, GLUE_MARKS, page_layers, page_span
 from .modules import copy_letter
@@ -134,7 +135,7 @@ def _own_tiles(weave: Weave, s: int) -> list[int]:
 
 def tile_mm(on_sheet) -> float:
     """A typical tile's size on the sheet (mm): the root of the median tile area."""
-    return float(np.sqrt(np.median(shapely.area(on_sheet))))
+    return float(np.sqrt(median(shapely.area(on_sheet))))
 
 
 def _strand_labels(weave: Weave, book, on_sheet, centres, fills, box):

@@ -26,7 +26,7 @@ from .book import MIN_STRIP, WARN_STRIP, SizeError, StrandBook, strip_sheets
 from .packing import pack
 from .pages import GAP, PageArea, page_layers, page_span
 from .pattern import OUTLINE
-from ..numeric import dot, snap
+from ..numeric import dot, median, snap
 from .modules import copy_letter
 from .ball_pieces import MIN_FOLD, PageTooSmall, strand_pieces, too_large
 from .notches import MIN_CUT, NotchError
@@ -89,7 +89,7 @@ def tile_size_of(weave: Weave) -> float:
     """Median distance across an octagon (farthest corners, in space), mesh units."""
     coords, offsets = tile_rings(weave)
     octs = coords.reshape(-1, 8, 3)
-    return float(np.median(np.linalg.norm(octs[:, :, None] - octs[:, None], axis=-1)
+    return float(median(np.linalg.norm(octs[:, :, None] - octs[:, None], axis=-1)
                            .max(axis=(1, 2))))
 
 
@@ -134,7 +134,7 @@ def ball_book(weaves: list[Weave], pal: Palette, page=(210.0, 297.0),
     widths = shapely.minimum_rotated_rectangle(np.concatenate([p.tiles for p in pieces]))
     rect = shapely.get_coordinates(shapely.get_exterior_ring(widths)).reshape(-1, 5, 2)
     sides = np.linalg.norm(rect[:, 1:3] - rect[:, 0:2], axis=-1)
-    width = float(np.median(sides.min(axis=1)))
+    width = float(median(sides.min(axis=1)))
     if width < MIN_STRIP - 1e-9:
         raise SizeError(f"strips would be {width:.1f} mm wide and tear (paper section 5.2): "
                         f"use --size {math.ceil(diameter * MIN_STRIP / width / 10)}cm or more")

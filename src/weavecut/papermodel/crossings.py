@@ -15,7 +15,7 @@ from __future__ import annotations
 import numpy as np
 import shapely
 
-from ..numeric import affine_inverse, transform
+from ..numeric import affine_inverse, distinct, transform
 from ..layout.drawing import Layer, Polylines, Style, Text, polygons_from_shapely
 from ..layout.labels import MIN_CAP, centred_text, text_box, text_width
 from ..weave.model import Weave
@@ -47,11 +47,11 @@ def left_out_crossings(weave: Weave, plan, pieces, layout: str) -> list[tuple[in
         which, hit = tree.query(spots, predicate="intersects")
         mine = weave.tile_under[hit] == piece.strand
         found.update(hit[mine].tolist())
-        if len(np.unique(which[mine])) != len(spots):
+        if len(distinct(which[mine])) != len(spots):
             raise AssertionError(f"a left-out crossing of {piece.label} lies on no tile")
     t = np.array(sorted(found), dtype=np.int64)
     if layout == "module":  # one print per copy
-        t = np.unique(plan.symmetry.tile_powers()[:, t])
+        t = distinct(plan.symmetry.tile_powers()[:, t])
     return list(zip(t.tolist(), weave.tile_over[t].tolist(), weave.tile_under[t].tolist()))
 
 

@@ -14,7 +14,7 @@ from dataclasses import replace
 import numpy as np
 import shapely
 
-from ..numeric import snap, turn
+from ..numeric import distinct, snap, turn
 from ..layout.contrast import text_colour_on
 from ..layout.labels import (
     MIN_CAP,
@@ -133,7 +133,7 @@ class _Tiles:
         owner = np.array([s for s, g in enumerate(shapes) for _ in g], dtype=np.int64)
         if not len(owner):
             return
-        hit = np.unique(owner)
+        hit = distinct(owner)
         keep_out = np.full(len(shapes), None, dtype=object)
         keep_out[hit] = shapely.buffer(shapely.geometrycollections(
             [g for group in shapes for g in group], indices=np.searchsorted(hit, owner)), PAD)

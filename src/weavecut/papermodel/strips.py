@@ -16,7 +16,7 @@ import numpy as np
 import shapely
 from numpy.typing import NDArray
 
-from ..numeric import affine, matmul, snap, transform
+from ..numeric import affine, matmul, median, snap, transform
 from ..weave.model import Weave
 from ..layout.contrast import text_colour_on
 from ..layout.drawing import Text
@@ -192,7 +192,7 @@ def octagon_size(weave: Weave) -> float:
     if len(octs) == 0:
         octs = coords[np.repeat(sizes == 5, sizes)].reshape(-1, 5, 2)
     d = np.linalg.norm(octs[:, :, None, :] - octs[:, None, :, :], axis=-1).max(axis=(1, 2))
-    return float(np.median(d))
+    return float(median(d))
 
 
 def strip_width(weave: Weave) -> float:
@@ -206,7 +206,7 @@ def strip_width(weave: Weave) -> float:
     rects = shapely.get_coordinates(shapely.get_exterior_ring(
         shapely.minimum_rotated_rectangle(polys))).reshape(len(polys), -1, 2)
     sides = np.hypot(*(rects[:, 1:3] - rects[:, 0:2]).transpose(2, 0, 1))
-    return float(np.median(sides.min(axis=1)))
+    return float(median(sides.min(axis=1)))
 
 
 def build_strips(weave: Weave, plan: ModulePlan, colours: list[str], scale: float,

@@ -16,6 +16,7 @@ import numpy as np
 import shapely
 from numpy.typing import NDArray
 
+from ..numeric import distinct
 from ..weave.model import Weave
 
 
@@ -96,7 +97,7 @@ def _weave_map(weave: Weave, centres: NDArray[np.float64], tree: shapely.STRtree
                angle: float, centre: NDArray[np.float64], tol: float):
     """(tile_perm, strand_perm) of the turn by ``angle`` if it is a symmetry of the weave."""
     tile_perm = _match(tree, rotate(centres, angle, centre), tol)
-    if tile_perm is None or len(np.unique(tile_perm)) != weave.n_tiles:
+    if tile_perm is None or len(distinct(tile_perm)) != weave.n_tiles:
         return None
     strand = weave.visit_strand
     image = tile_perm[weave.strand_visits]
@@ -107,7 +108,7 @@ def _weave_map(weave: Weave, centres: NDArray[np.float64], tree: shapely.STRtree
         return None
     strand_perm = np.full(weave.n_strands, -1, dtype=np.int64)
     strand_perm[strand] = target
-    if (strand_perm[strand] != target).any() or len(np.unique(strand_perm)) != weave.n_strands:
+    if (strand_perm[strand] != target).any() or len(distinct(strand_perm)) != weave.n_strands:
         return None
     if (np.diff(weave.strand_offsets)[strand_perm] != np.diff(weave.strand_offsets)).any():
         return None
@@ -148,11 +149,11 @@ def rotation_group(weave: Weave, rtol: float = 1e-7) -> Symmetry:
     centres = tile_centres(weave)
     ttree = _tree(centres)
     kept = []
-    for angle in np.unique(np.round(angles, 9)).tolist():  # a few candidates, not mesh elements
+    for angle in distinct(np.round(angles, 9)).tolist():  # a few candidates, not mesh elements
         if angle < 1e-9:
             continue
         image = _match(vtree, rotate(v, angle, centre), 10 * tol)
-        if image is None or len(np.unique(image)) != len(v):
+        if image is None or len(distinct(image)) != len(v):
             continue
         if _weave_map(weave, centres, ttree, angle, centre, 10 * tol) is not None:
             kept.append(angle)

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import presets
+from ..numeric import distinct
 from .model import Weave
 
 
@@ -76,7 +77,7 @@ def crossing_pairs(weave: Weave) -> np.ndarray:
     over, under = weave.tile_over, weave.tile_under
     ok = (over >= 0) & (under >= 0) & (over != under)
     pairs = np.sort(np.column_stack([over[ok], under[ok]]), axis=1)
-    return np.unique(pairs, axis=0) if len(pairs) else pairs.reshape(0, 2)
+    return distinct(pairs, axis=0) if len(pairs) else pairs.reshape(0, 2)
 
 
 def greedy_classes(n: int, pairs: np.ndarray, k: int) -> np.ndarray:

@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import MeshError
-from ..numeric import snap, unique_rows
+from ..numeric import among, distinct, snap, unique_rows
 from ..surface import circumsphere, face_normals, onto_sphere
 from .model import Weave, tile_ring_ids
 
@@ -145,9 +145,9 @@ def woven_model(weave: Weave, colours, lift: float, names=None) -> Model:
     local = np.arange(len(row_visit)) - row_first
     vid = ring_ids[ring_offsets[tiles[row_visit]] + local].astype(np.int64)
     n_v = mesh.n_vertices
-    tile_keys = np.unique(np.repeat(np.arange(weave.n_tiles), ring_size) * n_v + ring_ids)
-    in_prev = (prev_tile[row_visit] >= 0) & np.isin(prev_tile[row_visit] * n_v + vid, tile_keys)
-    in_next = (next_tile[row_visit] >= 0) & np.isin(next_tile[row_visit] * n_v + vid, tile_keys)
+    tile_keys = distinct(np.repeat(np.arange(weave.n_tiles), ring_size) * n_v + ring_ids)
+    in_prev = (prev_tile[row_visit] >= 0) & among(prev_tile[row_visit] * n_v + vid, tile_keys)
+    in_next = (next_tile[row_visit] >= 0) & among(next_tile[row_visit] * n_v + vid, tile_keys)
     on = in_prev | in_next  # the corner is on an edge the strand crosses
     after = row_first + (local + 1) % size[row_visit]  # the next corner of the ring
     before = row_first + (local - 1) % size[row_visit]
@@ -155,7 +155,7 @@ def woven_model(weave: Weave, colours, lift: float, names=None) -> Model:
     # corners two strands of the tile cross at: cut off
     here = tiles[row_visit] * n_v + vid
     keys, counts = np.unique(here[on], return_counts=True)
-    cut = np.isin(here, keys[counts >= 2])
+    cut = among(here, keys[counts >= 2])
     rho = _corner_cut(weave)[vid]
 
     def towards(other):
