@@ -5,7 +5,7 @@ windows taken before included."""
 from __future__ import annotations
 
 import numpy as np
-from hypothesis import example, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
 from weavecut.layout import nesting
@@ -62,6 +62,9 @@ def test_the_cells_inside_a_room_are_those_shapely_finds(seed, corners, on_grid,
     if holed:
         area = shapely.union(shapely.difference(area, shapely.box(8.5, 8.5, 11.5, 11.5)),
                              shapely.box(22, 3, 25.5, 9))
+    # a room is an area: corners on one line (cells' centres on one column) make a line, whose
+    # points shapely counts as inside it
+    assume(area.geom_type in ("Polygon", "MultiPolygon"))
     xs, ys = (np.arange(int(27 / grid)) + 0.5) * grid, (np.arange(int(21 / grid)) + 0.5) * grid
     cx, cy = np.meshgrid(xs, ys)
     assert np.array_equal(nesting.cells_inside(area, xs, ys), shapely.contains_xy(area, cx, cy))
